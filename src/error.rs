@@ -1,0 +1,67 @@
+//! One error type for the whole crate.
+//!
+//! Every failure a user can cause (a bad file, a bad parameter, an
+//! unwritable output, no GPU) becomes one of these, is printed as one
+//! paragraph that names the file or argument and the problem, and makes the
+//! process exit with status 2 (see [`Error::exit_code`]).
+
+use std::path::{Path, PathBuf};
+
+/// Result alias used across gonio.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// What went wrong, with enough context to name the culprit.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// An input file (scene `.toml`, `.gltf`, `.glb`, a buffer) is unusable.
+    #[error("{}: {problem}", path.display())]
+    Input { path: PathBuf, problem: String },
+    /// A command-line argument is unusable (e.g. an unknown `--set` key).
+    #[error("{argument}: {problem}")]
+    Argument { argument: String, problem: String },
+    /// The output file cannot be written.
+    #[error("{}: cannot write the output: {problem}", path.display())]
+    Output { path: PathBuf, problem: String },
+    /// No GPU adapter, or the requested one is not there.
+    #[error("{0}")]
+    NoAdapter(String),
+    /// The GPU failed while rendering (device lost, out of memory, ...).
+    #[error("GPU error: {0}")]
+    Gpu(String),
+}
+
+impl Error {
+    /// An input-file error.
+    pub fn input(path: impl AsRef<Path>, problem: impl Into<String>) -> Self {
+        Error::Input {
+            path: path.as_ref().to_path_buf(),
+            problem: problem.into(),
+        }
+    }
+
+    /// A command-line argument error.
+    pub fn argument(argument: impl Into<String>, problem: impl Into<String>) -> Self {
+        Error::Argument {
+            argument: argument.into(),
+            problem: problem.into(),
+        }
+    }
+
+    /// An output error.
+    pub fn output(path: impl AsRef<Path>, problem: impl Into<String>) -> Self {
+        Error::Output {
+            path: path.as_ref().to_path_buf(),
+            problem: problem.into(),
+        }
+    }
+
+    /// The process exit status for this error: 2 for everything the user
+    /// can fix (bad input, bad arguments, missing adapter), 1 for GPU
+    /// failures that are not the input's fault.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Gpu(_) => 1,
+            _ => 2,
+        }
+    }
+}

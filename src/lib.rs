@@ -1,0 +1,19 @@
+//! gonio: a GPU renderer for looking at materials.
+//!
+//! The data flow reads top to bottom: a [`scene`] is loaded (glTF, scene
+//! `.toml` or the built-in default), its [`material`]s and lights decide which
+//! shader code exists, the [`gpu`] renders it or the CPU [`reference`] does,
+//! and the resulting [`frame::Frame`] is written, compared or measured by
+//! [`output`].
+
+pub mod cli;
+pub mod error;
+pub mod frame;
+pub mod gpu;
+pub mod material;
+pub mod output;
+pub mod reference;
+pub mod scene;
+pub mod shading;
+
+pub use error::{Error, Result};

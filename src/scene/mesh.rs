@@ -1,0 +1,156 @@
+//! Triangle meshes in world space, and the normals the lecture's shading
+//! modes need.
+
+use glam::{DMat4, DVec3};
+
+/// An indexed triangle mesh, already in world space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// A human-readable name (glTF mesh name or a generated one).
+    pub name: String,
+    pub positions: Vec<DVec3>,
+    /// Unit vertex normals, one per position.
+    pub normals: Vec<DVec3>,
+    /// Counter-clockwise triangles (glTF's front face).
+    pub indices: Vec<[u32; 3]>,
+    /// Index into [`crate::scene::Scene::materials`].
+    pub material: usize,
+}
+
+impl Mesh {
+    /// A mesh from positions and triangles, with normals generated as
+    /// area-weighted averages of the adjacent face normals.
+    pub fn with_generated_normals(
+        name: impl Into<String>,
+        positions: Vec<DVec3>,
+        indices: Vec<[u32; 3]>,
+        material: usize,
+    ) -> Self {
+        let normals = area_weighted_normals(&positions, &indices);
+        Mesh {
+            name: name.into(),
+            positions,
+            normals,
+            indices,
+            material,
+        }
+    }
+
+    /// Applies `world_from_object` to positions and its inverse transpose to
+    /// normals (which stay unit length; a mirroring transform also flips the
+    /// winding so front faces stay counter-clockwise).
+    pub fn transform(&mut self, world_from_object: DMat4) {
+        let normal_matrix = world_from_object.inverse().transpose();
+        for p in &mut self.positions {
+            *p = world_from_object.transform_point3(*p);
+        }
+        for n in &mut self.normals {
+            *n = normal_matrix.transform_vector3(*n).normalize_or_zero();
+        }
+        if world_from_object.determinant() < 0.0 {
+            for t in &mut self.indices {
+                t.swap(1, 2);
+            }
+        }
+    }
+
+    /// The three corners of triangle `t`.
+    pub fn triangle(&self, t: usize) -> [DVec3; 3] {
+        let [a, b, c] = self.indices[t];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+}
+
+/// Unit normal of a counter-clockwise triangle; zero for a degenerate one.
+pub fn face_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
+    (b - a).cross(c - a).normalize_or_zero()
+}
+
+/// Centroid of a triangle: where flat shading evaluates the reflection
+/// equation.
+pub fn centroid([a, b, c]: [DVec3; 3]) -> DVec3 {
+    (a + b + c) / 3.0
+}
+
+/// Vertex normals as area-weighted averages of the adjacent face normals:
+/// the unnormalized cross product of two edges has length twice the
+/// triangle's area, so summing cross products weights by area.
+/// Vertices used by no (non-degenerate) triangle get `+Y`.
+pub fn area_weighted_normals(positions: &[DVec3], indices: &[[u32; 3]]) -> Vec<DVec3> {
+    let mut sums = vec![DVec3::ZERO; positions.len()];
+    for &[a, b, c] in indices {
+        let (pa, pb, pc) = (
+            positions[a as usize],
+            positions[b as usize],
+            positions[c as usize],
+        );
+        let weighted = (pb - pa).cross(pc - pa);
+        for v in [a, b, c] {
+            sums[v as usize] += weighted;
+        }
+    }
+    sums.into_iter()
+        .map(|s| s.try_normalize().unwrap_or(DVec3::Y))
+        .collect()
+}
+
+/// Axis-aligned bounds of a set of points, `None` if it is empty.
+pub fn bounds(points: impl IntoIterator<Item = DVec3>) -> Option<(DVec3, DVec3)> {
+    points.into_iter().fold(None, |acc, p| match acc {
+        None => Some((p, p)),
+        Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn generated_normals_of_a_flat_quad_point_up() {
+        let positions = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, -1.0),
+            DVec3::new(0.0, 0.0, -1.0),
+        ];
+        let normals = area_weighted_normals(&positions, &[[0, 1, 2], [0, 2, 3]]);
+        for n in normals {
+            assert!((n - DVec3::Y).length() < 1e-12, "{n}");
+        }
+    }
+
+    #[test]
+    fn area_weighting_prefers_the_larger_face() {
+        // A shared vertex between a big face (normal +Y) and a small one (+X).
+        let positions = vec![
+            DVec3::ZERO,
+            DVec3::new(0.0, 0.0, 10.0),
+            DVec3::new(10.0, 0.0, 0.0),
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let n = area_weighted_normals(&positions, &[[0, 1, 2], [0, 4, 3]])[0];
+        // Areas 50 and 0.5: the normal is (0.5, 50, 0)/|...|.
+        let expected = DVec3::new(0.5, 50.0, 0.0).normalize();
+        assert!((n - expected).length() < 1e-12, "{n} vs {expected}");
+    }
+
+    #[test]
+    fn mirroring_transform_keeps_front_faces_ccw() {
+        let mut m = Mesh::with_generated_normals(
+            "t",
+            vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            vec![[0, 1, 2]],
+            0,
+        );
+        m.transform(DMat4::from_scale(DVec3::new(-1.0, 1.0, 1.0)));
+        let n = face_normal(m.triangle(0));
+        assert!((n - DVec3::Z).length() < 1e-12);
+        assert!((m.normals[0] - DVec3::Z).length() < 1e-12);
+    }
+}
