@@ -1,1 +1,188 @@
-//! (in progress)
+//! The command line: `gonio render`, a thin layer over the library.
+
+use crate::frame::Frame;
+use crate::gpu::timing::{Clock, Timings};
+use crate::gpu::{AdapterChoice, GpuContext, GpuRenderer};
+use crate::output::OutputFile;
+use crate::scene::scene_file::{self, SceneSource};
+use crate::scene::{Scene, ShadingMode};
+use crate::{Error, Result, reference};
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// gonio: a GPU renderer for looking at materials.
+#[derive(Debug, Parser)]
+#[command(name = "gonio", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a scene headlessly to a PNG or EXR file.
+    Render(RenderArgs),
+}
+
+/// `gonio render [SCENE] -o OUT.(png|exr) ...`
+#[derive(Debug, clap::Args)]
+pub struct RenderArgs {
+    /// A scene `.toml`, a `.gltf` or a `.glb`. Without it: the built-in
+    /// scene (a sphere on a plane, one point light).
+    pub scene: Option<PathBuf>,
+    /// Output file; `.png` (sRGB, clamped) or `.exr` (linear float radiance).
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Image width in pixels (overrides image.width).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels (overrides image.height).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Shading mode: flat, gouraud or phong (overrides shading.mode).
+    #[arg(long, value_name = "MODE")]
+    pub shading: Option<ShadingMode>,
+    /// Override any scene-file key by its dotted path, e.g.
+    /// `--set materials.ball.k_e=80` or `--set lights.0.intensity=[5,5,5]`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Render with the CPU reference renderer (f64 ray casting) instead of the GPU.
+    #[arg(long)]
+    pub reference: bool,
+    /// PNG exposure in stops: the image is scaled by 2^EXPOSURE before encoding.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f64,
+    /// GPU adapter to use: the first whose name contains this text
+    /// (also GONIO_ADAPTER). Default: wgpu's pick on Vulkan.
+    #[arg(long, value_name = "NAME")]
+    pub adapter: Option<String>,
+    /// Print the adapter, the scene summary and the shader features used.
+    #[arg(short, long)]
+    pub verbose: bool,
+    /// Print the time of each step (GPU timestamp queries where available).
+    #[arg(long)]
+    pub timings: bool,
+}
+
+/// Parses the command line, runs it, and maps errors to exit status 2
+/// (input the user can fix) with a one-paragraph message.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(args) => render(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("gonio: error: {e}");
+            ExitCode::from(e.exit_code() as u8)
+        }
+    }
+}
+
+/// `gonio render`.
+pub fn render(args: &RenderArgs) -> Result<()> {
+    let total = Instant::now();
+    if !args.exposure.is_finite() {
+        return Err(Error::argument(
+            format!("--exposure {}", args.exposure),
+            "the exposure must be a finite number of stops",
+        ));
+    }
+    // Claim the destination first: a bad path fails before any work.
+    let output = OutputFile::prepare(&args.output)?;
+
+    let mut overrides = args.set.clone();
+    if let Some(w) = args.width {
+        overrides.push(format!("image.width={w}"));
+    }
+    if let Some(h) = args.height {
+        overrides.push(format!("image.height={h}"));
+    }
+    if let Some(mode) = args.shading {
+        overrides.push(format!("shading.mode=\"{mode}\""));
+    }
+    let source = match &args.scene {
+        Some(path) => SceneSource::File(path.clone()),
+        None => SceneSource::BuiltIn,
+    };
+    let mut timings = Timings::default();
+    let start = Instant::now();
+    let scene = scene_file::load(&source, &overrides)?;
+    timings.push("load scene", start.elapsed(), Clock::Wall);
+    warn_unsupported(&scene);
+    if args.verbose {
+        eprintln!("{}", describe_scene(&scene));
+    }
+
+    let frame: Frame = if args.reference {
+        if args.verbose {
+            eprintln!(
+                "renderer: CPU reference (f64 ray casting, {} threads)",
+                rayon::current_num_threads()
+            );
+        }
+        timings.wall("reference render", || reference::render(&scene))
+    } else {
+        let choice = AdapterChoice::from_flag_or_env(args.adapter.as_deref());
+        let start = Instant::now();
+        let context = GpuContext::new(&choice)?;
+        timings.push("open GPU device", start.elapsed(), Clock::Wall);
+        if args.verbose {
+            eprintln!("adapter: {}", context.describe());
+            eprintln!(
+                "shader: {}",
+                crate::gpu::shader_gen::ShaderKey::for_scene(&scene).describe()
+            );
+        }
+        let mut renderer = GpuRenderer::new(context);
+        let (frame, gpu_timings) = renderer.render(&scene)?;
+        timings.extend(gpu_timings);
+        frame
+    };
+
+    let start = Instant::now();
+    let path = output.path().to_path_buf();
+    output.write(&frame, args.exposure)?;
+    timings.push("encode + write", start.elapsed(), Clock::Wall);
+    timings.push("total", total.elapsed(), Clock::Wall);
+    if args.timings {
+        println!("{}", timings.report());
+    }
+    if args.verbose {
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Tells the user about requested features this build does not draw yet.
+fn warn_unsupported(scene: &Scene) {
+    for (k, light) in scene.lights.iter().enumerate() {
+        if light.casts_shadows() {
+            eprintln!(
+                "gonio: note: lights[{k}] asks for shadows; shadow maps are not implemented yet (issue #5), so it renders unshadowed"
+            );
+        }
+    }
+}
+
+fn describe_scene(scene: &Scene) -> String {
+    let models: std::collections::BTreeSet<_> = scene
+        .meshes
+        .iter()
+        .map(|m| scene.materials[m.material].model.name())
+        .collect();
+    format!(
+        "scene: {}x{} px, {} meshes, {} triangles, {} materials ({}), {} lights, shading {}",
+        scene.width,
+        scene.height,
+        scene.meshes.len(),
+        scene.triangle_count(),
+        scene.materials.len(),
+        models.into_iter().collect::<Vec<_>>().join(", "),
+        scene.lights.len(),
+        scene.shading
+    )
+}

@@ -1,1 +1,13 @@
-//! (in progress)
+//! The CPU reference renderer: ray casting in `f64`, one primary ray per
+//! pixel sample, shaded exactly as the GPU shades (same shading points,
+//! normals, interpolation and clip planes), so the two frames can be
+//! compared pixel by pixel.
+//!
+//! [`bvh`] finds what a ray hits; [`renderer`] turns hits into a
+//! [`crate::frame::Frame`].
+
+pub mod bvh;
+pub mod renderer;
+
+pub use bvh::{Bvh, Hit, TriangleId};
+pub use renderer::{render, render_offset};

@@ -158,7 +158,10 @@ mod tests {
             let ray = camera.ray(x, y, w, h);
             let p = ray.origin + ray.direction * 7.0;
             let (px, py) = camera.project(p, w, h);
-            assert!((px - x).abs() < 1e-9 && (py - y).abs() < 1e-9, "{x},{y} -> {px},{py}");
+            assert!(
+                (px - x).abs() < 1e-9 && (py - y).abs() < 1e-9,
+                "{x},{y} -> {px},{py}"
+            );
         }
     }
 

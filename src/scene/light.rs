@@ -103,12 +103,41 @@ impl Light {
         }
     }
 
-    /// The contract's name of the light's kind.
-    pub fn kind_name(&self) -> &'static str {
+    /// The light's kind.
+    pub fn kind(&self) -> LightKind {
         match self {
-            Light::Point { .. } => "point",
-            Light::Directional { .. } => "directional",
-            Light::Spot { .. } => "spot",
+            Light::Point { .. } => LightKind::Point,
+            Light::Directional { .. } => LightKind::Directional,
+            Light::Spot { .. } => LightKind::Spot,
+        }
+    }
+}
+
+/// The kinds of punctual light; the GPU compiles code only for the kinds a
+/// scene has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum LightKind {
+    Point,
+    Directional,
+    Spot,
+}
+
+impl LightKind {
+    /// The contract's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightKind::Point => "point",
+            LightKind::Directional => "directional",
+            LightKind::Spot => "spot",
+        }
+    }
+
+    /// A stable small integer shared with WGSL (`Light.kind`).
+    pub fn id(self) -> u32 {
+        match self {
+            LightKind::Point => 0,
+            LightKind::Directional => 1,
+            LightKind::Spot => 2,
         }
     }
 }

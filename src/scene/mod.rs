@@ -14,7 +14,7 @@ pub mod primitives;
 pub mod scene_file;
 
 pub use camera::Camera;
-pub use light::Light;
+pub use light::{Light, LightKind};
 pub use mesh::Mesh;
 
 use crate::material::Material;

@@ -1,1 +1,108 @@
-//! (in progress)
+//! Meshes gonio generates itself (so the built-in scene ships no assets).
+
+use crate::scene::Mesh;
+use glam::DVec3;
+use std::f64::consts::{PI, TAU};
+
+/// A UV sphere: `segments` slices around +Y and `segments / 2` stacks.
+/// Normals are the exact sphere normals (not averaged), so every shading
+/// mode sees the true surface orientation at the vertices.
+pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> Mesh {
+    let slices = segments.max(3);
+    let stacks = (segments / 2).max(2);
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    for s in 0..=stacks {
+        let theta = PI * s as f64 / stacks as f64; // from +Y down
+        for k in 0..=slices {
+            let phi = TAU * k as f64 / slices as f64;
+            let n = DVec3::new(
+                theta.sin() * phi.sin(),
+                theta.cos(),
+                theta.sin() * phi.cos(),
+            );
+            positions.push(center + radius * n);
+            normals.push(n);
+        }
+    }
+    let row = slices + 1;
+    let mut indices = Vec::new();
+    for s in 0..stacks {
+        for k in 0..slices {
+            let a = s * row + k;
+            let (b, c, d) = (a + row, a + row + 1, a + 1);
+            // Counter-clockwise seen from outside; skip the degenerate
+            // triangles at the poles.
+            if s != 0 {
+                indices.push([a, b, d]);
+            }
+            if s != stacks - 1 {
+                indices.push([d, b, c]);
+            }
+        }
+    }
+    Mesh {
+        name: "sphere".into(),
+        positions,
+        normals,
+        indices,
+        material,
+    }
+}
+
+/// A square in the plane y = `center.y`, facing +Y, `size` wide along X and
+/// Z, split into `divisions²` quads (finer tessellation helps Gouraud).
+pub fn plane(center: DVec3, size: f64, divisions: u32, material: usize) -> Mesh {
+    let n = divisions.max(1);
+    let mut positions = Vec::new();
+    for i in 0..=n {
+        for j in 0..=n {
+            let x = (j as f64 / n as f64 - 0.5) * size;
+            let z = (i as f64 / n as f64 - 0.5) * size;
+            positions.push(center + DVec3::new(x, 0.0, z));
+        }
+    }
+    let row = n + 1;
+    let mut indices = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let a = i * row + j;
+            // a at (x, z); a+1 at (x+dx, z); a+row at (x, z+dz).
+            indices.push([a, a + row, a + row + 1]);
+            indices.push([a, a + row + 1, a + 1]);
+        }
+    }
+    let normals = vec![DVec3::Y; positions.len()];
+    Mesh {
+        name: "plane".into(),
+        positions,
+        normals,
+        indices,
+        material,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::mesh::{centroid, face_normal};
+
+    #[test]
+    fn sphere_faces_point_outwards() {
+        let m = uv_sphere(DVec3::new(1.0, 2.0, 3.0), 2.0, 24, 0);
+        for t in 0..m.indices.len() {
+            let tri = m.triangle(t);
+            let out = centroid(tri) - DVec3::new(1.0, 2.0, 3.0);
+            assert!(face_normal(tri).dot(out) > 0.0, "triangle {t}");
+        }
+    }
+
+    #[test]
+    fn plane_faces_up() {
+        let m = plane(DVec3::ZERO, 4.0, 3, 0);
+        assert_eq!(m.indices.len(), 18);
+        for t in 0..m.indices.len() {
+            assert!((face_normal(m.triangle(t)) - DVec3::Y).length() < 1e-12);
+        }
+    }
+}

@@ -1,1 +1,745 @@
-//! (in progress)
+//! The scene `.toml` of the contract, `--set` overrides by dotted path, and
+//! the assembly of a [`Scene`] from it.
+//!
+//! Loading has three steps, each with its own kind of error message:
+//! 1. parse the text (syntax and type errors carry line and column);
+//! 2. apply `--set KEY=VALUE` overrides one by one, so an error names the
+//!    override that caused it;
+//! 3. validate values and assemble the scene (range errors name the key).
+//!
+//! A `.gltf`/`.glb` argument and the built-in scene go through the same
+//! steps: they are turned into an equivalent scene table first.
+
+use crate::material::{Material, ReflectanceModel};
+use crate::scene::{
+    Camera, Light, Mesh, Rgb, Scene, ShadingMode, default_scene::DEFAULT_SCENE_TOML, gltf_import,
+    primitives,
+};
+use crate::{Error, Result};
+use glam::DVec3;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Largest image side gonio accepts (a 16k render is ~3 GiB of f32 RGBA).
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// The whole scene file. Unknown keys anywhere are errors.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    #[serde(default)]
+    pub image: ImageSection,
+    pub camera: Option<CameraSection>,
+    #[serde(default)]
+    pub shading: ShadingSection,
+    #[serde(default)]
+    pub objects: Vec<ObjectEntry>,
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialEntry>,
+    #[serde(default)]
+    pub lights: Vec<LightEntry>,
+    #[serde(default)]
+    pub ambient: AmbientSection,
+}
+
+/// `[image]`: output size in pixels.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImageSection {
+    #[serde(default = "default_width")]
+    pub width: u32,
+    #[serde(default = "default_height")]
+    pub height: u32,
+}
+
+fn default_width() -> u32 {
+    640
+}
+fn default_height() -> u32 {
+    480
+}
+
+impl Default for ImageSection {
+    fn default() -> Self {
+        ImageSection {
+            width: default_width(),
+            height: default_height(),
+        }
+    }
+}
+
+/// `[camera]`: a perspective camera looking from `position` to `target`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    pub position: [f64; 3],
+    pub target: [f64; 3],
+    #[serde(default = "default_up")]
+    pub up: [f64; 3],
+    #[serde(default = "default_fov")]
+    pub fov_y_deg: f64,
+}
+
+fn default_up() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn default_fov() -> f64 {
+    45.0
+}
+
+/// `[shading]`: flat | gouraud | phong.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShadingSection {
+    #[serde(default)]
+    pub mode: Option<String>,
+}
+
+/// One `[[objects]]` entry: a glTF file or a generated shape.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectEntry {
+    /// A `.gltf`/`.glb`, relative to the scene file.
+    pub gltf: Option<String>,
+    /// A generated shape: `sphere` or `plane` (gonio's extension).
+    pub shape: Option<String>,
+    /// Sphere centre or plane centre.
+    pub center: Option<[f64; 3]>,
+    /// Sphere radius.
+    pub radius: Option<f64>,
+    /// Plane side length.
+    pub size: Option<f64>,
+    /// Tessellation: sphere slices, or plane divisions per side.
+    pub segments: Option<u32>,
+    /// Material name in `[materials]`; overrides a glTF's own materials.
+    pub material: Option<String>,
+}
+
+/// A colour given as `[r, g, b]` or as one number for all channels.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum ColorValue {
+    Gray(f64),
+    Rgb([f64; 3]),
+}
+
+impl ColorValue {
+    fn rgb(self) -> Rgb {
+        match self {
+            ColorValue::Gray(v) => Rgb::splat(v),
+            ColorValue::Rgb(v) => Rgb::from_array(v),
+        }
+    }
+}
+
+/// `[materials.NAME]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialEntry {
+    pub model: String,
+    pub k_a: Option<ColorValue>,
+    pub k_d: Option<ColorValue>,
+    pub k_s: Option<ColorValue>,
+    pub k_e: Option<f64>,
+}
+
+/// `[[lights]]`, tagged by `kind`.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum LightEntry {
+    Point {
+        position: [f64; 3],
+        intensity: ColorValue,
+        #[serde(default)]
+        range: Option<f64>,
+        #[serde(default)]
+        shadows: bool,
+    },
+    Directional {
+        direction: [f64; 3],
+        irradiance: ColorValue,
+        #[serde(default)]
+        shadows: bool,
+    },
+    Spot {
+        position: [f64; 3],
+        direction: [f64; 3],
+        intensity: ColorValue,
+        #[serde(default)]
+        inner_cone_deg: Option<f64>,
+        #[serde(default)]
+        outer_cone_deg: Option<f64>,
+        #[serde(default)]
+        range: Option<f64>,
+        #[serde(default)]
+        shadows: bool,
+    },
+}
+
+/// `[ambient]`: constant incoming radiance `L_a`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AmbientSection {
+    #[serde(default)]
+    pub radiance: Option<ColorValue>,
+}
+
+/// Where a scene comes from.
+#[derive(Clone, Debug)]
+pub enum SceneSource {
+    /// The built-in scene.
+    BuiltIn,
+    /// A file: `.toml`, `.gltf` or `.glb`.
+    File(PathBuf),
+}
+
+/// Loads a scene from `source`, applying `overrides` (`KEY=VALUE`, dotted
+/// keys) in order.
+pub fn load(source: &SceneSource, overrides: &[String]) -> Result<Scene> {
+    let (origin, base_dir, mut table) = scene_table(source)?;
+    // Parse once without overrides: errors here are the file's, with spans.
+    let mut file = parse_table(&origin, &table)?;
+    for kv in overrides {
+        apply_override(&mut table, kv)?;
+        file = SceneFile::deserialize(toml::Value::Table(table.clone()))
+            .map_err(|e| Error::argument(format!("--set {kv}"), clean_toml_error(&e)))?;
+    }
+    assemble(&origin, &base_dir, file)
+}
+
+/// The file (or a pseudo-path for the built-in scene) that errors name.
+fn scene_table(source: &SceneSource) -> Result<(PathBuf, PathBuf, toml::Table)> {
+    match source {
+        SceneSource::BuiltIn => {
+            let table = DEFAULT_SCENE_TOML
+                .parse::<toml::Table>()
+                .expect("the built-in scene is valid TOML");
+            Ok(("<built-in scene>".into(), PathBuf::from("."), table))
+        }
+        SceneSource::File(path) => {
+            let base_dir = path
+                .parent()
+                .map(Path::to_path_buf)
+                .unwrap_or_else(|| PathBuf::from("."));
+            let ext = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase);
+            match ext.as_deref() {
+                Some("toml") => {
+                    let text = std::fs::read_to_string(path).map_err(|e| {
+                        Error::input(path, format!("cannot read the scene file: {e}"))
+                    })?;
+                    // Typed parse first: syntax and type errors with line/column.
+                    toml::from_str::<SceneFile>(&text)
+                        .map_err(|e| Error::input(path, clean_toml_error(&e)))?;
+                    let table = text
+                        .parse::<toml::Table>()
+                        .map_err(|e| Error::input(path, clean_toml_error(&e)))?;
+                    Ok((path.clone(), base_dir, table))
+                }
+                Some("gltf") | Some("glb") => {
+                    if !path.is_file() {
+                        return Err(Error::input(path, "no such file"));
+                    }
+                    let name = path.file_name().unwrap_or_default().to_string_lossy();
+                    let mut object = toml::Table::new();
+                    object.insert("gltf".into(), toml::Value::String(name.into_owned()));
+                    let mut table = toml::Table::new();
+                    table.insert(
+                        "objects".into(),
+                        toml::Value::Array(vec![toml::Value::Table(object)]),
+                    );
+                    Ok((path.clone(), base_dir, table))
+                }
+                _ => Err(Error::input(
+                    path,
+                    "unknown scene type: expected a .toml scene file, a .gltf or a .glb",
+                )),
+            }
+        }
+    }
+}
+
+fn parse_table(origin: &Path, table: &toml::Table) -> Result<SceneFile> {
+    SceneFile::deserialize(toml::Value::Table(table.clone()))
+        .map_err(|e| Error::input(origin, clean_toml_error(&e)))
+}
+
+/// toml's messages span several lines (a caret diagram); keep them but make
+/// them one paragraph.
+fn clean_toml_error(e: &impl std::fmt::Display) -> String {
+    e.to_string()
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && *l != "|")
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// Applies one `KEY=VALUE` override. Keys are dotted paths; array elements
+/// are addressed by index (`lights.0.intensity`). VALUE is a TOML value
+/// (`0.2`, `[1, 1, 1]`, `"ggx"`, `true`); anything that is not valid TOML
+/// is taken as a string, so `--set shading.mode=flat` works unquoted.
+pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
+    let arg = || format!("--set {kv}");
+    let (key, raw) = kv
+        .split_once('=')
+        .ok_or_else(|| Error::argument(arg(), "expected KEY=VALUE, e.g. materials.ball.k_e=80"))?;
+    let key = key.trim();
+    let raw = raw.trim();
+    if key.is_empty() || key.split('.').any(str::is_empty) {
+        return Err(Error::argument(
+            arg(),
+            "the key is empty or has an empty part",
+        ));
+    }
+    let value = format!("v = {raw}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| toml::Value::String(raw.to_string()));
+
+    let parts: Vec<&str> = key.split('.').collect();
+    let (last, path) = parts.split_last().expect("non-empty key");
+    let mut node = TableOrArray::Table(table);
+    for (depth, part) in path.iter().enumerate() {
+        let prefix = parts[..=depth].join(".");
+        node = node
+            .child(part)
+            .map_err(|p| Error::argument(arg(), format!("`{prefix}`: {p}")))?;
+    }
+    node.set(last, value)
+        .map_err(|p| Error::argument(arg(), format!("`{key}`: {p}")))
+}
+
+/// A step in a dotted path: tables by key (created when missing), arrays by
+/// index (which must exist).
+enum TableOrArray<'a> {
+    Table(&'a mut toml::Table),
+    Array(&'a mut Vec<toml::Value>),
+}
+
+impl<'a> TableOrArray<'a> {
+    fn child(self, part: &str) -> std::result::Result<TableOrArray<'a>, String> {
+        let slot = match self {
+            TableOrArray::Table(t) => t
+                .entry(part.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new())),
+            TableOrArray::Array(a) => {
+                let len = a.len();
+                let i: usize = part
+                    .parse()
+                    .map_err(|_| format!("`{part}` is not an index into an array of {len}"))?;
+                a.get_mut(i)
+                    .ok_or_else(|| format!("index {i} is out of range (the array has {len})"))?
+            }
+        };
+        match slot {
+            toml::Value::Table(t) => Ok(TableOrArray::Table(t)),
+            toml::Value::Array(a) => Ok(TableOrArray::Array(a)),
+            other => Err(format!("is a {}, not a table", other.type_str())),
+        }
+    }
+
+    fn set(self, part: &str, value: toml::Value) -> std::result::Result<(), String> {
+        match self {
+            TableOrArray::Table(t) => {
+                t.insert(part.to_string(), value);
+                Ok(())
+            }
+            TableOrArray::Array(a) => {
+                let len = a.len();
+                let i: usize = part
+                    .parse()
+                    .map_err(|_| format!("`{part}` is not an index into an array of {len}"))?;
+                *a.get_mut(i)
+                    .ok_or_else(|| format!("index {i} is out of range (the array has {len})"))? =
+                    value;
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Validated assembly of the scene.
+fn assemble(origin: &Path, base_dir: &Path, file: SceneFile) -> Result<Scene> {
+    let bad = |problem: String| Error::input(origin, problem);
+
+    let (width, height) = (file.image.width, file.image.height);
+    for (key, v) in [("image.width", width), ("image.height", height)] {
+        if v == 0 || v > MAX_IMAGE_SIDE {
+            return Err(bad(format!("{key} = {v} is outside 1..={MAX_IMAGE_SIDE}")));
+        }
+    }
+    let shading = match &file.shading.mode {
+        None => ShadingMode::default(),
+        Some(s) => s.parse().map_err(|e| bad(format!("shading.mode: {e}")))?,
+    };
+
+    // Named materials first, in name order; glTF materials are appended.
+    let mut materials = Vec::new();
+    let mut material_index = BTreeMap::new();
+    for (name, entry) in &file.materials {
+        material_index.insert(name.clone(), materials.len());
+        materials.push(material_from_entry(name, entry).map_err(bad)?);
+    }
+
+    let mut meshes = Vec::new();
+    let mut lights = Vec::new();
+    let mut gltf_camera = None;
+    for (k, object) in file.objects.iter().enumerate() {
+        let forced_material = match &object.material {
+            None => None,
+            Some(name) => Some(*material_index.get(name).ok_or_else(|| {
+                bad(format!(
+                    "objects[{k}].material = \"{name}\" names no material; defined: {}",
+                    names(&file.materials)
+                ))
+            })?),
+        };
+        match (&object.gltf, &object.shape) {
+            (Some(gltf), None) => {
+                let path = base_dir.join(gltf);
+                let imported = gltf_import::load(&path)?;
+                let offset = materials.len();
+                for mut mesh in imported.meshes {
+                    mesh.material = forced_material.unwrap_or(mesh.material + offset);
+                    meshes.push(mesh);
+                }
+                if forced_material.is_none() {
+                    materials.extend(imported.materials);
+                }
+                lights.extend(imported.lights);
+                if gltf_camera.is_none() {
+                    gltf_camera = imported.camera;
+                }
+            }
+            (None, Some(shape)) => {
+                let material = match forced_material {
+                    Some(m) => m,
+                    None => {
+                        materials.push(Material::new(
+                            format!("objects[{k}] default"),
+                            ReflectanceModel::Lambert,
+                        ));
+                        materials.len() - 1
+                    }
+                };
+                meshes.push(shape_mesh(k, object, shape, material).map_err(bad)?);
+            }
+            _ => {
+                return Err(bad(format!(
+                    "objects[{k}] needs exactly one of `gltf = \"file.gltf\"` or `shape = \"sphere\" | \"plane\"`"
+                )));
+            }
+        }
+    }
+
+    for (k, entry) in file.lights.iter().enumerate() {
+        lights.push(light_from_entry(entry).map_err(|p| bad(format!("lights[{k}]: {p}")))?);
+    }
+    if lights.is_empty() {
+        lights.push(default_light());
+    }
+
+    let ambient = match file.ambient.radiance {
+        None => Rgb::ZERO,
+        Some(c) => non_negative("ambient.radiance", c.rgb()).map_err(bad)?,
+    };
+
+    let scene_bounds =
+        crate::scene::mesh::bounds(meshes.iter().flat_map(|m| m.positions.iter().copied()))
+            .filter(|_| meshes.iter().any(|m| !m.indices.is_empty()))
+            .ok_or_else(|| bad("the scene has no triangles to draw".into()))?;
+    let aspect = width as f64 / height as f64;
+    let camera = match &file.camera {
+        Some(section) => camera_from_section(section, scene_bounds).map_err(bad)?,
+        None => match gltf_camera {
+            Some(mut c) => {
+                c.fit_clip_planes(scene_bounds.0, scene_bounds.1);
+                c
+            }
+            None => Camera::framing(scene_bounds.0, scene_bounds.1, aspect),
+        },
+    };
+
+    Ok(Scene {
+        width,
+        height,
+        camera,
+        shading,
+        meshes,
+        materials,
+        lights,
+        ambient,
+    })
+}
+
+fn names<V>(map: &BTreeMap<String, V>) -> String {
+    if map.is_empty() {
+        "none".into()
+    } else {
+        map.keys()
+            .map(|k| format!("`{k}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// The light a scene without lights gets, so a bare glTF is visible: a
+/// directional light from the upper front left, irradiance 3 W/m².
+pub fn default_light() -> Light {
+    Light::Directional {
+        direction: DVec3::new(0.4, -1.0, -0.6).normalize(),
+        irradiance: Rgb::splat(3.0),
+        shadows: false,
+    }
+}
+
+fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result<Material, String> {
+    let model: ReflectanceModel = e
+        .model
+        .parse()
+        .map_err(|p| format!("materials.{name}.model: {p}"))?;
+    let mut m = Material::new(name, model);
+    if let Some(c) = e.k_a {
+        m.k_a = c.rgb();
+    }
+    if let Some(c) = e.k_d {
+        m.k_d = c.rgb();
+    }
+    if let Some(c) = e.k_s {
+        m.k_s = c.rgb();
+    }
+    if let Some(v) = e.k_e {
+        m.k_e = v;
+    }
+    m.validate()?;
+    Ok(m)
+}
+
+fn shape_mesh(
+    k: usize,
+    o: &ObjectEntry,
+    shape: &str,
+    material: usize,
+) -> std::result::Result<Mesh, String> {
+    let center = finite_vec(
+        &format!("objects[{k}].center"),
+        o.center.unwrap_or([0.0; 3]),
+    )?;
+    let positive = |key: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(format!(
+                "objects[{k}].{key} = {v} must be a positive number"
+            ))
+        }
+    };
+    let segments = o.segments.unwrap_or(48);
+    if !(1..=4096).contains(&segments) {
+        return Err(format!(
+            "objects[{k}].segments = {segments} is outside 1..=4096"
+        ));
+    }
+    match shape {
+        "sphere" => Ok(primitives::uv_sphere(
+            center,
+            positive("radius", o.radius.unwrap_or(1.0))?,
+            segments.max(3),
+            material,
+        )),
+        "plane" => Ok(primitives::plane(
+            center,
+            positive("size", o.size.unwrap_or(10.0))?,
+            segments,
+            material,
+        )),
+        other => Err(format!(
+            "objects[{k}].shape = \"{other}\" is not a known shape; expected sphere or plane"
+        )),
+    }
+}
+
+fn finite_vec(key: &str, v: [f64; 3]) -> std::result::Result<DVec3, String> {
+    let d = DVec3::from_array(v);
+    if d.is_finite() {
+        Ok(d)
+    } else {
+        Err(format!("{key} = {v:?} is not finite"))
+    }
+}
+
+fn unit_vec(key: &str, v: [f64; 3]) -> std::result::Result<DVec3, String> {
+    finite_vec(key, v)?
+        .try_normalize()
+        .ok_or_else(|| format!("{key} = {v:?} has no direction (zero length)"))
+}
+
+fn non_negative(key: &str, c: Rgb) -> std::result::Result<Rgb, String> {
+    if c.is_finite() && c.min_element() >= 0.0 {
+        Ok(c)
+    } else {
+        Err(format!(
+            "{key} = [{}, {}, {}] must be finite and ≥ 0",
+            c.x, c.y, c.z
+        ))
+    }
+}
+
+fn range(v: Option<f64>) -> std::result::Result<Option<f64>, String> {
+    match v {
+        Some(r) if !(r.is_finite() && r > 0.0) => Err(format!("range = {r} must be positive")),
+        other => Ok(other),
+    }
+}
+
+fn light_from_entry(e: &LightEntry) -> std::result::Result<Light, String> {
+    Ok(match e {
+        LightEntry::Point {
+            position,
+            intensity,
+            range: r,
+            shadows,
+        } => Light::Point {
+            position: finite_vec("position", *position)?,
+            intensity: non_negative("intensity", intensity.rgb())?,
+            range: range(*r)?,
+            shadows: *shadows,
+        },
+        LightEntry::Directional {
+            direction,
+            irradiance,
+            shadows,
+        } => Light::Directional {
+            direction: unit_vec("direction", *direction)?,
+            irradiance: non_negative("irradiance", irradiance.rgb())?,
+            shadows: *shadows,
+        },
+        LightEntry::Spot {
+            position,
+            direction,
+            intensity,
+            inner_cone_deg,
+            outer_cone_deg,
+            range: r,
+            shadows,
+        } => {
+            // glTF's defaults: inner 0, outer π/4.
+            let inner = inner_cone_deg.unwrap_or(0.0);
+            let outer = outer_cone_deg.unwrap_or(45.0);
+            if !(0.0..=90.0).contains(&outer) || !(0.0..=outer).contains(&inner) {
+                return Err(format!(
+                    "cones must satisfy 0 ≤ inner_cone_deg ≤ outer_cone_deg ≤ 90 (got {inner}, {outer})"
+                ));
+            }
+            Light::Spot {
+                position: finite_vec("position", *position)?,
+                direction: unit_vec("direction", *direction)?,
+                intensity: non_negative("intensity", intensity.rgb())?,
+                inner_cone_deg: inner,
+                outer_cone_deg: outer,
+                range: range(*r)?,
+                shadows: *shadows,
+            }
+        }
+    })
+}
+
+fn camera_from_section(
+    s: &CameraSection,
+    (lo, hi): (DVec3, DVec3),
+) -> std::result::Result<Camera, String> {
+    let position = finite_vec("camera.position", s.position)?;
+    let target = finite_vec("camera.target", s.target)?;
+    let up = unit_vec("camera.up", s.up)?;
+    let forward = (target - position)
+        .try_normalize()
+        .ok_or("camera.position and camera.target coincide")?;
+    if forward.cross(up).length() < 1e-9 {
+        return Err("camera.up is parallel to the viewing direction".into());
+    }
+    if !(s.fov_y_deg > 0.0 && s.fov_y_deg < 180.0) {
+        return Err(format!(
+            "camera.fov_y_deg = {} is outside (0, 180)",
+            s.fov_y_deg
+        ));
+    }
+    let mut camera = Camera {
+        position,
+        target,
+        up,
+        fov_y_deg: s.fov_y_deg,
+        near: 0.0,
+        far: 0.0,
+    };
+    camera.fit_clip_planes(lo, hi);
+    Ok(camera)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn built_in_scene_loads() {
+        let scene = load(&SceneSource::BuiltIn, &[]).unwrap();
+        assert_eq!((scene.width, scene.height), (640, 480));
+        assert_eq!(scene.meshes.len(), 2);
+        assert_eq!(scene.lights.len(), 1);
+    }
+
+    #[test]
+    fn overrides_reach_the_scene() {
+        let sets = [
+            "materials.ball.k_e=7".to_string(),
+            "shading.mode=flat".to_string(),
+            "lights.0.intensity=[1, 2, 3]".to_string(),
+            "image.width=33".to_string(),
+        ];
+        let scene = load(&SceneSource::BuiltIn, &sets).unwrap();
+        let ball = scene.materials.iter().find(|m| m.name == "ball").unwrap();
+        assert_eq!(ball.k_e, 7.0);
+        assert_eq!(scene.shading, ShadingMode::Flat);
+        assert_eq!(scene.width, 33);
+        match &scene.lights[0] {
+            Light::Point { intensity, .. } => assert_eq!(*intensity, Rgb::new(1.0, 2.0, 3.0)),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn unknown_override_key_is_named() {
+        let err = load(
+            &SceneSource::BuiltIn,
+            &["materials.ball.rougness=0.2".into()],
+        )
+        .unwrap_err();
+        let msg = err.to_string();
+        assert!(msg.contains("--set materials.ball.rougness=0.2"), "{msg}");
+        assert!(msg.contains("rougness"), "{msg}");
+        assert_eq!(err.exit_code(), 2);
+    }
+
+    #[test]
+    fn bad_values_are_rejected() {
+        for kv in [
+            "materials.ball.k_d=nan",
+            "materials.ball.k_d=-0.5",
+            "materials.ball.k_e=2e6",
+            "lights.0.intensity=-1",
+            "image.width=0",
+            "shading.mode=smooth",
+            "materials.ball.model=cook-torrance",
+            "lights.3.intensity=1",
+        ] {
+            assert!(
+                load(&SceneSource::BuiltIn, &[kv.into()]).is_err(),
+                "{kv} accepted"
+            );
+        }
+    }
+}

@@ -22,14 +22,14 @@ pub fn cos_power(c: f64, k_e: f64) -> f64 {
 }
 
 /// `R(I) = −I + 2 (I·N) N`: the mirror direction of `wi` about `n`.
-pub fn reflect(wi: DVec3, n: DVec3) -> DVec3 {
+pub fn mirror_direction(wi: DVec3, n: DVec3) -> DVec3 {
     -wi + 2.0 * wi.dot(n) * n
 }
 
 /// Lecture Phong lobe: `(R(I)·V)^k_e / (I·N)`. Not reciprocal, not
 /// normalized (its albedo exceeds 1 near grazing incidence).
 pub fn phong_lecture(k_e: f64, n: DVec3, wi: DVec3, wo: DVec3) -> f64 {
-    cos_power(reflect(wi, n).dot(wo), k_e) / n.dot(wi).max(COS_FLOOR)
+    cos_power(mirror_direction(wi, n).dot(wo), k_e) / n.dot(wi).max(COS_FLOOR)
 }
 
 /// Lecture Blinn-Phong lobe: `(H·N)^k_e / (I·N)` with
@@ -49,7 +49,7 @@ mod tests {
     fn lobes_peak_in_the_mirror_direction() {
         let n = DVec3::Z;
         let wi = DVec3::new(0.6, 0.0, 0.8);
-        let wo = reflect(wi, n);
+        let wo = mirror_direction(wi, n);
         assert!((phong_lecture(50.0, n, wi, wo) - 1.0 / 0.8).abs() < 1e-12);
         assert!((blinn_phong_lecture(50.0, n, wi, wo) - 1.0 / 0.8).abs() < 1e-12);
     }

@@ -1,0 +1,34 @@
+// Phong shading (lecture: "Shading Model: Phong Shading"): the normal is
+// interpolated (perspective-correct barycentrics), renormalized, and the
+// reflection equation is evaluated at every pixel's interpolated position.
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) material: u32,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) @interpolate(flat) material: u32,
+}
+
+@vertex
+fn vs_main(in: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
+    out.world = in.position;
+    out.normal = in.normal;
+    out.material = in.material;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    // Opposite normals can interpolate to zero: no direction, so only the
+    // ambient term remains (the CPU reference does the same).
+    let n = normalize_or_zero(in.normal);
+    return vec4<f32>(reflected_radiance(materials[in.material], in.world, n), 1.0);
+}

@@ -1,0 +1,121 @@
+//! Device and adapter selection, headless.
+
+use crate::{Error, Result};
+
+/// The environment variable that picks an adapter by (part of) its name,
+/// like `--adapter`.
+pub const ADAPTER_ENV: &str = "GONIO_ADAPTER";
+
+/// How to install the software rasterizer, for error messages and docs.
+pub const LAVAPIPE_HINT: &str = "gonio renders with Vulkan; on a machine without a GPU install Mesa's \
+software rasterizer lavapipe with `sudo apt-get install mesa-vulkan-drivers libvulkan1` (or run \
+./setup.sh), then check with `vulkaninfo --summary` that a device is listed";
+
+/// Which adapter to use.
+#[derive(Clone, Debug, Default)]
+pub enum AdapterChoice {
+    /// The environment's `GONIO_ADAPTER` if set, else wgpu's default pick
+    /// (high performance preference).
+    #[default]
+    Auto,
+    /// The first adapter whose name contains this text (case-insensitive).
+    Named(String),
+}
+
+impl AdapterChoice {
+    /// `--adapter NAME` if given, else `GONIO_ADAPTER`, else automatic.
+    pub fn from_flag_or_env(flag: Option<&str>) -> Self {
+        match flag
+            .map(str::to_string)
+            .or_else(|| std::env::var(ADAPTER_ENV).ok().filter(|s| !s.is_empty()))
+        {
+            Some(name) => AdapterChoice::Named(name),
+            None => AdapterChoice::Auto,
+        }
+    }
+}
+
+/// A device ready to render, and what it can do.
+pub struct GpuContext {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub adapter_info: wgpu::AdapterInfo,
+    /// Timestamp queries were requested and granted.
+    pub timestamps: bool,
+}
+
+impl GpuContext {
+    /// Opens a device on the chosen adapter. Backends: Vulkan unless
+    /// `WGPU_BACKEND` says otherwise.
+    pub fn new(choice: &AdapterChoice) -> Result<Self> {
+        pollster::block_on(Self::new_async(choice))
+    }
+
+    async fn new_async(choice: &AdapterChoice) -> Result<Self> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+        let instance = wgpu::Instance::new(desc);
+        let adapters = instance.enumerate_adapters(wgpu::Backends::all()).await;
+        let adapter = match choice {
+            AdapterChoice::Named(name) => {
+                let wanted = name.to_lowercase();
+                let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
+                adapters
+                    .into_iter()
+                    .find(|a| a.get_info().name.to_lowercase().contains(&wanted))
+                    .ok_or_else(|| {
+                        Error::NoAdapter(format!(
+                            "no GPU adapter matches `{name}` (from --adapter or {ADAPTER_ENV}); available: {}. {LAVAPIPE_HINT}.",
+                            if names.is_empty() { "none".to_string() } else { names.join(", ") }
+                        ))
+                    })?
+            }
+            AdapterChoice::Auto => instance
+                .request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::HighPerformance,
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    apply_limit_buckets: false,
+                })
+                .await
+                .map_err(|e| {
+                    Error::NoAdapter(format!("no GPU adapter found ({e}). {LAVAPIPE_HINT}."))
+                })?,
+        };
+        let adapter_info = adapter.get_info();
+        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let mut required_features = wgpu::Features::empty();
+        if timestamps {
+            required_features |= wgpu::Features::TIMESTAMP_QUERY;
+        }
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("gonio"),
+                required_features,
+                required_limits: adapter.limits(),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| {
+                Error::NoAdapter(format!(
+                    "the GPU adapter `{}` refused to open a device ({e}). {LAVAPIPE_HINT}.",
+                    adapter_info.name
+                ))
+            })?;
+        Ok(GpuContext {
+            device,
+            queue,
+            adapter_info,
+            timestamps,
+        })
+    }
+
+    /// "name (backend, device type, driver)" for `--verbose`.
+    pub fn describe(&self) -> String {
+        let i = &self.adapter_info;
+        format!(
+            "{} ({:?}, {:?}, driver {} {})",
+            i.name, i.backend, i.device_type, i.driver, i.driver_info
+        )
+    }
+}

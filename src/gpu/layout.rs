@@ -1,0 +1,145 @@
+//! CPU mirrors of the GPU structs in `shaders/common.wgsl`, with explicit
+//! padding so `bytemuck` can upload them as they are. Field order and sizes
+//! follow WGSL's layout rules (vec3 aligned to 16 bytes).
+
+use crate::material::Material;
+use crate::scene::{Light, Scene};
+use bytemuck::{Pod, Zeroable};
+
+/// `Globals` (uniform buffer, 96 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuGlobals {
+    pub clip_from_world: [[f32; 4]; 4],
+    pub eye: [f32; 3],
+    pub light_count: u32,
+    pub ambient: [f32; 3],
+    pub _pad0: f32,
+}
+
+/// `Material` (storage buffer element, 48 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub k_a: [f32; 3],
+    pub model: u32,
+    pub k_d: [f32; 3],
+    pub k_e: f32,
+    pub k_s: [f32; 3],
+    pub _pad0: f32,
+}
+
+/// `Light` (storage buffer element, 64 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuLight {
+    pub position: [f32; 3],
+    pub kind: u32,
+    pub direction: [f32; 3],
+    pub range: f32,
+    pub intensity: [f32; 3],
+    pub cos_inner: f32,
+    pub cos_outer: f32,
+    pub _pad: [f32; 3],
+}
+
+fn f32x3(v: glam::DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+impl GpuGlobals {
+    pub fn new(scene: &Scene) -> Self {
+        let aspect = scene.width as f64 / scene.height as f64;
+        GpuGlobals {
+            clip_from_world: scene
+                .camera
+                .clip_from_world(aspect)
+                .as_mat4()
+                .to_cols_array_2d(),
+            eye: f32x3(scene.camera.position),
+            light_count: scene.lights.len() as u32,
+            ambient: f32x3(scene.ambient),
+            _pad0: 0.0,
+        }
+    }
+}
+
+impl From<&Material> for GpuMaterial {
+    fn from(m: &Material) -> Self {
+        GpuMaterial {
+            k_a: f32x3(m.k_a),
+            model: m.model.id(),
+            k_d: f32x3(m.k_d),
+            k_e: m.k_e as f32,
+            k_s: f32x3(m.k_s),
+            _pad0: 0.0,
+        }
+    }
+}
+
+impl From<&Light> for GpuLight {
+    fn from(light: &Light) -> Self {
+        let mut g = GpuLight::zeroed();
+        g.kind = light.kind().id();
+        g.range = -1.0;
+        match *light {
+            Light::Point {
+                position,
+                intensity,
+                range,
+                ..
+            } => {
+                g.position = f32x3(position);
+                g.intensity = f32x3(intensity);
+                g.range = range.unwrap_or(-1.0) as f32;
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+                ..
+            } => {
+                g.direction = f32x3(direction);
+                g.intensity = f32x3(irradiance);
+            }
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                inner_cone_deg,
+                outer_cone_deg,
+                range,
+                ..
+            } => {
+                g.position = f32x3(position);
+                g.direction = f32x3(direction);
+                g.intensity = f32x3(intensity);
+                g.cos_inner = inner_cone_deg.to_radians().cos() as f32;
+                g.cos_outer = outer_cone_deg.to_radians().cos() as f32;
+                g.range = range.unwrap_or(-1.0) as f32;
+            }
+        }
+        g
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Sizes must match what naga computes for the WGSL structs.
+    #[test]
+    fn sizes_match_wgsl() {
+        let module = naga::front::wgsl::parse_str(crate::gpu::shader_gen::sources::COMMON).unwrap();
+        let size_of = |name: &str| {
+            let (_, ty) = module
+                .types
+                .iter()
+                .find(|(_, t)| t.name.as_deref() == Some(name))
+                .unwrap();
+            ty.inner.size(module.to_ctx()) as usize
+        };
+        assert_eq!(size_of("Globals"), std::mem::size_of::<GpuGlobals>());
+        assert_eq!(size_of("Material"), std::mem::size_of::<GpuMaterial>());
+        assert_eq!(size_of("Light"), std::mem::size_of::<GpuLight>());
+    }
+}

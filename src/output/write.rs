@@ -1,0 +1,183 @@
+//! PNG and EXR output, written atomically.
+//!
+//! The contract: `.exr` holds linear `L_o` as 32-bit float RGB, no tone
+//! mapping; `.png` holds `clamp(L_o · 2^exposure)` with the sRGB transfer
+//! function. The file appears complete or not at all: bytes go to a
+//! temporary file in the target folder, which is renamed over the target
+//! only after everything succeeded. The temporary file is created before
+//! rendering, so an unwritable destination fails before any work is done.
+
+use crate::frame::Frame;
+use crate::{Error, Result};
+use std::io::{Cursor, Write};
+use std::path::{Path, PathBuf};
+
+/// The output formats, chosen by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputFormat {
+    /// 8-bit sRGB, exposure applied, clamped.
+    Png,
+    /// Linear 32-bit float RGB radiance.
+    Exr,
+}
+
+impl OutputFormat {
+    /// The format for `path`'s extension.
+    pub fn from_path(path: &Path) -> Result<Self> {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("png") => Ok(OutputFormat::Png),
+            Some("exr") => Ok(OutputFormat::Exr),
+            _ => Err(Error::output(
+                path,
+                "unknown image format; the file name must end in .png or .exr",
+            )),
+        }
+    }
+}
+
+/// A destination made ready before rendering.
+pub struct OutputFile {
+    path: PathBuf,
+    format: OutputFormat,
+    temp: tempfile::NamedTempFile,
+}
+
+impl OutputFile {
+    /// Checks the format and that the destination's folder accepts a file.
+    pub fn prepare(path: &Path) -> Result<Self> {
+        let format = OutputFormat::from_path(path)?;
+        if path.is_dir() {
+            return Err(Error::output(path, "it is a directory"));
+        }
+        let dir = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        let temp = tempfile::Builder::new()
+            .prefix(".gonio-")
+            .suffix(".partial")
+            .tempfile_in(dir)
+            .map_err(|e| {
+                Error::output(
+                    path,
+                    format!("cannot create a file in {}: {e}", dir.display()),
+                )
+            })?;
+        Ok(OutputFile {
+            path: path.to_path_buf(),
+            format,
+            temp,
+        })
+    }
+
+    /// The final path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Encodes `frame` and moves it into place. `exposure` (stops) applies
+    /// to PNG only.
+    pub fn write(mut self, frame: &Frame, exposure: f64) -> Result<()> {
+        let bytes = match self.format {
+            OutputFormat::Png => encode_png(frame, exposure),
+            OutputFormat::Exr => encode_exr(frame),
+        }
+        .map_err(|e| Error::output(&self.path, e))?;
+        let fail = |e: std::io::Error| Error::output(&self.path, e.to_string());
+        self.temp.write_all(&bytes).map_err(fail)?;
+        self.temp.as_file().sync_all().map_err(fail)?;
+        self.temp
+            .persist(&self.path)
+            .map_err(|e| Error::output(&self.path, e.error.to_string()))?;
+        Ok(())
+    }
+}
+
+/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].
+pub fn srgb_encode(linear: f64) -> f64 {
+    if linear <= 0.0031308 {
+        12.92 * linear
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Linear radiance to an 8-bit sRGB value: scale by `2^exposure`, clamp,
+/// encode, round. NaN maps to 0.
+pub fn to_srgb8(radiance: f32, exposure: f64) -> u8 {
+    let v = (radiance as f64 * exposure.exp2()).clamp(0.0, 1.0);
+    if v.is_nan() {
+        return 0;
+    }
+    (srgb_encode(v) * 255.0 + 0.5) as u8
+}
+
+fn encode_png(frame: &Frame, exposure: f64) -> Result<Vec<u8>, String> {
+    let pixels: Vec<u8> = frame
+        .radiance
+        .iter()
+        .flat_map(|p| p.map(|c| to_srgb8(c, exposure)))
+        .collect();
+    let image = image::RgbImage::from_raw(frame.width, frame.height, pixels)
+        .ok_or("frame size does not match its pixels")?;
+    let mut out = Cursor::new(Vec::new());
+    image
+        .write_to(&mut out, image::ImageFormat::Png)
+        .map_err(|e| format!("PNG encoding failed: {e}"))?;
+    Ok(out.into_inner())
+}
+
+fn encode_exr(frame: &Frame) -> Result<Vec<u8>, String> {
+    let pixels: Vec<f32> = frame.radiance.iter().flatten().copied().collect();
+    let image = image::Rgb32FImage::from_raw(frame.width, frame.height, pixels)
+        .ok_or("frame size does not match its pixels")?;
+    let mut out = Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgb32F(image)
+        .write_to(&mut out, image::ImageFormat::OpenExr)
+        .map_err(|e| format!("EXR encoding failed: {e}"))?;
+    Ok(out.into_inner())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_known_values() {
+        assert_eq!(to_srgb8(0.0, 0.0), 0);
+        assert_eq!(to_srgb8(1.0, 0.0), 255);
+        assert_eq!(to_srgb8(0.5, 1.0), 255);
+        assert_eq!(to_srgb8(0.214_041_14, 0.0), 128); // sRGB 0.5 ≈ linear 0.2140
+        assert_eq!(to_srgb8(f32::NAN, 0.0), 0);
+    }
+
+    #[test]
+    fn exr_round_trips_linear_values() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.exr");
+        let mut frame = Frame::new(3, 2);
+        frame.radiance[4] = [1.5, 1e-3, 1234.5];
+        OutputFile::prepare(&path)
+            .unwrap()
+            .write(&frame, 0.0)
+            .unwrap();
+        let back = image::open(&path).unwrap().into_rgb32f();
+        assert_eq!(back.get_pixel(1, 1).0, [1.5, 1e-3, 1234.5]);
+    }
+
+    #[test]
+    fn failed_write_leaves_no_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.png");
+        let out = OutputFile::prepare(&path).unwrap();
+        drop(out); // e.g. rendering failed
+        assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
+        assert!(OutputFile::prepare(&dir.path().join("t.jpg")).is_err());
+        assert!(OutputFile::prepare(&dir.path().join("missing/t.png")).is_err());
+    }
+}

@@ -1,0 +1,329 @@
+//! The reference image: one primary ray per pixel sample, the closest hit
+//! inside the camera's depth range, and the shading mode the GPU uses.
+//!
+//! Every choice here mirrors the rasterizer, so that a difference between
+//! the two frames is a bug in one of them and not a difference of method:
+//! the same near/far clipping, the same shading points and normals, the
+//! same interpolation of per-vertex results.
+
+use super::bvh::{Bvh, Hit};
+use crate::frame::Frame;
+use crate::scene::{Mesh, Rgb, Scene, ShadingMode, mesh};
+use crate::shading::reflected_radiance;
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Renders `scene` with one sample at every pixel centre.
+pub fn render(scene: &Scene) -> Frame {
+    render_offset(scene, 0.0, 0.0)
+}
+
+/// Renders `scene` with the sample of pixel (row i, column j) at
+/// `(j + 0.5 + offset_x, i + 0.5 + offset_y)` pixels (row 0 at the top);
+/// shifted samples let callers supersample or probe edges.
+pub fn render_offset(scene: &Scene, offset_x: f64, offset_y: f64) -> Frame {
+    let (width, height) = (scene.width, scene.height);
+    let mut frame = Frame::new(width, height);
+    if frame.is_empty() {
+        return frame;
+    }
+    let bvh = Bvh::new(&scene.meshes);
+    let shader = Shader::new(scene);
+    let camera = &scene.camera;
+    let forward = camera.forward();
+    let row = width as usize;
+    frame
+        .radiance
+        .par_chunks_mut(row)
+        .zip(frame.coverage.par_chunks_mut(row))
+        .enumerate()
+        .for_each(|(i, (radiance, coverage))| {
+            let y = i as f64 + 0.5 + offset_y;
+            for (j, (out, covered)) in radiance.iter_mut().zip(coverage).enumerate() {
+                let ray = camera.ray(j as f64 + 0.5 + offset_x, y, width, height);
+                // The GPU clips at view depths near and far; along this ray
+                // depth grows as t · cos(angle to the viewing axis).
+                let cos = ray.direction.dot(forward);
+                if cos <= 0.0 {
+                    continue;
+                }
+                if let Some(hit) = bvh.intersect(&ray, camera.near / cos, camera.far / cos) {
+                    *covered = true;
+                    *out = shader.radiance(&hit).as_vec3().to_array();
+                }
+            }
+        });
+    frame
+}
+
+/// The scene and what its shading mode needs, computed once before any
+/// pixel is traced.
+struct Shader<'a> {
+    scene: &'a Scene,
+    precomputed: Precomputed,
+}
+
+enum Precomputed {
+    /// Radiance per triangle, `[mesh][triangle]`.
+    Flat(Vec<Vec<Rgb>>),
+    /// Radiance per vertex, `[mesh][vertex]`.
+    Gouraud(Vec<Vec<Rgb>>),
+    /// Nothing: shaded per hit.
+    Phong,
+}
+
+impl<'a> Shader<'a> {
+    fn new(scene: &'a Scene) -> Self {
+        let precomputed = match scene.shading {
+            // Lecture: Shading Model: Flat. One evaluation of the reflection
+            // equation per triangle, at its centroid with its face normal:
+            // the colour is constant over the triangle, as on the GPU.
+            ShadingMode::Flat => Precomputed::Flat(
+                scene
+                    .meshes
+                    .iter()
+                    .map(|m| {
+                        (0..m.indices.len())
+                            .into_par_iter()
+                            .map(|t| {
+                                let corners = m.triangle(t);
+                                shade(
+                                    scene,
+                                    m,
+                                    mesh::centroid(corners),
+                                    mesh::face_normal(corners),
+                                )
+                            })
+                            .collect()
+                    })
+                    .collect(),
+            ),
+            // Lecture: Shading Model: Gouraud. Shade at the vertices with the
+            // vertex normals (what the GPU's vertex shader computes), then
+            // interpolate the colours.
+            ShadingMode::Gouraud => Precomputed::Gouraud(
+                scene
+                    .meshes
+                    .iter()
+                    .map(|m| {
+                        m.positions
+                            .par_iter()
+                            .zip(&m.normals)
+                            .map(|(&x, &n)| shade(scene, m, x, n))
+                            .collect()
+                    })
+                    .collect(),
+            ),
+            ShadingMode::Phong => Precomputed::Phong,
+        };
+        Shader { scene, precomputed }
+    }
+
+    /// Reflected radiance seen at `hit`.
+    fn radiance(&self, hit: &Hit) -> Rgb {
+        let (m, t) = (hit.id.mesh as usize, hit.id.triangle as usize);
+        let object = &self.scene.meshes[m];
+        let idx = object.indices[t];
+        let w = [1.0 - hit.u - hit.v, hit.u, hit.v];
+        match &self.precomputed {
+            Precomputed::Flat(per_triangle) => per_triangle[m][t],
+            Precomputed::Gouraud(per_vertex) => interpolate(w, &per_vertex[m], idx),
+            Precomputed::Phong => {
+                // Lecture: Shading Model: Phong. Interpolate the vertex
+                // normals, renormalize, shade every pixel. The position is
+                // the barycentric blend of the corners, as the GPU
+                // interpolates world positions, not origin + t·direction.
+                let x = interpolate(w, &object.positions, idx);
+                // Opposite normals can interpolate to zero: no direction,
+                // so only the ambient term remains (as on the GPU).
+                let n = interpolate(w, &object.normals, idx).normalize_or_zero();
+                shade(self.scene, object, x, n)
+            }
+        }
+    }
+}
+
+/// `Σ w_k · values[idx_k]`: barycentric interpolation over one triangle.
+fn interpolate(w: [f64; 3], values: &[DVec3], idx: [u32; 3]) -> DVec3 {
+    w[0] * values[idx[0] as usize] + w[1] * values[idx[1] as usize] + w[2] * values[idx[2] as usize]
+}
+
+/// The reflection equation at `x` with shading normal `n`, for the mesh's
+/// material, seen from the camera, every light fully visible.
+fn shade(scene: &Scene, m: &Mesh, x: DVec3, n: DVec3) -> Rgb {
+    reflected_radiance(
+        &scene.materials[m.material],
+        &scene.lights,
+        scene.ambient,
+        x,
+        n,
+        scene.camera.position,
+        |_, _| 1.0,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{Material, ReflectanceModel};
+    use crate::scene::{Camera, Light};
+    use std::f64::consts::PI;
+
+    const K_D: f64 = 0.8;
+
+    /// The square [-1, 1]² in the plane z = `z`, facing +Z (counter-clockwise
+    /// seen from the camera), split along the diagonal from (-1,-1) to (1,1).
+    fn quad(z: f64) -> Mesh {
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        Mesh::with_generated_normals(
+            "quad",
+            corners.iter().map(|&(x, y)| DVec3::new(x, y, z)).collect(),
+            vec![[0, 1, 2], [0, 2, 3]],
+            0,
+        )
+    }
+
+    /// A 63×63 image (odd, so the middle pixel's ray is the viewing axis)
+    /// from (0, 0, 3) towards the origin, the quad at z = 0.
+    fn scene(shading: ShadingMode, lights: Vec<Light>) -> Scene {
+        let mut material = Material::new("m", ReflectanceModel::Lambert);
+        material.k_d = Rgb::splat(K_D);
+        Scene {
+            width: 63,
+            height: 63,
+            camera: Camera {
+                position: DVec3::new(0.0, 0.0, 3.0),
+                target: DVec3::ZERO,
+                up: DVec3::Y,
+                fov_y_deg: 45.0,
+                near: 0.1,
+                far: 10.0,
+            },
+            shading,
+            meshes: vec![quad(0.0)],
+            materials: vec![material],
+            lights,
+            ambient: Rgb::ZERO,
+        }
+    }
+
+    fn directional() -> (Light, Rgb, f64) {
+        let direction = DVec3::new(-1.0, -2.0, -3.0).normalize();
+        let irradiance = Rgb::new(1.0, 2.0, 3.0);
+        let light = Light::Directional {
+            direction,
+            irradiance,
+            shadows: false,
+        };
+        (light, irradiance, -direction.z)
+    }
+
+    fn pixel(frame: &Frame, i: u32, j: u32) -> (bool, Rgb) {
+        let k = frame.index(i, j);
+        (frame.coverage[k], frame.radiance[k].map(f64::from).into())
+    }
+
+    fn assert_close(got: Rgb, want: Rgb) {
+        let err = (got - want).abs().max_element();
+        assert!(err <= 1e-6 * want.abs().max_element(), "{got} vs {want}");
+    }
+
+    #[test]
+    fn lambert_quad_under_a_directional_light_in_every_mode() {
+        let (light, e, cos) = directional();
+        for mode in ShadingMode::ALL {
+            let frame = render(&scene(mode, vec![light.clone()]));
+            let want = K_D / PI * e * cos;
+            for (i, j) in [(31, 31), (20, 40), (45, 25)] {
+                let (covered, radiance) = pixel(&frame, i, j);
+                assert!(covered, "{mode}: ({i}, {j}) uncovered");
+                assert_close(radiance, want);
+            }
+            // The corners look past the quad (it spans ±1, the view ±1.24).
+            for (i, j) in [(0, 0), (0, 62), (62, 0), (62, 62)] {
+                assert_eq!(pixel(&frame, i, j), (false, Rgb::ZERO), "{mode}");
+            }
+        }
+    }
+
+    #[test]
+    fn modes_differ_as_the_lecture_says_under_a_close_point_light() {
+        // A point light at height h above the centre. The middle pixel sees
+        // the centre, on the shared diagonal (half a, half c).
+        let (h, intensity) = (0.5, 2.0);
+        let light = Light::Point {
+            position: DVec3::new(0.0, 0.0, h),
+            intensity: Rgb::splat(intensity),
+            range: None,
+            shadows: false,
+        };
+        // Irradiance times cosθ at in-plane distance r from the centre.
+        let lit = |r2: f64| {
+            let d2 = r2 + h * h;
+            K_D / PI * intensity / d2 * (h / d2.sqrt())
+        };
+        let cases = [
+            // Phong: shaded exactly at the centre.
+            (ShadingMode::Phong, lit(0.0)),
+            // Gouraud: every corner (r² = 2) has the same colour.
+            (ShadingMode::Gouraud, lit(2.0)),
+            // Flat: both centroids are at (±1/3, ∓1/3), r² = 2/9.
+            (ShadingMode::Flat, lit(2.0 / 9.0)),
+        ];
+        for (mode, want) in cases {
+            let frame = render(&scene(mode, vec![light.clone()]));
+            let (covered, radiance) = pixel(&frame, 31, 31);
+            assert!(covered, "{mode}");
+            assert_close(radiance, Rgb::splat(want));
+        }
+    }
+
+    #[test]
+    fn geometry_outside_near_and_far_is_clipped() {
+        let (light, ..) = directional();
+        let mut s = scene(ShadingMode::Phong, vec![light]);
+        s.camera.far = 2.5;
+        assert!(render(&s).coverage.iter().all(|&c| !c), "beyond far");
+        s.camera.far = 10.0;
+        s.camera.near = 3.5;
+        assert!(render(&s).coverage.iter().all(|&c| !c), "before near");
+        // A second quad behind: with the front one clipped by near, the back
+        // one is what the pixel sees.
+        s.meshes.push(quad(-1.0));
+        let frame = render(&s);
+        assert!(pixel(&frame, 31, 31).0);
+        s.camera.near = 0.1;
+        s.meshes.pop();
+        assert!(pixel(&render(&s), 31, 31).0);
+    }
+
+    #[test]
+    fn offsets_move_the_samples() {
+        let (light, ..) = directional();
+        let mut s = scene(ShadingMode::Phong, vec![light]);
+        s.width = 40;
+        s.height = 30;
+        let frame = render(&s);
+        let shifted = render_offset(&s, 1.0, 2.0);
+        for i in 0..28 {
+            for j in 0..39 {
+                assert_eq!(
+                    pixel(&shifted, i, j),
+                    pixel(&frame, i + 2, j + 1),
+                    "({i}, {j})"
+                );
+            }
+        }
+        assert!(frame.coverage.iter().any(|&c| c) && frame.coverage.iter().any(|&c| !c));
+    }
+
+    #[test]
+    fn empty_image_and_empty_scene() {
+        let (light, ..) = directional();
+        let mut s = scene(ShadingMode::Phong, vec![light]);
+        s.meshes.clear();
+        assert!(render(&s).coverage.iter().all(|&c| !c));
+        s.width = 0;
+        assert!(render(&s).is_empty());
+    }
+}

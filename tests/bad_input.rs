@@ -1,0 +1,189 @@
+//! Bad input: exit status 2, a one-paragraph message that names the file or
+//! argument and the problem, no panic, and no output file (not even a
+//! partial or temporary one).
+
+mod common;
+
+use std::path::Path;
+
+struct Case {
+    name: &'static str,
+    /// Arguments after `render`; `{dir}` is replaced by the temp folder.
+    args: Vec<String>,
+    /// Text the message must contain (the file or argument it names).
+    names: &'static str,
+}
+
+fn run_case(dir: &Path, case: &Case) {
+    let out = dir.join("out.png");
+    let args: Vec<String> = case
+        .args
+        .iter()
+        .map(|a| a.replace("{dir}", &dir.display().to_string()))
+        .collect();
+    let result = common::gonio()
+        .arg("render")
+        .args(&args)
+        .env("XDG_RUNTIME_DIR", dir)
+        .output()
+        .expect("gonio runs");
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    // The loader may print harmless Vulkan notices; the error is our line.
+    let message: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("gonio: error:"))
+        .collect();
+    assert_eq!(
+        result.status.code(),
+        Some(2),
+        "{}: exit status; stderr: {stderr}",
+        case.name
+    );
+    assert!(
+        !stderr.contains("panicked"),
+        "{}: panicked: {stderr}",
+        case.name
+    );
+    assert_eq!(
+        message.len(),
+        1,
+        "{}: expected one error paragraph, got: {stderr}",
+        case.name
+    );
+    assert!(
+        message[0].contains(case.names),
+        "{}: the message does not name `{}`: {}",
+        case.name,
+        case.names,
+        message[0]
+    );
+    assert!(!out.exists(), "{}: an output file was written", case.name);
+    let leftovers: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(".gonio-"))
+        .collect();
+    assert!(
+        leftovers.is_empty(),
+        "{}: temporary files left: {leftovers:?}",
+        case.name
+    );
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> String {
+    std::fs::write(dir.join(name), bytes).unwrap();
+    dir.join(name).display().to_string()
+}
+
+fn s(v: &[&str]) -> Vec<String> {
+    v.iter().map(|x| x.to_string()).collect()
+}
+
+#[test]
+fn bad_inputs_exit_2_with_a_clear_message_and_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = d.join("out.png").display().to_string();
+
+    let invalid_json = write(d, "broken.gltf", b"{ \"asset\": { \"version\": \"2.0\" ");
+    let unknown_ext = write(
+        d,
+        "draco.gltf",
+        br#"{"asset":{"version":"2.0"},"extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"],"scenes":[{"nodes":[]}],"scene":0}"#,
+    );
+    let glb = std::fs::read(common::gltf_asset("Box/Box.glb")).unwrap();
+    let truncated = write(d, "truncated.glb", &glb[..glb.len() / 2]);
+    let bad_toml = write(d, "bad.toml", b"[image]\nwidth = \"wide\"\n");
+    let unknown_key = write(
+        d,
+        "key.toml",
+        b"[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 45.0\n",
+    );
+
+    let cases = vec![
+        Case {
+            name: "missing file",
+            args: s(&["{dir}/nope.gltf", "-o", &out]),
+            names: "nope.gltf",
+        },
+        Case {
+            name: "invalid JSON",
+            args: s(&[&invalid_json, "-o", &out]),
+            names: "broken.gltf",
+        },
+        Case {
+            name: "unknown required extension",
+            args: s(&[&unknown_ext, "-o", &out]),
+            names: "KHR_draco_mesh_compression",
+        },
+        Case {
+            name: "truncated glb",
+            args: s(&[&truncated, "-o", &out]),
+            names: "truncated.glb",
+        },
+        Case {
+            name: "scene type error",
+            args: s(&[&bad_toml, "-o", &out]),
+            names: "bad.toml",
+        },
+        Case {
+            name: "scene unknown key",
+            args: s(&[&unknown_key, "-o", &out]),
+            names: "fov",
+        },
+        Case {
+            name: "unknown --set key",
+            args: s(&["-o", &out, "--set", "materials.ball.rougness=0.2"]),
+            names: "materials.ball.rougness",
+        },
+        Case {
+            name: "NaN parameter",
+            args: s(&["-o", &out, "--set", "materials.ball.k_d=nan"]),
+            names: "k_d",
+        },
+        Case {
+            name: "negative parameter",
+            args: s(&["-o", &out, "--set", "materials.ball.k_s=-0.5"]),
+            names: "k_s",
+        },
+        Case {
+            name: "negative intensity",
+            args: s(&["-o", &out, "--set", "lights.0.intensity=-3"]),
+            names: "intensity",
+        },
+        Case {
+            name: "bad shading mode",
+            args: s(&["-o", &out, "--set", "shading.mode=smooth"]),
+            names: "smooth",
+        },
+        Case {
+            name: "zero width",
+            args: s(&["-o", &out, "--width", "0"]),
+            names: "image.width",
+        },
+        Case {
+            name: "unknown image format",
+            args: s(&["-o", "{dir}/out.jpg"]),
+            names: "out.jpg",
+        },
+        Case {
+            name: "output folder missing",
+            args: s(&["-o", "{dir}/no/such/dir/out.png"]),
+            names: "out.png",
+        },
+        Case {
+            name: "output is a directory",
+            args: s(&["-o", "{dir}"]),
+            names: "",
+        },
+        Case {
+            name: "no such adapter",
+            args: s(&["-o", &out, "--adapter", "no-such-gpu-anywhere"]),
+            names: "mesa-vulkan-drivers",
+        },
+    ];
+    for case in &cases {
+        run_case(d, case);
+    }
+}

@@ -1,0 +1,76 @@
+//! The command line as a user runs it: the README's commands produce real
+//! images of the requested size and format.
+
+mod common;
+
+#[test]
+fn render_writes_png_exr_and_reference_images() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("gonio.png");
+    let status = common::gonio()
+        .args(["render", "-o"])
+        .arg(&png)
+        .args(["--width", "96", "--height", "64", "--timings"])
+        .output()
+        .unwrap();
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&status.stdout);
+    assert!(stdout.contains("render pass"), "timings missing: {stdout}");
+    let image = image::open(&png).unwrap().into_rgb8();
+    assert_eq!(image.dimensions(), (96, 64));
+    // The sphere is red: some pixel is clearly redder than it is green.
+    assert!(
+        image
+            .pixels()
+            .any(|p| p.0[0] as u16 > 2 * p.0[1] as u16 && p.0[0] > 100)
+    );
+
+    let exr = dir.path().join("model.exr");
+    let model = common::gltf_asset("Suzanne/Suzanne.gltf");
+    for reference in [false, true] {
+        let mut cmd = common::gonio();
+        cmd.arg("render").arg(&model).arg("-o").arg(&exr);
+        cmd.args(["--shading", "gouraud", "--width", "64", "--height", "48"]);
+        if reference {
+            cmd.arg("--reference");
+        }
+        let out = cmd.output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let image = image::open(&exr).unwrap().into_rgb32f();
+        assert_eq!(image.dimensions(), (64, 48));
+        assert!(
+            image.pixels().any(|p| p.0[0] > 0.0),
+            "the model is not visible"
+        );
+    }
+}
+
+#[test]
+fn verbose_names_the_adapter() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = common::gonio()
+        .args([
+            "render",
+            "--verbose",
+            "--width",
+            "32",
+            "--height",
+            "32",
+            "-o",
+        ])
+        .arg(dir.path().join("v.png"))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("adapter: "), "{stderr}");
+    assert!(stderr.contains("shader: shading phong"), "{stderr}");
+}

@@ -1,0 +1,143 @@
+//! The GPU renderer against the f64 CPU reference, pixel by pixel, for each
+//! shading mode, on the built-in scene and on real glTF models.
+//!
+//! Tolerance (derivation in `gonio::output::compare`):
+//! * geometric: the reference is re-rendered with the sample point moved by
+//!   δ = 1/128 px along ±x and ±y. lavapipe snaps vertices to a 1/256 px
+//!   grid (8 sub-pixel bits), which moves a triangle by at most 1/512 px per
+//!   axis; f32 clip-space arithmetic adds ~10⁻⁴ px at these sizes. δ = 1/128
+//!   covers both with a factor of 2 to spare.
+//! * arithmetic, relative to |L|: with ε = 2⁻²⁴ (f32 unit roundoff),
+//!   - 64ε for the inputs rounded to f32 and the ~20 operations of the
+//!     light loop (each at most 1 ulp in WGSL's correctly-rounded + − × ÷),
+//!   - k_e·(8ε + 2⁻²¹·ln 2) for the cosine lobe `c^k_e`: an error δc in the
+//!     cosine (≤ 8ε: a dot product of normalized vectors) becomes a relative
+//!     error k_e·δc/c, and Vulkan allows `pow` = `exp2(k_e·log2 c)` with
+//!     an absolute `log2` error of 2⁻²¹ near 1, i.e. a relative result error
+//!     of k_e·2⁻²¹·ln 2;
+//!   plus an absolute 64ε·L_max for channels near zero.
+
+mod common;
+
+use gonio::frame::Frame;
+use gonio::output::compare::{Comparison, JITTER_OFFSETS, Tolerance, compare_with_jitter};
+use gonio::reference;
+use gonio::scene::scene_file::{self, SceneSource};
+use gonio::scene::{Scene, ShadingMode};
+
+const JITTER_PX: f64 = 1.0 / 128.0;
+const EPS: f64 = 1.0 / 16_777_216.0; // 2⁻²⁴
+
+/// The arithmetic tolerance for `scene`, from its largest exponent.
+fn tolerance(scene: &Scene, reference: &Frame) -> Tolerance {
+    let k_e = scene.materials.iter().map(|m| m.k_e).fold(0.0, f64::max);
+    let pow_log2_error = 2f64.powi(-21) * std::f64::consts::LN_2;
+    Tolerance {
+        rel: 64.0 * EPS + k_e * (8.0 * EPS + pow_log2_error),
+        abs: 64.0 * EPS * reference.max_radiance() as f64,
+    }
+}
+
+fn no_nan(frame: &Frame) -> bool {
+    frame.radiance.iter().flatten().all(|v| v.is_finite())
+}
+
+/// Renders `scene` on both sides and compares; prints one table row.
+fn gpu_vs_cpu(label: &str, scene: &Scene) -> Comparison {
+    let mut renderer = common::gpu_renderer();
+    let (gpu, _) = renderer.render(scene).expect("GPU render");
+    let center = reference::render(scene);
+    let jittered = JITTER_OFFSETS
+        .map(|(dx, dy)| reference::render_offset(scene, dx * JITTER_PX, dy * JITTER_PX));
+    assert!(no_nan(&gpu), "{label}: the GPU frame has NaN or Inf");
+    assert!(
+        no_nan(&center),
+        "{label}: the reference frame has NaN or Inf"
+    );
+    let tol = tolerance(scene, &center);
+    let c = compare_with_jitter(&gpu, &center, &jittered, tol);
+    eprintln!("{label:<28} rel tol {:.2e} | {}", tol.rel, c.summary());
+    // The comparison must have had something to compare.
+    assert!(
+        c.compared > scene.width as usize * scene.height as usize / 10,
+        "{label}: too few covered pixels"
+    );
+    assert!(
+        c.passed(),
+        "{label}: GPU and reference disagree: {}",
+        c.summary()
+    );
+    c
+}
+
+fn load(source: SceneSource, mode: ShadingMode, extra: &[&str]) -> Scene {
+    let mut sets = vec![
+        "image.width=200".to_string(),
+        "image.height=150".to_string(),
+        format!("shading.mode={mode}"),
+    ];
+    sets.extend(extra.iter().map(|s| s.to_string()));
+    scene_file::load(&source, &sets).expect("scene loads")
+}
+
+#[test]
+fn built_in_scene_flat() {
+    gpu_vs_cpu(
+        "built-in, flat",
+        &load(SceneSource::BuiltIn, ShadingMode::Flat, &[]),
+    );
+}
+
+#[test]
+fn built_in_scene_gouraud() {
+    gpu_vs_cpu(
+        "built-in, gouraud",
+        &load(SceneSource::BuiltIn, ShadingMode::Gouraud, &[]),
+    );
+}
+
+#[test]
+fn built_in_scene_phong() {
+    gpu_vs_cpu(
+        "built-in, phong",
+        &load(SceneSource::BuiltIn, ShadingMode::Phong, &[]),
+    );
+}
+
+#[test]
+fn built_in_scene_lecture_phong_and_spot_light() {
+    let scene = load(
+        SceneSource::BuiltIn,
+        ShadingMode::Phong,
+        &[
+            "materials.ball.model=phong",
+            "lights.0={kind = \"spot\", position = [2.0, 4.0, 2.0], direction = [-0.4, -1.0, -0.4], intensity = 40.0, inner_cone_deg = 15.0, outer_cone_deg = 30.0}",
+        ],
+    );
+    gpu_vs_cpu("built-in, phong lobe, spot", &scene);
+}
+
+#[test]
+fn suzanne_every_shading_mode() {
+    for mode in ShadingMode::ALL {
+        let scene = load(
+            SceneSource::File(common::gltf_asset("Suzanne/Suzanne.gltf")),
+            mode,
+            &[],
+        );
+        gpu_vs_cpu(&format!("Suzanne.gltf, {mode}"), &scene);
+    }
+}
+
+#[test]
+fn box_glb_with_point_light() {
+    let scene = load(
+        SceneSource::File(common::gltf_asset("Box/Box.glb")),
+        ShadingMode::Phong,
+        &[
+            "lights=[{kind = \"point\", position = [1.0, 2.0, 2.0], intensity = 5.0}]",
+            "ambient.radiance=0.05",
+        ],
+    );
+    gpu_vs_cpu("Box.glb, phong, point", &scene);
+}
