@@ -15,7 +15,8 @@
 //!     error k_e·δc/c, and Vulkan allows `pow` = `exp2(k_e·log2 c)` with
 //!     an absolute `log2` error of 2⁻²¹ near 1, i.e. a relative result error
 //!     of k_e·2⁻²¹·ln 2;
-//!   plus an absolute 64ε·L_max for channels near zero.
+//!
+//!   Plus an absolute 64ε·L_max for channels near zero.
 
 mod common;
 
