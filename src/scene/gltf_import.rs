@@ -43,7 +43,7 @@
 //! | gonio | from glTF | why |
 //! |---|---|---|
 //! | `k_d` | `b·(1 − m)` | metals have no diffuse lobe |
-//! | `k_s` | `0.04·(1 − m) + b·m` | the metal/rough model's normal-incidence reflectance F0 |
+//! | `k_s` | `F0 · min(1, (k_e + 8)/(8π))`, `F0 = 0.04·(1 − m) + b·m` | F0 is the metal/rough model's normal-incidence reflectance; the factor (Blinn-Phong's normalization, capped at 1) keeps the lecture's unnormalized broad lobes from reflecting more than they receive |
 //! | `k_e` | `clamp(2/α² − 2, 1, 1e6)`, `α = max(r², 10⁻³)` | the usual Blinn-Phong ↔ Beckmann exponent correspondence (Walter et al. 2007) |
 //! | `k_a` | `k_d` | an ambient light lights the diffuse colour |
 //!
@@ -154,9 +154,14 @@ pub fn material_from_metallic_roughness(
     let m = metallic.clamp(0.0, 1.0);
     let r = roughness.clamp(0.0, 1.0);
     let k_d = b * (1.0 - m);
-    let k_s = Rgb::splat(DIELECTRIC_F0 * (1.0 - m)) + b * m;
+    let f0 = Rgb::splat(DIELECTRIC_F0 * (1.0 - m)) + b * m;
     let alpha = (r * r).max(1e-3);
     let k_e = (2.0 / (alpha * alpha) - 2.0).clamp(1.0, 1e6);
+    // The lecture's lobe is not normalized: its albedo grows like 8π/k_e
+    // for broad lobes (a rough metal with k_s = 1 reflects far more than it
+    // receives). Scaling by Blinn-Phong's normalization (k_e + 8)/(8π),
+    // capped at 1, keeps broad lobes near F0 and leaves sharp ones alone.
+    let k_s = f0 * ((k_e + 8.0) / (8.0 * std::f64::consts::PI)).min(1.0);
     // Issue #4 will switch this default to Cook-Torrance with GGX, which
     // takes α directly; Blinn-Phong is the only glossy model there is now.
     let mut material = Material::new(name, ReflectanceModel::BlinnPhong);
