@@ -1233,7 +1233,9 @@ mod tests {
         let material = &scene.materials[scene.meshes[0].material];
         assert_eq!(material.name, "gltf-default");
         assert_eq!(material.k_d, Rgb::ZERO);
-        assert_eq!(material.k_s, Rgb::ONE);
+        // F0 = b = 1, damped by (k_e + 8)/(8π) for k_e = 1.
+        let k_s = 9.0 / (8.0 * std::f64::consts::PI);
+        assert!((material.k_s - Rgb::splat(k_s)).abs().max_element() < 1e-15);
         assert_eq!(material.k_e, 1.0);
     }
 
