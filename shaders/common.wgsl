@@ -11,15 +11,30 @@ struct Globals {
     light_count: u32,
     ambient: vec3<f32>,   // L_a: constant incoming ambient radiance
     _pad0: f32,
+    env_zenith: vec3<f32>, // the environment a mirror reflects (scene::Environment)
+    _pad1: f32,
+    env_horizon: vec3<f32>,
+    _pad2: f32,
+    env_ground: vec3<f32>,
+    _pad3: f32,
 }
 
-// One material; `model` selects the reflectance model (ReflectanceModel::id).
+// One material, roughness floor already applied (Material::with_roughness_floor).
+// `variant` indexes the scene's BRDF variants (the generated `eval_brdf` switch).
 struct Material {
     k_a: vec3<f32>,
-    model: u32,
+    variant: u32,
     k_d: vec3<f32>,       // albedo; Lambert f_r = k_d / π
     k_e: f32,
     k_s: vec3<f32>,
+    roughness: f32,
+    eta: vec3<f32>,       // conductor η + iκ
+    sigma_x: f32,
+    kappa: vec3<f32>,
+    sigma_y: f32,
+    eta_i: f32,           // dielectric
+    eta_t: f32,
+    d_norm: f32,          // gaussian-normalized: gaussian_normalization(roughness), from the CPU
     _pad0: f32,
 }
 

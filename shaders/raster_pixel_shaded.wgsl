@@ -1,11 +1,13 @@
 // Phong shading (lecture: "Shading Model: Phong Shading"): the normal is
 // interpolated (perspective-correct barycentrics), renormalized, and the
 // reflection equation is evaluated at every pixel's interpolated position.
+// Lines marked `#if tangents` exist only when a model needs a tangent frame.
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) material: u32,
+    @location(3) tangent: vec3<f32>, // #if tangents
 }
 
 struct VertexOut {
@@ -13,6 +15,7 @@ struct VertexOut {
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) @interpolate(flat) material: u32,
+    @location(3) tangent: vec3<f32>, // #if tangents
 }
 
 @vertex
@@ -22,6 +25,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.world = in.position;
     out.normal = in.normal;
     out.material = in.material;
+    out.tangent = in.tangent; // #if tangents
     return out;
 }
 
@@ -30,5 +34,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Opposite normals can interpolate to zero: no direction, so only the
     // ambient term remains (the CPU reference does the same).
     let n = normalize_or_zero(in.normal);
-    return vec4<f32>(reflected_radiance(materials[in.material], in.world, n), 1.0);
+    let frame = surface_frame(n, in.tangent); // #if tangents
+    let frame = surface_frame(n, any_tangent(n)); // #if !tangents
+    return vec4<f32>(reflected_radiance(materials[in.material], in.world, frame), 1.0);
 }

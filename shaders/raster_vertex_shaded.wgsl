@@ -1,24 +1,37 @@
 // Flat and Gouraud shading (lecture: "Shading Model"): the reflection
 // equation is evaluated per vertex and the colour is interpolated.
 // Flat: the vertex stream is de-indexed; every corner of a triangle carries
-// the face normal and the centroid as its shading point, so all three
-// corners compute the same colour, passed without interpolation.
-// Gouraud: the shading point is the vertex, the normal the vertex normal,
-// and the colours are interpolated perspective-correctly.
-// `VertexIn`, `shading_point` and `RADIANCE_INTERPOLATION` come from
-// src/gpu/shader_gen.rs.
+// the face normal, the triangle's tangent and the centroid as its shading
+// point, so all three corners compute the same colour, passed without
+// interpolation. Gouraud: the shading point is the vertex, the frame the
+// vertex's, and colours are interpolated perspective-correctly.
+// Lines marked `#if FEATURE` are kept only when the feature is on
+// (src/gpu/shader_gen.rs): `flat`, `tangents`.
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) material: u32,
+    @location(3) tangent: vec3<f32>, // #if tangents
+    @location(4) shading_point: vec3<f32>, // #if flat
+}
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
-    @location(0) RADIANCE_INTERPOLATION radiance: vec3<f32>,
+    @location(0) @interpolate(flat) radiance: vec3<f32>, // #if flat
+    @location(0) radiance: vec3<f32>, // #if !flat
 }
 
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
-    let m = materials[in.material];
+    let n = normalize_or_zero(in.normal);
+    let frame = surface_frame(n, in.tangent); // #if tangents
+    let frame = surface_frame(n, any_tangent(n)); // #if !tangents
+    let x = in.shading_point; // #if flat
+    let x = in.position; // #if !flat
     var out: VertexOut;
     out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
-    out.radiance = reflected_radiance(m, shading_point(in), normalize_or_zero(in.normal));
+    out.radiance = reflected_radiance(materials[in.material], x, frame);
     return out;
 }
 

@@ -1,18 +1,22 @@
 // The reflection equation for punctual lights, summed (contract):
 // L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
+// plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)).
 // f64 twin: reflected_radiance in src/shading.rs.
-// `eval_brdf` and `light_incidence` are generated for the scene's models and
-// light kinds (src/gpu/shader_gen.rs).
+// `mirror_reflectance` and `light_incidence` are generated for the scene's
+// BRDF variants and light kinds (src/gpu/shader_gen.rs); lines marked
+// `#if mirror` exist only when the scene has a mirror.
 
-// One-sided f_r: zero where N·I ≤ 0 or N·V ≤ 0 (Material::f_r in Rust).
-fn f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
-    if dot(n, wi) <= 0.0 || dot(n, wo) <= 0.0 {
-        return vec3<f32>(0.0);
-    }
-    return eval_brdf(m, wi, wo, n);
-}
+// Radiance of the environment from unit direction d. Twin: Environment::radiance. // #if mirror
+fn environment_radiance(d: vec3<f32>) -> vec3<f32> { // #if mirror
+    let y = clamp(d.y, -1.0, 1.0); // #if mirror
+    if y >= 0.0 { // #if mirror
+        return globals.env_horizon + (globals.env_zenith - globals.env_horizon) * y; // #if mirror
+    } // #if mirror
+    return globals.env_horizon + (globals.env_ground - globals.env_horizon) * (-y); // #if mirror
+} // #if mirror
 
-fn reflected_radiance(m: Material, x: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
     var radiance = m.k_a * globals.ambient;
     for (var l = 0u; l < globals.light_count; l++) {
@@ -21,7 +25,9 @@ fn reflected_radiance(m: Material, x: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
         if cos_theta_i <= 0.0 {
             continue;
         }
-        radiance += f_r(m, incidence.wi, wo, n) * incidence.irradiance * cos_theta_i;
+        radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * cos_theta_i;
     }
+    let reflected = mirror_direction(wo, n); // #if mirror
+    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected); // #if mirror
     return radiance;
 }

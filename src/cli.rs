@@ -4,6 +4,7 @@ use crate::frame::Frame;
 use crate::gpu::timing::{Clock, Timings};
 use crate::gpu::{AdapterChoice, GpuContext, GpuRenderer};
 use crate::output::OutputFile;
+use crate::scene::limits::Limits;
 use crate::scene::scene_file::{self, SceneSource};
 use crate::scene::{Scene, ShadingMode};
 use crate::{Error, Result, reference};
@@ -24,6 +25,8 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene headlessly to a PNG or EXR file.
     Render(RenderArgs),
+    /// Explore a reflectance model: print f_r, plot slices and albedo, read gloss.
+    Brdf(crate::explore::cli::BrdfArgs),
 }
 
 /// `gonio render [SCENE] -o OUT.(png|exr) ...`
@@ -64,6 +67,12 @@ pub struct RenderArgs {
     /// Print the time of each step (GPU timestamp queries where available).
     #[arg(long)]
     pub timings: bool,
+    /// Raise (or lower) a cap on what input files may hold, e.g.
+    /// `--limit triangles=200M` or `--limit bytes=4Gi`. Keys: bytes (1Gi),
+    /// vertices (50M), triangles (50M), nodes (1M), textures (4096),
+    /// lights (1024).
+    #[arg(long = "limit", value_name = "KEY=VALUE")]
+    pub limits: Vec<String>,
 }
 
 /// Parses the command line, runs it, and maps errors to exit status 2
@@ -72,6 +81,7 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render(&args),
+        Command::Brdf(args) => crate::explore::cli::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -110,10 +120,15 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     };
     let mut timings = Timings::default();
     let start = Instant::now();
-    let scene = scene_file::load(&source, &overrides)?;
+    let limits = Limits::from_assignments(&args.limits)
+        .map_err(|(arg, problem)| Error::argument(format!("--limit {arg}"), problem))?;
+    let (scene, notes) = scene_file::load_with_limits(&source, &overrides, limits)?;
     timings.push("load scene", start.elapsed(), Clock::Wall);
     warn_unsupported(&scene);
     if args.verbose {
+        for note in &notes {
+            eprintln!("gonio: note: {note}");
+        }
         eprintln!("{}", describe_scene(&scene));
     }
 

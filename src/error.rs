@@ -35,15 +35,15 @@ impl Error {
     pub fn input(path: impl AsRef<Path>, problem: impl Into<String>) -> Self {
         Error::Input {
             path: path.as_ref().to_path_buf(),
-            problem: problem.into(),
+            problem: clip(problem.into(), MAX_PROBLEM_CHARS),
         }
     }
 
     /// A command-line argument error.
     pub fn argument(argument: impl Into<String>, problem: impl Into<String>) -> Self {
         Error::Argument {
-            argument: argument.into(),
-            problem: problem.into(),
+            argument: clip(argument.into(), MAX_ARGUMENT_CHARS),
+            problem: clip(problem.into(), MAX_PROBLEM_CHARS),
         }
     }
 
@@ -63,5 +63,41 @@ impl Error {
             Error::Gpu(_) => 1,
             _ => 2,
         }
+    }
+}
+
+/// Longest problem text kept. Messages quote values from the input, and a
+/// hostile input's values can be megabytes long; a message must stay a
+/// readable paragraph.
+const MAX_PROBLEM_CHARS: usize = 1000;
+/// Longest argument text kept (a `--set` can be as long as the OS allows).
+const MAX_ARGUMENT_CHARS: usize = 200;
+
+/// `text` if it has at most `max` characters; otherwise its beginning and
+/// end around ` … `, since both usually matter (what is wrong, and what was
+/// expected).
+fn clip(text: String, max: usize) -> String {
+    let count = text.chars().count();
+    if count <= max {
+        return text;
+    }
+    let tail = max / 4;
+    let head: String = text.chars().take(max - tail).collect();
+    let end: String = text.chars().skip(count - tail).collect();
+    format!("{head} … {end}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_problems_are_clipped_at_both_ends() {
+        let long = format!("start {} end", "x".repeat(10_000));
+        let e = Error::input("f.toml", long).to_string();
+        assert!(e.starts_with("f.toml: start xxx"), "{e}");
+        assert!(e.ends_with("xxx end"), "{e}");
+        assert!(e.contains(" … ") && e.chars().count() < 1100, "{e}");
+        assert_eq!(clip("short".into(), 10), "short");
     }
 }

@@ -8,6 +8,7 @@
 
 pub mod cli;
 pub mod error;
+pub mod explore;
 pub mod frame;
 pub mod gpu;
 pub mod material;

@@ -1,26 +1,30 @@
 //! The reflection equation for punctual lights, summed (contract):
-//! `L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l`.
+//! `L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l`,
+//! plus, for the ideal mirror, `ρ_s(θ_o) · L_env(R(V))` (lecture: "Mirror
+//! BRDF": `L_o = ρ_s(θ_o) L_i(θ_o, φ_o ± π)`).
 //!
-//! This is the CPU twin of `shade` in `shaders/shading.wgsl`.
+//! This is the CPU twin of `reflected_radiance` in `shaders/shading.wgsl`.
 
-use crate::material::Material;
-use crate::scene::{Light, Rgb};
+use crate::material::brdf::{self, SurfaceFrame, phong::mirror_direction};
+use crate::material::{Material, ReflectanceModel};
+use crate::scene::{Rgb, Scene};
 use glam::DVec3;
 
-/// Reflected radiance at `x` with unit shading normal `n`, seen from `eye`.
+/// Reflected radiance at `x` with shading frame `frame`, seen from `eye`.
+/// `material` is an effective material (`Scene::effective_materials`).
 /// `visibility(l, x)` is `V_l` in [0, 1] for light index `l`.
 pub fn reflected_radiance(
+    scene: &Scene,
     material: &Material,
-    lights: &[Light],
-    ambient: Rgb,
     x: DVec3,
-    n: DVec3,
+    frame: &SurfaceFrame,
     eye: DVec3,
     visibility: impl Fn(usize, DVec3) -> f64,
 ) -> Rgb {
+    let n = frame.n;
     let wo = (eye - x).normalize_or_zero();
-    let mut radiance = material.k_a * ambient;
-    for (l, light) in lights.iter().enumerate() {
+    let mut radiance = material.k_a * scene.ambient;
+    for (l, light) in scene.lights.iter().enumerate() {
         let incidence = light.incidence(x);
         let cos_theta_i = n.dot(incidence.wi);
         if cos_theta_i <= 0.0 {
@@ -30,7 +34,11 @@ pub fn reflected_radiance(
         if v <= 0.0 {
             continue;
         }
-        radiance += material.f_r(incidence.wi, wo, n) * incidence.irradiance * (cos_theta_i * v);
+        radiance += material.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
+    }
+    if material.model == ReflectanceModel::Mirror {
+        let reflected = mirror_direction(wo, n);
+        radiance += brdf::mirror_reflectance(material, n.dot(wo)) * scene.environment.radiance(reflected);
     }
     radiance
 }

@@ -24,18 +24,54 @@ use gonio::frame::Frame;
 use gonio::output::compare::{Comparison, JITTER_OFFSETS, Tolerance, compare_with_jitter};
 use gonio::reference;
 use gonio::scene::scene_file::{self, SceneSource};
+use gonio::material::{Distribution, Material, ReflectanceModel};
 use gonio::scene::{Scene, ShadingMode};
 
 const JITTER_PX: f64 = 1.0 / 128.0;
 const EPS: f64 = 1.0 / 16_777_216.0; // 2⁻²⁴
 
-/// The arithmetic tolerance for `scene`, from its largest exponent.
+/// The arithmetic tolerance for `scene`: the largest over its materials.
 fn tolerance(scene: &Scene, reference: &Frame) -> Tolerance {
-    let k_e = scene.materials.iter().map(|m| m.k_e).fold(0.0, f64::max);
-    let pow_log2_error = 2f64.powi(-21) * std::f64::consts::LN_2;
+    let rel = scene
+        .effective_materials()
+        .iter()
+        .map(arithmetic_rel)
+        .fold(64.0 * EPS, f64::max);
     Tolerance {
-        rel: 64.0 * EPS + k_e * (8.0 * EPS + pow_log2_error),
+        rel,
         abs: 64.0 * EPS * reference.max_radiance() as f64,
+    }
+}
+
+/// Relative f32 error of one material's shading, beyond the 64ε of the
+/// light loop:
+/// * cosine lobes `c^k_e`: k_e·(8ε + 2⁻²¹·ln 2) (see the module docs);
+/// * slope distributions `exp(−tan²θ/m²)` (Beckmann, GGX's tail, Ward):
+///   d ln f/dθ = −2 tanθ/(m² cos²θ); with the half vector's angle known
+///   to 8ε and the lobe negligible beyond tanθ ≈ 4.5 m, the relative error
+///   is at most 16ε · 4.5/m ≈ 72ε/m (taken as 128ε/m);
+/// * the lecture's angular Blinn: its exponent e = −ln2/ln cos m behaves
+///   like k_e; the Gaussian's `acos` may be off by 4096 ulp (Vulkan), and
+///   exp(−ln2 (α/m)²) turns a relative error δ of α into 2 ln2 (α/m)² δ
+///   with (α/m)² ≲ 30 where the lobe matters.
+fn arithmetic_rel(m: &Material) -> f64 {
+    let pow = |k: f64| k * (8.0 * EPS + 2f64.powi(-21) * std::f64::consts::LN_2);
+    let slope = |r: f64| 128.0 * EPS / r;
+    match m.model {
+        ReflectanceModel::Phong
+        | ReflectanceModel::PhongNormalized
+        | ReflectanceModel::BlinnPhong
+        | ReflectanceModel::BlinnPhongNormalized => pow(m.k_e),
+        ReflectanceModel::Ward => slope(m.sigma_x),
+        ReflectanceModel::WardAnisotropic => slope(m.sigma_x.min(m.sigma_y)),
+        ReflectanceModel::CookTorrance => match m.distribution {
+            Distribution::Blinn | Distribution::BlinnNormalized => pow(-std::f64::consts::LN_2 / m.roughness.cos().ln()),
+            Distribution::Gaussian | Distribution::GaussianNormalized => {
+                2.0 * std::f64::consts::LN_2 * 30.0 * 4096.0 * EPS
+            }
+            _ => slope(m.roughness),
+        },
+        ReflectanceModel::Lambert | ReflectanceModel::Mirror => 0.0,
     }
 }
 
@@ -141,4 +177,31 @@ fn box_glb_with_point_light() {
         ],
     );
     gpu_vs_cpu("Box.glb, phong, point", &scene);
+}
+
+/// One image per reflectance model: the built-in scene's ball with each
+/// model (a mirror reflecting a sky gradient), Phong shading.
+#[test]
+fn every_reflectance_model_renders_like_the_reference() {
+    let models: &[(&str, &[&str])] = &[
+        ("lambert", &[]),
+        ("phong", &[]),
+        ("phong-normalized", &[]),
+        ("blinn-phong", &[]),
+        ("blinn-phong-normalized", &[]),
+        ("ward", &["materials.ball.sigma=0.15"]),
+        ("ward-anisotropic", &["materials.ball.sigma_x=0.05", "materials.ball.sigma_y=0.4"]),
+        ("cook-torrance", &["materials.ball.preset=gold", "materials.ball.k_d=0.1", "materials.ball.roughness=0.25"]),
+        ("cook-torrance", &["materials.ball.distribution=ggx", "materials.ball.fresnel=schlick", "materials.ball.roughness=0.2"]),
+        ("cook-torrance", &["materials.ball.distribution=blinn", "materials.ball.geometry=v-groove", "materials.ball.denominator=lecture", "materials.ball.fresnel=conductor-lecture", "materials.ball.roughness=0.3"]),
+        ("cook-torrance", &["materials.ball.distribution=gaussian-normalized", "materials.ball.preset=glass", "materials.ball.roughness=0.2"]),
+        ("mirror", &["materials.ball.preset=silver", "materials.ball.fresnel=conductor", "environment.zenith=[0.2, 0.4, 1.0]", "environment.horizon=[1.0, 0.9, 0.8]", "environment.ground=[0.1, 0.08, 0.05]"]),
+    ];
+    for (model, extra) in models {
+        let mut sets = vec![format!("materials.ball.model={model}")];
+        sets.extend(extra.iter().map(|s| s.to_string()));
+        let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+        let scene = load(SceneSource::BuiltIn, ShadingMode::Phong, &sets);
+        gpu_vs_cpu(&format!("ball: {model} {}", extra.join(" ")), &scene);
+    }
 }

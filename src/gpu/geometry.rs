@@ -2,104 +2,136 @@
 //!
 //! All meshes go into one vertex buffer drawn with one call: each vertex
 //! carries its material index, so one pipeline and one draw render the
-//! whole scene.
+//! whole scene. Attributes a scene does not need (tangents without an
+//! anisotropic model, shading points outside flat shading) are not in the
+//! stream at all; the shader locations match `shaders/raster_*.wgsl`.
 
-use crate::scene::mesh::{centroid, face_normal};
+use crate::reference::flat_frame;
+use crate::scene::mesh::centroid;
 use crate::scene::{Scene, ShadingMode};
-use bytemuck::{Pod, Zeroable};
 
-/// Vertex of Gouraud and Phong shading (indexed, shared between triangles).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct Vertex {
-    pub position: [f32; 3],
-    pub normal: [f32; 3],
-    pub material: u32,
+/// Which optional attributes the stream has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VertexLayout {
+    /// `@location(3) tangent` (anisotropic models).
+    pub tangents: bool,
+    /// `@location(4) shading_point` (flat shading: the centroid).
+    pub shading_point: bool,
 }
 
-/// Vertex of flat shading: de-indexed, every corner carries the face normal
-/// and the triangle's centroid, where the colour is evaluated.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct FlatVertex {
-    pub position: [f32; 3],
-    pub normal: [f32; 3],
-    pub material: u32,
-    pub shading_point: [f32; 3],
+impl VertexLayout {
+    /// The wgpu attributes, tightly packed in location order.
+    pub fn attributes(&self) -> Vec<wgpu::VertexAttribute> {
+        let mut attributes = Vec::new();
+        let mut offset = 0;
+        let mut push = |location, format: wgpu::VertexFormat| {
+            attributes.push(wgpu::VertexAttribute {
+                format,
+                offset,
+                shader_location: location,
+            });
+            offset += format.size();
+        };
+        push(0, wgpu::VertexFormat::Float32x3);
+        push(1, wgpu::VertexFormat::Float32x3);
+        push(2, wgpu::VertexFormat::Uint32);
+        if self.tangents {
+            push(3, wgpu::VertexFormat::Float32x3);
+        }
+        if self.shading_point {
+            push(4, wgpu::VertexFormat::Float32x3);
+        }
+        attributes
+    }
+
+    /// Bytes per vertex.
+    pub fn stride(&self) -> u64 {
+        4 * (7 + 3 * self.tangents as u64 + 3 * self.shading_point as u64)
+    }
 }
 
-/// Vertex bytes, optional indices and the vertex layout for a mode.
+/// Vertex words (f32 bits and u32), optional indices and the layout.
 pub struct GeometryData {
-    pub vertices: Vec<u8>,
+    /// 32-bit words, `stride / 4` per vertex.
+    pub words: Vec<u32>,
     /// `None` for a non-indexed draw (flat shading).
     pub indices: Option<Vec<u32>>,
     /// Vertices to draw (non-indexed) or indices to draw (indexed).
     pub draw_count: u32,
-    pub stride: u64,
-    pub attributes: &'static [wgpu::VertexAttribute],
+    pub layout: VertexLayout,
 }
 
-const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
-    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32];
-const FLAT_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
-    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32, 3 => Float32x3];
+fn push3(words: &mut Vec<u32>, v: glam::DVec3) {
+    words.extend(v.as_vec3().to_array().map(f32::to_bits));
+}
 
 impl GeometryData {
-    /// Lays out `scene`'s meshes for `scene.shading`.
-    pub fn new(scene: &Scene) -> Self {
+    /// Lays out `scene`'s meshes for `scene.shading`, with tangents if asked.
+    pub fn new(scene: &Scene, tangents: bool) -> Self {
         match scene.shading {
-            ShadingMode::Flat => Self::flat(scene),
-            ShadingMode::Gouraud | ShadingMode::Phong => Self::indexed(scene),
+            ShadingMode::Flat => Self::flat(scene, tangents),
+            ShadingMode::Gouraud | ShadingMode::Phong => Self::indexed(scene, tangents),
         }
     }
 
-    fn indexed(scene: &Scene) -> Self {
-        let mut vertices = Vec::new();
-        let mut indices = Vec::new();
+    fn indexed(scene: &Scene, tangents: bool) -> Self {
+        let layout = VertexLayout {
+            tangents,
+            shading_point: false,
+        };
+        let vertex_count: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
+        let mut words = Vec::with_capacity(vertex_count * layout.stride() as usize / 4);
+        let mut indices = Vec::with_capacity(3 * scene.triangle_count());
+        let mut base = 0u32;
         for mesh in &scene.meshes {
-            let base = vertices.len() as u32;
-            vertices.extend(
-                mesh.positions
-                    .iter()
-                    .zip(&mesh.normals)
-                    .map(|(p, n)| Vertex {
-                        position: p.as_vec3().to_array(),
-                        normal: n.as_vec3().to_array(),
-                        material: mesh.material as u32,
-                    }),
-            );
+            for v in 0..mesh.positions.len() {
+                push3(&mut words, mesh.positions[v]);
+                push3(&mut words, mesh.normals[v]);
+                words.push(mesh.material as u32);
+                if tangents {
+                    push3(&mut words, mesh.tangent(v));
+                }
+            }
             indices.extend(mesh.indices.iter().flatten().map(|i| base + i));
+            base += mesh.positions.len() as u32;
         }
         GeometryData {
-            vertices: bytemuck::cast_slice(&vertices).to_vec(),
+            words,
             draw_count: indices.len() as u32,
             indices: Some(indices),
-            stride: std::mem::size_of::<Vertex>() as u64,
-            attributes: &VERTEX_ATTRIBUTES,
+            layout,
         }
     }
 
-    fn flat(scene: &Scene) -> Self {
-        let mut vertices = Vec::with_capacity(3 * scene.triangle_count());
+    /// De-indexed: every corner carries the triangle's frame and centroid
+    /// (computed in f64 exactly as the reference's flat shading does).
+    fn flat(scene: &Scene, tangents: bool) -> Self {
+        let layout = VertexLayout {
+            tangents,
+            shading_point: true,
+        };
+        let mut words = Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
         for mesh in &scene.meshes {
             for t in 0..mesh.indices.len() {
-                let tri = mesh.triangle(t);
-                let normal = face_normal(tri).as_vec3().to_array();
-                let shading_point = centroid(tri).as_vec3().to_array();
-                vertices.extend(tri.iter().map(|p| FlatVertex {
-                    position: p.as_vec3().to_array(),
-                    normal,
-                    material: mesh.material as u32,
-                    shading_point,
-                }));
+                let corners = mesh.triangle(t);
+                let frame = flat_frame(mesh, t);
+                let shading_point = centroid(corners);
+                for p in corners {
+                    push3(&mut words, p);
+                    push3(&mut words, frame.n);
+                    words.push(mesh.material as u32);
+                    if tangents {
+                        push3(&mut words, frame.t);
+                    }
+                    push3(&mut words, shading_point);
+                }
             }
         }
         GeometryData {
-            draw_count: vertices.len() as u32,
-            vertices: bytemuck::cast_slice(&vertices).to_vec(),
+            draw_count: (words.len() as u64 * 4 / layout.stride()) as u32,
+            words,
             indices: None,
-            stride: std::mem::size_of::<FlatVertex>() as u64,
-            attributes: &FLAT_ATTRIBUTES,
+            layout,
         }
     }
 }

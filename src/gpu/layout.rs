@@ -2,11 +2,13 @@
 //! padding so `bytemuck` can upload them as they are. Field order and sizes
 //! follow WGSL's layout rules (vec3 aligned to 16 bytes).
 
-use crate::material::Material;
+use super::shader_gen::ShaderKey;
+use crate::material::brdf::microfacet::gaussian_normalization;
+use crate::material::{Distribution, Material, ReflectanceModel};
 use crate::scene::{Light, Scene};
 use bytemuck::{Pod, Zeroable};
 
-/// `Globals` (uniform buffer, 96 bytes).
+/// `Globals` (uniform buffer, 144 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuGlobals {
@@ -15,17 +17,31 @@ pub struct GpuGlobals {
     pub light_count: u32,
     pub ambient: [f32; 3],
     pub _pad0: f32,
+    pub env_zenith: [f32; 3],
+    pub _pad1: f32,
+    pub env_horizon: [f32; 3],
+    pub _pad2: f32,
+    pub env_ground: [f32; 3],
+    pub _pad3: f32,
 }
 
-/// `Material` (storage buffer element, 48 bytes).
+/// `Material` (storage buffer element, 96 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuMaterial {
     pub k_a: [f32; 3],
-    pub model: u32,
+    pub variant: u32,
     pub k_d: [f32; 3],
     pub k_e: f32,
     pub k_s: [f32; 3],
+    pub roughness: f32,
+    pub eta: [f32; 3],
+    pub sigma_x: f32,
+    pub kappa: [f32; 3],
+    pub sigma_y: f32,
+    pub eta_i: f32,
+    pub eta_t: f32,
+    pub d_norm: f32,
     pub _pad0: f32,
 }
 
@@ -60,18 +76,41 @@ impl GpuGlobals {
             light_count: scene.lights.len() as u32,
             ambient: f32x3(scene.ambient),
             _pad0: 0.0,
+            env_zenith: f32x3(scene.environment.zenith),
+            _pad1: 0.0,
+            env_horizon: f32x3(scene.environment.horizon),
+            _pad2: 0.0,
+            env_ground: f32x3(scene.environment.ground),
+            _pad3: 0.0,
         }
     }
 }
 
-impl From<&Material> for GpuMaterial {
-    fn from(m: &Material) -> Self {
+impl GpuMaterial {
+    /// `m` as the GPU sees it: `m` must be an effective material (roughness
+    /// floor applied), `key` the scene's shader key (for the variant index).
+    pub fn new(m: &Material, key: &ShaderKey) -> Self {
+        let d_norm = if m.model == ReflectanceModel::CookTorrance
+            && m.distribution == Distribution::GaussianNormalized
+        {
+            gaussian_normalization(m.roughness) as f32
+        } else {
+            0.0
+        };
         GpuMaterial {
             k_a: f32x3(m.k_a),
-            model: m.model.id(),
+            variant: key.variant_index(&m.variant()),
             k_d: f32x3(m.k_d),
             k_e: m.k_e as f32,
             k_s: f32x3(m.k_s),
+            roughness: m.roughness as f32,
+            eta: f32x3(m.eta),
+            sigma_x: m.sigma_x as f32,
+            kappa: f32x3(m.kappa),
+            sigma_y: m.sigma_y as f32,
+            eta_i: m.eta_i as f32,
+            eta_t: m.eta_t as f32,
+            d_norm,
             _pad0: 0.0,
         }
     }

@@ -6,7 +6,7 @@
 //! the CPU reference.
 
 use super::GpuContext;
-use super::geometry::GeometryData;
+use super::geometry::{GeometryData, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::shader_gen::{self, ShaderKey};
 use super::timing::{Clock, Timings};
@@ -82,13 +82,9 @@ impl GpuRenderer {
     }
 
     /// The pipeline for `key`, compiled on first use.
-    fn pipeline(
-        &mut self,
-        key: &ShaderKey,
-        stride: u64,
-        attributes: &[wgpu::VertexAttribute],
-    ) -> Result<&wgpu::RenderPipeline> {
+    fn pipeline(&mut self, key: &ShaderKey, layout: VertexLayout) -> Result<&wgpu::RenderPipeline> {
         if !self.pipelines.contains_key(key) {
+            let attributes = layout.attributes();
             let wgsl = shader_gen::compose(key);
             // naga validation first: a failure here is a bug in gonio, and
             // this way it is an error message, not a device panic.
@@ -111,9 +107,9 @@ impl GpuRenderer {
                     entry_point: Some("vs_main"),
                     compilation_options: Default::default(),
                     buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: stride,
+                        array_stride: layout.stride(),
                         step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes,
+                        attributes: &attributes,
                     })],
                 },
                 primitive: wgpu::PrimitiveState {
@@ -170,9 +166,9 @@ impl GpuRenderer {
         }
 
         let key = ShaderKey::for_scene(scene);
-        let geometry = timings.wall("build vertex data", || GeometryData::new(scene));
+        let geometry = timings.wall("build vertex data", || GeometryData::new(scene, key.needs_tangents()));
         let start = Instant::now();
-        self.pipeline(&key, geometry.stride, geometry.attributes)?;
+        self.pipeline(&key, geometry.layout)?;
         timings.push("create pipeline", start.elapsed(), Clock::Wall);
 
         let device = &self.ctx.device;
@@ -185,7 +181,7 @@ impl GpuRenderer {
                 usage,
             })
         };
-        let vertex_buffer = init("vertices", &geometry.vertices, wgpu::BufferUsages::VERTEX);
+        let vertex_buffer = init("vertices", bytemuck::cast_slice(&geometry.words), wgpu::BufferUsages::VERTEX);
         let index_buffer = geometry.indices.as_ref().map(|i| {
             init(
                 "indices",
@@ -194,7 +190,11 @@ impl GpuRenderer {
             )
         });
         let globals = GpuGlobals::new(scene);
-        let materials: Vec<GpuMaterial> = scene.materials.iter().map(GpuMaterial::from).collect();
+        let materials: Vec<GpuMaterial> = scene
+            .effective_materials()
+            .iter()
+            .map(|m| GpuMaterial::new(m, &key))
+            .collect();
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
         let globals_buffer = init(
             "globals",

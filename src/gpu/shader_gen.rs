@@ -1,15 +1,17 @@
 //! Scene-specialized WGSL: only what a scene uses is compiled.
 //!
-//! A [`ShaderKey`] lists the features a scene needs (shading mode,
-//! reflectance models, light kinds). [`compose`] concatenates the WGSL
-//! files for exactly those features and generates the two dispatch
-//! functions, `eval_brdf` and `light_incidence`, with one `switch` arm per
-//! feature present (no switch at all when there is only one). A scene with
-//! only Lambert and one point light therefore compiles no glossy lobe and
-//! no spot-light code. Parameter values live in buffers, so changing them
-//! never rebuilds a pipeline; changing the key does.
+//! A [`ShaderKey`] lists the features a scene needs: shading mode, BRDF
+//! variants (a model with its chosen terms), light kinds. [`compose`]
+//! concatenates the WGSL files for exactly those features, keeps only the
+//! lines marked `// #if FEATURE` whose feature is on, and generates the
+//! dispatch functions (`eval_brdf`, `mirror_reflectance`,
+//! `light_incidence`) with one `switch` arm per feature present (no switch
+//! at all when there is only one). A Lambert-only scene with a point light
+//! therefore contains no glossy lobe, no Fresnel, no spot-light code.
+//! Parameter values live in buffers, so changing them never rebuilds a
+//! pipeline; changing the key does.
 
-use crate::material::ReflectanceModel;
+use crate::material::{BrdfVariant, Distribution, Fresnel, Geometry, ReflectanceModel};
 use crate::scene::{LightKind, Scene, ShadingMode};
 use std::collections::BTreeSet;
 use std::fmt::Write;
@@ -19,67 +21,216 @@ pub mod sources {
     pub const COMMON: &str = include_str!("../../shaders/common.wgsl");
     pub const BRDF_LAMBERT: &str = include_str!("../../shaders/brdf/lambert.wgsl");
     pub const BRDF_PHONG: &str = include_str!("../../shaders/brdf/phong.wgsl");
+    pub const BRDF_FRESNEL: &str = include_str!("../../shaders/brdf/fresnel.wgsl");
+    pub const BRDF_MICROFACET: &str = include_str!("../../shaders/brdf/microfacet.wgsl");
+    pub const BRDF_WARD: &str = include_str!("../../shaders/brdf/ward.wgsl");
     pub const LIGHT_INVERSE_SQUARE: &str = include_str!("../../shaders/lights/inverse_square.wgsl");
     pub const LIGHT_POINT: &str = include_str!("../../shaders/lights/point.wgsl");
     pub const LIGHT_DIRECTIONAL: &str = include_str!("../../shaders/lights/directional.wgsl");
     pub const LIGHT_SPOT: &str = include_str!("../../shaders/lights/spot.wgsl");
+    pub const SURFACE: &str = include_str!("../../shaders/surface.wgsl");
     pub const SHADING: &str = include_str!("../../shaders/shading.wgsl");
     pub const RASTER_VERTEX_SHADED: &str = include_str!("../../shaders/raster_vertex_shaded.wgsl");
     pub const RASTER_PIXEL_SHADED: &str = include_str!("../../shaders/raster_pixel_shaded.wgsl");
+
+    /// The BRDF files in dependency order (each may use the ones before).
+    pub const BRDF_ORDER: [&str; 5] = [BRDF_LAMBERT, BRDF_PHONG, BRDF_FRESNEL, BRDF_MICROFACET, BRDF_WARD];
 }
 
 /// What a scene's shader must contain. Equal keys share a pipeline.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct ShaderKey {
     pub shading: ShadingMode,
-    pub models: BTreeSet<ReflectanceModel>,
+    /// Sorted; a material's `variant` index points into this order.
+    pub variants: BTreeSet<BrdfVariant>,
     pub light_kinds: BTreeSet<LightKind>,
 }
 
 impl ShaderKey {
-    /// The features `scene` uses: models of materials that some mesh
-    /// references, kinds of lights present.
+    /// The features `scene` uses: the variants of materials that some mesh
+    /// references, the kinds of lights present.
     pub fn for_scene(scene: &Scene) -> ShaderKey {
         ShaderKey {
             shading: scene.shading,
-            models: scene
+            variants: scene
                 .meshes
                 .iter()
-                .map(|m| scene.materials[m.material].model)
+                .map(|m| scene.materials[m.material].variant())
                 .collect(),
             light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
         }
     }
 
+    /// Index of `variant` in this key (what `Material.variant` holds on the
+    /// GPU); variants no mesh uses map past the end (the switch's default).
+    pub fn variant_index(&self, variant: &BrdfVariant) -> u32 {
+        self.variants
+            .iter()
+            .position(|v| v == variant)
+            .unwrap_or(self.variants.len()) as u32
+    }
+
+    /// Whether any variant needs a tangent frame in the vertex stream.
+    pub fn needs_tangents(&self) -> bool {
+        self.variants.iter().any(|v| v.model.needs_tangents())
+    }
+
+    /// Whether any variant is a mirror (environment reflection code).
+    pub fn has_mirror(&self) -> bool {
+        self.variants.iter().any(|v| v.model == ReflectanceModel::Mirror)
+    }
+
+    /// The `#if` features on for this key.
+    pub fn features(&self) -> Vec<&'static str> {
+        let mut f = Vec::new();
+        if self.shading == ShadingMode::Flat {
+            f.push("flat");
+        }
+        if self.needs_tangents() {
+            f.push("tangents");
+        }
+        if self.has_mirror() {
+            f.push("mirror");
+        }
+        f
+    }
+
     /// A one-line description for logs.
     pub fn describe(&self) -> String {
-        let models: Vec<_> = self.models.iter().map(|m| m.name()).collect();
+        let variants: Vec<_> = self.variants.iter().map(|v| v.describe()).collect();
         let lights: Vec<_> = self.light_kinds.iter().map(|k| k.name()).collect();
         format!(
             "shading {}, models [{}], lights [{}]",
             self.shading,
-            models.join(", "),
+            variants.join(", "),
             lights.join(", ")
         )
     }
 }
 
-/// How one model is evaluated in WGSL: the files it needs and the
-/// expression for `f_r` (variables `m`, `wi`, `wo`, `n` in scope). Mirrors
-/// `material::brdf::eval` arm by arm.
-fn model_wgsl(model: ReflectanceModel) -> (&'static [&'static str], &'static str) {
-    use sources::*;
-    match model {
-        ReflectanceModel::Lambert => (&[BRDF_LAMBERT], "lambert(m.k_d)"),
-        ReflectanceModel::Phong => (
-            &[BRDF_LAMBERT, BRDF_PHONG],
-            "lambert(m.k_d) + m.k_s * phong_lecture(m.k_e, n, wi, wo)",
-        ),
-        ReflectanceModel::BlinnPhong => (
-            &[BRDF_LAMBERT, BRDF_PHONG],
-            "lambert(m.k_d) + m.k_s * blinn_phong_lecture(m.k_e, n, wi, wo)",
-        ),
+/// Keeps the lines of `source` whose `// #if FEATURE` / `// #if !FEATURE`
+/// condition holds for `features`; unmarked lines are kept.
+pub fn preprocess(source: &str, features: &[&str]) -> String {
+    let mut out = String::with_capacity(source.len());
+    for line in source.lines() {
+        let keep = match line.rsplit_once("// #if ") {
+            None => true,
+            Some((_, cond)) => match cond.trim().strip_prefix('!') {
+                Some(f) => !features.contains(&f),
+                None => features.contains(&cond.trim()),
+            },
+        };
+        if keep {
+            out.push_str(line);
+            out.push('\n');
+        }
     }
+    out
+}
+
+/// The WGSL files a variant needs (by their index in `BRDF_ORDER`).
+fn variant_files(v: &BrdfVariant) -> Vec<usize> {
+    let (lambert, phong, fresnel, microfacet, ward) = (0, 1, 2, 3, 4);
+    match v.model {
+        ReflectanceModel::Lambert => vec![lambert],
+        ReflectanceModel::Phong
+        | ReflectanceModel::PhongNormalized
+        | ReflectanceModel::BlinnPhong
+        | ReflectanceModel::BlinnPhongNormalized => vec![lambert, phong],
+        ReflectanceModel::Ward | ReflectanceModel::WardAnisotropic => vec![lambert, phong, ward],
+        ReflectanceModel::CookTorrance => vec![lambert, phong, fresnel, microfacet],
+        ReflectanceModel::Mirror => vec![lambert, phong, fresnel],
+    }
+}
+
+/// WGSL for `D` — mirrors `brdf::distribution`.
+fn distribution_wgsl(d: Distribution) -> &'static str {
+    match d {
+        Distribution::Beckmann => "d_beckmann(m.roughness, cos_h)",
+        Distribution::Blinn => "d_blinn_lecture(m.roughness, cos_h)",
+        Distribution::BlinnNormalized => "d_blinn_normalized(m.roughness, cos_h)",
+        Distribution::Gaussian => "d_gaussian_lecture(m.roughness, cos_h)",
+        Distribution::GaussianNormalized => "d_gaussian_normalized(m.roughness, cos_h, m.d_norm)",
+        Distribution::Ggx => "d_ggx(m.roughness, cos_h)",
+    }
+}
+
+/// WGSL for `G` — mirrors `brdf::geometry` and `brdf::smith_beckmann_slope`.
+fn geometry_wgsl(g: Geometry, d: Distribution) -> String {
+    match g {
+        Geometry::None => "1.0".into(),
+        Geometry::VGroove => "g_vgroove(cos_h, cos_o, cos_i, cos_oh)".into(),
+        Geometry::Smith if d == Distribution::Ggx => {
+            "g1_ggx(m.roughness, cos_i, cos_ih) * g1_ggx(m.roughness, cos_o, cos_oh)".into()
+        }
+        Geometry::Smith => {
+            let slope = match d {
+                Distribution::Blinn | Distribution::BlinnNormalized => "beckmann_slope_of_blinn(m.roughness)",
+                Distribution::Gaussian | Distribution::GaussianNormalized => {
+                    "beckmann_slope_of_gaussian(m.roughness)"
+                }
+                Distribution::Beckmann | Distribution::Ggx => "m.roughness",
+            };
+            format!("g1_beckmann({slope}, cos_i, cos_ih) * g1_beckmann({slope}, cos_o, cos_oh)")
+        }
+    }
+}
+
+/// WGSL for `F(cos)` — mirrors `brdf::fresnel`.
+fn fresnel_wgsl(f: Fresnel, cos: &str) -> String {
+    match f {
+        Fresnel::Conductor => format!("fresnel_conductor({cos}, m.eta, m.kappa)"),
+        Fresnel::ConductorLecture => format!("fresnel_conductor_lecture({cos}, m.eta, m.kappa)"),
+        Fresnel::Dielectric => format!("vec3<f32>(fresnel_dielectric({cos}, m.eta_i, m.eta_t))"),
+        Fresnel::Schlick => format!("fresnel_schlick({cos}, f0_conductor(m.eta, m.kappa))"),
+        Fresnel::None => "vec3<f32>(1.0)".into(),
+    }
+}
+
+/// The body of the BRDF function of one variant — mirrors `brdf::eval`.
+fn variant_body(v: &BrdfVariant) -> String {
+    let lobe = |expr: &str| format!("    return lambert(m.k_d) + m.k_s * {expr};\n");
+    match v.model {
+        ReflectanceModel::Lambert | ReflectanceModel::Mirror => "    return lambert(m.k_d);\n".into(),
+        ReflectanceModel::Phong => lobe("phong_lecture(m.k_e, frame.n, wi, wo)"),
+        ReflectanceModel::PhongNormalized => lobe("phong_normalized(m.k_e, frame.n, wi, wo)"),
+        ReflectanceModel::BlinnPhong => lobe("blinn_phong_lecture(m.k_e, frame.n, wi, wo)"),
+        ReflectanceModel::BlinnPhongNormalized => lobe("blinn_phong_normalized(m.k_e, frame.n, wi, wo)"),
+        ReflectanceModel::Ward => lobe("ward_isotropic(m.sigma_x, frame.n, wi, wo)"),
+        ReflectanceModel::WardAnisotropic => {
+            lobe("ward_anisotropic(m.sigma_x, m.sigma_y, frame.n, frame.t, frame.b, wi, wo)")
+        }
+        ReflectanceModel::CookTorrance => {
+            let d = v.distribution.unwrap_or(Distribution::Beckmann);
+            let g = v.geometry.unwrap_or(Geometry::Smith);
+            let f = v.fresnel.unwrap_or(Fresnel::Conductor);
+            let factor = match v.denominator {
+                Some(crate::material::Denominator::Lecture) => "PI",
+                _ => "4.0",
+            };
+            format!(
+                "    let n = frame.n;\n    let h = half_vector(wi, wo);\n    let cos_i = dot(n, wi);\n    let cos_o = dot(n, wo);\n    let cos_h = dot(n, h);\n    let cos_ih = dot(wi, h);\n    let cos_oh = dot(wo, h);\n    let d = {};\n    let g = {};\n    let f = {};\n    return lambert(m.k_d) + m.k_s * cook_torrance_specular(d, g, f, cos_i, cos_o, {factor});\n",
+                distribution_wgsl(d),
+                geometry_wgsl(g, d),
+                fresnel_wgsl(f, "cos_ih"),
+            )
+        }
+    }
+}
+
+/// Generates a `switch` over `selector` with one arm per `(id, call)`; a
+/// single arm is emitted without a switch.
+fn dispatch(out: &mut String, selector: &str, arms: &[(u32, String)], fallback: &str) {
+    if let [(_, call)] = arms {
+        let _ = writeln!(out, "    return {call};");
+        return;
+    }
+    let _ = writeln!(out, "    switch {selector} {{");
+    for (id, call) in arms {
+        let _ = writeln!(out, "        case {id}u: {{ return {call}; }}");
+    }
+    let _ = writeln!(out, "        default: {{ return {fallback}; }}");
+    let _ = writeln!(out, "    }}");
 }
 
 /// The files a light kind needs and its incidence function's name.
@@ -92,27 +243,77 @@ fn light_wgsl(kind: LightKind) -> (&'static [&'static str], &'static str) {
     }
 }
 
-/// Generates a `switch` over `selector` with one arm per `(id, body)`; a
-/// single arm is emitted without a switch.
-fn dispatch(out: &mut String, selector: &str, arms: &[(u32, String)], fallback: &str) {
-    if let [(_, body)] = arms {
-        let _ = writeln!(out, "    return {body};");
-        return;
+/// The BRDF part of a shader: shared declarations, the shading frame, the
+/// families the variants need, one `brdf_K` function per variant and the
+/// `eval_brdf` / `mirror_reflectance` dispatch over `Material.variant`
+/// (the index of the variant in `variants`' order). The renderer and the
+/// GPU-vs-CPU test harness both compile exactly this code.
+pub fn compose_brdf_library(variants: &BTreeSet<BrdfVariant>, features: &[&str]) -> String {
+    let mut out = String::new();
+    out.push_str(&preprocess(sources::COMMON, features));
+    out.push_str(&preprocess(sources::SURFACE, features));
+
+    // BRDF families in dependency order, only those some variant needs.
+    let needed: BTreeSet<usize> = variants.iter().flat_map(variant_files).collect();
+    for &file in &needed {
+        out.push_str(&preprocess(sources::BRDF_ORDER[file], features));
+        out.push('\n');
     }
-    let _ = writeln!(out, "    switch {selector} {{");
-    for (id, body) in arms {
-        let _ = writeln!(out, "        case {id}u: {{ return {body}; }}");
+
+    // One function per variant, then the dispatch.
+    let mut arms = Vec::new();
+    let mut mirror_arms = Vec::new();
+    for (index, v) in variants.iter().enumerate() {
+        let _ = writeln!(out, "// {}", v.describe());
+        let _ = write!(
+            out,
+            "fn brdf_{index}(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {{\n{}}}\n\n",
+            variant_body(v)
+        );
+        arms.push((index as u32, format!("brdf_{index}(m, wi, wo, frame)")));
+        if v.model == ReflectanceModel::Mirror {
+            // ρ_s(θ) = k_s · F(cos θ), zero below the horizon — mirrors brdf::mirror_reflectance.
+            let _ = write!(
+                out,
+                "fn mirror_{index}(m: Material, cos_theta: f32) -> vec3<f32> {{\n    if cos_theta <= 0.0 {{\n        return vec3<f32>(0.0);\n    }}\n    return m.k_s * {};\n}}\n\n",
+                fresnel_wgsl(v.fresnel.unwrap_or(Fresnel::None), "cos_theta")
+            );
+            mirror_arms.push((index as u32, format!("mirror_{index}(m, cos_theta)")));
+        }
     }
-    let _ = writeln!(out, "        default: {{ return {fallback}; }}");
-    let _ = writeln!(out, "    }}");
+    out.push_str("fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {\n");
+    if arms.is_empty() {
+        out.push_str("    return vec3<f32>(0.0);\n");
+    } else {
+        dispatch(&mut out, "m.variant", &arms, "vec3<f32>(0.0)");
+    }
+    out.push_str("}\n\n");
+    if !mirror_arms.is_empty() {
+        // Non-mirror materials in the same scene reflect no environment:
+        // the switch's default.
+        out.push_str("fn mirror_reflectance(m: Material, cos_theta: f32) -> vec3<f32> {\n");
+        let _ = writeln!(out, "    switch m.variant {{");
+        for (id, call) in &mirror_arms {
+            let _ = writeln!(out, "        case {id}u: {{ return {call}; }}");
+        }
+        let _ = writeln!(out, "        default: {{ return vec3<f32>(0.0); }}\n    }}");
+        out.push_str("}\n\n");
+    }
+    out
 }
 
 /// The complete WGSL module for `key`.
 pub fn compose(key: &ShaderKey) -> String {
+    let features = key.features();
     let mut out = String::new();
     let _ = writeln!(out, "// Generated by gonio for: {}\n", key.describe());
-    let mut included: Vec<&str> = vec![sources::COMMON];
-    let mut include = |out: &mut String, files: &[&'static str]| {
+    out.push_str(&compose_brdf_library(&key.variants, &features));
+
+    // Light kinds.
+    let mut included: Vec<&str> = Vec::new();
+    let mut arms = Vec::new();
+    for &kind in &key.light_kinds {
+        let (files, function) = light_wgsl(kind);
         for f in files {
             if !included.contains(f) {
                 included.push(f);
@@ -120,71 +321,24 @@ pub fn compose(key: &ShaderKey) -> String {
                 out.push('\n');
             }
         }
-    };
-    out.push_str(sources::COMMON);
-    out.push('\n');
-
-    // Reflectance models.
-    let mut arms = Vec::new();
-    for &model in &key.models {
-        let (files, expr) = model_wgsl(model);
-        include(&mut out, files);
-        arms.push((model.id(), expr.to_string()));
-    }
-    out.push_str(
-        "fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, n: vec3<f32>) -> vec3<f32> {\n",
-    );
-    if arms.is_empty() {
-        out.push_str("    return vec3<f32>(0.0);\n");
-    } else {
-        dispatch(&mut out, "m.model", &arms, "vec3<f32>(0.0)");
-    }
-    out.push_str("}\n\n");
-
-    // Light kinds.
-    let mut arms = Vec::new();
-    for &kind in &key.light_kinds {
-        let (files, function) = light_wgsl(kind);
-        include(&mut out, files);
         arms.push((kind.id(), format!("{function}(light, x)")));
     }
     out.push_str("fn light_incidence(light: Light, x: vec3<f32>) -> Incidence {\n");
+    let none = "Incidence(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0))";
     if arms.is_empty() {
-        out.push_str("    return Incidence(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0));\n");
+        let _ = writeln!(out, "    return {none};");
     } else {
-        dispatch(
-            &mut out,
-            "light.kind",
-            &arms,
-            "Incidence(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0))",
-        );
+        dispatch(&mut out, "light.kind", &arms, none);
     }
     out.push_str("}\n\n");
 
-    out.push_str(sources::SHADING);
+    out.push_str(&preprocess(sources::SHADING, &features));
     out.push('\n');
-
-    // Rasterization for the shading mode.
-    match key.shading {
-        ShadingMode::Flat => {
-            out.push_str(
-                "struct VertexIn {\n    @location(0) position: vec3<f32>,\n    @location(1) normal: vec3<f32>,\n    @location(2) material: u32,\n    @location(3) shading_point: vec3<f32>,\n}\n\n\
-                 fn shading_point(in: VertexIn) -> vec3<f32> { return in.shading_point; }\n\n",
-            );
-            out.push_str(
-                &sources::RASTER_VERTEX_SHADED
-                    .replace("RADIANCE_INTERPOLATION", "@interpolate(flat)"),
-            );
-        }
-        ShadingMode::Gouraud => {
-            out.push_str(
-                "struct VertexIn {\n    @location(0) position: vec3<f32>,\n    @location(1) normal: vec3<f32>,\n    @location(2) material: u32,\n}\n\n\
-                 fn shading_point(in: VertexIn) -> vec3<f32> { return in.position; }\n\n",
-            );
-            out.push_str(&sources::RASTER_VERTEX_SHADED.replace("RADIANCE_INTERPOLATION", ""));
-        }
-        ShadingMode::Phong => out.push_str(sources::RASTER_PIXEL_SHADED),
-    }
+    let raster = match key.shading {
+        ShadingMode::Flat | ShadingMode::Gouraud => sources::RASTER_VERTEX_SHADED,
+        ShadingMode::Phong => sources::RASTER_PIXEL_SHADED,
+    };
+    out.push_str(&preprocess(raster, &features));
     out
 }
 
@@ -201,25 +355,61 @@ pub fn validate(wgsl: &str) -> Result<naga::Module, String> {
     Ok(module)
 }
 
-/// Every key over the implemented features: each shading mode with each
-/// single model and each single light kind, plus all-at-once. Used by the
-/// shader validation test.
+/// Every BRDF variant gonio can compile: each model, and Cook-Torrance and
+/// the mirror with every combination of their terms.
+pub fn all_variants() -> Vec<BrdfVariant> {
+    use crate::material::{Denominator, Material};
+    let mut out = Vec::new();
+    for model in ReflectanceModel::ALL {
+        let base = Material::new("v", model);
+        match model {
+            ReflectanceModel::CookTorrance => {
+                for &distribution in Distribution::ALL {
+                    for &geometry in Geometry::ALL {
+                        for &fresnel in Fresnel::ALL {
+                            for &denominator in Denominator::ALL {
+                                let m = Material {
+                                    distribution,
+                                    geometry,
+                                    fresnel,
+                                    denominator,
+                                    ..base.clone()
+                                };
+                                out.push(m.variant());
+                            }
+                        }
+                    }
+                }
+            }
+            ReflectanceModel::Mirror => {
+                for &fresnel in Fresnel::ALL {
+                    out.push(Material { fresnel, ..base.clone() }.variant());
+                }
+            }
+            _ => out.push(base.variant()),
+        }
+    }
+    out
+}
+
+/// Keys that together compile every line of every WGSL file: each shading
+/// mode with each variant alone (one light kind each, cycling), plus all
+/// variants and all light kinds at once. Used by the shader validation test.
 pub fn representative_keys() -> Vec<ShaderKey> {
     let all_kinds = [LightKind::Point, LightKind::Directional, LightKind::Spot];
+    let variants = all_variants();
     let mut keys = Vec::new();
     for shading in ShadingMode::ALL {
-        for model in ReflectanceModel::ALL {
-            for kind in all_kinds {
-                keys.push(ShaderKey {
-                    shading,
-                    models: [model].into(),
-                    light_kinds: [kind].into(),
-                });
-            }
+        for (i, v) in variants.iter().enumerate() {
+            keys.push(ShaderKey {
+                shading,
+                variants: [*v].into(),
+                light_kinds: [all_kinds[i % 3]].into(),
+            });
         }
         keys.push(ShaderKey {
             shading,
-            models: ReflectanceModel::ALL.into(),
+            variants: variants.iter().copied().collect(),
             light_kinds: all_kinds.into(),
         });
     }
@@ -229,24 +419,34 @@ pub fn representative_keys() -> Vec<ShaderKey> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::Material;
 
     #[test]
     fn lambert_only_scene_has_no_glossy_or_spot_code() {
         let key = ShaderKey {
             shading: ShadingMode::Phong,
-            models: [ReflectanceModel::Lambert].into(),
+            variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
             light_kinds: [LightKind::Point].into(),
         };
         let wgsl = compose(&key);
-        assert!(!wgsl.contains("blinn_phong_lecture"));
-        assert!(!wgsl.contains("spot_attenuation"));
-        assert!(!wgsl.contains("switch"));
+        for absent in ["blinn_phong_lecture", "fresnel_", "d_beckmann", "spot_attenuation", "switch m.variant", "switch light.kind", "environment_radiance", "tangent: vec3"] {
+            assert!(!wgsl.contains(absent), "`{absent}` compiled into a Lambert-only shader");
+        }
         validate(&wgsl).unwrap();
     }
 
     #[test]
+    fn preprocess_keeps_marked_lines_by_feature() {
+        let src = "a\nb // #if x\nc // #if !x\n";
+        assert_eq!(preprocess(src, &["x"]), "a\nb // #if x\n");
+        assert_eq!(preprocess(src, &[]), "a\nc // #if !x\n");
+    }
+
+    #[test]
     fn every_representative_key_validates() {
-        for key in representative_keys() {
+        let keys = representative_keys();
+        assert!(keys.len() > 3 * 180);
+        for key in keys {
             if let Err(e) = validate(&compose(&key)) {
                 panic!("{}:\n{e}", key.describe());
             }

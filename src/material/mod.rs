@@ -6,11 +6,21 @@
 
 pub mod brdf;
 mod model;
+pub mod presets;
+pub mod terms;
 
 pub use model::ReflectanceModel;
+pub use terms::{Denominator, Distribution, Fresnel, Geometry};
 
 use crate::scene::Rgb;
+use brdf::SurfaceFrame;
 use glam::DVec3;
+
+/// Smallest roughness (m, α or σ) the BRDFs evaluate: below it `1/α²`
+/// leaves `f32`'s normal range on the GPU. Smaller values given by the user
+/// are accepted and evaluated as this floor; lights of finite size widen
+/// the lobe further (see `crate::shading`).
+pub const ROUGHNESS_FLOOR: f64 = 1e-4;
 
 /// A validated material. Build it with [`Material::new`] and
 /// [`Material::validate`]; renderers trust what they get.
@@ -23,56 +33,180 @@ pub struct Material {
     /// Diffuse albedo: Lambert `f_r = k_d / π`. The lecture's `k_d` is in
     /// 1/sr and equals gonio's `k_d / π`.
     pub k_d: Rgb,
-    /// Specular coefficient of the glossy lobe.
+    /// Specular coefficient of the glossy lobe (the mirror's reflectance).
     pub k_s: Rgb,
     /// Phong / Blinn-Phong exponent, in [0, 1e6].
     pub k_e: f64,
+    /// Cook-Torrance `m`: Beckmann's RMS slope, GGX's α, the angle (radians)
+    /// of the lecture's Blinn and Gaussian distributions; in (0, 1].
+    pub roughness: f64,
+    /// Ward RMS slopes along the tangent and the bitangent (equal for the
+    /// isotropic model); in (0, 1].
+    pub sigma_x: f64,
+    pub sigma_y: f64,
+    /// Conductor complex index of refraction η + iκ, per channel.
+    pub eta: Rgb,
+    pub kappa: Rgb,
+    /// Dielectric indices of refraction, incident and transmitted side.
+    pub eta_i: f64,
+    pub eta_t: f64,
+    pub distribution: Distribution,
+    pub geometry: Geometry,
+    pub fresnel: Fresnel,
+    pub denominator: Denominator,
 }
 
 impl Material {
     /// A material with the given model and neutral parameters: `k_d = 0.8`,
-    /// `k_s = 0`, `k_a = 0`, `k_e = 32`.
+    /// `k_s = 0` (1 for a mirror), `k_a = 0`, `k_e = 32`, roughness 0.3,
+    /// σ = 0.2, gold's η/κ from the lecture's table, glass (1 → 1.5) for
+    /// the dielectric, Beckmann with Smith G and the exact conductor Fresnel
+    /// over the 4(N·V)(N·I) denominator. A mirror's Fresnel defaults to
+    /// `none` (reflectance `k_s`).
     pub fn new(name: impl Into<String>, model: ReflectanceModel) -> Self {
+        let mirror = model == ReflectanceModel::Mirror;
         Material {
             name: name.into(),
             model,
             k_a: Rgb::ZERO,
-            k_d: Rgb::splat(0.8),
-            k_s: Rgb::ZERO,
+            k_d: if mirror { Rgb::ZERO } else { Rgb::splat(0.8) },
+            k_s: if mirror { Rgb::ONE } else { Rgb::ZERO },
             k_e: 32.0,
+            roughness: 0.3,
+            sigma_x: 0.2,
+            sigma_y: 0.2,
+            eta: Rgb::splat(0.370),
+            kappa: Rgb::splat(2.820),
+            eta_i: 1.0,
+            eta_t: 1.5,
+            distribution: Distribution::Beckmann,
+            geometry: Geometry::Smith,
+            fresnel: if mirror { Fresnel::None } else { Fresnel::Conductor },
+            denominator: Denominator::Microfacet,
         }
     }
 
     /// Checks every parameter against the contract's ranges; the message
     /// names the parameter and the offending value.
     pub fn validate(&self) -> Result<(), String> {
+        let name = &self.name;
         for (key, v) in [("k_a", self.k_a), ("k_d", self.k_d), ("k_s", self.k_s)] {
             if !v.is_finite() || v.min_element() < 0.0 || v.max_element() > 1.0 {
                 return Err(format!(
-                    "material `{}`: {key} = [{}, {}, {}] is outside [0, 1]³",
-                    self.name, v.x, v.y, v.z
+                    "material `{name}`: {key} = [{}, {}, {}] is outside [0, 1]³",
+                    v.x, v.y, v.z
                 ));
             }
         }
         if !(0.0..=1e6).contains(&self.k_e) {
+            return Err(format!("material `{name}`: k_e = {} is outside [0, 1e6]", self.k_e));
+        }
+        for (key, v) in [
+            ("roughness", self.roughness),
+            ("sigma_x", self.sigma_x),
+            ("sigma_y", self.sigma_y),
+        ] {
+            if !(v > 0.0 && v <= 1.0) {
+                return Err(format!("material `{name}`: {key} = {v} is outside (0, 1]"));
+            }
+        }
+        if !self.eta.is_finite() || self.eta.min_element() <= 0.0 {
             return Err(format!(
-                "material `{}`: k_e = {} is outside [0, 1e6]",
-                self.name, self.k_e
+                "material `{name}`: eta = [{}, {}, {}] must be finite and > 0",
+                self.eta.x, self.eta.y, self.eta.z
             ));
+        }
+        if !self.kappa.is_finite() || self.kappa.min_element() < 0.0 {
+            return Err(format!(
+                "material `{name}`: kappa = [{}, {}, {}] must be finite and ≥ 0",
+                self.kappa.x, self.kappa.y, self.kappa.z
+            ));
+        }
+        for (key, v) in [("eta_i", self.eta_i), ("eta_t", self.eta_t)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(format!("material `{name}`: {key} = {v} must be finite and > 0"));
+            }
         }
         Ok(())
     }
 
-    /// The BRDF `f_r(ω_i, ω_o)` [1/sr] at a point with unit shading normal
-    /// `n`; `wi` points to the light, `wo` to the viewer (both unit).
+    /// The BRDF `f_r(ω_i, ω_o)` [1/sr] in the shading frame `frame`; `wi`
+    /// points to the light, `wo` to the viewer (both unit).
     ///
     /// One-sided, as the contract says: zero where `N·I ≤ 0` or `N·V ≤ 0`.
-    pub fn f_r(&self, wi: DVec3, wo: DVec3, n: DVec3) -> Rgb {
-        let n_dot_i = n.dot(wi);
-        let n_dot_o = n.dot(wo);
-        if n_dot_i <= 0.0 || n_dot_o <= 0.0 {
+    pub fn f_r(&self, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
+        if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
             return Rgb::ZERO;
         }
-        brdf::eval(self, wi, wo, n)
+        brdf::eval(self, wi, wo, frame)
+    }
+
+    /// This material as the renderers evaluate it for a given roughness
+    /// floor (the pixel footprint, [`crate::scene::Scene::roughness_floor`]):
+    /// `roughness`, `sigma_x`, `sigma_y` become `sqrt(r² + floor²)`, never
+    /// below [`ROUGHNESS_FLOOR`]. Adding in quadrature is the width of a
+    /// lobe convolved with the footprint (both roughly Gaussian in slope),
+    /// so a point light seen in a perfectly smooth surface still lights
+    /// about one pixel instead of falling between pixel centres.
+    pub fn with_roughness_floor(&self, floor: f64) -> Material {
+        let widen = |r: f64| (r * r + floor * floor).sqrt().max(ROUGHNESS_FLOOR);
+        Material {
+            roughness: widen(self.roughness),
+            sigma_x: widen(self.sigma_x),
+            sigma_y: widen(self.sigma_y),
+            ..self.clone()
+        }
+    }
+
+    /// The part of the material that decides which shader code runs: the
+    /// model and, where the model has them, its terms.
+    pub fn variant(&self) -> BrdfVariant {
+        let (distribution, geometry, fresnel, denominator) = match self.model {
+            ReflectanceModel::CookTorrance => (
+                Some(self.distribution),
+                Some(self.geometry),
+                Some(self.fresnel),
+                Some(self.denominator),
+            ),
+            ReflectanceModel::Mirror => (None, None, Some(self.fresnel), None),
+            _ => (None, None, None, None),
+        };
+        BrdfVariant {
+            model: self.model,
+            distribution,
+            geometry,
+            fresnel,
+            denominator,
+        }
+    }
+}
+
+/// A model with its chosen terms: the unit of shader specialization.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BrdfVariant {
+    pub model: ReflectanceModel,
+    pub distribution: Option<Distribution>,
+    pub geometry: Option<Geometry>,
+    pub fresnel: Option<Fresnel>,
+    pub denominator: Option<Denominator>,
+}
+
+impl BrdfVariant {
+    /// e.g. `cook-torrance(ggx, smith, conductor, microfacet)`.
+    pub fn describe(&self) -> String {
+        let terms: Vec<&str> = [
+            self.distribution.map(|t| t.name()),
+            self.geometry.map(|t| t.name()),
+            self.fresnel.map(|t| t.name()),
+            self.denominator.map(|t| t.name()),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        if terms.is_empty() {
+            self.model.name().to_string()
+        } else {
+            format!("{}({})", self.model.name(), terms.join(", "))
+        }
     }
 }

@@ -10,4 +10,4 @@ pub mod bvh;
 pub mod renderer;
 
 pub use bvh::{Bvh, Hit, TriangleId};
-pub use renderer::{render, render_offset};
+pub use renderer::{flat_frame, render, render_offset};

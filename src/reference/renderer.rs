@@ -8,6 +8,8 @@
 
 use super::bvh::{Bvh, Hit};
 use crate::frame::Frame;
+use crate::material::Material;
+use crate::material::brdf::SurfaceFrame;
 use crate::scene::{Mesh, Rgb, Scene, ShadingMode, mesh};
 use crate::shading::reflected_radiance;
 use glam::DVec3;
@@ -60,6 +62,8 @@ pub fn render_offset(scene: &Scene, offset_x: f64, offset_y: f64) -> Frame {
 /// pixel is traced.
 struct Shader<'a> {
     scene: &'a Scene,
+    /// The materials as rendered (roughness floor applied), as on the GPU.
+    materials: Vec<Material>,
     precomputed: Precomputed,
 }
 
@@ -74,7 +78,12 @@ enum Precomputed {
 
 impl<'a> Shader<'a> {
     fn new(scene: &'a Scene) -> Self {
-        let precomputed = match scene.shading {
+        let mut shader = Shader {
+            scene,
+            materials: scene.effective_materials(),
+            precomputed: Precomputed::Phong,
+        };
+        shader.precomputed = match scene.shading {
             // Lecture: Shading Model: Flat. One evaluation of the reflection
             // equation per triangle, at its centroid with its face normal:
             // the colour is constant over the triangle, as on the GPU.
@@ -87,12 +96,8 @@ impl<'a> Shader<'a> {
                             .into_par_iter()
                             .map(|t| {
                                 let corners = m.triangle(t);
-                                shade(
-                                    scene,
-                                    m,
-                                    mesh::centroid(corners),
-                                    mesh::face_normal(corners),
-                                )
+                                let frame = flat_frame(m, t);
+                                shader.shade(m, mesh::centroid(corners), &frame)
                             })
                             .collect()
                     })
@@ -106,17 +111,19 @@ impl<'a> Shader<'a> {
                     .meshes
                     .iter()
                     .map(|m| {
-                        m.positions
-                            .par_iter()
-                            .zip(&m.normals)
-                            .map(|(&x, &n)| shade(scene, m, x, n))
+                        (0..m.positions.len())
+                            .into_par_iter()
+                            .map(|v| {
+                                let frame = SurfaceFrame::new(m.normals[v], m.tangent(v));
+                                shader.shade(m, m.positions[v], &frame)
+                            })
                             .collect()
                     })
                     .collect(),
             ),
             ShadingMode::Phong => Precomputed::Phong,
         };
-        Shader { scene, precomputed }
+        shader
     }
 
     /// Reflected radiance seen at `hit`.
@@ -137,29 +144,39 @@ impl<'a> Shader<'a> {
                 // Opposite normals can interpolate to zero: no direction,
                 // so only the ambient term remains (as on the GPU).
                 let n = interpolate(w, &object.normals, idx).normalize_or_zero();
-                shade(self.scene, object, x, n)
+                let tangents = idx.map(|v| object.tangent(v as usize));
+                let t = w[0] * tangents[0] + w[1] * tangents[1] + w[2] * tangents[2];
+                self.shade(object, x, &SurfaceFrame::new(n, t))
             }
         }
     }
+
+    /// The reflection equation at `x` in `frame`, for the mesh's material,
+    /// seen from the camera, every light fully visible.
+    fn shade(&self, m: &Mesh, x: DVec3, frame: &SurfaceFrame) -> Rgb {
+        reflected_radiance(
+            self.scene,
+            &self.materials[m.material],
+            x,
+            frame,
+            self.scene.camera.position,
+            |_, _| 1.0,
+        )
+    }
+}
+
+/// Flat shading's frame of triangle `t`: the face normal and the corners'
+/// summed tangents made orthogonal to it (the GPU's flat vertices carry
+/// the same, computed by `gpu::geometry`).
+pub fn flat_frame(m: &Mesh, t: usize) -> SurfaceFrame {
+    let [a, b, c] = m.indices[t];
+    let tangent = m.tangent(a as usize) + m.tangent(b as usize) + m.tangent(c as usize);
+    SurfaceFrame::new(mesh::face_normal(m.triangle(t)), tangent)
 }
 
 /// `Σ w_k · values[idx_k]`: barycentric interpolation over one triangle.
 fn interpolate(w: [f64; 3], values: &[DVec3], idx: [u32; 3]) -> DVec3 {
     w[0] * values[idx[0] as usize] + w[1] * values[idx[1] as usize] + w[2] * values[idx[2] as usize]
-}
-
-/// The reflection equation at `x` with shading normal `n`, for the mesh's
-/// material, seen from the camera, every light fully visible.
-fn shade(scene: &Scene, m: &Mesh, x: DVec3, n: DVec3) -> Rgb {
-    reflected_radiance(
-        &scene.materials[m.material],
-        &scene.lights,
-        scene.ambient,
-        x,
-        n,
-        scene.camera.position,
-        |_, _| 1.0,
-    )
 }
 
 #[cfg(test)]
@@ -204,6 +221,7 @@ mod tests {
             materials: vec![material],
             lights,
             ambient: Rgb::ZERO,
+            environment: crate::scene::Environment::uniform(Rgb::ZERO),
         }
     }
 

@@ -11,6 +11,10 @@ pub struct Mesh {
     pub positions: Vec<DVec3>,
     /// Unit vertex normals, one per position.
     pub normals: Vec<DVec3>,
+    /// Unit tangents (the direction of σ_x for anisotropic models), one per
+    /// position, or empty: then [`Mesh::tangent`] derives one from the
+    /// normal (`brdf::any_tangent`).
+    pub tangents: Vec<DVec3>,
     /// Counter-clockwise triangles (glTF's front face).
     pub indices: Vec<[u32; 3]>,
     /// Index into [`crate::scene::Scene::materials`].
@@ -31,8 +35,18 @@ impl Mesh {
             name: name.into(),
             positions,
             normals,
+            tangents: Vec::new(),
             indices,
             material,
+        }
+    }
+
+    /// The tangent of vertex `v`: the stored one, or one derived from the
+    /// normal.
+    pub fn tangent(&self, v: usize) -> DVec3 {
+        match self.tangents.get(v) {
+            Some(t) => *t,
+            None => crate::material::brdf::any_tangent(self.normals[v]),
         }
     }
 
@@ -46,6 +60,10 @@ impl Mesh {
         }
         for n in &mut self.normals {
             *n = normal_matrix.transform_vector3(*n).normalize_or_zero();
+        }
+        // Tangents lie in the surface: they transform like positions' differences.
+        for t in &mut self.tangents {
+            *t = world_from_object.transform_vector3(*t).normalize_or_zero();
         }
         if world_from_object.determinant() < 0.0 {
             for t in &mut self.indices {

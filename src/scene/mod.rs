@@ -7,13 +7,16 @@
 
 pub mod camera;
 pub mod default_scene;
+pub mod environment;
 pub mod gltf_import;
+pub mod limits;
 pub mod light;
 pub mod mesh;
 pub mod primitives;
 pub mod scene_file;
 
 pub use camera::Camera;
+pub use environment::Environment;
 pub use light::{Light, LightKind};
 pub use mesh::Mesh;
 
@@ -85,12 +88,30 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Constant incoming ambient radiance `L_a`; reflected as `k_a · L_a`.
     pub ambient: Rgb,
+    /// What mirrors reflect (defaults to the constant `L_a`).
+    pub environment: Environment,
 }
 
 impl Scene {
     /// Axis-aligned bounds of all geometry, `None` if there is none.
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
         mesh::bounds(self.meshes.iter().flat_map(|m| m.positions.iter().copied()))
+    }
+
+    /// The roughness floor of this view: half the angle one pixel subtends
+    /// vertically, `½ · fov_y / height` (radians ≈ slope for small angles).
+    /// A mirror-reflected direction sweeps the pixel's angle, the half
+    /// vector half of it, so lobes narrower than this fall between pixel
+    /// centres (see `Material::with_roughness_floor`).
+    pub fn roughness_floor(&self) -> f64 {
+        0.5 * self.camera.fov_y_deg.to_radians() / self.height as f64
+    }
+
+    /// Materials as the renderers evaluate them (the roughness floor
+    /// applied), index for index.
+    pub fn effective_materials(&self) -> Vec<Material> {
+        let floor = self.roughness_floor();
+        self.materials.iter().map(|m| m.with_roughness_floor(floor)).collect()
     }
 
     /// Total triangle count.

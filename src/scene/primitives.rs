@@ -12,6 +12,7 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
     let stacks = (segments / 2).max(2);
     let mut positions = Vec::new();
     let mut normals = Vec::new();
+    let mut tangents = Vec::new();
     for s in 0..=stacks {
         let theta = PI * s as f64 / stacks as f64; // from +Y down
         for k in 0..=slices {
@@ -23,6 +24,9 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
             );
             positions.push(center + radius * n);
             normals.push(n);
+            // ∂n/∂φ: along the parallels, so anisotropic lobes stretch
+            // around the sphere like brushed metal on a lathe.
+            tangents.push(DVec3::new(phi.cos(), 0.0, -phi.sin()));
         }
     }
     let row = slices + 1;
@@ -45,6 +49,7 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
         name: "sphere".into(),
         positions,
         normals,
+        tangents,
         indices,
         material,
     }
@@ -73,10 +78,12 @@ pub fn plane(center: DVec3, size: f64, divisions: u32, material: usize) -> Mesh 
         }
     }
     let normals = vec![DVec3::Y; positions.len()];
+    let tangents = vec![DVec3::X; positions.len()];
     Mesh {
         name: "plane".into(),
         positions,
         normals,
+        tangents,
         indices,
         material,
     }

@@ -10,9 +10,10 @@
 //! A `.gltf`/`.glb` argument and the built-in scene go through the same
 //! steps: they are turned into an equivalent scene table first.
 
-use crate::material::{Material, ReflectanceModel};
+use crate::material::{Material, ReflectanceModel, presets};
+use crate::scene::limits::{Limits, ReadError, read_regular_file};
 use crate::scene::{
-    Camera, Light, Mesh, Rgb, Scene, ShadingMode, default_scene::DEFAULT_SCENE_TOML, gltf_import,
+    Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, default_scene::DEFAULT_SCENE_TOML, gltf_import,
     primitives,
 };
 use crate::{Error, Result};
@@ -41,6 +42,8 @@ pub struct SceneFile {
     pub lights: Vec<LightEntry>,
     #[serde(default)]
     pub ambient: AmbientSection,
+    #[serde(default)]
+    pub environment: EnvironmentSection,
 }
 
 /// `[image]`: output size in pixels.
@@ -133,15 +136,30 @@ impl ColorValue {
     }
 }
 
-/// `[materials.NAME]`.
+/// `[materials.NAME]`: the model, an optional preset from the lecture's
+/// tables, then any parameter (given keys override the preset).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialEntry {
     pub model: String,
+    pub preset: Option<String>,
     pub k_a: Option<ColorValue>,
     pub k_d: Option<ColorValue>,
     pub k_s: Option<ColorValue>,
     pub k_e: Option<f64>,
+    pub roughness: Option<f64>,
+    /// Ward: sets σ_x and σ_y.
+    pub sigma: Option<f64>,
+    pub sigma_x: Option<f64>,
+    pub sigma_y: Option<f64>,
+    pub eta: Option<ColorValue>,
+    pub kappa: Option<ColorValue>,
+    pub eta_i: Option<f64>,
+    pub eta_t: Option<f64>,
+    pub distribution: Option<String>,
+    pub geometry: Option<String>,
+    pub fresnel: Option<String>,
+    pub denominator: Option<String>,
 }
 
 /// `[[lights]]`, tagged by `kind`.
@@ -177,6 +195,16 @@ pub enum LightEntry {
     },
 }
 
+/// `[environment]`: the sky a mirror reflects (gonio's extension); every
+/// key defaults to the ambient radiance.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentSection {
+    pub zenith: Option<ColorValue>,
+    pub horizon: Option<ColorValue>,
+    pub ground: Option<ColorValue>,
+}
+
 /// `[ambient]`: constant incoming radiance `L_a`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -197,6 +225,17 @@ pub enum SceneSource {
 /// Loads a scene from `source`, applying `overrides` (`KEY=VALUE`, dotted
 /// keys) in order.
 pub fn load(source: &SceneSource, overrides: &[String]) -> Result<Scene> {
+    load_with_limits(source, overrides, Limits::default()).map(|(scene, _notes)| scene)
+}
+
+/// [`load`] with the glTF files of the scene held to `limits` (one budget
+/// for all of them); also returns the notes their import left, such as
+/// ignored optional extensions, for `--verbose`.
+pub fn load_with_limits(
+    source: &SceneSource,
+    overrides: &[String],
+    limits: Limits,
+) -> Result<(Scene, Vec<String>)> {
     let (origin, base_dir, mut table) = scene_table(source)?;
     // Parse once without overrides: errors here are the file's, with spans.
     let mut file = parse_table(&origin, &table)?;
@@ -205,7 +244,9 @@ pub fn load(source: &SceneSource, overrides: &[String]) -> Result<Scene> {
         file = SceneFile::deserialize(toml::Value::Table(table.clone()))
             .map_err(|e| Error::argument(format!("--set {kv}"), clean_toml_error(&e)))?;
     }
-    assemble(&origin, &base_dir, file)
+    let mut gltf_files = gltf_import::GltfLoader::new(limits);
+    let scene = assemble(&origin, &base_dir, file, &mut gltf_files)?;
+    Ok((scene, gltf_files.notes().to_vec()))
 }
 
 /// The file (or a pseudo-path for the built-in scene) that errors name.
@@ -228,9 +269,7 @@ fn scene_table(source: &SceneSource) -> Result<(PathBuf, PathBuf, toml::Table)> 
                 .map(str::to_ascii_lowercase);
             match ext.as_deref() {
                 Some("toml") => {
-                    let text = std::fs::read_to_string(path).map_err(|e| {
-                        Error::input(path, format!("cannot read the scene file: {e}"))
-                    })?;
+                    let text = read_scene_text(path)?;
                     // Typed parse first: syntax and type errors with line/column.
                     toml::from_str::<SceneFile>(&text)
                         .map_err(|e| Error::input(path, clean_toml_error(&e)))?;
@@ -267,15 +306,148 @@ fn parse_table(origin: &Path, table: &toml::Table) -> Result<SceneFile> {
         .map_err(|e| Error::input(origin, clean_toml_error(&e)))
 }
 
-/// toml's messages span several lines (a caret diagram); keep them but make
-/// them one paragraph.
+/// Largest scene file read. Scene files are hand-written text, far
+/// smaller; the cap bounds what parsing can allocate.
+const MAX_SCENE_FILE_BYTES: u64 = 16 << 20;
+
+/// Most parts a `--set` key may have; the deepest real key has three
+/// (`materials.ball.roughness`). Without a cap a key of 60 000 parts builds
+/// tables so deep that dropping them overflows the stack.
+const MAX_KEY_DEPTH: usize = 16;
+
+/// Longest error message kept from toml (its messages quote the offending
+/// value, which may be megabytes long).
+const MAX_MESSAGE_CHARS: usize = 600;
+
+/// The text of a scene file: a regular file (not a FIFO or a device, which
+/// would block or never end), of bounded size, in UTF-8.
+fn read_scene_text(path: &Path) -> Result<String> {
+    let bytes = read_regular_file(path, MAX_SCENE_FILE_BYTES).map_err(|e| {
+        let problem = match e {
+            ReadError::TooLarge(len) => format!(
+                "the scene file has {len} bytes; scene files may have at most {MAX_SCENE_FILE_BYTES}"
+            ),
+            other => other.to_string(),
+        };
+        Error::input(path, problem)
+    })?;
+    String::from_utf8(bytes).map_err(|e| {
+        Error::input(
+            path,
+            format!(
+                "the scene file is not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+/// Makes one paragraph of a toml error: `line L, column C (`source
+/// line`): message`, without toml's caret diagram, cut to a readable
+/// length, and with a suggestion when the problem is a misspelt key or
+/// value name.
 fn clean_toml_error(e: &impl std::fmt::Display) -> String {
-    e.to_string()
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && *l != "|")
-        .collect::<Vec<_>>()
-        .join(" ")
+    let text = e.to_string();
+    let mut location = None;
+    let mut source_line = None;
+    let mut message = Vec::new();
+    for line in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        if let Some(at) = line.strip_prefix("TOML parse error at ") {
+            location = Some(at);
+        } else if let Some(code) = snippet_code(line) {
+            source_line = source_line.or(code);
+        } else {
+            message.push(line);
+        }
+    }
+    let message = message.join(" ");
+    let suggestion = unknown_name_suggestion(&message)
+        .map(|name| format!("; did you mean `{name}`?"))
+        .unwrap_or_default();
+    let mut out = String::new();
+    if let Some(at) = location {
+        out += at;
+        if let Some(code) = source_line {
+            out += &format!(" (`{}`)", shorten(code, 60));
+        }
+        out += ": ";
+    }
+    out += &shorten(&message, MAX_MESSAGE_CHARS);
+    out + &suggestion
+}
+
+/// A line of toml's caret diagram: `|`, `  |   ^^^` or `12 | code`. Returns
+/// `Some(Some(code))` for a source line, `Some(None)` for the others.
+fn snippet_code(line: &str) -> Option<Option<&str>> {
+    if line.starts_with('|') {
+        return Some(None);
+    }
+    let (number, code) = line.split_once(" |")?;
+    (!number.is_empty() && number.bytes().all(|b| b.is_ascii_digit()))
+        .then(|| Some(code.trim()).filter(|c| !c.is_empty()))
+}
+
+/// At most `max` characters of `text`, with `…` where it was cut.
+fn shorten(text: &str, max: usize) -> String {
+    match text.char_indices().nth(max) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_string(),
+    }
+}
+
+/// For serde's `unknown field `x`, expected one of `a`, `b`` (and the same
+/// for variants), the expected name nearest to `x`, if one is near enough
+/// to be a likely misspelling.
+fn unknown_name_suggestion(message: &str) -> Option<&str> {
+    let rest = message
+        .split_once("unknown field `")
+        .or_else(|| message.split_once("unknown variant `"))?
+        .1;
+    let (unknown, rest) = rest.split_once('`')?;
+    let expected = rest.split_once("expected")?.1;
+    // Deserializing from a table appends the table's path: ` in `camera``.
+    let expected = expected.split(" in `").next().unwrap_or_default();
+    let candidates = expected.split('`').skip(1).step_by(2);
+    nearest_name(unknown, candidates)
+}
+
+/// The candidate closest to `unknown` by edit distance (ignoring case), if
+/// within a third of its length (at least 2 edits), or if one is a prefix
+/// of the other (`fov` for `fov_y_deg`).
+fn nearest_name<'c>(unknown: &str, candidates: impl Iterator<Item = &'c str>) -> Option<&'c str> {
+    // Keys are short; a long one is not a typo, and edit distance is
+    // quadratic.
+    if unknown.is_empty() || unknown.len() > 64 {
+        return None;
+    }
+    let unknown = unknown.to_lowercase();
+    let budget = (unknown.chars().count() / 3).max(2);
+    candidates
+        .filter(|c| !c.is_empty())
+        .map(|c| {
+            let lower = c.to_lowercase();
+            let prefix = lower.starts_with(&unknown) || unknown.starts_with(&lower);
+            (edit_distance(&unknown, &lower), prefix, c)
+        })
+        .filter(|&(distance, prefix, _)| distance <= budget || prefix)
+        .min_by_key(|&(distance, _, _)| distance)
+        .map(|(_, _, c)| c)
+}
+
+/// Levenshtein distance (insertions, deletions, substitutions), by chars.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut previous: Vec<usize> = (0..=b.len()).collect();
+    let mut current = vec![0; b.len() + 1];
+    for (i, ca) in a.chars().enumerate() {
+        current[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substitute = previous[j] + usize::from(ca != cb);
+            current[j + 1] = substitute.min(previous[j + 1] + 1).min(current[j] + 1);
+        }
+        std::mem::swap(&mut previous, &mut current);
+    }
+    previous[b.len()]
 }
 
 /// Applies one `KEY=VALUE` override. Keys are dotted paths; array elements
@@ -302,6 +474,15 @@ pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
         .unwrap_or_else(|| toml::Value::String(raw.to_string()));
 
     let parts: Vec<&str> = key.split('.').collect();
+    if parts.len() > MAX_KEY_DEPTH {
+        return Err(Error::argument(
+            arg(),
+            format!(
+                "the key has {} parts; scene keys have at most {MAX_KEY_DEPTH}",
+                parts.len()
+            ),
+        ));
+    }
     let (last, path) = parts.split_last().expect("non-empty key");
     let mut node = TableOrArray::Table(table);
     for (depth, part) in path.iter().enumerate() {
@@ -364,7 +545,12 @@ impl<'a> TableOrArray<'a> {
 }
 
 /// Validated assembly of the scene.
-fn assemble(origin: &Path, base_dir: &Path, file: SceneFile) -> Result<Scene> {
+fn assemble(
+    origin: &Path,
+    base_dir: &Path,
+    file: SceneFile,
+    gltf_files: &mut gltf_import::GltfLoader,
+) -> Result<Scene> {
     let bad = |problem: String| Error::input(origin, problem);
 
     let (width, height) = (file.image.width, file.image.height);
@@ -402,7 +588,7 @@ fn assemble(origin: &Path, base_dir: &Path, file: SceneFile) -> Result<Scene> {
         match (&object.gltf, &object.shape) {
             (Some(gltf), None) => {
                 let path = base_dir.join(gltf);
-                let imported = gltf_import::load(&path)?;
+                let imported = gltf_files.load(&path)?;
                 let offset = materials.len();
                 for mut mesh in imported.meshes {
                     mesh.material = forced_material.unwrap_or(mesh.material + offset);
@@ -427,7 +613,11 @@ fn assemble(origin: &Path, base_dir: &Path, file: SceneFile) -> Result<Scene> {
                         materials.len() - 1
                     }
                 };
-                meshes.push(shape_mesh(k, object, shape, material).map_err(bad)?);
+                let mesh = shape_mesh(k, object, shape, material).map_err(bad)?;
+                gltf_files
+                    .charge(mesh.positions.len() as u64, mesh.indices.len() as u64, 0)
+                    .map_err(|p| bad(format!("objects[{k}]: {p}")))?;
+                meshes.push(mesh);
             }
             _ => {
                 return Err(bad(format!(
@@ -437,6 +627,9 @@ fn assemble(origin: &Path, base_dir: &Path, file: SceneFile) -> Result<Scene> {
         }
     }
 
+    gltf_files
+        .charge(0, 0, file.lights.len() as u64)
+        .map_err(|p| bad(format!("lights: {p}")))?;
     for (k, entry) in file.lights.iter().enumerate() {
         lights.push(light_from_entry(entry).map_err(|p| bad(format!("lights[{k}]: {p}")))?);
     }
@@ -447,6 +640,19 @@ fn assemble(origin: &Path, base_dir: &Path, file: SceneFile) -> Result<Scene> {
     let ambient = match file.ambient.radiance {
         None => Rgb::ZERO,
         Some(c) => non_negative("ambient.radiance", c.rgb()).map_err(bad)?,
+    };
+
+    let environment = {
+        let e = &file.environment;
+        let get = |key: &str, c: Option<ColorValue>| match c {
+            None => Ok(ambient),
+            Some(c) => non_negative(&format!("environment.{key}"), c.rgb()),
+        };
+        Environment {
+            zenith: get("zenith", e.zenith).map_err(bad)?,
+            horizon: get("horizon", e.horizon).map_err(bad)?,
+            ground: get("ground", e.ground).map_err(bad)?,
+        }
     };
 
     let scene_bounds =
@@ -474,6 +680,7 @@ fn assemble(origin: &Path, base_dir: &Path, file: SceneFile) -> Result<Scene> {
         materials,
         lights,
         ambient,
+        environment,
     })
 }
 
@@ -498,24 +705,54 @@ pub fn default_light() -> Light {
     }
 }
 
-fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result<Material, String> {
+pub fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result<Material, String> {
     let model: ReflectanceModel = e
         .model
         .parse()
         .map_err(|p| format!("materials.{name}.model: {p}"))?;
     let mut m = Material::new(name, model);
-    if let Some(c) = e.k_a {
-        m.k_a = c.rgb();
+    let key = |k: &str| format!("materials.{name}.{k}");
+    if let Some(p) = &e.preset {
+        presets::preset(p).map_err(|p| format!("{}: {p}", key("preset")))?.apply(&mut m);
     }
-    if let Some(c) = e.k_d {
-        m.k_d = c.rgb();
+    let colors = [
+        (e.k_a, &mut m.k_a),
+        (e.k_d, &mut m.k_d),
+        (e.k_s, &mut m.k_s),
+        (e.eta, &mut m.eta),
+        (e.kappa, &mut m.kappa),
+    ];
+    for (value, slot) in colors {
+        if let Some(c) = value {
+            *slot = c.rgb();
+        }
     }
-    if let Some(c) = e.k_s {
-        m.k_s = c.rgb();
+    if let Some(s) = e.sigma {
+        (m.sigma_x, m.sigma_y) = (s, s);
     }
-    if let Some(v) = e.k_e {
-        m.k_e = v;
+    let scalars = [
+        (e.k_e, &mut m.k_e),
+        (e.roughness, &mut m.roughness),
+        (e.sigma_x, &mut m.sigma_x),
+        (e.sigma_y, &mut m.sigma_y),
+        (e.eta_i, &mut m.eta_i),
+        (e.eta_t, &mut m.eta_t),
+    ];
+    for (value, slot) in scalars {
+        if let Some(v) = value {
+            *slot = v;
+        }
     }
+    fn parse<T: std::str::FromStr<Err = String>>(key: String, v: &Option<String>, slot: &mut T) -> Result<(), String> {
+        if let Some(text) = v {
+            *slot = text.parse().map_err(|p| format!("{key}: {p}"))?;
+        }
+        Ok(())
+    }
+    parse(key("distribution"), &e.distribution, &mut m.distribution)?;
+    parse(key("geometry"), &e.geometry, &mut m.geometry)?;
+    parse(key("fresnel"), &e.fresnel, &mut m.fresnel)?;
+    parse(key("denominator"), &e.denominator, &mut m.denominator)?;
     m.validate()?;
     Ok(m)
 }
@@ -733,7 +970,11 @@ mod tests {
             "lights.0.intensity=-1",
             "image.width=0",
             "shading.mode=smooth",
-            "materials.ball.model=cook-torrance",
+            "materials.ball.model=cook-torrrance",
+            "materials.ball.distribution=phong",
+            "materials.ball.preset=unobtainium",
+            "materials.ball.roughness=0",
+            "materials.ball.kappa=-1",
             "lights.3.intensity=1",
         ] {
             assert!(

@@ -1,0 +1,104 @@
+//! What the fuzz targets do with one input. Shared (through `#[path]`) by
+//! the cargo-fuzz targets and by `tests/fuzz_corpus_replay.rs`, which runs
+//! the committed corpus on stable Rust in CI, so both exercise exactly the
+//! same calls.
+
+// Each includer uses only some of these.
+#![allow(dead_code)]
+
+use gonio::scene::gltf_import::{self, Limits};
+use gonio::scene::scene_file::{self, SceneSource};
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+/// Limits far below the desktop defaults: every input then stays fast and
+/// well inside libFuzzer's 2 GiB memory cap, and the limit checks
+/// themselves are exercised more often.
+pub fn limits() -> Limits {
+    Limits {
+        bytes: 64 << 20,
+        vertices: 1_000_000,
+        triangles: 1_000_000,
+        nodes: 100_000,
+        textures: 1024,
+        lights: 256,
+    }
+}
+
+/// The line that separates a scene file from `--set` overrides in a
+/// `scene_toml` input.
+pub const OVERRIDES_SEPARATOR: &str = "\n--- set\n";
+
+/// A folder of files that inputs may reference: `tri.bin` (the 44-byte
+/// triangle buffer), `tri.gltf` (a glTF using it) and a subfolder `sub/`
+/// with a copy of both. One per process.
+pub fn workspace() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("gonio-fuzz-{}", std::process::id()));
+        let sub = dir.join("sub");
+        std::fs::create_dir_all(&sub).expect("fuzz workspace");
+        for folder in [&dir, &sub] {
+            std::fs::write(folder.join("tri.bin"), TRIANGLE_BIN).expect("tri.bin");
+            std::fs::write(folder.join("tri.gltf"), TRIANGLE_GLTF).expect("tri.gltf");
+        }
+        dir
+    })
+}
+
+/// Loads `data` as a `.gltf` or `.glb` held in memory.
+pub fn gltf_load(data: &[u8]) {
+    let _ = gltf_import::load_from_bytes(data, workspace(), &limits());
+}
+
+/// Loads `data` as a scene `.toml`; any lines after [`OVERRIDES_SEPARATOR`]
+/// are applied as `--set` overrides.
+pub fn scene_toml(data: &[u8]) {
+    let (text, sets) = split_overrides(data);
+    // One file per thread: the replay test may run inputs in parallel.
+    let path = workspace().join(format!("scene-{:?}.toml", std::thread::current().id()));
+    if std::fs::write(&path, text).is_err() {
+        return;
+    }
+    let _ = scene_file::load_with_limits(&SceneSource::File(path), &sets, limits());
+}
+
+fn split_overrides(data: &[u8]) -> (&[u8], Vec<String>) {
+    let separator = OVERRIDES_SEPARATOR.as_bytes();
+    match data.windows(separator.len()).position(|w| w == separator) {
+        None => (data, Vec::new()),
+        Some(at) => {
+            let sets = String::from_utf8_lossy(&data[at + separator.len()..])
+                .lines()
+                .map(str::to_string)
+                .collect();
+            (&data[..at], sets)
+        }
+    }
+}
+
+/// Three `VEC3` float positions and three `u16` indices, padded to 44.
+const TRIANGLE_BIN: &[u8] = &[
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, // (0, 0, 0)
+    0, 0, 128, 63, 0, 0, 0, 0, 0, 0, 0, 0, // (1, 0, 0)
+    0, 0, 0, 0, 0, 0, 128, 63, 0, 0, 0, 0, // (0, 1, 0)
+    0, 0, 1, 0, 2, 0, 0, 0, // indices 0, 1, 2 and padding
+];
+
+const TRIANGLE_GLTF: &str = r#"{
+  "asset": {"version": "2.0"},
+  "scene": 0,
+  "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+  "buffers": [{"uri": "tri.bin", "byteLength": 44}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 36},
+    {"buffer": 0, "byteOffset": 36, "byteLength": 6}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}
+  ]
+}"#;

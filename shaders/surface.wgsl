@@ -1,0 +1,38 @@
+// The shading frame and the one-sided BRDF wrapper every model shares.
+// `eval_brdf` is generated per scene (src/gpu/shader_gen.rs) from the
+// variants in use; its CPU twin is material::brdf::eval.
+
+// An orthonormal shading frame. Twin: brdf::SurfaceFrame.
+struct SurfaceFrame {
+    n: vec3<f32>,
+    t: vec3<f32>,
+    b: vec3<f32>,
+}
+
+// A unit vector orthogonal to n. Twin: brdf::any_tangent.
+fn any_tangent(n: vec3<f32>) -> vec3<f32> {
+    var axis = vec3<f32>(1.0, 0.0, 0.0);
+    if abs(n.x) >= 0.9 {
+        axis = vec3<f32>(0.0, 0.0, 1.0);
+    }
+    return normalize_or_zero(axis - n * dot(n, axis));
+}
+
+// Frame around n with t made orthogonal (Gram-Schmidt). Twin: SurfaceFrame::new.
+fn surface_frame(n: vec3<f32>, t: vec3<f32>) -> SurfaceFrame {
+    let projected = t - n * dot(n, t);
+    var tangent = any_tangent(n);
+    if dot(projected, projected) > 1e-12 {
+        tangent = normalize(projected);
+    }
+    return SurfaceFrame(n, tangent, cross(n, tangent));
+}
+
+// One-sided f_r: zero where N·I ≤ 0 or N·V ≤ 0 (Material::f_r in Rust).
+fn f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    if dot(frame.n, wi) <= 0.0 || dot(frame.n, wo) <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    return eval_brdf(m, wi, wo, frame);
+}
+

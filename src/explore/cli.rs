@@ -1,0 +1,328 @@
+//! `gonio brdf`: the command-line face of [`crate::explore`]. `src/cli.rs`
+//! only holds the subcommand variant; everything else is here.
+
+use super::albedo::albedo_curve;
+use super::gloss::{GEOMETRIES, gloss};
+use super::plot::{AlbedoPlot, PlotFile, SlicePlot, number};
+use super::slice::{Quantity, slice};
+use super::{Channel, Labelled, direction, frame, spec, table};
+use crate::material::ReflectanceModel;
+use crate::material::brdf::mirror_reflectance;
+use crate::{Error, Result};
+use std::path::PathBuf;
+
+/// `gonio brdf --model MODEL [--set KEY=VALUE]... [angles] [plots]`
+#[derive(Debug, clap::Args)]
+#[command(
+    about = "Print BRDF values, plot polar slices and directional albedo, read gloss",
+    long_about = "Print f_r [1/sr] of one or more materials for given directions, and plot \
+the lecture's polar slice or the directional albedo. Frame: normal n = +Z, tangent t = +X; \
+θ from the normal, φ from the tangent. Materials take the keys of a scene file's \
+[materials.NAME] table."
+)]
+pub struct BrdfArgs {
+    /// Reflectance model (repeat to overlay several): lambert, phong,
+    /// phong-normalized, blinn-phong, blinn-phong-normalized, ward,
+    /// ward-anisotropic, cook-torrance, mirror.
+    #[arg(long = "model", value_name = "MODEL")]
+    pub models: Vec<String>,
+    /// A material as `MODEL[,KEY=VALUE]...`, e.g.
+    /// `cook-torrance,preset=gold,roughness=0.1` (repeat to overlay; its
+    /// keys win over --set).
+    #[arg(long = "compare", value_name = "SPEC")]
+    pub compare: Vec<String>,
+    /// A material key for every material, as in a scene file: k_d, k_s,
+    /// k_a, k_e, roughness, sigma, sigma_x, sigma_y, eta, kappa, eta_i,
+    /// eta_t, distribution, geometry, fresnel, denominator, preset. Values
+    /// are TOML: `k_d=[0.8,0.2,0.1]`, `k_e=80`, `fresnel=schlick`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Incidence polar angle θ_i [°], from the normal.
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 30.0,
+        allow_negative_numbers = true
+    )]
+    pub theta_i: f64,
+    /// Incidence azimuth φ_i [°], from the tangent.
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
+    pub phi_i: f64,
+    /// Outgoing polar angle θ_o [°]. Default: the mirror direction (θ_i).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub theta_o: Option<f64>,
+    /// Outgoing azimuth φ_o [°]. Default: φ_i + 180 (the mirror side).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub phi_o: Option<f64>,
+    /// Also print the directional albedo ρ(θ_i) = ∫ f_r cos θ_o dω_o.
+    #[arg(long)]
+    pub albedo: bool,
+    /// Print the specular gloss (ISO 2813 / ASTM D523) at 20°, 60°, 85°.
+    #[arg(long)]
+    pub gloss: bool,
+    /// Write the polar slice in the plane of incidence at θ_i (.png or .svg).
+    #[arg(long, value_name = "OUT")]
+    pub plot_slice: Option<PathBuf>,
+    /// Radius of the slice: f_r-cos (f_r·cos θ_o, default) or f_r.
+    #[arg(long, value_name = "Q", default_value = "f_r-cos")]
+    pub quantity: Quantity,
+    /// Outer radius of the slice plot; larger values are clipped.
+    #[arg(long, value_name = "R")]
+    pub slice_max: Option<f64>,
+    /// Write directional albedo against θ_i = 0…89° (.png or .svg).
+    #[arg(long, value_name = "OUT")]
+    pub plot_albedo: Option<PathBuf>,
+    /// What the plots draw of RGB: mean (default), luminance, r, g, b.
+    #[arg(long, value_name = "C", default_value = "mean")]
+    pub channel: Channel,
+    /// Print the Markdown albedo table of docs/brdf-models.md (all models).
+    #[arg(long)]
+    pub albedo_table: bool,
+}
+
+/// Runs `gonio brdf`.
+pub fn run(args: &BrdfArgs) -> Result<()> {
+    if args.albedo_table {
+        print!("{}", table::markdown(&table::compute()?));
+        if args.models.is_empty() && args.compare.is_empty() {
+            return Ok(());
+        }
+    }
+    let materials = materials(args)?;
+    for m in &materials {
+        let lobe = !matches!(
+            m.material.model,
+            ReflectanceModel::Lambert | ReflectanceModel::Mirror
+        );
+        if lobe && m.material.k_s == crate::scene::Rgb::ZERO {
+            eprintln!(
+                "gonio: note: `{}` has k_s = 0 (the scene-file default), so only its diffuse part k_d/π shows; try --set k_s=1 (and --set k_d=0 for the lobe alone)",
+                m.label
+            );
+        }
+    }
+    let angles = Angles::from_args(args)?;
+    // Claim the outputs first: a bad path fails before any work.
+    let slice_file = args
+        .plot_slice
+        .as_deref()
+        .map(PlotFile::prepare)
+        .transpose()?;
+    let albedo_file = args
+        .plot_albedo
+        .as_deref()
+        .map(PlotFile::prepare)
+        .transpose()?;
+    if let Some(max) = args.slice_max
+        && !(max.is_finite() && max > 0.0)
+    {
+        return Err(Error::argument(
+            format!("--slice-max {max}"),
+            "the outer radius must be a positive number",
+        ));
+    }
+
+    print_values(&materials, &angles);
+    if args.albedo {
+        print_albedo(&materials, &angles);
+    }
+    if args.gloss {
+        print_gloss(&materials);
+    }
+    let note = shared_note(&args.set);
+    if let Some(file) = slice_file {
+        if angles.theta_i >= 90.0 {
+            return Err(Error::argument(
+                format!("--theta-i {}", angles.theta_i),
+                "the slice needs light above the surface: θ_i < 90°",
+            ));
+        }
+        let theta_i = angles.theta_i.to_radians();
+        let phi_i = angles.phi_i.to_radians();
+        let plot = SlicePlot {
+            theta_i,
+            quantity: args.quantity,
+            channel: args.channel,
+            series: materials
+                .iter()
+                .map(|m| {
+                    let s = slice(&m.material, theta_i, phi_i, args.quantity, args.channel);
+                    (m.label.clone(), s)
+                })
+                .collect(),
+            max: args.slice_max,
+            note: note.clone(),
+        };
+        let path = file.path().to_path_buf();
+        file.write(&plot)?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(file) = albedo_file {
+        let thetas_deg: Vec<f64> = (0..=89).map(f64::from).collect();
+        let thetas: Vec<f64> = thetas_deg.iter().map(|d| d.to_radians()).collect();
+        let plot = AlbedoPlot {
+            series: materials
+                .iter()
+                .map(|m| (m.label.clone(), albedo_curve(&m.material, &thetas)))
+                .collect(),
+            thetas_deg,
+            channel: args.channel,
+            note,
+        };
+        let path = file.path().to_path_buf();
+        file.write(&plot)?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// The materials of `--model` and `--compare`, in that order.
+fn materials(args: &BrdfArgs) -> Result<Vec<Labelled>> {
+    if args.models.is_empty() && args.compare.is_empty() {
+        return Err(Error::argument(
+            "gonio brdf",
+            "name at least one material: --model MODEL (e.g. --model phong-normalized) or --compare SPEC (e.g. --compare cook-torrance,preset=gold)",
+        ));
+    }
+    let mut out = Vec::new();
+    for model in &args.models {
+        out.push(spec::material(
+            &format!("--model {model}"),
+            model,
+            &args.set,
+            &[],
+        )?);
+    }
+    for s in &args.compare {
+        out.push(spec::compare_spec(s, &args.set)?);
+    }
+    Ok(out)
+}
+
+/// The directions of the printout, in degrees.
+struct Angles {
+    theta_i: f64,
+    phi_i: f64,
+    theta_o: f64,
+    phi_o: f64,
+    mirror: bool,
+}
+
+impl Angles {
+    fn from_args(args: &BrdfArgs) -> Result<Self> {
+        let check = |flag: &str, v: f64, polar: bool| {
+            let ok = v.is_finite() && (!polar || (0.0..=180.0).contains(&v));
+            if ok {
+                Ok(v)
+            } else {
+                Err(Error::argument(
+                    format!("--{flag} {v}"),
+                    if polar {
+                        "a polar angle is in degrees from the normal, within [0, 180]"
+                    } else {
+                        "an azimuth must be a finite number of degrees"
+                    },
+                ))
+            }
+        };
+        let theta_i = check("theta-i", args.theta_i, true)?;
+        let phi_i = check("phi-i", args.phi_i, false)?;
+        let theta_o = args
+            .theta_o
+            .map(|t| check("theta-o", t, true))
+            .transpose()?;
+        let phi_o = args.phi_o.map(|p| check("phi-o", p, false)).transpose()?;
+        let phi_mirror = phi_i + 180.0;
+        Ok(Angles {
+            theta_i,
+            phi_i,
+            theta_o: theta_o.unwrap_or(theta_i),
+            phi_o: phi_o.unwrap_or(phi_mirror),
+            mirror: theta_o.is_none_or(|t| t == theta_i)
+                && phi_o.is_none_or(|p| (p - phi_mirror).rem_euclid(360.0) == 0.0),
+        })
+    }
+}
+
+fn print_values(materials: &[Labelled], a: &Angles) {
+    let wi = direction(a.theta_i.to_radians(), a.phi_i.to_radians());
+    let wo = direction(a.theta_o.to_radians(), a.phi_o.to_radians());
+    println!(
+        "θ_i = {}°, φ_i = {}°, θ_o = {}°, φ_o = {}°{} (n = +Z, t = +X)",
+        a.theta_i,
+        a.phi_i,
+        a.theta_o,
+        a.phi_o,
+        if a.mirror { " (mirror direction)" } else { "" }
+    );
+    if wi.z <= 0.0 || wo.z <= 0.0 {
+        println!("a direction is at or below the horizon: f_r = 0 (every model is one-sided)");
+    }
+    for m in materials {
+        let f = m.material.f_r(wi, wo, &frame());
+        println!("{}: f_r = [{}, {}, {}] 1/sr", m.label, f.x, f.y, f.z);
+        if m.material.model == ReflectanceModel::Mirror {
+            let rho = mirror_reflectance(&m.material, wi.z);
+            println!(
+                "  plus a Dirac δ lobe in the mirror direction of reflectance k_s·F(cos θ_i) = [{}, {}, {}]",
+                rho.x, rho.y, rho.z
+            );
+        }
+    }
+}
+
+fn print_albedo(materials: &[Labelled], a: &Angles) {
+    for m in materials {
+        let e = super::albedo::albedo_towards(
+            &m.material,
+            direction(a.theta_i.to_radians(), a.phi_i.to_radians()),
+            &frame(),
+        );
+        println!(
+            "{}: albedo ρ(θ_i = {}°) = [{}, {}, {}] ± [{}, {}, {}]",
+            m.label,
+            a.theta_i,
+            number(e.value.x),
+            number(e.value.y),
+            number(e.value.z),
+            number(e.error_bound.x),
+            number(e.error_bound.y),
+            number(e.error_bound.z)
+        );
+    }
+}
+
+fn print_gloss(materials: &[Labelled]) {
+    println!(
+        "specular gloss (ISO 2813 / ASTM D523): 100 · Y(∫_aperture f_r cos θ_o dω_o) / F(black glass, η = {})",
+        super::gloss::STANDARD_ETA
+    );
+    for m in materials {
+        let readings: Vec<String> = GEOMETRIES
+            .iter()
+            .map(|&g| {
+                let r = gloss(&m.material, g);
+                format!("{}°: {} GU", g.angle_deg, number(r.gloss_units))
+            })
+            .collect();
+        println!("{}: {}", m.label, readings.join(", "));
+    }
+}
+
+/// The `--set` assignments, for the plots' footers.
+fn shared_note(set: &[String]) -> String {
+    if set.is_empty() {
+        String::new()
+    } else {
+        let kv: Vec<String> = set
+            .iter()
+            .map(|s| s.chars().filter(|c| !c.is_whitespace()).collect())
+            .collect();
+        format!("all: {}", kv.join(", "))
+    }
+}

@@ -1,0 +1,147 @@
+//! The lecture's picture of a BRDF: "a slice of the 6D function ... Given
+//! point x and given incident direction ω_i, show 2D polar plot (intensity
+//! as length of vector from origin)". The slice is the plane of incidence.
+//!
+//! Outgoing directions are `ω_o(θ_o) = (sin θ_o cos φ_i, sin θ_o sin φ_i,
+//! cos θ_o)` for a *signed* `θ_o ∈ [−90°, 90°]`: positive on the light's side
+//! (`φ_o = φ_i`), negative on the mirror side (`φ_o = φ_i + π`), so the
+//! mirror direction is `θ_o = −θ_i`.
+
+use super::{Channel, direction, frame};
+use crate::material::Material;
+use crate::material::brdf::mirror_reflectance;
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::fmt;
+use std::str::FromStr;
+
+/// What the radius of the polar plot is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Quantity {
+    /// `f_r · cos θ_o` [1/sr]: reflected radiance per unit irradiance
+    /// from ω_i, i.e. `dL_o / dE_i` weighted by the projected area the
+    /// viewer sees; the lecture's polar figures draw this (the Lambert
+    /// lobe is the circle `(k_d/π) cos θ_o` touching the origin). Default.
+    #[default]
+    ProjectedFr,
+    /// `f_r` [1/sr] itself (the Lambert lobe is a half circle of radius
+    /// `k_d/π` around the origin).
+    Fr,
+}
+
+impl Quantity {
+    /// The name `--quantity` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::ProjectedFr => "f_r-cos",
+            Quantity::Fr => "f_r",
+        }
+    }
+
+    /// What the plot says the radius is.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Quantity::ProjectedFr => {
+                "radius: f_r·cos θ_o [1/sr], reflected radiance per unit irradiance, projected"
+            }
+            Quantity::Fr => "radius: f_r [1/sr]",
+        }
+    }
+}
+
+impl fmt::Display for Quantity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Quantity {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "f_r-cos" | "f_r_cos" | "projected" => Ok(Quantity::ProjectedFr),
+            "f_r" | "fr" => Ok(Quantity::Fr),
+            _ => Err(format!("unknown quantity `{s}`; expected f_r-cos or f_r")),
+        }
+    }
+}
+
+/// One model's slice: `(θ_o signed, radians; value)` in ascending θ_o, and
+/// the reflectance of a Dirac lobe in the mirror direction, if the model
+/// has one (the ideal mirror; its `f_r` there is infinite).
+#[derive(Clone, Debug)]
+pub struct Slice {
+    pub points: Vec<(f64, f64)>,
+    pub dirac: Option<f64>,
+}
+
+/// The slice of `material` for light at `theta_i` (radians) in the plane
+/// `φ = phi_i`.
+pub fn slice(
+    material: &Material,
+    theta_i: f64,
+    phi_i: f64,
+    quantity: Quantity,
+    channel: Channel,
+) -> Slice {
+    let wi = direction(theta_i, phi_i);
+    let f = frame();
+    let points = sample_angles(theta_i)
+        .into_iter()
+        .map(|t| {
+            let wo = direction(t.abs(), if t < 0.0 { phi_i + PI } else { phi_i });
+            let mut v = channel.of(material.f_r(wi, wo, &f));
+            if quantity == Quantity::ProjectedFr {
+                v *= wo.z.max(0.0);
+            }
+            (t, v)
+        })
+        .collect();
+    let dirac = (material.model == crate::material::ReflectanceModel::Mirror)
+        .then(|| channel.of(mirror_reflectance(material, theta_i.cos())));
+    Slice { points, dirac }
+}
+
+/// Signed θ_o samples: every 0.25°, plus points that close in geometrically
+/// (to 10⁻⁶ rad) on the mirror direction `−θ_i` (narrow lobes) and on the
+/// horizons ±90° (off-specular peaks of microfacet lobes at grazing).
+pub fn sample_angles(theta_i: f64) -> Vec<f64> {
+    let mut t: Vec<f64> = (0..=720)
+        .map(|k| (k as f64 * 0.25 - 90.0).to_radians())
+        .collect();
+    let offsets: Vec<f64> = (0..=120)
+        .map(|k| 10f64.powf(-6.0 + k as f64 / 20.0))
+        .collect();
+    let mirror = -theta_i;
+    t.push(mirror);
+    for &o in &offsets {
+        t.extend([mirror - o, mirror + o, FRAC_PI_2 - o, o - FRAC_PI_2]);
+    }
+    t.retain(|x| x.abs() <= FRAC_PI_2);
+    t.sort_by(f64::total_cmp);
+    t.dedup();
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::ReflectanceModel;
+
+    #[test]
+    fn lambert_slice_is_a_circle() {
+        let m = Material::new("l", ReflectanceModel::Lambert);
+        let s = slice(&m, 0.5, 0.0, Quantity::ProjectedFr, Channel::Mean);
+        for (t, v) in s.points {
+            assert!((v - 0.8 / PI * t.cos()).abs() < 1e-15);
+        }
+        assert!(s.dirac.is_none());
+    }
+
+    #[test]
+    fn samples_hit_the_mirror_direction() {
+        let t = sample_angles(0.3);
+        assert!(t.contains(&-0.3));
+        assert!(t.windows(2).all(|p| p[0] < p[1]));
+        assert_eq!((t[0], *t.last().unwrap()), (-FRAC_PI_2, FRAC_PI_2));
+    }
+}

@@ -1,0 +1,731 @@
+//! Microfacet terms of the Cook-Torrance model (lecture: "Microfacet
+//! Distribution Functions", "Geometric Attenuation Factor", "Cook-Torrance
+//! Specular Term"; R. L. Cook & K. E. Torrance, "A Reflectance Model for
+//! Computer Graphics", 1982; B. Walter et al., "Microfacet Models for
+//! Refraction through Rough Surfaces", EGSR 2007).
+//! WGSL twin: `shaders/brdf/microfacet.wgsl` (same names, same order).
+//!
+//! Distributions take `(roughness, cos_h)`, `cos_h = N·H`, and are 0 for
+//! `cos_h ≤ 0`; `cos_h` is clamped to ≤ 1 (rounding of unit vectors). The
+//! lecture's Blinn and Gaussian peak at 1 (not normalized) and take an
+//! angle `m` in radians; their `_normalized` twins satisfy
+//! `∫ D cosθ_h dω_h = 1`, as do Beckmann and GGX. Smith's `G1` terms are
+//! separable, `G = G1(ω_i) G1(ω_o)`, as Mitsuba's.
+//!
+//! In `f32` a distribution that takes `cos_h` cannot resolve lobes
+//! narrower than about 3e-4 rad (`cos` of smaller angles rounds to 1);
+//! the renderer's roughness floor (1e-4) plus the pixel footprint keeps
+//! lobes wider than that in practice.
+
+use super::COS_FLOOR;
+use super::phong::{EXP_CUTOFF, cos_power, exp_cutoff};
+use crate::scene::Rgb;
+use glam::DVec3;
+use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, LN_2, PI};
+
+/// The half vector (lecture: "Reflection Geometry"): `H = (I + V) / |I + V|`.
+/// For `I = −V` it is undefined;
+/// gonio returns the zero vector there (not `n`): every term then sees
+/// `N·H = I·H = V·H = 0`, so `D = 0`, `G1 = 0`, and the lobe is 0 — the
+/// configuration has no microfacet that reflects `I` into `V`. (A one-sided
+/// model never meets it: both directions are above the surface.)
+pub fn half_vector(wi: DVec3, wo: DVec3) -> DVec3 {
+    (wi + wo).normalize_or_zero()
+}
+
+/// Beckmann distribution (lecture: "Microfacet Distribution Functions",
+/// used by Cook-Torrance): `exp(−tan²α / m²) / (π m² cos⁴α)`, `m` the RMS
+/// slope. Normalized: `∫ D cosθ_h dω_h = 1`.
+///
+/// The exponent is tested before dividing (`sin² ≥ 80 cos² m²` ⇔ exponent
+/// ≤ −80 → 0, [`exp_cutoff`]): no `tan²` overflow and no `∞ · 0` from
+/// `1/cos⁴` as `cos_h → 0` (in `f32` too); past the test `cos² > 1/81`, so
+/// the value is ≤ `1/(π m²)` = 3.2e7 at m = 1e-4. m = 0 gives 0.
+pub fn d_beckmann(m: f64, cos_h: f64) -> f64 {
+    if cos_h <= 0.0 {
+        return 0.0;
+    }
+    let cos_hc = cos_h.min(1.0); // rounding can pass 1
+    let cos2 = cos_hc * cos_hc;
+    let sin2 = 1.0 - cos2;
+    let m2 = m * m;
+    if sin2 >= EXP_CUTOFF * cos2 * m2 {
+        return 0.0; // exponent ≤ −80
+    }
+    let exponent = -sin2 / (cos2 * m2); // in (−80, 0]; cos2 * m2 > 0 here
+    exp_cutoff(exponent) / (PI * m2 * cos2 * cos2)
+}
+
+/// GGX / Trowbridge-Reitz distribution (Walter et al. 2007, eq. 33):
+/// `α² / (π ((α² − 1) cos² + 1)²)`. Normalized.
+///
+/// The bracket is evaluated as `α² cos² + sin²` (the same number): in
+/// `f32`, `α² − 1` rounds to −1 for α < 2.4e-4 and the bracket would be 0
+/// at `cos = 1`. It is ≥ `min(α², 1)`, so the value is ≤ `1/(π α²)` =
+/// 3.2e7 at α = 1e-4. Needs α > 0 (the renderer floors roughness at 1e-4).
+pub fn d_ggx(alpha: f64, cos_h: f64) -> f64 {
+    if cos_h <= 0.0 {
+        return 0.0;
+    }
+    let cos_hc = cos_h.min(1.0); // rounding can pass 1
+    let cos2 = cos_hc * cos_hc;
+    let sin2 = 1.0 - cos2;
+    let alpha2 = alpha * alpha;
+    let d = alpha2 * cos2 + sin2; // = (α² − 1) cos² + 1
+    alpha2 / (PI * d * d)
+}
+
+/// The exponent of the lecture's Blinn distribution ("Microfacet
+/// Distribution Functions"): `e = −ln 2 / ln(cos m)` in `cos^e α`, which falls to ½ at `α = m` (`m` an angle in
+/// radians, in (0, π/2); the renderer's (0, 1]). Large for small m:
+/// e ≈ 2 ln 2 / m² = 1.39e8 at m = 1e-4.
+///
+/// `−ln cos m = −½ ln(1 − sin² m)` by `ln_1p`, accurate for small m where
+/// `cos m` rounds towards 1. (WGSL has no `log1p`: its twin sums the
+/// series `x + x²/2 + … + x⁸/8` for `x = sin² m < 0.1`, truncation
+/// < 1.2e-9 relative, and uses `log(1 − x)` above.)
+pub fn blinn_exponent(m: f64) -> f64 {
+    let sin_m = m.sin();
+    let x = sin_m * sin_m;
+    let neg_ln_2x = -(-x).ln_1p(); // −2 ln cos m = −ln(1 − x)
+    let neg_ln_cos = 0.5 * neg_ln_2x; // −ln cos m
+    LN_2 / neg_ln_cos
+}
+
+/// Blinn's distribution as the lecture writes it ("Microfacet
+/// Distribution Functions"): `cos^(−ln 2 / ln cos m) α`. Peak 1 at
+/// `α = 0`, ½ at `α = m`; not normalized. Through [`cos_power`] (0 for
+/// `cos_h ≤ 0`, cut off below `e^−80`).
+pub fn d_blinn_lecture(m: f64, cos_h: f64) -> f64 {
+    cos_power(cos_h, blinn_exponent(m))
+}
+
+/// Blinn's distribution normalized (Blinn 1977's form with the
+/// normalization of Walter et al. 2007 "Phong" distribution):
+/// `((e + 2) / (2π)) cos^e α`, `e` = [`blinn_exponent`]`(m)`, so that
+/// `∫ D cosθ_h dω_h = 1`. At most `(e + 2)/(2π)` = 2.2e7 at m = 1e-4.
+pub fn d_blinn_normalized(m: f64, cos_h: f64) -> f64 {
+    let e = blinn_exponent(m);
+    (e + 2.0) * 0.5 * FRAC_1_PI * cos_power(cos_h, e)
+}
+
+/// The Gaussian distribution as the lecture writes it ("Torrance-Sparrow,
+/// Gaussian"): `exp(−ln 2 (α/m)²)`, `α = acos(N·H)`, `m` an angle in
+/// radians. Peak 1, ½ at `α = m`; not normalized. `cos_h` is clamped to ≤
+/// 1 before `acos` (NaN past 1); the exponential is cut off below `e^−80`
+/// ([`exp_cutoff`]) like the others.
+pub fn d_gaussian_lecture(m: f64, cos_h: f64) -> f64 {
+    if cos_h <= 0.0 {
+        return 0.0;
+    }
+    let alpha = cos_h.min(1.0).acos(); // min: acos is NaN past 1
+    let ratio = alpha / m;
+    exp_cutoff(-LN_2 * ratio * ratio)
+}
+
+/// The lecture's Gaussian ("Microfacet Distribution Functions")
+/// normalized: `norm · exp(−ln 2 (α/m)²)` with
+/// `norm` = [`gaussian_normalization`]`(m)`, computed once per material on
+/// the CPU and passed to the GPU in the material buffer (`d_norm`).
+pub fn d_gaussian_normalized(m: f64, cos_h: f64, norm: f64) -> f64 {
+    norm * d_gaussian_lecture(m, cos_h)
+}
+
+/// Normalization of the lecture's Gaussian ("Microfacet Distribution
+/// Functions"): `1 / (2π ∫_0^{π/2} exp(−ln 2 (θ/m)²) cosθ sinθ dθ)`, the factor that
+/// makes the lecture's Gaussian satisfy `∫ D cosθ_h dω_h = 1`. CPU only
+/// (f64); for m → 0 it tends to `ln 2 / (π m²)`.
+///
+/// Not a quadrature: the integral `J = ½ ∫_0^L e^{−aθ²} sin 2θ dθ`
+/// (`a = ln 2 / m²`, `L = π/2`) is summed from the Taylor series of
+/// `sin 2θ`, whose moments are incomplete gamma functions of integer order:
+/// `J = ½ Σ_k (−1)^k c_k P(k+1, aL²)` with `c_k = 4^k k! / (a^{k+1} (2k+1)!)`
+/// and `P` the regularized lower incomplete gamma (a Poisson tail,
+/// `poisson_tail`).
+///
+/// Error bound: the terms alternate and, for `a ≥ 2/3` (m ≤ 1.019), decrease
+/// in magnitude from the first (`c_{k+1}/c_k = 2 / (a (2k+3))`, `P`
+/// decreasing in k), so the truncation error is at most the first omitted
+/// term; summing stops when a term is below 1e-17 of the sum. Rounding:
+/// at most 15 terms (m = 1; fewer for smaller m), each within ~10 ulp,
+/// and the sum of their magnitudes at most 3.3× the result (m = 1): relative
+/// error below 1e-13 for m ∈ (0, 1] (the test checks it against adaptive
+/// quadrature to 1e-11).
+pub fn gaussian_normalization(m: f64) -> f64 {
+    let a = LN_2 / (m * m);
+    let x = a * FRAC_PI_2 * FRAC_PI_2; // a L²
+    let mut c = 1.0 / a; // c_0
+    let mut sum = 0.0;
+    for k in 0..1000u32 {
+        let term = c * poisson_tail(k + 1, x);
+        sum += if k % 2 == 0 { term } else { -term };
+        if term <= 1e-17 * sum.abs() {
+            break; // |remainder| ≤ next term ≤ this term
+        }
+        c *= 2.0 / (a * f64::from(2 * k + 3));
+    }
+    let j = 0.5 * sum;
+    1.0 / (2.0 * PI * j)
+}
+
+/// `P(s, x) = γ(s, x) / Γ(s)` for integer `s ≥ 1`: the probability that a
+/// Poisson variable of mean `x` is ≥ `s`. For `x > s` as
+/// `1 − e^{−x} Σ_{j<s} x^j/j!` (the subtracted sum is below ~½, so no
+/// cancellation to speak of), else as `e^{−x} x^s/s! Σ_j x^j/((s+1)…(s+j))`
+/// (positive terms, ratio < 1).
+fn poisson_tail(s: u32, x: f64) -> f64 {
+    if x > f64::from(s) {
+        let mut t = (-x).exp();
+        let mut head = 0.0;
+        for j in 0..s {
+            head += t;
+            t *= x / f64::from(j + 1);
+        }
+        1.0 - head
+    } else {
+        let mut t = (-x).exp();
+        for j in 1..=s {
+            t *= x / f64::from(j);
+        }
+        let (mut r, mut series) = (1.0, 1.0);
+        for j in 1..10_000u32 {
+            r *= x / f64::from(s + j);
+            series += r;
+            if r < 1e-17 * series {
+                break;
+            }
+        }
+        t * series
+    }
+}
+
+/// Smith's `G1` for Beckmann, Walter et al. 2007's rational approximation
+/// (eq. 27, within 0.35 % of the erf form; Mitsuba uses the same):
+/// `a = 1/(m tanθ_v)`; `a ≥ 1.6 → 1`; else
+/// `(3.535a + 2.181a²) / (1 + 2.276a + 2.577a²)`, times
+/// `χ⁺(cos_vh / cos_v)`. `cos_v = N·V`, `cos_vh = V·H` for the direction v
+/// (ω_i or ω_o). Also the G1 of the lecture's Blinn and Gaussian
+/// distributions, with the slopes [`beckmann_slope_of_blinn`],
+/// [`beckmann_slope_of_gaussian`].
+///
+/// 0 when `cos_v ≤ 0` (one-sided: below the horizon) or `cos_vh ≤ 0` (the
+/// microfacet faces away from v; χ⁺). `a ≥ 1.6` is tested as
+/// `cos ≥ 1.6 m sin` (no division; normal incidence, `sin = 0`, gives 1);
+/// past it `m sin > cos / 1.6 > 0`. In [0, 1].
+pub fn g1_beckmann(m: f64, cos_v: f64, cos_vh: f64) -> f64 {
+    if cos_v <= 0.0 || cos_vh <= 0.0 {
+        return 0.0; // below the horizon, or χ⁺(cos_vh / cos_v) = 0
+    }
+    let cos_vc = cos_v.min(1.0); // rounding can pass 1
+    let sin_v = (1.0 - cos_vc * cos_vc).sqrt();
+    if cos_vc >= 1.6 * m * sin_v {
+        return 1.0; // a ≥ 1.6
+    }
+    let a = cos_vc / (m * sin_v);
+    let a2 = a * a;
+    (3.535 * a + 2.181 * a2) / (1.0 + 2.276 * a + 2.577 * a2)
+}
+
+/// Smith's `G1` for GGX (Walter et al. 2007, eq. 34):
+/// `2 / (1 + sqrt(1 + α² tan²θ_v))`, times `χ⁺(cos_vh / cos_v)`;
+/// 0 for `cos_v ≤ 0` as [`g1_beckmann`]. Evaluated as
+/// `2 cos / (cos + sqrt(cos² + α² sin²))` (the same number), which has no
+/// `tan²` to overflow as `cos → 0`; the denominator is ≥ `cos > 0`. In [0, 1].
+pub fn g1_ggx(alpha: f64, cos_v: f64, cos_vh: f64) -> f64 {
+    if cos_v <= 0.0 || cos_vh <= 0.0 {
+        return 0.0; // below the horizon, or χ⁺(cos_vh / cos_v) = 0
+    }
+    let cos_vc = cos_v.min(1.0); // rounding can pass 1
+    let cos2 = cos_vc * cos_vc;
+    let sin2 = 1.0 - cos2;
+    2.0 * cos_vc / (cos_vc + (cos2 + alpha * alpha * sin2).sqrt())
+}
+
+/// The Beckmann slope whose lobe matches the lecture's Blinn distribution
+/// of angle `m`: `sqrt(2 / (e + 2))`, `e` = [`blinn_exponent`]`(m)`.
+///
+/// Derivation: the normalized Blinn `((e+2)/(2π)) cos^e α` and Beckmann
+/// `exp(−tan²α/m_b²)/(π m_b² cos⁴α)` have equal peaks at `α = 0` iff
+/// `m_b² = 2/(e+2)` (Walter et al. 2007's conversion `e = 2/m_b² − 2`);
+/// for small angles `cos^e α ≈ exp(−e α²/2)` and Beckmann ≈ `exp(−α²/m_b²)`,
+/// so the widths agree too, to O(1/e). For small m, `e ≈ 2 ln 2/m²` and
+/// this tends to [`beckmann_slope_of_gaussian`]`(m)`.
+pub fn beckmann_slope_of_blinn(m: f64) -> f64 {
+    (2.0 / (blinn_exponent(m) + 2.0)).sqrt()
+}
+
+/// The Beckmann slope whose lobe matches the lecture's Gaussian of angle
+/// `m`: `m / sqrt(ln 2)`. Derivation: for small angles `tan α ≈ α`, so
+/// Beckmann's `exp(−tan²α/m_b²)` ≈ `exp(−α²/m_b²)`, which equals the
+/// Gaussian's `exp(−ln 2 α²/m²)` iff `m_b² = m²/ln 2`.
+pub fn beckmann_slope_of_gaussian(m: f64) -> f64 {
+    m / LN_2.sqrt()
+}
+
+/// The lecture's "Final" geometric attenuation (V-grooves; Torrance &
+/// Sparrow 1967, Cook & Torrance 1982):
+/// `min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·I)/(V·H))`.
+///
+/// Both fractions share `V·H`, so the smaller is `2(N·H) min(N·V, N·I)/(V·H)`;
+/// it is compared with `V·H` before dividing, so `V·H → 0` gives 1 (the
+/// limit) instead of a division by 0. A cosine ≤ 0 (below the horizon, or
+/// `H = 0`) gives 0, so G ∈ [0, 1] always.
+pub fn g_vgroove(cos_h: f64, cos_o: f64, cos_i: f64, cos_oh: f64) -> f64 {
+    let num = 2.0 * cos_h * cos_o.min(cos_i);
+    if num <= 0.0 {
+        return 0.0; // below the horizon, or H = 0
+    }
+    if num >= cos_oh {
+        return 1.0; // min(1, …) = 1; includes V·H → 0
+    }
+    num / cos_oh // cos_oh > num > 0 here
+}
+
+/// The Cook-Torrance specular lobe (lecture: "Cook-Torrance Specular
+/// Term"): `D G F / (denominator (N·V)(N·I))`, with `denominator` = 4 (the
+/// microfacet standard, Walter et al. 2007, Mitsuba) or π (the lecture's,
+/// which is not energy conserving: it is 4/π times the former).
+///
+/// The cosines are floored at `COS_FLOOR`: the form diverges at grazing
+/// angles (D·G does not vanish there for `G = 1`); the floor keeps it
+/// finite (≤ 3.2e7 · 1 / (4 · 1e-12) = 8e18, finite in `f32`) and changes
+/// nothing where both cosines exceed 1e-6.
+pub fn cook_torrance_specular(
+    d: f64,
+    g: f64,
+    f: Rgb,
+    cos_i: f64,
+    cos_o: f64,
+    denominator: f64,
+) -> Rgb {
+    f * (d * g / (denominator * cos_o.max(COS_FLOOR) * cos_i.max(COS_FLOOR)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::fresnel::fresnel_conductor;
+    use super::*;
+
+    /// Adaptive Simpson on [a, b] to absolute tolerance `tol`.
+    fn simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
+        #[allow(clippy::too_many_arguments)]
+        fn rec(
+            f: &dyn Fn(f64) -> f64,
+            a: f64,
+            b: f64,
+            fa: f64,
+            fm: f64,
+            fb: f64,
+            whole: f64,
+            tol: f64,
+            depth: u32,
+        ) -> f64 {
+            let m = 0.5 * (a + b);
+            let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
+            let (flm, frm) = (f(lm), f(rm));
+            let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
+            let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
+            let delta = left + right - whole;
+            if depth == 0 || delta.abs() <= 15.0 * tol {
+                return left + right + delta / 15.0;
+            }
+            rec(f, a, m, fa, flm, fm, left, 0.5 * tol, depth - 1)
+                + rec(f, m, b, fm, frm, fb, right, 0.5 * tol, depth - 1)
+        }
+        let (fa, fm, fb) = (f(a), f(0.5 * (a + b)), f(b));
+        let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
+        rec(f, a, b, fa, fm, fb, whole, tol, 30)
+    }
+
+    /// `∫_0^{π/2} g(θ) dθ` for a lobe of width ~`w` at θ = 0: panels of
+    /// width w/4 up to 12 w (so no adaptive step can miss the peak), then
+    /// panels doubling in width to π/2 (heavy tails, GGX). Each panel to
+    /// 1e-13 of the whole (estimated first by plain Simpson; tighter
+    /// would chase rounding noise).
+    fn integrate_lobe(g: &dyn Fn(f64) -> f64, w: f64) -> f64 {
+        let mut edges = vec![0.0];
+        let mut x = 0.0;
+        while x < 12.0 * w && x < FRAC_PI_2 {
+            x = (x + 0.25 * w).min(FRAC_PI_2);
+            edges.push(x);
+        }
+        while x < FRAC_PI_2 {
+            x = (2.0 * x).min(FRAC_PI_2);
+            edges.push(x);
+        }
+        let plain: f64 = edges
+            .windows(2)
+            .map(|e| (e[1] - e[0]) / 6.0 * (g(e[0]) + 4.0 * g(0.5 * (e[0] + e[1])) + g(e[1])))
+            .sum();
+        let tol = 1e-13 * plain.abs() / edges.len() as f64;
+        edges.windows(2).map(|e| simpson(g, e[0], e[1], tol)).sum()
+    }
+
+    /// `∫ D(h) cosθ_h dω_h = 2π ∫ D(cos θ) cosθ sinθ dθ`.
+    fn projected_integral(d: &dyn Fn(f64) -> f64, width: f64) -> f64 {
+        2.0 * PI * integrate_lobe(&|t: f64| d(t.cos()) * t.cos() * t.sin(), width)
+    }
+
+    type Lobe = Box<dyn Fn(f64) -> f64>;
+
+    #[test]
+    fn distributions_are_normalized() {
+        for m in [0.05, 0.3, 1.0] {
+            let norm = gaussian_normalization(m);
+            let cases: [(&str, Lobe); 4] = [
+                ("beckmann", Box::new(move |c| d_beckmann(m, c))),
+                ("ggx", Box::new(move |c| d_ggx(m, c))),
+                ("blinn", Box::new(move |c| d_blinn_normalized(m, c))),
+                (
+                    "gaussian",
+                    Box::new(move |c| d_gaussian_normalized(m, c, norm)),
+                ),
+            ];
+            for (name, d) in cases {
+                let total = projected_integral(&*d, m);
+                // Quadrature tolerance 1e-13 of the whole; the
+                // e^−80 cut-off removes < 1e-30.
+                assert!((total - 1.0).abs() < 1e-9, "{name} m {m}: {total}");
+            }
+        }
+    }
+
+    #[test]
+    fn gaussian_normalization_matches_quadrature() {
+        for m in [1e-4, 1e-3, 0.01, 0.05, 0.3, 0.7, 1.0] {
+            let j = integrate_lobe(
+                &|t: f64| (-LN_2 * (t / m).powi(2)).exp() * t.cos() * t.sin(),
+                m,
+            );
+            let quad = 1.0 / (2.0 * PI * j);
+            let series = gaussian_normalization(m);
+            assert!(
+                (series - quad).abs() < 1e-11 * quad,
+                "m {m}: {series} vs {quad}"
+            );
+        }
+        // The small-m limit: ln 2 / (π m²) (1 + O(m²)).
+        let m = 1e-4;
+        let limit = LN_2 / (PI * m * m);
+        assert!((gaussian_normalization(m) / limit - 1.0).abs() < 1e-8);
+    }
+
+    #[test]
+    fn lecture_distributions_peak_at_one_and_halve_at_m() {
+        for m in [0.01, 0.05, 0.3, 1.0] {
+            assert_eq!(d_blinn_lecture(m, 1.0), 1.0 - (-EXP_CUTOFF).exp());
+            assert_eq!(d_gaussian_lecture(m, 1.0), 1.0 - (-EXP_CUTOFF).exp());
+            let b = d_blinn_lecture(m, m.cos());
+            let g = d_gaussian_lecture(m, m.cos());
+            assert!((b - 0.5).abs() < 1e-10, "blinn m {m}: {b}");
+            assert!((g - 0.5).abs() < 1e-10, "gaussian m {m}: {g}");
+        }
+        // The exponent by ln_1p agrees with the naive formula where that is accurate.
+        for m in [0.3, 0.7, 1.0f64] {
+            let naive = -LN_2 / m.cos().ln();
+            assert!((blinn_exponent(m) - naive).abs() < 1e-13 * naive);
+        }
+        let m = 1e-4;
+        assert!((blinn_exponent(m) * m * m / (2.0 * LN_2) - 1.0).abs() < 1e-8);
+    }
+
+    #[test]
+    fn beckmann_slopes_match_the_lobes() {
+        // Equal peaks of the normalized forms.
+        for m in [0.05, 0.3, 1.0] {
+            let mb = beckmann_slope_of_blinn(m);
+            assert!(
+                (d_blinn_normalized(m, 1.0) - d_beckmann(mb, 1.0)).abs()
+                    < 1e-9 * d_beckmann(mb, 1.0)
+            );
+        }
+        // Small m: Blinn's slope tends to the Gaussian's.
+        let m = 1e-3;
+        assert!((beckmann_slope_of_blinn(m) / beckmann_slope_of_gaussian(m) - 1.0).abs() < 1e-6);
+        assert!((beckmann_slope_of_gaussian(0.5) - 0.5 / LN_2.sqrt()).abs() < 1e-15);
+    }
+
+    fn dir(theta_deg: f64, phi_deg: f64) -> DVec3 {
+        let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
+        DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
+    }
+
+    /// Directions on a coarse sphere grid, including grazing, below the
+    /// horizon, and the poles.
+    fn sphere() -> Vec<DVec3> {
+        let mut out = vec![DVec3::Z, -DVec3::Z];
+        for t in [
+            1.0, 10.0, 30.0, 45.0, 60.0, 80.0, 89.0, 89.999, 90.0, 95.0, 135.0,
+        ] {
+            for p in [0.0, 37.0, 90.0, 150.0, 180.0, 250.0, 320.0] {
+                out.push(dir(t, p));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn g1_and_vgroove_are_in_unit_interval() {
+        let n = DVec3::Z;
+        for wi in sphere() {
+            for wo in sphere() {
+                let h = half_vector(wi, wo);
+                let (cos_i, cos_o, cos_h) = (n.dot(wi), n.dot(wo), n.dot(h));
+                let (cos_ih, cos_oh) = (wi.dot(h), wo.dot(h));
+                for m in [1e-4, 0.05, 0.3, 1.0] {
+                    for g in [
+                        g1_beckmann(m, cos_i, cos_ih),
+                        g1_beckmann(m, cos_o, cos_oh),
+                        g1_ggx(m, cos_i, cos_ih),
+                        g1_ggx(m, cos_o, cos_oh),
+                    ] {
+                        assert!((0.0..=1.0).contains(&g), "{wi} {wo} m {m}: {g}");
+                    }
+                }
+                let g = g_vgroove(cos_h, cos_o, cos_i, cos_oh);
+                assert!((0.0..=1.0).contains(&g), "{wi} {wo}: {g}");
+            }
+        }
+        // The rational approximation meets 1 continuously at a = 1.6.
+        let a: f64 = 1.6;
+        let r = (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a);
+        assert!((r - 1.0).abs() < 1e-3, "{r}");
+        // Normal incidence: no masking.
+        assert_eq!(g1_beckmann(0.5, 1.0, 1.0), 1.0);
+        assert_eq!(g1_ggx(0.5, 1.0, 1.0), 1.0);
+        // GGX G1 against the tan² form.
+        let (alpha, theta) = (0.4, 70f64.to_radians());
+        let tan2 = theta.tan().powi(2);
+        let expected = 2.0 / (1.0 + (1.0 + alpha * alpha * tan2).sqrt());
+        assert!((g1_ggx(alpha, theta.cos(), 0.5) - expected).abs() < 1e-15);
+    }
+
+    /// Distribution and G of every combination, with the exact conductor
+    /// Fresnel: the assembled lobe for wi → wo.
+    fn cook_torrance(
+        dist: usize,
+        geom: usize,
+        m: f64,
+        wi: DVec3,
+        wo: DVec3,
+        denominator: f64,
+    ) -> Rgb {
+        let n = DVec3::Z;
+        let h = half_vector(wi, wo);
+        let (cos_i, cos_o, cos_h) = (n.dot(wi), n.dot(wo), n.dot(h));
+        let (cos_ih, cos_oh) = (wi.dot(h), wo.dot(h));
+        let (d, slope) = match dist {
+            0 => (d_beckmann(m, cos_h), m),
+            1 => (d_ggx(m, cos_h), m),
+            2 => (d_blinn_lecture(m, cos_h), beckmann_slope_of_blinn(m)),
+            3 => (d_blinn_normalized(m, cos_h), beckmann_slope_of_blinn(m)),
+            4 => (d_gaussian_lecture(m, cos_h), beckmann_slope_of_gaussian(m)),
+            _ => (
+                d_gaussian_normalized(m, cos_h, gaussian_normalization(m)),
+                beckmann_slope_of_gaussian(m),
+            ),
+        };
+        let g = match geom {
+            0 => 1.0,
+            1 => g_vgroove(cos_h, cos_o, cos_i, cos_oh),
+            _ if dist == 1 => g1_ggx(m, cos_i, cos_ih) * g1_ggx(m, cos_o, cos_oh),
+            _ => g1_beckmann(slope, cos_i, cos_ih) * g1_beckmann(slope, cos_o, cos_oh),
+        };
+        let f = fresnel_conductor(
+            cos_ih,
+            Rgb::new(0.370, 0.177, 2.485),
+            Rgb::new(2.820, 3.638, 3.433),
+        );
+        cook_torrance_specular(d, g, f, cos_i, cos_o, denominator)
+    }
+
+    #[test]
+    fn cook_torrance_is_reciprocal() {
+        let dirs: Vec<DVec3> = [
+            (5.0, 0.0),
+            (30.0, 20.0),
+            (45.0, 200.0),
+            (60.0, 90.0),
+            (80.0, 170.0),
+            (89.0, 10.0),
+        ]
+        .iter()
+        .map(|&(t, p)| dir(t, p))
+        .collect();
+        for dist in 0..6 {
+            for geom in 0..3 {
+                for m in [0.05, 0.3, 1.0] {
+                    for &wi in &dirs {
+                        for &wo in &dirs {
+                            for den in [4.0, PI] {
+                                let a = cook_torrance(dist, geom, m, wi, wo, den);
+                                let b = cook_torrance(dist, geom, m, wo, wi, den);
+                                let err = (a - b).abs().max_element();
+                                assert!(
+                                    err <= 1e-12 * a.max_element().max(1e-300),
+                                    "dist {dist} geom {geom} m {m}: {a} vs {b}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// White furnace (F = 1, 4 (N·V)(N·I)): the albedo of Smith-GGX is ≤ 1
+    /// (separable Smith loses energy to masking, never gains). Midpoint rule,
+    /// 2000 × 4000 cells over the hemisphere of ω_o (φ by symmetry).
+    #[test]
+    fn smith_ggx_white_furnace_albedo_is_at_most_one() {
+        let n = DVec3::Z;
+        let (nt, np) = (2000, 2000);
+        let (dt, dp) = (FRAC_PI_2 / nt as f64, PI / np as f64);
+        for alpha in [0.1, 0.5, 1.0] {
+            for deg in [0.0, 45.0, 80.0f64] {
+                let wi = dir(deg, 0.0);
+                let mut sum = 0.0;
+                for a in 0..nt {
+                    let (st, ct) = ((a as f64 + 0.5) * dt).sin_cos();
+                    let mut ring = 0.0;
+                    for b in 0..np {
+                        let (sp, cp) = ((b as f64 + 0.5) * dp).sin_cos();
+                        let wo = DVec3::new(st * cp, st * sp, ct);
+                        let h = half_vector(wi, wo);
+                        let (cos_i, cos_o, cos_h) = (n.dot(wi), n.dot(wo), n.dot(h));
+                        let g = g1_ggx(alpha, cos_i, wi.dot(h)) * g1_ggx(alpha, cos_o, wo.dot(h));
+                        ring += cook_torrance_specular(
+                            d_ggx(alpha, cos_h),
+                            g,
+                            Rgb::ONE,
+                            cos_i,
+                            cos_o,
+                            4.0,
+                        )
+                        .x;
+                    }
+                    sum += ring * ct * st;
+                }
+                let albedo = 2.0 * sum * dt * dp;
+                eprintln!("smith-ggx α {alpha} θ_i {deg}°: albedo {albedo:.5}");
+                // α = 1 loses most: D = 1/π, and at θ_i = 0 the albedo is
+                // exactly 1 − ln 2 = 0.3069.
+                assert!(
+                    albedo <= 1.0 && albedo > 0.3,
+                    "α {alpha} θ_i {deg}°: {albedo}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn finite_at_the_extremes() {
+        let coss = [
+            -1.0,
+            -1e-8,
+            0.0,
+            1e-300,
+            1e-8,
+            1e-4,
+            0.5,
+            1.0 - 1e-12,
+            1.0,
+            1.0 + 1e-7,
+        ];
+        let roughs = [1e-4, 1e-3, 0.05, 0.3, 1.0];
+        for &m in &roughs {
+            let norm = gaussian_normalization(m);
+            assert!(norm.is_finite() && norm > 0.0);
+            for &c in &coss {
+                let ds = [
+                    d_beckmann(m, c),
+                    d_ggx(m, c),
+                    d_blinn_lecture(m, c),
+                    d_blinn_normalized(m, c),
+                    d_gaussian_lecture(m, c),
+                    d_gaussian_normalized(m, c, norm),
+                ];
+                for d in ds {
+                    assert!(d.is_finite() && d >= 0.0, "m {m} cos {c}: {d}");
+                    if c <= 0.0 {
+                        assert_eq!(d, 0.0);
+                    }
+                    // and the assembled lobe at the cosine floor
+                    let f = cook_torrance_specular(d, 1.0, Rgb::ONE, c, c, 4.0);
+                    assert!(f.is_finite(), "{f}");
+                }
+                for &c2 in &coss {
+                    for g in [
+                        g1_beckmann(m, c, c2),
+                        g1_ggx(m, c, c2),
+                        g_vgroove(c, c2, c, c2),
+                        g_vgroove(c, c, c2, c2),
+                        g_vgroove(c2, c, c, 0.0),
+                    ] {
+                        assert!(
+                            g.is_finite() && (0.0..=1.0).contains(&g),
+                            "m {m} {c} {c2}: {g}"
+                        );
+                    }
+                }
+            }
+        }
+        for m in [1e-4, 1.0] {
+            assert!(beckmann_slope_of_blinn(m).is_finite());
+            assert!(beckmann_slope_of_gaussian(m).is_finite());
+        }
+        assert_eq!(half_vector(DVec3::Z, -DVec3::Z), DVec3::ZERO);
+        assert_eq!(half_vector(dir(30.0, 10.0), -dir(30.0, 10.0)), DVec3::ZERO);
+    }
+
+    /// Golden values computed independently (Python's `cmath`, outside this
+    /// crate): gold (η 0.370, κ 2.820), Beckmann m = 0.5, ω_i at 80°, ω_o its
+    /// mirror image (so H = N, D = 1/(π m²)), Smith G with Walter's
+    /// rational G1 (a = 1/(m tan 80°)), exact Fresnel at cos 80°,
+    /// denominator 4.
+    #[test]
+    fn golden_beckmann_smith_gold() {
+        let n = DVec3::Z;
+        let wi = dir(80.0, 0.0);
+        let wo = dir(80.0, 180.0);
+        let h = half_vector(wi, wo);
+        let m = 0.5;
+        let d = d_beckmann(m, n.dot(h));
+        let g = g1_beckmann(m, n.dot(wi), wi.dot(h)) * g1_beckmann(m, n.dot(wo), wo.dot(h));
+        let f = fresnel_conductor(wi.dot(h), Rgb::splat(0.370), Rgb::splat(2.820));
+        let fr = cook_torrance_specular(d, g, f, n.dot(wi), n.dot(wo), 4.0);
+        assert!((d - GOLDEN_D).abs() < 1e-12 * GOLDEN_D, "D {d}");
+        assert!((g - GOLDEN_G).abs() < 1e-12, "G {g}");
+        assert!((f.x - GOLDEN_F).abs() < 1e-12, "F {}", f.x);
+        assert!((fr.x - GOLDEN_FR).abs() < 1e-10 * GOLDEN_FR, "f_r {}", fr.x);
+    }
+
+    const GOLDEN_D: f64 = 1.2732395447351628;
+    const GOLDEN_G: f64 = 0.511113540423823;
+    const GOLDEN_F: f64 = 0.887398175401015;
+    const GOLDEN_FR: f64 = 4.787905666403089;
+
+    /// Every BRDF WGSL file parses and validates with naga, in the order the
+    /// renderer concatenates them.
+    #[test]
+    fn wgsl_files_validate() {
+        let source = [
+            include_str!("../../../shaders/common.wgsl"),
+            include_str!("../../../shaders/brdf/lambert.wgsl"),
+            include_str!("../../../shaders/brdf/phong.wgsl"),
+            include_str!("../../../shaders/brdf/fresnel.wgsl"),
+            include_str!("../../../shaders/brdf/microfacet.wgsl"),
+            include_str!("../../../shaders/brdf/ward.wgsl"),
+            "@compute @workgroup_size(1) fn main() {}\n",
+        ]
+        .join("\n");
+        let module = naga::front::wgsl::parse_str(&source)
+            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::empty(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+    }
+}

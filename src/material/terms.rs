@@ -1,0 +1,111 @@
+//! The selectable terms of Cook-Torrance (and the mirror's Fresnel), with
+//! the contract's names. A macro keeps name, parse and list in one place.
+
+use std::fmt;
+use std::str::FromStr;
+
+macro_rules! named_enum {
+    ($(#[$doc:meta])* $name:ident, $what:literal { $($(#[$vdoc:meta])* $variant:ident = $text:literal,)+ }) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum $name {
+            $($(#[$vdoc])* $variant,)+
+        }
+
+        impl $name {
+            /// Every value, in declaration order.
+            pub const ALL: &'static [$name] = &[$($name::$variant,)+];
+
+            /// The contract's name.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $($name::$variant => $text,)+
+                }
+            }
+        }
+
+        impl fmt::Display for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl FromStr for $name {
+            type Err = String;
+            fn from_str(s: &str) -> Result<Self, String> {
+                Self::ALL.iter().copied().find(|v| v.name() == s).ok_or_else(|| {
+                    let known: Vec<_> = Self::ALL.iter().map(|v| v.name()).collect();
+                    format!("unknown {} `{s}`; expected one of {}", $what, known.join(", "))
+                })
+            }
+        }
+    };
+}
+
+named_enum!(
+    /// Microfacet distribution `D` (lecture: "Microfacet Distribution Functions").
+    Distribution, "distribution" {
+        /// Beckmann, normalized; `roughness` is the RMS slope m.
+        Beckmann = "beckmann",
+        /// The lecture's Blinn `cos^(−ln2/ln cos m)`, as written: peak 1, not
+        /// normalized; `roughness` is the angle m (radians) where D = ½.
+        Blinn = "blinn",
+        /// Blinn's lobe normalized so that ∫ D cosθ_h dω_h = 1.
+        BlinnNormalized = "blinn-normalized",
+        /// The lecture's Gaussian (Torrance-Sparrow) `exp(−ln2 (α/m)²)`, as
+        /// written: peak 1, not normalized; `roughness` is the angle m.
+        Gaussian = "gaussian",
+        /// The Gaussian lobe normalized so that ∫ D cosθ_h dω_h = 1.
+        GaussianNormalized = "gaussian-normalized",
+        /// GGX / Trowbridge-Reitz, normalized; `roughness` is α.
+        Ggx = "ggx",
+    }
+);
+
+named_enum!(
+    /// Geometric attenuation `G` (lecture: "Geometric Attenuation Factor").
+    Geometry, "geometry" {
+        /// The lecture's V-groove `min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·I)/(V·H))`.
+        VGroove = "v-groove",
+        /// Separable Smith `G1(I)·G1(V)` matched to the distribution.
+        Smith = "smith",
+        /// `G = 1`.
+        None = "none",
+    }
+);
+
+named_enum!(
+    /// Fresnel term `F`, evaluated at the microfacet angle `cos θ = I·H`.
+    Fresnel, "fresnel" {
+        /// Exact unpolarized Fresnel of a conductor with index η + iκ.
+        Conductor = "conductor",
+        /// The lecture's approximation of r∥², r⊥² for conductors.
+        ConductorLecture = "conductor-lecture",
+        /// Exact unpolarized Fresnel of a dielectric interface η_i → η_t.
+        Dielectric = "dielectric",
+        /// Schlick's approximation with F0 from η, κ (conductor).
+        Schlick = "schlick",
+        /// `F = 1`.
+        None = "none",
+    }
+);
+
+named_enum!(
+    /// The Cook-Torrance denominator.
+    Denominator, "denominator" {
+        /// `4 (N·V)(N·I)`: the microfacet-standard normalization (default).
+        Microfacet = "microfacet",
+        /// `π (N·V)(N·I)`: as the lecture writes it.
+        Lecture = "lecture",
+    }
+);
+
+impl Denominator {
+    /// The constant in front of `(N·V)(N·I)`.
+    pub fn factor(self) -> f64 {
+        match self {
+            Denominator::Microfacet => 4.0,
+            Denominator::Lecture => std::f64::consts::PI,
+        }
+    }
+}

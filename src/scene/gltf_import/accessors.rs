@@ -1,0 +1,355 @@
+//! Accessors and primitives: every accessor is checked against its buffer
+//! view and buffer (types, counts, offsets and strides, with
+//! overflow-checked arithmetic) before the `gltf` crate's reader touches
+//! it, because that reader slices and indexes without checking. Only then
+//! is anything allocated from its count.
+
+use glam::DVec3;
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::{Mode, Semantic};
+use std::borrow::Cow;
+
+/// What an accessor is read as, and therefore which types it may have.
+#[derive(Clone, Copy)]
+pub(super) enum Usage {
+    Position,
+    Normal,
+    Index,
+}
+
+impl Usage {
+    fn name(self) -> &'static str {
+        match self {
+            Usage::Position => "POSITION",
+            Usage::Normal => "NORMAL",
+            Usage::Index => "indices",
+        }
+    }
+
+    /// The types the reader can decode for this usage; the `gltf` reader
+    /// misreads or panics (`unreachable!`) on anything else.
+    fn accepts(self, data_type: DataType, dimensions: Dimensions) -> bool {
+        match self {
+            Usage::Position | Usage::Normal => {
+                data_type == DataType::F32 && dimensions == Dimensions::Vec3
+            }
+            Usage::Index => {
+                matches!(data_type, DataType::U8 | DataType::U16 | DataType::U32)
+                    && dimensions == Dimensions::Scalar
+            }
+        }
+    }
+
+    fn expected(self) -> &'static str {
+        match self {
+            Usage::Position | Usage::Normal => "VEC3 of FLOAT",
+            Usage::Index => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
+        }
+    }
+}
+
+/// Checks that the `gltf` reader can read `accessor` for `usage` without
+/// going out of bounds: right types, 1 to `max_count` elements, and every
+/// byte it will touch inside its buffer view and buffer (sparse parts
+/// included). Errors name the accessor.
+///
+/// `max_count` bounds accessors whose elements are not all backed by data
+/// (sparse accessors without a buffer view are materialized from zeros);
+/// callers pass what the limits or a sibling accessor allow.
+pub(super) fn check_accessor(
+    accessor: &gltf::Accessor,
+    usage: Usage,
+    max_count: usize,
+    buffers: &[Cow<[u8]>],
+) -> Result<(), String> {
+    let fail = |problem: String| {
+        format!(
+            "accessor {} ({}): {problem}",
+            accessor.index(),
+            usage.name()
+        )
+    };
+    let (data_type, dimensions) = (accessor.data_type(), accessor.dimensions());
+    if !usage.accepts(data_type, dimensions) {
+        return Err(fail(format!(
+            "has type {dimensions:?} of {data_type:?}, expected {}",
+            usage.expected()
+        )));
+    }
+    let element = accessor.size();
+    let count = accessor.count();
+    if count == 0 {
+        return Err(fail("has count 0".into()));
+    }
+    // The reader counts elements in a u32.
+    if count > max_count || u32::try_from(count).is_err() {
+        return Err(fail(format!(
+            "has count {count}, more than the {max_count} it may have here"
+        )));
+    }
+    if let Some(view) = accessor.view() {
+        check_range(&view, accessor.offset(), count, element, buffers).map_err(fail)?;
+    }
+    match accessor.sparse() {
+        Some(sparse) => check_sparse(&sparse, count, element, buffers).map_err(fail),
+        None if accessor.view().is_none() => {
+            Err(fail("has neither a buffer view nor sparse data".into()))
+        }
+        None => Ok(()),
+    }
+}
+
+fn check_sparse(
+    sparse: &gltf::accessor::sparse::Sparse,
+    count: usize,
+    element: usize,
+    buffers: &[Cow<[u8]>],
+) -> Result<(), String> {
+    let sparse_count = sparse.count();
+    if sparse_count == 0 || sparse_count > count {
+        return Err(format!(
+            "has sparse count {sparse_count}, expected 1 to {count}"
+        ));
+    }
+    let indices = sparse.indices();
+    check_range(
+        &indices.view(),
+        indices.offset(),
+        sparse_count,
+        indices.index_type().size(),
+        buffers,
+    )
+    .map_err(|p| format!("sparse indices: {p}"))?;
+    let values = sparse.values();
+    check_range(
+        &values.view(),
+        values.offset(),
+        sparse_count,
+        element,
+        buffers,
+    )
+    .map_err(|p| format!("sparse values: {p}"))
+}
+
+/// Checks `count ≥ 1` elements of `element` bytes, `offset` bytes into
+/// `view`, at the view's stride, against the view and its buffer.
+fn check_range(
+    view: &gltf::buffer::View,
+    offset: usize,
+    count: usize,
+    element: usize,
+    buffers: &[Cow<[u8]>],
+) -> Result<(), String> {
+    let buffer = view.buffer().index();
+    let buffer_len = buffers.get(buffer).map_or(0, |b| b.len());
+    let view_fits = view
+        .offset()
+        .checked_add(view.length())
+        .is_some_and(|end| end <= buffer_len);
+    if !view_fits {
+        return Err(format!(
+            "buffer view {} (offset {}, length {}) does not fit in buffer {buffer} of {buffer_len} bytes",
+            view.index(),
+            view.offset(),
+            view.length()
+        ));
+    }
+    let stride = view.stride().unwrap_or(element);
+    if stride < element {
+        return Err(format!(
+            "buffer view {} has byteStride {stride}, smaller than the {element}-byte element",
+            view.index()
+        ));
+    }
+    let end = stride
+        .checked_mul(count - 1)
+        .and_then(|x| x.checked_add(offset))
+        .and_then(|x| x.checked_add(element));
+    match end {
+        Some(end) if end <= view.length() => Ok(()),
+        _ => Err(format!(
+            "{count} elements of {element} bytes at offset {offset} with stride {stride} do not fit in buffer view {} of {} bytes",
+            view.index(),
+            view.length()
+        )),
+    }
+}
+
+/// A primitive's data in object space, before it becomes a mesh.
+pub(super) struct RawPrimitive {
+    pub positions: Vec<DVec3>,
+    /// Unit normals, or zero where the file's normal had no length;
+    /// `None` when the primitive has no `NORMAL`.
+    pub normals: Option<Vec<DVec3>>,
+    pub indices: Vec<[u32; 3]>,
+}
+
+/// Reads a primitive, or `None` if it draws points or lines. The vertex
+/// and triangle budget was checked from the declared counts beforehand
+/// (see `graph::check_cost`); `max_vertices` and `max_corners` are those
+/// limits, which bound accessors without data behind every element.
+pub(super) fn read_primitive(
+    primitive: &gltf::Primitive,
+    buffers: &[Cow<[u8]>],
+    max_vertices: usize,
+    max_corners: usize,
+) -> Result<Option<RawPrimitive>, String> {
+    let mode = primitive.mode();
+    if !matches!(
+        mode,
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+    ) {
+        return Ok(None);
+    }
+    let reader = primitive.reader(|buffer| buffers.get(buffer.index()).map(|b| &b[..]));
+
+    let position_accessor = primitive
+        .get(&Semantic::Positions)
+        .ok_or("has no POSITION attribute")?;
+    check_accessor(&position_accessor, Usage::Position, max_vertices, buffers)?;
+    let positions = collect_vec3(reader.read_positions(), &position_accessor, Usage::Position)?;
+    if let Some(k) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(format!(
+            "accessor {} (POSITION): vertex {k} is not finite ({})",
+            position_accessor.index(),
+            positions[k]
+        ));
+    }
+    let vertex_count = positions.len();
+    // check_accessor bounded the count by u32::MAX.
+    let vertex_limit = vertex_count as u32;
+
+    let normals = match primitive.get(&Semantic::Normals) {
+        None => None,
+        Some(accessor) => Some(read_normals(&reader, &accessor, vertex_count, buffers)?),
+    };
+
+    let vertices: Vec<u32> = match primitive.indices() {
+        None => (0..vertex_limit).collect(),
+        Some(accessor) => read_indices(&reader, &accessor, vertex_limit, max_corners, buffers)?,
+    };
+    let indices = triangulate(mode, &vertices).map_err(|p| match primitive.indices() {
+        Some(accessor) => format!("accessor {} (indices): {p}", accessor.index()),
+        None => format!("accessor {} (POSITION): {p}", position_accessor.index()),
+    })?;
+
+    Ok(Some(RawPrimitive {
+        positions,
+        normals,
+        indices,
+    }))
+}
+
+/// Unit normals (zero where the file's normal has no length); as many as
+/// there are positions, all finite.
+fn read_normals<'a, 's, F>(
+    reader: &gltf::mesh::Reader<'a, 's, F>,
+    accessor: &gltf::Accessor,
+    vertex_count: usize,
+    buffers: &[Cow<[u8]>],
+) -> Result<Vec<DVec3>, String>
+where
+    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+{
+    if accessor.count() != vertex_count {
+        return Err(format!(
+            "accessor {} (NORMAL) has {} elements but POSITION has {vertex_count}",
+            accessor.index(),
+            accessor.count()
+        ));
+    }
+    check_accessor(accessor, Usage::Normal, vertex_count, buffers)?;
+    let normals = collect_vec3(reader.read_normals(), accessor, Usage::Normal)?;
+    if let Some(k) = normals.iter().position(|n| !n.is_finite()) {
+        return Err(format!(
+            "accessor {} (NORMAL): normal {k} is not finite ({})",
+            accessor.index(),
+            normals[k]
+        ));
+    }
+    Ok(normals.into_iter().map(DVec3::normalize_or_zero).collect())
+}
+
+/// Vertex indices, each checked to address one of `vertex_limit` vertices.
+fn read_indices<'a, 's, F>(
+    reader: &gltf::mesh::Reader<'a, 's, F>,
+    accessor: &gltf::Accessor,
+    vertex_limit: u32,
+    max_corners: usize,
+    buffers: &[Cow<[u8]>],
+) -> Result<Vec<u32>, String>
+where
+    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+{
+    check_accessor(accessor, Usage::Index, max_corners, buffers)?;
+    let indices: Vec<u32> = reader
+        .read_indices()
+        .ok_or_else(|| unreadable(accessor, Usage::Index))?
+        .into_u32()
+        .collect();
+    if indices.len() != accessor.count() {
+        return Err(unreadable(accessor, Usage::Index));
+    }
+    if let Some(k) = indices.iter().position(|&i| i >= vertex_limit) {
+        return Err(format!(
+            "accessor {} (indices): index {} at position {k} is out of range for {vertex_limit} vertices",
+            accessor.index(),
+            indices[k]
+        ));
+    }
+    Ok(indices)
+}
+
+fn collect_vec3(
+    iter: Option<impl Iterator<Item = [f32; 3]>>,
+    accessor: &gltf::Accessor,
+    usage: Usage,
+) -> Result<Vec<DVec3>, String> {
+    let values: Vec<DVec3> = iter
+        .ok_or_else(|| unreadable(accessor, usage))?
+        .map(|v| DVec3::from(v.map(f64::from)))
+        .collect();
+    if values.len() != accessor.count() {
+        return Err(unreadable(accessor, usage));
+    }
+    Ok(values)
+}
+
+/// Reported if the reader still fails after [`check_accessor`] passed.
+fn unreadable(accessor: &gltf::Accessor, usage: Usage) -> String {
+    format!(
+        "accessor {} ({}) could not be read",
+        accessor.index(),
+        usage.name()
+    )
+}
+
+/// Turns a vertex sequence into triangles, per glTF's definition of each
+/// mode (strips alternate the winding back to counter-clockwise; fans turn
+/// around the first vertex).
+pub(super) fn triangulate(mode: Mode, v: &[u32]) -> Result<Vec<[u32; 3]>, String> {
+    let n = v.len();
+    Ok(match mode {
+        Mode::Triangles => {
+            if !n.is_multiple_of(3) {
+                return Err(format!(
+                    "a triangle list needs a multiple of 3 vertices, got {n}"
+                ));
+            }
+            v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect()
+        }
+        Mode::TriangleStrip => (0..n.saturating_sub(2))
+            .map(|i| {
+                if i % 2 == 0 {
+                    [v[i], v[i + 1], v[i + 2]]
+                } else {
+                    [v[i], v[i + 2], v[i + 1]]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => (0..n.saturating_sub(2))
+            .map(|i| [v[i + 1], v[i + 2], v[0]])
+            .collect(),
+        Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => Vec::new(),
+    })
+}

@@ -1,0 +1,545 @@
+//! From bytes to a validated glTF document: the GLB container, a census of
+//! the JSON before it is parsed, the parse, the extension checks and
+//! gltf-json's validation.
+
+use super::guarded;
+use crate::scene::limits::{Limits, exceeded};
+use gltf::json::validation::{Checked, Validate as _};
+use gltf::mesh::Semantic;
+use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
+use std::fmt;
+
+/// Required extensions this importer honours.
+pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &["KHR_lights_punctual"];
+
+/// Required extensions users are likely to meet, with what they do: the
+/// message says why the file cannot be drawn without them.
+const KNOWN_UNSUPPORTED: &[(&str, &str)] = &[
+    ("KHR_draco_mesh_compression", "Draco mesh compression"),
+    ("EXT_meshopt_compression", "meshoptimizer compression"),
+    ("KHR_meshopt_compression", "meshoptimizer compression"),
+    (
+        "KHR_mesh_quantization",
+        "quantized (integer) vertex attributes",
+    ),
+    ("KHR_texture_basisu", "Basis Universal textures"),
+    ("EXT_texture_webp", "WebP textures"),
+];
+
+/// The GLB header: magic, version, total length.
+const GLB_HEADER_BYTES: usize = 12;
+/// A GLB chunk header: length, type.
+const CHUNK_HEADER_BYTES: usize = 8;
+const CHUNK_JSON: u32 = u32::from_le_bytes(*b"JSON");
+const CHUNK_BIN: u32 = u32::from_le_bytes(*b"BIN\0");
+
+/// Upper bounds of what parsing costs, per JSON object and per other JSON
+/// value. An empty object `{}` in `nodes` becomes a 224-byte `Node`, and
+/// `Vec` growth can double that; a number inside `min`/`max` becomes a
+/// 32-byte `serde_json::Value`. Three bytes of text can so become half a
+/// kilobyte, which is why the census runs before the parse.
+const PARSED_BYTES_PER_OBJECT: u64 = 512;
+const PARSED_BYTES_PER_VALUE: u64 = 64;
+
+/// The two parts of a glTF file.
+pub(super) struct Container<'a> {
+    pub json: &'a [u8],
+    /// The GLB `BIN` chunk, if the file is a GLB and has one.
+    pub bin: Option<&'a [u8]>,
+}
+
+/// Splits a GLB into its JSON and BIN chunks, or takes the bytes as JSON.
+/// The magic decides; `expect_glb` (a `.glb` file name) only makes a
+/// missing magic an error about the GLB header rather than about JSON.
+pub(super) fn split<'a>(
+    bytes: &'a [u8],
+    expect_glb: bool,
+    notes: &mut Vec<String>,
+) -> Result<Container<'a>, String> {
+    if bytes.is_empty() {
+        return Err("the file is empty".into());
+    }
+    if bytes.starts_with(b"glTF") {
+        return split_glb(bytes, notes).map_err(|p| format!("invalid GLB file: {p}"));
+    }
+    if expect_glb {
+        let start = bytes[..bytes.len().min(4)].escape_ascii();
+        return Err(format!(
+            "invalid GLB file: it starts with `{start}`, not the magic `glTF`"
+        ));
+    }
+    Ok(Container {
+        json: bytes,
+        bin: None,
+    })
+}
+
+fn split_glb<'a>(bytes: &'a [u8], notes: &mut Vec<String>) -> Result<Container<'a>, String> {
+    if bytes.len() < GLB_HEADER_BYTES {
+        return Err(format!(
+            "the file has {} bytes, fewer than the {GLB_HEADER_BYTES}-byte header",
+            bytes.len()
+        ));
+    }
+    let version = le_u32(bytes, 4);
+    if version != 2 {
+        return Err(format!("version {version}; only version 2 is supported"));
+    }
+    let declared = le_u32(bytes, 8) as usize;
+    if declared > bytes.len() {
+        return Err(format!(
+            "the header declares a length of {declared} bytes but the file has {} (truncated?)",
+            bytes.len()
+        ));
+    }
+    if declared < bytes.len() {
+        notes.push(format!(
+            "{} bytes after the end the GLB header declares were ignored",
+            bytes.len() - declared
+        ));
+    }
+    let mut chunks = Chunks {
+        bytes: &bytes[..declared],
+        offset: GLB_HEADER_BYTES,
+    };
+    let json = match chunks.next().transpose()? {
+        Some((CHUNK_JSON, data)) => data,
+        Some((kind, _)) => {
+            return Err(format!(
+                "the first chunk has type {}, but it must be the JSON chunk",
+                chunk_name(kind)
+            ));
+        }
+        None => return Err("there is no JSON chunk".into()),
+    };
+    let mut bin = None;
+    for chunk in chunks {
+        match chunk? {
+            (CHUNK_BIN, data) if bin.is_none() => bin = Some(data),
+            (kind @ (CHUNK_JSON | CHUNK_BIN), _) => {
+                return Err(format!("a second {} chunk", chunk_name(kind)));
+            }
+            // The GLB spec asks readers to skip chunks of unknown types.
+            (kind, _) => notes.push(format!(
+                "GLB chunk of unknown type {} ignored",
+                chunk_name(kind)
+            )),
+        }
+    }
+    Ok(Container { json, bin })
+}
+
+/// The chunks after the header, each checked to lie inside the file.
+struct Chunks<'a> {
+    bytes: &'a [u8],
+    offset: usize,
+}
+
+impl<'a> Iterator for Chunks<'a> {
+    type Item = Result<(u32, &'a [u8]), String>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let start = self.offset;
+        if start >= self.bytes.len() {
+            return None;
+        }
+        // Any error ends the iteration.
+        self.offset = self.bytes.len();
+        let data_start = start + CHUNK_HEADER_BYTES;
+        if data_start > self.bytes.len() {
+            return Some(Err(format!(
+                "a chunk header at byte {start} is cut off by the end of the file"
+            )));
+        }
+        let length = le_u32(self.bytes, start);
+        let kind = le_u32(self.bytes, start + 4);
+        // `length` is a u32 and `data_start` at most the file length, so
+        // this cannot overflow a 64-bit usize; checked all the same.
+        let end = data_start.checked_add(length as usize);
+        match end {
+            Some(end) if end <= self.bytes.len() => {
+                self.offset = end;
+                Some(Ok((kind, &self.bytes[data_start..end])))
+            }
+            _ => Some(Err(format!(
+                "the {} chunk at byte {start} declares {length} bytes, but only {} remain",
+                chunk_name(kind),
+                self.bytes.len() - data_start
+            ))),
+        }
+    }
+}
+
+fn le_u32(bytes: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]])
+}
+
+fn chunk_name(kind: u32) -> String {
+    let bytes = kind.to_le_bytes();
+    if bytes.iter().all(|b| b.is_ascii_graphic() || *b == 0) {
+        format!(
+            "`{}`",
+            String::from_utf8_lossy(&bytes).trim_end_matches('\0')
+        )
+    } else {
+        format!("0x{kind:08x}")
+    }
+}
+
+// ---------------------------------------------------------------------------
+// The JSON
+
+/// Parses the JSON into a document, after checking that parsing it stays
+/// within `limits`, and validates it. `used_bytes` is what the input already
+/// holds (the file); the estimated parsed size is added to it.
+pub(super) fn parse(
+    json: &[u8],
+    used_bytes: &mut u64,
+    limits: &Limits,
+    notes: &mut Vec<String>,
+) -> Result<gltf::Document, String> {
+    let census = Census::take(json)?;
+    census.check(used_bytes, limits)?;
+    let root: gltf::json::Root =
+        gltf::json::deserialize::from_slice(json).map_err(|e| format!("invalid glTF: {e}"))?;
+    check_extensions(&root, notes)?;
+    check_position_accessors(&root)?;
+    validate(&root)?;
+    Ok(gltf::Document::from_json_without_validation(root))
+}
+
+/// Counts of the JSON, taken without building it.
+#[derive(Debug, Default)]
+struct Census {
+    /// Every value: objects, arrays, strings, numbers, booleans, nulls.
+    values: u64,
+    objects: u64,
+    nodes: u64,
+    images: u64,
+    textures: u64,
+}
+
+impl Census {
+    fn take(json: &[u8]) -> Result<Census, String> {
+        gltf::json::deserialize::from_slice::<TopLevel>(json)
+            .map(|top| top.0)
+            .map_err(|e| format!("invalid glTF: the JSON is malformed: {e}"))
+    }
+
+    fn check(&self, used_bytes: &mut u64, limits: &Limits) -> Result<(), String> {
+        if self.nodes > limits.nodes {
+            return Err(exceeded(
+                "the number of nodes",
+                self.nodes,
+                "nodes",
+                limits.nodes,
+            ));
+        }
+        let textures = self.images.saturating_add(self.textures);
+        if textures > limits.textures {
+            return Err(exceeded(
+                "the number of images and textures",
+                textures,
+                "textures",
+                limits.textures,
+            ));
+        }
+        let parsed = self
+            .objects
+            .saturating_mul(PARSED_BYTES_PER_OBJECT)
+            .saturating_add(self.values.saturating_mul(PARSED_BYTES_PER_VALUE));
+        *used_bytes = used_bytes.saturating_add(parsed);
+        if *used_bytes > limits.bytes {
+            return Err(exceeded(
+                &format!(
+                    "the file plus its parsed JSON ({} objects, {} values, up to {parsed} bytes)",
+                    self.objects, self.values
+                ),
+                format!("{used_bytes} bytes"),
+                "bytes",
+                limits.bytes,
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The top-level object: counts as a [`Tally`] does, and also the entries
+/// of the arrays that limits cap.
+struct TopLevel(Census);
+
+impl<'de> de::Deserialize<'de> for TopLevel {
+    fn deserialize<D: Deserializer<'de>>(de: D) -> Result<TopLevel, D::Error> {
+        de.deserialize_map(TopLevelVisitor)
+    }
+}
+
+struct TopLevelVisitor;
+
+impl<'de> Visitor<'de> for TopLevelVisitor {
+    type Value = TopLevel;
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a glTF JSON object")
+    }
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<TopLevel, A::Error> {
+        let mut census = Census {
+            values: 1,
+            objects: 1,
+            ..Census::default()
+        };
+        while let Some(key) = map.next_key::<std::borrow::Cow<'de, str>>()? {
+            let entries = map.next_value_seed(Tally {
+                census: &mut census,
+            })?;
+            match key.as_ref() {
+                "nodes" => census.nodes = entries,
+                "images" => census.images = entries,
+                "textures" => census.textures = entries,
+                _ => {}
+            }
+        }
+        Ok(TopLevel(census))
+    }
+}
+
+/// Counts one value and everything inside it; yields the number of
+/// elements if the value is an array (0 otherwise). Recursion depth is
+/// bounded by serde_json's nesting limit (128), so this cannot overflow
+/// the stack.
+struct Tally<'c> {
+    census: &'c mut Census,
+}
+
+impl<'de> DeserializeSeed<'de> for Tally<'_> {
+    type Value = u64;
+    fn deserialize<D: Deserializer<'de>>(self, de: D) -> Result<u64, D::Error> {
+        de.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for Tally<'_> {
+    type Value = u64;
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("any JSON value")
+    }
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<u64, A::Error> {
+        self.census.values += 1;
+        let mut elements = 0;
+        while seq
+            .next_element_seed(Tally {
+                census: &mut *self.census,
+            })?
+            .is_some()
+        {
+            elements += 1;
+        }
+        Ok(elements)
+    }
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<u64, A::Error> {
+        self.census.values += 1;
+        self.census.objects += 1;
+        while map.next_key::<IgnoredAny>()?.is_some() {
+            map.next_value_seed(Tally {
+                census: &mut *self.census,
+            })?;
+        }
+        Ok(0)
+    }
+    fn visit_bool<E: de::Error>(self, _: bool) -> Result<u64, E> {
+        self.scalar()
+    }
+    fn visit_i64<E: de::Error>(self, _: i64) -> Result<u64, E> {
+        self.scalar()
+    }
+    fn visit_u64<E: de::Error>(self, _: u64) -> Result<u64, E> {
+        self.scalar()
+    }
+    fn visit_f64<E: de::Error>(self, _: f64) -> Result<u64, E> {
+        self.scalar()
+    }
+    fn visit_str<E: de::Error>(self, _: &str) -> Result<u64, E> {
+        self.scalar()
+    }
+    fn visit_unit<E: de::Error>(self) -> Result<u64, E> {
+        self.scalar()
+    }
+}
+
+impl Tally<'_> {
+    fn scalar<E>(self) -> Result<u64, E> {
+        self.census.values += 1;
+        Ok(0)
+    }
+}
+
+/// A required extension gonio does not implement makes the file
+/// undrawable: an error naming it. An optional one is ignored, with a note.
+fn check_extensions(root: &gltf::json::Root, notes: &mut Vec<String>) -> Result<(), String> {
+    let unsupported: Vec<String> = root
+        .extensions_required
+        .iter()
+        .filter(|e| !SUPPORTED_REQUIRED_EXTENSIONS.contains(&e.as_str()))
+        .map(|e| describe_extension(e))
+        .collect();
+    if !unsupported.is_empty() {
+        return Err(format!(
+            "the file requires the glTF extension{} {}, which gonio does not support (supported: {})",
+            if unsupported.len() == 1 { "" } else { "s" },
+            unsupported.join(", "),
+            SUPPORTED_REQUIRED_EXTENSIONS.join(", ")
+        ));
+    }
+    for used in &root.extensions_used {
+        if !SUPPORTED_REQUIRED_EXTENSIONS.contains(&used.as_str()) {
+            notes.push(format!(
+                "optional glTF extension {} ignored",
+                describe_extension(used)
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn describe_extension(name: &str) -> String {
+    let shown = super::abbreviate(name);
+    match KNOWN_UNSUPPORTED.iter().find(|(known, _)| *known == name) {
+        Some((_, what)) => format!("{shown} ({what})"),
+        None => shown.into_owned(),
+    }
+}
+
+/// gltf-json's validation indexes `accessors` with a primitive's
+/// `POSITION` unchecked and would panic on a missing one, so that is
+/// checked here first.
+fn check_position_accessors(root: &gltf::json::Root) -> Result<(), String> {
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            for (semantic, accessor) in &primitive.attributes {
+                if accessor.value() >= root.accessors.len() {
+                    return Err(format!(
+                        "invalid glTF: meshes[{m}].primitives[{p}].attributes.{}: accessor {} does not exist (there are {})",
+                        semantic_name(semantic),
+                        accessor.value(),
+                        root.accessors.len()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn semantic_name(semantic: &Checked<Semantic>) -> String {
+    match semantic {
+        Checked::Valid(s) => s.to_string(),
+        Checked::Invalid => "(unknown attribute)".into(),
+    }
+}
+
+/// gltf-json's validation: every index in range, every enum value known,
+/// required properties present. The first few problems are reported.
+fn validate(root: &gltf::json::Root) -> Result<(), String> {
+    const SHOWN: usize = 8;
+    let mut problems = Vec::new();
+    let mut more = 0usize;
+    guarded(|| {
+        root.validate(root, gltf::json::Path::new, &mut |path, error| {
+            if problems.len() < SHOWN {
+                problems.push(format!("{}: {error}", path()));
+            } else {
+                more += 1;
+            }
+        })
+    })?;
+    if problems.is_empty() {
+        return Ok(());
+    }
+    let mut text = format!("invalid glTF: {}", problems.join("; "));
+    if more > 0 {
+        text += &format!("; and {more} more problem(s)");
+    }
+    Err(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn glb(chunks: &[(&[u8; 4], &[u8])]) -> Vec<u8> {
+        let mut body = Vec::new();
+        for (kind, data) in chunks {
+            body.extend_from_slice(&(data.len() as u32).to_le_bytes());
+            body.extend_from_slice(*kind);
+            body.extend_from_slice(data);
+        }
+        let mut file = b"glTF".to_vec();
+        file.extend_from_slice(&2u32.to_le_bytes());
+        file.extend_from_slice(&((body.len() + 12) as u32).to_le_bytes());
+        file.extend_from_slice(&body);
+        file
+    }
+
+    fn split_err(bytes: &[u8]) -> String {
+        match split(bytes, true, &mut Vec::new()) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e,
+        }
+    }
+
+    #[test]
+    fn glb_chunks_are_split() {
+        let file = glb(&[(b"JSON", b"{}"), (b"BIN\0", b"1234"), (b"XTRA", b"")]);
+        let mut notes = Vec::new();
+        let container = split(&file, true, &mut notes).unwrap();
+        assert_eq!(container.json, b"{}");
+        assert_eq!(container.bin, Some(&b"1234"[..]));
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        let json_only = glb(&[(b"JSON", b"{}")]);
+        let container = split(&json_only, true, &mut notes).unwrap();
+        assert_eq!(container.bin, None);
+    }
+
+    #[test]
+    fn broken_glb_headers_and_chunks_are_named() {
+        let good = glb(&[(b"JSON", b"{}"), (b"BIN\0", b"1234")]);
+        assert!(split_err(&good[..7]).contains("fewer than the 12-byte header"));
+        assert!(split_err(b"GLTF\x02\0\0\0\x0c\0\0\0").contains("magic"));
+        let mut v1 = good.clone();
+        v1[4] = 1;
+        assert!(split_err(&v1).contains("version 1"));
+        let mut long = good.clone();
+        long[8..12].copy_from_slice(&u32::MAX.to_le_bytes());
+        assert!(split_err(&long).contains("truncated"));
+        let mut chunk = good.clone();
+        chunk[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
+        assert!(split_err(&chunk).contains("declares 4294967295 bytes"));
+        let bin_first = glb(&[(b"BIN\0", b"1234"), (b"JSON", b"{}")]);
+        assert!(split_err(&bin_first).contains("must be the JSON chunk"));
+        let twice = glb(&[(b"JSON", b"{}"), (b"JSON", b"{}")]);
+        assert!(split_err(&twice).contains("second `JSON` chunk"));
+        assert!(split_err(&glb(&[])).contains("no JSON chunk"));
+        // A header cut in the middle of the second chunk's header.
+        let mut cut = glb(&[(b"JSON", b"{}")]);
+        cut.extend_from_slice(&[1, 0, 0]);
+        let len = cut.len() as u32;
+        cut[8..12].copy_from_slice(&len.to_le_bytes());
+        assert!(split_err(&cut).contains("cut off"));
+    }
+
+    #[test]
+    fn census_counts_without_building() {
+        let census =
+            Census::take(br#"{"nodes": [{}, {"children": [0, 1]}], "images": [{}], "x": null}"#)
+                .unwrap();
+        assert_eq!(census.nodes, 2);
+        assert_eq!(census.images, 1);
+        assert_eq!(census.objects, 4);
+        // root, nodes array, 2 nodes, children array, 2 numbers, images
+        // array, 1 image, null.
+        assert_eq!(census.values, 10);
+        assert!(Census::take(b"[1]").is_err());
+        assert!(Census::take(b"{} trailing").is_err());
+        let deep = format!("{{\"a\": {}{}}}", "[".repeat(100_000), "]".repeat(100_000));
+        assert!(Census::take(deep.as_bytes()).is_err());
+    }
+}

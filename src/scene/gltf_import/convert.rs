@@ -1,0 +1,200 @@
+//! The parts of a glTF that are not geometry: materials, lights, cameras,
+//! node transforms, each turned into gonio's types.
+
+use crate::material::{Material, ReflectanceModel};
+use crate::scene::{Camera, Light, Rgb};
+use glam::{DMat4, DQuat, DVec3, DVec4};
+use gltf::khr_lights_punctual::Kind as LightKind;
+
+/// glTF's metal/rough F0 for dielectrics.
+const DIELECTRIC_F0: f64 = 0.04;
+
+/// The glTF mapping of metallic-roughness factors to a Blinn-Phong
+/// material (see the module documentation for the table). Inputs outside
+/// [0, 1] are clamped.
+pub fn material_from_metallic_roughness(
+    name: impl Into<String>,
+    base_color: Rgb,
+    metallic: f64,
+    roughness: f64,
+) -> Material {
+    let b = base_color.clamp(Rgb::ZERO, Rgb::ONE);
+    let m = metallic.clamp(0.0, 1.0);
+    let r = roughness.clamp(0.0, 1.0);
+    let k_d = b * (1.0 - m);
+    let f0 = Rgb::splat(DIELECTRIC_F0 * (1.0 - m)) + b * m;
+    let alpha = (r * r).max(1e-3);
+    let k_e = (2.0 / (alpha * alpha) - 2.0).clamp(1.0, 1e6);
+    // The lecture's lobe is not normalized: its albedo grows like 8π/k_e
+    // for broad lobes (a rough metal with k_s = 1 reflects far more than it
+    // receives). Scaling by Blinn-Phong's normalization (k_e + 8)/(8π),
+    // capped at 1, keeps broad lobes near F0 and leaves sharp ones alone.
+    let k_s = f0 * ((k_e + 8.0) / (8.0 * std::f64::consts::PI)).min(1.0);
+    // Issue #4 will switch this default to Cook-Torrance with GGX, which
+    // takes α directly; Blinn-Phong is the only glossy model there is now.
+    let mut material = Material::new(name, ReflectanceModel::BlinnPhong);
+    material.k_d = k_d.clamp(Rgb::ZERO, Rgb::ONE);
+    material.k_s = k_s.clamp(Rgb::ZERO, Rgb::ONE);
+    material.k_a = material.k_d;
+    material.k_e = k_e;
+    material
+}
+
+pub(super) fn material_from_pbr(
+    name: String,
+    base_color: [f32; 4],
+    metallic: f32,
+    roughness: f32,
+) -> Result<Material, String> {
+    let [r, g, b, _alpha] = base_color.map(f64::from);
+    let material = material_from_metallic_roughness(
+        name,
+        Rgb::new(r, g, b),
+        f64::from(metallic),
+        f64::from(roughness),
+    );
+    // Clamping leaves only non-finite factors to fail here.
+    material.validate()?;
+    Ok(material)
+}
+
+pub(super) fn convert_light(
+    light: &gltf::khr_lights_punctual::Light,
+    world: DMat4,
+) -> Result<Light, String> {
+    let color = Rgb::from(light.color().map(f64::from));
+    let intensity = f64::from(light.intensity());
+    let power = color * intensity;
+    if !power.is_finite() || power.min_element() < 0.0 {
+        return Err(format!(
+            "color {color} × intensity {intensity} is not a finite non-negative value"
+        ));
+    }
+    let range = match light.range() {
+        None => None,
+        Some(r) if r.is_finite() && r > 0.0 => Some(f64::from(r)),
+        Some(r) => return Err(format!("range {r} is not a positive number")),
+    };
+    let position = world.transform_point3(DVec3::ZERO);
+    let direction = world_axis(world, DVec3::NEG_Z)
+        .ok_or("the node's transform gives the light no direction (zero scale)")?;
+    Ok(match light.kind() {
+        LightKind::Directional => Light::Directional {
+            direction,
+            irradiance: power,
+            shadows: false,
+        },
+        LightKind::Point => Light::Point {
+            position,
+            intensity: power,
+            range,
+            shadows: false,
+        },
+        LightKind::Spot {
+            inner_cone_angle,
+            outer_cone_angle,
+        } => {
+            let (inner, outer) = (f64::from(inner_cone_angle), f64::from(outer_cone_angle));
+            // glTF asks 0 ≤ inner < outer ≤ π/2; equal cones are harmless
+            // (the falloff has a floor), so only an inverted or out-of-range
+            // pair is refused. π/2 is compared in f32, as the file wrote it.
+            if !(0.0 <= inner && inner <= outer && outer_cone_angle <= std::f32::consts::FRAC_PI_2)
+            {
+                return Err(format!(
+                    "spot cone angles inner {inner_cone_angle} and outer {outer_cone_angle} (radians) are not 0 ≤ inner ≤ outer ≤ π/2"
+                ));
+            }
+            Light::Spot {
+                position,
+                direction,
+                intensity: power,
+                inner_cone_deg: inner.to_degrees(),
+                outer_cone_deg: outer.to_degrees(),
+                range,
+                shadows: false,
+            }
+        }
+    })
+}
+
+/// A node's local axis in world space, unit length, or `None` if the
+/// transform collapses it. The threshold is absolute, not zero: a zero
+/// scale combined with a rotation leaves rounding residue of ~1e-17 that
+/// would otherwise normalize into an arbitrary direction.
+fn world_axis(world: DMat4, local: DVec3) -> Option<DVec3> {
+    let v = world.transform_vector3(local);
+    (v.length() > 1e-12).then(|| v.normalize())
+}
+
+/// The node's camera, if it is perspective and gives a usable frame.
+pub(super) fn convert_camera(camera: &gltf::Camera, world: DMat4) -> Option<Camera> {
+    let gltf::camera::Projection::Perspective(perspective) = camera.projection() else {
+        return None;
+    };
+    let fov_y_deg = f64::from(perspective.yfov()).to_degrees();
+    if !(fov_y_deg > 0.0 && fov_y_deg < 180.0) {
+        return None;
+    }
+    let position = world.transform_point3(DVec3::ZERO);
+    let forward = world_axis(world, DVec3::NEG_Z)?;
+    let up = world_axis(world, DVec3::Y)?;
+    if forward.cross(up).length_squared() < 1e-12 {
+        return None;
+    }
+    Some(Camera {
+        position,
+        target: position + forward,
+        up,
+        fov_y_deg,
+        near: 0.0,
+        far: 0.0,
+    })
+}
+
+/// A node's local transform, in `f64` from the file's `f32`s.
+pub(super) fn local_transform(node: &gltf::Node) -> Result<DMat4, String> {
+    let matrix = match node.transform() {
+        gltf::scene::Transform::Matrix { matrix } => {
+            let matrix = DMat4::from_cols_array_2d(&matrix.map(|column| column.map(f64::from)));
+            // glTF requires a matrix that decomposes into TRS; a projective
+            // bottom row would be silently dropped by affine transforms.
+            let bottom = matrix.row(3);
+            let off = (bottom - DVec4::W).abs().max_element();
+            if off.is_nan() || off > 1e-5 {
+                return Err(format!(
+                    "node {}: the matrix's bottom row is {bottom}, not [0, 0, 0, 1]; node matrices must be affine",
+                    node.index()
+                ));
+            }
+            matrix
+        }
+        gltf::scene::Transform::Decomposed {
+            translation,
+            rotation,
+            scale,
+        } => {
+            let [x, y, z, w] = rotation.map(f64::from);
+            let q = DQuat::from_xyzw(x, y, z, w);
+            let length = q.length();
+            if !(length.is_finite() && length > 0.0) {
+                return Err(format!(
+                    "node {}: rotation {rotation:?} is not a usable quaternion",
+                    node.index()
+                ));
+            }
+            // The file's f32 quaternion is only nearly unit length.
+            DMat4::from_scale_rotation_translation(
+                DVec3::from(scale.map(f64::from)),
+                q / length,
+                DVec3::from(translation.map(f64::from)),
+            )
+        }
+    };
+    if !matrix.is_finite() {
+        return Err(format!(
+            "node {}: the transform is not finite",
+            node.index()
+        ));
+    }
+    Ok(matrix)
+}

@@ -1,0 +1,212 @@
+//! The walk over the scene's nodes that gathers meshes, lights and the
+//! camera into a [`GltfScene`]. It runs after the document, the forest and
+//! the cost have been checked, on buffers already loaded.
+
+use super::GltfScene;
+use super::accessors::read_primitive;
+use super::convert::{
+    convert_camera, convert_light, local_transform, material_from_metallic_roughness,
+    material_from_pbr,
+};
+use crate::scene::limits::Limits;
+use crate::scene::mesh::area_weighted_normals;
+use crate::scene::{Mesh, Rgb};
+use glam::DMat4;
+use std::borrow::Cow;
+
+/// The largest magnitude an f32 holds.
+const F32_MAX: f64 = f32::MAX as f64;
+
+/// One import: the document, its loaded buffers and what has been gathered.
+pub(super) struct Importer<'a> {
+    document: &'a gltf::Document,
+    buffers: &'a [Cow<'a, [u8]>],
+    /// Caps for accessors not fully backed by data (see `check_accessor`).
+    max_vertices: usize,
+    max_corners: usize,
+    scene: GltfScene,
+    /// Index of `gltf-default` in `scene.materials`, once a primitive needs it.
+    default_material: Option<usize>,
+}
+
+impl<'a> Importer<'a> {
+    pub(super) fn new(
+        document: &'a gltf::Document,
+        buffers: &'a [Cow<'a, [u8]>],
+        limits: &Limits,
+        notes: Vec<String>,
+    ) -> Self {
+        let clamp = |v: u64| usize::try_from(v).unwrap_or(usize::MAX);
+        Importer {
+            document,
+            buffers,
+            max_vertices: clamp(limits.vertices),
+            max_corners: clamp(limits.triangles.saturating_mul(3).saturating_add(2)),
+            scene: GltfScene {
+                meshes: Vec::new(),
+                materials: Vec::new(),
+                lights: Vec::new(),
+                camera: None,
+                skipped_primitives: 0,
+                notes,
+            },
+            default_material: None,
+        }
+    }
+
+    /// Imports the trees below `roots`, which must be roots of a forest
+    /// (see `graph::check_forest`).
+    pub(super) fn run(mut self, roots: &[usize]) -> Result<GltfScene, String> {
+        for material in self.document.materials() {
+            let index = material.index().unwrap_or_default();
+            let name = material
+                .name()
+                .map_or_else(|| format!("material {index}"), str::to_string);
+            let pbr = material.pbr_metallic_roughness();
+            let material = material_from_pbr(
+                name,
+                pbr.base_color_factor(),
+                pbr.metallic_factor(),
+                pbr.roughness_factor(),
+            )?;
+            self.scene.materials.push(material);
+        }
+
+        // Depth-first, children in order, with an explicit stack: a chain
+        // of a million nodes must not exhaust the call stack.
+        let node = |n: usize| {
+            self.document
+                .nodes()
+                .nth(n)
+                .ok_or_else(|| format!("node {n} does not exist"))
+        };
+        let mut stack = Vec::with_capacity(roots.len());
+        for &root in roots.iter().rev() {
+            stack.push((node(root)?, DMat4::IDENTITY));
+        }
+        while let Some((node, parent)) = stack.pop() {
+            let world = parent * local_transform(&node)?;
+            if !world.is_finite() {
+                return Err(format!(
+                    "node {}: the composed world transform is not finite",
+                    node.index()
+                ));
+            }
+            self.visit(&node, world)?;
+            let children: Vec<_> = node.children().collect();
+            stack.extend(children.into_iter().rev().map(|child| (child, world)));
+        }
+        Ok(self.scene)
+    }
+
+    fn visit(&mut self, node: &gltf::Node, world: DMat4) -> Result<(), String> {
+        if let Some(mesh) = node.mesh() {
+            self.add_mesh(node, &mesh, world)?;
+        }
+        if let Some(light) = node.light() {
+            let light = convert_light(&light, world)
+                .map_err(|p| format!("node {}: light {}: {p}", node.index(), light.index()))?;
+            self.scene.lights.push(light);
+        }
+        if self.scene.camera.is_none()
+            && let Some(camera) = node.camera()
+        {
+            self.scene.camera = convert_camera(&camera, world);
+        }
+        Ok(())
+    }
+
+    fn add_mesh(
+        &mut self,
+        node: &gltf::Node,
+        mesh: &gltf::Mesh,
+        world: DMat4,
+    ) -> Result<(), String> {
+        let primitive_count = mesh.primitives().len();
+        let mesh_name = mesh
+            .name()
+            .map_or_else(|| format!("mesh {}", mesh.index()), str::to_string);
+        for primitive in mesh.primitives() {
+            let context = || {
+                format!(
+                    "mesh {} primitive {} (node {})",
+                    mesh.index(),
+                    primitive.index(),
+                    node.index()
+                )
+            };
+            let Some(raw) = read_primitive(
+                &primitive,
+                self.buffers,
+                self.max_vertices,
+                self.max_corners,
+            )
+            .map_err(|p| format!("{}: {p}", context()))?
+            else {
+                self.scene.skipped_primitives += 1;
+                continue;
+            };
+            let name = if primitive_count > 1 {
+                format!("{mesh_name}/primitive {}", primitive.index())
+            } else {
+                mesh_name.clone()
+            };
+            let material = match primitive.material().index() {
+                Some(index) => index,
+                None => self.default_material(),
+            };
+            let mut mesh = match raw.normals {
+                Some(normals) => Mesh {
+                    name,
+                    positions: raw.positions,
+                    normals,
+                    tangents: Vec::new(),
+                    indices: raw.indices,
+                    material,
+                },
+                None => Mesh::with_generated_normals(name, raw.positions, raw.indices, material),
+            };
+            mesh.transform(world);
+            // The GPU draws in f32: a position beyond its range would
+            // become infinite there even though it is finite here.
+            if mesh
+                .positions
+                .iter()
+                .any(|p| !p.is_finite() || p.abs().max_element() > F32_MAX)
+            {
+                return Err(format!(
+                    "{}: the node's world transform sends vertices beyond ±3.4e38, the range of the GPU's f32",
+                    context()
+                ));
+            }
+            // A singular transform (a zero scale) has no normal matrix;
+            // fall back to normals of the flattened geometry.
+            repair_normals(&mut mesh);
+            self.scene.meshes.push(mesh);
+        }
+        Ok(())
+    }
+
+    fn default_material(&mut self) -> usize {
+        *self.default_material.get_or_insert_with(|| {
+            // glTF's default: base colour 1, metallic 1, roughness 1.
+            let material = material_from_metallic_roughness("gltf-default", Rgb::ONE, 1.0, 1.0);
+            self.scene.materials.push(material);
+            self.scene.materials.len() - 1
+        })
+    }
+}
+
+/// Replaces zero normals (left by a singular transform or a zero-length
+/// `NORMAL`) with area-weighted ones of the world-space geometry.
+fn repair_normals(mesh: &mut Mesh) {
+    if mesh.normals.iter().all(|n| n.length_squared() > 0.5) {
+        return;
+    }
+    let generated = area_weighted_normals(&mesh.positions, &mesh.indices);
+    for (n, g) in mesh.normals.iter_mut().zip(generated) {
+        if n.length_squared() <= 0.5 {
+            *n = g;
+        }
+    }
+}

@@ -1,0 +1,287 @@
+//! glTF 2.0 import (`.gltf` with external or embedded buffers, and `.glb`).
+//!
+//! [`load`] turns the default scene of a glTF file into world-space meshes,
+//! gonio materials, punctual lights and at most one camera. It is written
+//! for files that may come from anywhere, so nothing in the file can make
+//! it panic, hang, read outside the file's folder, or allocate without
+//! bound. It validates before it trusts, in this order:
+//!
+//! 1. The file must be a regular file within the byte limit; a GLB is
+//!    split into its chunks here, each length checked against the file
+//!    ([`container`]).
+//! 2. The JSON is counted before it is parsed (values, objects, nodes,
+//!    images), because parsing can multiply its size a hundredfold; then
+//!    it is parsed, required extensions are checked, and gltf-json's
+//!    validation runs (every index in range, every enum value known).
+//! 3. The nodes must form a forest: no cycle, no node with two parents,
+//!    checked over all nodes iteratively in linear time ([`graph`]). The
+//!    vertices, triangles and lights the scene will draw are added up from
+//!    the declared counts, once per mesh instance, and checked against the
+//!    [`Limits`] before anything is read.
+//! 4. Buffers are loaded here, not by the `gltf` crate: the GLB `BIN`
+//!    chunk, base64 `data:` URIs, or files given as relative references,
+//!    which must stay inside the glTF's folder after canonicalization (no
+//!    absolute paths, no escaping `..`, no URI schemes, no symlinks that
+//!    lead out) and be regular files. At most the declared `byteLength` is
+//!    read; a shorter file is an error ([`buffers`]).
+//! 5. Every accessor is checked against its buffer view and buffer (types,
+//!    offsets, strides, counts, with overflow-checked arithmetic) before
+//!    the `gltf` crate's reader touches it, because that reader slices and
+//!    indexes without checking; indices are checked against the vertex
+//!    count, and positions and normals must be finite ([`accessors`]).
+//!
+//! A panic inside the `gltf` crate is caught as a last line of defence and
+//! reported like any other malformed input, but every panic the fuzzers
+//! found is prevented by a check above.
+//!
+//! Degenerate (zero-area) triangles are kept: they cover no pixel in the
+//! GPU rasterizer and the CPU reference's intersection test rejects them,
+//! so they draw nothing.
+//!
+//! # What is imported
+//!
+//! The default scene (scene 0 if none is marked default; every root node if
+//! there are no scenes), with node transforms composed into world space.
+//! Triangle lists, strips and fans become indexed triangles; points and
+//! lines are skipped and counted in [`GltfScene::skipped_primitives`].
+//! Optional extensions gonio does not implement are ignored, each with a
+//! line in [`GltfScene::notes`] (shown by `--verbose`).
+//! `NORMAL` is used when present, otherwise normals are generated
+//! (area-weighted). Textures, vertex colours, skins, morph targets,
+//! emission, alpha and `doubleSided` are ignored; skinned meshes are drawn
+//! in their rest pose.
+//!
+//! # Materials: metallic-roughness → Blinn-Phong
+//!
+//! glTF describes surfaces with the metal/rough model; gonio maps each
+//! material to the lecture's Blinn-Phong ([`ReflectanceModel::BlinnPhong`]).
+//! Only the factors are used (textures are ignored, so a textured model
+//! shows its factors, usually white). With base colour factor `b` (linear
+//! RGB, alpha dropped), metallic `m` and roughness `r`, each clamped to
+//! [0, 1]:
+//!
+//! | gonio | from glTF | why |
+//! |---|---|---|
+//! | `k_d` | `b·(1 − m)` | metals have no diffuse lobe |
+//! | `k_s` | `F0 · min(1, (k_e + 8)/(8π))`, `F0 = 0.04·(1 − m) + b·m` | F0 is the metal/rough model's normal-incidence reflectance; the factor (Blinn-Phong's normalization, capped at 1) keeps the lecture's unnormalized broad lobes from reflecting more than they receive |
+//! | `k_e` | `clamp(2/α² − 2, 1, 1e6)`, `α = max(r², 10⁻³)` | the usual Blinn-Phong ↔ Beckmann exponent correspondence (Walter et al. 2007) |
+//! | `k_a` | `k_d` | an ambient light lights the diffuse colour |
+//!
+//! Primitives without a material get glTF's default material (`b = 1`,
+//! `m = 1`, `r = 1`) mapped by the same rule, named `gltf-default`.
+//!
+//! # Lights (`KHR_lights_punctual`)
+//!
+//! glTF gives photometric units; gonio's contract is radiometric. The import
+//! takes 1 cd as 1 W/sr (point and spot: `intensity = color · intensity`)
+//! and 1 lx as 1 W/m² (directional: `irradiance = color · intensity`), with
+//! no luminous-efficacy factor, so a file's relative light levels carry
+//! over unchanged. Lights shine along the node's world −Z axis; spot cone
+//! angles are converted from radians to degrees; `range` is kept; no light
+//! casts shadows (the scene file can ask for them).
+//!
+//! # Camera
+//!
+//! The first perspective camera met in scene order (depth-first, children in
+//! order) becomes [`GltfScene::camera`]: it sits at the node's world origin,
+//! looks along world −Z of the node with the node's +Y as up, and keeps
+//! `yfov`. Its near/far are left at 0 for the caller to fit to the scene.
+//! Orthographic cameras, and perspective ones whose transform or `yfov`
+//! cannot give a valid camera, are skipped without error: the caller frames
+//! the scene itself when there is none.
+
+mod accessors;
+mod buffers;
+mod container;
+mod convert;
+mod graph;
+mod import;
+#[cfg(test)]
+mod tests;
+
+pub use crate::scene::limits::Limits;
+pub use convert::material_from_metallic_roughness;
+
+use crate::material::Material;
+use crate::scene::limits::{ReadError, exceeded, read_regular_file};
+use crate::scene::{Camera, Light, Mesh};
+use crate::{Error, Result};
+use std::borrow::Cow;
+use std::panic::{self, AssertUnwindSafe};
+use std::path::Path;
+
+/// Message for a panic caught inside the `gltf` crate.
+const PARSER_PANICKED: &str = "the glTF parser failed on malformed data";
+
+/// The contents of a glTF file, ready to join a [`crate::scene::Scene`].
+#[derive(Clone, Debug)]
+pub struct GltfScene {
+    /// World-space meshes; `mesh.material` indexes [`GltfScene::materials`].
+    pub meshes: Vec<Mesh>,
+    /// One per glTF material, in file order, plus `gltf-default` at the end
+    /// if an imported primitive has no material.
+    pub materials: Vec<Material>,
+    /// `KHR_lights_punctual` lights, world space.
+    pub lights: Vec<Light>,
+    /// The first perspective camera reached in the scene; near/far are 0.0
+    /// (the caller fits them to the scene bounds).
+    pub camera: Option<Camera>,
+    /// Primitives of the scene that were skipped because they draw points
+    /// or lines, which gonio does not render.
+    pub skipped_primitives: usize,
+    /// What was ignored without being an error (optional extensions gonio
+    /// does not implement, unknown GLB chunks, trailing bytes), one
+    /// sentence each, for `--verbose`.
+    pub notes: Vec<String>,
+}
+
+impl GltfScene {
+    fn vertex_count(&self) -> u64 {
+        self.meshes.iter().map(|m| m.positions.len() as u64).sum()
+    }
+
+    fn triangle_count(&self) -> u64 {
+        self.meshes.iter().map(|m| m.indices.len() as u64).sum()
+    }
+}
+
+/// Loads the default scene of a `.gltf` or `.glb` file within the default
+/// [`Limits`]. See the module documentation for what is imported and how.
+///
+/// Every problem with the file (or a buffer it references) is an
+/// [`Error::Input`] naming `path`.
+pub fn load(path: &Path) -> Result<GltfScene> {
+    load_with_limits(path, &Limits::default())
+}
+
+/// [`load`] within the given limits.
+pub fn load_with_limits(path: &Path, limits: &Limits) -> Result<GltfScene> {
+    let input = |problem: String| Error::input(path, problem);
+    let bytes = read_regular_file(path, limits.bytes).map_err(|e| match e {
+        ReadError::TooLarge(len) => input(exceeded(
+            "the file size",
+            format!("{len} bytes"),
+            "bytes",
+            limits.bytes,
+        )),
+        other => input(other.to_string()),
+    })?;
+    let expect_glb = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    load_bytes(&bytes, folder_of(path), expect_glb, limits).map_err(input)
+}
+
+/// Loads a glTF or GLB held in memory, as if it were a file in `base_dir`
+/// (which relative buffer URIs are resolved in, and confined to). Errors
+/// name `base_dir/<memory>`. Meant for fuzzing and embedding.
+pub fn load_from_bytes(bytes: &[u8], base_dir: &Path, limits: &Limits) -> Result<GltfScene> {
+    load_bytes(bytes, base_dir, false, limits)
+        .map_err(|problem| Error::input(base_dir.join("<memory>"), problem))
+}
+
+/// Loads the glTF files of one scene against one budget: the vertices,
+/// triangles and lights of every file loaded count against the same
+/// [`Limits`], so a scene cannot exceed them by referencing a model many
+/// times. Notes are collected with the file they are about.
+#[derive(Debug)]
+pub struct GltfLoader {
+    remaining: Limits,
+    notes: Vec<String>,
+}
+
+impl GltfLoader {
+    /// A loader with the whole of `limits` to spend.
+    pub fn new(limits: Limits) -> Self {
+        GltfLoader {
+            remaining: limits,
+            notes: Vec::new(),
+        }
+    }
+
+    /// Loads `path` within what remains of the budget, and spends it.
+    pub fn load(&mut self, path: &Path) -> Result<GltfScene> {
+        let scene = load_with_limits(path, &self.remaining)?;
+        // Within the remaining budget by construction, so this cannot fail.
+        let _ = self.charge(
+            scene.vertex_count(),
+            scene.triangle_count(),
+            scene.lights.len() as u64,
+        );
+        self.notes.extend(
+            scene
+                .notes
+                .iter()
+                .map(|note| format!("{}: {note}", path.display())),
+        );
+        Ok(scene)
+    }
+
+    /// Spends budget on what the scene adds besides glTF files (generated
+    /// shapes, its own lights); an error if it does not fit.
+    pub fn charge(&mut self, vertices: u64, triangles: u64, lights: u64) -> Result<(), String> {
+        let r = &mut self.remaining;
+        for (what, amount, left, key) in [
+            ("vertices", vertices, &mut r.vertices, "vertices"),
+            ("triangles", triangles, &mut r.triangles, "triangles"),
+            ("lights", lights, &mut r.lights, "lights"),
+        ] {
+            *left = left.checked_sub(amount).ok_or_else(|| {
+                format!(
+                    "{amount} more {what} exceed what is left of the limit ({left}); raise it with `--limit {key}=N` if the input is trusted"
+                )
+            })?;
+        }
+        Ok(())
+    }
+
+    /// The notes of every file loaded, each naming its file.
+    pub fn notes(&self) -> &[String] {
+        &self.notes
+    }
+}
+
+/// The folder a file's relative references are resolved in.
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// The whole import of one file's bytes; see the module documentation for
+/// the order of the checks.
+fn load_bytes(
+    bytes: &[u8],
+    folder: &Path,
+    expect_glb: bool,
+    limits: &Limits,
+) -> Result<GltfScene, String> {
+    let mut notes = Vec::new();
+    let container = container::split(bytes, expect_glb, &mut notes)?;
+    let mut used_bytes = bytes.len() as u64;
+    let document = container::parse(container.json, &mut used_bytes, limits, &mut notes)?;
+    let parents = graph::check_forest(&document)?;
+    let roots = graph::scene_roots(&document, &parents)?;
+    graph::check_cost(&document, &graph::descendants(&document, &roots), limits)?;
+    let buffers = buffers::load(&document, container.bin, folder, &mut used_bytes, limits)?;
+    guarded(|| import::Importer::new(&document, &buffers, limits, notes).run(&roots))
+        .and_then(|result| result)
+}
+
+/// Runs `f`, turning a panic into the "malformed data" error. Only code of
+/// the `gltf` crate is expected to panic here, and only on inputs our own
+/// checks did not anticipate.
+fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    panic::catch_unwind(AssertUnwindSafe(f)).map_err(|_| PARSER_PANICKED.to_string())
+}
+
+/// The first 80 characters of a text from the file, for messages (data:
+/// URIs can be megabytes long).
+fn abbreviate(text: &str) -> Cow<'_, str> {
+    const KEEP: usize = 80;
+    match text.char_indices().nth(KEEP) {
+        Some((cut, _)) => Cow::Owned(format!("{}…", &text[..cut])),
+        None => Cow::Borrowed(text),
+    }
+}

@@ -1,0 +1,242 @@
+//! Caps on what one input may make gonio hold or draw, and bounded reads of
+//! input files.
+//!
+//! A glTF file declares sizes and counts; a hostile one declares whatever
+//! exhausts the machine. [`Limits`] says how much an input may take, with
+//! defaults that fit a desktop, and the loaders check every declared size
+//! against it *before* allocating for it. `gonio render --limit KEY=VALUE`
+//! raises (or lowers) one cap; see [`Limits::set`].
+
+use std::fs::{self, File};
+use std::io::Read;
+use std::path::Path;
+
+/// How much one scene's inputs may take. Every count is a total over the
+/// scene, so a mesh instanced by many nodes counts once per instance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Bytes of input held while a glTF file loads: the file itself, its
+    /// buffers, and an estimate of its parsed JSON (which can be a hundred
+    /// times larger than its text). Default 1 GiB.
+    pub bytes: u64,
+    /// Vertices of the imported meshes. Default 50 million.
+    pub vertices: u64,
+    /// Triangles of the imported meshes. Default 50 million.
+    pub triangles: u64,
+    /// Nodes of one glTF file. Default 1 million.
+    pub nodes: u64,
+    /// Images plus textures declared by one glTF file (gonio does not
+    /// decode them, but a file is still refused past this). Default 4096.
+    pub textures: u64,
+    /// Lights (each is evaluated at every pixel, so they bound render
+    /// time). Default 1024.
+    pub lights: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            bytes: 1 << 30,
+            vertices: 50_000_000,
+            triangles: 50_000_000,
+            nodes: 1_000_000,
+            textures: 4096,
+            lights: 1024,
+        }
+    }
+}
+
+/// The keys [`Limits::set`] accepts, in the order the docs list them.
+pub const LIMIT_KEYS: [&str; 6] = [
+    "bytes",
+    "vertices",
+    "triangles",
+    "nodes",
+    "textures",
+    "lights",
+];
+
+impl Limits {
+    /// Sets one limit from `KEY=VALUE`, e.g. `triangles=200M` or
+    /// `bytes=4Gi`. VALUE is a whole number with an optional suffix `k`,
+    /// `M`, `G` (powers of 1000) or `Ki`, `Mi`, `Gi` (powers of 1024).
+    pub fn set(&mut self, assignment: &str) -> Result<(), String> {
+        let (key, value) = assignment
+            .split_once('=')
+            .ok_or("expected KEY=VALUE, e.g. triangles=200M")?;
+        let value = parse_amount(value.trim())?;
+        let slot = match key.trim() {
+            "bytes" => &mut self.bytes,
+            "vertices" => &mut self.vertices,
+            "triangles" => &mut self.triangles,
+            "nodes" => &mut self.nodes,
+            "textures" => &mut self.textures,
+            "lights" => &mut self.lights,
+            other => {
+                return Err(format!(
+                    "unknown limit `{other}`; the limits are {}",
+                    LIMIT_KEYS.join(", ")
+                ));
+            }
+        };
+        *slot = value;
+        Ok(())
+    }
+
+    /// Limits with every `KEY=VALUE` of `assignments` applied in order.
+    pub fn from_assignments(assignments: &[String]) -> Result<Self, (String, String)> {
+        let mut limits = Limits::default();
+        for a in assignments {
+            limits.set(a).map_err(|problem| (a.clone(), problem))?;
+        }
+        Ok(limits)
+    }
+}
+
+/// The message for a declared amount over its limit: names what, how much,
+/// the limit, and the flag that raises it.
+pub fn exceeded(what: &str, amount: impl std::fmt::Display, key: &str, limit: u64) -> String {
+    format!(
+        "{what} is {amount}, over the limit of {limit} (raise it with `--limit {key}=N` if the file is trusted)"
+    )
+}
+
+/// Parses `123`, `5k`, `200M`, `4Gi`, ...
+fn parse_amount(text: &str) -> Result<u64, String> {
+    let split = text
+        .find(|c: char| !c.is_ascii_digit() && c != '_')
+        .unwrap_or(text.len());
+    let (digits, suffix) = text.split_at(split);
+    let multiplier: u64 = match suffix {
+        "" => 1,
+        "k" | "K" => 1_000,
+        "M" => 1_000_000,
+        "G" => 1_000_000_000,
+        "Ki" => 1 << 10,
+        "Mi" => 1 << 20,
+        "Gi" => 1 << 30,
+        _ => {
+            return Err(format!(
+                "`{text}` is not a whole number with an optional k, M, G, Ki, Mi or Gi suffix"
+            ));
+        }
+    };
+    let number: u64 = digits
+        .replace('_', "")
+        .parse()
+        .map_err(|_| format!("`{text}` is not a whole number"))?;
+    number
+        .checked_mul(multiplier)
+        .ok_or_else(|| format!("`{text}` is too large"))
+}
+
+/// Why [`read_regular_file`] failed.
+#[derive(Debug)]
+pub enum ReadError {
+    /// Not there, not permitted, an I/O error: the message.
+    Io(String),
+    /// A directory, FIFO, device or other special file.
+    NotRegular,
+    /// Larger than the cap given; its size in bytes.
+    TooLarge(u64),
+}
+
+impl std::fmt::Display for ReadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ReadError::Io(e) => write!(f, "cannot read the file: {e}"),
+            ReadError::NotRegular => f.write_str("is not a regular file"),
+            ReadError::TooLarge(len) => write!(f, "the file has {len} bytes, too many"),
+        }
+    }
+}
+
+/// Reads a whole input file that must be a regular file of at most
+/// `max_bytes` bytes.
+///
+/// The type is checked before opening, because opening a FIFO blocks until
+/// a writer appears and reading a device such as `/dev/zero` never ends;
+/// and again on the open handle, so that what is read is the file that was
+/// checked. The read itself is capped too, in case the file grows.
+pub fn read_regular_file(path: &Path, max_bytes: u64) -> Result<Vec<u8>, ReadError> {
+    let io = |e: std::io::Error| ReadError::Io(e.to_string());
+    require_regular(&fs::metadata(path).map_err(io)?, max_bytes)?;
+    let file = File::open(path).map_err(io)?;
+    let meta = file.metadata().map_err(io)?;
+    require_regular(&meta, max_bytes)?;
+    let mut bytes = Vec::new();
+    // Reserve what the file has now, which the check above bounded.
+    bytes
+        .try_reserve_exact(meta.len() as usize)
+        .map_err(|e| ReadError::Io(e.to_string()))?;
+    file.take(max_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(ReadError::TooLarge(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+fn require_regular(meta: &fs::Metadata, max_bytes: u64) -> Result<(), ReadError> {
+    if !meta.is_file() {
+        return Err(ReadError::NotRegular);
+    }
+    if meta.len() > max_bytes {
+        return Err(ReadError::TooLarge(meta.len()));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn amounts_parse_with_suffixes() {
+        assert_eq!(parse_amount("12").unwrap(), 12);
+        assert_eq!(parse_amount("1_000").unwrap(), 1000);
+        assert_eq!(parse_amount("5k").unwrap(), 5000);
+        assert_eq!(parse_amount("200M").unwrap(), 200_000_000);
+        assert_eq!(parse_amount("4Gi").unwrap(), 4 << 30);
+        assert!(parse_amount("").is_err());
+        assert!(parse_amount("-1").is_err());
+        assert!(parse_amount("3x").is_err());
+        assert!(parse_amount("99999999999999999999").is_err());
+        assert!(parse_amount("99999999999Gi").is_err());
+    }
+
+    #[test]
+    fn limits_are_set_by_key() {
+        let mut limits = Limits::default();
+        limits.set("triangles=200M").unwrap();
+        limits.set(" bytes = 4Gi ").unwrap();
+        assert_eq!(limits.triangles, 200_000_000);
+        assert_eq!(limits.bytes, 4 << 30);
+        let err = limits.set("triangels=1").unwrap_err();
+        assert!(
+            err.contains("triangels") && err.contains("triangles"),
+            "{err}"
+        );
+        assert!(limits.set("nodes").is_err());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn special_files_are_refused() {
+        for path in ["/dev/zero", "/dev/null", "/"] {
+            let err = read_regular_file(Path::new(path), 1 << 20).unwrap_err();
+            assert!(matches!(err, ReadError::NotRegular), "{path}: {err}");
+        }
+    }
+
+    #[test]
+    fn size_is_capped() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f");
+        fs::write(&path, [0u8; 100]).unwrap();
+        assert_eq!(read_regular_file(&path, 100).unwrap().len(), 100);
+        let err = read_regular_file(&path, 99).unwrap_err();
+        assert!(matches!(err, ReadError::TooLarge(100)), "{err}");
+    }
+}

@@ -1,0 +1,205 @@
+//! `gonio brdf` as a user runs it: values, plots, the albedo table, and
+//! one-paragraph errors with exit status 2.
+
+mod common;
+
+use std::f64::consts::FRAC_1_PI;
+use std::process::Output;
+
+fn brdf(args: &[&str]) -> Output {
+    common::gonio().arg("brdf").args(args).output().unwrap()
+}
+
+fn stdout(out: &Output) -> String {
+    assert!(
+        out.status.success(),
+        "gonio brdf failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// The `[r, g, b]` after `LABEL: f_r = ` in the printout.
+fn f_r(text: &str, label: &str) -> [f64; 3] {
+    let prefix = format!("{label}: f_r = [");
+    let line = text
+        .lines()
+        .find_map(|l| l.strip_prefix(&prefix))
+        .unwrap_or_else(|| panic!("no `{prefix}` in {text}"));
+    let numbers: Vec<f64> = line
+        .split(']')
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.trim().parse().unwrap())
+        .collect();
+    [numbers[0], numbers[1], numbers[2]]
+}
+
+#[test]
+fn lambert_prints_k_d_over_pi_exactly() {
+    let out = brdf(&[
+        "--model",
+        "lambert",
+        "--set",
+        "k_d=[0.2, 0.5, 0.9]",
+        "--theta-i",
+        "10",
+        "--theta-o",
+        "70",
+        "--phi-o",
+        "33",
+    ]);
+    let text = stdout(&out);
+    let value = f_r(&text, "lambert");
+    for (v, k_d) in value.into_iter().zip([0.2, 0.5, 0.9]) {
+        // The printout round-trips f64; Lambert is k_d · (1/π), which is
+        // k_d/π to the last bit or within one ulp of it.
+        assert_eq!(v, k_d * FRAC_1_PI, "{text}");
+        assert!((v - k_d / std::f64::consts::PI).abs() <= f64::EPSILON * v);
+    }
+    assert!(text.contains("θ_o = 70°"), "{text}");
+}
+
+#[test]
+fn several_models_and_the_default_mirror_direction() {
+    let out = brdf(&[
+        "--model",
+        "phong-normalized",
+        "--compare",
+        "phong,k_e=10,k_d=0",
+        "--set",
+        "k_s=1",
+        "--set",
+        "k_e=50",
+        "--theta-i",
+        "40",
+        "--albedo",
+        "--gloss",
+    ]);
+    let text = stdout(&out);
+    assert!(text.contains("(mirror direction)"), "{text}");
+    // At the mirror direction normalized Phong is k_d/π + k_s (k_e+2)/(2π).
+    let v = f_r(&text, "phong-normalized")[0];
+    assert!((v - (0.8 * FRAC_1_PI + 52.0 / (2.0 * std::f64::consts::PI))).abs() < 1e-12);
+    // The lecture's Phong at its peak: k_s / cos θ_i.
+    let v = f_r(&text, "phong k_e=10 k_d=0")[0];
+    assert!((v - 1.0 / 40f64.to_radians().cos()).abs() < 1e-12, "{text}");
+    assert!(text.contains("albedo ρ(θ_i = 40°)"), "{text}");
+    assert!(text.contains("20°:") && text.contains("GU"), "{text}");
+}
+
+#[test]
+fn writes_slice_and_albedo_plots_as_png_and_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["png", "svg"] {
+        let slice = dir.path().join(format!("slice.{ext}"));
+        let albedo = dir.path().join(format!("albedo.{ext}"));
+        let out = common::gonio()
+            .args([
+                "brdf",
+                "--model",
+                "lambert",
+                "--compare",
+                "mirror,preset=gold",
+            ])
+            .args(["--compare", "cook-torrance,roughness=0.2,k_s=1,k_d=0"])
+            .arg("--plot-slice")
+            .arg(&slice)
+            .arg("--plot-albedo")
+            .arg(&albedo)
+            .output()
+            .unwrap();
+        stdout(&out);
+        for path in [&slice, &albedo] {
+            if ext == "png" {
+                let image = image::open(path).unwrap().into_rgb8();
+                assert_eq!(image.dimensions(), (960, 600));
+                // Something is drawn: not every pixel is white.
+                assert!(image.pixels().any(|p| p.0 != [255, 255, 255]));
+            } else {
+                let text = std::fs::read_to_string(path).unwrap();
+                assert!(text.starts_with("<svg"), "{}", &text[..text.len().min(80)]);
+                assert!(text.contains("cook-torrance"), "legend missing");
+            }
+        }
+    }
+    // Nothing but the four plots: no temporary files left behind.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 4);
+}
+
+#[test]
+fn bad_input_exits_2_with_one_paragraph() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad_plot = dir.path().join("slice.jpg");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["--model", "phonk"],
+            "unknown reflectance model `phonk`",
+        ),
+        (
+            vec!["--model", "phong", "--set", "rougness=0.2"],
+            "--set rougness=0.2",
+        ),
+        (
+            vec!["--model", "phong", "--set", "k_e=2e6"],
+            "k_e = 2000000 is outside",
+        ),
+        (
+            vec!["--compare", "cook-torrance,distribution=phong"],
+            "unknown distribution",
+        ),
+        (
+            vec!["--model", "lambert", "--theta-i", "200"],
+            "--theta-i 200",
+        ),
+        (vec![], "name at least one material"),
+        (
+            vec![
+                "--model",
+                "lambert",
+                "--plot-slice",
+                bad_plot.to_str().unwrap(),
+            ],
+            ".png or .svg",
+        ),
+    ];
+    for (args, expected) in cases {
+        let out = brdf(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(expected), "{args:?}: {err}");
+        assert_eq!(
+            err.trim_end().lines().count(),
+            1,
+            "{args:?}: not one paragraph: {err}"
+        );
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// Generates the albedo table of `docs/brdf-models.md`:
+/// `cargo test --release --test brdf_cli -- --nocapture print_albedo_table`
+/// (the same as `gonio brdf --albedo-table`). Checks the energy balance the
+/// docs state: the normalized forms never exceed 1 beyond their bound at
+/// the angles of the table, the lecture's Phong does.
+#[test]
+fn print_albedo_table() {
+    let text = stdout(&brdf(&["--albedo-table"]));
+    println!("{text}");
+    let rows: Vec<&str> = text.lines().filter(|l| l.starts_with("| `")).collect();
+    assert!(rows.len() > 30, "{text}");
+    let row = |prefix: &str| *rows.iter().find(|r| r.starts_with(prefix)).unwrap();
+    assert!(row("| `lambert` |").contains("| 1.0000 | 1.0000 | 1.0000 | 1.0000 | 1.0000 |"));
+    assert!(
+        row("| `phong` | k_e=1 |").contains("**"),
+        "the lecture's Phong exceeds 1"
+    );
+    for r in rows
+        .iter()
+        .filter(|r| r.starts_with("| `phong-normalized`"))
+    {
+        assert!(!r.contains("**"), "normalized Phong above 1: {r}");
+    }
+}

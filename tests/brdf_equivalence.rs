@@ -1,0 +1,447 @@
+//! GPU = CPU for every reflectance model, formula by formula.
+//!
+//! A compute shader runs the WGSL the renderer compiles (the same
+//! `compose_brdf_library` output, included, not copied) on ≥ 10⁵ samples
+//! per BRDF variant: directions up to 89.99° and below the horizon,
+//! roughness from 10⁻⁴ to 1, k_e from 0 to 10⁶, η near 1, κ = 0 and large
+//! κ. The f64 reference evaluates the same f32-rounded inputs.
+//!
+//! Tolerance, per sample, derived by backward error analysis: f32
+//! evaluation of a formula equals exact evaluation at inputs perturbed by
+//! a few units of roundoff u = 2⁻²⁴ (every +, −, ×, ÷, sqrt is correctly
+//! rounded in WGSL on Vulkan... within the precisions below), so
+//!
+//!   |f₃₂ − f| ≤ Σ_j max± |f(x ± Δ_j) − f(x)| + N·u·|f| + T·|f|
+//!
+//! where Δ_j moves input j (a direction component, roughness, k_e, η, κ,
+//! ...) by K = 64 roundings (the normalizations, dot products and the half
+//! vector along its path), measured in f64; N = 64 roundings in the
+//! assembly of the result; and T the extra
+//! error Vulkan allows for transcendental functions: `exp`/`exp2`
+//! 3 + 2|x| ulp, `log`/`log2` and therefore `pow` an absolute 2⁻²¹ in the
+//! exponent's logarithm, `acos` (the lecture's Gaussian) 4096 ulp of its
+//! argument's result. The table printed at the end shows, per variant, the
+//! worst error and the worst error/tolerance ratio.
+
+mod common;
+
+use glam::DVec3;
+use gonio::material::brdf::{self, SurfaceFrame};
+use gonio::material::{
+    BrdfVariant, Denominator, Distribution, Fresnel, Geometry, Material, ReflectanceModel,
+};
+use gonio::gpu::layout::GpuMaterial;
+use gonio::gpu::shader_gen::{ShaderKey, compose_brdf_library};
+use gonio::scene::Rgb;
+use std::collections::BTreeSet;
+use wgpu::util::DeviceExt;
+
+const SAMPLES_PER_VARIANT: usize = 100_000;
+const U: f64 = 1.0 / 16_777_216.0;
+const K_INPUT: f64 = 64.0;
+const N_ASSEMBLY: f64 = 64.0;
+
+/// One evaluation: directions (n = +Z, t = +X) and a material.
+#[derive(Clone)]
+struct Sample {
+    wi: DVec3,
+    wo: DVec3,
+    material: Material,
+}
+
+/// A deterministic low-discrepancy sequence (Halton, bases 2..).
+fn halton(mut i: u64, base: u64) -> f64 {
+    let (mut f, mut r) = (1.0, 0.0);
+    while i > 0 {
+        f /= base as f64;
+        r += f * (i % base) as f64;
+        i /= base;
+    }
+    r
+}
+
+fn direction(theta_deg: f64, phi: f64) -> DVec3 {
+    let t = theta_deg.to_radians();
+    DVec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos())
+}
+
+/// Rounds every input to f32, as the GPU receives it.
+fn f32_round(v: DVec3) -> DVec3 {
+    v.as_vec3().as_dvec3()
+}
+
+fn round_material(m: &Material) -> Material {
+    let r = |x: f64| x as f32 as f64;
+    Material {
+        k_a: f32_round(m.k_a),
+        k_d: f32_round(m.k_d),
+        k_s: f32_round(m.k_s),
+        k_e: r(m.k_e),
+        roughness: r(m.roughness),
+        sigma_x: r(m.sigma_x),
+        sigma_y: r(m.sigma_y),
+        eta: f32_round(m.eta),
+        kappa: f32_round(m.kappa),
+        eta_i: r(m.eta_i),
+        eta_t: r(m.eta_t),
+        ..m.clone()
+    }
+}
+
+/// The sample grid for a base material: angles of incidence and view up to
+/// 89.99° (and 5 % of samples below the horizon, up to 100°), azimuths over
+/// the full circle, and parameters over their whole ranges.
+fn samples(base: &Material) -> Vec<Sample> {
+    const ROUGHNESS: [f64; 9] = [1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.5, 0.8, 1.0];
+    const K_E: [f64; 8] = [0.0, 1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6];
+    const ETA: [f64; 6] = [1.0, 1.0001, 1.01, 1.5, 0.37, 2.485];
+    const KAPPA: [f64; 5] = [0.0, 0.5, 2.82, 3.638, 10.0];
+    (0..SAMPLES_PER_VARIANT as u64)
+        .map(|i| {
+            let j = i + 1;
+            let theta = |u: f64| if u < 0.05 { 89.99 + u / 0.05 * 10.0 } else { (u - 0.05) / 0.95 * 89.99 };
+            let wi = direction(theta(halton(j, 2)), halton(j, 3) * std::f64::consts::TAU);
+            let wo = direction(theta(halton(j, 5)), halton(j, 7) * std::f64::consts::TAU);
+            // Exact mirror and coincident configurations, which stress H.
+            let wo = match i % 97 {
+                0 => DVec3::new(-wi.x, -wi.y, wi.z),
+                1 => wi,
+                _ => wo,
+            };
+            let pick = |list: &[f64], k: u64| list[((i / k) % list.len() as u64) as usize];
+            let mut m = base.clone();
+            m.k_d = Rgb::new(0.5, 0.2, 0.0);
+            m.k_s = Rgb::new(1.0, 0.7, 0.3);
+            m.k_e = pick(&K_E, 1);
+            m.roughness = pick(&ROUGHNESS, 3);
+            m.sigma_x = pick(&ROUGHNESS, 5);
+            m.sigma_y = pick(&ROUGHNESS, 7);
+            m.eta = Rgb::new(pick(&ETA, 11), pick(&ETA, 13), pick(&ETA, 17));
+            m.kappa = Rgb::new(pick(&KAPPA, 19), pick(&KAPPA, 23), pick(&KAPPA, 2));
+            m.eta_i = pick(&[1.0, 1.333, 1.5], 29);
+            m.eta_t = pick(&ETA[..4], 31);
+            Sample {
+                wi: f32_round(wi),
+                wo: f32_round(wo),
+                material: round_material(&m),
+            }
+        })
+        .collect()
+}
+
+/// The CPU value: `f_r` (one-sided), and for mirrors the reflectance.
+fn cpu_eval(s: &Sample) -> (Rgb, Rgb) {
+    let frame = SurfaceFrame {
+        n: DVec3::Z,
+        t: DVec3::X,
+        b: DVec3::Y,
+    };
+    let f = s.material.f_r(s.wi, s.wo, &frame);
+    let mirror = if s.material.model == ReflectanceModel::Mirror {
+        brdf::mirror_reflectance(&s.material, s.wo.z)
+    } else {
+        Rgb::ZERO
+    };
+    (f, mirror)
+}
+
+/// The backward-error term: Σ_j max± |f(x ± Δ_j) − f(x)|, the change of
+/// the value when input j moves by K roundings. Direction components move
+/// by K·u in absolute terms (f32 normalization and dot products err
+/// relative to the vector's length, 1); scalar parameters by K·u
+/// relative. Taking the larger one-sided change, not a derivative, also
+/// covers maxima (the specular peak, where the derivative vanishes but
+/// f32 still moves the value) and kinks (`min`, clamps, the horizon).
+fn perturbation_error(s: &Sample, base: (Rgb, Rgb)) -> (Rgb, Rgb) {
+    let step = K_INPUT * U;
+    let mut total = (Rgb::ZERO, Rgb::ZERO);
+    type Perturb = Box<dyn Fn(&mut Sample, f64)>;
+    let mut perturbations: Vec<Perturb> = Vec::new();
+    for axis in 0..3 {
+        perturbations.push(Box::new(move |s: &mut Sample, d: f64| s.wi[axis] += d));
+        perturbations.push(Box::new(move |s: &mut Sample, d: f64| s.wo[axis] += d));
+        perturbations.push(Box::new(move |s: &mut Sample, d: f64| s.material.eta[axis] *= 1.0 + d));
+        perturbations.push(Box::new(move |s: &mut Sample, d: f64| s.material.kappa[axis] *= 1.0 + d));
+    }
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| s.material.k_e *= 1.0 + d));
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| s.material.roughness *= 1.0 + d));
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| s.material.sigma_x *= 1.0 + d));
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| s.material.sigma_y *= 1.0 + d));
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| s.material.eta_i *= 1.0 + d));
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| s.material.eta_t *= 1.0 + d));
+    for p in &perturbations {
+        let mut worst = (Rgb::ZERO, Rgb::ZERO);
+        for d in [step, -step] {
+            let mut moved = s.clone();
+            p(&mut moved, d);
+            let (f, m) = cpu_eval(&moved);
+            worst.0 = worst.0.max((f - base.0).abs());
+            worst.1 = worst.1.max((m - base.1).abs());
+        }
+        total.0 += worst.0;
+        total.1 += worst.1;
+    }
+    total
+}
+
+/// Extra error Vulkan allows for the transcendentals a variant uses,
+/// relative to |f|: pow/exp in the exponent's logarithm (absolute 2⁻²¹ ·
+/// |exponent| → relative), acos's 4096 ulp for the lecture's Gaussian.
+fn transcendental(v: &BrdfVariant, m: &Material) -> f64 {
+    let ln2 = std::f64::consts::LN_2;
+    let pow = 2f64.powi(-21) * ln2;
+    match v.model {
+        ReflectanceModel::Phong
+        | ReflectanceModel::PhongNormalized
+        | ReflectanceModel::BlinnPhong
+        | ReflectanceModel::BlinnPhongNormalized => pow * m.k_e + 5.0 * U,
+        ReflectanceModel::CookTorrance => match v.distribution {
+            Some(Distribution::Blinn) | Some(Distribution::BlinnNormalized) => {
+                let e = -ln2 / m.roughness.cos().ln();
+                pow * e.min(1e7) + 64.0 * U
+            }
+            Some(Distribution::Gaussian) | Some(Distribution::GaussianNormalized) => {
+                // exp(−ln2 (α/m)²) with α = acos(c): a relative error δ of α
+                // gives 2 ln2 (α/m)² δ; δ ≤ 4096 u. α/m is bounded where
+                // the value matters (exp underflows past (α/m)² ≈ 130).
+                2.0 * ln2 * 130.0 * 4096.0 * U
+            }
+            _ => 256.0 * U,
+        },
+        _ => 256.0 * U,
+    }
+}
+
+/// The variants checked: every model with its defaults, every Cook-Torrance
+/// term varied one at a time around the default (Beckmann, Smith, exact
+/// conductor, microfacet denominator), and the mirror with every Fresnel.
+fn variants_under_test() -> Vec<Material> {
+    let mut out: Vec<Material> = ReflectanceModel::ALL.iter().map(|&m| Material::new("v", m)).collect();
+    let ct = Material::new("v", ReflectanceModel::CookTorrance);
+    for &distribution in Distribution::ALL {
+        out.push(Material { distribution, ..ct.clone() });
+        out.push(Material { distribution, geometry: Geometry::VGroove, ..ct.clone() });
+    }
+    for &geometry in Geometry::ALL {
+        out.push(Material { geometry, distribution: Distribution::Ggx, ..ct.clone() });
+    }
+    for &fresnel in Fresnel::ALL {
+        out.push(Material { fresnel, ..ct.clone() });
+        out.push(Material { fresnel, ..Material::new("v", ReflectanceModel::Mirror) });
+    }
+    out.push(Material { denominator: Denominator::Lecture, ..ct.clone() });
+    let mut seen = BTreeSet::new();
+    out.retain(|m| seen.insert(m.variant()));
+    out
+}
+
+/// The compute shader around the renderer's BRDF library.
+fn compute_source(variants: &BTreeSet<BrdfVariant>) -> String {
+    let key = ShaderKey {
+        shading: gonio::scene::ShadingMode::Phong,
+        variants: variants.clone(),
+        light_kinds: BTreeSet::new(),
+    };
+    let mut src = compose_brdf_library(variants, &key.features());
+    let mirror = if key.has_mirror() {
+        "mirror_reflectance(m, s.wo.z)"
+    } else {
+        "vec3<f32>(0.0)"
+    };
+    src.push_str(&format!(
+        r#"
+struct EvalSample {{
+    wi: vec3<f32>,
+    _p0: f32,
+    wo: vec3<f32>,
+    _p1: f32,
+}}
+
+@group(1) @binding(0) var<storage, read> eval_samples: array<EvalSample>;
+@group(1) @binding(1) var<storage, read> eval_materials: array<Material>;
+@group(1) @binding(2) var<storage, read_write> eval_results: array<vec4<f32>>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+    let i = id.x;
+    if i >= arrayLength(&eval_samples) {{
+        return;
+    }}
+    let s = eval_samples[i];
+    let m = eval_materials[i];
+    let frame = SurfaceFrame(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0));
+    eval_results[2u * i] = vec4<f32>(f_r(m, s.wi, s.wo, frame), 0.0);
+    eval_results[2u * i + 1u] = vec4<f32>({mirror}, 0.0);
+}}
+"#
+    ));
+    src
+}
+
+/// Runs the compute shader on `samples`; returns (f_r, mirror) per sample.
+fn gpu_eval(ctx: &gonio::gpu::GpuContext, variant: &BrdfVariant, samples: &[Sample]) -> Vec<([f32; 3], [f32; 3])> {
+    let variants: BTreeSet<BrdfVariant> = [*variant].into();
+    let key = ShaderKey {
+        shading: gonio::scene::ShadingMode::Phong,
+        variants: variants.clone(),
+        light_kinds: BTreeSet::new(),
+    };
+    let src = compute_source(&variants);
+    gonio::gpu::shader_gen::validate(&src).unwrap_or_else(|e| panic!("{}: {e}", variant.describe()));
+    let device = &ctx.device;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("brdf equivalence"),
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: None,
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let inputs: Vec<[f32; 8]> = samples
+        .iter()
+        .map(|s| {
+            let (a, b) = (s.wi.as_vec3(), s.wo.as_vec3());
+            [a.x, a.y, a.z, 0.0, b.x, b.y, b.z, 0.0]
+        })
+        .collect();
+    let materials: Vec<GpuMaterial> = samples.iter().map(|s| GpuMaterial::new(&s.material, &key)).collect();
+    let init = |contents: &[u8], usage| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: None,
+            contents,
+            usage,
+        })
+    };
+    let input_buffer = init(bytemuck::cast_slice(&inputs), wgpu::BufferUsages::STORAGE);
+    let material_buffer = init(bytemuck::cast_slice(&materials), wgpu::BufferUsages::STORAGE);
+    let size = (samples.len() * 2 * 16) as u64;
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(1),
+        entries: &[
+            wgpu::BindGroupEntry { binding: 0, resource: input_buffer.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 1, resource: material_buffer.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 2, resource: output.as_entire_binding() },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(1, &bind_group, &[]);
+        pass.dispatch_workgroups((samples.len() as u32).div_ceil(64), 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
+    ctx.queue.submit([encoder.finish()]);
+    let slice = readback.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+    let bytes = slice.get_mapped_range().expect("mapped").to_vec();
+    let values: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+    values
+        .chunks(2)
+        .map(|p| ([p[0][0], p[0][1], p[0][2]], [p[1][0], p[1][1], p[1][2]]))
+        .collect()
+}
+
+#[derive(Default)]
+struct Stats {
+    max_abs: f64,
+    max_rel: f64,
+    worst_ratio: f64,
+    failures: usize,
+    non_finite: usize,
+    worst: String,
+}
+
+#[test]
+fn every_brdf_variant_matches_its_f64_reference() {
+    use rayon::prelude::*;
+    let renderer = common::gpu_renderer();
+    let ctx = renderer.context();
+    let mut table = Vec::new();
+    let mut failed = Vec::new();
+    for base in variants_under_test() {
+        let variant = base.variant();
+        let samples = samples(&base);
+        let gpu = gpu_eval(ctx, &variant, &samples);
+        let stats = samples
+            .par_iter()
+            .zip(&gpu)
+            .map(|(s, (g_f, g_m))| {
+                let mut st = Stats::default();
+                let (f, mirror) = cpu_eval(s);
+                let (sf, sm) = perturbation_error(s, (f, mirror));
+                let t = transcendental(&variant, &s.material);
+                for (cpu, gpu, sens) in [(f, g_f, sf), (mirror, g_m, sm)] {
+                    for ch in 0..3 {
+                        let (c, g) = (cpu[ch], gpu[ch] as f64);
+                        if !c.is_finite() || !g.is_finite() {
+                            st.non_finite += 1;
+                            continue;
+                        }
+                        // f32 cannot represent values below its smallest normal reliably.
+                        let tol = sens[ch] + (N_ASSEMBLY * U + t) * c.abs() + 1e-37;
+                        let err = (g - c).abs();
+                        st.max_abs = st.max_abs.max(err);
+                        if c.abs() > 1e-30 {
+                            st.max_rel = st.max_rel.max(err / c.abs());
+                        }
+                        let ratio = err / tol;
+                        if ratio > st.worst_ratio {
+                            st.worst_ratio = ratio;
+                            st.worst = format!(
+                                "wi {:?} wo {:?} roughness {} k_e {} eta {} kappa {} sigma {} {}: gpu {g:e} cpu {c:e} tol {tol:e}",
+                                s.wi, s.wo, s.material.roughness, s.material.k_e, s.material.eta, s.material.kappa, s.material.sigma_x, s.material.sigma_y
+                            );
+                        }
+                        st.failures += (ratio > 1.0) as usize;
+                    }
+                }
+                st
+            })
+            .reduce(Stats::default, |a, b| Stats {
+                max_abs: a.max_abs.max(b.max_abs),
+                max_rel: a.max_rel.max(b.max_rel),
+                failures: a.failures + b.failures,
+                non_finite: a.non_finite + b.non_finite,
+                worst: if a.worst_ratio >= b.worst_ratio { a.worst.clone() } else { b.worst.clone() },
+                worst_ratio: a.worst_ratio.max(b.worst_ratio),
+            });
+        let row = format!(
+            "| {:<58} | {:>9.3e} | {:>9.3e} | {:>7.4} | {:>6} | {:>4} |",
+            variant.describe(),
+            stats.max_abs,
+            stats.max_rel,
+            stats.worst_ratio,
+            stats.failures,
+            stats.non_finite
+        );
+        eprintln!("{row}");
+        if stats.failures > 0 || stats.non_finite > 0 {
+            failed.push(format!("{}: {} failures, {} non-finite; worst: {}", variant.describe(), stats.failures, stats.non_finite, stats.worst));
+        }
+        table.push(row);
+    }
+    eprintln!(
+        "\n| variant | max abs error | max rel error | max err/tol | failures | NaN/Inf |\n|---|---|---|---|---|---|\n{}",
+        table.join("\n")
+    );
+    assert!(failed.is_empty(), "GPU and CPU BRDFs disagree:\n{}", failed.join("\n"));
+}

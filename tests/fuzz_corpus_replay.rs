@@ -1,0 +1,275 @@
+//! Replays the committed fuzz corpus (`fuzz/corpus/<target>/*`) through the
+//! same calls the cargo-fuzz targets make (`fuzz/fuzz_targets/harness.rs`),
+//! each under a time limit and a panic check. This is what CI runs: the
+//! fuzzers themselves need nightly Rust and libFuzzer, this needs neither.
+//!
+//! The seed files are generated from the sample models and a few
+//! hand-written inputs by the ignored test `regenerate_seed_corpus`:
+//! `cargo test --release --test fuzz_corpus_replay -- --ignored`.
+//! Inputs the fuzzers found interesting can be added to the same folders.
+
+#[path = "../fuzz/fuzz_targets/harness.rs"]
+mod harness;
+
+use base64::Engine as _;
+use std::panic::{self, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+use std::sync::mpsc;
+use std::time::Duration;
+
+/// Longest one input may take.
+const TIME_LIMIT: Duration = Duration::from_secs(10);
+
+fn corpus_dir(target: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz/corpus")
+        .join(target)
+}
+
+/// Every file of a target's corpus, in name order.
+fn corpus_files(target: &str) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(corpus_dir(target))
+        .unwrap_or_else(|e| panic!("fuzz/corpus/{target}: {e}"))
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.is_file())
+        .collect();
+    files.sort();
+    files
+}
+
+/// Runs `run` on the file's bytes on its own thread; an error describes a
+/// panic or a hang.
+fn replay(path: &Path, run: fn(&[u8])) -> Result<(), String> {
+    let bytes = std::fs::read(path).unwrap();
+    let (send, receive) = mpsc::channel();
+    std::thread::spawn(move || {
+        let outcome = panic::catch_unwind(AssertUnwindSafe(|| run(&bytes)));
+        let _ = send.send(outcome.is_ok());
+    });
+    match receive.recv_timeout(TIME_LIMIT) {
+        Ok(true) => Ok(()),
+        Ok(false) => Err(format!("{}: panicked", path.display())),
+        Err(_) => Err(format!(
+            "{}: took longer than {TIME_LIMIT:?}",
+            path.display()
+        )),
+    }
+}
+
+fn replay_target(target: &str, run: fn(&[u8]), minimum: usize) {
+    let files = corpus_files(target);
+    assert!(
+        files.len() >= minimum,
+        "fuzz/corpus/{target} has {} files, expected at least {minimum}",
+        files.len()
+    );
+    let failures: Vec<String> = files
+        .iter()
+        .filter_map(|path| replay(path, run).err())
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn gltf_corpus_replays_without_panic_or_hang() {
+    replay_target("gltf_load", harness::gltf_load, 10);
+}
+
+#[test]
+fn scene_corpus_replays_without_panic_or_hang() {
+    replay_target("scene_toml", harness::scene_toml, 5);
+}
+
+/// The generated seeds are valid and must load through the fuzz harness's
+/// path (`load_from_bytes`): a seed that fails early would fuzz only the
+/// first checks.
+#[test]
+fn generated_seeds_load() {
+    let handwritten: Vec<&str> = handwritten_gltf_seeds().iter().map(|(n, _)| *n).collect();
+    for path in corpus_files("gltf_load") {
+        let name = path.file_name().unwrap().to_string_lossy();
+        if !(name.starts_with("sample-") || handwritten.contains(&name.as_ref())) {
+            continue;
+        }
+        let bytes = std::fs::read(&path).unwrap();
+        let limits = harness::limits();
+        gonio::scene::gltf_import::load_from_bytes(&bytes, harness::workspace(), &limits)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Seed generation
+
+/// Sample models small enough to be good seeds, with external buffers
+/// embedded as `data:` URIs so that a seed is one self-contained input.
+const SAMPLES: [&str; 7] = [
+    "Box/Box.gltf",
+    "BoxInterleaved/BoxInterleaved.gltf",
+    "Cameras/Cameras.gltf",
+    "MultipleScenes/MultipleScenes.gltf",
+    "SimpleMeshes/SimpleMeshes.gltf",
+    "Triangle/Triangle.gltf",
+    "TriangleWithoutIndices/TriangleWithoutIndices.gltf",
+];
+
+/// `text` with every `"uri": "<file next to the glTF>"` of a `.bin` file
+/// replaced by the file's contents as a `data:` URI.
+fn embed_buffers(text: &str, folder: &Path) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find(".bin\"") {
+        let start = rest[..at].rfind('"').unwrap() + 1;
+        let name = &rest[start..at + 4];
+        let bytes = std::fs::read(folder.join(name)).unwrap();
+        out += &rest[..start];
+        out += "data:application/octet-stream;base64,";
+        out += &base64::engine::general_purpose::STANDARD.encode(bytes);
+        rest = &rest[at + 4..];
+    }
+    out + rest
+}
+
+/// A GLB of `json` and `bin` (chunks padded to 4 bytes as the spec asks).
+fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let mut bin = bin.to_vec();
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let mut file = b"glTF".to_vec();
+    file.extend_from_slice(&2u32.to_le_bytes());
+    file.extend_from_slice(&((12 + 8 + json.len() + 8 + bin.len()) as u32).to_le_bytes());
+    for (kind, data) in [(b"JSON", &json), (b"BIN\0", &bin)] {
+        file.extend_from_slice(&(data.len() as u32).to_le_bytes());
+        file.extend_from_slice(kind);
+        file.extend_from_slice(data);
+    }
+    file
+}
+
+/// Hand-written glTF seeds that reach code the samples do not: sparse
+/// accessors, strips and fans, lights, a node tree, an external buffer.
+fn handwritten_gltf_seeds() -> Vec<(&'static str, Vec<u8>)> {
+    let triangle = std::fs::read_to_string(harness::workspace().join("tri.gltf")).unwrap();
+    let bin = std::fs::read(harness::workspace().join("tri.bin")).unwrap();
+    let glb_json = triangle.replace("\"uri\": \"tri.bin\", ", "");
+    let sparse = triangle.replace(
+        "\"min\": [0, 0, 0]",
+        "\"sparse\": {\"count\": 1, \"indices\": {\"bufferView\": 1, \"componentType\": 5123}, \"values\": {\"bufferView\": 0}}, \"min\": [0, 0, 0]",
+    );
+    let strip = triangle.replace("\"indices\": 1}", "\"indices\": 1, \"mode\": 5}");
+    let fan = triangle.replace("\"indices\": 1}", "\"indices\": 1, \"mode\": 6}");
+    let tree = triangle
+        .replace(
+            "\"scene\": 0,",
+            "\"scene\": 0, \"extensionsUsed\": [\"KHR_lights_punctual\", \"KHR_materials_sheen\"], \"extensions\": {\"KHR_lights_punctual\": {\"lights\": [{\"type\": \"spot\", \"spot\": {\"outerConeAngle\": 0.5}}, {\"type\": \"directional\"}]}},",
+        )
+        .replace(
+            "\"nodes\": [{\"mesh\": 0}]",
+            "\"nodes\": [{\"children\": [1, 2], \"rotation\": [0, 0.7071068, 0, 0.7071068]}, {\"mesh\": 0, \"scale\": [2, 2, 2]}, {\"translation\": [0, 3, 0], \"extensions\": {\"KHR_lights_punctual\": {\"light\": 0}}, \"children\": [3]}, {\"extensions\": {\"KHR_lights_punctual\": {\"light\": 1}}}]",
+        );
+    vec![
+        ("external-buffer.gltf", triangle.clone().into_bytes()),
+        (
+            "subfolder-buffer.gltf",
+            triangle.replace("tri.bin", "sub/tri.bin").into_bytes(),
+        ),
+        ("triangle.glb", glb(&glb_json, &bin)),
+        ("sparse.gltf", sparse.into_bytes()),
+        ("strip.gltf", strip.into_bytes()),
+        ("fan.gltf", fan.into_bytes()),
+        ("tree-lights.gltf", tree.into_bytes()),
+    ]
+}
+
+/// Hand-written scene seeds: every section, every light kind, a glTF
+/// object, and `--set` overrides after the separator.
+fn handwritten_scene_seeds() -> Vec<(&'static str, String)> {
+    let lights = r#"[image]
+width = 64
+height = 48
+
+[[objects]]
+gltf = "tri.gltf"
+
+[[objects]]
+shape = "plane"
+size = 4.0
+segments = 2
+material = "m"
+
+[materials.m]
+model = "lambert"
+k_d = 0.5
+
+[[lights]]
+kind = "point"
+position = [0.0, 2.0, 2.0]
+intensity = 5.0
+range = 10.0
+shadows = true
+
+[[lights]]
+kind = "directional"
+direction = [0.0, -1.0, 0.0]
+irradiance = [1.0, 1.0, 1.0]
+
+[[lights]]
+kind = "spot"
+position = [0.0, 3.0, 0.0]
+direction = [0.0, -1.0, 0.0]
+intensity = 2.0
+inner_cone_deg = 10.0
+outer_cone_deg = 30.0
+
+[ambient]
+radiance = 0.1
+"#;
+    let overrides = format!(
+        "[[objects]]\nshape = \"sphere\"\nsegments = 8\n{}image.width=32\nlights.0.intensity=[1, 2, 3]\nshading.mode=flat\n",
+        harness::OVERRIDES_SEPARATOR
+    );
+    vec![
+        ("lights-and-gltf.toml", lights.to_string()),
+        ("overrides.toml", overrides),
+        ("subfolder-gltf.toml", "[[objects]]\ngltf = \"sub/tri.gltf\"\n".to_string()),
+        ("camera.toml", "[camera]\nposition = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nfov_y_deg = 45.0\n\n[[objects]]\nshape = \"sphere\"\nsegments = 6\n".to_string()),
+    ]
+}
+
+#[test]
+#[ignore = "writes the seed corpus; run by hand after changing it"]
+fn regenerate_seed_corpus() {
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
+    let gltf_dir = corpus_dir("gltf_load");
+    let scene_dir = corpus_dir("scene_toml");
+    std::fs::create_dir_all(&gltf_dir).unwrap();
+    std::fs::create_dir_all(&scene_dir).unwrap();
+    for sample in SAMPLES {
+        let path = assets.join("gltf").join(sample);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let embedded = embed_buffers(&text, path.parent().unwrap());
+        let name = format!("sample-{}", path.file_name().unwrap().to_string_lossy());
+        std::fs::write(gltf_dir.join(name), embedded).unwrap();
+    }
+    std::fs::copy(
+        assets.join("gltf/Box/Box.glb"),
+        gltf_dir.join("sample-Box.glb"),
+    )
+    .unwrap();
+    for (name, bytes) in handwritten_gltf_seeds() {
+        std::fs::write(gltf_dir.join(name), bytes).unwrap();
+    }
+    std::fs::copy(
+        assets.join("scenes/default.toml"),
+        scene_dir.join("default.toml"),
+    )
+    .unwrap();
+    for (name, text) in handwritten_scene_seeds() {
+        std::fs::write(scene_dir.join(name), text).unwrap();
+    }
+}
