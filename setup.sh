@@ -5,11 +5,13 @@
 #     machine has no GPU: mesa-vulkan-drivers, libvulkan1
 #   - for the interactive viewer and its tests under a virtual display:
 #     xvfb, xauth and the X11 client libraries winit loads at run time
+#   - the font plots are labelled with: fonts-dejavu-core
 # Rust itself is not installed here: gonio needs rustc/cargo >= 1.95 (rustup.rs).
 set -euo pipefail
 
 packages=(
   mesa-vulkan-drivers libvulkan1
+  fonts-dejavu-core
   xvfb xauth libxkbcommon-x11-0 libx11-xcb1 libxcursor1 libxi6 libxrandr2
 )
 

@@ -35,18 +35,30 @@ struct Material {
     eta_i: f32,           // dielectric
     eta_t: f32,
     d_norm: f32,          // gaussian-normalized: gaussian_normalization(roughness), from the CPU
-    _pad0: f32,
+    blinn_e: f32,         // blinn, blinn-normalized: blinn_exponent(roughness), from the CPU
 }
 
-// One punctual light; `kind` is LIGHT_* (src/gpu/layout.rs).
+// One punctual light; `kind` is LightKind::id (0 point, 1 directional,
+// 2 spot, 3 area sample). The shadow_* fields describe its shadow map
+// (src/gpu/shadows.rs; read only by shaders/shadows.wgsl).
 struct Light {
     position: vec3<f32>,
     kind: u32,
-    direction: vec3<f32>, // the way the light travels (directional, spot)
+    direction: vec3<f32>, // the way the light travels (directional, spot); an area sample's emitter normal
     range: f32,           // ≤ 0: no range
-    intensity: vec3<f32>, // W/sr (point, spot) or irradiance W/m² (directional)
+    intensity: vec3<f32>, // W/sr (point, spot), L·A/N (area sample) or irradiance W/m² (directional)
     cos_inner: f32,
+    shadow_origin: vec3<f32>, // centre of the perspective / cube shadow map
     cos_outer: f32,
+    shadow_layer: i32,        // first layer in the shadow-map array; < 0: no shadows
+    shadow_projection: u32,   // 0 orthographic, 1 perspective, 2 cube (six layers)
+    shadow_texel: f32,        // world size of a texel: orthographic, or per metre of distance
+    shadow_depth_scale: f32,  // world length → stored depth (1 / depth range or 1 / far)
+    shadow_bias: f32,         // world units
+    shadow_slope_bias: f32,   // texels · tanθ
+    shadow_normal_offset: f32, // texels
+    shadow_pcf_radius: u32,   // (kernel − 1) / 2
+    shadow_uv_scale: f32,     // map size / array side
     _pad0: f32,
     _pad1: f32,
     _pad2: f32,

@@ -33,8 +33,13 @@ fn vs_main(in: VertexIn) -> VertexOut {
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Opposite normals can interpolate to zero: no direction, so only the
     // ambient term remains (the CPU reference does the same).
+    // With shadows: the geometric normal (offset normal of the shadow
+    // lookup) from the derivatives of the interpolated position, which lie
+    // in the triangle's plane.
+    let n_g = cross(dpdx(in.world), dpdy(in.world)); // #if shadows
     let n = normalize_or_zero(in.normal);
     let frame = surface_frame(n, in.tangent); // #if tangents
     let frame = surface_frame(n, any_tangent(n)); // #if !tangents
-    return vec4<f32>(reflected_radiance(materials[in.material], in.world, frame), 1.0);
+    return vec4<f32>(reflected_radiance(materials[in.material], in.world, frame), 1.0); // #if !shadows
+    return vec4<f32>(reflected_radiance(materials[in.material], in.world, frame, n_g), 1.0); // #if shadows
 }

@@ -31,7 +31,10 @@ fn vs_main(in: VertexIn) -> VertexOut {
     let x = in.position; // #if !flat
     var out: VertexOut;
     out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
-    out.radiance = reflected_radiance(materials[in.material], x, frame);
+    out.radiance = reflected_radiance(materials[in.material], x, frame); // #if !shadows
+    // Shadows: looked up here, at the same shading point, offset along the
+    // face normal (flat) or the vertex normal (gouraud), as the reference.
+    out.radiance = reflected_radiance(materials[in.material], x, frame, n); // #if shadows
     return out;
 }
 

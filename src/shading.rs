@@ -34,11 +34,13 @@ pub fn reflected_radiance(
         if v <= 0.0 {
             continue;
         }
-        radiance += material.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
+        radiance +=
+            material.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
     }
     if material.model == ReflectanceModel::Mirror {
         let reflected = mirror_direction(wo, n);
-        radiance += brdf::mirror_reflectance(material, n.dot(wo)) * scene.environment.radiance(reflected);
+        radiance +=
+            brdf::mirror_reflectance(material, n.dot(wo)) * scene.environment.radiance(reflected);
     }
     radiance
 }

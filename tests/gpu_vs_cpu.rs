@@ -21,10 +21,10 @@
 mod common;
 
 use gonio::frame::Frame;
+use gonio::material::{Distribution, Material, ReflectanceModel};
 use gonio::output::compare::{Comparison, JITTER_OFFSETS, Tolerance, compare_with_jitter};
 use gonio::reference;
 use gonio::scene::scene_file::{self, SceneSource};
-use gonio::material::{Distribution, Material, ReflectanceModel};
 use gonio::scene::{Scene, ShadingMode};
 
 const JITTER_PX: f64 = 1.0 / 128.0;
@@ -65,7 +65,9 @@ fn arithmetic_rel(m: &Material) -> f64 {
         ReflectanceModel::Ward => slope(m.sigma_x),
         ReflectanceModel::WardAnisotropic => slope(m.sigma_x.min(m.sigma_y)),
         ReflectanceModel::CookTorrance => match m.distribution {
-            Distribution::Blinn | Distribution::BlinnNormalized => pow(-std::f64::consts::LN_2 / m.roughness.cos().ln()),
+            Distribution::Blinn | Distribution::BlinnNormalized => {
+                pow(-std::f64::consts::LN_2 / m.roughness.cos().ln())
+            }
             Distribution::Gaussian | Distribution::GaussianNormalized => {
                 2.0 * std::f64::consts::LN_2 * 30.0 * 4096.0 * EPS
             }
@@ -190,12 +192,54 @@ fn every_reflectance_model_renders_like_the_reference() {
         ("blinn-phong", &[]),
         ("blinn-phong-normalized", &[]),
         ("ward", &["materials.ball.sigma=0.15"]),
-        ("ward-anisotropic", &["materials.ball.sigma_x=0.05", "materials.ball.sigma_y=0.4"]),
-        ("cook-torrance", &["materials.ball.preset=gold", "materials.ball.k_d=0.1", "materials.ball.roughness=0.25"]),
-        ("cook-torrance", &["materials.ball.distribution=ggx", "materials.ball.fresnel=schlick", "materials.ball.roughness=0.2"]),
-        ("cook-torrance", &["materials.ball.distribution=blinn", "materials.ball.geometry=v-groove", "materials.ball.denominator=lecture", "materials.ball.fresnel=conductor-lecture", "materials.ball.roughness=0.3"]),
-        ("cook-torrance", &["materials.ball.distribution=gaussian-normalized", "materials.ball.preset=glass", "materials.ball.roughness=0.2"]),
-        ("mirror", &["materials.ball.preset=silver", "materials.ball.fresnel=conductor", "environment.zenith=[0.2, 0.4, 1.0]", "environment.horizon=[1.0, 0.9, 0.8]", "environment.ground=[0.1, 0.08, 0.05]"]),
+        (
+            "ward-anisotropic",
+            &["materials.ball.sigma_x=0.05", "materials.ball.sigma_y=0.4"],
+        ),
+        (
+            "cook-torrance",
+            &[
+                "materials.ball.preset=gold",
+                "materials.ball.k_d=0.1",
+                "materials.ball.roughness=0.25",
+            ],
+        ),
+        (
+            "cook-torrance",
+            &[
+                "materials.ball.distribution=ggx",
+                "materials.ball.fresnel=schlick",
+                "materials.ball.roughness=0.2",
+            ],
+        ),
+        (
+            "cook-torrance",
+            &[
+                "materials.ball.distribution=blinn",
+                "materials.ball.geometry=v-groove",
+                "materials.ball.denominator=lecture",
+                "materials.ball.fresnel=conductor-lecture",
+                "materials.ball.roughness=0.3",
+            ],
+        ),
+        (
+            "cook-torrance",
+            &[
+                "materials.ball.distribution=gaussian-normalized",
+                "materials.ball.preset=glass",
+                "materials.ball.roughness=0.2",
+            ],
+        ),
+        (
+            "mirror",
+            &[
+                "materials.ball.preset=silver",
+                "materials.ball.fresnel=conductor",
+                "environment.zenith=[0.2, 0.4, 1.0]",
+                "environment.horizon=[1.0, 0.9, 0.8]",
+                "environment.ground=[0.1, 0.08, 0.05]",
+            ],
+        ),
     ];
     for (model, extra) in models {
         let mut sets = vec![format!("materials.ball.model={model}")];

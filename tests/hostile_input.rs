@@ -1307,6 +1307,30 @@ fn scene_files(c: &mut Corpus) {
     );
 }
 
+/// Inputs the fuzzers found, reduced to what triggers them. Each was a
+/// panic inside the `gltf` crate that the loader now prevents by a check.
+fn fuzz_findings(c: &mut Corpus) {
+    const CLASS: &str = "fuzz-found";
+    // `Camera::projection` unwraps the object its `type` names.
+    for (kind, other) in [
+        ("perspective", "orthographic"),
+        ("orthographic", "perspective"),
+    ] {
+        let camera = format!(
+            "\"cameras\": [{{\"type\": \"{kind}\", \"{other}\": {{\"xmag\": 1, \"ymag\": 1, \"zfar\": 100, \"znear\": 0.01, \"yfov\": 0.7}}}}]"
+        );
+        let text = with_top_level(&embedded(|t| t), &camera);
+        let text = swap(&text, "{\"mesh\": 0}", "{\"mesh\": 0, \"camera\": 0}");
+        let needle = format!("cameras[0] has type \"{kind}\" but no `{kind}` object");
+        c.gltf(
+            CLASS,
+            &format!("camera-{kind}-without-object.gltf"),
+            text,
+            &[&needle],
+        );
+    }
+}
+
 fn corpus(dir: &Path) -> Vec<Case> {
     let mut c = Corpus::new(dir);
     glb_container(&mut c);
@@ -1320,6 +1344,7 @@ fn corpus(dir: &Path) -> Vec<Case> {
     non_finite(&mut c);
     extensions(&mut c);
     scene_files(&mut c);
+    fuzz_findings(&mut c);
     c.cases
 }
 

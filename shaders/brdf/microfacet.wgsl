@@ -3,8 +3,9 @@
 // Term"; Cook & Torrance 1982; Walter et al. 2007).
 // f64 twin: src/material/brdf/microfacet.rs (same names, same order).
 // Uses phong.wgsl (COS_FLOOR, LN_2, EXP_CUTOFF, exp_cutoff, cos_power).
-// Distributions take (roughness, cos_h = N·H), are 0 for cos_h ≤ 0 and
-// clamp cos_h to ≤ 1 (rounding of unit vectors).
+// Distributions take (roughness, cos_h = N·H, sin2_h = |N × H|²), are 0
+// for cos_h ≤ 0 and clamp cos_h to ≤ 1 (rounding of unit vectors).
+// sin2_h keeps small angles that cos_h, rounded to 1 in f32, loses.
 
 // H = (I + V) / |I + V|, or the zero vector for I = −V (undefined): then
 // N·H = I·H = V·H = 0, so D = 0, G1 = 0 and the lobe is 0.
@@ -12,75 +13,65 @@ fn half_vector(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     return normalize_or_zero(wi + wo);
 }
 
-// Beckmann: exp(−tan²α / m²) / (π m² cos⁴α), normalized. Exponent tested
-// against −80 before dividing (no tan² overflow, no ∞·0 as cos_h → 0);
-// past the test cos² > 1/81, value ≤ 1/(π m²) = 3.2e7 at m = 1e-4.
-fn d_beckmann(m: f32, cos_h: f32) -> f32 {
+// Beckmann: exp(−tan²α / m²) / (π m² cos⁴α), normalized, tan² from
+// sin2_h = |N × H|² (cos_h rounds to 1 within 3.5e-4 rad of the peak).
+// Exponent tested against −80 before dividing (no tan² overflow, no ∞·0 as
+// cos_h → 0); past the test cos² > 1/81, value ≤ 1/(π m²) = 3.2e7 at m = 1e-4.
+fn d_beckmann(m: f32, cos_h: f32, sin2_h: f32) -> f32 {
     if cos_h <= 0.0 {
         return 0.0;
     }
     let cos_hc = min(cos_h, 1.0); // rounding can pass 1
     let cos2 = cos_hc * cos_hc;
-    let sin2 = 1.0 - cos2;
     let m2 = m * m;
-    if sin2 >= EXP_CUTOFF * cos2 * m2 {
+    if sin2_h >= EXP_CUTOFF * cos2 * m2 {
         return 0.0; // exponent ≤ −80
     }
-    let exponent = -sin2 / (cos2 * m2); // in (−80, 0]; cos2 * m2 > 0 here
+    let exponent = -sin2_h / (cos2 * m2); // in (−80, 0]; cos2 * m2 > 0 here
     return exp_cutoff(exponent) / (PI * m2 * cos2 * cos2);
 }
 
 // GGX / Trowbridge-Reitz (Walter 2007): α² / (π ((α² − 1) cos² + 1)²), the
-// bracket as α² cos² + sin² (in f32, α² − 1 rounds to −1 for α < 2.4e-4
-// and the bracket would be 0 at cos = 1). Bracket ≥ min(α², 1).
-fn d_ggx(alpha: f32, cos_h: f32) -> f32 {
+// bracket as α² cos² + sin2_h (in f32, α² − 1 rounds to −1 for α < 2.4e-4
+// and the bracket would be 0 at cos = 1). Bracket ≥ about min(α², 1).
+fn d_ggx(alpha: f32, cos_h: f32, sin2_h: f32) -> f32 {
     if cos_h <= 0.0 {
         return 0.0;
     }
     let cos_hc = min(cos_h, 1.0); // rounding can pass 1
     let cos2 = cos_hc * cos_hc;
-    let sin2 = 1.0 - cos2;
     let alpha2 = alpha * alpha;
-    let d = alpha2 * cos2 + sin2; // = (α² − 1) cos² + 1
+    let d = alpha2 * cos2 + sin2_h; // = (α² − 1) cos² + 1
     return alpha2 / (PI * d * d);
 }
 
-// e = −ln 2 / ln(cos m), the exponent of the lecture's Blinn distribution
-// (½ at α = m). −ln cos m = −½ ln(1 − x), x = sin² m. No log1p in WGSL:
-// for x < 0.1 the series x + x²/2 + … + x⁸/8 (truncation < 1.2e-9
-// relative; log(1 − x) would cancel for small m), log above. (Rust: ln_1p.)
-fn blinn_exponent(m: f32) -> f32 {
-    let sin_m = sin(m);
-    let x = sin_m * sin_m;
-    var neg_ln_2x: f32; // −2 ln cos m = −ln(1 − x)
-    if x < 0.1 {
-        neg_ln_2x = x * (1.0 + x * (0.5 + x * (1.0 / 3.0 + x * (0.25 + x * (0.2 + x * (1.0 / 6.0 + x * (1.0 / 7.0 + x * 0.125)))))));
-    } else {
-        neg_ln_2x = -log(1.0 - x);
-    }
-    let neg_ln_cos = 0.5 * neg_ln_2x; // −ln cos m
-    return LN_2 / neg_ln_cos;
-}
-
 // The lecture's Blinn: cos^(−ln 2 / ln cos m) α, peak 1, ½ at α = m (m an
-// angle); not normalized. cos_power: 0 for cos_h ≤ 0, cut off below e^−80.
-fn d_blinn_lecture(m: f32, cos_h: f32) -> f32 {
-    return cos_power(cos_h, blinn_exponent(m));
-}
-
-// Blinn normalized: ((e + 2) / (2π)) cos^e α. ≤ 2.2e7 at m = 1e-4.
-fn d_blinn_normalized(m: f32, cos_h: f32) -> f32 {
-    let e = blinn_exponent(m);
-    return (e + 2.0) * 0.5 * FRAC_1_PI * cos_power(cos_h, e);
-}
-
-// The lecture's Gaussian: exp(−ln 2 (α/m)²), α = acos(N·H), peak 1, ½ at
-// α = m; not normalized. cos_h ≤ 1 before acos (NaN past 1); cut off below e^−80.
-fn d_gaussian_lecture(m: f32, cos_h: f32) -> f32 {
+// angle); not normalized. As exp(e · ½ ln(1 − sin²α)) from sin2_h: e
+// reaches 1.4e8 at m = 1e-4 where cos has no precision left in f32.
+// 0 for cos_h ≤ 0, cut off below e^−80.
+// Takes e = blinn_exponent(m), computed once on the CPU in f64 and passed
+// in the material buffer (blinn_e): WGSL's sin is accurate to only 2^-11.
+fn d_blinn_lecture(e: f32, cos_h: f32, sin2_h: f32) -> f32 {
     if cos_h <= 0.0 {
         return 0.0;
     }
-    let alpha = acos(min(cos_h, 1.0)); // min: acos is NaN past 1
+    return exp_cutoff(e * ln_cos(cos_h, min(sin2_h, 1.0)));
+}
+
+
+// Blinn normalized: ((e + 2) / (2π)) cos^e α. ≤ 2.2e7 at m = 1e-4.
+fn d_blinn_normalized(e: f32, cos_h: f32, sin2_h: f32) -> f32 {
+    return (e + 2.0) * 0.5 * FRAC_1_PI * d_blinn_lecture(e, cos_h, sin2_h);
+}
+
+// The lecture's Gaussian: exp(−ln 2 (α/m)²), α = atan2(|N × H|, N·H)
+// (accurate near the peak, where acos(cos_h) is not), peak 1, ½ at α = m;
+// not normalized. Cut off below e^−80.
+fn d_gaussian_lecture(m: f32, cos_h: f32, sin2_h: f32) -> f32 {
+    if cos_h <= 0.0 {
+        return 0.0;
+    }
+    let alpha = atan2(sqrt(max(sin2_h, 0.0)), cos_h);
     let ratio = alpha / m;
     return exp_cutoff(-LN_2 * ratio * ratio);
 }
@@ -88,9 +79,10 @@ fn d_gaussian_lecture(m: f32, cos_h: f32) -> f32 {
 // The Gaussian normalized: norm · exp(−ln 2 (α/m)²). `norm` is
 // gaussian_normalization(m), computed on the CPU in f64 (Rust only; it is
 // not a WGSL function) and passed in the material buffer (d_norm).
-fn d_gaussian_normalized(m: f32, cos_h: f32, norm: f32) -> f32 {
-    return norm * d_gaussian_lecture(m, cos_h);
+fn d_gaussian_normalized(m: f32, cos_h: f32, sin2_h: f32, norm: f32) -> f32 {
+    return norm * d_gaussian_lecture(m, cos_h, sin2_h);
 }
+
 
 // Smith G1 for Beckmann, Walter et al. 2007's rational approximation (as
 // Mitsuba): a = 1/(m tanθ_v); a ≥ 1.6 → 1; else
@@ -125,8 +117,8 @@ fn g1_ggx(alpha: f32, cos_v: f32, cos_vh: f32) -> f32 {
 
 // Beckmann slope matching the lecture's Blinn of angle m: sqrt(2 / (e + 2))
 // (equal peaks of the normalized lobes; Walter 2007's e = 2/m_b² − 2).
-fn beckmann_slope_of_blinn(m: f32) -> f32 {
-    return sqrt(2.0 / (blinn_exponent(m) + 2.0));
+fn beckmann_slope_of_blinn(e: f32) -> f32 {
+    return sqrt(2.0 / (e + 2.0));
 }
 
 // Beckmann slope matching the lecture's Gaussian of angle m: m / sqrt(ln 2)

@@ -65,7 +65,7 @@ fn phong_lecture(k_e: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> f32 {
 // (H = 0 for I = −V, where the lobe is 0; normalize would give NaN).
 fn blinn_phong_lecture(k_e: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> f32 {
     let h = normalize_or_zero(wi + wo);
-    return cos_power(dot(h, n), k_e) / max(dot(n, wi), COS_FLOOR);
+    return cos_power_precise(dot(n, h), sin2_between(n, h), k_e) / max(dot(n, wi), COS_FLOOR);
 }
 
 // Normalized Phong (Lewis 1994): ((k_e + 2) / (2π)) (R(I)·V)^k_e.
@@ -82,8 +82,42 @@ fn phong_normalized(k_e: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> f32
 // pairs (≤ 1.6e5 / 4e-12 = 4e16).
 fn blinn_phong_normalized(k_e: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> f32 {
     let h = normalize_or_zero(wi + wo);
-    let d = (k_e + 2.0) * 0.5 * FRAC_1_PI * cos_power(dot(n, h), k_e);
+    let d = (k_e + 2.0) * 0.5 * FRAC_1_PI * cos_power_precise(dot(n, h), sin2_between(n, h), k_e);
     let cos_ih = max(dot(wi, h), COS_FLOOR); // I·H = V·H ≥ 0; 0 only for I = −V
     let cos_max = max(max(dot(n, wi), dot(n, wo)), COS_FLOOR); // both grazing
     return d / (4.0 * cos_ih * cos_max);
+}
+
+// sin²θ = |N × H|², accurate for small angles. Twin: sin2_between.
+fn sin2_between(n: vec3<f32>, h: vec3<f32>) -> f32 {
+    let c = cross(n, h);
+    return dot(c, c);
+}
+
+// −ln(1 − x) for x in [0, 1]: the series x + x²/2 + … + x⁸/8 below 0.1
+// (truncation < 1.2e-9 relative), log above. (Rust: ln_1p.)
+fn neg_ln_1m(x: f32) -> f32 {
+    if x < 0.1 {
+        return x * (1.0 + x * (0.5 + x * (1.0 / 3.0 + x * (0.25 + x * (0.2 + x * (1.0 / 6.0 + x * (1.0 / 7.0 + x * 0.125)))))));
+    }
+    return -log(1.0 - x);
+}
+
+// ln cos θ: ½ ln(1 − sin²θ) for small angles, log(cos θ) for large ones.
+fn ln_cos(cos: f32, sin2: f32) -> f32 {
+    if sin2 < 0.5 {
+        return -0.5 * neg_ln_1m(sin2);
+    }
+    return log(cos);
+}
+
+// cos^k_e θ from cos θ and sin²θ (ln_cos): accurate near the peak.
+fn cos_power_precise(cos: f32, sin2: f32, k_e: f32) -> f32 {
+    if cos <= 0.0 {
+        return 0.0;
+    }
+    if k_e == 0.0 {
+        return 1.0;
+    }
+    return exp_cutoff(k_e * ln_cos(cos, min(sin2, 1.0)));
 }

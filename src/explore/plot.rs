@@ -9,16 +9,20 @@
 use super::Channel;
 use super::albedo::AlbedoEstimate;
 use super::slice::{Quantity, Slice};
+use crate::output::AtomicFile;
 use crate::{Error, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use std::io::{Cursor, Write};
+use std::io::Cursor;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 /// Where Debian's `fonts-dejavu-core` puts DejaVu Sans.
 pub const FONT_PATH: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+/// Upper end of the albedo axis.
+const ALBEDO_CLIP: f64 = 3.0;
 
 /// Size of every plot, in pixels (SVG user units).
 const SIZE: (u32, u32) = (960, 600);
@@ -51,9 +55,8 @@ pub enum PlotFormat {
 /// A plot destination claimed before any work is done, so a bad path fails
 /// first and a failure leaves no partial file.
 pub struct PlotFile {
-    path: PathBuf,
     format: PlotFormat,
-    temp: tempfile::NamedTempFile,
+    file: AtomicFile,
 }
 
 impl PlotFile {
@@ -74,39 +77,19 @@ impl PlotFile {
                 ));
             }
         };
-        if path.is_dir() {
-            return Err(Error::output(path, "it is a directory"));
-        }
         load_font()?;
-        let dir = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        let temp = tempfile::Builder::new()
-            .prefix(".gonio-")
-            .suffix(".partial")
-            .tempfile_in(dir)
-            .map_err(|e| {
-                Error::output(
-                    path,
-                    format!("cannot create a file in {}: {e}", dir.display()),
-                )
-            })?;
-        Ok(PlotFile {
-            path: path.to_path_buf(),
-            format,
-            temp,
-        })
+        let file = AtomicFile::create(path)?;
+        Ok(PlotFile { format, file })
     }
 
     /// The final path.
     pub fn path(&self) -> &Path {
-        &self.path
+        self.file.path()
     }
 
     /// Draws `plot` and moves the file into place.
-    pub fn write(mut self, plot: &impl Plot) -> Result<()> {
-        let fail = |e: String| Error::output(&self.path, e);
+    pub fn write(self, plot: &impl Plot) -> Result<()> {
+        let fail = |e: String| Error::output(self.file.path(), e);
         let bytes = match self.format {
             PlotFormat::Svg => {
                 let mut svg = String::new();
@@ -134,20 +117,7 @@ impl PlotFile {
                 out.into_inner()
             }
         };
-        let io = |e: std::io::Error| Error::output(&self.path, e.to_string());
-        self.temp.write_all(&bytes).map_err(io)?;
-        self.temp.as_file().sync_all().map_err(io)?;
-        // The temporary file is private (0600); a plot is for sharing.
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            let public = std::fs::Permissions::from_mode(0o644);
-            self.temp.as_file().set_permissions(public).map_err(io)?;
-        }
-        self.temp
-            .persist(&self.path)
-            .map_err(|e| Error::output(&self.path, e.error.to_string()))?;
-        Ok(())
+        self.file.commit(&bytes)
     }
 }
 
@@ -466,20 +436,25 @@ impl Plot for AlbedoPlot {
         if !self.note.is_empty() {
             line = format!("{}; {line}", self.note);
         }
-        let (fw, _) = footer.dim_in_pixel();
-        let style =
-            TextStyle::from(("sans-serif", 15).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
-        footer
-            .draw_text(&line, &style, (fw as i32 / 2, 4))
-            .map_err(err)?;
-
         let top = self
             .series
             .iter()
             .flat_map(|(_, e)| e.iter().map(|e| self.channel.of(e.value)))
             .filter(|v| v.is_finite())
             .fold(1.0, f64::max);
-        let y_max = 1.1 * top;
+        // The lecture's forms diverge at grazing incidence (ρ ≈ 39 for Phong
+        // k_e = 1 at 89°): above 3 the curves are clipped, so that the
+        // region around ρ = 1 stays readable.
+        let y_max = (1.1 * top).min(ALBEDO_CLIP);
+        if top > ALBEDO_CLIP {
+            line += &format!("; clipped at ρ = {ALBEDO_CLIP}");
+        }
+        let (fw, _) = footer.dim_in_pixel();
+        let style =
+            TextStyle::from(("sans-serif", 15).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
+        footer
+            .draw_text(&line, &style, (fw as i32 / 2, 4))
+            .map_err(err)?;
         let mut chart = ChartBuilder::on(&area)
             .margin(12)
             .x_label_area_size(48)
@@ -492,6 +467,7 @@ impl Plot for AlbedoPlot {
             .y_desc("ρ(θ_i)")
             .x_labels(10)
             .x_label_formatter(&|x| format!("{x:.0}"))
+            .y_label_formatter(&|y| number(*y))
             .label_style(("sans-serif", 15))
             .axis_desc_style(("sans-serif", 17))
             .light_line_style(RGBColor(235, 235, 235))
@@ -524,7 +500,7 @@ impl Plot for AlbedoPlot {
         }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
+            .position(SeriesLabelPosition::UpperLeft)
             .label_font(("sans-serif", 15))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)

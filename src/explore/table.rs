@@ -85,6 +85,14 @@ pub const ROWS: &[(&str, &str)] = &[
         "",
     ),
     (
+        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=blinn-normalized,geometry=smith,roughness=1",
+        "Smith G of the matched Beckmann slope",
+    ),
+    (
+        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=gaussian-normalized,geometry=smith,roughness=1",
+        "",
+    ),
+    (
         "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=gaussian-normalized,geometry=smith,roughness=0.3",
         "",
     ),

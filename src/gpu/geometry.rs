@@ -110,7 +110,8 @@ impl GeometryData {
             tangents,
             shading_point: true,
         };
-        let mut words = Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
+        let mut words =
+            Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
         for mesh in &scene.meshes {
             for t in 0..mesh.indices.len() {
                 let corners = mesh.triangle(t);

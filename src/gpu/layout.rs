@@ -3,7 +3,7 @@
 //! follow WGSL's layout rules (vec3 aligned to 16 bytes).
 
 use super::shader_gen::ShaderKey;
-use crate::material::brdf::microfacet::gaussian_normalization;
+use crate::material::brdf::microfacet::{blinn_exponent, gaussian_normalization};
 use crate::material::{Distribution, Material, ReflectanceModel};
 use crate::scene::{Light, Scene};
 use bytemuck::{Pod, Zeroable};
@@ -42,10 +42,12 @@ pub struct GpuMaterial {
     pub eta_i: f32,
     pub eta_t: f32,
     pub d_norm: f32,
-    pub _pad0: f32,
+    pub blinn_e: f32,
 }
 
-/// `Light` (storage buffer element, 64 bytes).
+/// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
+/// filled by [`super::shadows::ShadowPlan::apply`]; `shadow_layer` is −1
+/// for a light without a shadow map.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuLight {
@@ -55,8 +57,28 @@ pub struct GpuLight {
     pub range: f32,
     pub intensity: [f32; 3],
     pub cos_inner: f32,
+    pub shadow_origin: [f32; 3],
     pub cos_outer: f32,
+    pub shadow_layer: i32,
+    pub shadow_projection: u32,
+    pub shadow_texel: f32,
+    pub shadow_depth_scale: f32,
+    pub shadow_bias: f32,
+    pub shadow_slope_bias: f32,
+    pub shadow_normal_offset: f32,
+    pub shadow_pcf_radius: u32,
+    pub shadow_uv_scale: f32,
     pub _pad: [f32; 3],
+}
+
+/// `ShadowView` (storage buffer element, 80 bytes): one layer of the
+/// shadow-map array.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuShadowView {
+    pub clip_from_world: [[f32; 4]; 4],
+    pub origin: [f32; 3],
+    pub depth_scale: f32,
 }
 
 fn f32x3(v: glam::DVec3) -> [f32; 3] {
@@ -90,6 +112,18 @@ impl GpuMaterial {
     /// `m` as the GPU sees it: `m` must be an effective material (roughness
     /// floor applied), `key` the scene's shader key (for the variant index).
     pub fn new(m: &Material, key: &ShaderKey) -> Self {
+        // Derived from the material alone, computed here in f64 rather than
+        // on the GPU (see d_blinn_lecture: WGSL's sin is not accurate enough).
+        let ct = m.model == ReflectanceModel::CookTorrance;
+        let blinn_e = if ct
+            && matches!(
+                m.distribution,
+                Distribution::Blinn | Distribution::BlinnNormalized
+            ) {
+            blinn_exponent(m.roughness) as f32
+        } else {
+            0.0
+        };
         let d_norm = if m.model == ReflectanceModel::CookTorrance
             && m.distribution == Distribution::GaussianNormalized
         {
@@ -111,7 +145,7 @@ impl GpuMaterial {
             eta_i: m.eta_i as f32,
             eta_t: m.eta_t as f32,
             d_norm,
-            _pad0: 0.0,
+            blinn_e,
         }
     }
 }
@@ -121,6 +155,7 @@ impl From<&Light> for GpuLight {
         let mut g = GpuLight::zeroed();
         g.kind = light.kind().id();
         g.range = -1.0;
+        g.shadow_layer = -1;
         match *light {
             Light::Point {
                 position,
@@ -156,6 +191,16 @@ impl From<&Light> for GpuLight {
                 g.cos_outer = outer_cone_deg.to_radians().cos() as f32;
                 g.range = range.unwrap_or(-1.0) as f32;
             }
+            Light::AreaSample {
+                position,
+                normal,
+                intensity,
+                ..
+            } => {
+                g.position = f32x3(position);
+                g.direction = f32x3(normal);
+                g.intensity = f32x3(intensity);
+            }
         }
         g
     }
@@ -180,5 +225,20 @@ mod tests {
         assert_eq!(size_of("Globals"), std::mem::size_of::<GpuGlobals>());
         assert_eq!(size_of("Material"), std::mem::size_of::<GpuMaterial>());
         assert_eq!(size_of("Light"), std::mem::size_of::<GpuLight>());
+        let shadows = naga::front::wgsl::parse_str(&format!(
+            "{}{}",
+            crate::gpu::shader_gen::sources::COMMON,
+            crate::gpu::shader_gen::sources::SHADOW_LOOKUP
+        ))
+        .unwrap();
+        let (_, view) = shadows
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some("ShadowView"))
+            .unwrap();
+        assert_eq!(
+            view.inner.size(shadows.to_ctx()) as usize,
+            std::mem::size_of::<GpuShadowView>()
+        );
     }
 }

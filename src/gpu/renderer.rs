@@ -4,11 +4,17 @@
 //! in alpha (cleared to 0, written as 1), read back exactly, with no
 //! multisampling, so each pixel is the surface seen at its centre, as in
 //! the CPU reference.
+//!
+//! When a light casts shadows, depth-only passes fill its shadow maps
+//! first (one pass per array layer, [`super::shadows`]), and the scene
+//! pipeline gets a second bind group with the maps; otherwise neither the
+//! passes nor the bind group nor any shadow code exist.
 
 use super::GpuContext;
 use super::geometry::{GeometryData, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::shader_gen::{self, ShaderKey};
+use super::shadows::{self, Projection, ShadowPlan};
 use super::timing::{Clock, Timings};
 use crate::frame::Frame;
 use crate::scene::Scene;
@@ -28,6 +34,15 @@ pub struct GpuRenderer {
     bind_group_layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
     pipelines: HashMap<ShaderKey, wgpu::RenderPipeline>,
+    /// Group 1 of a scene pipeline with shadows: maps, sampler, layers.
+    shadow_bind_group_layout: wgpu::BindGroupLayout,
+    shadow_pipeline_layout: wgpu::PipelineLayout,
+    shadow_sampler: wgpu::Sampler,
+    /// The depth-only passes: layers in group 0.
+    pass_bind_group_layout: wgpu::BindGroupLayout,
+    pass_pipeline_layout: wgpu::PipelineLayout,
+    /// One per (vertex stride, radial depth).
+    pass_pipelines: HashMap<(u64, bool), wgpu::RenderPipeline>,
 }
 
 impl GpuRenderer {
@@ -68,12 +83,131 @@ impl GpuRenderer {
                 bind_group_layouts: &[Some(&bind_group_layout)],
                 immediate_size: 0,
             });
+        let shadow_bind_group_layout =
+            ctx.device
+                .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some("gonio shadow maps"),
+                    entries: &[
+                        entry(
+                            0,
+                            wgpu::BindingType::Texture {
+                                sample_type: wgpu::TextureSampleType::Depth,
+                                view_dimension: wgpu::TextureViewDimension::D2Array,
+                                multisampled: false,
+                            },
+                        ),
+                        entry(
+                            1,
+                            wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                        ),
+                        entry(2, storage),
+                    ],
+                });
+        let shadow_pipeline_layout =
+            ctx.device
+                .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: Some("gonio scene with shadows"),
+                    bind_group_layouts: &[
+                        Some(&bind_group_layout),
+                        Some(&shadow_bind_group_layout),
+                    ],
+                    immediate_size: 0,
+                });
+        // Nearest texel, hardware depth comparison: 1 where the receiver's
+        // depth is ≤ the stored occluder depth (lit).
+        let shadow_sampler = ctx.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("gonio shadow compare"),
+            address_mode_u: wgpu::AddressMode::ClampToEdge,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            address_mode_w: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Nearest,
+            min_filter: wgpu::FilterMode::Nearest,
+            compare: Some(wgpu::CompareFunction::LessEqual),
+            ..Default::default()
+        });
+        let pass_bind_group_layout =
+            ctx.device
+                .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some("gonio shadow pass"),
+                    entries: &[entry(0, storage)],
+                });
+        let pass_pipeline_layout =
+            ctx.device
+                .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: Some("gonio shadow pass"),
+                    bind_group_layouts: &[Some(&pass_bind_group_layout)],
+                    immediate_size: 0,
+                });
         GpuRenderer {
             ctx,
             bind_group_layout,
             pipeline_layout,
             pipelines: HashMap::new(),
+            shadow_bind_group_layout,
+            shadow_pipeline_layout,
+            shadow_sampler,
+            pass_bind_group_layout,
+            pass_pipeline_layout,
+            pass_pipelines: HashMap::new(),
         }
+    }
+
+    /// The depth-only pipeline of the shadow passes for a vertex stream of
+    /// `stride` bytes (position at offset 0): orthographic layers store
+    /// clip z (no fragment shader), radial layers the distance to the light.
+    fn pass_pipeline(&mut self, stride: u64, radial: bool) -> &wgpu::RenderPipeline {
+        let device = &self.ctx.device;
+        let layout = &self.pass_pipeline_layout;
+        self.pass_pipelines
+            .entry((stride, radial))
+            .or_insert_with(|| {
+                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("gonio shadow pass"),
+                    source: wgpu::ShaderSource::Wgsl(shader_gen::sources::SHADOW_PASS.into()),
+                });
+                let attributes = [wgpu::VertexAttribute {
+                    format: wgpu::VertexFormat::Float32x3,
+                    offset: 0,
+                    shader_location: 0,
+                }];
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("gonio shadow pass"),
+                    layout: Some(layout),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some(if radial { "vs_radial" } else { "vs_ortho" }),
+                        compilation_options: Default::default(),
+                        buffers: &[Some(wgpu::VertexBufferLayout {
+                            array_stride: stride,
+                            step_mode: wgpu::VertexStepMode::Vertex,
+                            attributes: &attributes,
+                        })],
+                    },
+                    primitive: wgpu::PrimitiveState {
+                        topology: wgpu::PrimitiveTopology::TriangleList,
+                        front_face: wgpu::FrontFace::Ccw,
+                        // Every face occludes, as for the reference's rays.
+                        cull_mode: None,
+                        ..Default::default()
+                    },
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: shadows::SHADOW_FORMAT,
+                        depth_write_enabled: Some(true),
+                        depth_compare: Some(wgpu::CompareFunction::Less),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    fragment: radial.then_some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("fs_radial"),
+                        compilation_options: Default::default(),
+                        targets: &[],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+            })
     }
 
     /// The device this renderer draws with.
@@ -101,7 +235,11 @@ impl GpuRenderer {
             });
             let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("gonio scene"),
-                layout: Some(&self.pipeline_layout),
+                layout: Some(if key.shadows.any() {
+                    &self.shadow_pipeline_layout
+                } else {
+                    &self.pipeline_layout
+                }),
                 vertex: wgpu::VertexState {
                     module: &module,
                     entry_point: Some("vs_main"),
@@ -166,9 +304,27 @@ impl GpuRenderer {
         }
 
         let key = ShaderKey::for_scene(scene);
-        let geometry = timings.wall("build vertex data", || GeometryData::new(scene, key.needs_tangents()));
+        let plan = if key.shadows.any() {
+            ShadowPlan::new(scene)
+        } else {
+            ShadowPlan::default()
+        };
+        self.check_shadow_limits(&plan)?;
+        let geometry = timings.wall("build vertex data", || {
+            GeometryData::new(scene, key.needs_tangents())
+        });
         let start = Instant::now();
         self.pipeline(&key, geometry.layout)?;
+        let stride = geometry.layout.stride();
+        for radial in [false, true] {
+            let used = plan
+                .layers
+                .iter()
+                .any(|l| (l.projection != Projection::Ortho) == radial);
+            if used {
+                self.pass_pipeline(stride, radial);
+            }
+        }
         timings.push("create pipeline", start.elapsed(), Clock::Wall);
 
         let device = &self.ctx.device;
@@ -181,7 +337,11 @@ impl GpuRenderer {
                 usage,
             })
         };
-        let vertex_buffer = init("vertices", bytemuck::cast_slice(&geometry.words), wgpu::BufferUsages::VERTEX);
+        let vertex_buffer = init(
+            "vertices",
+            bytemuck::cast_slice(&geometry.words),
+            wgpu::BufferUsages::VERTEX,
+        );
         let index_buffer = geometry.indices.as_ref().map(|i| {
             init(
                 "indices",
@@ -195,7 +355,16 @@ impl GpuRenderer {
             .iter()
             .map(|m| GpuMaterial::new(m, &key))
             .collect();
-        let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
+        let lights: Vec<GpuLight> = scene
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(l, light)| {
+                let mut g = GpuLight::from(light);
+                plan.apply(l, &mut g);
+                g
+            })
+            .collect();
         let globals_buffer = init(
             "globals",
             bytemuck::bytes_of(&globals),
@@ -264,21 +433,90 @@ impl GpuRenderer {
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
+        // Shadow maps: the array, one view per layer to render into, the
+        // bind group the scene pipeline reads them through.
+        let shadow_resources = (!plan.is_empty()).then(|| {
+            let texture = device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("shadow maps"),
+                size: wgpu::Extent3d {
+                    width: plan.side,
+                    height: plan.side,
+                    depth_or_array_layers: plan.layers.len() as u32,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: shadows::SHADOW_FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            });
+            let views_buffer = init(
+                "shadow views",
+                bytemuck::cast_slice(&plan.gpu_views()),
+                wgpu::BufferUsages::STORAGE,
+            );
+            let layer_views: Vec<wgpu::TextureView> = (0..plan.layers.len() as u32)
+                .map(|layer| {
+                    texture.create_view(&wgpu::TextureViewDescriptor {
+                        label: Some("shadow layer"),
+                        dimension: Some(wgpu::TextureViewDimension::D2),
+                        base_array_layer: layer,
+                        array_layer_count: Some(1),
+                        ..Default::default()
+                    })
+                })
+                .collect();
+            let array_view = texture.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("shadow maps"),
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                ..Default::default()
+            });
+            let scene_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("gonio shadow maps"),
+                layout: &self.shadow_bind_group_layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&array_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::Sampler(&self.shadow_sampler),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: views_buffer.as_entire_binding(),
+                    },
+                ],
+            });
+            let pass_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("gonio shadow pass"),
+                layout: &self.pass_bind_group_layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: views_buffer.as_entire_binding(),
+                }],
+            });
+            (texture, layer_views, scene_group, pass_group)
+        });
+        // Timestamps: 0, 1 around the scene pass; 2, 3 around all shadow
+        // passes.
         let queries = self.ctx.timestamps.then(|| {
             let set = device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("pass timestamps"),
                 ty: wgpu::QueryType::Timestamp,
-                count: 2,
+                count: 4,
             });
             let resolve = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("timestamps"),
-                size: 16,
+                size: 32,
                 usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
             let read = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("timestamps read"),
-                size: 16,
+                size: 32,
                 usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
                 mapped_at_creation: false,
             });
@@ -291,6 +529,48 @@ impl GpuRenderer {
         let color_view = color.create_view(&Default::default());
         let depth_view = depth.create_view(&Default::default());
         let mut encoder = device.create_command_encoder(&Default::default());
+        // Shadow passes first: one depth-only pass per layer.
+        if let Some((_, layer_views, _, pass_group)) = &shadow_resources {
+            let last = layer_views.len() - 1;
+            for (i, (layer, view)) in plan.layers.iter().zip(layer_views).enumerate() {
+                let radial = layer.projection != Projection::Ortho;
+                let timestamp_writes = queries.as_ref().and_then(|(set, ..)| {
+                    (i == 0 || i == last).then_some(wgpu::RenderPassTimestampWrites {
+                        query_set: set,
+                        beginning_of_pass_write_index: (i == 0).then_some(2),
+                        end_of_pass_write_index: (i == last).then_some(3),
+                    })
+                });
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("shadow map"),
+                    color_attachments: &[],
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view,
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        stencil_ops: None,
+                    }),
+                    timestamp_writes,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                let size = layer.map_size as f32;
+                pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+                pass.set_pipeline(&self.pass_pipelines[&(stride, radial)]);
+                pass.set_bind_group(0, pass_group, &[]);
+                pass.set_vertex_buffer(0, vertex_buffer.slice(..));
+                let instance = i as u32..i as u32 + 1;
+                match &index_buffer {
+                    Some(indices) => {
+                        pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                        pass.draw_indexed(0..geometry.draw_count, 0, instance);
+                    }
+                    None => pass.draw(0..geometry.draw_count, instance),
+                }
+            }
+        }
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("scene"),
@@ -323,6 +603,9 @@ impl GpuRenderer {
             });
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, &bind_group, &[]);
+            if let Some((_, _, scene_group, _)) = &shadow_resources {
+                pass.set_bind_group(1, scene_group, &[]);
+            }
             pass.set_vertex_buffer(0, vertex_buffer.slice(..));
             match &index_buffer {
                 Some(indices) => {
@@ -350,8 +633,8 @@ impl GpuRenderer {
             size,
         );
         if let Some((set, resolve, read)) = &queries {
-            encoder.resolve_query_set(set, 0..2, resolve, 0);
-            encoder.copy_buffer_to_buffer(resolve, 0, read, 0, 16);
+            encoder.resolve_query_set(set, 0..4, resolve, 0);
+            encoder.copy_buffer_to_buffer(resolve, 0, read, 0, 32);
         }
         queue.submit([encoder.finish()]);
         let frame_bytes = map_read(device, &readback)?;
@@ -359,8 +642,16 @@ impl GpuRenderer {
         if let Some((_, _, read)) = &queries {
             let bytes = map_read(device, read)?;
             let stamps: &[u64] = bytemuck::cast_slice(&bytes);
-            let ns =
-                stamps[1].saturating_sub(stamps[0]) as f64 * queue.get_timestamp_period() as f64;
+            let period = queue.get_timestamp_period() as f64;
+            if shadow_resources.is_some() {
+                let ns = stamps[3].saturating_sub(stamps[2]) as f64 * period;
+                timings.push(
+                    format!("shadow passes ({} layers)", plan.layers.len()),
+                    Duration::from_nanos(ns as u64),
+                    Clock::GpuTimestamp,
+                );
+            }
+            let ns = stamps[1].saturating_sub(stamps[0]) as f64 * period;
             timings.push(
                 "render pass",
                 Duration::from_nanos(ns as u64),
@@ -372,6 +663,47 @@ impl GpuRenderer {
             unpack(&frame_bytes, width, height, padded_row)
         });
         Ok((frame, timings))
+    }
+}
+
+impl GpuRenderer {
+    /// Refuses shadow maps the device cannot hold, naming the setting to
+    /// lower.
+    fn check_shadow_limits(&self, plan: &ShadowPlan) -> Result<()> {
+        if plan.is_empty() {
+            return Ok(());
+        }
+        let limits = self.ctx.device.limits();
+        let problem = if plan.side > limits.max_texture_dimension_2d {
+            Some(format!(
+                "a shadow map of {0}x{0} texels is larger than the GPU's maximum texture side of {1}",
+                plan.side, limits.max_texture_dimension_2d
+            ))
+        } else if plan.layers.len() as u32 > limits.max_texture_array_layers {
+            Some(format!(
+                "the shadow maps need {} layers (6 per point or area light, 1 per directional or spot light); the GPU allows {}",
+                plan.layers.len(),
+                limits.max_texture_array_layers
+            ))
+        } else if plan.bytes() > shadows::MAX_SHADOW_BYTES {
+            Some(format!(
+                "the shadow maps need {} MiB ({} layers of {}x{} texels, every layer as large as the largest map); at most {} MiB",
+                plan.bytes() >> 20,
+                plan.layers.len(),
+                plan.side,
+                plan.side,
+                shadows::MAX_SHADOW_BYTES >> 20
+            ))
+        } else {
+            None
+        };
+        match problem {
+            Some(p) => Err(Error::argument(
+                "shadow_map_size",
+                format!("{p}; lower shadow_map_size or turn shadows off for some lights"),
+            )),
+            None => Ok(()),
+        }
     }
 }
 

@@ -1,7 +1,8 @@
 //! Scene-specialized WGSL: only what a scene uses is compiled.
 //!
 //! A [`ShaderKey`] lists the features a scene needs: shading mode, BRDF
-//! variants (a model with its chosen terms), light kinds. [`compose`]
+//! variants (a model with its chosen terms), light kinds, shadow-map
+//! projections and filtering. [`compose`]
 //! concatenates the WGSL files for exactly those features, keeps only the
 //! lines marked `// #if FEATURE` whose feature is on, and generates the
 //! dispatch functions (`eval_brdf`, `mirror_reflectance`,
@@ -11,6 +12,7 @@
 //! Parameter values live in buffers, so changing them never rebuilds a
 //! pipeline; changing the key does.
 
+use super::shadows::{Projection, ShadowFeatures};
 use crate::material::{BrdfVariant, Distribution, Fresnel, Geometry, ReflectanceModel};
 use crate::scene::{LightKind, Scene, ShadingMode};
 use std::collections::BTreeSet;
@@ -28,13 +30,22 @@ pub mod sources {
     pub const LIGHT_POINT: &str = include_str!("../../shaders/lights/point.wgsl");
     pub const LIGHT_DIRECTIONAL: &str = include_str!("../../shaders/lights/directional.wgsl");
     pub const LIGHT_SPOT: &str = include_str!("../../shaders/lights/spot.wgsl");
+    pub const LIGHT_AREA_SAMPLE: &str = include_str!("../../shaders/lights/area_sample.wgsl");
+    pub const SHADOW_LOOKUP: &str = include_str!("../../shaders/shadows.wgsl");
+    pub const SHADOW_PASS: &str = include_str!("../../shaders/shadow_pass.wgsl");
     pub const SURFACE: &str = include_str!("../../shaders/surface.wgsl");
     pub const SHADING: &str = include_str!("../../shaders/shading.wgsl");
     pub const RASTER_VERTEX_SHADED: &str = include_str!("../../shaders/raster_vertex_shaded.wgsl");
     pub const RASTER_PIXEL_SHADED: &str = include_str!("../../shaders/raster_pixel_shaded.wgsl");
 
     /// The BRDF files in dependency order (each may use the ones before).
-    pub const BRDF_ORDER: [&str; 5] = [BRDF_LAMBERT, BRDF_PHONG, BRDF_FRESNEL, BRDF_MICROFACET, BRDF_WARD];
+    pub const BRDF_ORDER: [&str; 5] = [
+        BRDF_LAMBERT,
+        BRDF_PHONG,
+        BRDF_FRESNEL,
+        BRDF_MICROFACET,
+        BRDF_WARD,
+    ];
 }
 
 /// What a scene's shader must contain. Equal keys share a pipeline.
@@ -44,6 +55,8 @@ pub struct ShaderKey {
     /// Sorted; a material's `variant` index points into this order.
     pub variants: BTreeSet<BrdfVariant>,
     pub light_kinds: BTreeSet<LightKind>,
+    /// Shadow-map projections and filtering in use (empty: no shadow code).
+    pub shadows: ShadowFeatures,
 }
 
 impl ShaderKey {
@@ -58,6 +71,7 @@ impl ShaderKey {
                 .map(|m| scene.materials[m.material].variant())
                 .collect(),
             light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
+            shadows: ShadowFeatures::for_scene(scene),
         }
     }
 
@@ -77,7 +91,9 @@ impl ShaderKey {
 
     /// Whether any variant is a mirror (environment reflection code).
     pub fn has_mirror(&self) -> bool {
-        self.variants.iter().any(|v| v.model == ReflectanceModel::Mirror)
+        self.variants
+            .iter()
+            .any(|v| v.model == ReflectanceModel::Mirror)
     }
 
     /// The `#if` features on for this key.
@@ -92,6 +108,7 @@ impl ShaderKey {
         if self.has_mirror() {
             f.push("mirror");
         }
+        f.extend(self.shadows.features());
         f
     }
 
@@ -100,10 +117,11 @@ impl ShaderKey {
         let variants: Vec<_> = self.variants.iter().map(|v| v.describe()).collect();
         let lights: Vec<_> = self.light_kinds.iter().map(|k| k.name()).collect();
         format!(
-            "shading {}, models [{}], lights [{}]",
+            "shading {}, models [{}], lights [{}], {}",
             self.shading,
             variants.join(", "),
-            lights.join(", ")
+            lights.join(", "),
+            self.shadows.describe()
         )
     }
 }
@@ -146,12 +164,14 @@ fn variant_files(v: &BrdfVariant) -> Vec<usize> {
 /// WGSL for `D` — mirrors `brdf::distribution`.
 fn distribution_wgsl(d: Distribution) -> &'static str {
     match d {
-        Distribution::Beckmann => "d_beckmann(m.roughness, cos_h)",
-        Distribution::Blinn => "d_blinn_lecture(m.roughness, cos_h)",
-        Distribution::BlinnNormalized => "d_blinn_normalized(m.roughness, cos_h)",
-        Distribution::Gaussian => "d_gaussian_lecture(m.roughness, cos_h)",
-        Distribution::GaussianNormalized => "d_gaussian_normalized(m.roughness, cos_h, m.d_norm)",
-        Distribution::Ggx => "d_ggx(m.roughness, cos_h)",
+        Distribution::Beckmann => "d_beckmann(m.roughness, cos_h, sin2_h)",
+        Distribution::Blinn => "d_blinn_lecture(m.blinn_e, cos_h, sin2_h)",
+        Distribution::BlinnNormalized => "d_blinn_normalized(m.blinn_e, cos_h, sin2_h)",
+        Distribution::Gaussian => "d_gaussian_lecture(m.roughness, cos_h, sin2_h)",
+        Distribution::GaussianNormalized => {
+            "d_gaussian_normalized(m.roughness, cos_h, sin2_h, m.d_norm)"
+        }
+        Distribution::Ggx => "d_ggx(m.roughness, cos_h, sin2_h)",
     }
 }
 
@@ -165,7 +185,9 @@ fn geometry_wgsl(g: Geometry, d: Distribution) -> String {
         }
         Geometry::Smith => {
             let slope = match d {
-                Distribution::Blinn | Distribution::BlinnNormalized => "beckmann_slope_of_blinn(m.roughness)",
+                Distribution::Blinn | Distribution::BlinnNormalized => {
+                    "beckmann_slope_of_blinn(m.blinn_e)"
+                }
                 Distribution::Gaussian | Distribution::GaussianNormalized => {
                     "beckmann_slope_of_gaussian(m.roughness)"
                 }
@@ -191,11 +213,15 @@ fn fresnel_wgsl(f: Fresnel, cos: &str) -> String {
 fn variant_body(v: &BrdfVariant) -> String {
     let lobe = |expr: &str| format!("    return lambert(m.k_d) + m.k_s * {expr};\n");
     match v.model {
-        ReflectanceModel::Lambert | ReflectanceModel::Mirror => "    return lambert(m.k_d);\n".into(),
+        ReflectanceModel::Lambert | ReflectanceModel::Mirror => {
+            "    return lambert(m.k_d);\n".into()
+        }
         ReflectanceModel::Phong => lobe("phong_lecture(m.k_e, frame.n, wi, wo)"),
         ReflectanceModel::PhongNormalized => lobe("phong_normalized(m.k_e, frame.n, wi, wo)"),
         ReflectanceModel::BlinnPhong => lobe("blinn_phong_lecture(m.k_e, frame.n, wi, wo)"),
-        ReflectanceModel::BlinnPhongNormalized => lobe("blinn_phong_normalized(m.k_e, frame.n, wi, wo)"),
+        ReflectanceModel::BlinnPhongNormalized => {
+            lobe("blinn_phong_normalized(m.k_e, frame.n, wi, wo)")
+        }
         ReflectanceModel::Ward => lobe("ward_isotropic(m.sigma_x, frame.n, wi, wo)"),
         ReflectanceModel::WardAnisotropic => {
             lobe("ward_anisotropic(m.sigma_x, m.sigma_y, frame.n, frame.t, frame.b, wi, wo)")
@@ -209,7 +235,7 @@ fn variant_body(v: &BrdfVariant) -> String {
                 _ => "4.0",
             };
             format!(
-                "    let n = frame.n;\n    let h = half_vector(wi, wo);\n    let cos_i = dot(n, wi);\n    let cos_o = dot(n, wo);\n    let cos_h = dot(n, h);\n    let cos_ih = dot(wi, h);\n    let cos_oh = dot(wo, h);\n    let d = {};\n    let g = {};\n    let f = {};\n    return lambert(m.k_d) + m.k_s * cook_torrance_specular(d, g, f, cos_i, cos_o, {factor});\n",
+                "    let n = frame.n;\n    let h = half_vector(wi, wo);\n    let cos_i = dot(n, wi);\n    let cos_o = dot(n, wo);\n    let cos_h = dot(n, h);\n    let sin2_h = sin2_between(n, h);\n    let cos_ih = dot(wi, h);\n    let cos_oh = dot(wo, h);\n    let d = {};\n    let g = {};\n    let f = {};\n    return lambert(m.k_d) + m.k_s * cook_torrance_specular(d, g, f, cos_i, cos_o, {factor});\n",
                 distribution_wgsl(d),
                 geometry_wgsl(g, d),
                 fresnel_wgsl(f, "cos_ih"),
@@ -240,6 +266,10 @@ fn light_wgsl(kind: LightKind) -> (&'static [&'static str], &'static str) {
         LightKind::Point => (&[LIGHT_INVERSE_SQUARE, LIGHT_POINT], "point_incidence"),
         LightKind::Directional => (&[LIGHT_DIRECTIONAL], "directional_incidence"),
         LightKind::Spot => (&[LIGHT_INVERSE_SQUARE, LIGHT_SPOT], "spot_incidence"),
+        LightKind::AreaSample => (
+            &[LIGHT_INVERSE_SQUARE, LIGHT_AREA_SAMPLE],
+            "area_sample_incidence",
+        ),
     }
 }
 
@@ -332,6 +362,12 @@ pub fn compose(key: &ShaderKey) -> String {
     }
     out.push_str("}\n\n");
 
+    // Shadow-map lookups, only when a light casts shadows.
+    if key.shadows.any() {
+        out.push_str(&preprocess(sources::SHADOW_LOOKUP, &features));
+        out.push('\n');
+    }
+
     out.push_str(&preprocess(sources::SHADING, &features));
     out.push('\n');
     let raster = match key.shading {
@@ -383,7 +419,13 @@ pub fn all_variants() -> Vec<BrdfVariant> {
             }
             ReflectanceModel::Mirror => {
                 for &fresnel in Fresnel::ALL {
-                    out.push(Material { fresnel, ..base.clone() }.variant());
+                    out.push(
+                        Material {
+                            fresnel,
+                            ..base.clone()
+                        }
+                        .variant(),
+                    );
                 }
             }
             _ => out.push(base.variant()),
@@ -393,10 +435,13 @@ pub fn all_variants() -> Vec<BrdfVariant> {
 }
 
 /// Keys that together compile every line of every WGSL file: each shading
-/// mode with each variant alone (one light kind each, cycling), plus all
-/// variants and all light kinds at once. Used by the shader validation test.
+/// mode with each variant alone (one light kind each, cycling), each
+/// shadow projection alone with and without PCF, plus all variants, all
+/// light kinds and all shadow code at once. Used by the shader validation
+/// test.
 pub fn representative_keys() -> Vec<ShaderKey> {
-    let all_kinds = [LightKind::Point, LightKind::Directional, LightKind::Spot];
+    let all_kinds = LightKind::ALL;
+    let all_projections = [Projection::Ortho, Projection::Perspective, Projection::Cube];
     let variants = all_variants();
     let mut keys = Vec::new();
     for shading in ShadingMode::ALL {
@@ -404,13 +449,31 @@ pub fn representative_keys() -> Vec<ShaderKey> {
             keys.push(ShaderKey {
                 shading,
                 variants: [*v].into(),
-                light_kinds: [all_kinds[i % 3]].into(),
+                light_kinds: [all_kinds[i % all_kinds.len()]].into(),
+                shadows: ShadowFeatures::default(),
             });
+        }
+        for (i, projection) in all_projections.into_iter().enumerate() {
+            for pcf in [false, true] {
+                keys.push(ShaderKey {
+                    shading,
+                    variants: [variants[i]].into(),
+                    light_kinds: [all_kinds[i]].into(),
+                    shadows: ShadowFeatures {
+                        projections: [projection].into(),
+                        pcf,
+                    },
+                });
+            }
         }
         keys.push(ShaderKey {
             shading,
             variants: variants.iter().copied().collect(),
             light_kinds: all_kinds.into(),
+            shadows: ShadowFeatures {
+                projections: all_projections.into(),
+                pcf: true,
+            },
         });
     }
     keys
@@ -427,12 +490,67 @@ mod tests {
             shading: ShadingMode::Phong,
             variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
             light_kinds: [LightKind::Point].into(),
+            shadows: ShadowFeatures::default(),
         };
         let wgsl = compose(&key);
-        for absent in ["blinn_phong_lecture", "fresnel_", "d_beckmann", "spot_attenuation", "switch m.variant", "switch light.kind", "environment_radiance", "tangent: vec3"] {
-            assert!(!wgsl.contains(absent), "`{absent}` compiled into a Lambert-only shader");
+        for absent in [
+            "blinn_phong_lecture",
+            "fresnel_",
+            "d_beckmann",
+            "spot_attenuation",
+            "switch m.variant",
+            "switch light.kind",
+            "environment_radiance",
+            "tangent: vec3",
+            "shadow_visibility",
+            "shadow_maps",
+            "textureSampleCompare",
+            "area_sample",
+            "dpdx",
+        ] {
+            assert!(
+                !wgsl.contains(absent),
+                "`{absent}` compiled into a Lambert-only shader"
+            );
         }
         validate(&wgsl).unwrap();
+    }
+
+    #[test]
+    fn shadow_code_only_for_the_projections_in_use() {
+        let key = |projections: &[Projection], pcf| ShaderKey {
+            shading: ShadingMode::Phong,
+            variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
+            light_kinds: [LightKind::Point].into(),
+            shadows: ShadowFeatures {
+                projections: projections.iter().copied().collect(),
+                pcf,
+            },
+        };
+        let cube = compose(&key(&[Projection::Cube], false));
+        for present in [
+            "fn shadow_visibility",
+            "fn shadow_cube",
+            "textureSampleCompareLevel",
+            "dpdx",
+        ] {
+            assert!(cube.contains(present), "`{present}` missing");
+        }
+        for absent in [
+            "fn shadow_ortho",
+            "fn shadow_perspective",
+            "for (var i = -r",
+        ] {
+            assert!(
+                !cube.contains(absent),
+                "`{absent}` compiled without its feature"
+            );
+        }
+        validate(&cube).unwrap();
+        let ortho = compose(&key(&[Projection::Ortho], true));
+        assert!(ortho.contains("fn shadow_ortho") && ortho.contains("for (var i = -r"));
+        assert!(!ortho.contains("fn shadow_radial"));
+        validate(&ortho).unwrap();
     }
 
     #[test]

@@ -81,7 +81,11 @@ impl Material {
             eta_t: 1.5,
             distribution: Distribution::Beckmann,
             geometry: Geometry::Smith,
-            fresnel: if mirror { Fresnel::None } else { Fresnel::Conductor },
+            fresnel: if mirror {
+                Fresnel::None
+            } else {
+                Fresnel::Conductor
+            },
             denominator: Denominator::Microfacet,
         }
     }
@@ -99,7 +103,10 @@ impl Material {
             }
         }
         if !(0.0..=1e6).contains(&self.k_e) {
-            return Err(format!("material `{name}`: k_e = {} is outside [0, 1e6]", self.k_e));
+            return Err(format!(
+                "material `{name}`: k_e = {} is outside [0, 1e6]",
+                self.k_e
+            ));
         }
         for (key, v) in [
             ("roughness", self.roughness),
@@ -124,7 +131,9 @@ impl Material {
         }
         for (key, v) in [("eta_i", self.eta_i), ("eta_t", self.eta_t)] {
             if !(v.is_finite() && v > 0.0) {
-                return Err(format!("material `{name}`: {key} = {v} must be finite and > 0"));
+                return Err(format!(
+                    "material `{name}`: {key} = {v} must be finite and > 0"
+                ));
             }
         }
         Ok(())

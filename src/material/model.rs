@@ -76,12 +76,15 @@ impl fmt::Display for ReflectanceModel {
 impl FromStr for ReflectanceModel {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        Self::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
-            let known: Vec<_> = Self::ALL.iter().map(|m| m.name()).collect();
-            format!(
-                "unknown reflectance model `{s}`; expected one of {}",
-                known.join(", ")
-            )
-        })
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                let known: Vec<_> = Self::ALL.iter().map(|m| m.name()).collect();
+                format!(
+                    "unknown reflectance model `{s}`; expected one of {}",
+                    known.join(", ")
+                )
+            })
     }
 }

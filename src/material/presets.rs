@@ -18,10 +18,34 @@ pub enum Preset {
 
 /// Every preset: (name, values). Names are lower case, spaces as hyphens.
 pub const PRESETS: &[(&str, Preset)] = &[
-    ("gold", Preset::Conductor { eta: 0.370, kappa: 2.820 }),
-    ("silver", Preset::Conductor { eta: 0.177, kappa: 3.638 }),
-    ("copper", Preset::Conductor { eta: 0.617, kappa: 2.63 }),
-    ("steel", Preset::Conductor { eta: 2.485, kappa: 3.433 }),
+    (
+        "gold",
+        Preset::Conductor {
+            eta: 0.370,
+            kappa: 2.820,
+        },
+    ),
+    (
+        "silver",
+        Preset::Conductor {
+            eta: 0.177,
+            kappa: 3.638,
+        },
+    ),
+    (
+        "copper",
+        Preset::Conductor {
+            eta: 0.617,
+            kappa: 2.63,
+        },
+    ),
+    (
+        "steel",
+        Preset::Conductor {
+            eta: 2.485,
+            kappa: 3.433,
+        },
+    ),
     ("vacuum", Preset::Dielectric { eta: 1.0 }),
     ("air", Preset::Dielectric { eta: 1.00029 }),
     ("ice", Preset::Dielectric { eta: 1.31 }),
@@ -42,7 +66,10 @@ pub fn preset(name: &str) -> Result<Preset, String> {
         .map(|(_, p)| *p)
         .ok_or_else(|| {
             let names: Vec<_> = PRESETS.iter().map(|(n, _)| *n).collect();
-            format!("unknown preset `{name}`; expected one of {}", names.join(", "))
+            format!(
+                "unknown preset `{name}`; expected one of {}",
+                names.join(", ")
+            )
         })
 }
 

@@ -5,4 +5,4 @@ pub mod compare;
 pub mod write;
 
 pub use compare::{Comparison, Tolerance, compare_with_jitter};
-pub use write::{OutputFile, OutputFormat};
+pub use write::{AtomicFile, OutputFile, OutputFormat};

@@ -40,17 +40,18 @@ impl OutputFormat {
     }
 }
 
-/// A destination made ready before rendering.
-pub struct OutputFile {
+/// A file that appears complete or not at all: created as a temporary
+/// file in the destination's folder (so an unwritable destination fails
+/// before any work is done), renamed over the destination by
+/// [`AtomicFile::commit`], removed if dropped uncommitted.
+pub struct AtomicFile {
     path: PathBuf,
-    format: OutputFormat,
     temp: tempfile::NamedTempFile,
 }
 
-impl OutputFile {
-    /// Checks the format and that the destination's folder accepts a file.
-    pub fn prepare(path: &Path) -> Result<Self> {
-        let format = OutputFormat::from_path(path)?;
+impl AtomicFile {
+    /// Claims `path`'s folder for a new file.
+    pub fn create(path: &Path) -> Result<Self> {
         if path.is_dir() {
             return Err(Error::output(path, "it is a directory"));
         }
@@ -68,9 +69,8 @@ impl OutputFile {
                     format!("cannot create a file in {}: {e}", dir.display()),
                 )
             })?;
-        Ok(OutputFile {
+        Ok(AtomicFile {
             path: path.to_path_buf(),
-            format,
             temp,
         })
     }
@@ -80,21 +80,55 @@ impl OutputFile {
         &self.path
     }
 
-    /// Encodes `frame` and moves it into place. `exposure` (stops) applies
-    /// to PNG only.
-    pub fn write(mut self, frame: &Frame, exposure: f64) -> Result<()> {
-        let bytes = match self.format {
-            OutputFormat::Png => encode_png(frame, exposure),
-            OutputFormat::Exr => encode_exr(frame),
-        }
-        .map_err(|e| Error::output(&self.path, e))?;
+    /// Writes `bytes`, syncs, and moves the file into place.
+    pub fn commit(mut self, bytes: &[u8]) -> Result<()> {
         let fail = |e: std::io::Error| Error::output(&self.path, e.to_string());
-        self.temp.write_all(&bytes).map_err(fail)?;
+        self.temp.write_all(bytes).map_err(fail)?;
         self.temp.as_file().sync_all().map_err(fail)?;
+        // The temporary file is private (0600); an image is for sharing.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let public = std::fs::Permissions::from_mode(0o644);
+            self.temp.as_file().set_permissions(public).map_err(fail)?;
+        }
         self.temp
             .persist(&self.path)
             .map_err(|e| Error::output(&self.path, e.error.to_string()))?;
         Ok(())
+    }
+}
+
+/// A render destination made ready before rendering.
+pub struct OutputFile {
+    format: OutputFormat,
+    file: AtomicFile,
+}
+
+impl OutputFile {
+    /// Checks the format and that the destination's folder accepts a file.
+    pub fn prepare(path: &Path) -> Result<Self> {
+        let format = OutputFormat::from_path(path)?;
+        Ok(OutputFile {
+            format,
+            file: AtomicFile::create(path)?,
+        })
+    }
+
+    /// The final path.
+    pub fn path(&self) -> &Path {
+        self.file.path()
+    }
+
+    /// Encodes `frame` and moves it into place. `exposure` (stops) applies
+    /// to PNG only.
+    pub fn write(self, frame: &Frame, exposure: f64) -> Result<()> {
+        let bytes = match self.format {
+            OutputFormat::Png => encode_png(frame, exposure),
+            OutputFormat::Exr => encode_exr(frame),
+        }
+        .map_err(|e| Error::output(self.file.path(), e))?;
+        self.file.commit(&bytes)
     }
 }
 

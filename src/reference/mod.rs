@@ -3,11 +3,15 @@
 //! normals, interpolation and clip planes), so the two frames can be
 //! compared pixel by pixel.
 //!
-//! [`bvh`] finds what a ray hits; [`renderer`] turns hits into a
-//! [`crate::frame::Frame`].
+//! [`bvh`] finds what a ray hits (and whether a shadow ray is blocked);
+//! [`renderer`] turns hits into a [`crate::frame::Frame`]; [`area`]
+//! measures the error of rendering an area light by N point lights.
 
+pub mod area;
 pub mod bvh;
 pub mod renderer;
 
 pub use bvh::{Bvh, Hit, TriangleId};
-pub use renderer::{flat_frame, render, render_offset};
+pub use renderer::{
+    AreaLights, flat_frame, render, render_offset, render_with, shadow_epsilon, visibility,
+};

@@ -5,15 +5,36 @@
 //! the two frames is a bug in one of them and not a difference of method:
 //! the same near/far clipping, the same shading points and normals, the
 //! same interpolation of per-vertex results.
+//!
+//! Shadows are ray traced ([`visibility`]): the truth the GPU's shadow maps
+//! are measured against. Visibility is evaluated at the shading point of
+//! the mode (flat: the centroid; Gouraud: the vertex, then interpolated
+//! with the colour; Phong: the pixel's interpolated position), exactly
+//! where the GPU reads its shadow map.
 
 use super::bvh::{Bvh, Hit};
 use crate::frame::Frame;
 use crate::material::Material;
 use crate::material::brdf::SurfaceFrame;
-use crate::scene::{Mesh, Rgb, Scene, ShadingMode, mesh};
+use crate::scene::camera::Ray;
+use crate::scene::{Light, Mesh, Rgb, Scene, ShadingMode, mesh};
 use crate::shading::reflected_radiance;
 use glam::DVec3;
 use rayon::prelude::*;
+
+/// How the reference treats area lights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum AreaLights {
+    /// As the GPU does: through their N point lights (`Light::AreaSample`),
+    /// one shadow ray each.
+    #[default]
+    Samples,
+    /// Exactly, unoccluded, by Lambert's polygon formula for the
+    /// irradiance (`AreaLight::exact_irradiance`). Exact for Lambertian
+    /// receivers only (`f_r` constant over the light); ignores shadows of
+    /// area lights. See [`super::area`] for when it applies.
+    ExactUnoccluded,
+}
 
 /// Renders `scene` with one sample at every pixel centre.
 pub fn render(scene: &Scene) -> Frame {
@@ -24,13 +45,18 @@ pub fn render(scene: &Scene) -> Frame {
 /// `(j + 0.5 + offset_x, i + 0.5 + offset_y)` pixels (row 0 at the top);
 /// shifted samples let callers supersample or probe edges.
 pub fn render_offset(scene: &Scene, offset_x: f64, offset_y: f64) -> Frame {
+    render_with(scene, offset_x, offset_y, AreaLights::Samples)
+}
+
+/// [`render_offset`] with a choice of how area lights are evaluated.
+pub fn render_with(scene: &Scene, offset_x: f64, offset_y: f64, area: AreaLights) -> Frame {
     let (width, height) = (scene.width, scene.height);
     let mut frame = Frame::new(width, height);
     if frame.is_empty() {
         return frame;
     }
     let bvh = Bvh::new(&scene.meshes);
-    let shader = Shader::new(scene);
+    let shader = Shader::new(scene, &bvh, area);
     let camera = &scene.camera;
     let forward = camera.forward();
     let row = width as usize;
@@ -62,9 +88,13 @@ pub fn render_offset(scene: &Scene, offset_x: f64, offset_y: f64) -> Frame {
 /// pixel is traced.
 struct Shader<'a> {
     scene: &'a Scene,
+    bvh: &'a Bvh,
     /// The materials as rendered (roughness floor applied), as on the GPU.
     materials: Vec<Material>,
     precomputed: Precomputed,
+    /// Shadow-ray origin offset (see [`shadow_epsilon`]).
+    epsilon: f64,
+    area: AreaLights,
 }
 
 enum Precomputed {
@@ -77,11 +107,14 @@ enum Precomputed {
 }
 
 impl<'a> Shader<'a> {
-    fn new(scene: &'a Scene) -> Self {
+    fn new(scene: &'a Scene, bvh: &'a Bvh, area: AreaLights) -> Self {
         let mut shader = Shader {
             scene,
+            bvh,
             materials: scene.effective_materials(),
             precomputed: Precomputed::Phong,
+            epsilon: shadow_epsilon(scene),
+            area,
         };
         shader.precomputed = match scene.shading {
             // Lecture: Shading Model: Flat. One evaluation of the reflection
@@ -97,7 +130,7 @@ impl<'a> Shader<'a> {
                             .map(|t| {
                                 let corners = m.triangle(t);
                                 let frame = flat_frame(m, t);
-                                shader.shade(m, mesh::centroid(corners), &frame)
+                                shader.shade(m, mesh::centroid(corners), &frame, frame.n)
                             })
                             .collect()
                     })
@@ -115,7 +148,7 @@ impl<'a> Shader<'a> {
                             .into_par_iter()
                             .map(|v| {
                                 let frame = SurfaceFrame::new(m.normals[v], m.tangent(v));
-                                shader.shade(m, m.positions[v], &frame)
+                                shader.shade(m, m.positions[v], &frame, m.normals[v])
                             })
                             .collect()
                     })
@@ -146,23 +179,89 @@ impl<'a> Shader<'a> {
                 let n = interpolate(w, &object.normals, idx).normalize_or_zero();
                 let tangents = idx.map(|v| object.tangent(v as usize));
                 let t = w[0] * tangents[0] + w[1] * tangents[1] + w[2] * tangents[2];
-                self.shade(object, x, &SurfaceFrame::new(n, t))
+                let geometric = mesh::face_normal(object.triangle(hit.id.triangle as usize));
+                self.shade(object, x, &SurfaceFrame::new(n, t), geometric)
             }
         }
     }
 
     /// The reflection equation at `x` in `frame`, for the mesh's material,
-    /// seen from the camera, every light fully visible.
-    fn shade(&self, m: &Mesh, x: DVec3, frame: &SurfaceFrame) -> Rgb {
-        reflected_radiance(
+    /// seen from the camera, with ray-traced visibility; shadow rays leave
+    /// from `x` offset along `n_offset` (see [`visibility`]).
+    fn shade(&self, m: &Mesh, x: DVec3, frame: &SurfaceFrame, n_offset: DVec3) -> Rgb {
+        let material = &self.materials[m.material];
+        let exact = self.area == AreaLights::ExactUnoccluded;
+        let lights = &self.scene.lights;
+        let mut radiance = reflected_radiance(
             self.scene,
-            &self.materials[m.material],
+            material,
             x,
             frame,
             self.scene.camera.position,
-            |_, _| 1.0,
-        )
+            |l, x| {
+                if exact && matches!(lights[l], Light::AreaSample { .. }) {
+                    return 0.0;
+                }
+                visibility(self.bvh, &lights[l], x, n_offset, self.epsilon)
+            },
+        );
+        if exact {
+            // f_r of a Lambertian receiver is the same for every direction
+            // above the surface; any such direction evaluates it.
+            let wo = (self.scene.camera.position - x).normalize_or_zero();
+            let f_r = material.f_r(frame.n, wo, frame);
+            for area in &self.scene.area_lights {
+                radiance += f_r * area.exact_irradiance(x, frame.n);
+            }
+        }
+        radiance
     }
+}
+
+/// The shadow-ray offset of `scene`: 10⁻⁷ of its bounding-box diagonal
+/// (at least 10⁻¹²). Far below anything a shadow map resolves, far above
+/// the f64 rounding of a hit point (~10⁻¹⁶ of the coordinates).
+pub fn shadow_epsilon(scene: &Scene) -> f64 {
+    let diagonal = scene.bounds().map_or(1.0, |(lo, hi)| (hi - lo).length());
+    (1e-7 * diagonal).max(1e-12)
+}
+
+/// `V_l` at `x`, ray traced: 1 if nothing lies between `x` and the light,
+/// else 0 (and 1 for a light without shadows). The ray leaves from
+/// `x + ε · n`, with `n` the offset normal (`n_offset`, turned towards the
+/// light) and ε = [`shadow_epsilon`], so it cannot hit the surface it
+/// starts on; it ends ε before a point, spot or area-sample light, and goes
+/// to infinity for a directional light. The offset normal is the
+/// geometric (face) normal for Phong and flat shading and the vertex
+/// normal for Gouraud (a vertex has no single face).
+pub fn visibility(bvh: &Bvh, light: &Light, x: DVec3, n_offset: DVec3, epsilon: f64) -> f64 {
+    if !light.casts_shadows() {
+        return 1.0;
+    }
+    let to_light = match (light.position(), light) {
+        (Some(p), _) => p - x,
+        (None, Light::Directional { direction, .. }) => -*direction,
+        (None, _) => return 1.0,
+    };
+    let side = if n_offset.dot(to_light) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    let origin = x + n_offset * (side * epsilon);
+    let (direction, t_max) = match light.position() {
+        Some(p) => {
+            let d = p - origin;
+            let len = d.length();
+            if len <= epsilon {
+                return 1.0;
+            }
+            (d / len, len - epsilon)
+        }
+        None => (to_light.normalize(), f64::INFINITY),
+    };
+    let ray = Ray { origin, direction };
+    if bvh.occluded(&ray, t_max) { 0.0 } else { 1.0 }
 }
 
 /// Flat shading's frame of triangle `t`: the face normal and the corners'
@@ -219,7 +318,9 @@ mod tests {
             shading,
             meshes: vec![quad(0.0)],
             materials: vec![material],
+            light_shadows: vec![Default::default(); lights.len()],
             lights,
+            area_lights: Vec::new(),
             ambient: Rgb::ZERO,
             environment: crate::scene::Environment::uniform(Rgb::ZERO),
         }

@@ -3,13 +3,16 @@
 //! Each light answers one question for a surface point x: from which
 //! direction ω_i does light arrive, and with what irradiance `E` on a
 //! surface facing it ([`Light::incidence`]). The reflection equation then
-//! adds `f_r(ω_i, ω_o) · E · cosθ_i`.
+//! adds `f_r(ω_i, ω_o) · E · cosθ_i · V` (V: the light's visibility, ray
+//! traced by the reference, read from a shadow map on the GPU; see
+//! [`ShadowSettings`] and `docs/shadows.md`).
 
 use crate::scene::Rgb;
 use glam::DVec3;
 
-/// A light of the scene. Area lights (issue #5) are expanded into point
-/// lights before rendering, so renderers only see these kinds.
+/// A light of the scene. Area lights ([`crate::scene::area_light`]) are
+/// expanded into [`Light::AreaSample`] point lights when the scene is
+/// assembled, so both renderers see the same list.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Light {
     /// Radiant intensity `I` [W/sr] per channel; `E = I / d²`.
@@ -37,6 +40,24 @@ pub enum Light {
         inner_cone_deg: f64,
         outer_cone_deg: f64,
         range: Option<f64>,
+        shadows: bool,
+    },
+    /// One of the N point lights that stand in for an area light (lecture:
+    /// "Area light sources ... replacing it with some point light
+    /// sources"). It emits with the area light's cosine distribution:
+    /// `I(ω) = L · (A/N) · max(0, n_l · ω)`, ω from the sample towards the
+    /// surface, so `E = I(ω) / d²`.
+    AreaSample {
+        position: DVec3,
+        /// Unit normal of the emitting side.
+        normal: DVec3,
+        /// `L · A / N` per channel [W/sr along the normal].
+        intensity: Rgb,
+        /// Index of the area light in [`crate::scene::Scene::area_lights`].
+        area: usize,
+        /// The area light's centre: where the GPU's shadow map shared by
+        /// all its samples sits (the reference traces to `position`).
+        center: DVec3,
         shadows: bool,
     },
 }
@@ -91,6 +112,19 @@ impl Light {
                     irradiance: intensity * (scale * cone),
                 }
             }
+            Light::AreaSample {
+                position,
+                normal,
+                intensity,
+                ..
+            } => {
+                let (wi, scale) = inverse_square(position - x, None);
+                let cosine = normal.dot(-wi).max(0.0);
+                Incidence {
+                    wi,
+                    irradiance: intensity * (scale * cosine),
+                }
+            }
         }
     }
 
@@ -99,7 +133,29 @@ impl Light {
         match *self {
             Light::Point { shadows, .. }
             | Light::Directional { shadows, .. }
-            | Light::Spot { shadows, .. } => shadows,
+            | Light::Spot { shadows, .. }
+            | Light::AreaSample { shadows, .. } => shadows,
+        }
+    }
+
+    /// Turns shadows on or off.
+    pub fn set_shadows(&mut self, on: bool) {
+        match self {
+            Light::Point { shadows, .. }
+            | Light::Directional { shadows, .. }
+            | Light::Spot { shadows, .. }
+            | Light::AreaSample { shadows, .. } => *shadows = on,
+        }
+    }
+
+    /// Where a shadow ray from a surface point ends: the light's position,
+    /// or `None` for a directional light (the ray goes to infinity).
+    pub fn position(&self) -> Option<DVec3> {
+        match *self {
+            Light::Directional { .. } => None,
+            Light::Point { position, .. }
+            | Light::Spot { position, .. }
+            | Light::AreaSample { position, .. } => Some(position),
         }
     }
 
@@ -109,6 +165,97 @@ impl Light {
             Light::Point { .. } => LightKind::Point,
             Light::Directional { .. } => LightKind::Directional,
             Light::Spot { .. } => LightKind::Spot,
+            Light::AreaSample { .. } => LightKind::AreaSample,
+        }
+    }
+}
+
+/// How a light's shadow map is made and read on the GPU (the reference
+/// ray-traces every shadow and ignores these). Derivations of the defaults:
+/// `docs/shadows.md`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowSettings {
+    /// Side of the (square) shadow map in texels; a point light (and an
+    /// area light) has six of them, one per cube face.
+    pub map_size: u32,
+    /// Constant depth bias, in world units (metres) along the light ray:
+    /// a receiver counts as lit when it is at most this much behind the
+    /// occluder depth the map stores.
+    pub bias: f64,
+    /// Slope-scaled bias, in shadow-map texels: adds
+    /// `slope_bias · texel · tanθ` to the constant bias (θ between the
+    /// surface's geometric normal and the direction to the light, `texel`
+    /// the world size of one map texel at the receiver).
+    pub slope_bias: f64,
+    /// Normal offset, in shadow-map texels: the map is read at
+    /// `x + normal_offset · texel · n_g` (n_g the geometric normal turned
+    /// towards the light).
+    pub normal_offset: f64,
+    pub filter: ShadowFilter,
+}
+
+/// How the shadow map is filtered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ShadowFilter {
+    /// One hardware depth comparison at the nearest texel: V ∈ {0, 1}.
+    None,
+    /// Percentage-closer filtering: the mean of `kernel × kernel` nearest
+    /// comparisons one texel apart (`kernel` odd).
+    Pcf { kernel: u32 },
+}
+
+impl ShadowFilter {
+    /// Side of the comparison footprint in texels (1 without filtering).
+    pub fn kernel(self) -> u32 {
+        match self {
+            ShadowFilter::None => 1,
+            ShadowFilter::Pcf { kernel } => kernel,
+        }
+    }
+
+    /// The scene file's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowFilter::None => "none",
+            ShadowFilter::Pcf { .. } => "pcf",
+        }
+    }
+}
+
+impl ShadowSettings {
+    /// Default map side.
+    pub const DEFAULT_MAP_SIZE: u32 = 2048;
+    /// Default PCF kernel.
+    pub const DEFAULT_PCF_KERNEL: u32 = 3;
+    /// Smallest and largest map side accepted.
+    pub const MAP_SIZES: std::ops::RangeInclusive<u32> = 16..=8192;
+    /// Largest PCF kernel accepted.
+    pub const MAX_PCF_KERNEL: u32 = 15;
+
+    /// The normal offset (texels) that keeps a plane free of shadow acne at
+    /// every incidence angle for `filter`: the `k × k` comparisons read
+    /// texel centres up to `k/2` texels per axis from the lookup point, so
+    /// the stored depth of the receiver's own plane is at most
+    /// `(k/√2) · texel · tanθ` nearer the light; an offset `c` texels along
+    /// the normal moves the lookup `c · texel / cosθ` nearer, which covers
+    /// it for every θ < 90° when `c ≥ k/√2`. Half a texel more absorbs the
+    /// curvature of tessellated surfaces and f32 rounding.
+    pub fn default_normal_offset(filter: ShadowFilter) -> f64 {
+        filter.kernel() as f64 / std::f64::consts::SQRT_2 + 0.5
+    }
+}
+
+impl Default for ShadowSettings {
+    fn default() -> Self {
+        let filter = ShadowFilter::Pcf {
+            kernel: Self::DEFAULT_PCF_KERNEL,
+        };
+        ShadowSettings {
+            map_size: Self::DEFAULT_MAP_SIZE,
+            bias: 0.0,
+            slope_bias: 0.0,
+            normal_offset: Self::default_normal_offset(filter),
+            filter,
         }
     }
 }
@@ -120,15 +267,26 @@ pub enum LightKind {
     Point,
     Directional,
     Spot,
+    /// A point light standing in for part of an area light.
+    AreaSample,
 }
 
 impl LightKind {
-    /// The contract's name.
+    /// Every kind.
+    pub const ALL: [LightKind; 4] = [
+        LightKind::Point,
+        LightKind::Directional,
+        LightKind::Spot,
+        LightKind::AreaSample,
+    ];
+
+    /// The contract's name (an area sample is a part of an `area` light).
     pub fn name(self) -> &'static str {
         match self {
             LightKind::Point => "point",
             LightKind::Directional => "directional",
             LightKind::Spot => "spot",
+            LightKind::AreaSample => "area",
         }
     }
 
@@ -138,6 +296,7 @@ impl LightKind {
             LightKind::Point => 0,
             LightKind::Directional => 1,
             LightKind::Spot => 2,
+            LightKind::AreaSample => 3,
         }
     }
 }

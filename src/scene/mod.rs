@@ -5,19 +5,21 @@
 //! time), in `f64`: the GPU converts to `f32` on upload, the CPU reference
 //! uses it as is.
 
+pub mod area_light;
 pub mod camera;
 pub mod default_scene;
 pub mod environment;
 pub mod gltf_import;
-pub mod limits;
 pub mod light;
+pub mod limits;
 pub mod mesh;
 pub mod primitives;
 pub mod scene_file;
 
+pub use area_light::AreaLight;
 pub use camera::Camera;
 pub use environment::Environment;
-pub use light::{Light, LightKind};
+pub use light::{Light, LightKind, ShadowFilter, ShadowSettings};
 pub use mesh::Mesh;
 
 use crate::material::Material;
@@ -85,7 +87,15 @@ pub struct Scene {
     /// World-space meshes; each names its material by index.
     pub meshes: Vec<Mesh>,
     pub materials: Vec<Material>,
+    /// Punctual lights, area lights already expanded into their
+    /// [`Light::AreaSample`]s.
     pub lights: Vec<Light>,
+    /// Shadow-map settings of `lights`, index for index (see
+    /// [`Scene::shadow_settings`]).
+    pub light_shadows: Vec<ShadowSettings>,
+    /// The area lights the samples in `lights` stand for
+    /// (`Light::AreaSample::area` indexes this).
+    pub area_lights: Vec<AreaLight>,
     /// Constant incoming ambient radiance `L_a`; reflected as `k_a · L_a`.
     pub ambient: Rgb,
     /// What mirrors reflect (defaults to the constant `L_a`).
@@ -111,11 +121,53 @@ impl Scene {
     /// applied), index for index.
     pub fn effective_materials(&self) -> Vec<Material> {
         let floor = self.roughness_floor();
-        self.materials.iter().map(|m| m.with_roughness_floor(floor)).collect()
+        self.materials
+            .iter()
+            .map(|m| m.with_roughness_floor(floor))
+            .collect()
     }
 
     /// Total triangle count.
     pub fn triangle_count(&self) -> usize {
         self.meshes.iter().map(|m| m.indices.len()).sum()
+    }
+
+    /// The shadow-map settings of light `l` (the defaults where none were
+    /// given).
+    pub fn shadow_settings(&self, l: usize) -> ShadowSettings {
+        self.light_shadows.get(l).copied().unwrap_or_default()
+    }
+
+    /// Whether any light casts shadows.
+    pub fn has_shadows(&self) -> bool {
+        self.lights.iter().any(Light::casts_shadows)
+    }
+
+    /// The same scene with every area light rendered by `n` point lights
+    /// (its samples replaced in place; other lights keep their order).
+    pub fn with_area_samples(&self, n: u32) -> Scene {
+        let mut scene = self.clone();
+        scene.lights.clear();
+        scene.light_shadows.clear();
+        let mut done = vec![false; self.area_lights.len()];
+        for (l, light) in self.lights.iter().enumerate() {
+            let settings = self.shadow_settings(l);
+            match *light {
+                Light::AreaSample { area, .. } => {
+                    if !std::mem::replace(&mut done[area], true) {
+                        scene.area_lights[area].samples = n;
+                        for sample in self.area_lights[area].point_lights(area, n) {
+                            scene.lights.push(sample);
+                            scene.light_shadows.push(settings);
+                        }
+                    }
+                }
+                _ => {
+                    scene.lights.push(light.clone());
+                    scene.light_shadows.push(settings);
+                }
+            }
+        }
+        scene
     }
 }

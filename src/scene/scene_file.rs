@@ -13,8 +13,8 @@
 use crate::material::{Material, ReflectanceModel, presets};
 use crate::scene::limits::{Limits, ReadError, read_regular_file};
 use crate::scene::{
-    Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, default_scene::DEFAULT_SCENE_TOML, gltf_import,
-    primitives,
+    AreaLight, Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, ShadowFilter,
+    ShadowSettings, area_light, default_scene::DEFAULT_SCENE_TOML, gltf_import, primitives,
 };
 use crate::{Error, Result};
 use glam::DVec3;
@@ -40,6 +40,8 @@ pub struct SceneFile {
     pub materials: BTreeMap<String, MaterialEntry>,
     #[serde(default)]
     pub lights: Vec<LightEntry>,
+    #[serde(default)]
+    pub shadows: ShadowsSection,
     #[serde(default)]
     pub ambient: AmbientSection,
     #[serde(default)]
@@ -162,7 +164,10 @@ pub struct MaterialEntry {
     pub denominator: Option<String>,
 }
 
-/// `[[lights]]`, tagged by `kind`.
+/// `[[lights]]`, tagged by `kind`. Every kind takes `shadows` and the
+/// shadow-map keys `shadow_map_size`, `shadow_bias`, `shadow_slope_bias`,
+/// `shadow_normal_offset`, `shadow_filter`, `shadow_pcf_kernel` (defaults
+/// from `[shadows]`; meanings in `docs/shadows.md`).
 #[derive(Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum LightEntry {
@@ -173,12 +178,36 @@ pub enum LightEntry {
         range: Option<f64>,
         #[serde(default)]
         shadows: bool,
+        #[serde(default)]
+        shadow_map_size: Option<u32>,
+        #[serde(default)]
+        shadow_bias: Option<f64>,
+        #[serde(default)]
+        shadow_slope_bias: Option<f64>,
+        #[serde(default)]
+        shadow_normal_offset: Option<f64>,
+        #[serde(default)]
+        shadow_filter: Option<String>,
+        #[serde(default)]
+        shadow_pcf_kernel: Option<u32>,
     },
     Directional {
         direction: [f64; 3],
         irradiance: ColorValue,
         #[serde(default)]
         shadows: bool,
+        #[serde(default)]
+        shadow_map_size: Option<u32>,
+        #[serde(default)]
+        shadow_bias: Option<f64>,
+        #[serde(default)]
+        shadow_slope_bias: Option<f64>,
+        #[serde(default)]
+        shadow_normal_offset: Option<f64>,
+        #[serde(default)]
+        shadow_filter: Option<String>,
+        #[serde(default)]
+        shadow_pcf_kernel: Option<u32>,
     },
     Spot {
         position: [f64; 3],
@@ -192,7 +221,150 @@ pub enum LightEntry {
         range: Option<f64>,
         #[serde(default)]
         shadows: bool,
+        #[serde(default)]
+        shadow_map_size: Option<u32>,
+        #[serde(default)]
+        shadow_bias: Option<f64>,
+        #[serde(default)]
+        shadow_slope_bias: Option<f64>,
+        #[serde(default)]
+        shadow_normal_offset: Option<f64>,
+        #[serde(default)]
+        shadow_filter: Option<String>,
+        #[serde(default)]
+        shadow_pcf_kernel: Option<u32>,
     },
+    /// A rectangle or disk emitting radiance `L` with a cosine
+    /// distribution about `normal`, rendered as `samples` point lights.
+    Area {
+        shape: String,
+        position: [f64; 3],
+        normal: [f64; 3],
+        /// Rectangle: `[w, h]`, `w` along `tangent`.
+        #[serde(default)]
+        size: Option<[f64; 2]>,
+        #[serde(default)]
+        tangent: Option<[f64; 3]>,
+        /// Disk radius.
+        #[serde(default)]
+        radius: Option<f64>,
+        radiance: ColorValue,
+        #[serde(default)]
+        samples: Option<u32>,
+        #[serde(default)]
+        shadows: bool,
+        #[serde(default)]
+        shadow_map_size: Option<u32>,
+        #[serde(default)]
+        shadow_bias: Option<f64>,
+        #[serde(default)]
+        shadow_slope_bias: Option<f64>,
+        #[serde(default)]
+        shadow_normal_offset: Option<f64>,
+        #[serde(default)]
+        shadow_filter: Option<String>,
+        #[serde(default)]
+        shadow_pcf_kernel: Option<u32>,
+    },
+}
+
+/// The shadow-map keys of one `[[lights]]` entry.
+#[derive(Clone, Debug, Default)]
+pub struct ShadowKeys {
+    pub map_size: Option<u32>,
+    pub bias: Option<f64>,
+    pub slope_bias: Option<f64>,
+    pub normal_offset: Option<f64>,
+    pub filter: Option<String>,
+    pub pcf_kernel: Option<u32>,
+}
+
+impl LightEntry {
+    /// The entry's `shadows` flag and shadow-map keys.
+    pub fn shadow_keys(&self) -> (bool, ShadowKeys) {
+        match self {
+            LightEntry::Point {
+                shadows,
+                shadow_map_size,
+                shadow_bias,
+                shadow_slope_bias,
+                shadow_normal_offset,
+                shadow_filter,
+                shadow_pcf_kernel,
+                ..
+            }
+            | LightEntry::Directional {
+                shadows,
+                shadow_map_size,
+                shadow_bias,
+                shadow_slope_bias,
+                shadow_normal_offset,
+                shadow_filter,
+                shadow_pcf_kernel,
+                ..
+            }
+            | LightEntry::Spot {
+                shadows,
+                shadow_map_size,
+                shadow_bias,
+                shadow_slope_bias,
+                shadow_normal_offset,
+                shadow_filter,
+                shadow_pcf_kernel,
+                ..
+            }
+            | LightEntry::Area {
+                shadows,
+                shadow_map_size,
+                shadow_bias,
+                shadow_slope_bias,
+                shadow_normal_offset,
+                shadow_filter,
+                shadow_pcf_kernel,
+                ..
+            } => (
+                *shadows,
+                ShadowKeys {
+                    map_size: *shadow_map_size,
+                    bias: *shadow_bias,
+                    slope_bias: *shadow_slope_bias,
+                    normal_offset: *shadow_normal_offset,
+                    filter: shadow_filter.clone(),
+                    pcf_kernel: *shadow_pcf_kernel,
+                },
+            ),
+        }
+    }
+}
+
+/// `[shadows]`: shadow-map defaults for every light that does not set its
+/// own (gonio's extension), and whether lights imported from glTF files
+/// cast shadows.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShadowsSection {
+    /// `KHR_lights_punctual` lights cast shadows (default: no).
+    #[serde(default)]
+    pub imported_lights: bool,
+    pub map_size: Option<u32>,
+    pub bias: Option<f64>,
+    pub slope_bias: Option<f64>,
+    pub normal_offset: Option<f64>,
+    pub filter: Option<String>,
+    pub pcf_kernel: Option<u32>,
+}
+
+impl ShadowsSection {
+    fn keys(&self) -> ShadowKeys {
+        ShadowKeys {
+            map_size: self.map_size,
+            bias: self.bias,
+            slope_bias: self.slope_bias,
+            normal_offset: self.normal_offset,
+            filter: self.filter.clone(),
+            pcf_kernel: self.pcf_kernel,
+        }
+    }
 }
 
 /// `[environment]`: the sky a mirror reflects (gonio's extension); every
@@ -630,11 +802,51 @@ fn assemble(
     gltf_files
         .charge(0, 0, file.lights.len() as u64)
         .map_err(|p| bad(format!("lights: {p}")))?;
+    // Shadow settings: `[shadows]` gives the defaults (and decides for the
+    // lights imported from glTF files), each entry's own keys override.
+    let section_keys = file.shadows.keys();
+    let shadow_defaults =
+        shadow_settings(&section_keys, &|key| format!("shadows.{key}")).map_err(bad)?;
+    let mut light_shadows = vec![shadow_defaults; lights.len()];
+    if file.shadows.imported_lights {
+        lights.iter_mut().for_each(|l| l.set_shadows(true));
+    }
+    let mut area_lights: Vec<AreaLight> = Vec::new();
     for (k, entry) in file.lights.iter().enumerate() {
-        lights.push(light_from_entry(entry).map_err(|p| bad(format!("lights[{k}]: {p}")))?);
+        let at = |p: String| bad(format!("lights[{k}]: {p}"));
+        let (_, keys) = entry.shadow_keys();
+        let merged = ShadowKeys {
+            map_size: keys.map_size.or(section_keys.map_size),
+            bias: keys.bias.or(section_keys.bias),
+            slope_bias: keys.slope_bias.or(section_keys.slope_bias),
+            normal_offset: keys.normal_offset.or(section_keys.normal_offset),
+            filter: keys.filter.or(section_keys.filter.clone()),
+            pcf_kernel: keys.pcf_kernel.or(section_keys.pcf_kernel),
+        };
+        let settings = shadow_settings(&merged, &|key| format!("shadow_{key}")).map_err(at)?;
+        match light_from_entry(entry).map_err(at)? {
+            LightSource::Punctual(light) => {
+                lights.push(light);
+                light_shadows.push(settings);
+            }
+            LightSource::Area(area) => {
+                let index = area_lights.len();
+                for sample in area.point_lights(index, area.samples) {
+                    lights.push(sample);
+                    light_shadows.push(settings);
+                }
+                area_lights.push(area);
+                if lights.len() > MAX_POINT_LIGHTS {
+                    return Err(at(format!(
+                        "the area lights expand into more than {MAX_POINT_LIGHTS} point lights; use fewer samples"
+                    )));
+                }
+            }
+        }
     }
     if lights.is_empty() {
         lights.push(default_light());
+        light_shadows.push(shadow_defaults);
     }
 
     let ambient = match file.ambient.radiance {
@@ -679,6 +891,8 @@ fn assemble(
         meshes,
         materials,
         lights,
+        light_shadows,
+        area_lights,
         ambient,
         environment,
     })
@@ -693,6 +907,70 @@ fn names<V>(map: &BTreeMap<String, V>) -> String {
             .collect::<Vec<_>>()
             .join(", ")
     }
+}
+
+/// Most point lights a scene may have once its area lights are expanded.
+pub const MAX_POINT_LIGHTS: usize = 65536;
+
+/// What one `[[lights]]` entry becomes.
+enum LightSource {
+    Punctual(Light),
+    Area(AreaLight),
+}
+
+/// Validated shadow settings from `keys`; `name(key)` is how the scene
+/// file spells `key` where the keys came from.
+fn shadow_settings(
+    keys: &ShadowKeys,
+    name: &dyn Fn(&str) -> String,
+) -> std::result::Result<ShadowSettings, String> {
+    let map_size = keys.map_size.unwrap_or(ShadowSettings::DEFAULT_MAP_SIZE);
+    let sizes = ShadowSettings::MAP_SIZES;
+    if !sizes.contains(&map_size) {
+        return Err(format!(
+            "{} = {map_size} is outside {}..={}",
+            name("map_size"),
+            sizes.start(),
+            sizes.end()
+        ));
+    }
+    let kernel = keys
+        .pcf_kernel
+        .unwrap_or(ShadowSettings::DEFAULT_PCF_KERNEL);
+    if kernel % 2 == 0 || !(1..=ShadowSettings::MAX_PCF_KERNEL).contains(&kernel) {
+        return Err(format!(
+            "{} = {kernel} must be an odd number in 1..={}",
+            name("pcf_kernel"),
+            ShadowSettings::MAX_PCF_KERNEL
+        ));
+    }
+    let filter = match keys.filter.as_deref() {
+        None | Some("pcf") => ShadowFilter::Pcf { kernel },
+        Some("none") => ShadowFilter::None,
+        Some(other) => {
+            return Err(format!(
+                "{} = \"{other}\" is not a shadow filter; expected none or pcf",
+                name("filter")
+            ));
+        }
+    };
+    let length = |key: &str, v: Option<f64>, default: f64, max: f64| match v {
+        None => Ok(default),
+        Some(v) if v.is_finite() && (0.0..=max).contains(&v) => Ok(v),
+        Some(v) => Err(format!("{} = {v} is outside 0..={max}", name(key))),
+    };
+    Ok(ShadowSettings {
+        map_size,
+        bias: length("bias", keys.bias, 0.0, 1e6)?,
+        slope_bias: length("slope_bias", keys.slope_bias, 0.0, 1e3)?,
+        normal_offset: length(
+            "normal_offset",
+            keys.normal_offset,
+            ShadowSettings::default_normal_offset(filter),
+            1e3,
+        )?,
+        filter,
+    })
 }
 
 /// The light a scene without lights gets, so a bare glTF is visible: a
@@ -713,7 +991,9 @@ pub fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result
     let mut m = Material::new(name, model);
     let key = |k: &str| format!("materials.{name}.{k}");
     if let Some(p) = &e.preset {
-        presets::preset(p).map_err(|p| format!("{}: {p}", key("preset")))?.apply(&mut m);
+        presets::preset(p)
+            .map_err(|p| format!("{}: {p}", key("preset")))?
+            .apply(&mut m);
     }
     let colors = [
         (e.k_a, &mut m.k_a),
@@ -743,7 +1023,11 @@ pub fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result
             *slot = v;
         }
     }
-    fn parse<T: std::str::FromStr<Err = String>>(key: String, v: &Option<String>, slot: &mut T) -> Result<(), String> {
+    fn parse<T: std::str::FromStr<Err = String>>(
+        key: String,
+        v: &Option<String>,
+        slot: &mut T,
+    ) -> Result<(), String> {
         if let Some(text) = v {
             *slot = text.parse().map_err(|p| format!("{key}: {p}"))?;
         }
@@ -834,28 +1118,30 @@ fn range(v: Option<f64>) -> std::result::Result<Option<f64>, String> {
     }
 }
 
-fn light_from_entry(e: &LightEntry) -> std::result::Result<Light, String> {
+fn light_from_entry(e: &LightEntry) -> std::result::Result<LightSource, String> {
     Ok(match e {
         LightEntry::Point {
             position,
             intensity,
             range: r,
             shadows,
-        } => Light::Point {
+            ..
+        } => LightSource::Punctual(Light::Point {
             position: finite_vec("position", *position)?,
             intensity: non_negative("intensity", intensity.rgb())?,
             range: range(*r)?,
             shadows: *shadows,
-        },
+        }),
         LightEntry::Directional {
             direction,
             irradiance,
             shadows,
-        } => Light::Directional {
+            ..
+        } => LightSource::Punctual(Light::Directional {
             direction: unit_vec("direction", *direction)?,
             irradiance: non_negative("irradiance", irradiance.rgb())?,
             shadows: *shadows,
-        },
+        }),
         LightEntry::Spot {
             position,
             direction,
@@ -864,6 +1150,7 @@ fn light_from_entry(e: &LightEntry) -> std::result::Result<Light, String> {
             outer_cone_deg,
             range: r,
             shadows,
+            ..
         } => {
             // glTF's defaults: inner 0, outer π/4.
             let inner = inner_cone_deg.unwrap_or(0.0);
@@ -873,7 +1160,7 @@ fn light_from_entry(e: &LightEntry) -> std::result::Result<Light, String> {
                     "cones must satisfy 0 ≤ inner_cone_deg ≤ outer_cone_deg ≤ 90 (got {inner}, {outer})"
                 ));
             }
-            Light::Spot {
+            LightSource::Punctual(Light::Spot {
                 position: finite_vec("position", *position)?,
                 direction: unit_vec("direction", *direction)?,
                 intensity: non_negative("intensity", intensity.rgb())?,
@@ -881,8 +1168,88 @@ fn light_from_entry(e: &LightEntry) -> std::result::Result<Light, String> {
                 outer_cone_deg: outer,
                 range: range(*r)?,
                 shadows: *shadows,
-            }
+            })
         }
+        LightEntry::Area {
+            shape,
+            position,
+            normal,
+            size,
+            tangent,
+            radius,
+            radiance,
+            samples,
+            shadows,
+            ..
+        } => LightSource::Area(area_light_from_entry(
+            shape, *position, *normal, *size, *tangent, *radius, *radiance, *samples, *shadows,
+        )?),
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn area_light_from_entry(
+    shape: &str,
+    position: [f64; 3],
+    normal: [f64; 3],
+    size: Option<[f64; 2]>,
+    tangent: Option<[f64; 3]>,
+    radius: Option<f64>,
+    radiance: ColorValue,
+    samples: Option<u32>,
+    shadows: bool,
+) -> std::result::Result<AreaLight, String> {
+    let normal = unit_vec("normal", normal)?;
+    let tangent = match tangent {
+        None => crate::material::brdf::any_tangent(normal),
+        Some(t) => {
+            let t = unit_vec("tangent", t)?;
+            (t - normal * normal.dot(t))
+                .try_normalize()
+                .filter(|_| t.cross(normal).length() > 1e-6)
+                .ok_or_else(|| format!("tangent = {:?} is parallel to the normal", t.to_array()))?
+        }
+    };
+    let positive = |key: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(format!("{key} = {v} must be a positive number"))
+        }
+    };
+    let shape = match (shape, size, radius) {
+        ("rect", Some([w, h]), None) => area_light::AreaShape::Rect {
+            width: positive("size[0]", w)?,
+            height: positive("size[1]", h)?,
+        },
+        ("disk", None, Some(r)) => area_light::AreaShape::Disk {
+            radius: positive("radius", r)?,
+        },
+        ("rect", _, _) => {
+            return Err("shape = \"rect\" needs `size = [w, h]` and no `radius`".into());
+        }
+        ("disk", _, _) => return Err("shape = \"disk\" needs `radius` and no `size`".into()),
+        (other, _, _) => {
+            return Err(format!(
+                "shape = \"{other}\" is not an area light shape; expected rect or disk"
+            ));
+        }
+    };
+    let samples = samples.unwrap_or(area_light::DEFAULT_SAMPLES);
+    if !(1..=area_light::MAX_SAMPLES).contains(&samples) {
+        return Err(format!(
+            "samples = {samples} is outside 1..={}",
+            area_light::MAX_SAMPLES
+        ));
+    }
+    Ok(AreaLight {
+        shape,
+        position: finite_vec("position", position)?,
+        normal,
+        tangent,
+        radiance: non_negative("radiance", radiance.rgb())?,
+        samples,
+        shadows,
     })
 }
 
@@ -945,6 +1312,124 @@ mod tests {
         match &scene.lights[0] {
             Light::Point { intensity, .. } => assert_eq!(*intensity, Rgb::new(1.0, 2.0, 3.0)),
             other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn shadow_keys_reach_the_scene() {
+        let scene = load(&SceneSource::BuiltIn, &[]).unwrap();
+        assert!(!scene.has_shadows());
+        assert_eq!(scene.shadow_settings(0), ShadowSettings::default());
+        let sets = [
+            "lights.0.shadows=true".to_string(),
+            "lights.0.shadow_map_size=1024".to_string(),
+            "lights.0.shadow_filter=none".to_string(),
+            "lights.0.shadow_bias=0.001".to_string(),
+        ];
+        let scene = load(&SceneSource::BuiltIn, &sets).unwrap();
+        assert!(scene.lights[0].casts_shadows());
+        let s = scene.shadow_settings(0);
+        assert_eq!(
+            (s.map_size, s.filter, s.bias, s.slope_bias),
+            (1024, ShadowFilter::None, 0.001, 0.0)
+        );
+        assert_eq!(
+            s.normal_offset,
+            ShadowSettings::default_normal_offset(ShadowFilter::None)
+        );
+        // `[shadows]` gives defaults; a light's own key wins.
+        let sets = [
+            "shadows.map_size=512".to_string(),
+            "shadows.pcf_kernel=5".to_string(),
+            "lights.0.shadow_normal_offset=3".to_string(),
+        ];
+        let s = load(&SceneSource::BuiltIn, &sets)
+            .unwrap()
+            .shadow_settings(0);
+        assert_eq!(
+            (s.map_size, s.filter, s.normal_offset),
+            (512, ShadowFilter::Pcf { kernel: 5 }, 3.0)
+        );
+    }
+
+    #[test]
+    fn imported_lights_cast_shadows_when_asked() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("assets/gltf/ShadowsDirectional/shadows-directional.gltf");
+        let source = SceneSource::File(path);
+        assert!(!load(&source, &[]).unwrap().has_shadows());
+        let scene = load(
+            &source,
+            &[
+                "shadows.imported_lights=true".into(),
+                "shadows.filter=none".into(),
+            ],
+        )
+        .unwrap();
+        assert!(scene.lights.iter().all(Light::casts_shadows));
+        assert_eq!(scene.shadow_settings(0).filter, ShadowFilter::None);
+    }
+
+    #[test]
+    fn area_lights_expand_into_their_samples() {
+        let light = "lights=[{kind = \"area\", shape = \"disk\", position = [0.0, 3.0, 0.0], normal = [0.0, -1.0, 0.0], radius = 0.5, radiance = 2.0, samples = 9, shadows = true}]";
+        let scene = load(&SceneSource::BuiltIn, &[light.into()]).unwrap();
+        assert_eq!(scene.area_lights.len(), 1);
+        assert_eq!(scene.lights.len(), 9);
+        assert_eq!(scene.light_shadows.len(), 9);
+        let area = std::f64::consts::PI * 0.25;
+        for l in &scene.lights {
+            match l {
+                Light::AreaSample {
+                    intensity,
+                    area: 0,
+                    shadows: true,
+                    ..
+                } => {
+                    assert!((intensity.x - 2.0 * area / 9.0).abs() < 1e-12)
+                }
+                other => panic!("{other:?}"),
+            }
+        }
+        let scene = load(
+            &SceneSource::BuiltIn,
+            &[light.into(), "lights.0.samples=64".into()],
+        )
+        .unwrap();
+        assert_eq!(scene.lights.len(), 64);
+        assert_eq!(scene.with_area_samples(4).lights.len(), 4);
+        let rect = "lights=[{kind = \"area\", shape = \"rect\", position = [0.0, 3.0, 0.0], normal = [0.0, -1.0, 0.0], size = [1.0, 2.0], tangent = [1.0, 0.0, 0.0], radiance = 1.0}]";
+        let scene = load(&SceneSource::BuiltIn, &[rect.into()]).unwrap();
+        assert_eq!(scene.lights.len(), area_light::DEFAULT_SAMPLES as usize);
+    }
+
+    #[test]
+    fn bad_shadow_and_area_keys_are_rejected() {
+        let area = |extra: &str| {
+            format!(
+                "lights=[{{kind = \"area\", position = [0.0, 3.0, 0.0], normal = [0.0, -1.0, 0.0], radiance = 1.0, {extra}}}]"
+            )
+        };
+        for kv in [
+            "lights.0.shadow_map_size=8".to_string(),
+            "lights.0.shadow_map_size=100000".to_string(),
+            "lights.0.shadow_pcf_kernel=4".to_string(),
+            "lights.0.shadow_filter=soft".to_string(),
+            "lights.0.shadow_bias=-1".to_string(),
+            "lights.0.shadow_normal_offset=nan".to_string(),
+            "shadows.map_size=1".to_string(),
+            "shadows.imported=true".to_string(),
+            area("shape = \"rect\", radius = 1.0"),
+            area("shape = \"rect\", size = [1.0, 0.0]"),
+            area("shape = \"disk\", radius = 1.0, samples = 0"),
+            area("shape = \"disk\", radius = 1.0, samples = 5000"),
+            area("shape = \"disk\", size = [1.0, 1.0]"),
+            area("shape = \"square\", radius = 1.0"),
+            area("shape = \"rect\", size = [1.0, 1.0], tangent = [0.0, 2.0, 0.0]"),
+        ] {
+            let err = load(&SceneSource::BuiltIn, &[kv.clone()]);
+            assert!(err.is_err(), "{kv} accepted");
+            assert_eq!(err.unwrap_err().exit_code(), 2, "{kv}");
         }
     }
 

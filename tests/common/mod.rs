@@ -24,3 +24,74 @@ pub fn gltf_asset(relative: &str) -> PathBuf {
 pub fn gonio() -> std::process::Command {
     std::process::Command::new(env!("CARGO_BIN_EXE_gonio"))
 }
+
+// ---------------------------------------------------------------------
+// The derived GPU-vs-reference tolerance (the same derivation as
+// tests/gpu_vs_cpu.rs; see its module docs and gonio::output::compare).
+
+use gonio::frame::Frame;
+use gonio::material::{Distribution, Material, ReflectanceModel};
+use gonio::output::compare::{Comparison, JITTER_OFFSETS, Tolerance, compare_with_jitter};
+use gonio::scene::Scene;
+
+/// Sample-point jitter of the geometric tolerance (lavapipe snaps to
+/// 1/256 px; see tests/gpu_vs_cpu.rs).
+pub const JITTER_PX: f64 = 1.0 / 128.0;
+/// f32 unit roundoff, 2⁻²⁴.
+pub const EPS: f64 = 1.0 / 16_777_216.0;
+
+/// The arithmetic tolerance for `scene`: the largest over its materials.
+pub fn tolerance(scene: &Scene, reference: &Frame) -> Tolerance {
+    let rel = scene
+        .effective_materials()
+        .iter()
+        .map(arithmetic_rel)
+        .fold(64.0 * EPS, f64::max);
+    Tolerance {
+        rel,
+        abs: 64.0 * EPS * reference.max_radiance() as f64,
+    }
+}
+
+/// Relative f32 error of one material's shading beyond the light loop's
+/// 64ε (derivation: tests/gpu_vs_cpu.rs).
+pub fn arithmetic_rel(m: &Material) -> f64 {
+    let pow = |k: f64| k * (8.0 * EPS + 2f64.powi(-21) * std::f64::consts::LN_2);
+    let slope = |r: f64| 128.0 * EPS / r;
+    match m.model {
+        ReflectanceModel::Phong
+        | ReflectanceModel::PhongNormalized
+        | ReflectanceModel::BlinnPhong
+        | ReflectanceModel::BlinnPhongNormalized => pow(m.k_e),
+        ReflectanceModel::Ward => slope(m.sigma_x),
+        ReflectanceModel::WardAnisotropic => slope(m.sigma_x.min(m.sigma_y)),
+        ReflectanceModel::CookTorrance => match m.distribution {
+            Distribution::Blinn | Distribution::BlinnNormalized => {
+                pow(-std::f64::consts::LN_2 / m.roughness.cos().ln())
+            }
+            Distribution::Gaussian | Distribution::GaussianNormalized => {
+                2.0 * std::f64::consts::LN_2 * 30.0 * 4096.0 * EPS
+            }
+            _ => slope(m.roughness),
+        },
+        ReflectanceModel::Lambert | ReflectanceModel::Mirror => 0.0,
+    }
+}
+
+/// The reference frame at the pixel centres and the four jittered ones.
+pub fn reference_with_jitter(scene: &Scene) -> (Frame, [Frame; 4]) {
+    let center = gonio::reference::render(scene);
+    let jittered = JITTER_OFFSETS
+        .map(|(dx, dy)| gonio::reference::render_offset(scene, dx * JITTER_PX, dy * JITTER_PX));
+    (center, jittered)
+}
+
+/// Compares a GPU frame with the reference under the derived tolerance.
+pub fn compare_to_reference(
+    scene: &Scene,
+    gpu: &Frame,
+    center: &Frame,
+    jittered: &[Frame; 4],
+) -> Comparison {
+    compare_with_jitter(gpu, center, jittered, tolerance(scene, center))
+}

@@ -18,7 +18,8 @@
 //! lobes wider than that in practice.
 
 use super::COS_FLOOR;
-use super::phong::{EXP_CUTOFF, cos_power, exp_cutoff};
+pub use super::phong::sin2_between;
+use super::phong::{EXP_CUTOFF, exp_cutoff, ln_cos};
 use crate::scene::Rgb;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, LN_2, PI};
@@ -37,41 +38,44 @@ pub fn half_vector(wi: DVec3, wo: DVec3) -> DVec3 {
 /// used by Cook-Torrance): `exp(−tan²α / m²) / (π m² cos⁴α)`, `m` the RMS
 /// slope. Normalized: `∫ D cosθ_h dω_h = 1`.
 ///
-/// The exponent is tested before dividing (`sin² ≥ 80 cos² m²` ⇔ exponent
-/// ≤ −80 → 0, [`exp_cutoff`]): no `tan²` overflow and no `∞ · 0` from
-/// `1/cos⁴` as `cos_h → 0` (in `f32` too); past the test `cos² > 1/81`, so
-/// the value is ≤ `1/(π m²)` = 3.2e7 at m = 1e-4. m = 0 gives 0.
-pub fn d_beckmann(m: f64, cos_h: f64) -> f64 {
+/// Takes `sin2_h = |N × H|²` besides `cos_h = N·H`: near the peak `cos_h`
+/// rounds to 1 in `f32` (its ulp, 6e-8, is an angle of 3.5e-4 rad), which
+/// would flatten lobes narrower than that; `|N × H|²` keeps full relative
+/// precision for small angles. The exponent is tested before dividing
+/// (`sin² ≥ 80 cos² m²` ⇔ exponent ≤ −80 → 0, [`exp_cutoff`]): no `tan²`
+/// overflow and no `∞ · 0` from `1/cos⁴` as `cos_h → 0` (in `f32` too);
+/// past the test `cos² > 1/81`, so the value is ≤ `1/(π m²)` = 3.2e7 at
+/// m = 1e-4.
+pub fn d_beckmann(m: f64, cos_h: f64, sin2_h: f64) -> f64 {
     if cos_h <= 0.0 {
         return 0.0;
     }
     let cos_hc = cos_h.min(1.0); // rounding can pass 1
     let cos2 = cos_hc * cos_hc;
-    let sin2 = 1.0 - cos2;
     let m2 = m * m;
-    if sin2 >= EXP_CUTOFF * cos2 * m2 {
+    if sin2_h >= EXP_CUTOFF * cos2 * m2 {
         return 0.0; // exponent ≤ −80
     }
-    let exponent = -sin2 / (cos2 * m2); // in (−80, 0]; cos2 * m2 > 0 here
+    let exponent = -sin2_h / (cos2 * m2); // in (−80, 0]; cos2 * m2 > 0 here
     exp_cutoff(exponent) / (PI * m2 * cos2 * cos2)
 }
 
 /// GGX / Trowbridge-Reitz distribution (Walter et al. 2007, eq. 33):
 /// `α² / (π ((α² − 1) cos² + 1)²)`. Normalized.
 ///
-/// The bracket is evaluated as `α² cos² + sin²` (the same number): in
-/// `f32`, `α² − 1` rounds to −1 for α < 2.4e-4 and the bracket would be 0
-/// at `cos = 1`. It is ≥ `min(α², 1)`, so the value is ≤ `1/(π α²)` =
-/// 3.2e7 at α = 1e-4. Needs α > 0 (the renderer floors roughness at 1e-4).
-pub fn d_ggx(alpha: f64, cos_h: f64) -> f64 {
+/// The bracket is evaluated as `α² cos² + sin²` with `sin2_h = |N × H|²`
+/// (see [`d_beckmann`] for why not `1 − cos²`): in `f32`, `α² − 1` rounds
+/// to −1 for α < 2.4e-4 and the bracket would be 0 at `cos = 1`. It is ≥
+/// about `min(α², 1)`, so the value is ≤ `1/(π α²)` = 3.2e7 at α = 1e-4.
+/// Needs α > 0 (the renderer floors roughness at 1e-4).
+pub fn d_ggx(alpha: f64, cos_h: f64, sin2_h: f64) -> f64 {
     if cos_h <= 0.0 {
         return 0.0;
     }
     let cos_hc = cos_h.min(1.0); // rounding can pass 1
     let cos2 = cos_hc * cos_hc;
-    let sin2 = 1.0 - cos2;
     let alpha2 = alpha * alpha;
-    let d = alpha2 * cos2 + sin2; // = (α² − 1) cos² + 1
+    let d = alpha2 * cos2 + sin2_h; // = (α² − 1) cos² + 1
     alpha2 / (PI * d * d)
 }
 
@@ -94,31 +98,43 @@ pub fn blinn_exponent(m: f64) -> f64 {
 
 /// Blinn's distribution as the lecture writes it ("Microfacet
 /// Distribution Functions"): `cos^(−ln 2 / ln cos m) α`. Peak 1 at
-/// `α = 0`, ½ at `α = m`; not normalized. Through [`cos_power`] (0 for
-/// `cos_h ≤ 0`, cut off below `e^−80`).
-pub fn d_blinn_lecture(m: f64, cos_h: f64) -> f64 {
-    cos_power(cos_h, blinn_exponent(m))
+/// `α = 0`, ½ at `α = m`; not normalized. Evaluated as
+/// `exp(e · ½ ln(1 − sin²α))` from `sin2_h = |N × H|²` (see
+/// [`d_beckmann`]): the exponent e reaches 1.4e8 at m = 1e-4, where `cos`
+/// itself has no precision left in `f32`. 0 for `cos_h ≤ 0`, cut off below
+/// `e^−80` ([`exp_cutoff`]).
+///
+/// Takes the exponent `e` = [`blinn_exponent`]`(m)`, not `m`: it depends
+/// on the material alone, so the renderers compute it once in f64 (the GPU
+/// gets it in the material buffer, `blinn_e`; WGSL's `sin` is only
+/// accurate to 2⁻¹¹ absolute on Vulkan, which would move e by 10⁻³).
+pub fn d_blinn_lecture(e: f64, cos_h: f64, sin2_h: f64) -> f64 {
+    if cos_h <= 0.0 {
+        return 0.0;
+    }
+    exp_cutoff(e * ln_cos(cos_h, sin2_h.min(1.0)))
 }
 
 /// Blinn's distribution normalized (Blinn 1977's form with the
 /// normalization of Walter et al. 2007 "Phong" distribution):
 /// `((e + 2) / (2π)) cos^e α`, `e` = [`blinn_exponent`]`(m)`, so that
 /// `∫ D cosθ_h dω_h = 1`. At most `(e + 2)/(2π)` = 2.2e7 at m = 1e-4.
-pub fn d_blinn_normalized(m: f64, cos_h: f64) -> f64 {
-    let e = blinn_exponent(m);
-    (e + 2.0) * 0.5 * FRAC_1_PI * cos_power(cos_h, e)
+/// Takes `e` like [`d_blinn_lecture`].
+pub fn d_blinn_normalized(e: f64, cos_h: f64, sin2_h: f64) -> f64 {
+    (e + 2.0) * 0.5 * FRAC_1_PI * d_blinn_lecture(e, cos_h, sin2_h)
 }
 
 /// The Gaussian distribution as the lecture writes it ("Torrance-Sparrow,
-/// Gaussian"): `exp(−ln 2 (α/m)²)`, `α = acos(N·H)`, `m` an angle in
-/// radians. Peak 1, ½ at `α = m`; not normalized. `cos_h` is clamped to ≤
-/// 1 before `acos` (NaN past 1); the exponential is cut off below `e^−80`
+/// Gaussian"): `exp(−ln 2 (α/m)²)`, `α` the angle between N and H, `m` an
+/// angle in radians. Peak 1, ½ at `α = m`; not normalized. α =
+/// `atan2(sqrt(sin2_h), cos_h)`, accurate at small angles where `acos(cos_h)`
+/// is not (see [`d_beckmann`]); the exponential is cut off below `e^−80`
 /// ([`exp_cutoff`]) like the others.
-pub fn d_gaussian_lecture(m: f64, cos_h: f64) -> f64 {
+pub fn d_gaussian_lecture(m: f64, cos_h: f64, sin2_h: f64) -> f64 {
     if cos_h <= 0.0 {
         return 0.0;
     }
-    let alpha = cos_h.min(1.0).acos(); // min: acos is NaN past 1
+    let alpha = sin2_h.max(0.0).sqrt().atan2(cos_h);
     let ratio = alpha / m;
     exp_cutoff(-LN_2 * ratio * ratio)
 }
@@ -127,8 +143,8 @@ pub fn d_gaussian_lecture(m: f64, cos_h: f64) -> f64 {
 /// normalized: `norm · exp(−ln 2 (α/m)²)` with
 /// `norm` = [`gaussian_normalization`]`(m)`, computed once per material on
 /// the CPU and passed to the GPU in the material buffer (`d_norm`).
-pub fn d_gaussian_normalized(m: f64, cos_h: f64, norm: f64) -> f64 {
-    norm * d_gaussian_lecture(m, cos_h)
+pub fn d_gaussian_normalized(m: f64, cos_h: f64, sin2_h: f64, norm: f64) -> f64 {
+    norm * d_gaussian_lecture(m, cos_h, sin2_h)
 }
 
 /// Normalization of the lecture's Gaussian ("Microfacet Distribution
@@ -250,8 +266,9 @@ pub fn g1_ggx(alpha: f64, cos_v: f64, cos_vh: f64) -> f64 {
 /// for small angles `cos^e α ≈ exp(−e α²/2)` and Beckmann ≈ `exp(−α²/m_b²)`,
 /// so the widths agree too, to O(1/e). For small m, `e ≈ 2 ln 2/m²` and
 /// this tends to [`beckmann_slope_of_gaussian`]`(m)`.
-pub fn beckmann_slope_of_blinn(m: f64) -> f64 {
-    (2.0 / (blinn_exponent(m) + 2.0)).sqrt()
+/// Takes `e` like [`d_blinn_lecture`].
+pub fn beckmann_slope_of_blinn(e: f64) -> f64 {
+    (2.0 / (e + 2.0)).sqrt()
 }
 
 /// The Beckmann slope whose lobe matches the lecture's Gaussian of angle
@@ -303,6 +320,11 @@ pub fn cook_torrance_specular(
 
 #[cfg(test)]
 mod tests {
+    /// `1 − c²`, the sin² the distributions take, for tests given a cosine.
+    fn sin2_of(c: f64) -> f64 {
+        (1.0 - c * c).max(0.0)
+    }
+
     use super::super::fresnel::fresnel_conductor;
     use super::*;
 
@@ -373,12 +395,15 @@ mod tests {
         for m in [0.05, 0.3, 1.0] {
             let norm = gaussian_normalization(m);
             let cases: [(&str, Lobe); 4] = [
-                ("beckmann", Box::new(move |c| d_beckmann(m, c))),
-                ("ggx", Box::new(move |c| d_ggx(m, c))),
-                ("blinn", Box::new(move |c| d_blinn_normalized(m, c))),
+                ("beckmann", Box::new(move |c| d_beckmann(m, c, sin2_of(c)))),
+                ("ggx", Box::new(move |c| d_ggx(m, c, sin2_of(c)))),
+                (
+                    "blinn",
+                    Box::new(move |c| d_blinn_normalized(blinn_exponent(m), c, sin2_of(c))),
+                ),
                 (
                     "gaussian",
-                    Box::new(move |c| d_gaussian_normalized(m, c, norm)),
+                    Box::new(move |c| d_gaussian_normalized(m, c, sin2_of(c), norm)),
                 ),
             ];
             for (name, d) in cases {
@@ -413,10 +438,16 @@ mod tests {
     #[test]
     fn lecture_distributions_peak_at_one_and_halve_at_m() {
         for m in [0.01, 0.05, 0.3, 1.0] {
-            assert_eq!(d_blinn_lecture(m, 1.0), 1.0 - (-EXP_CUTOFF).exp());
-            assert_eq!(d_gaussian_lecture(m, 1.0), 1.0 - (-EXP_CUTOFF).exp());
-            let b = d_blinn_lecture(m, m.cos());
-            let g = d_gaussian_lecture(m, m.cos());
+            assert_eq!(
+                d_blinn_lecture(blinn_exponent(m), 1.0, sin2_of(1.0)),
+                1.0 - (-EXP_CUTOFF).exp()
+            );
+            assert_eq!(
+                d_gaussian_lecture(m, 1.0, sin2_of(1.0)),
+                1.0 - (-EXP_CUTOFF).exp()
+            );
+            let b = d_blinn_lecture(blinn_exponent(m), m.cos(), sin2_of(m.cos()));
+            let g = d_gaussian_lecture(m, m.cos(), sin2_of(m.cos()));
             assert!((b - 0.5).abs() < 1e-10, "blinn m {m}: {b}");
             assert!((g - 0.5).abs() < 1e-10, "gaussian m {m}: {g}");
         }
@@ -433,15 +464,21 @@ mod tests {
     fn beckmann_slopes_match_the_lobes() {
         // Equal peaks of the normalized forms.
         for m in [0.05, 0.3, 1.0] {
-            let mb = beckmann_slope_of_blinn(m);
+            let mb = beckmann_slope_of_blinn(blinn_exponent(m));
             assert!(
-                (d_blinn_normalized(m, 1.0) - d_beckmann(mb, 1.0)).abs()
-                    < 1e-9 * d_beckmann(mb, 1.0)
+                (d_blinn_normalized(blinn_exponent(m), 1.0, sin2_of(1.0))
+                    - d_beckmann(mb, 1.0, sin2_of(1.0)))
+                .abs()
+                    < 1e-9 * d_beckmann(mb, 1.0, sin2_of(1.0))
             );
         }
         // Small m: Blinn's slope tends to the Gaussian's.
         let m = 1e-3;
-        assert!((beckmann_slope_of_blinn(m) / beckmann_slope_of_gaussian(m) - 1.0).abs() < 1e-6);
+        assert!(
+            (beckmann_slope_of_blinn(blinn_exponent(m)) / beckmann_slope_of_gaussian(m) - 1.0)
+                .abs()
+                < 1e-6
+        );
         assert!((beckmann_slope_of_gaussian(0.5) - 0.5 / LN_2.sqrt()).abs() < 1e-15);
     }
 
@@ -515,13 +552,22 @@ mod tests {
         let (cos_i, cos_o, cos_h) = (n.dot(wi), n.dot(wo), n.dot(h));
         let (cos_ih, cos_oh) = (wi.dot(h), wo.dot(h));
         let (d, slope) = match dist {
-            0 => (d_beckmann(m, cos_h), m),
-            1 => (d_ggx(m, cos_h), m),
-            2 => (d_blinn_lecture(m, cos_h), beckmann_slope_of_blinn(m)),
-            3 => (d_blinn_normalized(m, cos_h), beckmann_slope_of_blinn(m)),
-            4 => (d_gaussian_lecture(m, cos_h), beckmann_slope_of_gaussian(m)),
+            0 => (d_beckmann(m, cos_h, sin2_of(cos_h)), m),
+            1 => (d_ggx(m, cos_h, sin2_of(cos_h)), m),
+            2 => (
+                d_blinn_lecture(blinn_exponent(m), cos_h, sin2_of(cos_h)),
+                beckmann_slope_of_blinn(blinn_exponent(m)),
+            ),
+            3 => (
+                d_blinn_normalized(blinn_exponent(m), cos_h, sin2_of(cos_h)),
+                beckmann_slope_of_blinn(blinn_exponent(m)),
+            ),
+            4 => (
+                d_gaussian_lecture(m, cos_h, sin2_of(cos_h)),
+                beckmann_slope_of_gaussian(m),
+            ),
             _ => (
-                d_gaussian_normalized(m, cos_h, gaussian_normalization(m)),
+                d_gaussian_normalized(m, cos_h, sin2_of(cos_h), gaussian_normalization(m)),
                 beckmann_slope_of_gaussian(m),
             ),
         };
@@ -595,7 +641,7 @@ mod tests {
                         let (cos_i, cos_o, cos_h) = (n.dot(wi), n.dot(wo), n.dot(h));
                         let g = g1_ggx(alpha, cos_i, wi.dot(h)) * g1_ggx(alpha, cos_o, wo.dot(h));
                         ring += cook_torrance_specular(
-                            d_ggx(alpha, cos_h),
+                            d_ggx(alpha, cos_h, sin2_of(cos_h)),
                             g,
                             Rgb::ONE,
                             cos_i,
@@ -638,12 +684,12 @@ mod tests {
             assert!(norm.is_finite() && norm > 0.0);
             for &c in &coss {
                 let ds = [
-                    d_beckmann(m, c),
-                    d_ggx(m, c),
-                    d_blinn_lecture(m, c),
-                    d_blinn_normalized(m, c),
-                    d_gaussian_lecture(m, c),
-                    d_gaussian_normalized(m, c, norm),
+                    d_beckmann(m, c, sin2_of(c)),
+                    d_ggx(m, c, sin2_of(c)),
+                    d_blinn_lecture(blinn_exponent(m), c, sin2_of(c)),
+                    d_blinn_normalized(blinn_exponent(m), c, sin2_of(c)),
+                    d_gaussian_lecture(m, c, sin2_of(c)),
+                    d_gaussian_normalized(m, c, sin2_of(c), norm),
                 ];
                 for d in ds {
                     assert!(d.is_finite() && d >= 0.0, "m {m} cos {c}: {d}");
@@ -671,7 +717,7 @@ mod tests {
             }
         }
         for m in [1e-4, 1.0] {
-            assert!(beckmann_slope_of_blinn(m).is_finite());
+            assert!(beckmann_slope_of_blinn(blinn_exponent(m)).is_finite());
             assert!(beckmann_slope_of_gaussian(m).is_finite());
         }
         assert_eq!(half_vector(DVec3::Z, -DVec3::Z), DVec3::ZERO);
@@ -690,7 +736,7 @@ mod tests {
         let wo = dir(80.0, 180.0);
         let h = half_vector(wi, wo);
         let m = 0.5;
-        let d = d_beckmann(m, n.dot(h));
+        let d = d_beckmann(m, n.dot(h), sin2_between(n, h));
         let g = g1_beckmann(m, n.dot(wi), wi.dot(h)) * g1_beckmann(m, n.dot(wo), wo.dot(h));
         let f = fresnel_conductor(wi.dot(h), Rgb::splat(0.370), Rgb::splat(2.820));
         let fr = cook_torrance_specular(d, g, f, n.dot(wi), n.dot(wo), 4.0);

@@ -40,7 +40,11 @@ impl SurfaceFrame {
         } else {
             any_tangent(n)
         };
-        SurfaceFrame { n, t, b: n.cross(t) }
+        SurfaceFrame {
+            n,
+            t,
+            b: n.cross(t),
+        }
     }
 
     /// A frame around `n` with an arbitrary tangent (isotropic models).
@@ -87,27 +91,42 @@ pub fn cook_torrance(m: &Material, wi: DVec3, wo: DVec3, n: DVec3) -> Rgb {
     let cos_i = n.dot(wi);
     let cos_o = n.dot(wo);
     let cos_h = n.dot(h);
+    let sin2_h = microfacet::sin2_between(n, h);
     let cos_ih = wi.dot(h);
     let cos_oh = wo.dot(h);
-    let d = distribution(m.distribution, m.roughness, cos_h);
-    let g = geometry(m.geometry, m.distribution, m.roughness, cos_h, cos_i, cos_o, cos_ih, cos_oh);
+    let d = distribution(m.distribution, m.roughness, cos_h, sin2_h);
+    let g = geometry(
+        m.geometry,
+        m.distribution,
+        m.roughness,
+        cos_h,
+        cos_i,
+        cos_o,
+        cos_ih,
+        cos_oh,
+    );
     let f = fresnel(m, cos_ih);
     microfacet::cook_torrance_specular(d, g, f, cos_i, cos_o, m.denominator.factor())
 }
 
-/// `D(cos θ_h)` of the chosen distribution.
-pub fn distribution(d: Distribution, roughness: f64, cos_h: f64) -> f64 {
+/// `D(θ_h)` of the chosen distribution, from `cos θ_h` and `sin² θ_h`.
+pub fn distribution(d: Distribution, roughness: f64, cos_h: f64, sin2_h: f64) -> f64 {
     match d {
-        Distribution::Beckmann => microfacet::d_beckmann(roughness, cos_h),
-        Distribution::Blinn => microfacet::d_blinn_lecture(roughness, cos_h),
-        Distribution::BlinnNormalized => microfacet::d_blinn_normalized(roughness, cos_h),
-        Distribution::Gaussian => microfacet::d_gaussian_lecture(roughness, cos_h),
+        Distribution::Beckmann => microfacet::d_beckmann(roughness, cos_h, sin2_h),
+        Distribution::Blinn => {
+            microfacet::d_blinn_lecture(microfacet::blinn_exponent(roughness), cos_h, sin2_h)
+        }
+        Distribution::BlinnNormalized => {
+            microfacet::d_blinn_normalized(microfacet::blinn_exponent(roughness), cos_h, sin2_h)
+        }
+        Distribution::Gaussian => microfacet::d_gaussian_lecture(roughness, cos_h, sin2_h),
         Distribution::GaussianNormalized => microfacet::d_gaussian_normalized(
             roughness,
             cos_h,
+            sin2_h,
             microfacet::gaussian_normalization(roughness),
         ),
-        Distribution::Ggx => microfacet::d_ggx(roughness, cos_h),
+        Distribution::Ggx => microfacet::d_ggx(roughness, cos_h, sin2_h),
     }
 }
 
@@ -117,7 +136,7 @@ pub fn smith_beckmann_slope(d: Distribution, roughness: f64) -> f64 {
     match d {
         Distribution::Beckmann | Distribution::Ggx => roughness,
         Distribution::Blinn | Distribution::BlinnNormalized => {
-            microfacet::beckmann_slope_of_blinn(roughness)
+            microfacet::beckmann_slope_of_blinn(microfacet::blinn_exponent(roughness))
         }
         Distribution::Gaussian | Distribution::GaussianNormalized => {
             microfacet::beckmann_slope_of_gaussian(roughness)
@@ -141,11 +160,13 @@ pub fn geometry(
         Geometry::None => 1.0,
         Geometry::VGroove => microfacet::g_vgroove(cos_h, cos_o, cos_i, cos_oh),
         Geometry::Smith if d == Distribution::Ggx => {
-            microfacet::g1_ggx(roughness, cos_i, cos_ih) * microfacet::g1_ggx(roughness, cos_o, cos_oh)
+            microfacet::g1_ggx(roughness, cos_i, cos_ih)
+                * microfacet::g1_ggx(roughness, cos_o, cos_oh)
         }
         Geometry::Smith => {
             let slope = smith_beckmann_slope(d, roughness);
-            microfacet::g1_beckmann(slope, cos_i, cos_ih) * microfacet::g1_beckmann(slope, cos_o, cos_oh)
+            microfacet::g1_beckmann(slope, cos_i, cos_ih)
+                * microfacet::g1_beckmann(slope, cos_o, cos_oh)
         }
     }
 }
@@ -157,7 +178,9 @@ pub fn fresnel(m: &Material, cos_theta: f64) -> Rgb {
         Fresnel::Conductor => fresnel::fresnel_conductor(cos_theta, m.eta, m.kappa),
         Fresnel::ConductorLecture => fresnel::fresnel_conductor_lecture(cos_theta, m.eta, m.kappa),
         Fresnel::Dielectric => Rgb::splat(fresnel::fresnel_dielectric(cos_theta, m.eta_i, m.eta_t)),
-        Fresnel::Schlick => fresnel::fresnel_schlick(cos_theta, fresnel::f0_conductor(m.eta, m.kappa)),
+        Fresnel::Schlick => {
+            fresnel::fresnel_schlick(cos_theta, fresnel::f0_conductor(m.eta, m.kappa))
+        }
         Fresnel::None => Rgb::ONE,
     }
 }

@@ -74,7 +74,7 @@ pub fn phong_lecture(k_e: f64, n: DVec3, wi: DVec3, wo: DVec3) -> f64 {
 /// surface, so `|I + V| > 0`; should it happen, `H = 0` and the lobe is 0.
 pub fn blinn_phong_lecture(k_e: f64, n: DVec3, wi: DVec3, wo: DVec3) -> f64 {
     let h = (wi + wo).normalize_or_zero();
-    cos_power(h.dot(n), k_e) / n.dot(wi).max(COS_FLOOR)
+    cos_power_precise(n.dot(h), sin2_between(n, h), k_e) / n.dot(wi).max(COS_FLOOR)
 }
 
 /// Normalized Phong (Lewis 1994, "Making Shaders More Physically
@@ -102,10 +102,47 @@ pub fn phong_normalized(k_e: f64, n: DVec3, wi: DVec3, wo: DVec3) -> f64 {
 /// `1.6e5 / (4 · 1e-12) = 4e16`, finite in `f32`.
 pub fn blinn_phong_normalized(k_e: f64, n: DVec3, wi: DVec3, wo: DVec3) -> f64 {
     let h = (wi + wo).normalize_or_zero();
-    let d = (k_e + 2.0) * 0.5 * FRAC_1_PI * cos_power(n.dot(h), k_e);
+    let d = (k_e + 2.0) * 0.5 * FRAC_1_PI * cos_power_precise(n.dot(h), sin2_between(n, h), k_e);
     let cos_ih = wi.dot(h).max(COS_FLOOR); // I·H = V·H ≥ 0; 0 only for I = −V
     let cos_max = n.dot(wi).max(n.dot(wo)).max(COS_FLOOR); // both grazing
     d / (4.0 * cos_ih * cos_max)
+}
+
+/// `sin²θ = |N × H|²` for unit vectors: accurate for small angles, where
+/// `1 − (N·H)²` cancels (in `f32` `N·H` rounds to 1 within 3.5e-4 rad).
+pub fn sin2_between(n: DVec3, h: DVec3) -> f64 {
+    n.cross(h).length_squared()
+}
+
+/// `−ln(1 − x)` for x in [0, 1], accurate for small x (`ln_1p`; the WGSL
+/// twin sums its series below 0.1). 1 − x = 0 gives +∞, which the callers
+/// turn into `exp(−∞) = 0`.
+pub fn neg_ln_1m(x: f64) -> f64 {
+    -(-x).ln_1p()
+}
+
+/// `ln cos θ` from both `cos θ` and `sin²θ`, each where it is accurate:
+/// `½ ln(1 − sin²θ)` for small angles (`cos θ` has no digits left near 1
+/// in `f32`), `ln cos θ` itself for large ones (`1 − sin²θ` would cancel).
+pub fn ln_cos(cos: f64, sin2: f64) -> f64 {
+    if sin2 < 0.5 {
+        -0.5 * neg_ln_1m(sin2)
+    } else {
+        cos.ln()
+    }
+}
+
+/// `cos^k_e θ` like [`cos_power`], from `cos θ` and `sin²θ` ([`ln_cos`]):
+/// exponents up to 10⁶ and more amplify the error of `ln cos θ`, which
+/// this keeps at a few ulp of `sin²θ` near the peak.
+pub fn cos_power_precise(cos: f64, sin2: f64, k_e: f64) -> f64 {
+    if cos <= 0.0 {
+        0.0
+    } else if k_e == 0.0 {
+        1.0
+    } else {
+        exp_cutoff(k_e * ln_cos(cos, sin2.min(1.0)))
+    }
 }
 
 #[cfg(test)]

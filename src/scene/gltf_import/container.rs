@@ -1,13 +1,12 @@
 //! From bytes to a validated glTF document: the GLB container, a census of
-//! the JSON before it is parsed, the parse, the extension checks and
-//! gltf-json's validation.
+//! the JSON before it is parsed (see [`super::census`]), the parse, the
+//! extension checks and gltf-json's validation.
 
+use super::census::Census;
 use super::guarded;
-use crate::scene::limits::{Limits, exceeded};
+use crate::scene::limits::Limits;
 use gltf::json::validation::{Checked, Validate as _};
 use gltf::mesh::Semantic;
-use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
-use std::fmt;
 
 /// Required extensions this importer honours.
 pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &["KHR_lights_punctual"];
@@ -32,14 +31,6 @@ const GLB_HEADER_BYTES: usize = 12;
 const CHUNK_HEADER_BYTES: usize = 8;
 const CHUNK_JSON: u32 = u32::from_le_bytes(*b"JSON");
 const CHUNK_BIN: u32 = u32::from_le_bytes(*b"BIN\0");
-
-/// Upper bounds of what parsing costs, per JSON object and per other JSON
-/// value. An empty object `{}` in `nodes` becomes a 224-byte `Node`, and
-/// `Vec` growth can double that; a number inside `min`/`max` becomes a
-/// 32-byte `serde_json::Value`. Three bytes of text can so become half a
-/// kilobyte, which is why the census runs before the parse.
-const PARSED_BYTES_PER_OBJECT: u64 = 512;
-const PARSED_BYTES_PER_VALUE: u64 = 64;
 
 /// The two parts of a glTF file.
 pub(super) struct Container<'a> {
@@ -198,178 +189,14 @@ pub(super) fn parse(
     limits: &Limits,
     notes: &mut Vec<String>,
 ) -> Result<gltf::Document, String> {
-    let census = Census::take(json)?;
-    census.check(used_bytes, limits)?;
+    Census::take(json)?.check(used_bytes, limits)?;
     let root: gltf::json::Root =
         gltf::json::deserialize::from_slice(json).map_err(|e| format!("invalid glTF: {e}"))?;
     check_extensions(&root, notes)?;
     check_position_accessors(&root)?;
+    check_cameras(&root)?;
     validate(&root)?;
     Ok(gltf::Document::from_json_without_validation(root))
-}
-
-/// Counts of the JSON, taken without building it.
-#[derive(Debug, Default)]
-struct Census {
-    /// Every value: objects, arrays, strings, numbers, booleans, nulls.
-    values: u64,
-    objects: u64,
-    nodes: u64,
-    images: u64,
-    textures: u64,
-}
-
-impl Census {
-    fn take(json: &[u8]) -> Result<Census, String> {
-        gltf::json::deserialize::from_slice::<TopLevel>(json)
-            .map(|top| top.0)
-            .map_err(|e| format!("invalid glTF: the JSON is malformed: {e}"))
-    }
-
-    fn check(&self, used_bytes: &mut u64, limits: &Limits) -> Result<(), String> {
-        if self.nodes > limits.nodes {
-            return Err(exceeded(
-                "the number of nodes",
-                self.nodes,
-                "nodes",
-                limits.nodes,
-            ));
-        }
-        let textures = self.images.saturating_add(self.textures);
-        if textures > limits.textures {
-            return Err(exceeded(
-                "the number of images and textures",
-                textures,
-                "textures",
-                limits.textures,
-            ));
-        }
-        let parsed = self
-            .objects
-            .saturating_mul(PARSED_BYTES_PER_OBJECT)
-            .saturating_add(self.values.saturating_mul(PARSED_BYTES_PER_VALUE));
-        *used_bytes = used_bytes.saturating_add(parsed);
-        if *used_bytes > limits.bytes {
-            return Err(exceeded(
-                &format!(
-                    "the file plus its parsed JSON ({} objects, {} values, up to {parsed} bytes)",
-                    self.objects, self.values
-                ),
-                format!("{used_bytes} bytes"),
-                "bytes",
-                limits.bytes,
-            ));
-        }
-        Ok(())
-    }
-}
-
-/// The top-level object: counts as a [`Tally`] does, and also the entries
-/// of the arrays that limits cap.
-struct TopLevel(Census);
-
-impl<'de> de::Deserialize<'de> for TopLevel {
-    fn deserialize<D: Deserializer<'de>>(de: D) -> Result<TopLevel, D::Error> {
-        de.deserialize_map(TopLevelVisitor)
-    }
-}
-
-struct TopLevelVisitor;
-
-impl<'de> Visitor<'de> for TopLevelVisitor {
-    type Value = TopLevel;
-    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("a glTF JSON object")
-    }
-    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<TopLevel, A::Error> {
-        let mut census = Census {
-            values: 1,
-            objects: 1,
-            ..Census::default()
-        };
-        while let Some(key) = map.next_key::<std::borrow::Cow<'de, str>>()? {
-            let entries = map.next_value_seed(Tally {
-                census: &mut census,
-            })?;
-            match key.as_ref() {
-                "nodes" => census.nodes = entries,
-                "images" => census.images = entries,
-                "textures" => census.textures = entries,
-                _ => {}
-            }
-        }
-        Ok(TopLevel(census))
-    }
-}
-
-/// Counts one value and everything inside it; yields the number of
-/// elements if the value is an array (0 otherwise). Recursion depth is
-/// bounded by serde_json's nesting limit (128), so this cannot overflow
-/// the stack.
-struct Tally<'c> {
-    census: &'c mut Census,
-}
-
-impl<'de> DeserializeSeed<'de> for Tally<'_> {
-    type Value = u64;
-    fn deserialize<D: Deserializer<'de>>(self, de: D) -> Result<u64, D::Error> {
-        de.deserialize_any(self)
-    }
-}
-
-impl<'de> Visitor<'de> for Tally<'_> {
-    type Value = u64;
-    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("any JSON value")
-    }
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<u64, A::Error> {
-        self.census.values += 1;
-        let mut elements = 0;
-        while seq
-            .next_element_seed(Tally {
-                census: &mut *self.census,
-            })?
-            .is_some()
-        {
-            elements += 1;
-        }
-        Ok(elements)
-    }
-    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<u64, A::Error> {
-        self.census.values += 1;
-        self.census.objects += 1;
-        while map.next_key::<IgnoredAny>()?.is_some() {
-            map.next_value_seed(Tally {
-                census: &mut *self.census,
-            })?;
-        }
-        Ok(0)
-    }
-    fn visit_bool<E: de::Error>(self, _: bool) -> Result<u64, E> {
-        self.scalar()
-    }
-    fn visit_i64<E: de::Error>(self, _: i64) -> Result<u64, E> {
-        self.scalar()
-    }
-    fn visit_u64<E: de::Error>(self, _: u64) -> Result<u64, E> {
-        self.scalar()
-    }
-    fn visit_f64<E: de::Error>(self, _: f64) -> Result<u64, E> {
-        self.scalar()
-    }
-    fn visit_str<E: de::Error>(self, _: &str) -> Result<u64, E> {
-        self.scalar()
-    }
-    fn visit_unit<E: de::Error>(self) -> Result<u64, E> {
-        self.scalar()
-    }
-}
-
-impl Tally<'_> {
-    fn scalar<E>(self) -> Result<u64, E> {
-        self.census.values += 1;
-        Ok(0)
-    }
 }
 
 /// A required extension gonio does not implement makes the file
@@ -425,6 +252,25 @@ fn check_position_accessors(root: &gltf::json::Root) -> Result<(), String> {
                 }
             }
         }
+    }
+    Ok(())
+}
+
+/// A camera's `type` must come with the object of that name: the `gltf`
+/// crate's `Camera::projection` unwraps it, and gltf-json's validation does
+/// not check it. (Found by fuzzing.)
+fn check_cameras(root: &gltf::json::Root) -> Result<(), String> {
+    use gltf::json::camera::Type;
+    for (index, camera) in root.cameras.iter().enumerate() {
+        let missing = match camera.type_ {
+            Checked::Valid(Type::Perspective) if camera.perspective.is_none() => "perspective",
+            Checked::Valid(Type::Orthographic) if camera.orthographic.is_none() => "orthographic",
+            // Present as required, or an unknown type that validation reports.
+            _ => continue,
+        };
+        return Err(format!(
+            "invalid glTF: cameras[{index}] has type \"{missing}\" but no `{missing}` object"
+        ));
     }
     Ok(())
 }
@@ -524,22 +370,5 @@ mod tests {
         let len = cut.len() as u32;
         cut[8..12].copy_from_slice(&len.to_le_bytes());
         assert!(split_err(&cut).contains("cut off"));
-    }
-
-    #[test]
-    fn census_counts_without_building() {
-        let census =
-            Census::take(br#"{"nodes": [{}, {"children": [0, 1]}], "images": [{}], "x": null}"#)
-                .unwrap();
-        assert_eq!(census.nodes, 2);
-        assert_eq!(census.images, 1);
-        assert_eq!(census.objects, 4);
-        // root, nodes array, 2 nodes, children array, 2 numbers, images
-        // array, 1 image, null.
-        assert_eq!(census.values, 10);
-        assert!(Census::take(b"[1]").is_err());
-        assert!(Census::take(b"{} trailing").is_err());
-        let deep = format!("{{\"a\": {}{}}}", "[".repeat(100_000), "]".repeat(100_000));
-        assert!(Census::take(deep.as_bytes()).is_err());
     }
 }

@@ -21,6 +21,18 @@ const NO_PARENT: usize = usize::MAX;
 /// Returns each node's parent (`None` for roots).
 pub(super) fn check_forest(document: &gltf::Document) -> Result<Vec<Option<usize>>, String> {
     let json = document.as_json();
+    let parent = parents(json)?;
+    if let Some(start) = first_unrooted(json, &parent) {
+        return Err(describe_cycle(&parent, start));
+    }
+    Ok(parent
+        .into_iter()
+        .map(|p| (p != NO_PARENT).then_some(p))
+        .collect())
+}
+
+/// Each node's parent ([`NO_PARENT`] for none), refusing a node with two.
+fn parents(json: &gltf::json::Root) -> Result<Vec<usize>, String> {
     let count = json.nodes.len();
     let mut parent = vec![NO_PARENT; count];
     for (index, node) in json.nodes.iter().enumerate() {
@@ -46,26 +58,23 @@ pub(super) fn check_forest(document: &gltf::Document) -> Result<Vec<Option<usize
             parent[child] = index;
         }
     }
-    // With at most one parent each, a node lies below a root unless it is
-    // on (or hangs below) a cycle; mark everything below the roots.
-    let children: Vec<&[gltf::json::Index<gltf::json::Node>]> = json
-        .nodes
-        .iter()
-        .map(|n| n.children.as_deref().unwrap_or_default())
+    Ok(parent)
+}
+
+/// The first node that no parentless node reaches, if any. With at most
+/// one parent each, such a node is on a cycle or hangs below one. Each
+/// node is pushed at most once (it has one parent), so this is linear.
+fn first_unrooted(json: &gltf::json::Root, parent: &[usize]) -> Option<usize> {
+    let mut reached = vec![false; parent.len()];
+    let mut stack: Vec<usize> = (0..parent.len())
+        .filter(|&n| parent[n] == NO_PARENT)
         .collect();
-    let mut reached = vec![false; count];
-    let mut stack: Vec<usize> = (0..count).filter(|&n| parent[n] == NO_PARENT).collect();
     while let Some(n) = stack.pop() {
         reached[n] = true;
-        stack.extend(children[n].iter().map(|c| c.value()));
+        let children = json.nodes[n].children.as_deref().unwrap_or_default();
+        stack.extend(children.iter().map(|c| c.value()));
     }
-    if let Some(start) = reached.iter().position(|&r| !r) {
-        return Err(describe_cycle(&parent, start));
-    }
-    Ok(parent
-        .into_iter()
-        .map(|p| (p != NO_PARENT).then_some(p))
-        .collect())
+    reached.iter().position(|&r| !r)
 }
 
 /// Names the nodes of the cycle above `start`, a node no root reaches:

@@ -92,6 +92,7 @@
 
 mod accessors;
 mod buffers;
+mod census;
 mod container;
 mod convert;
 mod graph;

@@ -1,0 +1,496 @@
+//! Shadow maps: which lights get which maps, their projections, and the
+//! depth-only passes that fill them.
+//!
+//! * A **directional** light gets one orthographic map fitted to the scene
+//!   bounds (seen along the light; square texels), storing clip z, which
+//!   is linear along the light.
+//! * A **spot** light gets one perspective map whose square frustum holds
+//!   the outer cone (up to [`MAX_PERSPECTIVE_CONE_DEG`]; a wider cone is
+//!   shadowed like a point light).
+//! * A **point** light gets a cube: six perspective layers a little wider
+//!   than 90°, so that a PCF kernel near a face's edge still reads texels
+//!   of that face.
+//! * An **area** light's samples share one cube at the light's centre:
+//!   every sample sees the visibility of the centre (a hard shadow; the
+//!   reference traces one ray per sample; error measured in
+//!   `docs/shadows.md`).
+//!
+//! Perspective and cube layers store the radial distance to the light
+//! divided by `far`, written by the fragment shader, so that one depth
+//! scale holds across cube faces and biases are world lengths.
+//!
+//! All maps are layers of one `Depth32Float` 2D array whose side is the
+//! largest `map_size` of the scene; a light with a smaller map uses the
+//! top-left `map_size²` corner of its layers. Every frustum leaves a margin
+//! of `kernel/2 + 2` texels so no filter tap reads outside the light's
+//! region. Lookups (`shaders/shadows.wgsl`) compare with a nearest-texel
+//! comparison sampler (`LessEqual`: 1 where lit).
+
+use super::layout::{GpuLight, GpuShadowView};
+use crate::scene::{Light, Scene, ShadowFilter, ShadowSettings};
+use glam::{DMat4, DVec3, DVec4};
+use std::collections::{BTreeSet, HashMap};
+
+/// Depth format of the maps (hardware depth comparison).
+pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Widest spot cone (outer half-angle, degrees) drawn with one perspective
+/// map; wider cones get a cube.
+pub const MAX_PERSPECTIVE_CONE_DEG: f64 = 60.0;
+/// Largest total size of the shadow-map array.
+pub const MAX_SHADOW_BYTES: u64 = 1 << 30;
+/// Near plane of perspective layers, relative to their far plane.
+const NEAR_OVER_FAR: f64 = 1e-5;
+
+/// How a light's map projects the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Projection {
+    /// Directional: one orthographic layer.
+    Ortho,
+    /// Spot: one perspective layer.
+    Perspective,
+    /// Point and area: six perspective layers.
+    Cube,
+}
+
+impl Projection {
+    /// `Light.shadow_projection` in WGSL.
+    pub fn id(self) -> u32 {
+        match self {
+            Projection::Ortho => 0,
+            Projection::Perspective => 1,
+            Projection::Cube => 2,
+        }
+    }
+
+    /// Layers of the array this projection uses.
+    pub fn layers(self) -> u32 {
+        match self {
+            Projection::Cube => 6,
+            _ => 1,
+        }
+    }
+
+    /// The `#if` feature of its lookup code.
+    pub fn feature(self) -> &'static str {
+        match self {
+            Projection::Ortho => "shadow_ortho",
+            Projection::Perspective => "shadow_perspective",
+            Projection::Cube => "shadow_cube",
+        }
+    }
+
+    /// A name for logs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Projection::Ortho => "orthographic",
+            Projection::Perspective => "perspective",
+            Projection::Cube => "cube",
+        }
+    }
+}
+
+/// The projection of `light`'s shadow map.
+pub fn projection_of(light: &Light) -> Projection {
+    match *light {
+        Light::Directional { .. } => Projection::Ortho,
+        Light::Spot { outer_cone_deg, .. } if outer_cone_deg <= MAX_PERSPECTIVE_CONE_DEG => {
+            Projection::Perspective
+        }
+        Light::Spot { .. } | Light::Point { .. } | Light::AreaSample { .. } => Projection::Cube,
+    }
+}
+
+/// What the shadow code of a shader must contain (part of
+/// [`super::shader_gen::ShaderKey`]). Empty: no shadow code at all.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct ShadowFeatures {
+    pub projections: BTreeSet<Projection>,
+    /// Some light filters with PCF (the kernel loop is compiled).
+    pub pcf: bool,
+}
+
+impl ShadowFeatures {
+    /// The features `scene`'s shadow-casting lights need.
+    pub fn for_scene(scene: &Scene) -> Self {
+        let mut features = ShadowFeatures::default();
+        for (l, light) in scene.lights.iter().enumerate() {
+            if light.casts_shadows() {
+                features.projections.insert(projection_of(light));
+                features.pcf |= matches!(scene.shadow_settings(l).filter, ShadowFilter::Pcf { .. });
+            }
+        }
+        features
+    }
+
+    /// Whether any shadow code is compiled.
+    pub fn any(&self) -> bool {
+        !self.projections.is_empty()
+    }
+
+    /// The `#if` features.
+    pub fn features(&self) -> Vec<&'static str> {
+        let mut f = Vec::new();
+        if self.any() {
+            f.push("shadows");
+        }
+        f.extend(self.projections.iter().map(|p| p.feature()));
+        if self.projections.contains(&Projection::Perspective)
+            || self.projections.contains(&Projection::Cube)
+        {
+            f.push("shadow_radial");
+        }
+        if self.any() && self.pcf {
+            f.push("shadow_pcf");
+        }
+        f
+    }
+
+    /// For logs: `shadows [orthographic, cube; pcf]`.
+    pub fn describe(&self) -> String {
+        if !self.any() {
+            return "no shadows".into();
+        }
+        let p: Vec<_> = self.projections.iter().map(|p| p.name()).collect();
+        format!(
+            "shadows [{}{}]",
+            p.join(", "),
+            if self.pcf { "; pcf" } else { "" }
+        )
+    }
+}
+
+/// One light's shadow map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightShadow {
+    pub projection: Projection,
+    /// First layer in the array (cube faces follow: +X −X +Y −Y +Z −Z).
+    pub first_layer: u32,
+    pub settings: ShadowSettings,
+    /// Orthographic: world size of a texel; perspective and cube: world
+    /// size of a texel per metre of distance from `origin` (an upper
+    /// bound over the map: the size at its centre).
+    pub texel: f64,
+    /// World length → stored depth: `1 / depth range` (orthographic) or
+    /// `1 / far` (radial).
+    pub depth_scale: f64,
+    /// The light's position (perspective, cube; an area light's centre).
+    pub origin: DVec3,
+}
+
+impl LightShadow {
+    /// World size of one texel of this map at `x`.
+    pub fn texel_at(&self, x: DVec3) -> f64 {
+        match self.projection {
+            Projection::Ortho => self.texel,
+            _ => self.texel * (x - self.origin).length(),
+        }
+    }
+}
+
+/// One layer to render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowLayer {
+    pub clip_from_world: DMat4,
+    pub origin: DVec3,
+    pub depth_scale: f64,
+    /// Side of the rendered square (the light's `map_size`).
+    pub map_size: u32,
+    pub projection: Projection,
+}
+
+impl ShadowLayer {
+    fn gpu(&self) -> GpuShadowView {
+        GpuShadowView {
+            clip_from_world: self.clip_from_world.as_mat4().to_cols_array_2d(),
+            origin: self.origin.as_vec3().to_array(),
+            depth_scale: self.depth_scale as f32,
+        }
+    }
+}
+
+/// The shadow maps of a scene.
+#[derive(Clone, Debug, Default)]
+pub struct ShadowPlan {
+    /// Side of the array's layers (the largest map).
+    pub side: u32,
+    pub layers: Vec<ShadowLayer>,
+    /// Per light of the scene: its map, if it casts shadows. The samples of
+    /// one area light share one.
+    pub lights: Vec<Option<LightShadow>>,
+}
+
+impl ShadowPlan {
+    /// Plans the maps of `scene`'s shadow-casting lights.
+    pub fn new(scene: &Scene) -> Self {
+        let mut plan = ShadowPlan {
+            side: 0,
+            layers: Vec::new(),
+            lights: vec![None; scene.lights.len()],
+        };
+        let Some((lo, hi)) = scene.bounds() else {
+            return plan;
+        };
+        let mut areas: HashMap<usize, LightShadow> = HashMap::new();
+        for (l, light) in scene.lights.iter().enumerate() {
+            if !light.casts_shadows() {
+                continue;
+            }
+            if let Light::AreaSample { area, .. } = *light {
+                if let Some(shared) = areas.get(&area) {
+                    plan.lights[l] = Some(*shared);
+                    continue;
+                }
+            }
+            let settings = scene.shadow_settings(l);
+            let first_layer = plan.layers.len() as u32;
+            let projection = projection_of(light);
+            // Texels kept free around the light's region for filter taps.
+            let margin = settings.filter.kernel() as f64 / 2.0 + 2.0;
+            let size = settings.map_size as f64;
+            let shadow = match *light {
+                Light::Directional { direction, .. } => {
+                    let (layer, texel, depth_scale) = ortho_layer(direction, lo, hi, size, margin);
+                    plan.layers.push(ShadowLayer {
+                        map_size: settings.map_size,
+                        ..layer
+                    });
+                    LightShadow {
+                        projection,
+                        first_layer,
+                        settings,
+                        texel,
+                        depth_scale,
+                        origin: DVec3::ZERO,
+                    }
+                }
+                Light::Spot {
+                    position,
+                    direction,
+                    outer_cone_deg,
+                    ..
+                } if projection == Projection::Perspective => {
+                    let far = far_plane(position, lo, hi);
+                    let tan_half =
+                        outer_cone_deg.to_radians().tan().max(1e-3) / (1.0 - 2.0 * margin / size);
+                    plan.layers.push(perspective_layer(
+                        position,
+                        direction,
+                        tan_half,
+                        far,
+                        settings.map_size,
+                    ));
+                    LightShadow {
+                        projection,
+                        first_layer,
+                        settings,
+                        texel: 2.0 * tan_half / size,
+                        depth_scale: 1.0 / far,
+                        origin: position,
+                    }
+                }
+                _ => {
+                    let origin = match *light {
+                        Light::AreaSample { center, .. } => center,
+                        _ => light.position().unwrap_or_default(),
+                    };
+                    let far = far_plane(origin, lo, hi);
+                    let tan_half = 1.0 / (1.0 - 2.0 * margin / size);
+                    for forward in CUBE_FACES {
+                        plan.layers.push(perspective_layer(
+                            origin,
+                            forward,
+                            tan_half,
+                            far,
+                            settings.map_size,
+                        ));
+                    }
+                    LightShadow {
+                        projection,
+                        first_layer,
+                        settings,
+                        texel: 2.0 * tan_half / size,
+                        depth_scale: 1.0 / far,
+                        origin,
+                    }
+                }
+            };
+            plan.side = plan.side.max(settings.map_size);
+            if let Light::AreaSample { area, .. } = *light {
+                areas.insert(area, shadow);
+            }
+            plan.lights[l] = Some(shadow);
+        }
+        plan
+    }
+
+    /// Whether there is any map to render.
+    pub fn is_empty(&self) -> bool {
+        self.layers.is_empty()
+    }
+
+    /// Bytes of the map array.
+    pub fn bytes(&self) -> u64 {
+        self.side as u64 * self.side as u64 * 4 * self.layers.len() as u64
+    }
+
+    /// World size of one texel of light `l`'s map at `x` (`None` without
+    /// shadows): the unit of `normal_offset` and `slope_bias`.
+    pub fn texel_at(&self, l: usize, x: DVec3) -> Option<f64> {
+        self.lights.get(l).copied().flatten().map(|s| s.texel_at(x))
+    }
+
+    /// Writes light `l`'s shadow fields into its GPU record.
+    pub fn apply(&self, l: usize, g: &mut GpuLight) {
+        let Some(s) = self.lights.get(l).copied().flatten() else {
+            g.shadow_layer = -1;
+            return;
+        };
+        g.shadow_layer = s.first_layer as i32;
+        g.shadow_projection = s.projection.id();
+        g.shadow_origin = s.origin.as_vec3().to_array();
+        g.shadow_texel = s.texel as f32;
+        g.shadow_depth_scale = s.depth_scale as f32;
+        g.shadow_bias = s.settings.bias as f32;
+        g.shadow_slope_bias = s.settings.slope_bias as f32;
+        g.shadow_normal_offset = s.settings.normal_offset as f32;
+        g.shadow_pcf_radius = match s.settings.filter {
+            ShadowFilter::None => 0,
+            ShadowFilter::Pcf { kernel } => kernel / 2,
+        };
+        g.shadow_uv_scale = (s.settings.map_size as f64 / self.side.max(1) as f64) as f32;
+    }
+
+    /// The layers as the GPU reads them.
+    pub fn gpu_views(&self) -> Vec<GpuShadowView> {
+        self.layers.iter().map(ShadowLayer::gpu).collect()
+    }
+}
+
+/// Cube faces in layer order (+X −X +Y −Y +Z −Z), the order the lookup's
+/// major-axis test picks them in.
+pub const CUBE_FACES: [DVec3; 6] = [
+    DVec3::X,
+    DVec3::NEG_X,
+    DVec3::Y,
+    DVec3::NEG_Y,
+    DVec3::Z,
+    DVec3::NEG_Z,
+];
+
+/// Eight corners of a box.
+fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
+    std::array::from_fn(|i| {
+        DVec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
+/// Distance from `origin` to the farthest corner of the bounds, plus 1 %.
+fn far_plane(origin: DVec3, lo: DVec3, hi: DVec3) -> f64 {
+    let d = corners(lo, hi)
+        .iter()
+        .map(|c| (*c - origin).length())
+        .fold(0.0, f64::max);
+    (d * 1.01).max(1e-6)
+}
+
+/// An orthonormal basis (right, up) across `forward`.
+fn basis(forward: DVec3) -> (DVec3, DVec3) {
+    let helper = if forward.y.abs() < 0.99 {
+        DVec3::Y
+    } else {
+        DVec3::X
+    };
+    let right = forward.cross(helper).normalize();
+    (right, right.cross(forward))
+}
+
+/// Builds a matrix from its rows.
+fn from_rows(rows: [DVec4; 4]) -> DMat4 {
+    DMat4::from_cols(rows[0], rows[1], rows[2], rows[3]).transpose()
+}
+
+/// The orthographic layer of a directional light travelling along
+/// `direction`: square, holding the bounds with `margin` texels to spare
+/// on each side, depth 0..1 over the bounds' extent along the light (+1 %).
+/// Returns the layer, the world size of a texel and 1 / depth range.
+fn ortho_layer(
+    direction: DVec3,
+    lo: DVec3,
+    hi: DVec3,
+    size: f64,
+    margin: f64,
+) -> (ShadowLayer, f64, f64) {
+    let d = direction.normalize();
+    let (r, u) = basis(d);
+    let c = 0.5 * (lo + hi);
+    let (mut x0, mut x1, mut y0, mut y1, mut z0, mut z1) =
+        (f64::MAX, f64::MIN, f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for p in corners(lo, hi) {
+        let q = p - c;
+        let (x, y, z) = (r.dot(q), u.dot(q), d.dot(q));
+        (x0, x1, y0, y1, z0, z1) = (
+            x0.min(x),
+            x1.max(x),
+            y0.min(y),
+            y1.max(y),
+            z0.min(z),
+            z1.max(z),
+        );
+    }
+    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let half = (0.5 * (x1 - x0)).max(0.5 * (y1 - y0)).max(1e-6) / (1.0 - 2.0 * margin / size);
+    let pad = 0.01 * (z1 - z0) + 1e-6;
+    let (z0, z1) = (z0 - pad, z1 + pad);
+    let range = z1 - z0;
+    let row = |axis: DVec3, offset: f64, scale: f64| {
+        DVec4::from((axis * scale, -(axis.dot(c) + offset) * scale))
+    };
+    let m = from_rows([
+        row(r, cx, 1.0 / half),
+        row(u, cy, 1.0 / half),
+        row(d, z0, 1.0 / range),
+        DVec4::W,
+    ]);
+    (
+        ShadowLayer {
+            clip_from_world: m,
+            origin: c,
+            depth_scale: 1.0 / range,
+            map_size: 0,
+            projection: Projection::Ortho,
+        },
+        2.0 * half / size,
+        1.0 / range,
+    )
+}
+
+/// A square perspective layer at `origin` looking along `forward` with
+/// half-angle `atan(tan_half)`; stored depth = distance / far.
+fn perspective_layer(
+    origin: DVec3,
+    forward: DVec3,
+    tan_half: f64,
+    far: f64,
+    map_size: u32,
+) -> ShadowLayer {
+    let forward = forward.normalize();
+    let (_, up) = basis(forward);
+    let view = glam::dcamera::rh::view::look_at_mat4(origin, origin + forward, up);
+    let proj = glam::dcamera::rh::proj::directx::perspective(
+        2.0 * tan_half.atan(),
+        1.0,
+        far * NEAR_OVER_FAR,
+        far,
+    );
+    ShadowLayer {
+        clip_from_world: proj * view,
+        origin,
+        depth_scale: 1.0 / far,
+        map_size,
+        projection: Projection::Perspective,
+    }
+}
