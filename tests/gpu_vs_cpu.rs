@@ -51,9 +51,9 @@ fn tolerance(scene: &Scene, reference: &Frame) -> Tolerance {
 ///   to 8ε and the lobe negligible beyond tanθ ≈ 4.5 m, the relative error
 ///   is at most 16ε · 4.5/m ≈ 72ε/m (taken as 128ε/m);
 /// * the lecture's angular Blinn: its exponent e = −ln2/ln cos m behaves
-///   like k_e; the Gaussian's `acos` may be off by 4096 ulp (Vulkan), and
-///   exp(−ln2 (α/m)²) turns a relative error δ of α into 2 ln2 (α/m)² δ
-///   with (α/m)² ≲ 30 where the lobe matters.
+///   like k_e; the Gaussian's angle comes from `atan2`, which Vulkan allows
+///   4096 ulp, and exp(−ln2 (α/m)²) turns a relative error δ of α into
+///   2 ln2 (α/m)² δ with (α/m)² ≲ 30 where the lobe matters.
 fn arithmetic_rel(m: &Material) -> f64 {
     let pow = |k: f64| k * (8.0 * EPS + 2f64.powi(-21) * std::f64::consts::LN_2);
     let slope = |r: f64| 128.0 * EPS / r;
@@ -248,4 +248,37 @@ fn every_reflectance_model_renders_like_the_reference() {
         let scene = load(SceneSource::BuiltIn, ShadingMode::Phong, &sets);
         gpu_vs_cpu(&format!("ball: {model} {}", extra.join(" ")), &scene);
     }
+}
+
+/// Roughness → 0 under a point light: a perfectly smooth surface reflects
+/// the light into a single direction that falls between pixel centres, so
+/// without the pixel-footprint floor (`Scene::roughness_floor`) a Beckmann
+/// highlight at roughness 10⁻⁴ is exactly 0 at every pixel (e⁻¹³² and less).
+/// With it the highlight is a bright, finite spot of about a pixel, and the
+/// GPU and the reference agree on it.
+#[test]
+fn mirror_smooth_highlight_stays_visible_and_finite() {
+    let scene = load(
+        SceneSource::BuiltIn,
+        ShadingMode::Phong,
+        &[
+            "materials.ball.model=cook-torrance",
+            "materials.ball.distribution=beckmann",
+            "materials.ball.roughness=0.0001",
+            "materials.ball.k_d=0.2",
+            "materials.ball.k_s=1",
+            "materials.ball.preset=gold",
+        ],
+    );
+    let floor = scene.roughness_floor();
+    assert!(floor > 1e-3 && floor < 1e-2, "floor {floor}");
+    let c = gpu_vs_cpu("ball: beckmann roughness 1e-4", &scene);
+    let reference = reference::render(&scene);
+    let peak = reference.max_radiance();
+    // Diffuse alone is below 1; the mirror image of the light is far brighter.
+    assert!(peak > 100.0 && peak.is_finite(), "highlight peak {peak}");
+    eprintln!(
+        "roughness 1e-4: floor {floor:.3e}, highlight peak {peak:.3e}, {}",
+        c.summary()
+    );
 }

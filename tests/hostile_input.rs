@@ -1473,6 +1473,14 @@ fn optional_unknown_extensions_are_noted_not_refused() {
         "{:?}",
         scene.notes
     );
+    // Application-specific attributes are allowed, and ignored.
+    let custom = embedded(|t| swap(&t, "\"POSITION\": 0}", "\"POSITION\": 0, \"_BATCHID\": 0}"));
+    let custom = gltf_import::load(&c.write("custom-attribute.gltf", custom)).unwrap();
+    assert!(
+        custom.notes[0].contains("vertex attribute"),
+        "{:?}",
+        custom.notes
+    );
     // Through a scene, each note names its file.
     let mut loader = GltfLoader::new(Limits::default());
     loader.load(&path).unwrap();

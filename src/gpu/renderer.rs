@@ -303,12 +303,16 @@ impl GpuRenderer {
             ));
         }
 
-        let key = ShaderKey::for_scene(scene);
+        let mut key = ShaderKey::for_scene(scene);
         let plan = if key.shadows.any() {
             ShadowPlan::new(scene)
         } else {
             ShadowPlan::default()
         };
+        if plan.is_empty() {
+            // Nothing to cast a shadow on (no geometry): no shadow code.
+            key.shadows = Default::default();
+        }
         self.check_shadow_limits(&plan)?;
         let geometry = timings.wall("build vertex data", || {
             GeometryData::new(scene, key.needs_tangents())

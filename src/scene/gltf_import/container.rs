@@ -195,7 +195,7 @@ pub(super) fn parse(
     check_extensions(&root, notes)?;
     check_position_accessors(&root)?;
     check_cameras(&root)?;
-    validate(&root)?;
+    validate(&root, notes)?;
     Ok(gltf::Document::from_json_without_validation(root))
 }
 
@@ -284,19 +284,34 @@ fn semantic_name(semantic: &Checked<Semantic>) -> String {
 
 /// gltf-json's validation: every index in range, every enum value known,
 /// required properties present. The first few problems are reported.
-fn validate(root: &gltf::json::Root) -> Result<(), String> {
+///
+/// One kind is not a problem here: vertex attributes with names gltf-json
+/// does not know (application-specific ones such as `_BATCHID`, which the
+/// spec allows). gonio reads only `POSITION`, `NORMAL` and indices, so they
+/// are ignored, with a note.
+fn validate(root: &gltf::json::Root, notes: &mut Vec<String>) -> Result<(), String> {
     const SHOWN: usize = 8;
+    const UNKNOWN_ATTRIBUTE: &str = "attributes[\"<invalid semantic name>\"]";
     let mut problems = Vec::new();
     let mut more = 0usize;
+    let mut unknown_attributes = 0usize;
     guarded(|| {
         root.validate(root, gltf::json::Path::new, &mut |path, error| {
-            if problems.len() < SHOWN {
-                problems.push(format!("{}: {error}", path()));
+            let path = path().to_string();
+            if path.ends_with(UNKNOWN_ATTRIBUTE) {
+                unknown_attributes += 1;
+            } else if problems.len() < SHOWN {
+                problems.push(format!("{path}: {error}"));
             } else {
                 more += 1;
             }
         })
     })?;
+    if unknown_attributes > 0 {
+        notes.push(format!(
+            "{unknown_attributes} vertex attribute(s) with names gonio does not use were ignored"
+        ));
+    }
     if problems.is_empty() {
         return Ok(());
     }
