@@ -53,15 +53,11 @@ struct Light {
     shadow_layer: i32,        // first layer in the shadow-map array; < 0: no shadows
     shadow_projection: u32,   // 0 orthographic, 1 perspective, 2 cube (six layers)
     shadow_texel: f32,        // world size of a texel: orthographic, or per metre of distance
-    shadow_depth_scale: f32,  // world length → stored depth (1 / depth range or 1 / far)
     shadow_bias: f32,         // world units
     shadow_slope_bias: f32,   // texels · tanθ
     shadow_normal_offset: f32, // texels
     shadow_pcf_radius: u32,   // (kernel − 1) / 2
     shadow_uv_scale: f32,     // map size / array side
-    _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
 }
 
 // Light arriving at a point: ω_i towards the light, irradiance facing it.

@@ -45,7 +45,7 @@ pub struct GpuMaterial {
     pub blinn_e: f32,
 }
 
-/// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
+/// `Light` (storage buffer element, 96 bytes). The `shadow_*` fields are
 /// filled by [`super::shadows::ShadowPlan::apply`]; `shadow_layer` is −1
 /// for a light without a shadow map.
 #[repr(C)]
@@ -62,23 +62,19 @@ pub struct GpuLight {
     pub shadow_layer: i32,
     pub shadow_projection: u32,
     pub shadow_texel: f32,
-    pub shadow_depth_scale: f32,
     pub shadow_bias: f32,
     pub shadow_slope_bias: f32,
     pub shadow_normal_offset: f32,
     pub shadow_pcf_radius: u32,
     pub shadow_uv_scale: f32,
-    pub _pad: [f32; 3],
 }
 
-/// `ShadowView` (storage buffer element, 80 bytes): one layer of the
+/// `ShadowView` (storage buffer element, 64 bytes): one layer of the
 /// shadow-map array.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuShadowView {
     pub clip_from_world: [[f32; 4]; 4],
-    pub origin: [f32; 3],
-    pub depth_scale: f32,
 }
 
 fn f32x3(v: glam::DVec3) -> [f32; 3] {

@@ -14,7 +14,7 @@ use super::GpuContext;
 use super::geometry::{GeometryData, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::shader_gen::{self, ShaderKey};
-use super::shadows::{self, Projection, ShadowPlan};
+use super::shadows::{self, ShadowPlan};
 use super::timing::{Clock, Timings};
 use crate::frame::Frame;
 use crate::scene::Scene;
@@ -41,8 +41,8 @@ pub struct GpuRenderer {
     /// The depth-only passes: layers in group 0.
     pass_bind_group_layout: wgpu::BindGroupLayout,
     pass_pipeline_layout: wgpu::PipelineLayout,
-    /// One per (vertex stride, radial depth).
-    pass_pipelines: HashMap<(u64, bool), wgpu::RenderPipeline>,
+    /// One per vertex stride.
+    pass_pipelines: HashMap<u64, wgpu::RenderPipeline>,
 }
 
 impl GpuRenderer {
@@ -122,7 +122,9 @@ impl GpuRenderer {
             address_mode_w: wgpu::AddressMode::ClampToEdge,
             mag_filter: wgpu::FilterMode::Nearest,
             min_filter: wgpu::FilterMode::Nearest,
-            compare: Some(wgpu::CompareFunction::LessEqual),
+            // Reversed depth: lit where the receiver is at least as near
+            // the light as the stored occluder.
+            compare: Some(wgpu::CompareFunction::GreaterEqual),
             ..Default::default()
         });
         let pass_bind_group_layout =
@@ -153,13 +155,13 @@ impl GpuRenderer {
     }
 
     /// The depth-only pipeline of the shadow passes for a vertex stream of
-    /// `stride` bytes (position at offset 0): orthographic layers store
-    /// clip z (no fragment shader), radial layers the distance to the light.
-    fn pass_pipeline(&mut self, stride: u64, radial: bool) -> &wgpu::RenderPipeline {
+    /// `stride` bytes (position at offset 0): vertex shader only, reversed
+    /// depth (the nearest surface has the largest depth).
+    fn pass_pipeline(&mut self, stride: u64) -> &wgpu::RenderPipeline {
         let device = &self.ctx.device;
         let layout = &self.pass_pipeline_layout;
         self.pass_pipelines
-            .entry((stride, radial))
+            .entry(stride)
             .or_insert_with(|| {
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some("gonio shadow pass"),
@@ -175,7 +177,7 @@ impl GpuRenderer {
                     layout: Some(layout),
                     vertex: wgpu::VertexState {
                         module: &module,
-                        entry_point: Some(if radial { "vs_radial" } else { "vs_ortho" }),
+                        entry_point: Some("vs_shadow"),
                         compilation_options: Default::default(),
                         buffers: &[Some(wgpu::VertexBufferLayout {
                             array_stride: stride,
@@ -193,17 +195,12 @@ impl GpuRenderer {
                     depth_stencil: Some(wgpu::DepthStencilState {
                         format: shadows::SHADOW_FORMAT,
                         depth_write_enabled: Some(true),
-                        depth_compare: Some(wgpu::CompareFunction::Less),
+                        depth_compare: Some(wgpu::CompareFunction::Greater),
                         stencil: Default::default(),
                         bias: Default::default(),
                     }),
                     multisample: Default::default(),
-                    fragment: radial.then_some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("fs_radial"),
-                        compilation_options: Default::default(),
-                        targets: &[],
-                    }),
+                    fragment: None,
                     multiview_mask: None,
                     cache: None,
                 })
@@ -320,14 +317,8 @@ impl GpuRenderer {
         let start = Instant::now();
         self.pipeline(&key, geometry.layout)?;
         let stride = geometry.layout.stride();
-        for radial in [false, true] {
-            let used = plan
-                .layers
-                .iter()
-                .any(|l| (l.projection != Projection::Ortho) == radial);
-            if used {
-                self.pass_pipeline(stride, radial);
-            }
+        if !plan.is_empty() {
+            self.pass_pipeline(stride);
         }
         timings.push("create pipeline", start.elapsed(), Clock::Wall);
 
@@ -537,7 +528,6 @@ impl GpuRenderer {
         if let Some((_, layer_views, _, pass_group)) = &shadow_resources {
             let last = layer_views.len() - 1;
             for (i, (layer, view)) in plan.layers.iter().zip(layer_views).enumerate() {
-                let radial = layer.projection != Projection::Ortho;
                 let timestamp_writes = queries.as_ref().and_then(|(set, ..)| {
                     (i == 0 || i == last).then_some(wgpu::RenderPassTimestampWrites {
                         query_set: set,
@@ -551,7 +541,8 @@ impl GpuRenderer {
                     depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                         view,
                         depth_ops: Some(wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(1.0),
+                            // Reversed depth: 0 is "nothing here".
+                            load: wgpu::LoadOp::Clear(0.0),
                             store: wgpu::StoreOp::Store,
                         }),
                         stencil_ops: None,
@@ -562,7 +553,7 @@ impl GpuRenderer {
                 });
                 let size = layer.map_size as f32;
                 pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
-                pass.set_pipeline(&self.pass_pipelines[&(stride, radial)]);
+                pass.set_pipeline(&self.pass_pipelines[&stride]);
                 pass.set_bind_group(0, pass_group, &[]);
                 pass.set_vertex_buffer(0, vertex_buffer.slice(..));
                 let instance = i as u32..i as u32 + 1;

@@ -549,7 +549,7 @@ mod tests {
         validate(&cube).unwrap();
         let ortho = compose(&key(&[Projection::Ortho], true));
         assert!(ortho.contains("fn shadow_ortho") && ortho.contains("for (var i = -r"));
-        assert!(!ortho.contains("fn shadow_radial"));
+        assert!(!ortho.contains("fn shadow_cube") && !ortho.contains("fn shadow_perspective"));
         validate(&ortho).unwrap();
     }
 

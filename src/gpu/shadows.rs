@@ -1,30 +1,36 @@
 //! Shadow maps: which lights get which maps, their projections, and the
-//! depth-only passes that fill them.
+//! layers the depth-only passes fill.
 //!
 //! * A **directional** light gets one orthographic map fitted to the scene
-//!   bounds (seen along the light; square texels), storing clip z, which
-//!   is linear along the light.
+//!   bounds (seen along the light; square texels).
 //! * A **spot** light gets one perspective map whose square frustum holds
 //!   the outer cone (up to [`MAX_PERSPECTIVE_CONE_DEG`]; a wider cone is
 //!   shadowed like a point light).
 //! * A **point** light gets a cube: six perspective layers a little wider
-//!   than 90°, so that a PCF kernel near a face's edge still reads texels
-//!   of that face.
+//!   than 90°, so that an offset lookup and its PCF taps near a face's edge
+//!   still read texels of that face.
 //! * An **area** light's samples share one cube at the light's centre:
 //!   every sample sees the visibility of the centre (a hard shadow; the
 //!   reference traces one ray per sample; error measured in
 //!   `docs/shadows.md`).
 //!
-//! Perspective and cube layers store the radial distance to the light
-//! divided by `far`, written by the fragment shader, so that one depth
-//! scale holds across cube faces and biases are world lengths.
+//! Every layer stores *reversed* depth (1 nearest the light, 0 for an empty
+//! texel), written by the rasterizer with no fragment shader: orthographic
+//! layers linearly over the scene's extent along the light, perspective
+//! layers `near / z` of an infinite reversed projection, whose `f32`
+//! precision is relative and so the same at every distance (a conventional
+//! projection with `near = 10⁻⁵ far` would resolve only about 1 % of the
+//! distance far from the light). Offsets and biases move the lookup point
+//! in world space before it is projected, so they are lengths for every
+//! projection.
 //!
 //! All maps are layers of one `Depth32Float` 2D array whose side is the
 //! largest `map_size` of the scene; a light with a smaller map uses the
 //! top-left `map_size²` corner of its layers. Every frustum leaves a margin
-//! of `kernel/2 + 2` texels so no filter tap reads outside the light's
-//! region. Lookups (`shaders/shadows.wgsl`) compare with a nearest-texel
-//! comparison sampler (`LessEqual`: 1 where lit).
+//! of `kernel/2 + normal_offset + 2` texels (at most a quarter of the map)
+//! so that no offset lookup or filter tap leaves the light's region.
+//! Lookups (`shaders/shadows.wgsl`) compare with a nearest-texel
+//! comparison sampler (`GreaterEqual`: 1 where lit).
 
 use super::layout::{GpuLight, GpuShadowView};
 use crate::scene::{Light, Scene, ShadowFilter, ShadowSettings};
@@ -38,8 +44,10 @@ pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float
 pub const MAX_PERSPECTIVE_CONE_DEG: f64 = 60.0;
 /// Largest total size of the shadow-map array.
 pub const MAX_SHADOW_BYTES: u64 = 1 << 30;
-/// Near plane of perspective layers, relative to their far plane.
-const NEAR_OVER_FAR: f64 = 1e-5;
+/// Near plane of perspective layers, relative to the distance from the
+/// light to the farthest corner of the scene bounds: geometry closer to
+/// the light than this casts no shadow.
+pub const NEAR_OVER_FAR: f64 = 1e-5;
 
 /// How a light's map projects the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -132,16 +140,11 @@ impl ShadowFeatures {
         let mut f = Vec::new();
         if self.any() {
             f.push("shadows");
+            if self.pcf {
+                f.push("shadow_pcf");
+            }
         }
         f.extend(self.projections.iter().map(|p| p.feature()));
-        if self.projections.contains(&Projection::Perspective)
-            || self.projections.contains(&Projection::Cube)
-        {
-            f.push("shadow_radial");
-        }
-        if self.any() && self.pcf {
-            f.push("shadow_pcf");
-        }
         f
     }
 
@@ -151,11 +154,7 @@ impl ShadowFeatures {
             return "no shadows".into();
         }
         let p: Vec<_> = self.projections.iter().map(|p| p.name()).collect();
-        format!(
-            "shadows [{}{}]",
-            p.join(", "),
-            if self.pcf { "; pcf" } else { "" }
-        )
+        format!("shadows [{}{}]", p.join(", "), if self.pcf { "; pcf" } else { "" })
     }
 }
 
@@ -170,9 +169,6 @@ pub struct LightShadow {
     /// size of a texel per metre of distance from `origin` (an upper
     /// bound over the map: the size at its centre).
     pub texel: f64,
-    /// World length → stored depth: `1 / depth range` (orthographic) or
-    /// `1 / far` (radial).
-    pub depth_scale: f64,
     /// The light's position (perspective, cube; an area light's centre).
     pub origin: DVec3,
 }
@@ -190,22 +186,10 @@ impl LightShadow {
 /// One layer to render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShadowLayer {
+    /// World to clip space; clip z / w is the reversed depth.
     pub clip_from_world: DMat4,
-    pub origin: DVec3,
-    pub depth_scale: f64,
     /// Side of the rendered square (the light's `map_size`).
     pub map_size: u32,
-    pub projection: Projection,
-}
-
-impl ShadowLayer {
-    fn gpu(&self) -> GpuShadowView {
-        GpuShadowView {
-            clip_from_world: self.clip_from_world.as_mat4().to_cols_array_2d(),
-            origin: self.origin.as_vec3().to_array(),
-            depth_scale: self.depth_scale as f32,
-        }
-    }
 }
 
 /// The shadow maps of a scene.
@@ -235,33 +219,30 @@ impl ShadowPlan {
             if !light.casts_shadows() {
                 continue;
             }
-            if let Light::AreaSample { area, .. } = *light {
-                if let Some(shared) = areas.get(&area) {
-                    plan.lights[l] = Some(*shared);
-                    continue;
-                }
+            if let Light::AreaSample { area, .. } = *light
+                && let Some(shared) = areas.get(&area)
+            {
+                plan.lights[l] = Some(*shared);
+                continue;
             }
             let settings = scene.shadow_settings(l);
-            let first_layer = plan.layers.len() as u32;
             let projection = projection_of(light);
-            // Texels kept free around the light's region for filter taps.
-            let margin = settings.filter.kernel() as f64 / 2.0 + 2.0;
-            let size = settings.map_size as f64;
-            let shadow = match *light {
+            let first_layer = plan.layers.len() as u32;
+            let map_size = settings.map_size;
+            let size = map_size as f64;
+            // Texels kept free around the light's region for the offset
+            // lookup point and the filter taps.
+            let margin =
+                (settings.filter.kernel() as f64 / 2.0 + settings.normal_offset + 2.0).min(size / 4.0);
+            let widen = 1.0 / (1.0 - 2.0 * margin / size);
+            let (origin, texel) = match *light {
                 Light::Directional { direction, .. } => {
-                    let (layer, texel, depth_scale) = ortho_layer(direction, lo, hi, size, margin);
+                    let (clip_from_world, texel) = ortho_layer(direction, lo, hi, size, widen);
                     plan.layers.push(ShadowLayer {
-                        map_size: settings.map_size,
-                        ..layer
+                        clip_from_world,
+                        map_size,
                     });
-                    LightShadow {
-                        projection,
-                        first_layer,
-                        settings,
-                        texel,
-                        depth_scale,
-                        origin: DVec3::ZERO,
-                    }
+                    (DVec3::ZERO, texel)
                 }
                 Light::Spot {
                     position,
@@ -269,52 +250,33 @@ impl ShadowPlan {
                     outer_cone_deg,
                     ..
                 } if projection == Projection::Perspective => {
-                    let far = far_plane(position, lo, hi);
-                    let tan_half =
-                        outer_cone_deg.to_radians().tan().max(1e-3) / (1.0 - 2.0 * margin / size);
-                    plan.layers.push(perspective_layer(
-                        position,
-                        direction,
-                        tan_half,
-                        far,
-                        settings.map_size,
-                    ));
-                    LightShadow {
-                        projection,
-                        first_layer,
-                        settings,
-                        texel: 2.0 * tan_half / size,
-                        depth_scale: 1.0 / far,
-                        origin: position,
-                    }
+                    let tan_half = outer_cone_deg.to_radians().tan().max(1e-3) * widen;
+                    let near = NEAR_OVER_FAR * far_corner(position, lo, hi);
+                    plan.layers
+                        .push(perspective_layer(position, direction, tan_half, near, map_size));
+                    (position, 2.0 * tan_half / size)
                 }
                 _ => {
                     let origin = match *light {
                         Light::AreaSample { center, .. } => center,
                         _ => light.position().unwrap_or_default(),
                     };
-                    let far = far_plane(origin, lo, hi);
-                    let tan_half = 1.0 / (1.0 - 2.0 * margin / size);
+                    let near = NEAR_OVER_FAR * far_corner(origin, lo, hi);
                     for forward in CUBE_FACES {
-                        plan.layers.push(perspective_layer(
-                            origin,
-                            forward,
-                            tan_half,
-                            far,
-                            settings.map_size,
-                        ));
+                        plan.layers
+                            .push(perspective_layer(origin, forward, widen, near, map_size));
                     }
-                    LightShadow {
-                        projection,
-                        first_layer,
-                        settings,
-                        texel: 2.0 * tan_half / size,
-                        depth_scale: 1.0 / far,
-                        origin,
-                    }
+                    (origin, 2.0 * widen / size)
                 }
             };
-            plan.side = plan.side.max(settings.map_size);
+            let shadow = LightShadow {
+                projection,
+                first_layer,
+                settings,
+                texel,
+                origin,
+            };
+            plan.side = plan.side.max(map_size);
             if let Light::AreaSample { area, .. } = *light {
                 areas.insert(area, shadow);
             }
@@ -349,7 +311,6 @@ impl ShadowPlan {
         g.shadow_projection = s.projection.id();
         g.shadow_origin = s.origin.as_vec3().to_array();
         g.shadow_texel = s.texel as f32;
-        g.shadow_depth_scale = s.depth_scale as f32;
         g.shadow_bias = s.settings.bias as f32;
         g.shadow_slope_bias = s.settings.slope_bias as f32;
         g.shadow_normal_offset = s.settings.normal_offset as f32;
@@ -362,7 +323,12 @@ impl ShadowPlan {
 
     /// The layers as the GPU reads them.
     pub fn gpu_views(&self) -> Vec<GpuShadowView> {
-        self.layers.iter().map(ShadowLayer::gpu).collect()
+        self.layers
+            .iter()
+            .map(|l| GpuShadowView {
+                clip_from_world: l.clip_from_world.as_mat4().to_cols_array_2d(),
+            })
+            .collect()
     }
 }
 
@@ -388,42 +354,27 @@ fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
     })
 }
 
-/// Distance from `origin` to the farthest corner of the bounds, plus 1 %.
-fn far_plane(origin: DVec3, lo: DVec3, hi: DVec3) -> f64 {
-    let d = corners(lo, hi)
+/// Distance from `origin` to the farthest corner of the bounds.
+fn far_corner(origin: DVec3, lo: DVec3, hi: DVec3) -> f64 {
+    corners(lo, hi)
         .iter()
         .map(|c| (*c - origin).length())
-        .fold(0.0, f64::max);
-    (d * 1.01).max(1e-6)
+        .fold(0.0, f64::max)
+        .max(1e-6)
 }
 
 /// An orthonormal basis (right, up) across `forward`.
 fn basis(forward: DVec3) -> (DVec3, DVec3) {
-    let helper = if forward.y.abs() < 0.99 {
-        DVec3::Y
-    } else {
-        DVec3::X
-    };
+    let helper = if forward.y.abs() < 0.99 { DVec3::Y } else { DVec3::X };
     let right = forward.cross(helper).normalize();
     (right, right.cross(forward))
 }
 
-/// Builds a matrix from its rows.
-fn from_rows(rows: [DVec4; 4]) -> DMat4 {
-    DMat4::from_cols(rows[0], rows[1], rows[2], rows[3]).transpose()
-}
-
 /// The orthographic layer of a directional light travelling along
-/// `direction`: square, holding the bounds with `margin` texels to spare
-/// on each side, depth 0..1 over the bounds' extent along the light (+1 %).
-/// Returns the layer, the world size of a texel and 1 / depth range.
-fn ortho_layer(
-    direction: DVec3,
-    lo: DVec3,
-    hi: DVec3,
-    size: f64,
-    margin: f64,
-) -> (ShadowLayer, f64, f64) {
+/// `direction`: square, holding the bounds widened by `widen` (the
+/// margin), reversed depth 1..0 over the bounds' extent along the light
+/// (+1 % each way). Returns the matrix and the world size of a texel.
+fn ortho_layer(direction: DVec3, lo: DVec3, hi: DVec3, size: f64, widen: f64) -> (DMat4, f64) {
     let d = direction.normalize();
     let (r, u) = basis(d);
     let c = 0.5 * (lo + hi);
@@ -432,65 +383,95 @@ fn ortho_layer(
     for p in corners(lo, hi) {
         let q = p - c;
         let (x, y, z) = (r.dot(q), u.dot(q), d.dot(q));
-        (x0, x1, y0, y1, z0, z1) = (
-            x0.min(x),
-            x1.max(x),
-            y0.min(y),
-            y1.max(y),
-            z0.min(z),
-            z1.max(z),
-        );
+        (x0, x1) = (x0.min(x), x1.max(x));
+        (y0, y1) = (y0.min(y), y1.max(y));
+        (z0, z1) = (z0.min(z), z1.max(z));
     }
     let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-    let half = (0.5 * (x1 - x0)).max(0.5 * (y1 - y0)).max(1e-6) / (1.0 - 2.0 * margin / size);
+    let half = (0.5 * (x1 - x0)).max(0.5 * (y1 - y0)).max(1e-6) * widen;
     let pad = 0.01 * (z1 - z0) + 1e-6;
     let (z0, z1) = (z0 - pad, z1 + pad);
-    let range = z1 - z0;
+    // Row `axis · (p − c) − offset`, scaled.
     let row = |axis: DVec3, offset: f64, scale: f64| {
         DVec4::from((axis * scale, -(axis.dot(c) + offset) * scale))
     };
-    let m = from_rows([
+    let rows = [
         row(r, cx, 1.0 / half),
         row(u, cy, 1.0 / half),
-        row(d, z0, 1.0 / range),
+        // Reversed depth (z1 − d · (p − c)) / (z1 − z0).
+        row(-d, -z1, 1.0 / (z1 - z0)),
         DVec4::W,
-    ]);
-    (
-        ShadowLayer {
-            clip_from_world: m,
-            origin: c,
-            depth_scale: 1.0 / range,
-            map_size: 0,
-            projection: Projection::Ortho,
-        },
-        2.0 * half / size,
-        1.0 / range,
-    )
+    ];
+    let m = DMat4::from_cols(rows[0], rows[1], rows[2], rows[3]).transpose();
+    (m, 2.0 * half / size)
 }
 
 /// A square perspective layer at `origin` looking along `forward` with
-/// half-angle `atan(tan_half)`; stored depth = distance / far.
+/// half-angle `atan(tan_half)`: infinite, reversed (depth = near / z).
 fn perspective_layer(
     origin: DVec3,
     forward: DVec3,
     tan_half: f64,
-    far: f64,
+    near: f64,
     map_size: u32,
 ) -> ShadowLayer {
     let forward = forward.normalize();
     let (_, up) = basis(forward);
     let view = glam::dcamera::rh::view::look_at_mat4(origin, origin + forward, up);
-    let proj = glam::dcamera::rh::proj::directx::perspective(
+    let proj = glam::dcamera::rh::proj::directx::perspective_infinite_reverse(
         2.0 * tan_half.atan(),
         1.0,
-        far * NEAR_OVER_FAR,
-        far,
+        near,
     );
     ShadowLayer {
         clip_from_world: proj * view,
-        origin,
-        depth_scale: 1.0 / far,
         map_size,
-        projection: Projection::Perspective,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec4;
+
+    fn depth(m: DMat4, p: DVec3) -> f64 {
+        let c = m * DVec4::from((p, 1.0));
+        c.z / c.w
+    }
+
+    #[test]
+    fn depth_is_reversed_and_inside_the_unit_range() {
+        let (lo, hi) = (DVec3::new(-4.0, 0.0, -4.0), DVec3::new(4.0, 2.0, 4.0));
+        let (m, texel) = ortho_layer(DVec3::new(0.3, -1.0, 0.2), lo, hi, 1024.0, 1.01);
+        assert!(texel > 0.0);
+        for c in corners(lo, hi) {
+            let clip = m * DVec4::from((c, 1.0));
+            assert!(clip.x.abs() < 1.0 && clip.y.abs() < 1.0);
+            assert!(clip.z > 0.0 && clip.z < 1.0, "{clip}");
+        }
+        // Nearer the light (higher up) is larger.
+        assert!(depth(m, DVec3::new(0.0, 2.0, 0.0)) > depth(m, DVec3::ZERO));
+        let layer = perspective_layer(DVec3::new(0.0, 5.0, 0.0), DVec3::NEG_Y, 1.0, 1e-4, 256);
+        let (near, far) = (DVec3::new(0.0, 4.0, 0.0), DVec3::new(0.3, 0.0, 0.2));
+        assert!(depth(layer.clip_from_world, near) > depth(layer.clip_from_world, far));
+        assert!((depth(layer.clip_from_world, near) - 1e-4).abs() < 1e-12);
+    }
+
+    #[test]
+    fn area_samples_share_one_cube() {
+        let mut scene = crate::scene::scene_file::load(
+            &crate::scene::scene_file::SceneSource::BuiltIn,
+            &["lights=[{kind = \"area\", shape = \"disk\", position = [0.0, 3.0, 0.0], normal = [0.0, -1.0, 0.0], radius = 0.5, radiance = 1.0, samples = 4, shadows = true}, {kind = \"directional\", direction = [0.0, -1.0, 0.0], irradiance = 1.0, shadows = true, shadow_map_size = 512}]".into()],
+        )
+        .unwrap();
+        let plan = ShadowPlan::new(&scene);
+        assert_eq!(plan.layers.len(), 7);
+        assert_eq!(plan.side, ShadowSettings::DEFAULT_MAP_SIZE);
+        let first: Vec<_> = plan.lights.iter().map(|s| s.unwrap().first_layer).collect();
+        assert_eq!(first, [0, 0, 0, 0, 6]);
+        assert_eq!(plan.lights[4].unwrap().projection, Projection::Ortho);
+        scene.lights.iter_mut().for_each(|l| l.set_shadows(false));
+        assert!(ShadowPlan::new(&scene).is_empty());
+        assert!(!ShadowFeatures::for_scene(&scene).any());
     }
 }

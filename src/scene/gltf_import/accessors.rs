@@ -14,6 +14,7 @@ use std::borrow::Cow;
 pub(super) enum Usage {
     Position,
     Normal,
+    Tangent,
     Index,
 }
 
@@ -22,6 +23,7 @@ impl Usage {
         match self {
             Usage::Position => "POSITION",
             Usage::Normal => "NORMAL",
+            Usage::Tangent => "TANGENT",
             Usage::Index => "indices",
         }
     }
@@ -33,6 +35,7 @@ impl Usage {
             Usage::Position | Usage::Normal => {
                 data_type == DataType::F32 && dimensions == Dimensions::Vec3
             }
+            Usage::Tangent => data_type == DataType::F32 && dimensions == Dimensions::Vec4,
             Usage::Index => {
                 matches!(data_type, DataType::U8 | DataType::U16 | DataType::U32)
                     && dimensions == Dimensions::Scalar
@@ -43,6 +46,7 @@ impl Usage {
     fn expected(self) -> &'static str {
         match self {
             Usage::Position | Usage::Normal => "VEC3 of FLOAT",
+            Usage::Tangent => "VEC4 of FLOAT",
             Usage::Index => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
         }
     }
@@ -181,6 +185,10 @@ pub(super) struct RawPrimitive {
     /// Unit normals, or zero where the file's normal had no length;
     /// `None` when the primitive has no `NORMAL`.
     pub normals: Option<Vec<DVec3>>,
+    /// Unit tangents (the xyz of `TANGENT`; its w, the bitangent's sign,
+    /// does not matter to gonio's anisotropic models, which depend on
+    /// (H·b)² only), `None` when the primitive has none.
+    pub tangents: Option<Vec<DVec3>>,
     pub indices: Vec<[u32; 3]>,
 }
 
@@ -224,6 +232,11 @@ pub(super) fn read_primitive(
         Some(accessor) => Some(read_normals(&reader, &accessor, vertex_count, buffers)?),
     };
 
+    let tangents = match primitive.get(&Semantic::Tangents) {
+        None => None,
+        Some(accessor) => Some(read_tangents(&reader, &accessor, vertex_count, buffers)?),
+    };
+
     let vertices: Vec<u32> = match primitive.indices() {
         None => (0..vertex_limit).collect(),
         Some(accessor) => read_indices(&reader, &accessor, vertex_limit, max_corners, buffers)?,
@@ -236,6 +249,7 @@ pub(super) fn read_primitive(
     Ok(Some(RawPrimitive {
         positions,
         normals,
+        tangents,
         indices,
     }))
 }
@@ -268,6 +282,40 @@ where
         ));
     }
     Ok(normals.into_iter().map(DVec3::normalize_or_zero).collect())
+}
+
+/// Unit tangents from `TANGENT` (xyz; zero where it has no length); as
+/// many as there are positions, all finite.
+fn read_tangents<'a, 's, F>(
+    reader: &gltf::mesh::Reader<'a, 's, F>,
+    accessor: &gltf::Accessor,
+    vertex_count: usize,
+    buffers: &[Cow<[u8]>],
+) -> Result<Vec<DVec3>, String>
+where
+    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+{
+    if accessor.count() != vertex_count {
+        return Err(format!(
+            "accessor {} (TANGENT) has {} elements but POSITION has {vertex_count}",
+            accessor.index(),
+            accessor.count()
+        ));
+    }
+    check_accessor(accessor, Usage::Tangent, vertex_count, buffers)?;
+    let tangents = collect_vec3(
+        reader.read_tangents().map(|t| t.map(|[x, y, z, _w]| [x, y, z])),
+        accessor,
+        Usage::Tangent,
+    )?;
+    if let Some(k) = tangents.iter().position(|t| !t.is_finite()) {
+        return Err(format!(
+            "accessor {} (TANGENT): tangent {k} is not finite ({})",
+            accessor.index(),
+            tangents[k]
+        ));
+    }
+    Ok(tangents.into_iter().map(DVec3::normalize_or_zero).collect())
 }
 
 /// Vertex indices, each checked to address one of `vertex_limit` vertices.

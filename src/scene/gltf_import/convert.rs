@@ -1,7 +1,7 @@
 //! The parts of a glTF that are not geometry: materials, lights, cameras,
 //! node transforms, each turned into gonio's types.
 
-use crate::material::{Material, ReflectanceModel};
+use crate::material::{Distribution, Fresnel, Geometry, Material, ROUGHNESS_FLOOR, ReflectanceModel};
 use crate::scene::{Camera, Light, Rgb};
 use glam::{DMat4, DQuat, DVec3, DVec4};
 use gltf::khr_lights_punctual::Kind as LightKind;
@@ -9,9 +9,10 @@ use gltf::khr_lights_punctual::Kind as LightKind;
 /// glTF's metal/rough F0 for dielectrics.
 const DIELECTRIC_F0: f64 = 0.04;
 
-/// The glTF mapping of metallic-roughness factors to a Blinn-Phong
-/// material (see the module documentation for the table). Inputs outside
-/// [0, 1] are clamped.
+/// The glTF mapping of metallic-roughness factors to gonio's Cook-Torrance
+/// with GGX, Smith and Schlick's Fresnel: the glTF core BRDF's terms (see
+/// the module documentation for the table). Inputs outside [0, 1] are
+/// clamped.
 pub fn material_from_metallic_roughness(
     name: impl Into<String>,
     base_color: Rgb,
@@ -21,22 +22,22 @@ pub fn material_from_metallic_roughness(
     let b = base_color.clamp(Rgb::ZERO, Rgb::ONE);
     let m = metallic.clamp(0.0, 1.0);
     let r = roughness.clamp(0.0, 1.0);
-    let k_d = b * (1.0 - m);
     let f0 = Rgb::splat(DIELECTRIC_F0 * (1.0 - m)) + b * m;
-    let alpha = (r * r).max(1e-3);
-    let k_e = (2.0 / (alpha * alpha) - 2.0).clamp(1.0, 1e6);
-    // The lecture's lobe is not normalized: its albedo grows like 8π/k_e
-    // for broad lobes (a rough metal with k_s = 1 reflects far more than it
-    // receives). Scaling by Blinn-Phong's normalization (k_e + 8)/(8π),
-    // capped at 1, keeps broad lobes near F0 and leaves sharp ones alone.
-    let k_s = f0 * ((k_e + 8.0) / (8.0 * std::f64::consts::PI)).min(1.0);
-    // Issue #4 will switch this default to Cook-Torrance with GGX, which
-    // takes α directly; Blinn-Phong is the only glossy model there is now.
-    let mut material = Material::new(name, ReflectanceModel::BlinnPhong);
-    material.k_d = k_d.clamp(Rgb::ZERO, Rgb::ONE);
-    material.k_s = k_s.clamp(Rgb::ZERO, Rgb::ONE);
-    material.k_a = material.k_d;
-    material.k_e = k_e;
+    let mut material = Material::new(name, ReflectanceModel::CookTorrance);
+    material.distribution = Distribution::Ggx;
+    material.geometry = Geometry::Smith;
+    material.fresnel = Fresnel::Schlick;
+    material.k_d = b * (1.0 - m);
+    material.k_s = Rgb::ONE;
+    material.k_a = b;
+    // glTF's α = roughness², kept inside the contract's (0, 1].
+    material.roughness = (r * r).max(ROUGHNESS_FLOOR);
+    // Schlick's F0 comes from η, κ (f0_conductor): with κ = 0,
+    // F0 = ((η − 1)/(η + 1))², so η = (1 + √F0)/(1 − √F0). F0 is capped at
+    // 0.99 (η ≈ 400) to keep η finite for a white metal.
+    let sqrt_f0 = f0.min(Rgb::splat(0.99)).map(f64::sqrt);
+    material.eta = (Rgb::ONE + sqrt_f0) / (Rgb::ONE - sqrt_f0);
+    material.kappa = Rgb::ZERO;
     material
 }
 

@@ -166,6 +166,11 @@ impl<'a> Importer<'a> {
                 },
                 None => Mesh::with_generated_normals(name, raw.positions, raw.indices, material),
             };
+            // glTF tangents where present (zero-length ones fall back to
+            // a tangent derived from the normal); otherwise derived ones.
+            if let Some(tangents) = raw.tangents {
+                mesh.tangents = tangents;
+            }
             mesh.transform(world);
             // The GPU draws in f32: a position beyond its range would
             // become infinite there even though it is finite here.

@@ -51,21 +51,23 @@
 //! emission, alpha and `doubleSided` are ignored; skinned meshes are drawn
 //! in their rest pose.
 //!
-//! # Materials: metallic-roughness → Blinn-Phong
+//! # Materials: metallic-roughness → Cook-Torrance (GGX, Smith, Schlick)
 //!
-//! glTF describes surfaces with the metal/rough model; gonio maps each
-//! material to the lecture's Blinn-Phong ([`ReflectanceModel::BlinnPhong`]).
-//! Only the factors are used (textures are ignored, so a textured model
-//! shows its factors, usually white). With base colour factor `b` (linear
-//! RGB, alpha dropped), metallic `m` and roughness `r`, each clamped to
-//! [0, 1]:
+//! glTF describes surfaces with the metal/rough model, whose BRDF is a
+//! Lambert lobe plus a GGX microfacet lobe with Schlick's Fresnel; gonio
+//! maps each material to its Cook-Torrance with those terms. Only the
+//! factors are used (textures are ignored, so a textured model shows its
+//! factors, usually white). With base colour factor `b` (linear RGB, alpha
+//! dropped), metallic `m` and roughness `r`, each clamped to [0, 1]:
 //!
 //! | gonio | from glTF | why |
 //! |---|---|---|
-//! | `k_d` | `b·(1 − m)` | metals have no diffuse lobe |
-//! | `k_s` | `F0 · min(1, (k_e + 8)/(8π))`, `F0 = 0.04·(1 − m) + b·m` | F0 is the metal/rough model's normal-incidence reflectance; the factor (Blinn-Phong's normalization, capped at 1) keeps the lecture's unnormalized broad lobes from reflecting more than they receive |
-//! | `k_e` | `clamp(2/α² − 2, 1, 1e6)`, `α = max(r², 10⁻³)` | the usual Blinn-Phong ↔ Beckmann exponent correspondence (Walter et al. 2007) |
-//! | `k_a` | `k_d` | an ambient light lights the diffuse colour |
+//! | `model` | `cook-torrance`, `ggx`, `smith`, `schlick`, `microfacet` | glTF's specular BRDF (gonio's Smith is separable, glTF's height-correlated) |
+//! | `k_d` | `b·(1 − m)` | metals have no diffuse lobe (glTF also weights it by 1 − F; gonio adds the lobes as the contract says) |
+//! | `k_s` | 1 | the Fresnel term carries the specular colour |
+//! | `roughness` | `max(r², 10⁻⁴)` | glTF's α = r² |
+//! | `eta`, `kappa` | `η = (1 + √F0)/(1 − √F0)`, `κ = 0`, `F0 = 0.04·(1 − m) + b·m` (capped at 0.99) | Schlick's F0 is computed from η, κ; this η gives exactly glTF's F0 |
+//! | `k_a` | `b` | an ambient light lights the base colour |
 //!
 //! Primitives without a material get glTF's default material (`b = 1`,
 //! `m = 1`, `r = 1`) mapped by the same rule, named `gltf-default`.

@@ -62,7 +62,7 @@ fn box_gltf_and_glb_agree() {
     assert_unit_normals(&text);
     assert_eq!(text.materials.len(), 1);
     assert_eq!(text.materials[0].name, "Red");
-    assert_eq!(text.materials[0].model, ReflectanceModel::BlinnPhong);
+    assert_eq!(text.materials[0].model, ReflectanceModel::CookTorrance);
     assert!((text.materials[0].k_d - DVec3::new(0.8, 0.0, 0.0)).length() < 1e-6);
     assert_eq!(text.skipped_primitives, 0);
 }
@@ -102,10 +102,9 @@ fn triangle_without_indices_gets_generated_normals() {
     let material = &scene.materials[scene.meshes[0].material];
     assert_eq!(material.name, "gltf-default");
     assert_eq!(material.k_d, Rgb::ZERO);
-    // F0 = b = 1, damped by (k_e + 8)/(8π) for k_e = 1.
-    let k_s = 9.0 / (8.0 * std::f64::consts::PI);
-    assert!((material.k_s - Rgb::splat(k_s)).abs().max_element() < 1e-15);
-    assert_eq!(material.k_e, 1.0);
+    // b = m = r = 1: a white rough metal.
+    assert_eq!(material.k_s, Rgb::ONE);
+    assert_eq!(material.roughness, 1.0);
 }
 
 #[test]
@@ -199,20 +198,23 @@ fn cameras_takes_the_perspective_camera() {
 
 #[test]
 fn metallic_roughness_mapping() {
+    use crate::material::brdf::fresnel::f0_conductor;
     let b = Rgb::new(0.9, 0.5, 0.1);
     let dielectric = material_from_metallic_roughness("d", b, 0.0, 0.5);
     assert_eq!(dielectric.k_d, b);
     assert_eq!(dielectric.k_a, b);
-    assert!((dielectric.k_s - Rgb::splat(0.04)).length() < 1e-15);
-    // α = 0.25: 2/α² − 2 = 30.
-    assert!((dielectric.k_e - 30.0).abs() < 1e-12);
+    assert_eq!(dielectric.roughness, 0.25);
+    // Schlick's F0, computed from η and κ, is glTF's 0.04.
+    let f0 = f0_conductor(dielectric.eta, dielectric.kappa);
+    assert!((f0 - Rgb::splat(0.04)).abs().max_element() < 1e-12, "{f0}");
     let metal = material_from_metallic_roughness("m", b, 1.0, 0.0);
     assert_eq!(metal.k_d, Rgb::ZERO);
-    assert_eq!(metal.k_s, b);
-    assert_eq!(metal.k_e, 1e6);
+    let f0 = f0_conductor(metal.eta, metal.kappa);
+    assert!((f0 - b).abs().max_element() < 1e-12, "{f0}");
+    assert_eq!(metal.roughness, crate::material::ROUGHNESS_FLOOR);
     let wild = material_from_metallic_roughness("w", Rgb::splat(7.0), -3.0, 9.0);
     wild.validate().unwrap();
-    assert_eq!(wild.k_e, 1.0);
+    assert_eq!(wild.roughness, 1.0);
 }
 
 #[test]
