@@ -12,7 +12,9 @@
 //! * An **area** light's samples share one cube at the light's centre:
 //!   every sample sees the visibility of the centre (a hard shadow; the
 //!   reference traces one ray per sample; error measured in
-//!   `docs/shadows.md`).
+//!   `docs/shadows.md`), unless it sets `shadow_per_sample`: then each
+//!   sample has its own cube (6N layers), which matches the reference up
+//!   to the maps' resolution.
 //!
 //! Every layer stores *reversed* depth (1 nearest the light, 0 for an empty
 //! texel), written by the rasterizer with no fragment shader: orthographic
@@ -154,7 +156,11 @@ impl ShadowFeatures {
             return "no shadows".into();
         }
         let p: Vec<_> = self.projections.iter().map(|p| p.name()).collect();
-        format!("shadows [{}{}]", p.join(", "), if self.pcf { "; pcf" } else { "" })
+        format!(
+            "shadows [{}{}]",
+            p.join(", "),
+            if self.pcf { "; pcf" } else { "" }
+        )
     }
 }
 
@@ -219,7 +225,16 @@ impl ShadowPlan {
             if !light.casts_shadows() {
                 continue;
             }
+            // The samples of an area light share the map at its centre
+            // unless it asks for one per sample.
+            let per_sample = |area: usize| {
+                scene
+                    .area_lights
+                    .get(area)
+                    .is_some_and(|a| a.shadow_per_sample)
+            };
             if let Light::AreaSample { area, .. } = *light
+                && !per_sample(area)
                 && let Some(shared) = areas.get(&area)
             {
                 plan.lights[l] = Some(*shared);
@@ -232,8 +247,8 @@ impl ShadowPlan {
             let size = map_size as f64;
             // Texels kept free around the light's region for the offset
             // lookup point and the filter taps.
-            let margin =
-                (settings.filter.kernel() as f64 / 2.0 + settings.normal_offset + 2.0).min(size / 4.0);
+            let margin = (settings.filter.kernel() as f64 / 2.0 + settings.normal_offset + 2.0)
+                .min(size / 4.0);
             let widen = 1.0 / (1.0 - 2.0 * margin / size);
             let (origin, texel) = match *light {
                 Light::Directional { direction, .. } => {
@@ -252,13 +267,14 @@ impl ShadowPlan {
                 } if projection == Projection::Perspective => {
                     let tan_half = outer_cone_deg.to_radians().tan().max(1e-3) * widen;
                     let near = NEAR_OVER_FAR * far_corner(position, lo, hi);
-                    plan.layers
-                        .push(perspective_layer(position, direction, tan_half, near, map_size));
+                    plan.layers.push(perspective_layer(
+                        position, direction, tan_half, near, map_size,
+                    ));
                     (position, 2.0 * tan_half / size)
                 }
                 _ => {
                     let origin = match *light {
-                        Light::AreaSample { center, .. } => center,
+                        Light::AreaSample { center, area, .. } if !per_sample(area) => center,
                         _ => light.position().unwrap_or_default(),
                     };
                     let near = NEAR_OVER_FAR * far_corner(origin, lo, hi);
@@ -365,7 +381,11 @@ fn far_corner(origin: DVec3, lo: DVec3, hi: DVec3) -> f64 {
 
 /// An orthonormal basis (right, up) across `forward`.
 fn basis(forward: DVec3) -> (DVec3, DVec3) {
-    let helper = if forward.y.abs() < 0.99 { DVec3::Y } else { DVec3::X };
+    let helper = if forward.y.abs() < 0.99 {
+        DVec3::Y
+    } else {
+        DVec3::X
+    };
     let right = forward.cross(helper).normalize();
     (right, right.cross(forward))
 }

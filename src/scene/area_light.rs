@@ -59,6 +59,11 @@ pub struct AreaLight {
     /// N: how many point lights stand in for it.
     pub samples: u32,
     pub shadows: bool,
+    /// GPU shadows: one cube map per sample (exact up to the map's
+    /// resolution, 6N layers) instead of one at the centre shared by all
+    /// samples (a hard shadow, 6 layers). The reference always traces one
+    /// ray per sample.
+    pub shadow_per_sample: bool,
 }
 
 impl AreaLight {
@@ -250,6 +255,7 @@ mod tests {
             radiance: Rgb::new(1.0, 2.0, 3.0),
             samples,
             shadows: false,
+            shadow_per_sample: false,
         }
     }
 

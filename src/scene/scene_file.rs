@@ -251,6 +251,10 @@ pub enum LightEntry {
         radiance: ColorValue,
         #[serde(default)]
         samples: Option<u32>,
+        /// GPU: one shadow cube per sample instead of one shared at the
+        /// centre.
+        #[serde(default)]
+        shadow_per_sample: bool,
         #[serde(default)]
         shadows: bool,
         #[serde(default)]
@@ -1180,10 +1184,14 @@ fn light_from_entry(e: &LightEntry) -> std::result::Result<LightSource, String> 
             radiance,
             samples,
             shadows,
+            shadow_per_sample,
             ..
-        } => LightSource::Area(area_light_from_entry(
-            shape, *position, *normal, *size, *tangent, *radius, *radiance, *samples, *shadows,
-        )?),
+        } => LightSource::Area(AreaLight {
+            shadow_per_sample: *shadow_per_sample,
+            ..area_light_from_entry(
+                shape, *position, *normal, *size, *tangent, *radius, *radiance, *samples, *shadows,
+            )?
+        }),
     })
 }
 
@@ -1250,6 +1258,7 @@ fn area_light_from_entry(
         radiance: non_negative("radiance", radiance.rgb())?,
         samples,
         shadows,
+        shadow_per_sample: false,
     })
 }
 
@@ -1398,6 +1407,14 @@ mod tests {
         .unwrap();
         assert_eq!(scene.lights.len(), 64);
         assert_eq!(scene.with_area_samples(4).lights.len(), 4);
+        assert!(!scene.area_lights[0].shadow_per_sample);
+        let sets = [light.into(), "lights.0.shadow_per_sample=true".into()];
+        let scene = load(&SceneSource::BuiltIn, &sets).unwrap();
+        assert!(scene.area_lights[0].shadow_per_sample);
+        assert_eq!(
+            crate::gpu::shadows::ShadowPlan::new(&scene).layers.len(),
+            6 * 9
+        );
         let rect = "lights=[{kind = \"area\", shape = \"rect\", position = [0.0, 3.0, 0.0], normal = [0.0, -1.0, 0.0], size = [1.0, 2.0], tangent = [1.0, 0.0, 0.0], radiance = 1.0}]";
         let scene = load(&SceneSource::BuiltIn, &[rect.into()]).unwrap();
         assert_eq!(scene.lights.len(), area_light::DEFAULT_SAMPLES as usize);

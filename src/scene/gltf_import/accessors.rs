@@ -304,7 +304,9 @@ where
     }
     check_accessor(accessor, Usage::Tangent, vertex_count, buffers)?;
     let tangents = collect_vec3(
-        reader.read_tangents().map(|t| t.map(|[x, y, z, _w]| [x, y, z])),
+        reader
+            .read_tangents()
+            .map(|t| t.map(|[x, y, z, _w]| [x, y, z])),
         accessor,
         Usage::Tangent,
     )?;

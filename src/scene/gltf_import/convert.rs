@@ -1,7 +1,9 @@
 //! The parts of a glTF that are not geometry: materials, lights, cameras,
 //! node transforms, each turned into gonio's types.
 
-use crate::material::{Distribution, Fresnel, Geometry, Material, ROUGHNESS_FLOOR, ReflectanceModel};
+use crate::material::{
+    Distribution, Fresnel, Geometry, Material, ROUGHNESS_FLOOR, ReflectanceModel,
+};
 use crate::scene::{Camera, Light, Rgb};
 use glam::{DMat4, DQuat, DVec3, DVec4};
 use gltf::khr_lights_punctual::Kind as LightKind;
