@@ -58,6 +58,10 @@ struct Light {
     shadow_normal_offset: f32, // texels
     shadow_pcf_radius: u32,   // (kernel − 1) / 2
     shadow_uv_scale: f32,     // map size / array side
+    shadow_map: u32,          // index of its map in shadow_casters (≥ MAX_SHADOW_MAPS: none)
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // Light arriving at a point: ω_i towards the light, irradiance facing it.

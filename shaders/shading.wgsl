@@ -8,8 +8,7 @@
 // `#if shadows` only when a light casts shadows: then V_l comes from
 // the shadow-map lookup (shaders/shadows.wgsl) at the shading point x, with
 // n_g the offset normal (geometric normal for phong and flat, the vertex
-// normal for gouraud), and the samples of one area light, which share one
-// shadow map, read it once.
+// normal for gouraud).
 
 // Radiance of the environment from unit direction d. Twin: Environment::radiance. // #if mirror
 fn environment_radiance(d: vec3<f32>) -> vec3<f32> { // #if mirror
@@ -25,8 +24,14 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
     var radiance = m.k_a * globals.ambient;
-    var cached_layer = -1; // #if shadows
-    var cached_v = 1.0; // #if shadows
+    // With shadows: V of every shadow map first, once each (the samples of
+    // an area light share one map), in a loop of its own: a software
+    // rasterizer runs both sides of every branch, so a lookup inside the
+    // light loop would cost one per light.
+    var visibility: array<f32, MAX_SHADOW_MAPS>; // #if shadows
+    for (var s = 0u; s < min(arrayLength(&shadow_casters), MAX_SHADOW_MAPS); s++) { // #if shadows
+        visibility[s] = shadow_visibility(lights[shadow_casters[s]], x, n_g); // #if shadows
+    } // #if shadows
     for (var l = 0u; l < globals.light_count; l++) {
         let light = lights[l];
         let incidence = light_incidence(light, x);
@@ -34,17 +39,8 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
         if cos_theta_i <= 0.0 {
             continue;
         }
-        var v = 1.0; // #if shadows
-        if light.shadow_layer >= 0 { // #if shadows
-            if light.shadow_layer != cached_layer { // #if shadows
-                cached_v = shadow_visibility(light, x, n_g); // #if shadows
-                cached_layer = light.shadow_layer; // #if shadows
-            } // #if shadows
-            v = cached_v; // #if shadows
-        } // #if shadows
-        if v <= 0.0 { // #if shadows
-            continue; // #if shadows
-        } // #if shadows
+        let map = min(light.shadow_map, MAX_SHADOW_MAPS - 1u); // #if shadows
+        let v = select(1.0, visibility[map], light.shadow_map < MAX_SHADOW_MAPS); // #if shadows
         radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * cos_theta_i; // #if !shadows
         radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v); // #if shadows
     }

@@ -15,6 +15,12 @@ struct ShadowView {
 @group(1) @binding(0) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison; // nearest, GreaterEqual: 1 where lit
 @group(1) @binding(2) var<storage, read> shadow_views: array<ShadowView>;
+// One light per shadow map (for an area light, its first sample): the
+// lights whose visibility `reflected_radiance` looks up, once each.
+@group(1) @binding(3) var<storage, read> shadow_casters: array<u32>;
+
+// Most shadow maps a scene may have (src/gpu/shadows.rs: MAX_SHADOW_MAPS).
+const MAX_SHADOW_MAPS: u32 = 64u;
 
 // Fraction of the (2r+1)² nearest-texel depth comparisons around uv that
 // find the receiver lit (one comparison without PCF).

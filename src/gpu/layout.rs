@@ -45,7 +45,7 @@ pub struct GpuMaterial {
     pub blinn_e: f32,
 }
 
-/// `Light` (storage buffer element, 96 bytes). The `shadow_*` fields are
+/// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
 /// filled by [`super::shadows::ShadowPlan::apply`]; `shadow_layer` is −1
 /// for a light without a shadow map.
 #[repr(C)]
@@ -67,6 +67,8 @@ pub struct GpuLight {
     pub shadow_normal_offset: f32,
     pub shadow_pcf_radius: u32,
     pub shadow_uv_scale: f32,
+    pub shadow_map: u32,
+    pub _pad: [u32; 3],
 }
 
 /// `ShadowView` (storage buffer element, 64 bytes): one layer of the

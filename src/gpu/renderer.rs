@@ -101,6 +101,7 @@ impl GpuRenderer {
                             wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
                         ),
                         entry(2, storage),
+                        entry(3, storage),
                     ],
                 });
         let shadow_pipeline_layout =
@@ -449,6 +450,11 @@ impl GpuRenderer {
                 bytemuck::cast_slice(&plan.gpu_views()),
                 wgpu::BufferUsages::STORAGE,
             );
+            let casters_buffer = init(
+                "shadow casters",
+                bytemuck::cast_slice(&plan.casters),
+                wgpu::BufferUsages::STORAGE,
+            );
             let layer_views: Vec<wgpu::TextureView> = (0..plan.layers.len() as u32)
                 .map(|layer| {
                     texture.create_view(&wgpu::TextureViewDescriptor {
@@ -480,6 +486,10 @@ impl GpuRenderer {
                     wgpu::BindGroupEntry {
                         binding: 2,
                         resource: views_buffer.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: casters_buffer.as_entire_binding(),
                     },
                 ],
             });
@@ -667,7 +677,13 @@ impl GpuRenderer {
             return Ok(());
         }
         let limits = self.ctx.device.limits();
-        let problem = if plan.side > limits.max_texture_dimension_2d {
+        let problem = if plan.casters.len() > shadows::MAX_SHADOW_MAPS {
+            Some(format!(
+                "{} lights cast shadows through their own maps (an area light with shadow_per_sample counts each sample); at most {} can",
+                plan.casters.len(),
+                shadows::MAX_SHADOW_MAPS
+            ))
+        } else if plan.side > limits.max_texture_dimension_2d {
             Some(format!(
                 "a shadow map of {0}x{0} texels is larger than the GPU's maximum texture side of {1}",
                 plan.side, limits.max_texture_dimension_2d

@@ -44,6 +44,10 @@ pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float
 /// Widest spot cone (outer half-angle, degrees) drawn with one perspective
 /// map; wider cones get a cube.
 pub const MAX_PERSPECTIVE_CONE_DEG: f64 = 60.0;
+/// Most shadow maps (lights with shadows; an area light's samples share
+/// one unless `shadow_per_sample`) a scene may have: the shader keeps one
+/// visibility per map (`MAX_SHADOW_MAPS` in `shaders/shadows.wgsl`).
+pub const MAX_SHADOW_MAPS: usize = 64;
 /// Largest total size of the shadow-map array.
 pub const MAX_SHADOW_BYTES: u64 = 1 << 30;
 /// Near plane of perspective layers, relative to the distance from the
@@ -167,6 +171,8 @@ impl ShadowFeatures {
 /// One light's shadow map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightShadow {
+    /// Index of the map (into [`ShadowPlan::casters`]).
+    pub map: u32,
     pub projection: Projection,
     /// First layer in the array (cube faces follow: +X −X +Y −Y +Z −Z).
     pub first_layer: u32,
@@ -207,6 +213,9 @@ pub struct ShadowPlan {
     /// Per light of the scene: its map, if it casts shadows. The samples of
     /// one area light share one.
     pub lights: Vec<Option<LightShadow>>,
+    /// Per map: the first light that uses it (the shader looks up each
+    /// map's visibility once, through this light).
+    pub casters: Vec<u32>,
 }
 
 impl ShadowPlan {
@@ -216,6 +225,7 @@ impl ShadowPlan {
             side: 0,
             layers: Vec::new(),
             lights: vec![None; scene.lights.len()],
+            casters: Vec::new(),
         };
         let Some((lo, hi)) = scene.bounds() else {
             return plan;
@@ -286,12 +296,14 @@ impl ShadowPlan {
                 }
             };
             let shadow = LightShadow {
+                map: plan.casters.len() as u32,
                 projection,
                 first_layer,
                 settings,
                 texel,
                 origin,
             };
+            plan.casters.push(l as u32);
             plan.side = plan.side.max(map_size);
             if let Light::AreaSample { area, .. } = *light {
                 areas.insert(area, shadow);
@@ -321,8 +333,10 @@ impl ShadowPlan {
     pub fn apply(&self, l: usize, g: &mut GpuLight) {
         let Some(s) = self.lights.get(l).copied().flatten() else {
             g.shadow_layer = -1;
+            g.shadow_map = u32::MAX;
             return;
         };
+        g.shadow_map = s.map;
         g.shadow_layer = s.first_layer as i32;
         g.shadow_projection = s.projection.id();
         g.shadow_origin = s.origin.as_vec3().to_array();
@@ -489,6 +503,9 @@ mod tests {
         assert_eq!(plan.side, ShadowSettings::DEFAULT_MAP_SIZE);
         let first: Vec<_> = plan.lights.iter().map(|s| s.unwrap().first_layer).collect();
         assert_eq!(first, [0, 0, 0, 0, 6]);
+        let maps: Vec<_> = plan.lights.iter().map(|s| s.unwrap().map).collect();
+        assert_eq!(maps, [0, 0, 0, 0, 1]);
+        assert_eq!(plan.casters, [0, 4]);
         assert_eq!(plan.lights[4].unwrap().projection, Projection::Ortho);
         scene.lights.iter_mut().for_each(|l| l.set_shadows(false));
         assert!(ShadowPlan::new(&scene).is_empty());

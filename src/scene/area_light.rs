@@ -191,7 +191,7 @@ pub fn grid(n: u32, aspect: f64) -> (u32, u32) {
     let mut best = (n, 1);
     let mut best_cost = f64::INFINITY;
     for nx in 1..=n {
-        if n % nx != 0 {
+        if !n.is_multiple_of(nx) {
             continue;
         }
         let ny = n / nx;

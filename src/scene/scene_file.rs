@@ -941,7 +941,7 @@ fn shadow_settings(
     let kernel = keys
         .pcf_kernel
         .unwrap_or(ShadowSettings::DEFAULT_PCF_KERNEL);
-    if kernel % 2 == 0 || !(1..=ShadowSettings::MAX_PCF_KERNEL).contains(&kernel) {
+    if kernel.is_multiple_of(2) || !(1..=ShadowSettings::MAX_PCF_KERNEL).contains(&kernel) {
         return Err(format!(
             "{} = {kernel} must be an odd number in 1..={}",
             name("pcf_kernel"),
@@ -1444,7 +1444,7 @@ mod tests {
             area("shape = \"square\", radius = 1.0"),
             area("shape = \"rect\", size = [1.0, 1.0], tangent = [0.0, 2.0, 0.0]"),
         ] {
-            let err = load(&SceneSource::BuiltIn, &[kv.clone()]);
+            let err = load(&SceneSource::BuiltIn, std::slice::from_ref(&kv));
             assert!(err.is_err(), "{kv} accepted");
             assert_eq!(err.unwrap_err().exit_code(), 2, "{kv}");
         }
