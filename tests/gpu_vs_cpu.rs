@@ -21,61 +21,16 @@
 mod common;
 
 use gonio::frame::Frame;
-use gonio::material::{Distribution, Material, ReflectanceModel};
-use gonio::output::compare::{Comparison, JITTER_OFFSETS, Tolerance, compare_with_jitter};
+use gonio::output::compare::{Comparison, JITTER_OFFSETS, compare_with_jitter};
 use gonio::reference;
 use gonio::scene::scene_file::{self, SceneSource};
 use gonio::scene::{Scene, ShadingMode};
 
-const JITTER_PX: f64 = 1.0 / 128.0;
-const EPS: f64 = 1.0 / 16_777_216.0; // 2⁻²⁴
+use common::JITTER_PX;
 
-/// The arithmetic tolerance for `scene`: the largest over its materials.
-fn tolerance(scene: &Scene, reference: &Frame) -> Tolerance {
-    let rel = scene
-        .effective_materials()
-        .iter()
-        .map(arithmetic_rel)
-        .fold(64.0 * EPS, f64::max);
-    Tolerance {
-        rel,
-        abs: 64.0 * EPS * reference.max_radiance() as f64,
-    }
-}
-
-/// Relative f32 error of one material's shading, beyond the 64ε of the
-/// light loop:
-/// * cosine lobes `c^k_e`: k_e·(8ε + 2⁻²¹·ln 2) (see the module docs);
-/// * slope distributions `exp(−tan²θ/m²)` (Beckmann, GGX's tail, Ward):
-///   d ln f/dθ = −2 tanθ/(m² cos²θ); with the half vector's angle known
-///   to 8ε and the lobe negligible beyond tanθ ≈ 4.5 m, the relative error
-///   is at most 16ε · 4.5/m ≈ 72ε/m (taken as 128ε/m);
-/// * the lecture's angular Blinn: its exponent e = −ln2/ln cos m behaves
-///   like k_e; the Gaussian's angle comes from `atan2`, which Vulkan allows
-///   4096 ulp, and exp(−ln2 (α/m)²) turns a relative error δ of α into
-///   2 ln2 (α/m)² δ with (α/m)² ≲ 30 where the lobe matters.
-fn arithmetic_rel(m: &Material) -> f64 {
-    let pow = |k: f64| k * (8.0 * EPS + 2f64.powi(-21) * std::f64::consts::LN_2);
-    let slope = |r: f64| 128.0 * EPS / r;
-    match m.model {
-        ReflectanceModel::Phong
-        | ReflectanceModel::PhongNormalized
-        | ReflectanceModel::BlinnPhong
-        | ReflectanceModel::BlinnPhongNormalized => pow(m.k_e),
-        ReflectanceModel::Ward => slope(m.sigma_x),
-        ReflectanceModel::WardAnisotropic => slope(m.sigma_x.min(m.sigma_y)),
-        ReflectanceModel::CookTorrance => match m.distribution {
-            Distribution::Blinn | Distribution::BlinnNormalized => {
-                pow(-std::f64::consts::LN_2 / m.roughness.cos().ln())
-            }
-            Distribution::Gaussian | Distribution::GaussianNormalized => {
-                2.0 * std::f64::consts::LN_2 * 30.0 * 4096.0 * EPS
-            }
-            _ => slope(m.roughness),
-        },
-        ReflectanceModel::Lambert | ReflectanceModel::Mirror => 0.0,
-    }
-}
+// The tolerance (`common::tolerance`, `common::arithmetic_rel`) is shared
+// with tests/shadows.rs; its derivation is in this file's module docs.
+use common::tolerance;
 
 fn no_nan(frame: &Frame) -> bool {
     frame.radiance.iter().flatten().all(|v| v.is_finite())
