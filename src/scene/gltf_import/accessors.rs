@@ -265,23 +265,9 @@ fn read_normals<'a, 's, F>(
 where
     F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
 {
-    if accessor.count() != vertex_count {
-        return Err(format!(
-            "accessor {} (NORMAL) has {} elements but POSITION has {vertex_count}",
-            accessor.index(),
-            accessor.count()
-        ));
-    }
-    check_accessor(accessor, Usage::Normal, vertex_count, buffers)?;
-    let normals = collect_vec3(reader.read_normals(), accessor, Usage::Normal)?;
-    if let Some(k) = normals.iter().position(|n| !n.is_finite()) {
-        return Err(format!(
-            "accessor {} (NORMAL): normal {k} is not finite ({})",
-            accessor.index(),
-            normals[k]
-        ));
-    }
-    Ok(normals.into_iter().map(DVec3::normalize_or_zero).collect())
+    read_directions(accessor, Usage::Normal, vertex_count, buffers, || {
+        reader.read_normals()
+    })
 }
 
 /// Unit tangents from `TANGENT` (xyz; zero where it has no length); as
@@ -295,29 +281,42 @@ fn read_tangents<'a, 's, F>(
 where
     F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
 {
+    read_directions(accessor, Usage::Tangent, vertex_count, buffers, || {
+        reader
+            .read_tangents()
+            .map(|t| t.map(|[x, y, z, _w]| [x, y, z]))
+    })
+}
+
+/// A per-vertex direction attribute: one element per position, types
+/// checked before `read` runs the reader, all finite, normalized (zero
+/// where the file's vector has no length).
+fn read_directions<I: Iterator<Item = [f32; 3]>>(
+    accessor: &gltf::Accessor,
+    usage: Usage,
+    vertex_count: usize,
+    buffers: &[Cow<[u8]>],
+    read: impl FnOnce() -> Option<I>,
+) -> Result<Vec<DVec3>, String> {
+    let name = usage.name();
     if accessor.count() != vertex_count {
         return Err(format!(
-            "accessor {} (TANGENT) has {} elements but POSITION has {vertex_count}",
+            "accessor {} ({name}) has {} elements but POSITION has {vertex_count}",
             accessor.index(),
             accessor.count()
         ));
     }
-    check_accessor(accessor, Usage::Tangent, vertex_count, buffers)?;
-    let tangents = collect_vec3(
-        reader
-            .read_tangents()
-            .map(|t| t.map(|[x, y, z, _w]| [x, y, z])),
-        accessor,
-        Usage::Tangent,
-    )?;
-    if let Some(k) = tangents.iter().position(|t| !t.is_finite()) {
+    check_accessor(accessor, usage, vertex_count, buffers)?;
+    let values = collect_vec3(read(), accessor, usage)?;
+    if let Some(k) = values.iter().position(|v| !v.is_finite()) {
         return Err(format!(
-            "accessor {} (TANGENT): tangent {k} is not finite ({})",
+            "accessor {} ({name}): {} {k} is not finite ({})",
             accessor.index(),
-            tangents[k]
+            name.to_lowercase(),
+            values[k]
         ));
     }
-    Ok(tangents.into_iter().map(DVec3::normalize_or_zero).collect())
+    Ok(values.into_iter().map(DVec3::normalize_or_zero).collect())
 }
 
 /// Vertex indices, each checked to address one of `vertex_limit` vertices.
