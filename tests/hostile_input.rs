@@ -1279,6 +1279,23 @@ fn scene_files(c: &mut Corpus) {
         Load::SceneWithLimits(path, limits),
         errors(&["objects[2]", "--limit triangles=N"]),
     );
+    // A 4096-division plane is 33.5 M triangles: refused from its declared
+    // size, before a byte of it is built (this case would take seconds and
+    // gigabytes otherwise, and the per-case time limit would catch it).
+    let path = c.write(
+        &format!("{CLASS}/fine-plane.toml"),
+        "[[objects]]\nshape = \"plane\"\nsegments = 4096\n",
+    );
+    c.add(
+        CLASS,
+        "fine-plane.toml",
+        Load::SceneWithLimits(path, limits),
+        errors(&[
+            "objects[0]",
+            "33554432 more triangles",
+            "--limit triangles=N",
+        ]),
+    );
     let light = "[[lights]]\nkind = \"point\"\nposition = [0.0, 1.0, 0.0]\nintensity = 1.0\n";
     c.scene(
         CLASS,
@@ -1621,6 +1638,9 @@ fn the_binary_refuses_hostile_files_with_exit_2() {
     {
         assert_refused(d, &[&path_of("fifo-buffer.gltf")], "not a regular file");
         assert_refused(d, &[&path_of("scene-is-fifo")], "not a regular file");
+        // A FIFO named as the glTF itself: refused as a special file, not
+        // reported as missing.
+        assert_refused(d, &[&path_of("gltf-is-fifo")], "not a regular file");
     }
     let deep_key = format!("{}=1", vec!["a"; 60_000].join("."));
     assert_refused(d, &["--set", &deep_key], "at most 16");

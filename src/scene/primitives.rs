@@ -4,6 +4,20 @@ use crate::scene::Mesh;
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 
+/// Vertices and triangles [`uv_sphere`] builds for `segments`, known
+/// before anything is allocated (so limits are checked first).
+pub fn uv_sphere_size(segments: u32) -> (u64, u64) {
+    let slices = segments.max(3) as u64;
+    let stacks = (segments / 2).max(2) as u64;
+    ((stacks + 1) * (slices + 1), 2 * slices * (stacks - 1))
+}
+
+/// Vertices and triangles [`plane`] builds for `divisions`.
+pub fn plane_size(divisions: u32) -> (u64, u64) {
+    let n = divisions.max(1) as u64;
+    ((n + 1) * (n + 1), 2 * n * n)
+}
+
 /// A UV sphere: `segments` slices around +Y and `segments / 2` stacks.
 /// Normals are the exact sphere normals (not averaged), so every shading
 /// mode sees the true surface orientation at the vertices.
@@ -93,6 +107,18 @@ pub fn plane(center: DVec3, size: f64, divisions: u32, material: usize) -> Mesh 
 mod tests {
     use super::*;
     use crate::scene::mesh::{centroid, face_normal};
+
+    #[test]
+    fn sizes_are_known_before_building() {
+        for segments in [1, 2, 3, 4, 7, 48, 101] {
+            let m = uv_sphere(DVec3::ZERO, 1.0, segments, 0);
+            let size = (m.positions.len() as u64, m.indices.len() as u64);
+            assert_eq!(uv_sphere_size(segments), size, "sphere {segments}");
+            let p = plane(DVec3::ZERO, 1.0, segments, 0);
+            let size = (p.positions.len() as u64, p.indices.len() as u64);
+            assert_eq!(plane_size(segments), size, "plane {segments}");
+        }
+    }
 
     #[test]
     fn sphere_faces_point_outwards() {

@@ -455,8 +455,17 @@ fn scene_table(source: &SceneSource) -> Result<(PathBuf, PathBuf, toml::Table)> 
                     Ok((path.clone(), base_dir, table))
                 }
                 Some("gltf") | Some("glb") => {
-                    if !path.is_file() {
-                        return Err(Error::input(path, "no such file"));
+                    match std::fs::metadata(path) {
+                        Ok(meta) if meta.is_file() => {}
+                        Ok(_) => {
+                            return Err(Error::input(
+                                path,
+                                "is not a regular file (a directory, FIFO or device); a glTF scene must be a .gltf or .glb file",
+                            ));
+                        }
+                        Err(e) => {
+                            return Err(Error::input(path, format!("cannot read the file: {e}")));
+                        }
                     }
                     let name = path.file_name().unwrap_or_default().to_string_lossy();
                     let mut object = toml::Table::new();
@@ -789,11 +798,13 @@ fn assemble(
                         materials.len() - 1
                     }
                 };
-                let mesh = shape_mesh(k, object, shape, material).map_err(bad)?;
+                // Charged to the budget before it is built: a fine
+                // tessellation must not allocate past the limits first.
+                let (vertices, triangles) = shape_size(k, object, shape).map_err(bad)?;
                 gltf_files
-                    .charge(mesh.positions.len() as u64, mesh.indices.len() as u64, 0)
+                    .charge(vertices, triangles, 0)
                     .map_err(|p| bad(format!("objects[{k}]: {p}")))?;
-                meshes.push(mesh);
+                meshes.push(shape_mesh(k, object, shape, material).map_err(bad)?);
             }
             _ => {
                 return Err(bad(format!(
@@ -1045,6 +1056,28 @@ pub fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result
     Ok(m)
 }
 
+/// The `segments` of a generated shape, range-checked.
+fn shape_segments(k: usize, o: &ObjectEntry) -> std::result::Result<u32, String> {
+    let segments = o.segments.unwrap_or(48);
+    if !(1..=4096).contains(&segments) {
+        return Err(format!(
+            "objects[{k}].segments = {segments} is outside 1..=4096"
+        ));
+    }
+    Ok(segments)
+}
+
+/// Vertices and triangles of the shape `shape_mesh` would build.
+fn shape_size(k: usize, o: &ObjectEntry, shape: &str) -> std::result::Result<(u64, u64), String> {
+    let segments = shape_segments(k, o)?;
+    Ok(match shape {
+        "sphere" => primitives::uv_sphere_size(segments.max(3)),
+        "plane" => primitives::plane_size(segments),
+        // shape_mesh names the problem.
+        _ => (0, 0),
+    })
+}
+
 fn shape_mesh(
     k: usize,
     o: &ObjectEntry,
@@ -1064,12 +1097,7 @@ fn shape_mesh(
             ))
         }
     };
-    let segments = o.segments.unwrap_or(48);
-    if !(1..=4096).contains(&segments) {
-        return Err(format!(
-            "objects[{k}].segments = {segments} is outside 1..=4096"
-        ));
-    }
+    let segments = shape_segments(k, o)?;
     match shape {
         "sphere" => Ok(primitives::uv_sphere(
             center,
