@@ -10,7 +10,7 @@ struct Globals {
     eye: vec3<f32>,
     light_count: u32,
     ambient: vec3<f32>,   // L_a: constant incoming ambient radiance
-    _pad0: f32,
+    display_scale: f32,   // 2^exposure, read only by display targets (target_output)
     env_zenith: vec3<f32>, // the environment a mirror reflects (scene::Environment)
     _pad1: f32,
     env_horizon: vec3<f32>,
@@ -82,4 +82,20 @@ fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
         return v * inverseSqrt(len2);
     }
     return vec3<f32>(0.0);
+}
+
+// What the fragment writes. Offscreen targets (Rgba32Float) hold linear
+// radiance and coverage 1, read back exactly. Display targets (8-bit
+// window surfaces, `#if display`) get what `gonio render` writes to a PNG:
+// radiance · 2^exposure clamped to [0, 1], sRGB-encoded (IEC 61966-2-1,
+// as src/output/write.rs `srgb_encode`), rounded by the unorm store.
+fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
+    let low = 12.92 * linear;
+    let high = 1.055 * pow(linear, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(high, low, linear <= vec3<f32>(0.0031308));
+}
+
+fn target_output(radiance: vec3<f32>) -> vec4<f32> {
+    return vec4<f32>(radiance, 1.0); // #if !display
+    return vec4<f32>(srgb_encode(clamp(radiance * globals.display_scale, vec3<f32>(0.0), vec3<f32>(1.0))), 1.0); // #if display
 }

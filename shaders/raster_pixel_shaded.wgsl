@@ -40,6 +40,6 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let n = normalize_or_zero(in.normal);
     let frame = surface_frame(n, in.tangent); // #if tangents
     let frame = surface_frame(n, any_tangent(n)); // #if !tangents
-    return vec4<f32>(reflected_radiance(materials[in.material], in.world, frame), 1.0); // #if !shadows
-    return vec4<f32>(reflected_radiance(materials[in.material], in.world, frame, n_g), 1.0); // #if shadows
+    return target_output(reflected_radiance(materials[in.material], in.world, frame)); // #if !shadows
+    return target_output(reflected_radiance(materials[in.material], in.world, frame, n_g)); // #if shadows
 }

@@ -41,5 +41,5 @@ fn vs_main(in: VertexIn) -> VertexOut {
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Alpha 1 marks coverage.
-    return vec4<f32>(in.radiance, 1.0);
+    return target_output(in.radiance);
 }

@@ -16,7 +16,8 @@ pub struct GpuGlobals {
     pub eye: [f32; 3],
     pub light_count: u32,
     pub ambient: [f32; 3],
-    pub _pad0: f32,
+    /// `2^exposure` for display targets (`target_output` in common.wgsl).
+    pub display_scale: f32,
     pub env_zenith: [f32; 3],
     pub _pad1: f32,
     pub env_horizon: [f32; 3],
@@ -95,7 +96,7 @@ impl GpuGlobals {
             eye: f32x3(scene.camera.position),
             light_count: scene.lights.len() as u32,
             ambient: f32x3(scene.ambient),
-            _pad0: 0.0,
+            display_scale: 1.0,
             env_zenith: f32x3(scene.environment.zenith),
             _pad1: 0.0,
             env_horizon: f32x3(scene.environment.horizon),

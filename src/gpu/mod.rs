@@ -8,10 +8,12 @@
 pub mod context;
 pub mod geometry;
 pub mod layout;
+pub mod prepared;
 pub mod renderer;
 pub mod shader_gen;
 pub mod shadows;
 pub mod timing;
 
 pub use context::{AdapterChoice, GpuContext};
+pub use prepared::{FrameTarget, PreparedScene};
 pub use renderer::GpuRenderer;

@@ -11,9 +11,9 @@
 //! passes nor the bind group nor any shadow code exist.
 
 use super::GpuContext;
-use super::geometry::{GeometryData, VertexLayout};
-use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
-use super::shader_gen::{self, ShaderKey};
+use super::geometry::VertexLayout;
+use super::prepared::{DEPTH_FORMAT, FrameTarget};
+use super::shader_gen::{self, Output, ShaderKey};
 use super::shadows::{self, ShadowPlan};
 use super::timing::{Clock, Timings};
 use crate::frame::Frame;
@@ -21,28 +21,27 @@ use crate::scene::Scene;
 use crate::{Error, Result};
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
-use wgpu::util::DeviceExt;
 
-const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The offscreen colour target: linear radiance and coverage, exact.
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const BYTES_PER_PIXEL: u32 = 16;
 
 /// A renderer bound to one device, caching one pipeline per [`ShaderKey`]
 /// so re-rendering with new parameter values never recompiles.
 pub struct GpuRenderer {
-    ctx: GpuContext,
-    bind_group_layout: wgpu::BindGroupLayout,
+    pub(super) ctx: GpuContext,
+    pub(super) bind_group_layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
-    pipelines: HashMap<ShaderKey, wgpu::RenderPipeline>,
+    pub(super) pipelines: HashMap<(ShaderKey, wgpu::TextureFormat), wgpu::RenderPipeline>,
     /// Group 1 of a scene pipeline with shadows: maps, sampler, layers.
-    shadow_bind_group_layout: wgpu::BindGroupLayout,
+    pub(super) shadow_bind_group_layout: wgpu::BindGroupLayout,
     shadow_pipeline_layout: wgpu::PipelineLayout,
-    shadow_sampler: wgpu::Sampler,
+    pub(super) shadow_sampler: wgpu::Sampler,
     /// The depth-only passes: layers in group 0.
-    pass_bind_group_layout: wgpu::BindGroupLayout,
+    pub(super) pass_bind_group_layout: wgpu::BindGroupLayout,
     pass_pipeline_layout: wgpu::PipelineLayout,
     /// One per vertex stride.
-    pass_pipelines: HashMap<u64, wgpu::RenderPipeline>,
+    pub(super) pass_pipelines: HashMap<u64, wgpu::RenderPipeline>,
 }
 
 impl GpuRenderer {
@@ -158,7 +157,7 @@ impl GpuRenderer {
     /// The depth-only pipeline of the shadow passes for a vertex stream of
     /// `stride` bytes (position at offset 0): vertex shader only, reversed
     /// depth (the nearest surface has the largest depth).
-    fn pass_pipeline(&mut self, stride: u64) -> &wgpu::RenderPipeline {
+    pub(super) fn pass_pipeline(&mut self, stride: u64) -> &wgpu::RenderPipeline {
         let device = &self.ctx.device;
         let layout = &self.pass_pipeline_layout;
         self.pass_pipelines.entry(stride).or_insert_with(|| {
@@ -211,11 +210,17 @@ impl GpuRenderer {
         &self.ctx
     }
 
-    /// The pipeline for `key`, compiled on first use.
-    fn pipeline(&mut self, key: &ShaderKey, layout: VertexLayout) -> Result<&wgpu::RenderPipeline> {
-        if !self.pipelines.contains_key(key) {
+    /// The pipeline for `key` drawing into `format`, compiled on first use.
+    pub(super) fn pipeline(
+        &mut self,
+        key: &ShaderKey,
+        layout: VertexLayout,
+        format: wgpu::TextureFormat,
+    ) -> Result<&wgpu::RenderPipeline> {
+        let cache_key = (key.clone(), format);
+        if !self.pipelines.contains_key(&cache_key) {
             let attributes = layout.attributes();
-            let wgsl = shader_gen::compose(key);
+            let wgsl = shader_gen::compose_for(key, Output::for_format(format));
             // naga validation first: a failure here is a bug in gonio, and
             // this way it is an error message, not a device panic.
             shader_gen::validate(&wgsl).map_err(|e| {
@@ -267,7 +272,7 @@ impl GpuRenderer {
                     entry_point: Some("fs_main"),
                     compilation_options: Default::default(),
                     targets: &[Some(wgpu::ColorTargetState {
-                        format: COLOR_FORMAT,
+                        format,
                         blend: None,
                         write_mask: wgpu::ColorWrites::ALL,
                     })],
@@ -275,123 +280,28 @@ impl GpuRenderer {
                 multiview_mask: None,
                 cache: None,
             });
-            self.pipelines.insert(key.clone(), pipeline);
+            self.pipelines.insert(cache_key.clone(), pipeline);
         }
-        Ok(&self.pipelines[key])
+        Ok(&self.pipelines[&cache_key])
     }
 
-    /// Renders `scene`, returning the frame and the time of each step.
+    /// Renders `scene` offscreen, returning the frame and the time of each
+    /// step: [`GpuRenderer::prepare`] into an `Rgba32Float` target, one
+    /// [`GpuRenderer::encode`], and a readback.
     pub fn render(&mut self, scene: &Scene) -> Result<(Frame, Timings)> {
         let mut timings = Timings::default();
         let (width, height) = (scene.width, scene.height);
-        let max_side = self.ctx.device.limits().max_texture_dimension_2d;
-        if width > max_side || height > max_side {
-            return Err(Error::argument(
-                format!("{width}x{height}"),
-                format!(
-                    "the image is larger than the GPU's maximum texture side of {max_side} pixels"
-                ),
-            ));
-        }
-        if scene.materials.is_empty() || scene.lights.is_empty() {
-            return Err(Error::Gpu(
-                "a scene needs at least one material and one light".into(),
-            ));
-        }
-
-        let mut key = ShaderKey::for_scene(scene);
-        let plan = if key.shadows.any() {
-            ShadowPlan::new(scene)
-        } else {
-            ShadowPlan::default()
-        };
-        if plan.is_empty() {
-            // Nothing to cast a shadow on (no geometry): no shadow code.
-            key.shadows = Default::default();
-        }
-        self.check_shadow_limits(&plan)?;
-        let geometry = timings.wall("build vertex data", || {
-            GeometryData::new(scene, key.needs_tangents())
-        });
+        self.check_target_size(width, height)?;
         let start = Instant::now();
-        self.pipeline(&key, geometry.layout)?;
-        let stride = geometry.layout.stride();
-        if !plan.is_empty() {
-            self.pass_pipeline(stride);
-        }
-        timings.push("create pipeline", start.elapsed(), Clock::Wall);
+        let mut prepared = self.prepare(scene, COLOR_FORMAT)?;
+        timings.push(
+            "build vertex data + pipeline + upload",
+            start.elapsed(),
+            Clock::Wall,
+        );
 
+        let start = Instant::now();
         let device = &self.ctx.device;
-        let queue = &self.ctx.queue;
-        let start = Instant::now();
-        let init = |label, contents: &[u8], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        let vertex_buffer = init(
-            "vertices",
-            bytemuck::cast_slice(&geometry.words),
-            wgpu::BufferUsages::VERTEX,
-        );
-        let index_buffer = geometry.indices.as_ref().map(|i| {
-            init(
-                "indices",
-                bytemuck::cast_slice(i),
-                wgpu::BufferUsages::INDEX,
-            )
-        });
-        let globals = GpuGlobals::new(scene);
-        let materials: Vec<GpuMaterial> = scene
-            .effective_materials()
-            .iter()
-            .map(|m| GpuMaterial::new(m, &key))
-            .collect();
-        let lights: Vec<GpuLight> = scene
-            .lights
-            .iter()
-            .enumerate()
-            .map(|(l, light)| {
-                let mut g = GpuLight::from(light);
-                plan.apply(l, &mut g);
-                g
-            })
-            .collect();
-        let globals_buffer = init(
-            "globals",
-            bytemuck::bytes_of(&globals),
-            wgpu::BufferUsages::UNIFORM,
-        );
-        let materials_buffer = init(
-            "materials",
-            bytemuck::cast_slice(&materials),
-            wgpu::BufferUsages::STORAGE,
-        );
-        let lights_buffer = init(
-            "lights",
-            bytemuck::cast_slice(&lights),
-            wgpu::BufferUsages::STORAGE,
-        );
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("gonio scene"),
-            layout: &self.bind_group_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: globals_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: materials_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: lights_buffer.as_entire_binding(),
-                },
-            ],
-        });
         let size = wgpu::Extent3d {
             width,
             height,
@@ -427,197 +337,23 @@ impl GpuRenderer {
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        // Shadow maps: the array, one view per layer to render into, the
-        // bind group the scene pipeline reads them through.
-        let shadow_resources = (!plan.is_empty()).then(|| {
-            let texture = device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("shadow maps"),
-                size: wgpu::Extent3d {
-                    width: plan.side,
-                    height: plan.side,
-                    depth_or_array_layers: plan.layers.len() as u32,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: shadows::SHADOW_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            });
-            let views_buffer = init(
-                "shadow views",
-                bytemuck::cast_slice(&plan.gpu_views()),
-                wgpu::BufferUsages::STORAGE,
-            );
-            let casters_buffer = init(
-                "shadow casters",
-                bytemuck::cast_slice(&plan.casters),
-                wgpu::BufferUsages::STORAGE,
-            );
-            let layer_views: Vec<wgpu::TextureView> = (0..plan.layers.len() as u32)
-                .map(|layer| {
-                    texture.create_view(&wgpu::TextureViewDescriptor {
-                        label: Some("shadow layer"),
-                        dimension: Some(wgpu::TextureViewDimension::D2),
-                        base_array_layer: layer,
-                        array_layer_count: Some(1),
-                        ..Default::default()
-                    })
-                })
-                .collect();
-            let array_view = texture.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("shadow maps"),
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                ..Default::default()
-            });
-            let scene_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("gonio shadow maps"),
-                layout: &self.shadow_bind_group_layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&array_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(&self.shadow_sampler),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: views_buffer.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: casters_buffer.as_entire_binding(),
-                    },
-                ],
-            });
-            let pass_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("gonio shadow pass"),
-                layout: &self.pass_bind_group_layout,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: views_buffer.as_entire_binding(),
-                }],
-            });
-            (texture, layer_views, scene_group, pass_group)
-        });
-        // Timestamps: 0, 1 around the scene pass; 2, 3 around all shadow
-        // passes.
-        let queries = self.ctx.timestamps.then(|| {
-            let set = device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("pass timestamps"),
-                ty: wgpu::QueryType::Timestamp,
-                count: 4,
-            });
-            let resolve = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("timestamps"),
-                size: 32,
-                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let read = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("timestamps read"),
-                size: 32,
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                mapped_at_creation: false,
-            });
-            (set, resolve, read)
-        });
-        timings.push("upload", start.elapsed(), Clock::Wall);
+        let queries = self.ctx.timestamps.then(|| PassTimestamps::new(device));
+        timings.push("create targets", start.elapsed(), Clock::Wall);
 
         let start = Instant::now();
-        let pipeline = &self.pipelines[&key];
         let color_view = color.create_view(&Default::default());
         let depth_view = depth.create_view(&Default::default());
-        let mut encoder = device.create_command_encoder(&Default::default());
-        // Shadow passes first: one depth-only pass per layer.
-        if let Some((_, layer_views, _, pass_group)) = &shadow_resources {
-            let last = layer_views.len() - 1;
-            for (i, (layer, view)) in plan.layers.iter().zip(layer_views).enumerate() {
-                let timestamp_writes = queries.as_ref().and_then(|(set, ..)| {
-                    (i == 0 || i == last).then_some(wgpu::RenderPassTimestampWrites {
-                        query_set: set,
-                        beginning_of_pass_write_index: (i == 0).then_some(2),
-                        end_of_pass_write_index: (i == last).then_some(3),
-                    })
-                });
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("shadow map"),
-                    color_attachments: &[],
-                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                        view,
-                        depth_ops: Some(wgpu::Operations {
-                            // Reversed depth: 0 is "nothing here".
-                            load: wgpu::LoadOp::Clear(0.0),
-                            store: wgpu::StoreOp::Store,
-                        }),
-                        stencil_ops: None,
-                    }),
-                    timestamp_writes,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                let size = layer.map_size as f32;
-                pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
-                pass.set_pipeline(&self.pass_pipelines[&stride]);
-                pass.set_bind_group(0, pass_group, &[]);
-                pass.set_vertex_buffer(0, vertex_buffer.slice(..));
-                let instance = i as u32..i as u32 + 1;
-                match &index_buffer {
-                    Some(indices) => {
-                        pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-                        pass.draw_indexed(0..geometry.draw_count, 0, instance);
-                    }
-                    None => pass.draw(0..geometry.draw_count, instance),
-                }
-            }
-        }
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("scene"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &color_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: queries.as_ref().map(|(set, ..)| {
-                    wgpu::RenderPassTimestampWrites {
-                        query_set: set,
-                        beginning_of_pass_write_index: Some(0),
-                        end_of_pass_write_index: Some(1),
-                    }
-                }),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &bind_group, &[]);
-            if let Some((_, _, scene_group, _)) = &shadow_resources {
-                pass.set_bind_group(1, scene_group, &[]);
-            }
-            pass.set_vertex_buffer(0, vertex_buffer.slice(..));
-            match &index_buffer {
-                Some(indices) => {
-                    pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-                    pass.draw_indexed(0..geometry.draw_count, 0, 0..1);
-                }
-                None => pass.draw(0..geometry.draw_count, 0..1),
-            }
-        }
+        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+        let drawn = self.encode(
+            &mut prepared,
+            &mut encoder,
+            &FrameTarget {
+                color: &color_view,
+                depth: &depth_view,
+                viewport: None,
+                timestamps: queries.as_ref().map(|q| &q.set),
+            },
+        );
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture: &color,
@@ -635,31 +371,22 @@ impl GpuRenderer {
             },
             size,
         );
-        if let Some((set, resolve, read)) = &queries {
-            encoder.resolve_query_set(set, 0..4, resolve, 0);
-            encoder.copy_buffer_to_buffer(resolve, 0, read, 0, 32);
+        if let Some(q) = &queries {
+            q.resolve(&mut encoder);
         }
-        queue.submit([encoder.finish()]);
-        let frame_bytes = map_read(device, &readback)?;
+        self.ctx.queue.submit([encoder.finish()]);
+        let frame_bytes = map_read(&self.ctx.device, &readback)?;
         timings.push("render pass + readback", start.elapsed(), Clock::Wall);
-        if let Some((_, _, read)) = &queries {
-            let bytes = map_read(device, read)?;
-            let stamps: &[u64] = bytemuck::cast_slice(&bytes);
-            let period = queue.get_timestamp_period() as f64;
-            if shadow_resources.is_some() {
-                let ns = stamps[3].saturating_sub(stamps[2]) as f64 * period;
+        if let Some(q) = &queries {
+            let (scene_pass, shadow_passes) = q.read(&self.ctx)?;
+            if drawn.shadow_layers > 0 {
                 timings.push(
-                    format!("shadow passes ({} layers)", plan.layers.len()),
-                    Duration::from_nanos(ns as u64),
+                    format!("shadow passes ({} layers)", drawn.shadow_layers),
+                    shadow_passes,
                     Clock::GpuTimestamp,
                 );
             }
-            let ns = stamps[1].saturating_sub(stamps[0]) as f64 * period;
-            timings.push(
-                "render pass",
-                Duration::from_nanos(ns as u64),
-                Clock::GpuTimestamp,
-            );
+            timings.push("render pass", scene_pass, Clock::GpuTimestamp);
         }
 
         let frame = timings.wall("unpack frame", || {
@@ -667,12 +394,75 @@ impl GpuRenderer {
         });
         Ok((frame, timings))
     }
+
+    /// Refuses a target the device cannot hold.
+    pub fn check_target_size(&self, width: u32, height: u32) -> Result<()> {
+        let max_side = self.ctx.device.limits().max_texture_dimension_2d;
+        if width > max_side || height > max_side {
+            return Err(Error::argument(
+                format!("{width}x{height}"),
+                format!(
+                    "the image is larger than the GPU's maximum texture side of {max_side} pixels"
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Timestamp queries around the scene pass (0, 1) and all shadow passes
+/// (2, 3) of one frame, and the buffers to read them.
+pub struct PassTimestamps {
+    pub set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+}
+
+impl PassTimestamps {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let set = device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("pass timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: 4,
+        });
+        let resolve = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamps"),
+            size: 32,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let read = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamps read"),
+            size: 32,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        PassTimestamps { set, resolve, read }
+    }
+
+    /// Records the resolve and the copy to the readable buffer.
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.resolve_query_set(&self.set, 0..4, &self.resolve, 0);
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, 32);
+    }
+
+    /// Waits for the submitted frame and returns (scene pass, shadow
+    /// passes) durations.
+    pub fn read(&self, ctx: &GpuContext) -> Result<(Duration, Duration)> {
+        let bytes = map_read(&ctx.device, &self.read)?;
+        let stamps: &[u64] = bytemuck::cast_slice(&bytes);
+        let period = ctx.queue.get_timestamp_period() as f64;
+        let span = |a: usize, b: usize| {
+            Duration::from_nanos((stamps[b].saturating_sub(stamps[a]) as f64 * period) as u64)
+        };
+        Ok((span(0, 1), span(2, 3)))
+    }
 }
 
 impl GpuRenderer {
     /// Refuses shadow maps the device cannot hold, naming the setting to
     /// lower.
-    fn check_shadow_limits(&self, plan: &ShadowPlan) -> Result<()> {
+    pub(super) fn check_shadow_limits(&self, plan: &ShadowPlan) -> Result<()> {
         if plan.is_empty() {
             return Ok(());
         }

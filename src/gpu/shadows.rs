@@ -205,7 +205,7 @@ pub struct ShadowLayer {
 }
 
 /// The shadow maps of a scene.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct ShadowPlan {
     /// Side of the array's layers (the largest map).
     pub side: u32,
