@@ -25,6 +25,9 @@ pub enum Error {
     /// No GPU adapter, or the requested one is not there.
     #[error("{0}")]
     NoAdapter(String),
+    /// The viewer cannot open a window (no display server).
+    #[error("{0}")]
+    NoDisplay(String),
     /// The GPU failed while rendering (device lost, out of memory, ...).
     #[error("GPU error: {0}")]
     Gpu(String),

@@ -16,5 +16,6 @@ pub mod output;
 pub mod reference;
 pub mod scene;
 pub mod shading;
+pub mod ui;
 
 pub use error::{Error, Result};

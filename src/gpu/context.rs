@@ -37,6 +37,7 @@ impl AdapterChoice {
 
 /// A device ready to render, and what it can do.
 pub struct GpuContext {
+    pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
     pub adapter_info: wgpu::AdapterInfo,
@@ -55,6 +56,36 @@ impl GpuContext {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
         let instance = wgpu::Instance::new(desc);
+        Self::open(&instance, choice, None).await
+    }
+
+    /// Opens a device that can present to `window`, and the window's
+    /// surface (the viewer). Same adapter choice as [`GpuContext::new`].
+    pub fn with_window<W>(choice: &AdapterChoice, window: W) -> Result<(Self, wgpu::Surface<'static>)>
+    where
+        W: wgpu::WindowHandle
+            + wgpu::rwh::HasDisplayHandle
+            + std::fmt::Debug
+            + Clone
+            + 'static,
+    {
+        let mut desc = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(window.clone()));
+        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+        let instance = wgpu::Instance::new(desc);
+        let surface = instance.create_surface(window).map_err(|e| {
+            Error::NoAdapter(format!(
+                "cannot draw into the window ({e}). {LAVAPIPE_HINT}."
+            ))
+        })?;
+        let context = pollster::block_on(Self::open(&instance, choice, Some(&surface)))?;
+        Ok((context, surface))
+    }
+
+    async fn open(
+        instance: &wgpu::Instance,
+        choice: &AdapterChoice,
+        surface: Option<&wgpu::Surface<'_>>,
+    ) -> Result<Self> {
         let adapters = instance.enumerate_adapters(wgpu::Backends::all()).await;
         let adapter = match choice {
             AdapterChoice::Named(name) => {
@@ -74,7 +105,7 @@ impl GpuContext {
                 .request_adapter(&wgpu::RequestAdapterOptions {
                     power_preference: wgpu::PowerPreference::HighPerformance,
                     force_fallback_adapter: false,
-                    compatible_surface: None,
+                    compatible_surface: surface,
                     apply_limit_buckets: false,
                 })
                 .await
@@ -103,6 +134,7 @@ impl GpuContext {
                 ))
             })?;
         Ok(GpuContext {
+            adapter,
             device,
             queue,
             adapter_info,

@@ -425,8 +425,10 @@ pub fn load_with_limits(
     Ok((scene, gltf_files.notes().to_vec()))
 }
 
-/// The file (or a pseudo-path for the built-in scene) that errors name.
-fn scene_table(source: &SceneSource) -> Result<(PathBuf, PathBuf, toml::Table)> {
+/// The scene table of `source` before overrides, with the file (or a
+/// pseudo-path for the built-in scene) that errors name and the folder
+/// its relative paths resolve in.
+pub fn scene_table(source: &SceneSource) -> Result<(PathBuf, PathBuf, toml::Table)> {
     match source {
         SceneSource::BuiltIn => {
             let table = DEFAULT_SCENE_TOML

@@ -1,0 +1,601 @@
+//! The viewer's window loop (winit 0.30 `ApplicationHandler`).
+//!
+//! One frame: run the egui panel (which may edit the document), fit the
+//! scene's image size and camera to the 3D area left of the panel, bring
+//! the [`PreparedScene`] up to date (one buffer write for most edits),
+//! draw the scene into the swapchain image through the same renderer as
+//! `gonio render`, draw egui over it, present.
+
+use super::cli::ViewArgs;
+use super::document::Document;
+use super::orbit::Orbit;
+use super::plots::Plots;
+use super::surface::{PendingScreenshot, WindowSurface};
+use crate::gpu::{AdapterChoice, FrameTarget, GpuContext, GpuRenderer, PreparedScene};
+use crate::scene::scene_file::SceneSource;
+use crate::{Error, Result};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::ActiveEventLoop;
+use winit::keyboard::{Key, NamedKey};
+use winit::window::{Window, WindowId};
+
+/// Width of the side panel in points.
+const PANEL_WIDTH: f32 = 380.0;
+/// How often the scene file is checked for changes.
+const RELOAD_CHECK: Duration = Duration::from_millis(500);
+
+/// Everything the panel edits, apart from the GPU.
+pub struct ViewerState {
+    pub doc: Document,
+    pub orbit: Orbit,
+    pub selected_material: usize,
+    pub plots: Plots,
+    pub exposure: f64,
+    pub vsync: bool,
+    pub show_panel: bool,
+    /// The last problem (rejected value, bad file), shown until dismissed.
+    pub message: Option<String>,
+    /// A new document to switch to (opened, dropped, reloaded).
+    pub replace: Option<Document>,
+    /// Something changed that the GPU must see.
+    pub dirty: bool,
+    pub screenshot_path: PathBuf,
+    pub screenshot_requested: bool,
+    pub save_path: String,
+    pub open_path: String,
+    pub open_dialog: bool,
+    /// Frame-time statistics shown in the overlay.
+    pub frame_ms: f64,
+    pub gpu_ms: Option<f64>,
+    pub adapter: String,
+}
+
+impl ViewerState {
+    fn new(doc: Document, args: &ViewArgs) -> ViewerState {
+        ViewerState {
+            orbit: Orbit::from_camera(&doc.scene.camera),
+            doc,
+            selected_material: 0,
+            plots: Plots::default(),
+            exposure: args.exposure,
+            vsync: !args.no_vsync,
+            show_panel: !args.no_panel,
+            message: None,
+            replace: None,
+            dirty: true,
+            screenshot_path: args
+                .screenshot
+                .clone()
+                .unwrap_or_else(|| PathBuf::from("gonio-screenshot.png")),
+            screenshot_requested: false,
+            save_path: "gonio-view.toml".into(),
+            open_path: String::new(),
+            open_dialog: false,
+            frame_ms: 0.0,
+            gpu_ms: None,
+            adapter: String::new(),
+        }
+    }
+
+    /// Opens `path` as the new document; a bad file leaves the current
+    /// scene on screen and shows why.
+    pub fn open(&mut self, path: PathBuf) {
+        match Document::load(
+            SceneSource::File(path),
+            Vec::new(),
+            self.doc.limits,
+        ) {
+            Ok(doc) => self.replace = Some(doc),
+            Err(e) => self.message = Some(e.to_string()),
+        }
+    }
+}
+
+/// The GPU side of the window.
+struct Gfx {
+    renderer: GpuRenderer,
+    surface: WindowSurface,
+    prepared: Option<PreparedScene>,
+    egui_renderer: egui_wgpu::Renderer,
+    egui_state: egui_winit::State,
+    timestamps: Option<crate::gpu::renderer::PassTimestamps>,
+}
+
+/// The application: window, GPU, state, and the scripted run's progress.
+pub struct App {
+    args: ViewArgs,
+    state: ViewerState,
+    window: Option<Arc<Window>>,
+    gfx: Option<Gfx>,
+    /// The first error that ends the run (exit status 2).
+    pub result: Result<()>,
+    frames: u32,
+    frame_times: Vec<Duration>,
+    last_frame: Option<Instant>,
+    last_reload_check: Instant,
+    drag: Option<(MouseButton, f64, f64)>,
+    cursor: (f64, f64),
+    /// The 3D area in physical pixels: x, y, width, height.
+    view_rect: [u32; 4],
+}
+
+impl App {
+    pub fn new(args: ViewArgs, doc: Document) -> App {
+        App {
+            state: ViewerState::new(doc, &args),
+            args,
+            window: None,
+            gfx: None,
+            result: Ok(()),
+            frames: 0,
+            frame_times: Vec::new(),
+            last_frame: None,
+            last_reload_check: Instant::now(),
+            drag: None,
+            cursor: (0.0, 0.0),
+            view_rect: [0, 0, 1, 1],
+        }
+    }
+
+    /// Frame-time statistics for `--frame-times`, after the warm-up.
+    pub fn frame_time_report(&self) -> String {
+        let warm: Vec<f64> = self
+            .frame_times
+            .iter()
+            .skip(self.args.warmup as usize)
+            .map(|d| d.as_secs_f64() * 1e3)
+            .collect();
+        let (w, h) = self
+            .gfx
+            .as_ref()
+            .map(|g| (g.surface.config.width, g.surface.config.height))
+            .unwrap_or((0, 0));
+        if warm.is_empty() {
+            return format!(
+                "frame times: no frames after the {} warm-up frames",
+                self.args.warmup
+            );
+        }
+        let mut sorted = warm.clone();
+        sorted.sort_by(f64::total_cmp);
+        let q = |p: f64| sorted[((sorted.len() - 1) as f64 * p).round() as usize];
+        format!(
+            "frame times over {} frames after {} warm-up, window {}x{}, 3D area {}x{}, vsync {}: median {:.2} ms, p10 {:.2} ms, p90 {:.2} ms, min {:.2} ms, max {:.2} ms",
+            sorted.len(),
+            self.args.warmup,
+            w,
+            h,
+            self.view_rect[2],
+            self.view_rect[3],
+            if self.state.vsync { "on" } else { "off" },
+            q(0.5),
+            q(0.1),
+            q(0.9),
+            sorted[0],
+            sorted[sorted.len() - 1]
+        )
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
+        if self.result.is_ok() {
+            self.result = Err(e);
+        }
+        event_loop.exit();
+    }
+
+    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let (w, h) = self.args.size;
+        let attributes = Window::default_attributes()
+            .with_title(format!("gonio view: {}", self.state.doc.title()))
+            .with_inner_size(winit::dpi::PhysicalSize::new(w, h));
+        let window = Arc::new(event_loop.create_window(attributes).map_err(|e| {
+            Error::NoDisplay(format!("cannot open a window: {e}"))
+        })?);
+        let choice = AdapterChoice::from_flag_or_env(self.args.adapter.as_deref());
+        let (ctx, surface) = GpuContext::with_window(&choice, window.clone())?;
+        let caps = surface.get_capabilities(&ctx.adapter);
+        let size = window.inner_size();
+        let surface = WindowSurface::new(
+            &ctx,
+            caps,
+            surface,
+            (size.width, size.height),
+            self.state.vsync,
+        )?;
+        self.state.adapter = ctx.adapter_info.name.clone();
+        if self.args.verbose {
+            eprintln!("adapter: {}", ctx.describe());
+            eprintln!("surface: {:?}, {:?}", surface.config.format, surface.config.present_mode);
+        }
+        let egui_ctx = egui::Context::default();
+        let egui_state = egui_winit::State::new(
+            egui_ctx,
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(ctx.device.limits().max_texture_dimension_2d as usize),
+        );
+        let egui_renderer = egui_wgpu::Renderer::new(
+            &ctx.device,
+            surface.config.format,
+            egui_wgpu::RendererOptions::default(),
+        );
+        let timestamps = ctx
+            .timestamps
+            .then(|| crate::gpu::renderer::PassTimestamps::new(&ctx.device));
+        self.gfx = Some(Gfx {
+            renderer: GpuRenderer::new(ctx),
+            surface,
+            prepared: None,
+            egui_renderer,
+            egui_state,
+            timestamps,
+        });
+        self.window = Some(window);
+        Ok(())
+    }
+
+    /// One frame; `Err` ends the run.
+    fn frame(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let (Some(window), Some(gfx)) = (self.window.clone(), self.gfx.as_mut()) else {
+            return Ok(());
+        };
+        let size = window.inner_size();
+        if size.width == 0 || size.height == 0 {
+            return Ok(()); // minimized: nothing to draw
+        }
+        let now = Instant::now();
+        if let Some(last) = self.last_frame {
+            self.frame_times.push(now - last);
+            let recent = &self.frame_times[self.frame_times.len().saturating_sub(30)..];
+            let mut ms: Vec<f64> = recent.iter().map(|d| d.as_secs_f64() * 1e3).collect();
+            ms.sort_by(f64::total_cmp);
+            self.state.frame_ms = ms[ms.len() / 2];
+        }
+        self.last_frame = Some(now);
+
+        // The panel.
+        let raw_input = gfx.egui_state.take_egui_input(&window);
+        let egui_ctx = gfx.egui_state.egui_ctx().clone();
+        let state = &mut self.state;
+        let mut central = egui::Rect::NOTHING;
+        let full_output = egui_ctx.run_ui(raw_input, |ui| {
+            central = super::view::ui(ui, state, PANEL_WIDTH);
+        });
+        gfx.egui_state
+            .handle_platform_output(&window, full_output.platform_output);
+
+        // A new document replaces the old one (and its GPU resources).
+        if let Some(doc) = self.state.replace.take() {
+            window.set_title(&format!("gonio view: {}", doc.title()));
+            let keep_view = doc.path() == self.state.doc.path();
+            if !keep_view {
+                self.state.orbit = Orbit::from_camera(&doc.scene.camera);
+                self.state.selected_material = 0;
+            }
+            self.state.doc = doc;
+            gfx.prepared = None;
+            self.state.dirty = true;
+        }
+
+        // Fit the scene to the 3D area, in physical pixels.
+        let ppp = full_output.pixels_per_point;
+        let (sw, sh) = (gfx.surface.config.width, gfx.surface.config.height);
+        let x0 = (central.min.x * ppp).round().clamp(0.0, sw as f32) as u32;
+        let y0 = (central.min.y * ppp).round().clamp(0.0, sh as f32) as u32;
+        let x1 = (central.max.x * ppp).round().clamp(0.0, sw as f32) as u32;
+        let y1 = (central.max.y * ppp).round().clamp(0.0, sh as f32) as u32;
+        let rect = [x0, y0, x1.saturating_sub(x0).max(1), y1.saturating_sub(y0).max(1)];
+        if rect != self.view_rect {
+            self.view_rect = rect;
+            self.state.dirty = true;
+        }
+        if self.args.spin != 0.0 {
+            self.state.orbit.rotate(self.args.spin / 0.458_366, 0.0);
+            self.state.dirty = true;
+        }
+        let scene = &mut self.state.doc.scene;
+        let camera = self.state.orbit.camera();
+        if scene.camera != camera {
+            scene.camera = camera;
+            self.state.dirty = true;
+        }
+        scene.width = self.view_rect[2];
+        scene.height = self.view_rect[3];
+        let renderer = &mut gfx.renderer;
+        let format = gfx.surface.config.format;
+        let display_scale = self.state.exposure.exp2() as f32;
+        match &mut gfx.prepared {
+            None => {
+                let mut p = renderer.prepare(scene, format)?;
+                p.display_scale = display_scale;
+                renderer.update(&mut p, scene)?;
+                if self.args.verbose {
+                    eprintln!("shader: {}", p.key.describe());
+                }
+                gfx.prepared = Some(p);
+                self.state.dirty = false;
+            }
+            Some(p) if self.state.dirty || p.display_scale != display_scale => {
+                p.display_scale = display_scale;
+                if let Err(e) = renderer.update(p, scene) {
+                    self.state.message = Some(e.to_string());
+                }
+                self.state.dirty = false;
+            }
+            Some(_) => {}
+        }
+
+        // Draw.
+        let ctx = renderer.context();
+        let frame = match gfx.surface.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(f) | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                gfx.surface.reconfigure(ctx);
+                return Ok(());
+            }
+            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => {
+                return Ok(());
+            }
+            other => {
+                return Err(Error::Gpu(format!(
+                    "the window surface failed: {}",
+                    match other {
+                        wgpu::CurrentSurfaceTexture::Validation => "validation error",
+                        _ => "unknown",
+                    }
+                )));
+            }
+        };
+        let view = frame.texture.create_view(&Default::default());
+        let ctx = gfx.renderer.context();
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let measure_gpu = gfx.timestamps.is_some() && self.frames % 30 == 5;
+        let [x, y, w, h] = self.view_rect;
+        let depth = gfx.surface.depth_view(gfx.renderer.context()).clone();
+        let prepared = gfx.prepared.as_mut().expect("prepared above");
+        gfx.renderer.encode(
+            prepared,
+            &mut encoder,
+            &FrameTarget {
+                color: &view,
+                depth: &depth,
+                viewport: Some([x as f32, y as f32, w as f32, h as f32]),
+                timestamps: if measure_gpu {
+                    gfx.timestamps.as_ref().map(|t| &t.set)
+                } else {
+                    None
+                },
+            },
+        );
+        if measure_gpu && let Some(t) = &gfx.timestamps {
+            t.resolve(&mut encoder);
+        }
+
+        // egui over the scene.
+        let ctx = gfx.renderer.context();
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [gfx.surface.config.width, gfx.surface.config.height],
+            pixels_per_point: ppp,
+        };
+        let paint_jobs = egui_ctx.tessellate(full_output.shapes, ppp);
+        for (id, deltas) in &full_output.textures_delta.set {
+            for delta in deltas {
+                gfx.egui_renderer
+                    .update_texture(&ctx.device, &ctx.queue, *id, delta);
+            }
+        }
+        let extra = gfx.egui_renderer.update_buffers(
+            &ctx.device,
+            &ctx.queue,
+            &mut encoder,
+            &paint_jobs,
+            &screen,
+        );
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            let mut pass = pass.forget_lifetime();
+            gfx.egui_renderer.render(&mut pass, &paint_jobs, &screen);
+        }
+        for id in &full_output.textures_delta.free {
+            gfx.egui_renderer.free_texture(id);
+        }
+
+        self.frames += 1;
+        let scripted_last = self.args.frames == Some(self.frames);
+        let screenshot = (self.state.screenshot_requested
+            || (scripted_last && self.args.screenshot.is_some()))
+        .then(|| {
+            if gfx.surface.copyable {
+                Some(PendingScreenshot::record(&ctx.device, &mut encoder, &frame.texture))
+            } else {
+                None
+            }
+        });
+        ctx.queue
+            .submit(extra.into_iter().chain([encoder.finish()]));
+        window.pre_present_notify();
+        ctx.queue.present(frame);
+
+        if measure_gpu && let Some(t) = &gfx.timestamps {
+            let (scene_pass, _) = t.read(ctx)?;
+            self.state.gpu_ms = Some(scene_pass.as_secs_f64() * 1e3);
+        }
+        if let Some(pending) = screenshot {
+            self.state.screenshot_requested = false;
+            let path = self.state.screenshot_path.clone();
+            let result = match pending {
+                Some(p) => p.save(&ctx.device, &path),
+                None => Err(Error::Gpu(
+                    "this window surface cannot be copied, so no screenshot".into(),
+                )),
+            };
+            match result {
+                Ok(()) => {
+                    let [x, y, w, h] = self.view_rect;
+                    println!(
+                        "screenshot {}: window {}x{}, 3D area x={x} y={y} {w}x{h}",
+                        path.display(),
+                        gfx.surface.config.width,
+                        gfx.surface.config.height
+                    );
+                    self.state.message = Some(format!("saved {}", path.display()));
+                }
+                Err(e) if scripted_last => return Err(e),
+                Err(e) => self.state.message = Some(e.to_string()),
+            }
+        }
+        if scripted_last {
+            event_loop.exit();
+        }
+        Ok(())
+    }
+
+    fn check_reload(&mut self) {
+        if self.last_reload_check.elapsed() < RELOAD_CHECK {
+            return;
+        }
+        self.last_reload_check = Instant::now();
+        if self.state.doc.changed_on_disk() {
+            match self.state.doc.reload() {
+                Ok(doc) => {
+                    self.state.replace = Some(doc);
+                    self.state.message = Some("reloaded: the file changed on disk".into());
+                }
+                Err(e) => {
+                    // Keep the current scene; do not retry the same
+                    // broken file every half second.
+                    self.state.message = Some(format!("not reloaded: {e}"));
+                    self.state.doc.mark_seen();
+                }
+            }
+        }
+    }
+
+    fn on_view_input(&mut self, event: &WindowEvent) {
+        let [x, y, w, h] = self.view_rect;
+        let inside = |(cx, cy): (f64, f64)| {
+            cx >= x as f64 && cy >= y as f64 && cx < (x + w) as f64 && cy < (y + h) as f64
+        };
+        match event {
+            WindowEvent::MouseInput { state, button, .. } => match state {
+                ElementState::Pressed if inside(self.cursor) => {
+                    self.drag = Some((*button, self.cursor.0, self.cursor.1));
+                }
+                ElementState::Released => self.drag = None,
+                _ => {}
+            },
+            WindowEvent::CursorMoved { position, .. } => {
+                self.cursor = (position.x, position.y);
+                if let Some((button, px, py)) = self.drag {
+                    let (dx, dy) = (position.x - px, position.y - py);
+                    match button {
+                        MouseButton::Left => self.state.orbit.rotate(dx, dy),
+                        MouseButton::Right | MouseButton::Middle => {
+                            self.state.orbit.pan(dx, dy, h as f64)
+                        }
+                        _ => {}
+                    }
+                    self.drag = Some((button, position.x, position.y));
+                }
+            }
+            WindowEvent::MouseWheel { delta, .. } if inside(self.cursor) => {
+                let steps = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => *y as f64,
+                    MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
+                };
+                self.state.orbit.zoom(steps);
+            }
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                match &event.logical_key {
+                    Key::Named(NamedKey::ArrowLeft) => self.state.orbit.rotate(-20.0, 0.0),
+                    Key::Named(NamedKey::ArrowRight) => self.state.orbit.rotate(20.0, 0.0),
+                    Key::Named(NamedKey::ArrowUp) => self.state.orbit.rotate(0.0, -20.0),
+                    Key::Named(NamedKey::ArrowDown) => self.state.orbit.rotate(0.0, 20.0),
+                    Key::Named(NamedKey::F12) => self.state.screenshot_requested = true,
+                    Key::Character(c) => match c.as_str() {
+                        "r" | "R" => self.state.orbit.reset(),
+                        "+" | "=" => self.state.orbit.zoom(1.0),
+                        "-" => self.state.orbit.zoom(-1.0),
+                        "p" | "P" => self.state.show_panel = !self.state.show_panel,
+                        _ => {}
+                    },
+                    _ => {}
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.window.is_none()
+            && let Err(e) = self.init(event_loop)
+        {
+            self.fail(event_loop, e);
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let (Some(window), Some(gfx)) = (self.window.clone(), self.gfx.as_mut()) else {
+            return;
+        };
+        let response = gfx.egui_state.on_window_event(&window, &event);
+        match &event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                let ctx = gfx.renderer.context();
+                gfx.surface.resize(ctx, size.width, size.height);
+                self.state.dirty = true;
+            }
+            WindowEvent::DroppedFile(path) => self.state.open(path.clone()),
+            WindowEvent::RedrawRequested => {
+                if let Some(gfx) = self.gfx.as_mut() {
+                    let ctx = gfx.renderer.context();
+                    let vsync = matches!(
+                        gfx.surface.config.present_mode,
+                        wgpu::PresentMode::AutoVsync
+                    );
+                    if vsync != self.state.vsync {
+                        gfx.surface.set_vsync(ctx, self.state.vsync);
+                    }
+                }
+                self.check_reload();
+                if let Err(e) = self.frame(event_loop) {
+                    self.fail(event_loop, e);
+                }
+            }
+            _ => {}
+        }
+        if !response.consumed {
+            self.on_view_input(&event);
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(window) = &self.window {
+            window.request_redraw();
+        }
+    }
+}

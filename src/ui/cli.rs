@@ -1,0 +1,84 @@
+//! `gonio view`: the command line of the viewer.
+
+use std::path::PathBuf;
+
+/// `gonio view [SCENE] ...`
+#[derive(Debug, Clone, clap::Args)]
+pub struct ViewArgs {
+    /// A scene `.toml`, a `.gltf` or a `.glb`. Without it: the built-in
+    /// scene. Another file can be opened from the panel or dropped on the
+    /// window.
+    pub scene: Option<PathBuf>,
+    /// Override any scene-file key by its dotted path, as for `gonio render`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Window size in pixels, e.g. `1280x720`.
+    #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Present without waiting for the display's refresh (measures the
+    /// real frame time; may tear).
+    #[arg(long)]
+    pub no_vsync: bool,
+    /// Exposure in stops, as `gonio render --exposure`.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f64,
+    /// Hide the side panel (the 3D view fills the window).
+    #[arg(long)]
+    pub no_panel: bool,
+    /// Scripted mode: render this many frames, then exit (tests, benchmarks).
+    #[arg(long, value_name = "N")]
+    pub frames: Option<u32>,
+    /// Write a screenshot of the window to this PNG after the last scripted
+    /// frame (with `--frames`; the F12 key and the panel's button save one
+    /// any time). Prints the 3D area's rectangle in the window.
+    #[arg(long, value_name = "PNG")]
+    pub screenshot: Option<PathBuf>,
+    /// Print frame-time statistics (median, quartiles) at exit, over the
+    /// frames after the first `--warmup`.
+    #[arg(long)]
+    pub frame_times: bool,
+    /// Frames excluded from `--frame-times` (pipeline compilation, shadow
+    /// maps, first presents).
+    #[arg(long, default_value_t = 10, value_name = "N")]
+    pub warmup: u32,
+    /// Orbit the camera by this many degrees per frame (scripted runs that
+    /// measure a moving view).
+    #[arg(long, default_value_t = 0.0, value_name = "DEG", allow_negative_numbers = true)]
+    pub spin: f64,
+    /// GPU adapter to use (as for `gonio render`; also GONIO_ADAPTER).
+    #[arg(long, value_name = "NAME")]
+    pub adapter: Option<String>,
+    /// Raise a cap on what input files may hold (as for `gonio render`).
+    #[arg(long = "limit", value_name = "KEY=VALUE")]
+    pub limits: Vec<String>,
+    /// Print the adapter and the shader features.
+    #[arg(short, long)]
+    pub verbose: bool,
+}
+
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{text}` is not WIDTHxHEIGHT, e.g. 1280x720"))?;
+    let side = |s: &str| -> Result<u32, String> {
+        match s.trim().parse::<u32>() {
+            Ok(v) if (16..=8192).contains(&v) => Ok(v),
+            _ => Err(format!("`{s}` in `{text}` is not a side of 16..=8192 pixels")),
+        }
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_size;
+
+    #[test]
+    fn sizes_parse_and_range_check() {
+        assert_eq!(parse_size("1280x720"), Ok((1280, 720)));
+        assert_eq!(parse_size("64X48"), Ok((64, 48)));
+        assert!(parse_size("1280").is_err());
+        assert!(parse_size("0x10").is_err());
+        assert!(parse_size("99999x10").is_err());
+    }
+}

@@ -1,0 +1,69 @@
+//! The interactive viewer, `gonio view`: a winit window with an egui side
+//! panel, drawn by the same [`crate::gpu::GpuRenderer`] as `gonio render`
+//! (through a [`crate::gpu::PreparedScene`] that lives across frames).
+//!
+//! [`app`] runs the window loop, [`view`] lays out the panel whose
+//! sections are in [`panels`] and [`plots`], [`document`] holds the scene
+//! and its edits ([`save`] writes them as a scene file), [`orbit`] moves
+//! the camera, [`surface`] owns the swapchain and screenshots.
+
+pub mod app;
+pub mod cli;
+pub mod document;
+pub mod orbit;
+pub mod panels;
+pub mod plots;
+pub mod save;
+pub mod surface;
+pub mod view;
+
+use crate::scene::limits::Limits;
+use crate::scene::scene_file::SceneSource;
+use crate::{Error, Result};
+pub use cli::ViewArgs;
+
+/// `gonio view`: loads the scene (a bad one fails before any window
+/// opens), opens the window, runs until it is closed or the scripted
+/// frames are done.
+pub fn run(args: ViewArgs) -> Result<()> {
+    if !args.exposure.is_finite() {
+        return Err(Error::argument(
+            format!("--exposure {}", args.exposure),
+            "the exposure must be a finite number of stops",
+        ));
+    }
+    if args.screenshot.is_some() && args.frames.is_none() {
+        return Err(Error::argument(
+            "--screenshot",
+            "needs --frames N (the scripted mode); in the window press F12 or use the panel's button",
+        ));
+    }
+    if args.frames == Some(0) {
+        return Err(Error::argument("--frames 0", "render at least one frame"));
+    }
+    let limits = Limits::from_assignments(&args.limits)
+        .map_err(|(arg, problem)| Error::argument(format!("--limit {arg}"), problem))?;
+    let source = match &args.scene {
+        Some(path) => SceneSource::File(path.clone()),
+        None => SceneSource::BuiltIn,
+    };
+    let doc = document::Document::load(source, args.set.clone(), limits)?;
+    if let Some(path) = &args.screenshot {
+        // Fail on an unwritable destination before opening the window.
+        crate::output::write::AtomicFile::create(path)?;
+    }
+    let event_loop = winit::event_loop::EventLoop::new().map_err(|e| {
+        Error::NoDisplay(format!(
+            "gonio view needs a display and none could be opened ({e}); on a desktop run it in the graphical session, on a headless machine run it under Xvfb: `xvfb-run -a gonio view` (./setup.sh installs xvfb)"
+        ))
+    })?;
+    let report = args.frame_times;
+    let mut app = app::App::new(args, doc);
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| Error::NoDisplay(format!("the window loop failed: {e}")))?;
+    if report {
+        println!("{}", app.frame_time_report());
+    }
+    app.result
+}

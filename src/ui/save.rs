@@ -1,0 +1,110 @@
+//! The viewer's state as a scene `.toml` that `gonio render` reproduces.
+//!
+//! The saved file is the source's table with the overrides applied, the
+//! current camera, shading, ambient and image size, and every edited
+//! material of the file written out in full. glTF paths become absolute,
+//! so the saved file may live anywhere.
+
+use super::document::Document;
+use crate::Result;
+use crate::material::Material;
+use crate::scene::Rgb;
+use crate::scene::scene_file;
+use toml::Value;
+
+/// The text of the saved file and notes on edits it cannot hold.
+pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
+    let (_, base_dir, mut table) = scene_file::scene_table(&doc.source)?;
+    for kv in &doc.overrides {
+        scene_file::apply_override(&mut table, kv)?;
+    }
+    let scene = &doc.scene;
+    let mut image = toml::Table::new();
+    image.insert("width".into(), Value::Integer(scene.width as i64));
+    image.insert("height".into(), Value::Integer(scene.height as i64));
+    table.insert("image".into(), Value::Table(image));
+
+    let c = &scene.camera;
+    let mut camera = toml::Table::new();
+    camera.insert("position".into(), vec3(c.position));
+    camera.insert("target".into(), vec3(c.target));
+    camera.insert("up".into(), vec3(c.up));
+    camera.insert("fov_y_deg".into(), Value::Float(c.fov_y_deg));
+    table.insert("camera".into(), Value::Table(camera));
+
+    let mut shading = toml::Table::new();
+    shading.insert("mode".into(), Value::String(scene.shading.to_string()));
+    table.insert("shading".into(), Value::Table(shading));
+
+    let ambient = table
+        .entry("ambient")
+        .or_insert_with(|| Value::Table(toml::Table::new()));
+    if let Value::Table(t) = ambient {
+        t.insert("radiance".into(), vec3(scene.ambient));
+    }
+
+    // glTF paths relative to the source's folder → absolute.
+    if let Some(Value::Array(objects)) = table.get_mut("objects") {
+        for object in objects.iter_mut().filter_map(Value::as_table_mut) {
+            if let Some(Value::String(path)) = object.get_mut("gltf") {
+                let absolute = std::path::absolute(base_dir.join(&*path))
+                    .unwrap_or_else(|_| base_dir.join(&*path));
+                *path = absolute.display().to_string();
+            }
+        }
+    }
+
+    let mut unsaved = Vec::new();
+    for m in doc.edited_materials() {
+        if doc.file_materials.contains(&m.name) {
+            let materials = table
+                .entry("materials")
+                .or_insert_with(|| Value::Table(toml::Table::new()));
+            if let Value::Table(t) = materials {
+                t.insert(m.name.clone(), Value::Table(material_table(m)));
+            }
+        } else {
+            unsaved.push(format!(
+                "material `{}` comes from a glTF file; a scene file cannot address it, so its edits are not saved (define a [materials] entry and name it in the object's `material` instead)",
+                m.name
+            ));
+        }
+    }
+    let text = toml::to_string(&table).map_err(|e| {
+        crate::Error::Gpu(format!("cannot write the scene as TOML: {e}"))
+    })?;
+    Ok((
+        format!("# Saved by `gonio view` from {}.\n{text}", doc.title()),
+        unsaved,
+    ))
+}
+
+/// Every parameter of `m` under its scene-file key (no preset: the values
+/// it set are written out).
+pub fn material_table(m: &Material) -> toml::Table {
+    let mut t = toml::Table::new();
+    let mut put = |k: &str, v: Value| {
+        t.insert(k.into(), v);
+    };
+    put("model", Value::String(m.model.name().into()));
+    put("k_a", vec3(m.k_a));
+    put("k_d", vec3(m.k_d));
+    put("k_s", vec3(m.k_s));
+    put("k_e", Value::Float(m.k_e));
+    put("roughness", Value::Float(m.roughness));
+    put("sigma_x", Value::Float(m.sigma_x));
+    put("sigma_y", Value::Float(m.sigma_y));
+    put("eta", vec3(m.eta));
+    put("kappa", vec3(m.kappa));
+    put("eta_i", Value::Float(m.eta_i));
+    put("eta_t", Value::Float(m.eta_t));
+    put("distribution", Value::String(m.distribution.name().into()));
+    put("geometry", Value::String(m.geometry.name().into()));
+    put("fresnel", Value::String(m.fresnel.name().into()));
+    put("denominator", Value::String(m.denominator.name().into()));
+    t
+}
+
+fn vec3(v: Rgb) -> Value {
+    Value::Array(v.to_array().map(Value::Float).to_vec())
+}

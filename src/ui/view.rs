@@ -1,0 +1,293 @@
+//! The window's layout: the side panel (file, view, material, plots,
+//! lights), the overlay over the 3D area, and the open-file dialog.
+//! Returns the 3D area (what the panel leaves), which the scene fills.
+
+use super::app::ViewerState;
+use super::panels;
+use crate::scene::scene_file::SceneSource;
+use std::path::{Path, PathBuf};
+
+/// Lays out one frame of the UI; returns the 3D area in points.
+pub fn ui(ui: &mut egui::Ui, state: &mut ViewerState, panel_width: f32) -> egui::Rect {
+    if state.show_panel {
+        egui::Panel::right("panel")
+            .exact_size(panel_width)
+            .resizable(false)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| side_panel(ui, state));
+            });
+    }
+    let area = ui.available_rect_before_wrap();
+    overlay(ui, state, area);
+    if state.open_dialog {
+        open_dialog(ui.ctx(), state);
+    }
+    area
+}
+
+fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
+    if let Some(message) = state.message.clone() {
+        ui.horizontal_wrapped(|ui| {
+            ui.colored_label(egui::Color32::from_rgb(255, 190, 90), message);
+            if ui.small_button("×").clicked() {
+                state.message = None;
+            }
+        });
+        ui.separator();
+    }
+    egui::CollapsingHeader::new("File")
+        .default_open(true)
+        .show(ui, |ui| file_section(ui, state));
+    egui::CollapsingHeader::new("View")
+        .default_open(true)
+        .show(ui, |ui| view_section(ui, state));
+    egui::CollapsingHeader::new("Material")
+        .default_open(true)
+        .show(ui, |ui| material_section(ui, state));
+    egui::CollapsingHeader::new("Lights")
+        .default_open(true)
+        .show(ui, |ui| lights_section(ui, state));
+}
+
+fn file_section(ui: &mut egui::Ui, state: &mut ViewerState) {
+    ui.label(state.doc.title());
+    ui.horizontal(|ui| {
+        if ui.button("Open…").clicked() {
+            state.open_dialog = true;
+            if state.open_path.is_empty() {
+                state.open_path = state.doc.base_dir().display().to_string();
+            }
+        }
+        if ui.button("Reload").clicked() {
+            match state.doc.reload() {
+                Ok(doc) => state.replace = Some(doc),
+                Err(e) => state.message = Some(e.to_string()),
+            }
+        }
+        if ui.button("Screenshot (F12)").clicked() {
+            state.screenshot_requested = true;
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.text_edit_singleline(&mut state.save_path);
+        if ui.button("Save scene").clicked() {
+            save_scene(state);
+        }
+    });
+    ui.small("Drop a .gltf, .glb or .toml on the window to open it.");
+}
+
+fn save_scene(state: &mut ViewerState) {
+    let path = PathBuf::from(&state.save_path);
+    let result = state.doc.to_scene_file().and_then(|(text, unsaved)| {
+        crate::output::write::AtomicFile::create(&path)?.commit(text.as_bytes())?;
+        Ok(unsaved)
+    });
+    state.message = Some(match result {
+        Ok(unsaved) if unsaved.is_empty() => format!(
+            "saved {}; `gonio render {} -o out.png` draws this view",
+            path.display(),
+            path.display()
+        ),
+        Ok(unsaved) => format!("saved {}, but: {}", path.display(), unsaved.join("; ")),
+        Err(e) => e.to_string(),
+    });
+}
+
+fn view_section(ui: &mut egui::Ui, state: &mut ViewerState) {
+    egui::Grid::new("view").num_columns(2).show(ui, |ui| {
+        ui.label("shading");
+        if panels::shading_mode(ui, &mut state.doc.scene.shading) {
+            state.dirty = true;
+        }
+        ui.end_row();
+        ui.label("exposure (stops)");
+        ui.add(egui::Slider::new(&mut state.exposure, -10.0..=10.0));
+        ui.end_row();
+        ui.label("ambient L_a");
+        if panels::radiance(ui, &mut state.doc.scene.ambient) {
+            state.dirty = true;
+        }
+        ui.end_row();
+        ui.label("vsync");
+        ui.checkbox(&mut state.vsync, "");
+        ui.end_row();
+    });
+    ui.horizontal(|ui| {
+        if ui.button("Reset view (R)").clicked() {
+            state.orbit.reset();
+        }
+        ui.small("drag: orbit · right drag: pan · wheel: zoom");
+    });
+}
+
+fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
+    let materials = &mut state.doc.scene.materials;
+    if materials.is_empty() {
+        ui.label("no materials");
+        return;
+    }
+    state.selected_material = state.selected_material.min(materials.len() - 1);
+    egui::ComboBox::from_id_salt("which material")
+        .selected_text(&materials[state.selected_material].name)
+        .show_ui(ui, |ui| {
+            for (i, m) in materials.iter().enumerate() {
+                ui.selectable_value(&mut state.selected_material, i, &m.name);
+            }
+        });
+    let mut edited = materials[state.selected_material].clone();
+    if panels::material_editor(ui, &mut edited) {
+        match edited.validate() {
+            Ok(()) => {
+                materials[state.selected_material] = edited;
+                state.dirty = true;
+            }
+            Err(problem) => state.message = Some(format!("not applied: {problem}")),
+        }
+    }
+    ui.separator();
+    let material = materials[state.selected_material].clone();
+    state.plots.show(ui, &material);
+}
+
+fn lights_section(ui: &mut egui::Ui, state: &mut ViewerState) {
+    let entries = state.doc.file_lights.clone();
+    let mut edit = None;
+    for (i, entry) in entries.iter().enumerate() {
+        egui::CollapsingHeader::new(format!("light {i}"))
+            .default_open(i == 0)
+            .show(ui, |ui| {
+                if let Some(e) = panels::light_editor(ui, i, entry) {
+                    edit = Some((i, e));
+                }
+            });
+    }
+    let imported = state.doc.scene.lights.len() as isize
+        - state
+            .doc
+            .scene
+            .lights
+            .iter()
+            .filter(|l| !matches!(l, crate::scene::Light::AreaSample { .. }))
+            .count() as isize;
+    if entries.is_empty() {
+        ui.label(format!(
+            "{} lights from the model (KHR_lights_punctual or the default light); a scene .toml's [[lights]] can be edited here",
+            state.doc.scene.lights.len()
+        ));
+    }
+    let _ = imported;
+    if let Some((index, (key, value))) = edit {
+        match state.doc.set_light(index, &key, &value) {
+            Ok(doc) => state.replace = Some(doc),
+            Err(e) => state.message = Some(format!("not applied: {e}")),
+        }
+    }
+}
+
+fn overlay(ui: &mut egui::Ui, state: &ViewerState, area: egui::Rect) {
+    let gpu = state
+        .gpu_ms
+        .map(|ms| format!(" · GPU scene pass {ms:.1} ms"))
+        .unwrap_or_default();
+    let text = format!(
+        "frame {:.1} ms{gpu} · {} triangles · {}",
+        state.frame_ms,
+        state.doc.scene.triangle_count(),
+        state.adapter
+    );
+    ui.painter().text(
+        area.min + egui::vec2(8.0, 6.0),
+        egui::Align2::LEFT_TOP,
+        text,
+        egui::FontId::monospace(12.0),
+        egui::Color32::from_gray(230),
+    );
+}
+
+fn open_dialog(ctx: &egui::Context, state: &mut ViewerState) {
+    let mut open = true;
+    let mut chosen: Option<PathBuf> = None;
+    egui::Window::new("Open a scene")
+        .open(&mut open)
+        .default_width(420.0)
+        .show(ctx, |ui| {
+            ui.horizontal(|ui| {
+                ui.text_edit_singleline(&mut state.open_path);
+                if ui.button("Open").clicked() {
+                    chosen = Some(PathBuf::from(&state.open_path));
+                }
+            });
+            let dir = PathBuf::from(&state.open_path);
+            let dir = if dir.is_dir() {
+                dir
+            } else {
+                dir.parent().map(Path::to_path_buf).unwrap_or_default()
+            };
+            egui::ScrollArea::vertical()
+                .max_height(300.0)
+                .show(ui, |ui| {
+                    if let Some(parent) = dir.parent()
+                        && ui.selectable_label(false, "📁 ..").clicked()
+                    {
+                        state.open_path = parent.display().to_string();
+                    }
+                    for (path, is_dir) in listing(&dir) {
+                        let name = path.file_name().unwrap_or_default().to_string_lossy();
+                        let label = if is_dir {
+                            format!("📁 {name}")
+                        } else {
+                            name.to_string()
+                        };
+                        if ui.selectable_label(false, label).clicked() {
+                            if is_dir {
+                                state.open_path = path.display().to_string();
+                            } else {
+                                chosen = Some(path);
+                            }
+                        }
+                    }
+                });
+            if ui.button("Built-in scene").clicked() {
+                match super::document::Document::load(
+                    SceneSource::BuiltIn,
+                    Vec::new(),
+                    state.doc.limits,
+                ) {
+                    Ok(doc) => state.replace = Some(doc),
+                    Err(e) => state.message = Some(e.to_string()),
+                }
+                state.open_dialog = false;
+            }
+        });
+    if let Some(path) = chosen {
+        state.open(path);
+        state.open_dialog = false;
+    }
+    if !open {
+        state.open_dialog = false;
+    }
+}
+
+/// Folders and scene files in `dir`, folders first, by name.
+fn listing(dir: &Path) -> Vec<(PathBuf, bool)> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut items: Vec<(PathBuf, bool)> = entries
+        .filter_map(|e| e.ok())
+        .filter_map(|e| {
+            let path = e.path();
+            let is_dir = path.is_dir();
+            let ext = path
+                .extension()
+                .and_then(|x| x.to_str())
+                .map(str::to_ascii_lowercase);
+            let scene = matches!(ext.as_deref(), Some("toml" | "gltf" | "glb"));
+            (is_dir || scene).then_some((path, is_dir))
+        })
+        .take(2000)
+        .collect();
+    items.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    items
+}
