@@ -28,19 +28,21 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the
     // light loop would cost one per light.
-    var visibility: array<f32, MAX_SHADOW_MAPS>; // #if shadows
-    for (var s = 0u; s < min(arrayLength(&shadow_casters), MAX_SHADOW_MAPS); s++) { // #if shadows
+    // LIGHT_COUNT and SHADOW_MAP_COUNT are generated constants (the
+    // loops unroll; see LoopCounts in src/gpu/shader_gen.rs).
+    var visibility: array<f32, SHADOW_MAP_COUNT>; // #if shadows
+    for (var s = 0u; s < min(arrayLength(&shadow_casters), SHADOW_MAP_COUNT); s++) { // #if shadows
         visibility[s] = shadow_visibility(lights[shadow_casters[s]], x, n_g); // #if shadows
     } // #if shadows
-    for (var l = 0u; l < globals.light_count; l++) {
+    for (var l = 0u; l < LIGHT_COUNT; l++) {
         let light = lights[l];
         let incidence = light_incidence(light, x);
         let cos_theta_i = dot(n, incidence.wi);
         if cos_theta_i <= 0.0 {
             continue;
         }
-        let map = min(light.shadow_map, MAX_SHADOW_MAPS - 1u); // #if shadows
-        let v = select(1.0, visibility[map], light.shadow_map < MAX_SHADOW_MAPS); // #if shadows
+        let map = min(light.shadow_map, SHADOW_MAP_COUNT - 1u); // #if shadows
+        let v = select(1.0, visibility[map], light.shadow_map < SHADOW_MAP_COUNT); // #if shadows
         radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * cos_theta_i; // #if !shadows
         radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v); // #if shadows
     }

@@ -27,7 +27,8 @@ const MAX_SHADOW_MAPS: u32 = 64u;
 fn shadow_compare(uv: vec2<f32>, layer: i32, depth: f32, radius: u32) -> f32 {
     let d = max(depth, 0.0); // an empty texel (0) never shadows
     let texel = 1.0 / f32(textureDimensions(shadow_maps).x); // #if shadow_pcf
-    let r = i32(radius); // #if shadow_pcf
+    let r = i32(radius); // #if !pcf_uniform
+    let r = i32(PCF_RADIUS); // #if pcf_uniform
     var lit = 0.0; // #if shadow_pcf
     for (var i = -r; i <= r; i++) { // #if shadow_pcf
         for (var j = -r; j <= r; j++) { // #if shadow_pcf

@@ -61,13 +61,12 @@ impl GpuContext {
 
     /// Opens a device that can present to `window`, and the window's
     /// surface (the viewer). Same adapter choice as [`GpuContext::new`].
-    pub fn with_window<W>(choice: &AdapterChoice, window: W) -> Result<(Self, wgpu::Surface<'static>)>
+    pub fn with_window<W>(
+        choice: &AdapterChoice,
+        window: W,
+    ) -> Result<(Self, wgpu::Surface<'static>)>
     where
-        W: wgpu::WindowHandle
-            + wgpu::rwh::HasDisplayHandle
-            + std::fmt::Debug
-            + Clone
-            + 'static,
+        W: wgpu::WindowHandle + wgpu::rwh::HasDisplayHandle + std::fmt::Debug + Clone + 'static,
     {
         let mut desc = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(window.clone()));
         desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);

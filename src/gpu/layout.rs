@@ -227,7 +227,10 @@ mod tests {
         let shadows = naga::front::wgsl::parse_str(&format!(
             "{}{}",
             crate::gpu::shader_gen::sources::COMMON,
-            crate::gpu::shader_gen::sources::SHADOW_LOOKUP
+            crate::gpu::shader_gen::preprocess(
+                crate::gpu::shader_gen::sources::SHADOW_LOOKUP,
+                &["shadows", "shadow_pcf"]
+            )
         ))
         .unwrap();
         let (_, view) = shadows

@@ -328,7 +328,10 @@ impl GpuRenderer {
         if plan.is_empty() {
             // Nothing to cast a shadow on (no geometry): no shadow code.
             key.shadows = Default::default();
+            key.counts.shadow_maps = 0;
+            key.counts.pcf_radius = None;
         }
+        debug_assert_eq!(key.counts.shadow_maps as usize, plan.casters.len());
         self.check_shadow_limits(&plan)?;
         Ok((key, plan))
     }

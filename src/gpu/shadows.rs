@@ -136,6 +136,19 @@ impl ShadowFeatures {
         features
     }
 
+    /// The PCF radius `(k − 1) / 2` shared by every shadow-casting light
+    /// that filters with PCF, if they all use the same kernel.
+    pub fn uniform_pcf_radius(scene: &Scene) -> Option<u32> {
+        let mut radii = (0..scene.lights.len())
+            .filter(|&l| scene.lights[l].casts_shadows())
+            .filter_map(|l| match scene.shadow_settings(l).filter {
+                ShadowFilter::Pcf { kernel } => Some((kernel - 1) / 2),
+                ShadowFilter::None => None,
+            });
+        let first = radii.next()?;
+        radii.all(|r| r == first).then_some(first)
+    }
+
     /// Whether any shadow code is compiled.
     pub fn any(&self) -> bool {
         !self.projections.is_empty()

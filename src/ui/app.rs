@@ -84,11 +84,7 @@ impl ViewerState {
     /// Opens `path` as the new document; a bad file leaves the current
     /// scene on screen and shows why.
     pub fn open(&mut self, path: PathBuf) {
-        match Document::load(
-            SceneSource::File(path),
-            Vec::new(),
-            self.doc.limits,
-        ) {
+        match Document::load(SceneSource::File(path), Vec::new(), self.doc.limits) {
             Ok(doc) => self.replace = Some(doc),
             Err(e) => self.message = Some(e.to_string()),
         }
@@ -115,6 +111,8 @@ pub struct App {
     pub result: Result<()>,
     frames: u32,
     frame_times: Vec<Duration>,
+    /// GPU scene-pass times (timestamp queries, every 10th frame).
+    gpu_times: Vec<f64>,
     last_frame: Option<Instant>,
     last_reload_check: Instant,
     drag: Option<(MouseButton, f64, f64)>,
@@ -133,6 +131,7 @@ impl App {
             result: Ok(()),
             frames: 0,
             frame_times: Vec::new(),
+            gpu_times: Vec::new(),
             last_frame: None,
             last_reload_check: Instant::now(),
             drag: None,
@@ -163,8 +162,17 @@ impl App {
         let mut sorted = warm.clone();
         sorted.sort_by(f64::total_cmp);
         let q = |p: f64| sorted[((sorted.len() - 1) as f64 * p).round() as usize];
+        let mut gpu = self.gpu_times.clone();
+        gpu.sort_by(f64::total_cmp);
+        let gpu = match gpu.len() {
+            0 => String::new(),
+            n => format!(
+                "; GPU scene pass median {:.2} ms over {n} sampled frames",
+                gpu[n / 2]
+            ),
+        };
         format!(
-            "frame times over {} frames after {} warm-up, window {}x{}, 3D area {}x{}, vsync {}: median {:.2} ms, p10 {:.2} ms, p90 {:.2} ms, min {:.2} ms, max {:.2} ms",
+            "frame times over {} frames after {} warm-up, window {}x{}, 3D area {}x{}, vsync {}: median {:.2} ms, p10 {:.2} ms, p90 {:.2} ms, min {:.2} ms, max {:.2} ms{gpu}",
             sorted.len(),
             self.args.warmup,
             w,
@@ -192,9 +200,11 @@ impl App {
         let attributes = Window::default_attributes()
             .with_title(format!("gonio view: {}", self.state.doc.title()))
             .with_inner_size(winit::dpi::PhysicalSize::new(w, h));
-        let window = Arc::new(event_loop.create_window(attributes).map_err(|e| {
-            Error::NoDisplay(format!("cannot open a window: {e}"))
-        })?);
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| Error::NoDisplay(format!("cannot open a window: {e}")))?,
+        );
         let choice = AdapterChoice::from_flag_or_env(self.args.adapter.as_deref());
         let (ctx, surface) = GpuContext::with_window(&choice, window.clone())?;
         let caps = surface.get_capabilities(&ctx.adapter);
@@ -209,7 +219,10 @@ impl App {
         self.state.adapter = ctx.adapter_info.name.clone();
         if self.args.verbose {
             eprintln!("adapter: {}", ctx.describe());
-            eprintln!("surface: {:?}, {:?}", surface.config.format, surface.config.present_mode);
+            eprintln!(
+                "surface: {:?}, {:?}",
+                surface.config.format, surface.config.present_mode
+            );
         }
         let egui_ctx = egui::Context::default();
         let egui_state = egui_winit::State::new(
@@ -290,7 +303,12 @@ impl App {
         let y0 = (central.min.y * ppp).round().clamp(0.0, sh as f32) as u32;
         let x1 = (central.max.x * ppp).round().clamp(0.0, sw as f32) as u32;
         let y1 = (central.max.y * ppp).round().clamp(0.0, sh as f32) as u32;
-        let rect = [x0, y0, x1.saturating_sub(x0).max(1), y1.saturating_sub(y0).max(1)];
+        let rect = [
+            x0,
+            y0,
+            x1.saturating_sub(x0).max(1),
+            y1.saturating_sub(y0).max(1),
+        ];
         if rect != self.view_rect {
             self.view_rect = rect;
             self.state.dirty = true;
@@ -334,7 +352,8 @@ impl App {
         // Draw.
         let ctx = renderer.context();
         let frame = match gfx.surface.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(f) | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+            wgpu::CurrentSurfaceTexture::Success(f)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
                 gfx.surface.reconfigure(ctx);
                 return Ok(());
@@ -355,7 +374,7 @@ impl App {
         let view = frame.texture.create_view(&Default::default());
         let ctx = gfx.renderer.context();
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        let measure_gpu = gfx.timestamps.is_some() && self.frames % 30 == 5;
+        let measure_gpu = gfx.timestamps.is_some() && self.frames % 10 == 5;
         let [x, y, w, h] = self.view_rect;
         let depth = gfx.surface.depth_view(gfx.renderer.context()).clone();
         let prepared = gfx.prepared.as_mut().expect("prepared above");
@@ -427,7 +446,11 @@ impl App {
             || (scripted_last && self.args.screenshot.is_some()))
         .then(|| {
             if gfx.surface.copyable {
-                Some(PendingScreenshot::record(&ctx.device, &mut encoder, &frame.texture))
+                Some(PendingScreenshot::record(
+                    &ctx.device,
+                    &mut encoder,
+                    &frame.texture,
+                ))
             } else {
                 None
             }
@@ -440,6 +463,9 @@ impl App {
         if measure_gpu && let Some(t) = &gfx.timestamps {
             let (scene_pass, _) = t.read(ctx)?;
             self.state.gpu_ms = Some(scene_pass.as_secs_f64() * 1e3);
+            if self.frames > self.args.warmup {
+                self.gpu_times.push(scene_pass.as_secs_f64() * 1e3);
+            }
         }
         if let Some(pending) = screenshot {
             self.state.screenshot_requested = false;

@@ -43,7 +43,12 @@ pub struct ViewArgs {
     pub warmup: u32,
     /// Orbit the camera by this many degrees per frame (scripted runs that
     /// measure a moving view).
-    #[arg(long, default_value_t = 0.0, value_name = "DEG", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true
+    )]
     pub spin: f64,
     /// GPU adapter to use (as for `gonio render`; also GONIO_ADAPTER).
     #[arg(long, value_name = "NAME")]
@@ -63,7 +68,9 @@ fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let side = |s: &str| -> Result<u32, String> {
         match s.trim().parse::<u32>() {
             Ok(v) if (16..=8192).contains(&v) => Ok(v),
-            _ => Err(format!("`{s}` in `{text}` is not a side of 16..=8192 pixels")),
+            _ => Err(format!(
+                "`{s}` in `{text}` is not a side of 16..=8192 pixels"
+            )),
         }
     };
     Ok((side(w)?, side(h)?))

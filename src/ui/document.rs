@@ -129,7 +129,7 @@ impl Document {
                 *slot = m.clone();
             }
         }
-        self.scene.camera = old.scene.camera.clone();
+        self.scene.camera = old.scene.camera;
         self.scene.shading = old.scene.shading;
         self.scene.ambient = old.scene.ambient;
     }

@@ -57,7 +57,7 @@ impl Orbit {
             up,
             ahead,
             side,
-            home: camera.clone(),
+            home: *camera,
         }
     }
 
@@ -97,8 +97,7 @@ impl Orbit {
         let camera = self.camera();
         let world_per_pixel =
             2.0 * self.distance * (0.5 * camera.fov_y_deg.to_radians()).tan() / height.max(1.0);
-        self.target +=
-            (-dx * camera.right() + dy * camera.true_up()) * world_per_pixel;
+        self.target += (-dx * camera.right() + dy * camera.true_up()) * world_per_pixel;
     }
 
     /// Zooms by `steps` wheel notches (positive: closer).

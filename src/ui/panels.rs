@@ -19,17 +19,31 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
         ui.end_row();
         if m.model == ReflectanceModel::CookTorrance {
             ui.label("distribution D");
-            changed |= combo(ui, "dist", &mut m.distribution, Distribution::ALL.iter().copied(), |v| {
-                v.name()
-            });
+            changed |= combo(
+                ui,
+                "dist",
+                &mut m.distribution,
+                Distribution::ALL.iter().copied(),
+                |v| v.name(),
+            );
             ui.end_row();
             ui.label("geometry G");
-            changed |= combo(ui, "geom", &mut m.geometry, Geometry::ALL.iter().copied(), |v| v.name());
+            changed |= combo(
+                ui,
+                "geom",
+                &mut m.geometry,
+                Geometry::ALL.iter().copied(),
+                |v| v.name(),
+            );
             ui.end_row();
             ui.label("denominator");
-            changed |= combo(ui, "denom", &mut m.denominator, Denominator::ALL.iter().copied(), |v| {
-                v.name()
-            });
+            changed |= combo(
+                ui,
+                "denom",
+                &mut m.denominator,
+                Denominator::ALL.iter().copied(),
+                |v| v.name(),
+            );
             ui.end_row();
         }
         if matches!(
@@ -37,7 +51,13 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             ReflectanceModel::CookTorrance | ReflectanceModel::Mirror
         ) {
             ui.label("Fresnel F");
-            changed |= combo(ui, "fresnel", &mut m.fresnel, Fresnel::ALL.iter().copied(), |v| v.name());
+            changed |= combo(
+                ui,
+                "fresnel",
+                &mut m.fresnel,
+                Fresnel::ALL.iter().copied(),
+                |v| v.name(),
+            );
             ui.end_row();
         }
         for (label, value) in [
@@ -97,10 +117,18 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             ui.label("η_i, η_t");
             ui.horizontal(|ui| {
                 changed |= ui
-                    .add(egui::DragValue::new(&mut m.eta_i).speed(0.005).range(0.01..=10.0))
+                    .add(
+                        egui::DragValue::new(&mut m.eta_i)
+                            .speed(0.005)
+                            .range(0.01..=10.0),
+                    )
                     .changed();
                 changed |= ui
-                    .add(egui::DragValue::new(&mut m.eta_t).speed(0.005).range(0.01..=10.0))
+                    .add(
+                        egui::DragValue::new(&mut m.eta_t)
+                            .speed(0.005)
+                            .range(0.01..=10.0),
+                    )
                     .changed();
             });
             ui.end_row();
@@ -163,11 +191,11 @@ pub fn light_editor(ui: &mut egui::Ui, index: usize, entry: &toml::Table) -> Opt
         if kind == "spot" {
             for key in ["inner_cone_deg", "outer_cone_deg"] {
                 ui.label(key);
-                let mut v = read_f64(entry.get(key), if key == "inner_cone_deg" { 0.0 } else { 45.0 });
-                if ui
-                    .add(egui::Slider::new(&mut v, 0.0..=90.0))
-                    .changed()
-                {
+                let mut v = read_f64(
+                    entry.get(key),
+                    if key == "inner_cone_deg" { 0.0 } else { 45.0 },
+                );
+                if ui.add(egui::Slider::new(&mut v, 0.0..=90.0)).changed() {
                     edit = Some((key.into(), format!("{v}")));
                 }
                 ui.end_row();
@@ -175,7 +203,10 @@ pub fn light_editor(ui: &mut egui::Ui, index: usize, entry: &toml::Table) -> Opt
         }
         if kind == "area" {
             ui.label("samples N");
-            let mut n = entry.get("samples").and_then(Value::as_integer).unwrap_or(16);
+            let mut n = entry
+                .get("samples")
+                .and_then(Value::as_integer)
+                .unwrap_or(16);
             if ui
                 .add(egui::Slider::new(&mut n, 1..=256).logarithmic(true))
                 .changed()
@@ -185,7 +216,10 @@ pub fn light_editor(ui: &mut egui::Ui, index: usize, entry: &toml::Table) -> Opt
             ui.end_row();
         }
         ui.label("shadows");
-        let mut on = entry.get("shadows").and_then(Value::as_bool).unwrap_or(false);
+        let mut on = entry
+            .get("shadows")
+            .and_then(Value::as_bool)
+            .unwrap_or(false);
         if ui.checkbox(&mut on, "").changed() {
             edit = Some(("shadows".into(), on.to_string()));
         }

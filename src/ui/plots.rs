@@ -116,10 +116,7 @@ impl Plots {
             .fold(0.0_f64, f64::max)
             .max(s.dirac.unwrap_or(0.0))
             .max(1e-12);
-        let incident = vec![
-            [-theta_i.sin() * peak, theta_i.cos() * peak],
-            [0.0, 0.0],
-        ];
+        let incident = vec![[-theta_i.sin() * peak, theta_i.cos() * peak], [0.0, 0.0]];
         ui.label("Polar slice: f_r·cos θ_o [1/sr] (mean of R, G, B)");
         Plot::new("slice")
             .height(170.0)

@@ -70,9 +70,8 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
             ));
         }
     }
-    let text = toml::to_string(&table).map_err(|e| {
-        crate::Error::Gpu(format!("cannot write the scene as TOML: {e}"))
-    })?;
+    let text = toml::to_string(&table)
+        .map_err(|e| crate::Error::Gpu(format!("cannot write the scene as TOML: {e}")))?;
     Ok((
         format!("# Saved by `gonio view` from {}.\n{text}", doc.title()),
         unsaved,
