@@ -37,6 +37,7 @@ pub struct ViewerState {
     pub exposure: f64,
     pub vsync: bool,
     pub show_panel: bool,
+    pub show_overlay: bool,
     /// The last problem (rejected value, bad file), shown until dismissed.
     pub message: Option<String>,
     /// A new document to switch to (opened, dropped, reloaded).
@@ -64,6 +65,7 @@ impl ViewerState {
             exposure: args.exposure,
             vsync: !args.no_vsync,
             show_panel: !args.no_panel,
+            show_overlay: !args.no_overlay,
             message: None,
             replace: None,
             dirty: true,
@@ -117,6 +119,7 @@ pub struct App {
     last_reload_check: Instant,
     drag: Option<(MouseButton, f64, f64)>,
     cursor: (f64, f64),
+    last_message: Option<String>,
     /// The 3D area in physical pixels: x, y, width, height.
     view_rect: [u32; 4],
 }
@@ -136,6 +139,7 @@ impl App {
             last_reload_check: Instant::now(),
             drag: None,
             cursor: (0.0, 0.0),
+            last_message: None,
             view_rect: [0, 0, 1, 1],
         }
     }
@@ -272,6 +276,33 @@ impl App {
         }
         self.last_frame = Some(now);
 
+        // Scripted edits due at this frame, through the panel's path.
+        let due: Vec<String> = self
+            .args
+            .edits
+            .iter()
+            .filter(|(at, _)| *at == self.frames)
+            .map(|(_, kv)| kv.clone())
+            .collect();
+        for kv in due {
+            match self.state.doc.edit(&kv) {
+                Ok(Some(doc)) => self.state.replace = Some(doc),
+                Ok(None) => self.state.dirty = true,
+                Err(e) => return Err(e),
+            }
+        }
+
+        let drops: Vec<PathBuf> = self
+            .args
+            .drops
+            .iter()
+            .filter(|(at, _)| *at == self.frames)
+            .map(|(_, p)| p.clone())
+            .collect();
+        for path in drops {
+            self.state.open(path);
+        }
+
         // The panel.
         let raw_input = gfx.egui_state.take_egui_input(&window);
         let egui_ctx = gfx.egui_state.egui_ctx().clone();
@@ -283,6 +314,14 @@ impl App {
         gfx.egui_state
             .handle_platform_output(&window, full_output.platform_output);
 
+        // Messages also go to stderr (scripted runs, logs).
+        if self.state.message != self.last_message {
+            if let Some(m) = &self.state.message {
+                eprintln!("gonio view: {m}");
+            }
+            self.last_message = self.state.message.clone();
+        }
+
         // A new document replaces the old one (and its GPU resources).
         if let Some(doc) = self.state.replace.take() {
             window.set_title(&format!("gonio view: {}", doc.title()));
@@ -291,8 +330,12 @@ impl App {
                 self.state.orbit = Orbit::from_camera(&doc.scene.camera);
                 self.state.selected_material = 0;
             }
+            // A light edit reloads the same meshes: the GPU keeps them and
+            // updates the rest; anything else is uploaded anew.
+            if doc.scene.meshes != self.state.doc.scene.meshes {
+                gfx.prepared = None;
+            }
             self.state.doc = doc;
-            gfx.prepared = None;
             self.state.dirty = true;
         }
 

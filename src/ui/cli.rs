@@ -25,6 +25,9 @@ pub struct ViewArgs {
     /// Hide the side panel (the 3D view fills the window).
     #[arg(long)]
     pub no_panel: bool,
+    /// Hide the overlay (frame time, triangles, adapter) over the 3D area.
+    #[arg(long)]
+    pub no_overlay: bool,
     /// Scripted mode: render this many frames, then exit (tests, benchmarks).
     #[arg(long, value_name = "N")]
     pub frames: Option<u32>,
@@ -41,6 +44,15 @@ pub struct ViewArgs {
     /// maps, first presents).
     #[arg(long, default_value_t = 10, value_name = "N")]
     pub warmup: u32,
+    /// Scripted edit: at frame FRAME, change KEY to VALUE as the panel
+    /// does (materials in place, lights by reloading), e.g.
+    /// `--edit 3:materials.ball.k_d=[0,0,1]`. Repeatable.
+    #[arg(long = "edit", value_name = "FRAME:KEY=VALUE", value_parser = parse_edit)]
+    pub edits: Vec<(u32, String)>,
+    /// Scripted file drop: at frame FRAME, open PATH as if it were dropped
+    /// on the window (a bad file shows its error and keeps the scene).
+    #[arg(long = "drop", value_name = "FRAME:PATH", value_parser = parse_drop)]
+    pub drops: Vec<(u32, PathBuf)>,
     /// Orbit the camera by this many degrees per frame (scripted runs that
     /// measure a moving view).
     #[arg(
@@ -59,6 +71,31 @@ pub struct ViewArgs {
     /// Print the adapter and the shader features.
     #[arg(short, long)]
     pub verbose: bool,
+}
+
+fn parse_edit(text: &str) -> Result<(u32, String), String> {
+    let (frame, assignment) = text
+        .split_once(':')
+        .ok_or_else(|| format!("`{text}` is not FRAME:KEY=VALUE"))?;
+    let frame = frame
+        .trim()
+        .parse::<u32>()
+        .map_err(|_| format!("`{frame}` in `{text}` is not a frame number"))?;
+    if !assignment.contains('=') {
+        return Err(format!("`{assignment}` in `{text}` is not KEY=VALUE"));
+    }
+    Ok((frame, assignment.to_string()))
+}
+
+fn parse_drop(text: &str) -> Result<(u32, PathBuf), String> {
+    let (frame, path) = text
+        .split_once(':')
+        .ok_or_else(|| format!("`{text}` is not FRAME:PATH"))?;
+    let frame = frame
+        .trim()
+        .parse::<u32>()
+        .map_err(|_| format!("`{frame}` in `{text}` is not a frame number"))?;
+    Ok((frame, PathBuf::from(path)))
 }
 
 fn parse_size(text: &str) -> Result<(u32, u32), String> {

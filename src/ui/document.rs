@@ -121,6 +121,53 @@ impl Document {
         Ok(fresh)
     }
 
+    /// Applies one `KEY=VALUE` edit as the panel would: materials, the
+    /// shading mode and the ambient radiance in place (validated like the
+    /// scene file), lights by reloading. Returns a new document when it
+    /// reloaded.
+    pub fn edit(&mut self, assignment: &str) -> Result<Option<Document>> {
+        let bad = |problem: String| Error::argument(format!("edit {assignment}"), problem);
+        let (key, value) = assignment
+            .split_once('=')
+            .ok_or_else(|| bad("expected KEY=VALUE".into()))?;
+        let parts: Vec<&str> = key.trim().split('.').collect();
+        match parts.as_slice() {
+            ["materials", name, field] => {
+                let m = self
+                    .scene
+                    .materials
+                    .iter_mut()
+                    .find(|m| m.name == *name)
+                    .ok_or_else(|| bad(format!("no material is called `{name}`")))?;
+                *m = edit_material(m, field, value).map_err(bad)?;
+                Ok(None)
+            }
+            ["shading", "mode"] => {
+                let mode: String = toml_value(value).map_err(bad)?;
+                self.scene.shading = mode.parse().map_err(bad)?;
+                Ok(None)
+            }
+            ["ambient", "radiance"] => {
+                let v: [f64; 3] = toml_value(value).map_err(bad)?;
+                if v.iter().any(|c| !c.is_finite() || *c < 0.0) {
+                    return Err(bad("radiance must be finite and ≥ 0".into()));
+                }
+                self.scene.ambient = crate::scene::Rgb::from_array(v);
+                Ok(None)
+            }
+            ["lights", index, field] => {
+                let index: usize = index
+                    .parse()
+                    .map_err(|_| bad(format!("`{index}` is not a light index")))?;
+                Ok(Some(self.set_light(index, field, value)?))
+            }
+            _ => Err(bad(
+                "the viewer edits materials.NAME.KEY, lights.N.KEY, shading.mode and ambient.radiance"
+                    .into(),
+            )),
+        }
+    }
+
     fn keep_edits_of(&mut self, old: &Document) {
         for (m, loaded) in old.scene.materials.iter().zip(&old.loaded_materials) {
             if m != loaded
@@ -169,4 +216,79 @@ fn modified_time(source: &SceneSource) -> Option<SystemTime> {
 /// The error for a scene the viewer cannot open, as a one-line message.
 pub fn describe_error(e: &Error) -> String {
     e.to_string()
+}
+
+/// `m` with `field = value` (TOML), checked as the scene file checks it:
+/// the material is written out as a `[materials]` entry, the field
+/// replaced, and the entry read back.
+pub fn edit_material(
+    m: &Material,
+    field: &str,
+    value: &str,
+) -> std::result::Result<Material, String> {
+    let mut table = toml::Table::new();
+    table.insert(
+        m.name.clone(),
+        toml::Value::Table(super::save::material_table(m)),
+    );
+    let mut root = toml::Table::new();
+    root.insert("materials".into(), toml::Value::Table(table));
+    scene_file::apply_override(&mut root, &format!("materials.{}.{field}={value}", m.name))
+        .map_err(|e| e.to_string())?;
+    let entry = root["materials"][m.name.as_str()].clone();
+    let entry: scene_file::MaterialEntry = entry
+        .try_into()
+        .map_err(|e: toml::de::Error| format!("materials.{}.{field}: {}", m.name, e.message()))?;
+    scene_file::material_from_entry(&m.name, &entry)
+}
+
+fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {
+    let table: toml::Table = format!("v = {text}")
+        .parse()
+        .map_err(|e: toml::de::Error| format!("`{text}` is not a TOML value: {}", e.message()))?;
+    table["v"]
+        .clone()
+        .try_into()
+        .map_err(|e: toml::de::Error| format!("`{text}`: {}", e.message()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::ReflectanceModel;
+
+    #[test]
+    fn material_edits_are_checked_like_the_scene_file() {
+        let m = Material::new("ball", ReflectanceModel::Lambert);
+        let blue = edit_material(&m, "k_d", "[0.0, 0.0, 1.0]").unwrap();
+        assert_eq!(blue.k_d, crate::scene::Rgb::new(0.0, 0.0, 1.0));
+        let ct = edit_material(&m, "model", "\"cook-torrance\"").unwrap();
+        assert_eq!(ct.model, ReflectanceModel::CookTorrance);
+        assert!(edit_material(&m, "roughness", "-1.0").is_err());
+        assert!(edit_material(&m, "k_e", "\"big\"").is_err());
+        assert!(edit_material(&m, "colour", "1.0").is_err());
+    }
+
+    #[test]
+    fn documents_take_edits_and_save_what_they_show() {
+        let mut doc = Document::load(SceneSource::BuiltIn, vec![], Limits::default()).unwrap();
+        assert!(doc.edit("materials.ball.k_e=500").unwrap().is_none());
+        assert!(doc.edit("materials.ball.k_e=-3").is_err());
+        assert!(doc.edit("shading.mode=\"gouraud\"").unwrap().is_none());
+        let relit = doc
+            .edit("lights.0.intensity=[1.0, 2.0, 3.0]")
+            .unwrap()
+            .unwrap();
+        assert_eq!(relit.scene.materials, doc.scene.materials);
+        let (text, unsaved) = relit.to_scene_file().unwrap();
+        assert!(unsaved.is_empty());
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("saved.toml");
+        std::fs::write(&path, text).unwrap();
+        let saved = Document::load(SceneSource::File(path), vec![], Limits::default()).unwrap();
+        assert_eq!(saved.scene.materials, relit.scene.materials);
+        assert_eq!(saved.scene.lights, relit.scene.lights);
+        assert_eq!(saved.scene.shading, relit.scene.shading);
+        assert_eq!(saved.scene.camera, relit.scene.camera);
+    }
 }

@@ -9,16 +9,29 @@ use std::path::{Path, PathBuf};
 
 /// Lays out one frame of the UI; returns the 3D area in points.
 pub fn ui(ui: &mut egui::Ui, state: &mut ViewerState, panel_width: f32) -> egui::Rect {
+    let mut area = ui.available_rect_before_wrap();
     if state.show_panel {
-        egui::Panel::right("panel")
+        let panel = egui::Panel::right("panel")
             .exact_size(panel_width)
             .resizable(false)
             .show(ui, |ui| {
+                ui.set_max_width(panel_width);
                 egui::ScrollArea::vertical().show(ui, |ui| side_panel(ui, state));
             });
+        // The panel's frame (with its margins and border) is what it
+        // covers; the 3D area ends where it begins.
+        // Content wider than the panel would widen the root and push the
+        // panel right, so the screen's edge bounds it too.
+        let screen = ui.ctx().content_rect();
+        area.max.x = area
+            .max
+            .x
+            .min(panel.response.rect.min.x)
+            .min(screen.max.x - panel_width);
     }
-    let area = ui.available_rect_before_wrap();
-    overlay(ui, state, area);
+    if state.show_overlay {
+        overlay(ui, state, area);
+    }
     if state.open_dialog {
         open_dialog(ui.ctx(), state);
     }
@@ -69,7 +82,7 @@ fn file_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         }
     });
     ui.horizontal(|ui| {
-        ui.text_edit_singleline(&mut state.save_path);
+        ui.add(egui::TextEdit::singleline(&mut state.save_path).desired_width(220.0));
         if ui.button("Save scene").clicked() {
             save_scene(state);
         }
@@ -111,6 +124,9 @@ fn view_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         ui.end_row();
         ui.label("vsync");
         ui.checkbox(&mut state.vsync, "");
+        ui.end_row();
+        ui.label("overlay");
+        ui.checkbox(&mut state.show_overlay, "");
         ui.end_row();
     });
     ui.horizontal(|ui| {

@@ -20,6 +20,10 @@ pub fn gltf_asset(relative: &str) -> PathBuf {
         .join(relative)
 }
 
+/// Appended to failures of tests that run the binary on the GPU: the
+/// binary's own error names the missing adapter; this says what to do.
+pub const LAVAPIPE_TEST_HINT: &str = "\n(if no GPU adapter was found: install lavapipe with `sudo apt-get install mesa-vulkan-drivers libvulkan1`, or run ./setup.sh)";
+
 /// The gonio binary built for this test run.
 pub fn gonio() -> std::process::Command {
     std::process::Command::new(env!("CARGO_BIN_EXE_gonio"))

@@ -1,0 +1,282 @@
+//! The viewer in a real window under Xvfb (lavapipe draws it): it opens,
+//! renders, screenshots and exits 0; its 3D area matches `gonio render` of
+//! the same scene and state; scripted panel edits reach the shader.
+//!
+//! Tolerance, derived: the viewer and `render` run the same generated
+//! shader on the same rasterizer with the same f32 camera matrix; only the
+//! last step differs: the viewer encodes sRGB in f32 in the shader
+//! (`target_output`, WGSL `pow`, a few ULP) and the unorm store rounds,
+//! where `render` encodes in f64 and rounds on the CPU. An error of a few
+//! ULP (≈ 10⁻⁶ of full scale, 3·10⁻⁴ of a level) can only move a value
+//! across a rounding boundary: every channel may differ by at most 1 level
+//! of 255, and only rarely (asserted: under 1 % of the pixels).
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+/// `xvfb-run` with a screen large enough for the windows below.
+fn xvfb() -> Command {
+    let found = Command::new("sh")
+        .args(["-c", "command -v xvfb-run"])
+        .output()
+        .map(|o| o.status.success())
+        .unwrap_or(false);
+    assert!(
+        found,
+        "xvfb-run is missing: the viewer tests open a real window under Xvfb. Install it with `sudo apt-get install xvfb xauth` (or run ./setup.sh)"
+    );
+    let mut c = Command::new("xvfb-run");
+    c.args(["-a", "-s", "-screen 0 1280x720x24"]);
+    c
+}
+
+/// Runs `gonio view ARGS --screenshot PATH`; returns the 3D area
+/// `(x, y, w, h)` it reports.
+fn view(args: &[&str], screenshot: &Path) -> (u32, u32, u32, u32) {
+    let gonio = common::gonio();
+    let out = xvfb()
+        .arg(gonio.get_program())
+        .arg("view")
+        .args(args)
+        .arg("--screenshot")
+        .arg(screenshot)
+        .output()
+        .expect("xvfb-run runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "gonio view {args:?} failed ({:?}): {stderr}{}",
+        out.status.code(),
+        common::LAVAPIPE_TEST_HINT
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let line = stdout
+        .lines()
+        .find(|l| l.contains("3D area"))
+        .unwrap_or_else(|| panic!("no 3D area reported: {stdout}"));
+    let area = line.split("3D area ").nth(1).unwrap();
+    let nums: Vec<u32> = area
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().unwrap())
+        .collect();
+    (nums[0], nums[1], nums[2], nums[3])
+}
+
+fn render(args: &[&str], width: u32, height: u32, out: &Path) {
+    let result = common::gonio()
+        .arg("render")
+        .args(args)
+        .args([
+            "--width",
+            &width.to_string(),
+            "--height",
+            &height.to_string(),
+        ])
+        .arg("-o")
+        .arg(out)
+        .output()
+        .expect("gonio runs");
+    assert!(
+        result.status.success(),
+        "gonio render failed: {}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+}
+
+/// Largest channel difference and the fraction of pixels that differ,
+/// between `shot`'s area `(x, y, w, h)` and `reference`.
+fn difference(shot: &Path, area: (u32, u32, u32, u32), reference: &Path) -> (u8, f64) {
+    let shot = image::open(shot).unwrap().to_rgb8();
+    let reference = image::open(reference).unwrap().to_rgb8();
+    let (x, y, w, h) = area;
+    assert_eq!(reference.dimensions(), (w, h));
+    let (mut max, mut differing) = (0u8, 0usize);
+    for j in 0..h {
+        for i in 0..w {
+            let a = shot.get_pixel(x + i, y + j).0;
+            let b = reference.get_pixel(i, j).0;
+            let d = (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap();
+            max = max.max(d);
+            differing += (d > 0) as usize;
+        }
+    }
+    (max, differing as f64 / (w * h) as f64)
+}
+
+fn assert_matches(shot: &Path, area: (u32, u32, u32, u32), reference: &Path, what: &str) {
+    let (max, fraction) = difference(shot, area, reference);
+    eprintln!(
+        "{what}: max difference {max} levels, {:.3} % of the pixels differ",
+        100.0 * fraction
+    );
+    assert!(
+        max <= 1 && fraction < 0.01,
+        "{what}: the viewer's 3D area differs from `gonio render` by up to {max} levels in {:.3} % of the pixels (allowed: 1 level, under 1 %)",
+        100.0 * fraction
+    );
+}
+
+#[test]
+fn the_viewer_screenshot_matches_render() {
+    let dir = tempfile::tempdir().unwrap();
+    // The window filled by the 3D view, and a window with the panel.
+    for (name, args) in [
+        (
+            "full",
+            vec![
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+            ],
+        ),
+        (
+            "panel",
+            vec!["--size", "720x400", "--frames", "3", "--no-overlay"],
+        ),
+        (
+            "gouraud-shadows",
+            vec![
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+                "--set",
+                "shading.mode=\"gouraud\"",
+                "--set",
+                "lights.0.shadows=true",
+            ],
+        ),
+    ] {
+        let shot = dir.path().join(format!("{name}.png"));
+        let (x, y, w, h) = view(&args, &shot);
+        assert!(w >= 100 && h >= 100, "{name}: 3D area {w}x{h}");
+        let sets: Vec<&str> = args
+            .windows(2)
+            .filter(|p| p[0] == "--set")
+            .flat_map(|p| ["--set", p[1]])
+            .collect();
+        let reference = dir.path().join(format!("{name}-render.png"));
+        render(&sets, w, h, &reference);
+        assert_matches(&shot, (x, y, w, h), &reference, name);
+    }
+}
+
+/// Edits made at frame 3 (after the scene is on the GPU) go through the
+/// panel's path: a value change (buffer write), a model change (another
+/// pipeline), a light change (reload, shadow maps re-planned). The result
+/// must equal `render` with the same values set, and differ from the
+/// unedited image.
+#[test]
+fn scripted_panel_edits_reach_the_shader() {
+    let dir = tempfile::tempdir().unwrap();
+    let edits = [
+        "materials.ball.k_d=[0.1, 0.2, 0.9]",
+        "materials.floor.model=\"phong\"",
+        "lights.0.shadows=true",
+    ];
+    let mut args = vec![
+        "--size",
+        "320x240",
+        "--no-panel",
+        "--no-overlay",
+        "--frames",
+        "6",
+    ];
+    let scripted: Vec<String> = edits.iter().map(|e| format!("3:{e}")).collect();
+    for e in &scripted {
+        args.extend(["--edit", e.as_str()]);
+    }
+    let shot = dir.path().join("edited.png");
+    let area = view(&args, &shot);
+    let sets: Vec<&str> = edits.iter().flat_map(|e| ["--set", *e]).collect();
+    let edited = dir.path().join("edited-render.png");
+    render(&sets, area.2, area.3, &edited);
+    assert_matches(&shot, area, &edited, "edited");
+    let plain = dir.path().join("plain-render.png");
+    render(&[], area.2, area.3, &plain);
+    let (max, fraction) = difference(&shot, area, &plain);
+    assert!(
+        max > 50 && fraction > 0.05,
+        "the edits changed too little: {max} levels in {:.1} % of the pixels",
+        100.0 * fraction
+    );
+}
+
+/// A broken file dropped on the window: the viewer says why and keeps the
+/// scene it shows (issue 8: untrusted input in the viewer).
+#[test]
+fn a_bad_file_dropped_on_the_window_keeps_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let broken = dir.path().join("dropped.glb");
+    std::fs::write(&broken, b"glTF\x02\x00\x00\x00\xff\xff\xff\xff").unwrap();
+    let drop = format!("2:{}", broken.display());
+    let shot = dir.path().join("after-drop.png");
+    let gonio = common::gonio();
+    let out = xvfb()
+        .arg(gonio.get_program())
+        .arg("view")
+        .args([
+            "--size",
+            "320x240",
+            "--no-panel",
+            "--no-overlay",
+            "--frames",
+            "5",
+        ])
+        .args(["--drop", &drop, "--screenshot"])
+        .arg(&shot)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(
+        stderr.contains("gonio view: ") && stderr.contains("dropped.glb"),
+        "the drop's error is not reported: {stderr}"
+    );
+    let reference = dir.path().join("scene.png");
+    render(&[], 320, 240, &reference);
+    assert_matches(&shot, (0, 0, 320, 240), &reference, "after a bad drop");
+}
+
+/// Bad input to the viewer: one paragraph, exit 2, no window needed.
+#[test]
+fn the_viewer_refuses_bad_input_with_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let broken = dir.path().join("broken.gltf");
+    std::fs::write(&broken, "{ not json").unwrap();
+    for args in [
+        vec![broken.to_str().unwrap().to_string()],
+        vec!["--set".into(), "materials.ball.roughness=-1".into()],
+        vec![
+            "--frames".into(),
+            "2".into(),
+            "--edit".into(),
+            "1:materials.nope.k_d=1".into(),
+        ],
+    ] {
+        let out = xvfb()
+            .arg(common::gonio().get_program())
+            .arg("view")
+            .args(&args)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        let errors: Vec<_> = stderr
+            .lines()
+            .filter(|l| l.starts_with("gonio: error:"))
+            .collect();
+        assert_eq!(errors.len(), 1, "{args:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
