@@ -26,6 +26,7 @@ pub enum Command {
     /// Render a scene headlessly to a PNG or EXR file.
     Render(RenderArgs),
     /// Open the interactive viewer: the scene with a panel of every material and light setting.
+    #[cfg(feature = "viewer")]
     View(crate::ui::ViewArgs),
     /// Explore a reflectance model: print f_r, plot slices and albedo, read gloss.
     Brdf(crate::explore::cli::BrdfArgs),
@@ -83,6 +84,7 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render(&args),
+        #[cfg(feature = "viewer")]
         Command::View(args) => crate::ui::run(args),
         Command::Brdf(args) => crate::explore::cli::run(&args),
     };

@@ -16,6 +16,7 @@ pub mod output;
 pub mod reference;
 pub mod scene;
 pub mod shading;
+#[cfg(feature = "viewer")]
 pub mod ui;
 
 pub use error::{Error, Result};

@@ -11,6 +11,8 @@
 //! across a rounding boundary: every channel may differ by at most 1 level
 //! of 255, and only rarely (asserted: under 1 % of the pixels).
 
+#![cfg(feature = "viewer")]
+
 mod common;
 
 use std::path::Path;
@@ -246,6 +248,25 @@ fn a_bad_file_dropped_on_the_window_keeps_the_scene() {
     let reference = dir.path().join("scene.png");
     render(&[], 320, 240, &reference);
     assert_matches(&shot, (0, 0, 320, 240), &reference, "after a bad drop");
+}
+
+/// Resizing (to a sliver and back) and minimizing never panic; the last
+/// frame still matches `render` at the final size.
+#[test]
+fn resizing_and_minimizing_never_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("resized.png");
+    let area = view(
+        &[
+            "--size", "320x240", "--no-panel", "--no-overlay", "--frames", "14",
+            "--resize", "2:16x16", "--resize", "4:0x0", "--resize", "6:400x200",
+            "--resize", "9:300x220",
+        ],
+        &shot,
+    );
+    let reference = dir.path().join("resized-render.png");
+    render(&[], area.2, area.3, &reference);
+    assert_matches(&shot, area, &reference, "resized");
 }
 
 /// Bad input to the viewer: one paragraph, exit 2, no window needed.

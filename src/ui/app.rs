@@ -262,9 +262,23 @@ impl App {
         let (Some(window), Some(gfx)) = (self.window.clone(), self.gfx.as_mut()) else {
             return Ok(());
         };
+        if let Some(&(_, (w, h))) = self.args.resizes.iter().find(|(at, _)| *at == self.frames) {
+            if w == 0 || h == 0 {
+                window.set_minimized(true);
+            } else {
+                window.set_minimized(false);
+                let _ = window.request_inner_size(winit::dpi::PhysicalSize::new(w, h));
+            }
+        }
         let size = window.inner_size();
         if size.width == 0 || size.height == 0 {
-            return Ok(()); // minimized: nothing to draw
+            // Minimized: nothing to draw, but a scripted run still counts
+            // the frame so it ends.
+            self.frames += 1;
+            if self.args.frames == Some(self.frames) {
+                event_loop.exit();
+            }
+            return Ok(());
         }
         let now = Instant::now();
         if let Some(last) = self.last_frame {

@@ -53,6 +53,10 @@ pub struct ViewArgs {
     /// on the window (a bad file shows its error and keeps the scene).
     #[arg(long = "drop", value_name = "FRAME:PATH", value_parser = parse_drop)]
     pub drops: Vec<(u32, PathBuf)>,
+    /// Scripted resize: at frame FRAME, ask for a window of WxH pixels
+    /// (`0x0` minimizes it). Repeatable.
+    #[arg(long = "resize", value_name = "FRAME:WxH", value_parser = parse_resize)]
+    pub resizes: Vec<(u32, (u32, u32))>,
     /// Orbit the camera by this many degrees per frame (scripted runs that
     /// measure a moving view).
     #[arg(
@@ -96,6 +100,20 @@ fn parse_drop(text: &str) -> Result<(u32, PathBuf), String> {
         .parse::<u32>()
         .map_err(|_| format!("`{frame}` in `{text}` is not a frame number"))?;
     Ok((frame, PathBuf::from(path)))
+}
+
+fn parse_resize(text: &str) -> Result<(u32, (u32, u32)), String> {
+    let (frame, size) = text
+        .split_once(':')
+        .ok_or_else(|| format!("`{text}` is not FRAME:WxH"))?;
+    let frame = frame
+        .trim()
+        .parse::<u32>()
+        .map_err(|_| format!("`{frame}` in `{text}` is not a frame number"))?;
+    if size == "0x0" {
+        return Ok((frame, (0, 0)));
+    }
+    Ok((frame, parse_size(size)?))
 }
 
 fn parse_size(text: &str) -> Result<(u32, u32), String> {
