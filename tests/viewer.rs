@@ -258,9 +258,20 @@ fn resizing_and_minimizing_never_panic() {
     let shot = dir.path().join("resized.png");
     let area = view(
         &[
-            "--size", "320x240", "--no-panel", "--no-overlay", "--frames", "14",
-            "--resize", "2:16x16", "--resize", "4:0x0", "--resize", "6:400x200",
-            "--resize", "9:300x220",
+            "--size",
+            "320x240",
+            "--no-panel",
+            "--no-overlay",
+            "--frames",
+            "14",
+            "--resize",
+            "2:16x16",
+            "--resize",
+            "4:0x0",
+            "--resize",
+            "6:400x200",
+            "--resize",
+            "9:300x220",
         ],
         &shot,
     );

@@ -12,7 +12,7 @@
 
 use crate::explore::albedo::albedo_curve;
 use crate::explore::gloss::{GEOMETRIES, GlossReading, gloss};
-use crate::explore::slice::{Quantity, slice};
+use crate::explore::slice::{Quantity, Slice, slice};
 use crate::explore::{Channel, albedo::AlbedoEstimate};
 use crate::material::Material;
 use egui_plot::{Legend, Line, Plot, PlotPoints, Points};
@@ -34,6 +34,9 @@ pub struct Plots {
     pub theta_i_deg: f64,
     integrals: Option<Integrals>,
     pending: Option<(Material, Receiver<Integrals>)>,
+    /// The last slice and what it was computed for (the panel redraws
+    /// every frame; the slice changes only with an edit).
+    slice: Option<(Material, f64, Slice)>,
 }
 
 impl Default for Plots {
@@ -42,6 +45,7 @@ impl Default for Plots {
             theta_i_deg: 45.0,
             integrals: None,
             pending: None,
+            slice: None,
         }
     }
 }
@@ -99,9 +103,14 @@ impl Plots {
         self.integrals.as_ref().map(|i| &i.material) != Some(material)
     }
 
-    fn show_slice(&self, ui: &mut egui::Ui, material: &Material) {
+    fn show_slice(&mut self, ui: &mut egui::Ui, material: &Material) {
         let theta_i = self.theta_i_deg.to_radians();
-        let s = slice(material, theta_i, 0.0, Quantity::ProjectedFr, Channel::Mean);
+        let cached = matches!(&self.slice, Some((m, t, _)) if m == material && *t == theta_i);
+        if !cached {
+            let s = slice(material, theta_i, 0.0, Quantity::ProjectedFr, Channel::Mean);
+            self.slice = Some((material.clone(), theta_i, s));
+        }
+        let s = &self.slice.as_ref().expect("computed above").2;
         // θ_o signed in the plane of incidence; the viewer's side of the
         // normal on the right, as in the lecture's figures.
         let lobe: Vec<[f64; 2]> = s
@@ -119,6 +128,7 @@ impl Plots {
         let incident = vec![[-theta_i.sin() * peak, theta_i.cos() * peak], [0.0, 0.0]];
         ui.label("Polar slice: f_r·cos θ_o [1/sr] (mean of R, G, B)");
         Plot::new("slice")
+            .width(ui.available_width() - 12.0)
             .height(170.0)
             .data_aspect(1.0)
             .allow_scroll(false)
@@ -136,7 +146,6 @@ impl Plots {
                     );
                 }
             });
-        let _ = material;
     }
 
     fn show_albedo(&self, ui: &mut egui::Ui, material: &Material) {
@@ -153,6 +162,7 @@ impl Plots {
             .map(|(deg, a)| [*deg, Channel::Mean.of(a.value)])
             .collect();
         Plot::new("albedo")
+            .width(ui.available_width() - 12.0)
             .height(130.0)
             .include_y(0.0)
             .include_y(1.0)

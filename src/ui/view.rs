@@ -15,7 +15,7 @@ pub fn ui(ui: &mut egui::Ui, state: &mut ViewerState, panel_width: f32) -> egui:
             .exact_size(panel_width)
             .resizable(false)
             .show(ui, |ui| {
-                ui.set_max_width(panel_width);
+                ui.set_max_width(ui.available_width());
                 egui::ScrollArea::vertical().show(ui, |ui| side_panel(ui, state));
             });
         // The panel's frame (with its margins and border) is what it
