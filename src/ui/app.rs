@@ -58,7 +58,7 @@ pub struct ViewerState {
 impl ViewerState {
     fn new(doc: Document, args: &ViewArgs) -> ViewerState {
         ViewerState {
-            orbit: Orbit::from_camera(&doc.scene.camera),
+            orbit: Orbit::from_camera(&doc.loaded_camera),
             doc,
             selected_material: 0,
             plots: Plots::default(),
@@ -339,9 +339,10 @@ impl App {
         // A new document replaces the old one (and its GPU resources).
         if let Some(doc) = self.state.replace.take() {
             window.set_title(&format!("gonio view: {}", doc.title()));
-            let keep_view = doc.path() == self.state.doc.path();
+            let keep_view = doc.path() == self.state.doc.path()
+                && doc.loaded_camera == self.state.doc.loaded_camera;
             if !keep_view {
-                self.state.orbit = Orbit::from_camera(&doc.scene.camera);
+                self.state.orbit = Orbit::from_camera(&doc.loaded_camera);
                 self.state.selected_material = 0;
             }
             // A light edit reloads the same meshes: the GPU keeps them and

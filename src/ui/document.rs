@@ -31,6 +31,8 @@ pub struct Document {
     pub scene: Scene,
     /// Materials as loaded (to tell which ones were edited).
     loaded_materials: Vec<Material>,
+    /// The camera as loaded (the viewer's orbit starts and resets there).
+    pub loaded_camera: crate::scene::Camera,
     /// Names of the scene file's own `[materials]` (those a saved file can
     /// address; materials a glTF file brings have no key).
     pub file_materials: BTreeSet<String>,
@@ -61,6 +63,7 @@ impl Document {
         Ok(Document {
             modified: modified_time(&source),
             loaded_materials: scene.materials.clone(),
+            loaded_camera: scene.camera,
             source,
             overrides,
             limits,
@@ -99,8 +102,9 @@ impl Document {
     }
 
     /// Reloads from the source with the same overrides, keeping in-place
-    /// edits of materials the new scene still has (by name), the camera,
-    /// shading mode and ambient radiance.
+    /// edits of materials the new scene still has (by name), the shading
+    /// mode and ambient radiance. (The viewer keeps its own camera unless
+    /// the file's camera changed.)
     pub fn reload(&self) -> Result<Document> {
         let mut fresh = Document::load(self.source.clone(), self.overrides.clone(), self.limits)?;
         fresh.keep_edits_of(self);
@@ -176,7 +180,6 @@ impl Document {
                 *slot = m.clone();
             }
         }
-        self.scene.camera = old.scene.camera;
         self.scene.shading = old.scene.shading;
         self.scene.ambient = old.scene.ambient;
     }
@@ -267,6 +270,34 @@ mod tests {
         assert!(edit_material(&m, "roughness", "-1.0").is_err());
         assert!(edit_material(&m, "k_e", "\"big\"").is_err());
         assert!(edit_material(&m, "colour", "1.0").is_err());
+    }
+
+    #[test]
+    fn a_changed_file_is_noticed_and_reloaded_with_the_edits_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("scene.toml");
+        let text = crate::scene::default_scene::DEFAULT_SCENE_TOML;
+        std::fs::write(&path, text).unwrap();
+        let mut doc =
+            Document::load(SceneSource::File(path.clone()), vec![], Limits::default()).unwrap();
+        assert!(!doc.changed_on_disk());
+        doc.edit("materials.ball.k_e=7").unwrap();
+        std::fs::write(&path, text.replace("fov_y_deg = 40.0", "fov_y_deg = 30.0")).unwrap();
+        let later = std::time::SystemTime::now() + std::time::Duration::from_secs(5);
+        std::fs::File::options()
+            .write(true)
+            .open(&path)
+            .unwrap()
+            .set_modified(later)
+            .unwrap();
+        assert!(doc.changed_on_disk());
+        let fresh = doc.reload().unwrap();
+        assert_eq!(fresh.scene.materials, doc.scene.materials, "edits kept");
+        assert_eq!(fresh.loaded_camera.fov_y_deg, 30.0, "the file's change is seen");
+        // A file broken on disk: the reload fails, the document stays.
+        std::fs::write(&path, "[camera\n").unwrap();
+        let err = doc.reload().err().expect("broken file").to_string();
+        assert!(err.contains("scene.toml"), "{err}");
     }
 
     #[test]
