@@ -221,6 +221,17 @@ impl GpuRenderer {
         if !self.pipelines.contains_key(&cache_key) {
             let attributes = layout.attributes();
             let wgsl = shader_gen::compose_for(key, Output::for_format(format));
+            // For reading what a scene compiles: GONIO_DUMP_WGSL=DIR writes
+            // every generated module there.
+            if let Some(dir) = std::env::var_os("GONIO_DUMP_WGSL") {
+                let name = format!("gonio-{:016x}.wgsl", {
+                    use std::hash::{Hash, Hasher};
+                    let mut h = std::collections::hash_map::DefaultHasher::new();
+                    cache_key.hash(&mut h);
+                    h.finish()
+                });
+                let _ = std::fs::write(std::path::Path::new(&dir).join(name), &wgsl);
+            }
             // naga validation first: a failure here is a bug in gonio, and
             // this way it is an error message, not a device panic.
             shader_gen::validate(&wgsl).map_err(|e| {
