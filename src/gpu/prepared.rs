@@ -221,6 +221,17 @@ impl GpuRenderer {
         Ok(())
     }
 
+    /// Writes only the per-view values of `scene` (camera, image size,
+    /// ambient, environment, exposure): what a camera move changes. The
+    /// shadow maps do not depend on the camera, so they stay.
+    pub fn update_view(&self, prepared: &PreparedScene, scene: &Scene) {
+        let mut globals = GpuGlobals::new(scene);
+        globals.display_scale = prepared.display_scale;
+        self.ctx
+            .queue
+            .write_buffer(&prepared.globals_buffer, 0, bytemuck::bytes_of(&globals));
+    }
+
     /// Records the shadow passes (if the maps are stale) and the scene
     /// pass of `prepared` into `encoder`. The scene pass clears the whole
     /// target to transparent black (coverage 0) and draws into the

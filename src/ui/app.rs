@@ -44,6 +44,8 @@ pub struct ViewerState {
     pub replace: Option<Document>,
     /// Something changed that the GPU must see.
     pub dirty: bool,
+    /// Only the view changed (camera, size, exposure): globals only.
+    pub view_dirty: bool,
     pub screenshot_path: PathBuf,
     pub screenshot_requested: bool,
     pub save_path: String,
@@ -69,6 +71,7 @@ impl ViewerState {
             message: None,
             replace: None,
             dirty: true,
+            view_dirty: true,
             screenshot_path: args
                 .screenshot
                 .clone()
@@ -369,17 +372,17 @@ impl App {
         ];
         if rect != self.view_rect {
             self.view_rect = rect;
+            // The roughness floor depends on the image height.
             self.state.dirty = true;
         }
         if self.args.spin != 0.0 {
-            self.state.orbit.rotate(self.args.spin / 0.458_366, 0.0);
-            self.state.dirty = true;
+            self.state.orbit.rotate_degrees(self.args.spin, 0.0);
         }
         let scene = &mut self.state.doc.scene;
         let camera = self.state.orbit.camera();
         if scene.camera != camera {
             scene.camera = camera;
-            self.state.dirty = true;
+            self.state.view_dirty = true;
         }
         scene.width = self.view_rect[2];
         scene.height = self.view_rect[3];
@@ -397,15 +400,20 @@ impl App {
                 gfx.prepared = Some(p);
                 self.state.dirty = false;
             }
-            Some(p) if self.state.dirty || p.display_scale != display_scale => {
+            Some(p) if self.state.dirty => {
                 p.display_scale = display_scale;
                 if let Err(e) = renderer.update(p, scene) {
                     self.state.message = Some(e.to_string());
                 }
                 self.state.dirty = false;
             }
+            Some(p) if self.state.view_dirty || p.display_scale != display_scale => {
+                p.display_scale = display_scale;
+                renderer.update_view(p, scene);
+            }
             Some(_) => {}
         }
+        self.state.view_dirty = false;
 
         // Draw.
         let ctx = renderer.context();

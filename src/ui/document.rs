@@ -293,7 +293,10 @@ mod tests {
         assert!(doc.changed_on_disk());
         let fresh = doc.reload().unwrap();
         assert_eq!(fresh.scene.materials, doc.scene.materials, "edits kept");
-        assert_eq!(fresh.loaded_camera.fov_y_deg, 30.0, "the file's change is seen");
+        assert_eq!(
+            fresh.loaded_camera.fov_y_deg, 30.0,
+            "the file's change is seen"
+        );
         // A file broken on disk: the reload fails, the document stays.
         std::fs::write(&path, "[camera\n").unwrap();
         let err = doc.reload().err().expect("broken file").to_string();

@@ -90,6 +90,12 @@ impl Orbit {
         self.pitch = (self.pitch + dy * ORBIT_PER_PIXEL).clamp(-PITCH_LIMIT, PITCH_LIMIT);
     }
 
+    /// Orbits by angles in degrees (scripted runs).
+    pub fn rotate_degrees(&mut self, yaw_deg: f64, pitch_deg: f64) {
+        let per_pixel = ORBIT_PER_PIXEL.to_degrees();
+        self.rotate(yaw_deg / per_pixel, pitch_deg / per_pixel);
+    }
+
     /// Moves the target (and the eye with it) by a drag of `(dx, dy)`
     /// pixels in a view `height` pixels tall, so the point under the
     /// cursor at the target's depth follows the cursor.
