@@ -117,7 +117,12 @@ fn smoke_bench_writes_a_well_formed_report() {
         let v: f64 = value
             .parse()
             .unwrap_or_else(|_| panic!("`{target}`: `{value}` is not a number"));
-        assert!(v.is_finite() && v >= 0.0, "`{target}` = {v}");
+        // Slopes may come out negative from one noisy iteration; ratios
+        // of times and sizes cannot.
+        assert!(
+            v.is_finite() && (target.starts_with("growth") || v >= 0.0),
+            "`{target}` = {v}"
+        );
     }
     assert!(
         report.contains("msaa"),

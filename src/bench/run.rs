@@ -215,10 +215,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 
     // Two passes over all configurations: the `--max-error` check picks
     // on the first and scores on the second.
-    let mut times: Vec<[Vec<f64>; 2]> = vec![[Vec::new(), Vec::new()]; measured.len()];
+    let mut times: [Vec<Vec<f64>>; 2] = [Vec::new(), Vec::new()];
     let mut errors = vec![(0.0, 0.0); measured.len()];
     let mut clock = Clock::Wall;
-    for pass in 0..2 {
+    for (pass, pass_times) in times.iter_mut().enumerate() {
         for (k, (config, scene)) in measured.iter().enumerate() {
             bar.set_message(format!("pass {}: {}", pass + 1, config.label()));
             let (frame, t, c) =
@@ -227,15 +227,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             if pass == 0 {
                 errors[k] = measure::error(&frame, &truth);
             }
-            times[k][pass] = t;
+            pass_times.push(t);
             bar.inc(1);
         }
     }
+    let [times_a, times_b] = times;
     let mut rows: Vec<Row> = measured
         .iter()
-        .zip(&times)
+        .zip(times_a.iter().zip(&times_b))
         .zip(&errors)
-        .map(|(((config, _), [a, b]), &(error, max_rel))| Row {
+        .map(|(((config, _), (a, b)), &(error, max_rel))| Row {
             config: config.clone(),
             time: Stats::of(&[a.as_slice(), b.as_slice()].concat()),
             time_a: Stats::of(a),

@@ -32,6 +32,9 @@ pub struct ScalePoint {
     pub time: Stats,
     /// Vertex + index bytes uploaded.
     pub mesh_bytes: u64,
+    /// Bytes of the `f64` scene meshes (positions, normals, tangents,
+    /// indices) that both renderers start from.
+    pub scene_bytes: u64,
     /// Growth of peak resident memory over the baseline, bytes (`None`
     /// where `/proc` cannot tell).
     pub peak_rss_bytes: Option<u64>,
@@ -84,15 +87,6 @@ impl Scale {
             self.pixels
                 .iter()
                 .map(|p| (p.pixels() as f64, p.time.median)),
-        )
-    }
-
-    /// Log-log slope of peak memory growth against triangles.
-    pub fn memory_slope(&self) -> f64 {
-        slope(
-            self.triangles
-                .iter()
-                .filter_map(|p| Some((p.triangles as f64, p.peak_rss_bytes? as f64))),
         )
     }
 }
@@ -234,7 +228,15 @@ fn point(
     let geometry = GeometryData::new(&scene, ShaderKey::for_scene(&scene).needs_tangents());
     let mesh_bytes =
         4 * (geometry.words.len() + geometry.indices.as_ref().map_or(0, Vec::len)) as u64;
+    let scene_bytes = scene
+        .meshes
+        .iter()
+        .map(|m| {
+            24 * (m.positions.len() + m.normals.len() + m.tangents.len()) + 12 * m.indices.len()
+        })
+        .sum::<usize>() as u64;
     Ok(ScalePoint {
+        scene_bytes,
         triangles: scene.triangle_count(),
         width: size.0,
         height: size.1,
