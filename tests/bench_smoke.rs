@@ -107,7 +107,8 @@ fn smoke_bench_writes_a_well_formed_report() {
         "`--max-error` pick",
         "growth of time with triangles",
         "growth of time with pixels",
-        "peak memory growth / mesh data",
+        "peak memory growth / mesh data as loaded",
+        "peak memory growth / GPU mesh data",
     ] {
         let line = report
             .lines()

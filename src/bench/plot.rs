@@ -22,6 +22,15 @@ const COLORS: [RGBColor; 10] = [
     RGBColor(23, 190, 207),
 ];
 
+/// A tick label with two significant digits (16, 25, 40, 1.6).
+fn two_digits(v: f64) -> String {
+    if v <= 0.0 || !v.is_finite() {
+        return number(v);
+    }
+    let scale = 10f64.powf(v.log10().floor() - 1.0);
+    number((v / scale).round() * scale)
+}
+
 fn err(e: impl std::fmt::Display) -> String {
     e.to_string()
 }
@@ -49,8 +58,13 @@ impl ParetoPlot<'_> {
         if min.is_finite() { min / 2.0 } else { 1e-6 }
     }
 
+    /// x is log10 of the time ratio on a linear axis (plotters' log axis
+    /// leaves the decades' insides unlabelled), y the error on a log axis.
     fn xy(&self, r: &Row) -> (f64, f64) {
-        (r.time.median / self.floor_ms, r.error.max(self.y_floor()))
+        (
+            (r.time.median / self.floor_ms).log10(),
+            r.error.max(self.y_floor()),
+        )
     }
 }
 
@@ -82,19 +96,21 @@ impl Plot for ParetoPlot<'_> {
         let (y_lo, y_hi) = pts.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
             (lo.min(p.1), hi.max(p.1))
         });
-        let (x_lo, x_hi) = (x_lo / 1.3, x_hi * 1.3);
+        let (x_lo, x_hi) = (x_lo - 0.1, x_hi + 0.1);
         let (y_lo, y_hi) = (y_lo / 2.0, y_hi * 2.0);
         let mut chart = ChartBuilder::on(&area)
             .margin(12)
             .x_label_area_size(48)
             .y_label_area_size(72)
-            .build_cartesian_2d((x_lo..x_hi).log_scale(), (y_lo..y_hi).log_scale())
+            .build_cartesian_2d(x_lo..x_hi, (y_lo..y_hi).log_scale())
             .map_err(err)?;
         chart
             .configure_mesh()
+            .x_labels(14)
+            .y_labels(12)
             .x_desc("GPU frame time / unlit pass (log)")
             .y_desc("relative RMS error vs truth (log)")
-            .x_label_formatter(&|x| number(*x))
+            .x_label_formatter(&|x| two_digits(10f64.powf(*x)))
             .y_label_formatter(&|y| number(*y))
             .label_style(("sans-serif", 15))
             .axis_desc_style(("sans-serif", 17))
@@ -149,12 +165,10 @@ impl Plot for ParetoPlot<'_> {
             chart
                 .draw_series([Circle::new(p, 10, BLACK.stroke_width(2))])
                 .map_err(err)?;
+            // Label beside the ring, not on the dot.
             chart
-                .draw_series([Text::new(
-                    r.config.label(),
-                    p,
-                    ("sans-serif", 13).into_font(),
-                )])
+                .draw_series([EmptyElement::at(p)
+                    + Text::new(r.config.label(), (12, -16), ("sans-serif", 13).into_font())])
                 .map_err(err)?;
         }
         chart

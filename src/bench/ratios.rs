@@ -129,7 +129,7 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<(Rat
         den: hand,
         target: Some(1.03),
         note: format!(
-            "built-in scene with the sphere Lambertian, {}x{}; the generated shader keeps the structure every scene needs (a loop over `light_count` lights read from the storage buffer, the one-sided `f_r` wrapper, a shading frame whose tangent Lambert never reads unless the compiler strips it), where the hand-written one evaluates its one light inline; both drawn by the bench's pass over the renderer's vertex stream and buffers, so only the shader differs; images differ from the renderer's by {diff_special:.1e} (generated) and {diff:.1e} (hand-written) relative RMS",
+            "built-in scene with the sphere Lambertian, {}x{}; the generated shader keeps the structure every scene needs (a loop over `light_count` lights read from the storage buffer, the inverse-square law with its optional range window and zero-distance guard, the one-sided `f_r` wrapper, a shading frame whose tangent Lambert never reads unless the compiler strips it; lavapipe executes both sides of data-dependent branches), where the hand-written one evaluates its one light inline; both drawn by the bench's pass over the renderer's vertex stream and buffers, so only the shader differs; images differ from the renderer's by {diff_special:.1e} (generated) and {diff:.1e} (hand-written) relative RMS",
             scene.width, scene.height
         ),
     };
