@@ -65,6 +65,59 @@ fn fs_main(in: Varyings) -> @location(0) vec4<f32> {
 }
 "#;
 
+/// The hand-minimal shader with the generated shader's generic light
+/// loop instead of its one inline light: every light read from the
+/// storage buffer in a loop over `light_count`, through the shared
+/// `point_incidence` (inverse-square law with the optional range window
+/// and the zero-distance guard). Splits the specialization gap into "the
+/// light loop" and "the rest".
+const MINIMAL_LAMBERT_LOOP_WGSL: &str = r#"
+struct Varyings {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) @interpolate(flat) material: u32,
+}
+
+@vertex
+fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) material: u32) -> Varyings {
+    return Varyings(globals.clip_from_world * vec4<f32>(position, 1.0), position, normal, material);
+}
+
+@fragment
+fn fs_main(in: Varyings) -> @location(0) vec4<f32> {
+    let m = materials[in.material];
+    let n = normalize_or_zero(in.normal);
+    let to_eye = globals.eye - in.world;
+    var radiance = m.k_a * globals.ambient;
+    for (var l = 0u; l < globals.light_count; l++) {
+        let incidence = point_incidence(lights[l], in.world);
+        let cos_i = dot(n, incidence.wi);
+        if cos_i <= 0.0 || dot(n, to_eye) <= 0.0 {
+            continue;
+        }
+        radiance += m.k_d * FRAC_1_PI * incidence.irradiance * cos_i;
+    }
+    return vec4<f32>(radiance, 1.0);
+}
+"#;
+
+/// [`minimal_lambert`] with the generic light loop (see
+/// `MINIMAL_LAMBERT_LOOP_WGSL`).
+pub fn minimal_lambert_loop(scene: &Scene) -> HarnessShader {
+    HarnessShader {
+        label: "hand-minimal Lambert, generic light loop".into(),
+        wgsl: format!(
+            "{}{}{}{MINIMAL_LAMBERT_LOOP_WGSL}",
+            sources::COMMON,
+            sources::LIGHT_INVERSE_SQUARE,
+            sources::LIGHT_POINT
+        ),
+        inputs: Inputs::PositionNormalMaterial,
+        key: specialized_key(scene),
+    }
+}
+
 /// The unlit floor for `scene`'s geometry.
 pub fn unlit(scene: &Scene) -> HarnessShader {
     HarnessShader {

@@ -273,9 +273,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut ratio_list = Vec::new();
     let mut compile = Vec::new();
     bar.set_message("specialized vs hand-minimal");
-    let (shader, whole) = ratios::specialization(&mut renderer, effort)?;
-    ratio_list.push(shader);
-    ratio_list.push(whole);
+    ratio_list.extend(ratios::specialization(&mut renderer, effort)?);
     bar.inc(1);
     bar.set_message("uber vs specialized");
     let lambert = scene_file::load(
