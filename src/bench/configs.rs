@@ -291,6 +291,28 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
     (out, skipped)
 }
 
+/// Whether `a` and `b` draw the same image: same size, shading, lights
+/// and shadow settings, same triangles with the same material on each
+/// mesh. An override that changes nothing drawn (a material key on a
+/// glTF-only scene creates a material no mesh uses) is not a knob
+/// setting worth timing.
+pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
+    let used = |s: &Scene| -> Vec<crate::material::Material> {
+        s.meshes
+            .iter()
+            .map(|m| s.materials[m.material].clone())
+            .collect()
+    };
+    a.width == b.width
+        && a.height == b.height
+        && a.shading == b.shading
+        && a.lights == b.lights
+        && a.light_shadows == b.light_shadows
+        && a.area_lights == b.area_lights
+        && a.triangle_count() == b.triangle_count()
+        && used(a) == used(b)
+}
+
 /// `(width, height)` scaled by `s`, at least 1 pixel.
 pub fn scaled(width: u32, height: u32, s: f64) -> (u32, u32) {
     let f = |v: u32| ((v as f64 * s).round() as u32).max(1);
@@ -367,6 +389,25 @@ mod tests {
                 loaded.unwrap_or_else(|e| panic!("{}: {e}", c.label()));
             }
         }
+    }
+
+    #[test]
+    fn a_setting_that_changes_nothing_is_recognized() {
+        let base = builtin_base();
+        assert!(draws_the_same(&base, &base.clone()));
+        let with = |o: &str| {
+            let mut overrides: Vec<String> = BUILTIN_BASE.iter().map(|s| s.to_string()).collect();
+            overrides.push(o.into());
+            load(&SceneSource::BuiltIn, &overrides).unwrap()
+        };
+        assert!(!draws_the_same(&base, &with("shading.mode=flat")));
+        assert!(!draws_the_same(&base, &with("shadows.map_size=512")));
+        assert!(!draws_the_same(
+            &base,
+            &with("materials.ball.fresnel=schlick")
+        ));
+        // A material no mesh uses changes nothing drawn.
+        assert!(draws_the_same(&base, &with("materials.unused.model=ward")));
     }
 
     #[test]

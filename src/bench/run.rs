@@ -182,6 +182,15 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             .cloned()
             .collect();
         match scene_file::load(&source, &overrides) {
+            Ok(scene) if config.knob != "base" && configs::draws_the_same(&scene, &base) => {
+                not_measured.push(Skipped {
+                    knob: config.label(),
+                    reason: format!(
+                        "`{}` changes nothing this scene draws",
+                        config.overrides.join(" ")
+                    ),
+                })
+            }
             Ok(scene) => measured.push((config, scene)),
             Err(e) => not_measured.push(Skipped {
                 knob: config.label(),
