@@ -15,10 +15,9 @@
 //! resolution is resampled to the truth's grid first ([`resample`]).
 
 use crate::frame::Frame;
-use crate::gpu::GpuRenderer;
 use crate::gpu::timing::{Clock, Timings};
+use crate::reference;
 use crate::scene::Scene;
-use crate::{Result, reference};
 
 /// Median and quartiles of a sample.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -99,33 +98,6 @@ pub fn render_pass_ms(timings: &Timings) -> f64 {
         })
         .map(|(_, d, _)| d.as_secs_f64() * 1e3)
         .unwrap_or(f64::NAN)
-}
-
-/// Renders `scene` `warmup + repeats` times; returns the last frame and
-/// the frame times of the repeats.
-pub fn time_renders(
-    renderer: &mut GpuRenderer,
-    scene: &Scene,
-    warmup: usize,
-    repeats: usize,
-) -> Result<(Frame, Vec<f64>, Clock)> {
-    let mut times = Vec::with_capacity(repeats);
-    let mut clock = Clock::Wall;
-    let mut last = None;
-    for i in 0..warmup + repeats {
-        let (frame, timings) = renderer.render(scene)?;
-        let (ms, c) = frame_ms(&timings);
-        clock = c;
-        if i >= warmup {
-            times.push(ms);
-        }
-        last = Some(frame);
-    }
-    let frame = match last {
-        Some(f) => f,
-        None => renderer.render(scene)?.0,
-    };
-    Ok((frame, times, clock))
 }
 
 /// The truth image of `base`: the CPU reference (f64, ray-traced shadows)

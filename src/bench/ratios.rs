@@ -38,7 +38,7 @@ impl Ratio {
         match self.target {
             None => String::new(),
             Some(t) if self.value() <= t => "pass".into(),
-            Some(t) => format!("miss by {:.0}%", (self.value() / t - 1.0) * 100.0),
+            Some(t) => super::report::miss(self.value(), t),
         }
     }
 }

@@ -135,6 +135,16 @@ fn ms(v: f64) -> String {
     }
 }
 
+/// "miss by X%" for a value over its target (one decimal below 10%).
+pub fn miss(value: f64, target: f64) -> String {
+    let pct = (value / target - 1.0) * 100.0;
+    if pct < 10.0 {
+        format!("miss by {pct:.1}%")
+    } else {
+        format!("miss by {pct:.0}%")
+    }
+}
+
 /// A fitted slope, or "–" where there was nothing to fit (all zero).
 fn slope_text(v: f64) -> String {
     if v.is_finite() {
@@ -239,7 +249,7 @@ pub fn markdown(r: &BenchReport) -> String {
         let verdict = if worst <= 1.1 {
             "pass".to_string()
         } else {
-            format!("miss by {:.0}%", (worst / 1.1 - 1.0) * 100.0)
+            miss(worst, 1.1)
         };
         let _ = writeln!(
             o,
@@ -272,7 +282,7 @@ pub fn markdown(r: &BenchReport) -> String {
                 if m <= 1.5 {
                     "pass".to_string()
                 } else {
-                    format!("miss by {:.0}%", (m / 1.5 - 1.0) * 100.0)
+                    miss(m, 1.5)
                 },
                 peak as f64 / 1048576.0,
                 p.scene_bytes as f64 / 1048576.0

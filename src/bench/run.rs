@@ -25,7 +25,8 @@ use std::time::Instant;
 #[derive(Clone, Debug)]
 struct Budget {
     warmup: usize,
-    /// Timed frames per configuration and pass (two passes).
+    /// Timed frames per configuration and pass (two passes of
+    /// round-robin rounds).
     per_pass: usize,
     ratio: Effort,
     scale: Option<Plan>,
@@ -80,7 +81,7 @@ impl Budget {
         } else {
             Budget {
                 warmup: 2,
-                per_pass: 5,
+                per_pass: 6,
                 ratio: Effort {
                     warmup: 2,
                     repeats: 15,
@@ -209,7 +210,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut renderer = GpuRenderer::new(context);
 
     let scale_points = budget.scale.as_ref().map_or(0, Plan::len);
-    let steps = 1 + 2 * measured.len() + 1 + 5 + scale_points;
+    let steps = 1 + budget.warmup + 2 * budget.per_pass + 1 + 5 + scale_points;
     let bar = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
     bar.set_style(
         ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} {msg}")
@@ -222,23 +223,34 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let truth_ms = start.elapsed().as_secs_f64() * 1e3;
     bar.inc(1);
 
-    // Two passes over all configurations: the `--max-error` check picks
-    // on the first and scores on the second.
-    let mut times: [Vec<Vec<f64>>; 2] = [Vec::new(), Vec::new()];
+    // Round-robin: every round renders every configuration once, so a
+    // slow stretch of a shared machine hits all of them alike instead of
+    // whichever was being timed. The first `warmup` rounds compile the
+    // pipelines and are not timed; the first timed frame of each
+    // configuration gives its error (frames are deterministic). Even and
+    // odd timed rounds form two passes: the `--max-error` check picks on
+    // one and scores on the other.
+    let mut times: [Vec<Vec<f64>>; 2] = [
+        vec![Vec::new(); measured.len()],
+        vec![Vec::new(); measured.len()],
+    ];
     let mut errors = vec![(0.0, 0.0); measured.len()];
     let mut clock = Clock::Wall;
-    for (pass, pass_times) in times.iter_mut().enumerate() {
+    let rounds = budget.warmup + 2 * budget.per_pass;
+    for round in 0..rounds {
         for (k, (config, scene)) in measured.iter().enumerate() {
-            bar.set_message(format!("pass {}: {}", pass + 1, config.label()));
-            let (frame, t, c) =
-                measure::time_renders(&mut renderer, scene, budget.warmup, budget.per_pass)?;
+            bar.set_message(format!("round {}/{rounds}: {}", round + 1, config.label()));
+            let (frame, timings) = renderer.render(scene)?;
+            let (ms, c) = measure::frame_ms(&timings);
             clock = c;
-            if pass == 0 {
+            if round == budget.warmup {
                 errors[k] = measure::error(&frame, &truth);
             }
-            pass_times.push(t);
-            bar.inc(1);
+            if round >= budget.warmup {
+                times[(round - budget.warmup) % 2][k].push(ms);
+            }
         }
+        bar.inc(1);
     }
     let [times_a, times_b] = times;
     let mut rows: Vec<Row> = measured
