@@ -34,6 +34,10 @@ pub struct BenchArgs {
     /// GPU adapter to use (also GONIO_ADAPTER).
     #[arg(long, value_name = "NAME")]
     pub adapter: Option<String>,
+    /// Internal: measure the peak memory of one scale point
+    /// (SEGMENTS,WIDTH,HEIGHT) in this fresh process, print it and exit.
+    #[arg(long, value_name = "SPEC", hide = true)]
+    pub probe_memory: Option<String>,
     /// Internal: run the minimal triangle-to-PNG floor program and exit.
     #[arg(long, value_name = "OUT", hide = true)]
     pub floor_triangle_png: Option<PathBuf>,

@@ -58,6 +58,9 @@ pub struct AutoCheck {
     pub best: usize,
     /// Second-pass time of the pick over that of the best (≥ 1).
     pub ratio: f64,
+    /// The two configurations' second-pass interquartile ranges overlap:
+    /// their times cannot be told apart on this machine.
+    pub overlap: bool,
 }
 
 /// Everything `gonio bench` measured.

@@ -135,6 +135,28 @@ fn ms(v: f64) -> String {
     }
 }
 
+/// Where the peak memory of the largest mesh goes, from the measured
+/// columns.
+fn memory_note(s: &super::scale::Scale) -> String {
+    let Some(p) = s.triangles.last() else {
+        return String::new();
+    };
+    let (Some(load), Some(peak)) = (p.load_rss_bytes, p.peak_rss_bytes) else {
+        return "Memory: not measured (no /proc on this system).".into();
+    };
+    let mib = |b: u64| b as f64 / 1048576.0;
+    let frame = peak.saturating_sub(load);
+    format!(
+        "Memory at {} triangles: loading peaks at {:.1} MiB for a {:.1} MiB `f64` scene (72 bytes per vertex for position, normal and tangent, 12 per triangle; the CPU reference needs `f64`, and the GPU path converts from it). Rendering the first frame then adds {:.1} MiB, {:.1}× the {:.1} MiB `f32` vertex and index data it uploads: the renderer keeps the `f32` stream for the whole frame, `create_buffer_init` uploads through a mapped staging copy of the whole buffer, and the vertex and index buffers themselves are host memory on lavapipe, as is whatever the driver allocates around them. What would bring the peak toward 1.5× the mesh (renderer changes, not made here): dropping the `f32` stream once uploaded, uploading in chunks through a small staging belt instead of one staging copy of the whole mesh, and building the `f32` stream straight from the loader for GPU-only runs.",
+        p.triangles,
+        mib(load),
+        mib(p.scene_bytes),
+        mib(frame),
+        frame as f64 / p.mesh_bytes as f64,
+        mib(p.mesh_bytes)
+    )
+}
+
 /// "miss by X%" for a value over its target (one decimal below 10%).
 pub fn miss(value: f64, target: f64) -> String {
     let pct = (value / target - 1.0) * 100.0;
@@ -371,25 +393,43 @@ pub fn markdown(r: &BenchReport) -> String {
     );
     let _ = writeln!(
         o,
-        "| E | pick (pass 1) | cheapest within E (pass 2) | pass-2 time ratio |\n| --- | --- | --- | --- |"
+        "| E | pick (pass 1) | cheapest within E (pass 2) | pass-2 time ratio | quartiles overlap |\n| --- | --- | --- | --- | --- |"
     );
     for a in &r.auto {
         let _ = writeln!(
             o,
-            "| {} | `{}` | `{}` | {:.3} |",
+            "| {} | `{}` | `{}` | {:.3} | {} |",
             number(a.max_error),
             r.rows[a.pick].config.label(),
             r.rows[a.best].config.label(),
-            a.ratio
+            a.ratio,
+            if a.pick == a.best {
+                "–"
+            } else if a.overlap {
+                "yes"
+            } else {
+                "no"
+            }
         );
     }
     o.push('\n');
+
+    let misses: Vec<_> = r.auto.iter().filter(|a| a.ratio > 1.1).collect();
+    if !misses.is_empty() {
+        let _ = writeln!(
+            o,
+            "{} of {} budgets land more than 10% above the best choice; in {} of them the two configurations' second-pass quartiles overlap, i.e. their times are within this machine's noise of each other and the first pass could not tell which is cheaper. More repeats (`--repeats`) narrow that band; a quiet machine removes it.\n",
+            misses.len(),
+            r.auto.len(),
+            misses.iter().filter(|a| a.overlap).count()
+        );
+    }
 
     if let Some(s) = &r.scale {
         let _ = writeln!(o, "## Scale\n");
         let _ = writeln!(
             o,
-            "Scene pass time (GPU) of the built-in scene with the sphere tessellated finer (drawn at {}), and at growing resolution (8.5k triangles). Growth rate: least-squares slope of log time against log size (1 = linear). Memory: the vertex + index bytes uploaded, and the growth of the process's peak resident memory (VmHWM, reset before each point) while loading and rendering; lavapipe's buffers live in host memory, so they are part of it.\n",
+            "Scene pass time (GPU) of the built-in scene with the sphere tessellated finer (drawn at {}), and at growing resolution (8.5k triangles). Growth rate: least-squares slope of log time against log size (1 = linear). Memory: the vertex + index bytes uploaded, and the peak resident memory (VmHWM) of loading and rendering the point once in a fresh process that has only opened the device and compiled the pipeline on a tiny mesh, over its resident memory before loading; lavapipe's buffers live in host memory, so they are part of it.\n",
             s.triangles
                 .first()
                 .map(|p| format!("{}x{}", p.width, p.height))
@@ -397,13 +437,13 @@ pub fn markdown(r: &BenchReport) -> String {
         );
         let _ = writeln!(
             o,
-            "| triangles | time [ms] | mesh data (GPU) [MiB] | scene (f64) [MiB] | peak memory growth [MiB] | peak / mesh |\n| --- | --- | --- | --- | --- | --- |"
+            "| triangles | time [ms] | mesh data (GPU) [MiB] | scene (f64) [MiB] | peak memory growth [MiB] | of which loading [MiB] | peak / scene | peak / GPU mesh |\n| --- | --- | --- | --- | --- | --- | --- | --- |"
         );
         for p in &s.triangles {
             let peak = p.peak_rss_bytes.map(|b| b as f64 / 1048576.0);
             let _ = writeln!(
                 o,
-                "| {} | {} [{}–{}] | {:.1} | {:.1} | {} | {} |",
+                "| {} | {} [{}–{}] | {:.1} | {:.1} | {} | {} | {} | {} |",
                 p.triangles,
                 ms(p.time.median),
                 ms(p.time.q1),
@@ -411,6 +451,12 @@ pub fn markdown(r: &BenchReport) -> String {
                 p.mesh_bytes as f64 / 1048576.0,
                 p.scene_bytes as f64 / 1048576.0,
                 peak.map(|m| format!("{m:.1}"))
+                    .unwrap_or_else(|| "–".into()),
+                p.load_rss_bytes
+                    .map(|b| format!("{:.1}", b as f64 / 1048576.0))
+                    .unwrap_or_else(|| "–".into()),
+                p.peak_rss_bytes
+                    .map(|b| format!("{:.2}", b as f64 / p.scene_bytes as f64))
                     .unwrap_or_else(|| "–".into()),
                 p.peak_rss_bytes
                     .map(|b| format!("{:.2}", b as f64 / p.mesh_bytes as f64))
@@ -426,10 +472,7 @@ pub fn markdown(r: &BenchReport) -> String {
             number(b * 1e6),
             slope_text(r2),
         );
-        let _ = writeln!(
-            o,
-            "Memory: the peak is more than the GPU's mesh data because three copies of the mesh are alive at once while a frame is prepared: the `f64` scene both renderers start from (`scene` column, 84 bytes per vertex with tangents and 12 per triangle: the CPU reference needs f64), the `f32` vertex stream built from it, and the buffer wgpu uploads it into, which on lavapipe is host memory too. Small points can read low: the allocator reuses memory freed by the previous point without growing the resident set.\n"
-        );
+        let _ = writeln!(o, "{}\n", memory_note(s));
         let _ = writeln!(
             o,
             "| resolution | pixels | time [ms] |\n| --- | --- | --- |"

@@ -148,6 +148,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(out) = &args.floor_triangle_png {
         return floors::triangle_to_png(out);
     }
+    if let Some(spec) = &args.probe_memory {
+        return scale::probe_memory(spec, args.adapter.as_deref());
+    }
     let started = Instant::now();
     let budget = Budget::from_args(args)?;
     let outputs = Outputs::claim(&args.out)?;
@@ -414,11 +417,13 @@ fn auto_checks(rows: &[Row]) -> Vec<AutoCheck> {
             let max_error = a[i].error;
             let pick = pareto::cheapest_within(&a, max_error)?;
             let best = pareto::cheapest_within(&b, max_error)?;
+            let (p, q) = (&rows[pick].time_b, &rows[best].time_b);
             Some(AutoCheck {
                 max_error,
                 pick,
                 best,
                 ratio: b[pick].time / b[best].time,
+                overlap: p.q1 <= q.q3 && q.q1 <= p.q3,
             })
         })
         .collect()

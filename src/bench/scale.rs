@@ -8,10 +8,12 @@
 //! (1 is linear).
 //!
 //! Memory: the bytes the renderer uploads for the mesh (vertex and index
-//! buffers, the same [`GeometryData`] it builds) and the process's peak
-//! resident memory (`VmHWM` of `/proc/self/status`) during loading and
-//! rendering, measured from a baseline taken after resetting the peak
-//! (`/proc/self/clear_refs`, Linux ≥ 4.0). On lavapipe "GPU" buffers live
+//! buffers, the same [`GeometryData`] it builds) and the peak resident
+//! memory (`VmHWM` of `/proc/self/status`) of loading and rendering the
+//! point once in a fresh process that has only opened the device and
+//! compiled the pipeline (on a tiny mesh), over
+//! its resident memory before loading (the peak is reset first through
+//! `/proc/self/clear_refs`, Linux ≥ 4.0). On lavapipe "GPU" buffers live
 //! in host memory, so they are part of that peak.
 
 use super::measure::{self, Stats};
@@ -38,6 +40,8 @@ pub struct ScalePoint {
     /// Growth of peak resident memory over the baseline, bytes (`None`
     /// where `/proc` cannot tell).
     pub peak_rss_bytes: Option<u64>,
+    /// The same after loading the scene, before rendering it.
+    pub load_rss_bytes: Option<u64>,
 }
 
 impl ScalePoint {
@@ -210,13 +214,8 @@ fn point(
     size: (u32, u32),
     plan: &Plan,
 ) -> Result<ScalePoint> {
-    let baseline = reset_peak();
-    let overrides = vec![
-        format!("objects.0.segments={segments}"),
-        format!("image.width={}", size.0),
-        format!("image.height={}", size.1),
-    ];
-    let scene = scene_file::load(&SceneSource::BuiltIn, &overrides)?;
+    let scene = scene_file::load(&SceneSource::BuiltIn, &point_overrides(segments, size))?;
+    let memory = memory_in_child(segments, size);
     let mut times = Vec::new();
     for i in 0..plan.warmup + plan.repeats {
         let (_, timings) = renderer.render(&scene)?;
@@ -224,7 +223,6 @@ fn point(
             times.push(measure::render_pass_ms(&timings));
         }
     }
-    let peak = status_kib("VmHWM:").map(|k| k * 1024);
     let geometry = GeometryData::new(&scene, ShaderKey::for_scene(&scene).needs_tangents());
     let mesh_bytes =
         4 * (geometry.words.len() + geometry.indices.as_ref().map_or(0, Vec::len)) as u64;
@@ -242,11 +240,90 @@ fn point(
         height: size.1,
         time: Stats::of(&times),
         mesh_bytes,
-        peak_rss_bytes: match (baseline, peak) {
-            (Some(b), Some(p)) => Some(p.saturating_sub(b)),
-            _ => None,
-        },
+        peak_rss_bytes: memory.map(|m| m.1),
+        load_rss_bytes: memory.map(|m| m.0),
     })
+}
+
+fn point_overrides(segments: u32, size: (u32, u32)) -> Vec<String> {
+    vec![
+        format!("objects.0.segments={segments}"),
+        format!("image.width={}", size.0),
+        format!("image.height={}", size.1),
+    ]
+}
+
+/// The peak memory growth of loading and rendering one point, measured in
+/// a fresh process (`gonio bench --probe-memory SEGMENTS,W,H`): in this
+/// process the allocator would serve it from memory that earlier, larger
+/// work freed, and the resident set would not show it.
+/// Returns (growth after loading, growth after rendering).
+fn memory_in_child(segments: u32, size: (u32, u32)) -> Option<(u64, u64)> {
+    let exe = std::env::current_exe().ok()?;
+    let out = std::process::Command::new(exe)
+        .args([
+            "bench",
+            "--probe-memory",
+            &format!("{segments},{},{}", size.0, size.1),
+        ])
+        .output()
+        .ok()?;
+    if !out.status.success() {
+        return None;
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    let mut numbers = text.split_whitespace().map(|w| w.parse::<u64>());
+    match (numbers.next(), numbers.next()) {
+        (Some(Ok(load)), Some(Ok(total))) => Some((load, total)),
+        _ => None,
+    }
+}
+
+/// `gonio bench --probe-memory SEGMENTS,W,H`: opens the device, renders
+/// a tiny scene of the same shader key (compiling the pipeline), then
+/// loads and renders the point once and prints the growth of the peak
+/// resident memory over the resident memory before loading, in bytes,
+/// after loading and after rendering.
+pub fn probe_memory(spec: &str, adapter: Option<&str>) -> Result<()> {
+    let bad = || {
+        crate::Error::argument(
+            format!("--probe-memory {spec}"),
+            "expected SEGMENTS,WIDTH,HEIGHT",
+        )
+    };
+    let v: Vec<u32> = spec
+        .split(',')
+        .map(|x| x.trim().parse().map_err(|_| bad()))
+        .collect::<Result<_>>()?;
+    let [segments, w, h] = v[..] else {
+        return Err(bad());
+    };
+    let ctx = crate::gpu::GpuContext::new(&crate::gpu::AdapterChoice::from_flag_or_env(adapter))?;
+    let mut renderer = GpuRenderer::new(ctx);
+    // A tiny scene with the same shader key first: pipeline compilation
+    // (the driver's JIT) is not what the mesh costs.
+    renderer.render(&scene_file::load(
+        &SceneSource::BuiltIn,
+        &point_overrides(8, (w, h)),
+    )?)?;
+    let baseline = reset_peak().ok_or_else(|| {
+        crate::Error::Gpu("cannot read /proc/self/status to measure memory".into())
+    })?;
+    let peak = || {
+        status_kib("VmHWM:")
+            .map(|k| k * 1024)
+            .ok_or_else(|| crate::Error::Gpu("cannot read VmHWM".into()))
+    };
+    let scene = scene_file::load(&SceneSource::BuiltIn, &point_overrides(segments, (w, h)))?;
+    let loaded = peak()?;
+    renderer.render(&scene)?;
+    let rendered = peak()?;
+    println!(
+        "{} {}",
+        loaded.saturating_sub(baseline),
+        rendered.saturating_sub(baseline)
+    );
+    Ok(())
 }
 
 /// Runs both sweeps; `tick` is called after each point.
