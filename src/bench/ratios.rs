@@ -48,6 +48,10 @@ impl Ratio {
 pub struct Effort {
     pub warmup: usize,
     pub repeats: usize,
+    /// Rounds for the cheap 640x480 comparisons (specialization, uber):
+    /// their sides differ by a few percent, which takes many frames to
+    /// resolve on a shared machine.
+    pub fine_repeats: usize,
     /// Image size of the "1080p" ratio (smaller for a smoke run).
     pub hd: (u32, u32),
     /// Size of the Lambert scene (the built-in's unless smoke).
@@ -81,7 +85,7 @@ fn interleave_harness(
     effort: Effort,
 ) -> Result<(Stats, Stats)> {
     let (mut ta, mut tb) = (Vec::new(), Vec::new());
-    for i in 0..effort.warmup + effort.repeats {
+    for i in 0..effort.warmup + effort.fine_repeats {
         let (mut x, mut y) = (0.0, 0.0);
         for side in rotated(2, i) {
             match side {
@@ -126,7 +130,7 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
     )?;
     let (mut product, mut generated, mut hand, mut hand_loop) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for i in 0..effort.warmup + effort.repeats {
+    for i in 0..effort.warmup + effort.fine_repeats {
         let (mut timings, mut g, mut h, mut l) = (None, 0.0, 0.0, 0.0);
         for side in rotated(4, i) {
             match side {

@@ -178,7 +178,7 @@ fn slope_text(v: f64) -> String {
 
 fn ratio_row(r: &Ratio) -> String {
     format!(
-        "| {} | **{:.3}** | {} | {} | {} ms [{}–{}] | {} ms [{}–{}] |",
+        "| {} | **{:.3}** | {} | {} | {} ms [{}–{}], n = {} | {} ms [{}–{}] |",
         r.name,
         r.value(),
         r.target
@@ -191,6 +191,7 @@ fn ratio_row(r: &Ratio) -> String {
         ms(r.num.median),
         ms(r.num.q1),
         ms(r.num.q3),
+        r.num.n,
         ms(r.den.median),
         ms(r.den.q1),
         ms(r.den.q3),
@@ -262,7 +263,7 @@ pub fn markdown(r: &BenchReport) -> String {
     let _ = writeln!(o, "## Targets\n");
     let _ = writeln!(
         o,
-        "| ratio | value | target | verdict | numerator | denominator |\n| --- | --- | --- | --- | --- | --- |"
+        "Each ratio's two sides are measured in the same run, interleaved frame by frame in rotating order; values are medians [quartiles] over n frames per side.\n\n| ratio | value | target | verdict | numerator | denominator |\n| --- | --- | --- | --- | --- | --- |"
     );
     for x in &r.ratios {
         let _ = writeln!(o, "{}", ratio_row(x));

@@ -50,6 +50,7 @@ impl Budget {
                 ratio: Effort {
                     warmup: 0,
                     repeats: 1,
+                    fine_repeats: 1,
                     hd: (96, 54),
                     small: Some((64, 48)),
                     cold_runs: 1,
@@ -70,6 +71,7 @@ impl Budget {
                 ratio: Effort {
                     warmup: 1,
                     repeats: 5,
+                    fine_repeats: 15,
                     hd: (1920, 1080),
                     small: None,
                     cold_runs: 2,
@@ -85,6 +87,7 @@ impl Budget {
                 ratio: Effort {
                     warmup: 2,
                     repeats: 15,
+                    fine_repeats: 61,
                     hd: (1920, 1080),
                     small: None,
                     cold_runs: 3,
@@ -97,6 +100,7 @@ impl Budget {
         if let Some(n) = args.repeats {
             b.per_pass = n.div_ceil(2);
             b.ratio.repeats = n;
+            b.ratio.fine_repeats = 4 * n;
         }
         if args.no_scale {
             b.scale = None;
