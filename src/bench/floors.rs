@@ -250,9 +250,9 @@ pub fn specialized_key(scene: &Scene) -> ShaderKey {
 /// The minimal triangle-to-PNG program (run by `gonio bench
 /// --floor-triangle-png OUT`): the least a GPU program that writes an
 /// image must do.
-pub fn triangle_to_png(out: &Path) -> Result<()> {
+pub fn triangle_to_png(out: &Path, adapter: Option<&str>) -> Result<()> {
     let output = OutputFile::prepare(out)?;
-    let ctx = GpuContext::new(&AdapterChoice::from_flag_or_env(None))?;
+    let ctx = GpuContext::new(&AdapterChoice::from_flag_or_env(adapter))?;
     let (width, height) = (640u32, 480u32);
     let device = &ctx.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -350,13 +350,17 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<(Rat
 /// Cold `gonio render` of the built-in scene to PNG vs the minimal
 /// triangle-to-PNG program, both as fresh processes of this binary
 /// (wall time from spawn to exit).
-pub fn cold(dir: &Path, effort: Effort) -> Result<Ratio> {
+pub fn cold(dir: &Path, effort: Effort, adapter: Option<&str>) -> Result<Ratio> {
     let exe = std::env::current_exe()
         .map_err(|e| Error::Gpu(format!("cannot find the gonio executable: {e}")))?;
     let run = |args: &[&str]| -> Result<f64> {
+        let mut command = Command::new(&exe);
+        command.args(args);
+        if let Some(a) = adapter {
+            command.args(["--adapter", a]);
+        }
         let start = Instant::now();
-        let out = Command::new(&exe)
-            .args(args)
+        let out = command
             .output()
             .map_err(|e| Error::Gpu(format!("cannot run {}: {e}", exe.display())))?;
         let ms = start.elapsed().as_secs_f64() * 1e3;

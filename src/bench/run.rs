@@ -150,7 +150,7 @@ pub fn scene_label(scene: Option<&Path>) -> String {
 /// `gonio bench`.
 pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(out) = &args.floor_triangle_png {
-        return floors::triangle_to_png(out);
+        return floors::triangle_to_png(out, args.adapter.as_deref());
     }
     if let Some(spec) = &args.probe_memory {
         return scale::probe_memory(spec, args.adapter.as_deref());
@@ -333,13 +333,22 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             format!("cannot create a scratch folder: {e}"),
         )
     })?;
-    ratio_list.push(ratios::cold(scratch.path(), effort)?);
+    ratio_list.push(ratios::cold(
+        scratch.path(),
+        effort,
+        args.adapter.as_deref(),
+    )?);
     bar.inc(1);
 
     let scale = match &budget.scale {
         Some(plan) => {
             bar.set_message("scale sweeps");
-            Some(scale::run(&mut renderer, plan, || bar.inc(1))?)
+            Some(scale::run(
+                &mut renderer,
+                plan,
+                args.adapter.as_deref(),
+                || bar.inc(1),
+            )?)
         }
         None => None,
     };

@@ -213,9 +213,10 @@ fn point(
     segments: u32,
     size: (u32, u32),
     plan: &Plan,
+    adapter: Option<&str>,
 ) -> Result<ScalePoint> {
     let scene = scene_file::load(&SceneSource::BuiltIn, &point_overrides(segments, size))?;
-    let memory = memory_in_child(segments, size);
+    let memory = memory_in_child(segments, size, adapter);
     let mut times = Vec::new();
     for i in 0..plan.warmup + plan.repeats {
         let (_, timings) = renderer.render(&scene)?;
@@ -258,16 +259,18 @@ fn point_overrides(segments: u32, size: (u32, u32)) -> Vec<String> {
 /// process the allocator would serve it from memory that earlier, larger
 /// work freed, and the resident set would not show it.
 /// Returns (growth after loading, growth after rendering).
-fn memory_in_child(segments: u32, size: (u32, u32)) -> Option<(u64, u64)> {
+fn memory_in_child(segments: u32, size: (u32, u32), adapter: Option<&str>) -> Option<(u64, u64)> {
     let exe = std::env::current_exe().ok()?;
-    let out = std::process::Command::new(exe)
-        .args([
-            "bench",
-            "--probe-memory",
-            &format!("{segments},{},{}", size.0, size.1),
-        ])
-        .output()
-        .ok()?;
+    let mut command = std::process::Command::new(exe);
+    command.args([
+        "bench",
+        "--probe-memory",
+        &format!("{segments},{},{}", size.0, size.1),
+    ]);
+    if let Some(a) = adapter {
+        command.args(["--adapter", a]);
+    }
+    let out = command.output().ok()?;
     if !out.status.success() {
         return None;
     }
@@ -326,17 +329,27 @@ pub fn probe_memory(spec: &str, adapter: Option<&str>) -> Result<()> {
     Ok(())
 }
 
-/// Runs both sweeps; `tick` is called after each point.
-pub fn run(renderer: &mut GpuRenderer, plan: &Plan, mut tick: impl FnMut()) -> Result<Scale> {
+/// Runs both sweeps on `renderer` (memory probes on `adapter`); `tick` is
+/// called after each point.
+pub fn run(
+    renderer: &mut GpuRenderer,
+    plan: &Plan,
+    adapter: Option<&str>,
+    mut tick: impl FnMut(),
+) -> Result<Scale> {
     let mut scale = Scale::default();
     for &t in &plan.triangles {
-        scale
-            .triangles
-            .push(point(renderer, segments_for(t), plan.triangle_image, plan)?);
+        scale.triangles.push(point(
+            renderer,
+            segments_for(t),
+            plan.triangle_image,
+            plan,
+            adapter,
+        )?);
         tick();
     }
     for &size in &plan.resolutions {
-        scale.pixels.push(point(renderer, 64, size, plan)?);
+        scale.pixels.push(point(renderer, 64, size, plan, adapter)?);
         tick();
     }
     Ok(scale)
