@@ -34,7 +34,8 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
     for (var s = 0u; s < SHADOW_MAP_COUNT; s++) { // #if shadows
         visibility[s] = shadow_visibility(lights[shadow_casters[s]], x, n_g); // #if shadows
     } // #if shadows
-    for (var l = 0u; l < LIGHT_COUNT; l++) {
+    for (var l = 0u; l < LIGHT_COUNT; l++) { // #if light_count
+    for (var l = 0u; l < globals.light_count; l++) { // #if !light_count
         let light = lights[l];
         let incidence = light_incidence(light, x);
         let cos_theta_i = dot(n, incidence.wi);

@@ -30,6 +30,8 @@ pub enum Command {
     View(crate::ui::ViewArgs),
     /// Explore a reflectance model: print f_r, plot slices and albedo, read gloss.
     Brdf(crate::explore::cli::BrdfArgs),
+    /// Measure the speed/accuracy trade: time and error of every knob, Pareto front, floors.
+    Bench(crate::bench::cli::BenchArgs),
 }
 
 /// `gonio render [SCENE] -o OUT.(png|exr) ...`
@@ -76,6 +78,14 @@ pub struct RenderArgs {
     /// lights (1024).
     #[arg(long = "limit", value_name = "KEY=VALUE")]
     pub limits: Vec<String>,
+    /// Render the cheapest configuration `gonio bench` measured on this
+    /// scene whose error (relative RMS against the truth image) is at
+    /// most E, e.g. `--max-error 0.05`; explicit --set still apply after it.
+    #[arg(long, value_name = "E")]
+    pub max_error: Option<f64>,
+    /// The results file --max-error reads (written by `gonio bench`).
+    #[arg(long, value_name = "CSV", default_value = "gonio-bench/results.csv")]
+    pub bench_results: PathBuf,
 }
 
 /// Parses the command line, runs it, and maps errors to exit status 2
@@ -87,6 +97,7 @@ pub fn main() -> ExitCode {
         #[cfg(feature = "viewer")]
         Command::View(args) => crate::ui::run(args),
         Command::Brdf(args) => crate::explore::cli::run(&args),
+        Command::Bench(args) => crate::bench::run::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -109,7 +120,13 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     // Claim the destination first: a bad path fails before any work.
     let output = OutputFile::prepare(&args.output)?;
 
-    let mut overrides = args.set.clone();
+    let mut overrides = crate::bench::auto::max_error_overrides(
+        args.max_error,
+        &args.bench_results,
+        args.scene.as_deref(),
+        args.verbose,
+    )?;
+    overrides.extend(args.set.iter().cloned());
     if let Some(w) = args.width {
         overrides.push(format!("image.width={w}"));
     }

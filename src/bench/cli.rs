@@ -1,0 +1,44 @@
+//! `gonio bench [SCENE] [-o DIR] [--quick] [--repeats N] ...`
+
+use std::path::PathBuf;
+
+/// Where `gonio bench` writes and `gonio render --max-error` reads.
+pub const DEFAULT_OUT: &str = "gonio-bench";
+
+/// `gonio bench`: time and error of every knob, floors, ratios, scale.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// A scene `.toml`, `.gltf` or `.glb`. Without it: the built-in scene,
+    /// with a Cook-Torrance gold sphere, a shadow-casting point light and
+    /// an area light added so that every knob has something to act on.
+    pub scene: Option<PathBuf>,
+    /// Output folder: report.md, results.csv, scale.csv, pareto.svg,
+    /// pareto.png (created if missing; files are replaced atomically).
+    #[arg(short, long = "out", value_name = "DIR", default_value = DEFAULT_OUT)]
+    pub out: PathBuf,
+    /// Fewer repeats and a shorter scale sweep (about a minute).
+    #[arg(long)]
+    pub quick: bool,
+    /// One iteration at tiny sizes: checks that everything runs (CI).
+    #[arg(long)]
+    pub smoke: bool,
+    /// Timed frames per configuration (split over two passes), after warm-up.
+    #[arg(long, value_name = "N")]
+    pub repeats: Option<usize>,
+    /// Skip the triangle and resolution sweeps.
+    #[arg(long)]
+    pub no_scale: bool,
+    /// Override a key of the base scene, as for `gonio render`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// GPU adapter to use (also GONIO_ADAPTER).
+    #[arg(long, value_name = "NAME")]
+    pub adapter: Option<String>,
+    /// Internal: measure the peak memory of one scale point
+    /// (SEGMENTS,WIDTH,HEIGHT) in this fresh process, print it and exit.
+    #[arg(long, value_name = "SPEC", hide = true)]
+    pub probe_memory: Option<String>,
+    /// Internal: run the minimal triangle-to-PNG floor program and exit.
+    #[arg(long, value_name = "OUT", hide = true)]
+    pub floor_triangle_png: Option<PathBuf>,
+}

@@ -1,0 +1,450 @@
+//! `gonio bench`: claims the outputs, loads the base scene and the
+//! configurations, measures everything, and writes the report.
+
+use super::cli::BenchArgs;
+use super::configs::{self, BUILTIN_BASE, Config, Skipped, TRUTH_AREA_SAMPLES};
+use super::harness::Harness;
+use super::measure::{self, Stats};
+use super::pareto::{self, Point};
+use super::plot::ParetoPlot;
+use super::ratios::{self, Effort};
+use super::scale::{self, Plan};
+use super::{AutoCheck, BenchReport, Row, floors, report};
+use crate::explore::plot::PlotFile;
+use crate::gpu::timing::Clock;
+use crate::gpu::{AdapterChoice, GpuContext, GpuRenderer};
+use crate::output::AtomicFile;
+use crate::scene::Scene;
+use crate::scene::scene_file::{self, SceneSource};
+use crate::{Error, Result};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::path::Path;
+use std::time::Instant;
+
+/// How much `gonio bench` does.
+#[derive(Clone, Debug)]
+struct Budget {
+    warmup: usize,
+    /// Timed frames per configuration and pass (two passes of
+    /// round-robin rounds).
+    per_pass: usize,
+    ratio: Effort,
+    scale: Option<Plan>,
+    truth_samples: u32,
+    /// Image size forced on the base scene (smoke runs).
+    base_size: Option<(u32, u32)>,
+}
+
+impl Budget {
+    fn from_args(args: &BenchArgs) -> Result<Self> {
+        if args.repeats == Some(0) {
+            return Err(Error::argument(
+                "--repeats 0",
+                "at least one timed frame per configuration is needed",
+            ));
+        }
+        let mut b = if args.smoke {
+            Budget {
+                warmup: 0,
+                per_pass: 1,
+                ratio: Effort {
+                    warmup: 0,
+                    repeats: 1,
+                    fine_repeats: 1,
+                    hd: (96, 54),
+                    small: Some((64, 48)),
+                    cold_runs: 1,
+                },
+                scale: Some(Plan::smoke()),
+                truth_samples: 64,
+                base_size: Some((64, 48)),
+            }
+        } else if args.quick {
+            let mut plan = Plan::full();
+            plan.triangles = vec![10_000, 100_000, 1_000_000];
+            plan.resolutions = vec![(256, 256), (1024, 1024), (3840, 2160)];
+            plan.warmup = 1;
+            plan.repeats = 1;
+            Budget {
+                warmup: 1,
+                per_pass: 2,
+                ratio: Effort {
+                    warmup: 1,
+                    repeats: 5,
+                    fine_repeats: 15,
+                    hd: (1920, 1080),
+                    small: None,
+                    cold_runs: 2,
+                },
+                scale: Some(plan),
+                truth_samples: TRUTH_AREA_SAMPLES,
+                base_size: None,
+            }
+        } else {
+            Budget {
+                warmup: 2,
+                per_pass: 6,
+                ratio: Effort {
+                    warmup: 2,
+                    repeats: 15,
+                    fine_repeats: 61,
+                    hd: (1920, 1080),
+                    small: None,
+                    cold_runs: 3,
+                },
+                scale: Some(Plan::full()),
+                truth_samples: TRUTH_AREA_SAMPLES,
+                base_size: None,
+            }
+        };
+        if let Some(n) = args.repeats {
+            b.per_pass = n.div_ceil(2);
+            b.ratio.repeats = n;
+            b.ratio.fine_repeats = 4 * n;
+        }
+        if args.no_scale {
+            b.scale = None;
+        }
+        Ok(b)
+    }
+}
+
+/// The output files, claimed before any work so that a bad folder fails
+/// first and nothing partial is ever left.
+struct Outputs {
+    report: AtomicFile,
+    results: AtomicFile,
+    scale: AtomicFile,
+    svg: PlotFile,
+    png: PlotFile,
+}
+
+impl Outputs {
+    fn claim(dir: &Path) -> Result<Self> {
+        if dir.exists() && !dir.is_dir() {
+            return Err(Error::output(dir, "exists and is not a folder"));
+        }
+        std::fs::create_dir_all(dir)
+            .map_err(|e| Error::output(dir, format!("cannot create the folder: {e}")))?;
+        Ok(Outputs {
+            report: AtomicFile::create(&dir.join("report.md"))?,
+            results: AtomicFile::create(&dir.join("results.csv"))?,
+            scale: AtomicFile::create(&dir.join("scale.csv"))?,
+            svg: PlotFile::prepare(&dir.join("pareto.svg"))?,
+            png: PlotFile::prepare(&dir.join("pareto.png"))?,
+        })
+    }
+}
+
+/// The scene label the CSV records and `--max-error` checks.
+pub fn scene_label(scene: Option<&Path>) -> String {
+    match scene {
+        None => "built-in".into(),
+        Some(p) => std::fs::canonicalize(p)
+            .unwrap_or_else(|_| p.to_path_buf())
+            .display()
+            .to_string(),
+    }
+}
+
+/// `gonio bench`.
+pub fn run(args: &BenchArgs) -> Result<()> {
+    if let Some(out) = &args.floor_triangle_png {
+        return floors::triangle_to_png(out, args.adapter.as_deref());
+    }
+    if let Some(spec) = &args.probe_memory {
+        return scale::probe_memory(spec, args.adapter.as_deref());
+    }
+    let started = Instant::now();
+    let budget = Budget::from_args(args)?;
+    let outputs = Outputs::claim(&args.out)?;
+
+    // The base scene: the user's (or the built-in with the bench's
+    // additions), then the user's --set.
+    let source = match &args.scene {
+        Some(p) => SceneSource::File(p.clone()),
+        None => SceneSource::BuiltIn,
+    };
+    let mut base_overrides: Vec<String> = match args.scene {
+        None => BUILTIN_BASE.iter().map(|s| s.to_string()).collect(),
+        Some(_) => Vec::new(),
+    };
+    if let Some((w, h)) = budget.base_size {
+        base_overrides.push(format!("image.width={w}"));
+        base_overrides.push(format!("image.height={h}"));
+    }
+    base_overrides.extend(args.set.iter().cloned());
+    let base = scene_file::load(&source, &base_overrides)?;
+    if base.lights.is_empty() || base.meshes.is_empty() {
+        return Err(Error::argument(
+            scene_label(args.scene.as_deref()),
+            "the scene has no geometry or no light: there is nothing to measure",
+        ));
+    }
+    let (all, mut not_measured) = configs::configs(&base, args.smoke);
+    let mut measured: Vec<(Config, Scene)> = Vec::new();
+    for config in all {
+        let overrides: Vec<String> = base_overrides
+            .iter()
+            .chain(&config.overrides)
+            .cloned()
+            .collect();
+        match scene_file::load(&source, &overrides) {
+            Ok(scene) if config.knob != "base" && configs::draws_the_same(&scene, &base) => {
+                not_measured.push(Skipped {
+                    knob: config.label(),
+                    reason: format!(
+                        "`{}` changes nothing this scene draws",
+                        config.overrides.join(" ")
+                    ),
+                })
+            }
+            Ok(scene) => measured.push((config, scene)),
+            Err(e) => not_measured.push(Skipped {
+                knob: config.label(),
+                reason: match config.knob.as_str() {
+                    "msaa" => format!(
+                        "the renderer has no MSAA (the scene loader refuses `image.msaa`: {e})"
+                    ),
+                    _ => e.to_string(),
+                },
+            }),
+        }
+    }
+
+    let context = GpuContext::new(&AdapterChoice::from_flag_or_env(args.adapter.as_deref()))?;
+    let adapter = context.describe();
+    let mut renderer = GpuRenderer::new(context);
+
+    let scale_points = budget.scale.as_ref().map_or(0, Plan::len);
+    let steps = 1 + budget.warmup + 2 * budget.per_pass + 1 + 5 + scale_points;
+    let bar = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+
+    bar.set_message("truth image (CPU reference)");
+    let start = Instant::now();
+    let truth = measure::truth(&base, budget.truth_samples);
+    let truth_ms = start.elapsed().as_secs_f64() * 1e3;
+    bar.inc(1);
+
+    // Round-robin: every round renders every configuration once, so a
+    // slow stretch of a shared machine hits all of them alike instead of
+    // whichever was being timed. The first `warmup` rounds compile the
+    // pipelines and are not timed; the first timed frame of each
+    // configuration gives its error (frames are deterministic). Even and
+    // odd timed rounds form two passes: the `--max-error` check picks on
+    // one and scores on the other.
+    let mut times: [Vec<Vec<f64>>; 2] = [
+        vec![Vec::new(); measured.len()],
+        vec![Vec::new(); measured.len()],
+    ];
+    let mut errors = vec![(0.0, 0.0); measured.len()];
+    let mut clock = Clock::Wall;
+    let rounds = budget.warmup + 2 * budget.per_pass;
+    for round in 0..rounds {
+        for (k, (config, scene)) in measured.iter().enumerate() {
+            bar.set_message(format!("round {}/{rounds}: {}", round + 1, config.label()));
+            let (frame, timings) = renderer.render(scene)?;
+            let (ms, c) = measure::frame_ms(&timings);
+            clock = c;
+            if round == budget.warmup {
+                errors[k] = measure::error(&frame, &truth);
+            }
+            if round >= budget.warmup {
+                times[(round - budget.warmup) % 2][k].push(ms);
+            }
+        }
+        bar.inc(1);
+    }
+    let [times_a, times_b] = times;
+    let mut rows: Vec<Row> = measured
+        .iter()
+        .zip(times_a.iter().zip(&times_b))
+        .zip(&errors)
+        .map(|(((config, _), (a, b)), &(error, max_rel))| Row {
+            config: config.clone(),
+            time: Stats::of(&[a.as_slice(), b.as_slice()].concat()),
+            time_a: Stats::of(a),
+            time_b: Stats::of(b),
+            error,
+            max_rel,
+            on_front: false,
+        })
+        .collect();
+    let points: Vec<Point> = rows
+        .iter()
+        .map(|r| Point {
+            time: r.time.median,
+            error: r.error,
+        })
+        .collect();
+    for i in pareto::front(&points) {
+        rows[i].on_front = true;
+    }
+    let auto = auto_checks(&rows);
+
+    bar.set_message("unlit floor");
+    let unlit = {
+        let h = Harness::new(renderer.context(), &base, &floors::unlit(&base))?;
+        let mut t = Vec::new();
+        for _ in 0..budget.warmup + 2 * budget.per_pass {
+            t.push(h.time_once(renderer.context())?.0);
+        }
+        Stats::of(&t[budget.warmup..])
+    };
+    bar.inc(1);
+
+    let effort = budget.ratio;
+    let mut ratio_list = Vec::new();
+    let mut compile = Vec::new();
+    bar.set_message("specialized vs hand-minimal");
+    ratio_list.extend(ratios::specialization(&mut renderer, effort)?);
+    bar.inc(1);
+    bar.set_message("uber vs specialized");
+    let lambert = scene_file::load(
+        &SceneSource::BuiltIn,
+        &[effort.small, None]
+            .into_iter()
+            .flatten()
+            .flat_map(|(w, h)| [format!("image.width={w}"), format!("image.height={h}")])
+            .chain(["materials.ball.model=lambert".to_string()])
+            .collect::<Vec<_>>(),
+    )?;
+    for (scene, label) in [(&lambert, "Lambert scene"), (&base, "bench base scene")] {
+        let (ratio, special_ms, uber_ms) =
+            ratios::uber_vs_specialized(&renderer, scene, label, effort)?;
+        compile.push((format!("specialized shader, {label}"), special_ms));
+        compile.push((format!("uber shader, {label}"), uber_ms));
+        ratio_list.push(ratio);
+        bar.inc(1);
+    }
+    bar.set_message("Cook-Torrance + 4 shadowed lights vs unlit");
+    let (frame_ratio, pass_ratio) = ratios::heavy_vs_unlit(&mut renderer, effort)?;
+    ratio_list.push(frame_ratio);
+    ratio_list.push(pass_ratio);
+    bar.inc(1);
+    bar.set_message("cold render vs triangle-to-PNG");
+    let scratch = tempfile::tempdir().map_err(|e| {
+        Error::output(
+            std::env::temp_dir(),
+            format!("cannot create a scratch folder: {e}"),
+        )
+    })?;
+    ratio_list.push(ratios::cold(
+        scratch.path(),
+        effort,
+        args.adapter.as_deref(),
+    )?);
+    bar.inc(1);
+
+    let scale = match &budget.scale {
+        Some(plan) => {
+            bar.set_message("scale sweeps");
+            Some(scale::run(
+                &mut renderer,
+                plan,
+                args.adapter.as_deref(),
+                || bar.inc(1),
+            )?)
+        }
+        None => None,
+    };
+    bar.finish_and_clear();
+
+    let result = BenchReport {
+        scene: scene_label(args.scene.as_deref()),
+        adapter,
+        clock,
+        base_overrides,
+        truth: format!(
+            "the CPU reference renderer (f64 ray casting, ray-traced shadows) of the base scene with per-pixel (Phong) shading and every area light at {} samples, {}x{}",
+            budget.truth_samples, base.width, base.height
+        ),
+        truth_ms,
+        width: base.width,
+        height: base.height,
+        triangles: base.triangle_count(),
+        warmup: budget.warmup,
+        repeats: 2 * budget.per_pass,
+        rows,
+        not_measured,
+        unlit,
+        ratios: ratio_list,
+        compile,
+        auto,
+        scale,
+        elapsed_s: started.elapsed().as_secs_f64(),
+        smoke: args.smoke,
+    };
+    let plot = ParetoPlot {
+        rows: &result.rows,
+        note: format!(
+            "{} scene, {}x{}, {}; x: GPU time over the unlit pass ({:.3} ms)",
+            result.scene,
+            result.width,
+            result.height,
+            result.adapter_short(),
+            result.unlit.median
+        ),
+        floor_ms: result.unlit.median,
+    };
+    outputs.svg.write(&plot)?;
+    outputs.png.write(&plot)?;
+    outputs
+        .results
+        .commit(report::results_csv(&result).as_bytes())?;
+    outputs
+        .scale
+        .commit(report::scale_csv(&result).as_bytes())?;
+    outputs
+        .report
+        .commit(report::markdown(&result).as_bytes())?;
+    eprintln!(
+        "gonio bench: wrote {} (report.md, results.csv, scale.csv, pareto.svg, pareto.png) in {:.0} s",
+        args.out.display(),
+        result.elapsed_s
+    );
+    Ok(())
+}
+
+/// For budgets at each error of the first pass's front: the pick made on
+/// the first pass, scored against the cheapest within budget on the
+/// second.
+fn auto_checks(rows: &[Row]) -> Vec<AutoCheck> {
+    let pass = |f: fn(&Row) -> f64| -> Vec<Point> {
+        rows.iter()
+            .map(|r| Point {
+                time: f(r),
+                error: r.error,
+            })
+            .collect()
+    };
+    let a = pass(|r| r.time_a.median);
+    let b = pass(|r| r.time_b.median);
+    pareto::front(&a)
+        .into_iter()
+        .filter_map(|i| {
+            let max_error = a[i].error;
+            let pick = pareto::cheapest_within(&a, max_error)?;
+            let best = pareto::cheapest_within(&b, max_error)?;
+            let (p, q) = (&rows[pick].time_b, &rows[best].time_b);
+            Some(AutoCheck {
+                max_error,
+                pick,
+                best,
+                ratio: b[pick].time / b[best].time,
+                overlap: p.q1 <= q.q3 && q.q1 <= p.q3,
+            })
+        })
+        .collect()
+}
+
+impl BenchReport {
+    /// The adapter's name without the driver details.
+    pub fn adapter_short(&self) -> &str {
+        self.adapter.split(" (").next().unwrap_or(&self.adapter)
+    }
+}

@@ -1,0 +1,217 @@
+//! `gonio bench --smoke`: the report is produced and well formed, and
+//! every figure in it is a finite number. Not a timed test: nothing here
+//! depends on how fast anything ran.
+
+mod common;
+
+use gonio::bench::report::{RESULTS_HEADER, parse_csv_line};
+
+fn finite_fields(line: &str, skip: &[usize]) -> Vec<f64> {
+    parse_csv_line(line)
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| !skip.contains(i))
+        .map(|(i, f)| {
+            let v: f64 = f
+                .parse()
+                .unwrap_or_else(|_| panic!("field {i} `{f}` of `{line}` is not a number"));
+            assert!(v.is_finite(), "field {i} of `{line}` is not finite");
+            v
+        })
+        .collect()
+}
+
+#[test]
+fn smoke_bench_writes_a_well_formed_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bench");
+    let run = common::gonio()
+        .args(["bench", "--smoke", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "gonio bench --smoke failed: {stderr}");
+    assert!(
+        !stderr.contains("GPU tests need") && !stderr.contains("no GPU adapter"),
+        "{stderr}"
+    );
+
+    // results.csv: the header, then measured rows with finite numbers.
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(parse_csv_line(lines.next().unwrap()), RESULTS_HEADER);
+    let rows: Vec<&str> = lines.collect();
+    assert!(rows.len() >= 8, "too few configurations: {csv}");
+    let mut knobs = std::collections::BTreeSet::new();
+    let mut on_front = 0;
+    for line in &rows {
+        let f = parse_csv_line(line);
+        assert_eq!(f.len(), RESULTS_HEADER.len(), "{line}");
+        assert_eq!(f[0], "built-in");
+        knobs.insert(f[1].clone());
+        // Text columns: scene, knob, value, overrides, on_front, clock.
+        let numbers = finite_fields(line, &[0, 1, 2, 3, 10, 11]);
+        assert!(numbers.iter().all(|v| *v >= 0.0), "{line}");
+        assert!(numbers[0] > 0.0, "zero frame time: {line}");
+        on_front += (f[10] == "true") as usize;
+        assert!(
+            ["gpu-timestamp", "wall"].contains(&f[11].as_str()),
+            "{line}"
+        );
+    }
+    assert!(on_front >= 1, "no configuration on the front");
+    for k in [
+        "base",
+        "shading",
+        "model",
+        "fresnel",
+        "distribution",
+        "shadow_map_size",
+        "shadow_filter",
+        "area_samples",
+        "resolution",
+    ] {
+        assert!(knobs.contains(k), "knob {k} not measured: {csv}");
+    }
+
+    // scale.csv: both sweeps, finite.
+    let scale = std::fs::read_to_string(out.join("scale.csv")).unwrap();
+    let scale_rows: Vec<&str> = scale.lines().skip(1).collect();
+    assert!(scale_rows.iter().any(|l| l.starts_with("triangles,")));
+    assert!(scale_rows.iter().any(|l| l.starts_with("pixels,")));
+    for line in &scale_rows {
+        finite_fields(line, &[0]);
+    }
+
+    // The report: every section, every ratio a finite number, MSAA
+    // accounted for.
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for section in [
+        "## What \"error\" means",
+        "## Floors",
+        "## Targets",
+        "## Uber shader vs specialized",
+        "## Configurations",
+        "## The Pareto front",
+        "## Auto quality",
+        "## Scale",
+    ] {
+        assert!(report.contains(section), "missing `{section}`");
+    }
+    for target in [
+        "specialized scene / hand-minimal shader",
+        "uber / specialized shader",
+        "4 shadowed lights / unlit floor",
+        "cold `gonio render`",
+        "`--max-error` pick",
+        "growth of time with triangles",
+        "growth of time with pixels",
+        "peak memory growth / mesh data as loaded",
+        "peak memory growth / GPU mesh data",
+    ] {
+        let line = report
+            .lines()
+            .find(|l| l.starts_with('|') && l.contains(target))
+            .unwrap_or_else(|| panic!("no row for `{target}` in the targets"));
+        let value = line.split("**").nth(1).unwrap_or("");
+        let v: f64 = value
+            .parse()
+            .unwrap_or_else(|_| panic!("`{target}`: `{value}` is not a number"));
+        // Slopes may come out negative from one noisy iteration; ratios
+        // of times and sizes cannot.
+        assert!(
+            v.is_finite() && (target.starts_with("growth") || v >= 0.0),
+            "`{target}` = {v}"
+        );
+    }
+    assert!(
+        report.contains("msaa"),
+        "MSAA is neither measured nor reported as not measured"
+    );
+    for bad in ["NaN", "**inf", "**-inf"] {
+        assert!(!report.contains(bad), "`{bad}` in the report:\n{report}");
+    }
+
+    for plot in ["pareto.svg", "pareto.png"] {
+        let bytes = std::fs::read(out.join(plot)).unwrap();
+        assert!(bytes.len() > 1000, "{plot} is nearly empty");
+    }
+    let svg = std::fs::read_to_string(out.join("pareto.svg")).unwrap();
+    assert!(svg.contains("Pareto front"));
+
+    // --max-error picks from these results; an impossible budget is a
+    // one-paragraph error with status 2 and no output file.
+    let png = dir.path().join("auto.png");
+    let results = out.join("results.csv");
+    let ok = common::gonio()
+        .args(["render", "--max-error", "1e9", "--bench-results"])
+        .arg(&results)
+        .arg("-o")
+        .arg(&png)
+        .output()
+        .unwrap();
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    assert!(png.exists());
+    let bad_png = dir.path().join("bad.png");
+    for budget in ["-1", "NaN"] {
+        let bad = common::gonio()
+            .args(["render", "--bench-results"])
+            .arg(&results)
+            .arg(format!("--max-error={budget}"))
+            .arg("-o")
+            .arg(&bad_png)
+            .output()
+            .unwrap();
+        assert_eq!(bad.status.code(), Some(2), "--max-error {budget}");
+        assert!(String::from_utf8_lossy(&bad.stderr).contains("--max-error"));
+        assert!(!bad_png.exists());
+    }
+}
+
+#[test]
+fn bench_refuses_bad_input_without_output() {
+    let dir = tempfile::tempdir().unwrap();
+    // An out "folder" that is a file.
+    let file = dir.path().join("file");
+    std::fs::write(&file, "x").unwrap();
+    let run = common::gonio()
+        .args(["bench", "--smoke", "-o"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("not a folder"), "{stderr}");
+    // A bad --set: named, nothing written.
+    let out = dir.path().join("out");
+    let run = common::gonio()
+        .args([
+            "bench",
+            "--smoke",
+            "--set",
+            "materials.ball.roughness=7",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("roughness"));
+    let left: Vec<_> = std::fs::read_dir(&out)
+        .map(|d| d.flatten().map(|e| e.file_name()).collect())
+        .unwrap_or_default();
+    assert!(left.is_empty(), "partial output: {left:?}");
+    // A missing scene.
+    let run = common::gonio()
+        .args(["bench", "--smoke", "no-such-scene.toml", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("no-such-scene.toml"));
+}
