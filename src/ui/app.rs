@@ -104,6 +104,11 @@ struct Gfx {
     egui_renderer: egui_wgpu::Renderer,
     egui_state: egui_winit::State,
     timestamps: Option<crate::gpu::renderer::PassTimestamps>,
+    /// The side panel drawn once per change (None: the surface cannot be
+    /// copied into, so egui draws everything every frame).
+    panel_cache: Option<super::panel_cache::PanelCache>,
+    /// Timestamps around the egui pass (its slots 0 and 1).
+    panel_timestamps: Option<crate::gpu::renderer::PassTimestamps>,
 }
 
 /// The application: window, GPU, state, and the scripted run's progress.
@@ -118,6 +123,10 @@ pub struct App {
     frame_times: Vec<Duration>,
     /// GPU scene-pass times (timestamp queries, every 10th frame).
     gpu_times: Vec<f64>,
+    /// CPU time of the panel per frame: egui layout and tessellation, ms.
+    ui_times: Vec<f64>,
+    /// GPU time of the egui pass (sampled like `gpu_times`), ms.
+    panel_gpu_times: Vec<f64>,
     last_frame: Option<Instant>,
     last_reload_check: Instant,
     drag: Option<(MouseButton, f64, f64)>,
@@ -138,6 +147,8 @@ impl App {
             frames: 0,
             frame_times: Vec::new(),
             gpu_times: Vec::new(),
+            ui_times: Vec::new(),
+            panel_gpu_times: Vec::new(),
             last_frame: None,
             last_reload_check: Instant::now(),
             drag: None,
@@ -169,6 +180,21 @@ impl App {
         let mut sorted = warm.clone();
         sorted.sort_by(f64::total_cmp);
         let q = |p: f64| sorted[((sorted.len() - 1) as f64 * p).round() as usize];
+        let mut ui = self.ui_times.clone();
+        ui.sort_by(f64::total_cmp);
+        let ui = match ui.len() {
+            0 => String::new(),
+            n => format!(
+                "; panel CPU (egui layout + tessellation) median {:.2} ms",
+                ui[n / 2]
+            ),
+        };
+        let mut panel_gpu = self.panel_gpu_times.clone();
+        panel_gpu.sort_by(f64::total_cmp);
+        let panel_gpu = match panel_gpu.len() {
+            0 => String::new(),
+            n => format!("; egui pass (GPU) median {:.2} ms", panel_gpu[n / 2]),
+        };
         let mut gpu = self.gpu_times.clone();
         gpu.sort_by(f64::total_cmp);
         let gpu = match gpu.len() {
@@ -179,7 +205,7 @@ impl App {
             ),
         };
         format!(
-            "frame times over {} frames after {} warm-up, window {}x{}, 3D area {}x{}, vsync {}: median {:.2} ms, p10 {:.2} ms, p90 {:.2} ms, min {:.2} ms, max {:.2} ms{gpu}",
+            "frame times over {} frames after {} warm-up, window {}x{}, 3D area {}x{}, vsync {}: median {:.2} ms, p10 {:.2} ms, p90 {:.2} ms, min {:.2} ms, max {:.2} ms{gpu}{panel_gpu}{ui}",
             sorted.len(),
             self.args.warmup,
             w,
@@ -243,9 +269,18 @@ impl App {
         let egui_renderer = egui_wgpu::Renderer::new(
             &ctx.device,
             surface.config.format,
-            egui_wgpu::RendererOptions::default(),
+            egui_wgpu::RendererOptions {
+                dithering: false,
+                ..Default::default()
+            },
         );
         let timestamps = ctx
+            .timestamps
+            .then(|| crate::gpu::renderer::PassTimestamps::new(&ctx.device));
+        let panel_cache = surface
+            .writable
+            .then(|| super::panel_cache::PanelCache::new(&ctx.device, surface.config.format));
+        let panel_timestamps = ctx
             .timestamps
             .then(|| crate::gpu::renderer::PassTimestamps::new(&ctx.device));
         self.gfx = Some(Gfx {
@@ -255,6 +290,8 @@ impl App {
             egui_renderer,
             egui_state,
             timestamps,
+            panel_cache,
+            panel_timestamps,
         });
         self.window = Some(window);
         Ok(())
@@ -321,6 +358,7 @@ impl App {
         }
 
         // The panel.
+        let ui_start = Instant::now();
         let raw_input = gfx.egui_state.take_egui_input(&window);
         let egui_ctx = gfx.egui_state.egui_ctx().clone();
         let state = &mut self.state;
@@ -330,6 +368,7 @@ impl App {
         });
         gfx.egui_state
             .handle_platform_output(&window, full_output.platform_output);
+        let ui_elapsed = ui_start.elapsed();
 
         // Messages also go to stderr (scripted runs, logs).
         if self.state.message != self.last_message {
@@ -463,47 +502,92 @@ impl App {
         }
 
         // egui over the scene.
+        let tessellate_start = Instant::now();
         let ctx = gfx.renderer.context();
         let screen = egui_wgpu::ScreenDescriptor {
             size_in_pixels: [gfx.surface.config.width, gfx.surface.config.height],
             pixels_per_point: ppp,
         };
         let paint_jobs = egui_ctx.tessellate(full_output.shapes, ppp);
+        if self.frames >= self.args.warmup {
+            self.ui_times.push(
+                ui_elapsed.as_secs_f64() * 1e3 + tessellate_start.elapsed().as_secs_f64() * 1e3,
+            );
+        }
         for (id, deltas) in &full_output.textures_delta.set {
             for delta in deltas {
                 gfx.egui_renderer
                     .update_texture(&ctx.device, &ctx.queue, *id, delta);
+                if let Some(cache) = &mut gfx.panel_cache {
+                    cache.update_texture(&ctx.device, &ctx.queue, *id, delta);
+                }
             }
         }
-        let extra = gfx.egui_renderer.update_buffers(
+        // The panel from its cache, the rest (overlay, dialogs) drawn now.
+        let (paint_jobs, mut extra) = match &mut gfx.panel_cache {
+            Some(cache) if self.state.show_panel && !self.state.open_dialog => {
+                let (panel_jobs, rest) = super::panel_cache::split_jobs(paint_jobs, central.max.x);
+                let x = self.view_rect[0] + self.view_rect[2];
+                let rect = [
+                    x,
+                    0,
+                    screen.size_in_pixels[0].saturating_sub(x),
+                    screen.size_in_pixels[1],
+                ];
+                let extra = cache.draw(
+                    ctx,
+                    &mut encoder,
+                    &panel_jobs,
+                    &screen,
+                    &frame.texture,
+                    rect,
+                );
+                (rest, extra)
+            }
+            _ => (paint_jobs, Vec::new()),
+        };
+        extra.extend(gfx.egui_renderer.update_buffers(
             &ctx.device,
             &ctx.queue,
             &mut encoder,
             &paint_jobs,
             &screen,
-        );
+        ));
         {
-            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("egui"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let pass =
+                encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("egui"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Load,
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: gfx.panel_timestamps.as_ref().filter(|_| measure_gpu).map(
+                        |t| wgpu::RenderPassTimestampWrites {
+                            query_set: &t.set,
+                            beginning_of_pass_write_index: Some(0),
+                            end_of_pass_write_index: Some(1),
+                        },
+                    ),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
             let mut pass = pass.forget_lifetime();
             gfx.egui_renderer.render(&mut pass, &paint_jobs, &screen);
         }
+        if measure_gpu && let Some(t) = &gfx.panel_timestamps {
+            t.resolve(&mut encoder);
+        }
         for id in &full_output.textures_delta.free {
             gfx.egui_renderer.free_texture(id);
+            if let Some(cache) = &mut gfx.panel_cache {
+                cache.free_texture(id);
+            }
         }
 
         self.frames += 1;
@@ -526,6 +610,12 @@ impl App {
         window.pre_present_notify();
         ctx.queue.present(frame);
 
+        if measure_gpu && let Some(t) = &gfx.panel_timestamps {
+            let (panel_pass, _) = t.read(ctx)?;
+            if self.frames > self.args.warmup {
+                self.panel_gpu_times.push(panel_pass.as_secs_f64() * 1e3);
+            }
+        }
         if measure_gpu && let Some(t) = &gfx.timestamps {
             let (scene_pass, _) = t.read(ctx)?;
             self.state.gpu_ms = Some(scene_pass.as_secs_f64() * 1e3);

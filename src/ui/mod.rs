@@ -11,6 +11,7 @@ pub mod app;
 pub mod cli;
 pub mod document;
 pub mod orbit;
+pub mod panel_cache;
 pub mod panels;
 pub mod plots;
 pub mod save;

@@ -17,6 +17,8 @@ pub struct WindowSurface {
     pub config: wgpu::SurfaceConfiguration,
     /// Whether the swapchain images can be copied (screenshots).
     pub copyable: bool,
+    /// Whether the swapchain images can be copied into (the panel cache).
+    pub writable: bool,
     depth: Option<(u32, u32, wgpu::TextureView)>,
 }
 
@@ -45,9 +47,13 @@ impl WindowSurface {
             ))
         })?;
         let copyable = caps.usages.contains(wgpu::TextureUsages::COPY_SRC);
+        let writable = caps.usages.contains(wgpu::TextureUsages::COPY_DST);
         let mut usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
         if copyable {
             usage |= wgpu::TextureUsages::COPY_SRC;
+        }
+        if writable {
+            usage |= wgpu::TextureUsages::COPY_DST;
         }
         let present_mode = if vsync {
             wgpu::PresentMode::AutoVsync
@@ -70,6 +76,7 @@ impl WindowSurface {
             surface,
             config,
             copyable,
+            writable,
             depth: None,
         })
     }
