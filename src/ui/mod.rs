@@ -48,7 +48,14 @@ pub fn run(args: ViewArgs) -> Result<()> {
         Some(path) => SceneSource::File(path.clone()),
         None => SceneSource::BuiltIn,
     };
-    let doc = document::Document::load(source, args.set.clone(), limits)?;
+    let mut overrides = crate::bench::auto::max_error_overrides(
+        args.max_error,
+        &args.bench_results,
+        args.scene.as_deref(),
+        args.verbose,
+    )?;
+    overrides.extend(args.set.iter().cloned());
+    let doc = document::Document::load(source, overrides, limits)?;
     if let Some(path) = &args.screenshot {
         // Fail on an unwritable destination before opening the window.
         crate::output::write::AtomicFile::create(path)?;
