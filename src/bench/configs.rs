@@ -6,9 +6,9 @@
 //! of that choice alone. A setting equal to the base's own value is the
 //! base configuration itself (measured once). Overrides go through the
 //! scene loader like a user's `--set`, so a knob a scene cannot take
-//! (a material key on a glTF-only scene, a key the renderer does not know
-//! yet, such as `image.msaa`) fails to load and is reported as not
-//! measured, with the loader's reason.
+//! (a material key on a glTF-only scene, an `image.msaa` the adapter
+//! cannot multisample) fails to load or render and is reported as not
+//! measured, with the reason.
 
 use crate::material::{Distribution, Fresnel, ReflectanceModel};
 use crate::scene::{Light, Scene, ShadowFilter};
@@ -377,7 +377,8 @@ mod tests {
         assert!(!configs.iter().any(|c| c.label() == "shading=phong"));
         assert!(!configs.iter().any(|c| c.label() == "fresnel=conductor"));
         assert!(!configs.iter().any(|c| c.label() == "area_samples=16"));
-        // Every knob setting except MSAA loads (until the renderer has it).
+        // Every knob setting loads (MSAA may still be refused at render
+        // time by an adapter without multisampled float targets).
         for c in &configs {
             let overrides: Vec<String> = BUILTIN_BASE
                 .iter()

@@ -118,6 +118,14 @@ impl GpuContext {
         if timestamps {
             required_features |= wgpu::Features::TIMESTAMP_QUERY;
         }
+        // Multisampled Rgba32Float targets (image.msaa) need the adapter's
+        // own format capabilities, beyond WebGPU's portable set.
+        if adapter
+            .features()
+            .contains(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
+        {
+            required_features |= wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
+        }
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("gonio"),

@@ -31,6 +31,8 @@ pub struct PreparedScene {
     pub format: wgpu::TextureFormat,
     /// `2^exposure`, applied by display targets only.
     pub display_scale: f32,
+    /// Samples per pixel of the targets it draws into.
+    pub samples: u32,
     /// Triangles drawn per scene pass.
     pub triangles: u64,
     /// Bytes of vertex and index data on the GPU.
@@ -60,8 +62,10 @@ struct ShadowResources {
 
 /// Where a scene pass draws.
 pub struct FrameTarget<'a> {
-    /// Colour attachment of the prepared scene's `format`.
+    /// Colour attachment of the prepared scene's `format` and samples.
     pub color: &'a wgpu::TextureView,
+    /// Where a multisampled `color` is resolved to.
+    pub resolve: Option<&'a wgpu::TextureView>,
     /// Depth attachment ([`DEPTH_FORMAT`]) of the same size.
     pub depth: &'a wgpu::TextureView,
     /// `[x, y, width, height]` in pixels of the 3D area; `None`: all of it.
@@ -83,6 +87,16 @@ impl GpuRenderer {
     /// Uploads `scene` for drawing into targets of `format`
     /// (`Rgba32Float`: linear radiance; an 8-bit format: display).
     pub fn prepare(&mut self, scene: &Scene, format: wgpu::TextureFormat) -> Result<PreparedScene> {
+        self.prepare_with_samples(scene, format, 1)
+    }
+
+    /// [`GpuRenderer::prepare`] for targets of `samples` samples per pixel.
+    pub fn prepare_with_samples(
+        &mut self,
+        scene: &Scene,
+        format: wgpu::TextureFormat,
+        samples: u32,
+    ) -> Result<PreparedScene> {
         if scene.materials.is_empty() || scene.lights.is_empty() {
             return Err(Error::Gpu(
                 "a scene needs at least one material and one light".into(),
@@ -90,7 +104,7 @@ impl GpuRenderer {
         }
         let (key, plan) = self.plan(scene)?;
         let geometry = GeometryData::new(scene, key.needs_tangents());
-        self.pipeline(&key, geometry.layout, format)?;
+        self.pipeline(&key, geometry.layout, format, samples)?;
         if !plan.is_empty() {
             self.pass_pipeline(geometry.layout.stride());
         }
@@ -140,6 +154,7 @@ impl GpuRenderer {
             key,
             format,
             display_scale: 1.0,
+            samples,
             triangles: scene.triangle_count() as u64,
             geometry_bytes,
             layout: geometry.layout,
@@ -171,11 +186,11 @@ impl GpuRenderer {
         let (key, plan) = self.plan(scene)?;
         if key.shading != prepared.key.shading || key.needs_tangents() != prepared.layout.tangents {
             let display_scale = prepared.display_scale;
-            *prepared = self.prepare(scene, prepared.format)?;
+            *prepared = self.prepare_with_samples(scene, prepared.format, prepared.samples)?;
             prepared.display_scale = display_scale;
             return Ok(());
         }
-        self.pipeline(&key, prepared.layout, prepared.format)?;
+        self.pipeline(&key, prepared.layout, prepared.format, prepared.samples)?;
         if !plan.is_empty() {
             self.pass_pipeline(prepared.layout.stride());
         }
@@ -285,13 +300,13 @@ impl GpuRenderer {
             drawn.shadow_layers = shadows.layer_views.len();
             prepared.shadows_stale = false;
         }
-        let pipeline = &self.pipelines[&(prepared.key.clone(), prepared.format)];
+        let pipeline = &self.pipelines[&(prepared.key.clone(), prepared.format, prepared.samples)];
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("scene"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                 view: target.color,
                 depth_slice: None,
-                resolve_target: None,
+                resolve_target: target.resolve,
                 ops: wgpu::Operations {
                     load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
                     store: wgpu::StoreOp::Store,

@@ -32,7 +32,8 @@ pub struct GpuRenderer {
     pub(super) ctx: GpuContext,
     pub(super) bind_group_layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
-    pub(super) pipelines: HashMap<(ShaderKey, wgpu::TextureFormat), wgpu::RenderPipeline>,
+    /// Keyed by features, target format and samples per pixel.
+    pub(super) pipelines: HashMap<(ShaderKey, wgpu::TextureFormat, u32), wgpu::RenderPipeline>,
     /// Group 1 of a scene pipeline with shadows: maps, sampler, layers.
     pub(super) shadow_bind_group_layout: wgpu::BindGroupLayout,
     shadow_pipeline_layout: wgpu::PipelineLayout,
@@ -216,8 +217,9 @@ impl GpuRenderer {
         key: &ShaderKey,
         layout: VertexLayout,
         format: wgpu::TextureFormat,
+        samples: u32,
     ) -> Result<&wgpu::RenderPipeline> {
-        let cache_key = (key.clone(), format);
+        let cache_key = (key.clone(), format, samples);
         if !self.pipelines.contains_key(&cache_key) {
             let attributes = layout.attributes();
             let wgsl = shader_gen::compose_for(key, Output::for_format(format));
@@ -277,7 +279,10 @@ impl GpuRenderer {
                     stencil: Default::default(),
                     bias: Default::default(),
                 }),
-                multisample: Default::default(),
+                multisample: wgpu::MultisampleState {
+                    count: samples,
+                    ..Default::default()
+                },
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
                     entry_point: Some("fs_main"),
@@ -303,8 +308,12 @@ impl GpuRenderer {
         let mut timings = Timings::default();
         let (width, height) = (scene.width, scene.height);
         self.check_target_size(width, height)?;
+        let samples = scene.msaa.max(1);
+        if samples > 1 {
+            self.check_msaa(samples)?;
+        }
         let start = Instant::now();
-        let mut prepared = self.prepare(scene, COLOR_FORMAT)?;
+        let mut prepared = self.prepare_with_samples(scene, COLOR_FORMAT, samples)?;
         timings.push(
             "build vertex data + pipeline + upload",
             start.elapsed(),
@@ -318,12 +327,12 @@ impl GpuRenderer {
             height,
             depth_or_array_layers: 1,
         };
-        let target = |label, format, usage| {
+        let target = |label, format, usage, sample_count| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size,
                 mip_level_count: 1,
-                sample_count: 1,
+                sample_count,
                 dimension: wgpu::TextureDimension::D2,
                 format,
                 usage,
@@ -334,12 +343,25 @@ impl GpuRenderer {
             "radiance",
             COLOR_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            1,
         );
         let depth = target(
             "depth",
             DEPTH_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
+            samples,
         );
+        // With MSAA the pass draws into a multisampled target and resolves
+        // (averages the samples) into `color`: radiance is the pixel's
+        // mean, coverage the covered fraction.
+        let multisampled = (samples > 1).then(|| {
+            target(
+                "radiance (multisampled)",
+                COLOR_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+                samples,
+            )
+        });
         let padded_row =
             (width * BYTES_PER_PIXEL).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let readback = device.create_buffer(&wgpu::BufferDescriptor {
@@ -354,12 +376,16 @@ impl GpuRenderer {
         let start = Instant::now();
         let color_view = color.create_view(&Default::default());
         let depth_view = depth.create_view(&Default::default());
+        let multisampled_view = multisampled
+            .as_ref()
+            .map(|t| t.create_view(&Default::default()));
         let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
         let drawn = self.encode(
             &mut prepared,
             &mut encoder,
             &FrameTarget {
-                color: &color_view,
+                color: multisampled_view.as_ref().unwrap_or(&color_view),
+                resolve: multisampled_view.as_ref().map(|_| &color_view),
                 depth: &depth_view,
                 viewport: None,
                 timestamps: queries.as_ref().map(|q| &q.set),
@@ -404,6 +430,31 @@ impl GpuRenderer {
             unpack(&frame_bytes, width, height, padded_row)
         });
         Ok((frame, timings))
+    }
+
+    /// Refuses a sample count the device cannot draw offscreen radiance
+    /// with, naming `image.msaa`.
+    fn check_msaa(&self, samples: u32) -> Result<()> {
+        let ctx = &self.ctx;
+        let specific = ctx
+            .device
+            .features()
+            .contains(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES);
+        let flags = ctx.adapter.get_texture_format_features(COLOR_FORMAT).flags;
+        if specific
+            && flags.sample_count_supported(samples)
+            && flags.contains(wgpu::TextureFormatFeatureFlags::MULTISAMPLE_RESOLVE)
+        {
+            Ok(())
+        } else {
+            Err(Error::argument(
+                format!("image.msaa = {samples}"),
+                format!(
+                    "the GPU adapter `{}` cannot multisample and resolve {COLOR_FORMAT:?} targets; use image.msaa = 1",
+                    ctx.adapter_info.name
+                ),
+            ))
+        }
     }
 
     /// Refuses a target the device cannot hold.

@@ -307,6 +307,7 @@ mod tests {
         Scene {
             width: 63,
             height: 63,
+            msaa: 1,
             camera: Camera {
                 position: DVec3::new(0.0, 0.0, 3.0),
                 target: DVec3::ZERO,

@@ -82,6 +82,8 @@ pub struct Scene {
     /// Output size in pixels.
     pub width: u32,
     pub height: u32,
+    /// GPU samples per pixel (1 or 4, `image.msaa`); the reference takes 1.
+    pub msaa: u32,
     pub camera: Camera,
     pub shading: ShadingMode,
     /// World-space meshes; each names its material by index.

@@ -56,6 +56,11 @@ pub struct ImageSection {
     pub width: u32,
     #[serde(default = "default_height")]
     pub height: u32,
+    /// Samples per pixel of the GPU renderer's multisampling: 1 (none,
+    /// the default) or 4. The CPU reference always takes one sample at
+    /// the pixel centre.
+    #[serde(default)]
+    pub msaa: Option<u32>,
 }
 
 fn default_width() -> u32 {
@@ -70,6 +75,7 @@ impl Default for ImageSection {
         ImageSection {
             width: default_width(),
             height: default_height(),
+            msaa: None,
         }
     }
 }
@@ -746,6 +752,12 @@ fn assemble(
             return Err(bad(format!("{key} = {v} is outside 1..={MAX_IMAGE_SIDE}")));
         }
     }
+    let msaa = file.image.msaa.unwrap_or(1);
+    if msaa != 1 && msaa != 4 {
+        return Err(bad(format!(
+            "image.msaa = {msaa}: the GPU renderer takes 1 (no multisampling) or 4 samples per pixel"
+        )));
+    }
     let shading = match &file.shading.mode {
         None => ShadingMode::default(),
         Some(s) => s.parse().map_err(|e| bad(format!("shading.mode: {e}")))?,
@@ -903,6 +915,7 @@ fn assemble(
     Ok(Scene {
         width,
         height,
+        msaa,
         camera,
         shading,
         meshes,

@@ -488,6 +488,7 @@ impl App {
             &mut encoder,
             &FrameTarget {
                 color: &view,
+                resolve: None,
                 depth: &depth,
                 viewport: Some([x as f32, y as f32, w as f32, h as f32]),
                 timestamps: if measure_gpu {
