@@ -305,6 +305,7 @@ pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
     };
     a.width == b.width
         && a.height == b.height
+        && a.msaa == b.msaa
         && a.shading == b.shading
         && a.lights == b.lights
         && a.light_shadows == b.light_shadows
