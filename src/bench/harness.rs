@@ -14,6 +14,7 @@ use crate::frame::Frame;
 use crate::gpu::GpuContext;
 use crate::gpu::geometry::GeometryData;
 use crate::gpu::layout::{GpuGlobals, GpuLight, GpuMaterial};
+pub use crate::gpu::renderer::map_read;
 use crate::gpu::shader_gen::{self, ShaderKey};
 use crate::gpu::timing::Clock;
 use crate::scene::Scene;
@@ -403,25 +404,4 @@ impl Harness {
         }
         Ok(frame)
     }
-}
-
-/// Maps `buffer` for reading, waits, and copies its bytes out.
-pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>> {
-    let slice = buffer.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| Error::Gpu(format!("waiting for the GPU failed: {e}")))?;
-    rx.recv()
-        .map_err(|e| Error::Gpu(format!("readback was dropped: {e}")))?
-        .map_err(|e| Error::Gpu(format!("readback failed: {e}")))?;
-    let bytes = slice
-        .get_mapped_range()
-        .map_err(|e| Error::Gpu(format!("readback mapping failed: {e}")))?
-        .to_vec();
-    buffer.unmap();
-    Ok(bytes)
 }

@@ -4,23 +4,9 @@
 //! atomic PNG/SVG files).
 
 use super::Row;
-use crate::explore::plot::{Plot, number};
+use crate::explore::plot::{COLORS, Plot, number};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-
-/// Tableau 10, as `gonio brdf`'s plots.
-const COLORS: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
 
 /// A tick label with two significant digits (16, 25, 40, 1.6).
 fn two_digits(v: f64) -> String {

@@ -28,7 +28,7 @@ const ALBEDO_CLIP: f64 = 3.0;
 const SIZE: (u32, u32) = (960, 600);
 
 /// Line colours (Tableau 10): distinct, and distinguishable in print.
-const COLORS: [RGBColor; 10] = [
+pub const COLORS: [RGBColor; 10] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
