@@ -71,8 +71,13 @@ struct Incidence {
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;
-@group(0) @binding(1) var<storage, read> materials: array<Material>;
-@group(0) @binding(2) var<storage, read> lights: array<Light>;
+// Uniform buffers of a fixed capacity when the scene's arrays fit, storage
+// buffers otherwise (src/gpu/bindings.rs says why: lavapipe loads storage
+// buffers lane by lane).
+@group(0) @binding(1) var<uniform> materials: array<Material, MATERIAL_CAPACITY>; // #if uniform_materials
+@group(0) @binding(1) var<storage, read> materials: array<Material>; // #if !uniform_materials
+@group(0) @binding(2) var<uniform> lights: array<Light, LIGHT_CAPACITY>; // #if uniform_lights
+@group(0) @binding(2) var<storage, read> lights: array<Light>; // #if !uniform_lights
 
 // normalize(v), or zero for a zero vector (normalize would give NaN). The
 // CPU side uses glam's normalize_or_zero.

@@ -32,7 +32,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
     // loops unroll; see LoopCounts in src/gpu/shader_gen.rs).
     var visibility: array<f32, SHADOW_MAP_COUNT>; // #if shadows
     for (var s = 0u; s < SHADOW_MAP_COUNT; s++) { // #if shadows
-        visibility[s] = shadow_visibility(lights[shadow_casters[s]], x, n_g); // #if shadows
+        visibility[s] = shadow_visibility(lights[shadow_caster(s)], x, n_g); // #if shadows
     } // #if shadows
     for (var l = 0u; l < LIGHT_COUNT; l++) { // #if light_count
     for (var l = 0u; l < globals.light_count; l++) { // #if !light_count

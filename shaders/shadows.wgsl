@@ -14,10 +14,17 @@ struct ShadowView {
 
 @group(1) @binding(0) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison; // nearest, GreaterEqual: 1 where lit
-@group(1) @binding(2) var<storage, read> shadow_views: array<ShadowView>;
+@group(1) @binding(2) var<uniform> shadow_views: array<ShadowView, SHADOW_VIEW_CAPACITY>; // #if uniform_shadow_views
+@group(1) @binding(2) var<storage, read> shadow_views: array<ShadowView>; // #if !uniform_shadow_views
 // One light per shadow map (for an area light, its first sample): the
 // lights whose visibility `reflected_radiance` looks up, once each.
-@group(1) @binding(3) var<storage, read> shadow_casters: array<u32>;
+// Four to a row: a uniform array's stride is 16 bytes (src/gpu/bindings.rs).
+@group(1) @binding(3) var<uniform> shadow_casters: array<vec4<u32>, CASTER_ROWS>;
+
+// The light of shadow map s.
+fn shadow_caster(s: u32) -> u32 {
+    return shadow_casters[s / 4u][s % 4u];
+}
 
 // Most shadow maps a scene may have (src/gpu/shadows.rs: MAX_SHADOW_MAPS).
 const MAX_SHADOW_MAPS: u32 = 64u;

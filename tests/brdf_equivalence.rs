@@ -284,7 +284,7 @@ fn compute_source(variants: &BTreeSet<BrdfVariant>) -> String {
         variants: variants.clone(),
         light_kinds: BTreeSet::new(),
         shadows: Default::default(),
-        counts: Default::default(),
+        ..Default::default()
     };
     let mut src = compose_brdf_library(variants, &key.features());
     let mirror = if key.has_mirror() {
@@ -334,7 +334,7 @@ fn gpu_eval(
         variants: variants.clone(),
         light_kinds: BTreeSet::new(),
         shadows: Default::default(),
-        counts: Default::default(),
+        ..Default::default()
     };
     let src = compute_source(&variants);
     gonio::gpu::shader_gen::validate(&src)

@@ -15,7 +15,7 @@
 
 use super::harness::{HarnessShader, Inputs};
 use crate::frame::Frame;
-use crate::gpu::shader_gen::{ShaderKey, sources};
+use crate::gpu::shader_gen::{self, ShaderKey, sources};
 use crate::gpu::{AdapterChoice, GpuContext};
 use crate::output::OutputFile;
 use crate::scene::{LightKind, Scene};
@@ -109,7 +109,7 @@ pub fn minimal_lambert_loop(scene: &Scene) -> HarnessShader {
         label: "hand-minimal Lambert, generic light loop".into(),
         wgsl: format!(
             "{}{}{}{MINIMAL_LAMBERT_LOOP_WGSL}",
-            sources::COMMON,
+            common(scene),
             sources::LIGHT_INVERSE_SQUARE,
             sources::LIGHT_POINT
         ),
@@ -118,11 +118,17 @@ pub fn minimal_lambert_loop(scene: &Scene) -> HarnessShader {
     }
 }
 
+/// `shaders/common.wgsl` with the bindings the harness gives `scene`
+/// (those of its specialized key).
+fn common(scene: &Scene) -> String {
+    shader_gen::common(&specialized_key(scene).features())
+}
+
 /// The unlit floor for `scene`'s geometry.
 pub fn unlit(scene: &Scene) -> HarnessShader {
     HarnessShader {
         label: "unlit floor".into(),
-        wgsl: format!("{}{UNLIT_WGSL}", sources::COMMON),
+        wgsl: format!("{}{UNLIT_WGSL}", common(scene)),
         inputs: Inputs::Position,
         key: specialized_key(scene),
     }
@@ -133,7 +139,7 @@ pub fn unlit(scene: &Scene) -> HarnessShader {
 pub fn minimal_lambert(scene: &Scene) -> HarnessShader {
     HarnessShader {
         label: "hand-minimal Lambert".into(),
-        wgsl: format!("{}{MINIMAL_LAMBERT_WGSL}", sources::COMMON),
+        wgsl: format!("{}{MINIMAL_LAMBERT_WGSL}", common(scene)),
         inputs: Inputs::PositionNormalMaterial,
         key: specialized_key(scene),
     }
@@ -239,6 +245,8 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         shadows: Default::default(),
         // Light count read at run time, as an uber shader must.
         counts: Default::default(),
+        // The same buffers as the specialized shader: only the code differs.
+        arrays: ShaderKey::for_scene(scene).arrays,
     }
 }
 

@@ -12,6 +12,7 @@
 
 use crate::frame::Frame;
 use crate::gpu::GpuContext;
+use crate::gpu::bindings;
 use crate::gpu::geometry::GeometryData;
 use crate::gpu::layout::{GpuGlobals, GpuLight, GpuMaterial};
 pub use crate::gpu::renderer::map_read;
@@ -115,36 +116,19 @@ impl Harness {
             bytemuck::bytes_of(&globals),
             wgpu::BufferUsages::UNIFORM,
         );
+        // The renderer's bindings for this key (src/gpu/bindings.rs).
+        let arrays = shader.key.arrays;
         let materials = init(
             "bench materials",
-            bytemuck::cast_slice(&materials),
-            wgpu::BufferUsages::STORAGE,
+            &bindings::material_bytes(&materials, arrays.materials),
+            bindings::usage(arrays.materials),
         );
         let lights = init(
             "bench lights",
-            bytemuck::cast_slice(&lights),
-            wgpu::BufferUsages::STORAGE,
+            &bindings::light_bytes(&lights, arrays.lights),
+            bindings::usage(arrays.lights),
         );
-        let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty,
-            count: None,
-        };
-        let storage = wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        };
-        let uniform = wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        };
-        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("bench scene"),
-            entries: &[entry(0, uniform), entry(1, storage), entry(2, storage)],
-        });
+        let bind_group_layout = bindings::scene_group_layout(device, arrays);
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("bench scene"),
             layout: &bind_group_layout,

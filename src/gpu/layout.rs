@@ -212,7 +212,8 @@ mod tests {
     /// Sizes must match what naga computes for the WGSL structs.
     #[test]
     fn sizes_match_wgsl() {
-        let module = naga::front::wgsl::parse_str(crate::gpu::shader_gen::sources::COMMON).unwrap();
+        let common = crate::gpu::shader_gen::common(&["uniform_materials", "uniform_lights"]);
+        let module = naga::front::wgsl::parse_str(&common).unwrap();
         let size_of = |name: &str| {
             let (_, ty) = module
                 .types
@@ -226,7 +227,7 @@ mod tests {
         assert_eq!(size_of("Light"), std::mem::size_of::<GpuLight>());
         let shadows = naga::front::wgsl::parse_str(&format!(
             "{}{}",
-            crate::gpu::shader_gen::sources::COMMON,
+            common,
             crate::gpu::shader_gen::preprocess(
                 crate::gpu::shader_gen::sources::SHADOW_LOOKUP,
                 &["shadows", "shadow_pcf"]

@@ -5,6 +5,7 @@
 //! plans the shadow maps, [`renderer`] draws them and the scene and reads
 //! back a [`crate::frame::Frame`].
 
+pub mod bindings;
 pub mod context;
 pub mod geometry;
 pub mod layout;

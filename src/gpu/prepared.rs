@@ -10,6 +10,7 @@
 //! the camera costs one scene pass per frame.
 
 use super::GpuRenderer;
+use super::bindings::{self, UniformArrays};
 use super::geometry::{GeometryData, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::shader_gen::ShaderKey;
@@ -136,20 +137,22 @@ impl GpuRenderer {
             bytemuck::bytes_of(&GpuGlobals::new(scene)),
             wgpu::BufferUsages::UNIFORM | dynamic,
         );
+        let arrays = key.arrays;
         let materials = gpu_materials(scene, &key);
         let materials_buffer = init(
             "materials",
-            bytemuck::cast_slice(&materials),
-            wgpu::BufferUsages::STORAGE | dynamic,
+            &bindings::material_bytes(&materials, arrays.materials),
+            bindings::usage(arrays.materials) | dynamic,
         );
         let lights = gpu_lights(scene, &plan);
         let lights_buffer = init(
             "lights",
-            bytemuck::cast_slice(&lights),
-            wgpu::BufferUsages::STORAGE | dynamic,
+            &bindings::light_bytes(&lights, arrays.lights),
+            bindings::usage(arrays.lights) | dynamic,
         );
-        let bind_group = self.scene_bind_group(&globals_buffer, &materials_buffer, &lights_buffer);
-        let shadows = self.shadow_resources(&plan);
+        let bind_group =
+            self.scene_bind_group(arrays, &globals_buffer, &materials_buffer, &lights_buffer);
+        let shadows = self.shadow_resources(&plan, arrays);
         Ok(PreparedScene {
             key,
             format,
@@ -199,35 +202,43 @@ impl GpuRenderer {
         globals.display_scale = prepared.display_scale;
         queue.write_buffer(&prepared.globals_buffer, 0, bytemuck::bytes_of(&globals));
 
+        let arrays = key.arrays;
         let materials = gpu_materials(scene, &key);
         let lights = gpu_lights(scene, &plan);
-        let materials_bytes: &[u8] = bytemuck::cast_slice(&materials);
-        let lights_bytes: &[u8] = bytemuck::cast_slice(&lights);
-        let resized = materials_bytes.len() as u64 != prepared.materials_buffer.size()
+        let materials_bytes = bindings::material_bytes(&materials, arrays.materials);
+        let lights_bytes = bindings::light_bytes(&lights, arrays.lights);
+        let rebind = arrays != prepared.key.arrays
+            || materials_bytes.len() as u64 != prepared.materials_buffer.size()
             || lights_bytes.len() as u64 != prepared.lights_buffer.size();
-        if resized {
+        if rebind {
             let device = &self.ctx.device;
-            let init = |label, contents: &[u8]| {
+            let init = |label, contents: &[u8], uniform| {
                 device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(label),
                     contents,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    usage: bindings::usage(uniform) | wgpu::BufferUsages::COPY_DST,
                 })
             };
-            prepared.materials_buffer = init("materials", materials_bytes);
-            prepared.lights_buffer = init("lights", lights_bytes);
+            prepared.materials_buffer = init("materials", &materials_bytes, arrays.materials);
+            prepared.lights_buffer = init("lights", &lights_bytes, arrays.lights);
             prepared.bind_group = self.scene_bind_group(
+                arrays,
                 &prepared.globals_buffer,
                 &prepared.materials_buffer,
                 &prepared.lights_buffer,
             );
         } else {
-            queue.write_buffer(&prepared.materials_buffer, 0, materials_bytes);
-            queue.write_buffer(&prepared.lights_buffer, 0, lights_bytes);
+            queue.write_buffer(&prepared.materials_buffer, 0, &materials_bytes);
+            queue.write_buffer(&prepared.lights_buffer, 0, &lights_bytes);
         }
-        let lights_changed = bytemuck::cast_slice::<GpuLight, u8>(&prepared.lights) != lights_bytes;
-        if lights_changed || plan != prepared.plan || key.shadows != prepared.key.shadows {
-            prepared.shadows = self.shadow_resources(&plan);
+        let lights_changed = bytemuck::cast_slice::<GpuLight, u8>(&prepared.lights)
+            != bytemuck::cast_slice::<GpuLight, u8>(&lights);
+        if lights_changed
+            || plan != prepared.plan
+            || key.shadows != prepared.key.shadows
+            || arrays != prepared.key.arrays
+        {
+            prepared.shadows = self.shadow_resources(&plan, arrays);
             prepared.shadows_stale = prepared.shadows.is_some();
             prepared.plan = plan;
         }
@@ -364,6 +375,7 @@ impl GpuRenderer {
 
     fn scene_bind_group(
         &self,
+        arrays: UniformArrays,
         globals: &wgpu::Buffer,
         materials: &wgpu::Buffer,
         lights: &wgpu::Buffer,
@@ -380,7 +392,7 @@ impl GpuRenderer {
             .device
             .create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("gonio scene"),
-                layout: &self.bind_group_layout,
+                layout: &self.scene_layouts[&arrays].scene_group,
                 entries: &entries,
             })
     }
@@ -388,7 +400,11 @@ impl GpuRenderer {
     /// The shadow-map array of `plan` with one view per layer to render
     /// into and the bind groups that read and fill it; `None` without
     /// shadowed lights.
-    fn shadow_resources(&self, plan: &ShadowPlan) -> Option<ShadowResources> {
+    fn shadow_resources(
+        &self,
+        plan: &ShadowPlan,
+        arrays: UniformArrays,
+    ) -> Option<ShadowResources> {
         if plan.is_empty() {
             return None;
         }
@@ -407,15 +423,25 @@ impl GpuRenderer {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         });
-        let init = |label, contents: &[u8]| {
+        let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
                 contents,
-                usage: wgpu::BufferUsages::STORAGE,
+                usage,
             })
         };
-        let views_buffer = init("shadow views", bytemuck::cast_slice(&plan.gpu_views()));
-        let casters_buffer = init("shadow casters", bytemuck::cast_slice(&plan.casters));
+        // The views are read by the scene pass (uniform or storage, as
+        // `arrays` says) and by the depth passes (storage).
+        let views_buffer = init(
+            "shadow views",
+            &bindings::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views),
+            bindings::usage(arrays.shadow_views) | wgpu::BufferUsages::STORAGE,
+        );
+        let casters_buffer = init(
+            "shadow casters",
+            &bindings::caster_bytes(&plan.casters),
+            wgpu::BufferUsages::UNIFORM,
+        );
         let layer_views = (0..plan.layers.len() as u32)
             .map(|layer| {
                 texture.create_view(&wgpu::TextureViewDescriptor {
@@ -434,7 +460,7 @@ impl GpuRenderer {
         });
         let scene_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("gonio shadow maps"),
-            layout: &self.shadow_bind_group_layout,
+            layout: &self.scene_layouts[&arrays].shadow_group,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,

@@ -11,6 +11,7 @@
 //! passes nor the bind group nor any shadow code exist.
 
 use super::GpuContext;
+use super::bindings::{SceneLayouts, UniformArrays};
 use super::geometry::VertexLayout;
 use super::prepared::{DEPTH_FORMAT, FrameTarget};
 use super::shader_gen::{self, Output, ShaderKey};
@@ -30,13 +31,11 @@ const BYTES_PER_PIXEL: u32 = 16;
 /// so re-rendering with new parameter values never recompiles.
 pub struct GpuRenderer {
     pub(super) ctx: GpuContext,
-    pub(super) bind_group_layout: wgpu::BindGroupLayout,
-    pipeline_layout: wgpu::PipelineLayout,
+    /// Scene bind group and pipeline layouts, one set per choice of
+    /// uniform or storage arrays (made on first use).
+    pub(super) scene_layouts: HashMap<UniformArrays, SceneLayouts>,
     /// Keyed by features, target format and samples per pixel.
     pub(super) pipelines: HashMap<(ShaderKey, wgpu::TextureFormat, u32), wgpu::RenderPipeline>,
-    /// Group 1 of a scene pipeline with shadows: maps, sampler, layers.
-    pub(super) shadow_bind_group_layout: wgpu::BindGroupLayout,
-    shadow_pipeline_layout: wgpu::PipelineLayout,
     pub(super) shadow_sampler: wgpu::Sampler,
     /// The depth-only passes: layers in group 0.
     pub(super) pass_bind_group_layout: wgpu::BindGroupLayout,
@@ -59,61 +58,6 @@ impl GpuRenderer {
             has_dynamic_offset: false,
             min_binding_size: None,
         };
-        let bind_group_layout =
-            ctx.device
-                .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                    label: Some("gonio scene"),
-                    entries: &[
-                        entry(
-                            0,
-                            wgpu::BindingType::Buffer {
-                                ty: wgpu::BufferBindingType::Uniform,
-                                has_dynamic_offset: false,
-                                min_binding_size: None,
-                            },
-                        ),
-                        entry(1, storage),
-                        entry(2, storage),
-                    ],
-                });
-        let pipeline_layout = ctx
-            .device
-            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("gonio scene"),
-                bind_group_layouts: &[Some(&bind_group_layout)],
-                immediate_size: 0,
-            });
-        let shadow_bind_group_layout =
-            ctx.device
-                .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                    label: Some("gonio shadow maps"),
-                    entries: &[
-                        entry(
-                            0,
-                            wgpu::BindingType::Texture {
-                                sample_type: wgpu::TextureSampleType::Depth,
-                                view_dimension: wgpu::TextureViewDimension::D2Array,
-                                multisampled: false,
-                            },
-                        ),
-                        entry(
-                            1,
-                            wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                        ),
-                        entry(2, storage),
-                        entry(3, storage),
-                    ],
-                });
-        let shadow_pipeline_layout =
-            ctx.device
-                .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                    label: Some("gonio scene with shadows"),
-                    bind_group_layouts: &[
-                        Some(&bind_group_layout),
-                        Some(&shadow_bind_group_layout),
-                    ],
-                    immediate_size: 0,
-                });
         // Nearest texel, hardware depth comparison: 1 where the receiver's
         // depth is ≤ the stored occluder depth (lit).
         let shadow_sampler = ctx.device.create_sampler(&wgpu::SamplerDescriptor {
@@ -143,11 +87,8 @@ impl GpuRenderer {
                 });
         GpuRenderer {
             ctx,
-            bind_group_layout,
-            pipeline_layout,
+            scene_layouts: HashMap::new(),
             pipelines: HashMap::new(),
-            shadow_bind_group_layout,
-            shadow_pipeline_layout,
             shadow_sampler,
             pass_bind_group_layout,
             pass_pipeline_layout,
@@ -243,6 +184,10 @@ impl GpuRenderer {
                 ))
             })?;
             let device = &self.ctx.device;
+            let layouts = self
+                .scene_layouts
+                .entry(key.arrays)
+                .or_insert_with(|| SceneLayouts::new(device, key.arrays));
             let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("gonio scene shader"),
                 source: wgpu::ShaderSource::Wgsl(wgsl.into()),
@@ -250,9 +195,9 @@ impl GpuRenderer {
             let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("gonio scene"),
                 layout: Some(if key.shadows.any() {
-                    &self.shadow_pipeline_layout
+                    &layouts.shadowed
                 } else {
-                    &self.pipeline_layout
+                    &layouts.plain
                 }),
                 vertex: wgpu::VertexState {
                     module: &module,

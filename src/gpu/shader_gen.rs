@@ -12,6 +12,7 @@
 //! Parameter values live in buffers, so changing them never rebuilds a
 //! pipeline; changing the key does.
 
+use super::bindings::UniformArrays;
 use super::shadows::{Projection, ShadowFeatures};
 use crate::material::{BrdfVariant, Distribution, Fresnel, Geometry, ReflectanceModel};
 use crate::scene::{LightKind, Scene, ShadingMode};
@@ -59,6 +60,8 @@ pub struct ShaderKey {
     pub shadows: ShadowFeatures,
     /// Loop counts compiled in as constants.
     pub counts: LoopCounts,
+    /// Which arrays are bound as uniform buffers (src/gpu/bindings.rs).
+    pub arrays: UniformArrays,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -86,10 +89,11 @@ impl ShaderKey {
     /// references, the kinds of lights present.
     pub fn for_scene(scene: &Scene) -> ShaderKey {
         let shadows = ShadowFeatures::for_scene(scene);
-        let shadow_maps = if shadows.any() {
-            super::shadows::ShadowPlan::new(scene).casters.len() as u32
+        let (shadow_maps, shadow_views) = if shadows.any() {
+            let plan = super::shadows::ShadowPlan::new(scene);
+            (plan.casters.len() as u32, plan.layers.len())
         } else {
-            0
+            (0, 0)
         };
         ShaderKey {
             shading: scene.shading,
@@ -105,6 +109,11 @@ impl ShaderKey {
                 shadow_maps,
                 pcf_radius: ShadowFeatures::uniform_pcf_radius(scene),
             },
+            arrays: UniformArrays::for_counts(
+                scene.materials.len(),
+                scene.lights.len(),
+                shadow_views,
+            ),
         }
     }
 
@@ -148,6 +157,7 @@ impl ShaderKey {
         if self.shadows.pcf && self.counts.pcf_radius.is_some() {
             f.push("pcf_uniform");
         }
+        f.extend(self.arrays.features());
         f
     }
 
@@ -298,6 +308,15 @@ fn dispatch(out: &mut String, selector: &str, arms: &[(u32, String)], fallback: 
     let _ = writeln!(out, "    }}");
 }
 
+/// `shaders/common.wgsl` for `features`, after the capacities of its
+/// uniform arrays (src/gpu/bindings.rs). Every scene shader starts with it;
+/// the bench's hand-written shaders too.
+pub fn common(features: &[&str]) -> String {
+    let mut out = UniformArrays::wgsl_capacities();
+    out.push_str(&preprocess(sources::COMMON, features));
+    out
+}
+
 /// The files a light kind needs and its incidence function's name.
 fn light_wgsl(kind: LightKind) -> (&'static [&'static str], &'static str) {
     use sources::*;
@@ -318,8 +337,7 @@ fn light_wgsl(kind: LightKind) -> (&'static [&'static str], &'static str) {
 /// (the index of the variant in `variants`' order). The renderer and the
 /// GPU-vs-CPU test harness both compile exactly this code.
 pub fn compose_brdf_library(variants: &BTreeSet<BrdfVariant>, features: &[&str]) -> String {
-    let mut out = String::new();
-    out.push_str(&preprocess(sources::COMMON, features));
+    let mut out = common(features);
     out.push_str(&preprocess(sources::SURFACE, features));
 
     // BRDF families in dependency order, only those some variant needs.
@@ -529,6 +547,12 @@ pub fn representative_keys() -> Vec<ShaderKey> {
     let all_kinds = LightKind::ALL;
     let all_projections = [Projection::Ortho, Projection::Perspective, Projection::Cube];
     let variants = all_variants();
+    // Uniform or storage buffers for every array, alternating.
+    let arrays = |uniform: bool| UniformArrays {
+        materials: uniform,
+        lights: uniform,
+        shadow_views: uniform,
+    };
     let mut keys = Vec::new();
     for shading in ShadingMode::ALL {
         for (i, v) in variants.iter().enumerate() {
@@ -541,6 +565,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     lights: 1,
                     ..Default::default()
                 },
+                arrays: arrays(i % 2 == 0),
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -558,23 +583,27 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                         shadow_maps: 1,
                         pcf_radius: (i % 2 == 0).then_some(1),
                     },
+                    arrays: arrays(pcf),
                 });
             }
         }
-        keys.push(ShaderKey {
-            shading,
-            variants: variants.iter().copied().collect(),
-            light_kinds: all_kinds.into(),
-            shadows: ShadowFeatures {
-                projections: all_projections.into(),
-                pcf: true,
-            },
-            counts: LoopCounts {
-                lights: 5,
-                shadow_maps: 3,
-                pcf_radius: None,
-            },
-        });
+        for uniform in [false, true] {
+            keys.push(ShaderKey {
+                shading,
+                variants: variants.iter().copied().collect(),
+                light_kinds: all_kinds.into(),
+                shadows: ShadowFeatures {
+                    projections: all_projections.into(),
+                    pcf: true,
+                },
+                counts: LoopCounts {
+                    lights: 5,
+                    shadow_maps: 3,
+                    pcf_radius: None,
+                },
+                arrays: arrays(uniform),
+            });
+        }
     }
     keys
 }
@@ -591,7 +620,7 @@ mod tests {
             variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
             light_kinds: [LightKind::Point].into(),
             shadows: ShadowFeatures::default(),
-            counts: Default::default(),
+            ..Default::default()
         };
         let wgsl = compose(&key);
         for absent in [
@@ -627,7 +656,7 @@ mod tests {
                 projections: projections.iter().copied().collect(),
                 pcf,
             },
-            counts: Default::default(),
+            ..Default::default()
         };
         let cube = compose(&key(&[Projection::Cube], false));
         for present in [

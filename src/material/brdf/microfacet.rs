@@ -755,8 +755,9 @@ mod tests {
     /// renderer concatenates them.
     #[test]
     fn wgsl_files_validate() {
+        let common = crate::gpu::shader_gen::common(&[]);
         let source = [
-            include_str!("../../../shaders/common.wgsl"),
+            common.as_str(),
             include_str!("../../../shaders/brdf/lambert.wgsl"),
             include_str!("../../../shaders/brdf/phong.wgsl"),
             include_str!("../../../shaders/brdf/fresnel.wgsl"),
