@@ -1,8 +1,10 @@
 //! Vertex streams for each shading mode, built from the scene's meshes.
 //!
-//! All meshes go into one vertex buffer drawn with one call: each vertex
-//! carries its material index, so one pipeline and one draw render the
-//! whole scene. Attributes a scene does not need (tangents without an
+//! All meshes go into one vertex buffer, ordered by material: each vertex
+//! carries its material index, and each material's triangles are one
+//! contiguous [`Batch`], so the renderer can draw a batch with a pipeline
+//! compiled for that material's BRDF variant alone (or the whole stream
+//! with one call and one pipeline). Attributes a scene does not need (tangents without an
 //! anisotropic model, shading points outside flat shading) are not in the
 //! stream at all; the shader locations match `shaders/raster_*.wgsl`.
 
@@ -58,7 +60,40 @@ pub struct GeometryData {
     pub indices: Option<Vec<u32>>,
     /// Vertices to draw (non-indexed) or indices to draw (indexed).
     pub draw_count: u32,
+    /// The stream's material runs, in order; together `0..draw_count`.
+    pub batches: Vec<Batch>,
     pub layout: VertexLayout,
+}
+
+/// The triangles of one material: a range of indices (indexed streams)
+/// or vertices (flat shading).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Batch {
+    pub material: u32,
+    pub range: std::ops::Range<u32>,
+}
+
+/// The scene's meshes in material order (stable), so each material's
+/// triangles are contiguous.
+fn meshes_by_material(scene: &Scene) -> Vec<&crate::scene::mesh::Mesh> {
+    let mut meshes: Vec<_> = scene.meshes.iter().collect();
+    meshes.sort_by_key(|m| m.material);
+    meshes
+}
+
+/// Appends `count` elements of `material` to `batches`, merging with the
+/// last run of the same material.
+fn extend_batches(batches: &mut Vec<Batch>, material: usize, count: usize) {
+    let material = material as u32;
+    let start = batches.last().map_or(0, |b| b.range.end);
+    let end = start + count as u32;
+    match batches.last_mut() {
+        Some(last) if last.material == material => last.range.end = end,
+        _ => batches.push(Batch {
+            material,
+            range: start..end,
+        }),
+    }
 }
 
 fn push3(words: &mut Vec<u32>, v: glam::DVec3) {
@@ -83,7 +118,9 @@ impl GeometryData {
         let mut words = Vec::with_capacity(vertex_count * layout.stride() as usize / 4);
         let mut indices = Vec::with_capacity(3 * scene.triangle_count());
         let mut base = 0u32;
-        for mesh in &scene.meshes {
+        let mut batches = Vec::new();
+        for mesh in meshes_by_material(scene) {
+            extend_batches(&mut batches, mesh.material, 3 * mesh.indices.len());
             for v in 0..mesh.positions.len() {
                 push3(&mut words, mesh.positions[v]);
                 push3(&mut words, mesh.normals[v]);
@@ -99,6 +136,7 @@ impl GeometryData {
             words,
             draw_count: indices.len() as u32,
             indices: Some(indices),
+            batches,
             layout,
         }
     }
@@ -112,7 +150,9 @@ impl GeometryData {
         };
         let mut words =
             Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
-        for mesh in &scene.meshes {
+        let mut batches = Vec::new();
+        for mesh in meshes_by_material(scene) {
+            extend_batches(&mut batches, mesh.material, 3 * mesh.indices.len());
             for t in 0..mesh.indices.len() {
                 let corners = mesh.triangle(t);
                 let frame = flat_frame(mesh, t);
@@ -132,6 +172,7 @@ impl GeometryData {
             draw_count: (words.len() as u64 * 4 / layout.stride()) as u32,
             words,
             indices: None,
+            batches,
             layout,
         }
     }

@@ -11,7 +11,7 @@
 
 use super::GpuRenderer;
 use super::bindings::{self, UniformArrays};
-use super::geometry::{GeometryData, VertexLayout};
+use super::geometry::{Batch, GeometryData, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::shader_gen::ShaderKey;
 use super::shadows::ShadowPlan;
@@ -42,6 +42,9 @@ pub struct PreparedScene {
     vertex_buffer: wgpu::Buffer,
     index_buffer: Option<wgpu::Buffer>,
     draw_count: u32,
+    /// The stream's material runs, and the variant each is drawn with.
+    batches: Vec<Batch>,
+    batch_variants: Vec<Option<u32>>,
     globals_buffer: wgpu::Buffer,
     materials_buffer: wgpu::Buffer,
     lights_buffer: wgpu::Buffer,
@@ -105,7 +108,7 @@ impl GpuRenderer {
         }
         let (key, plan) = self.plan(scene)?;
         let geometry = GeometryData::new(scene, key.needs_tangents());
-        self.pipeline(&key, geometry.layout, format, samples)?;
+        self.pipelines_for(&key, geometry.layout, format, samples)?;
         if !plan.is_empty() {
             self.pass_pipeline(geometry.layout.stride());
         }
@@ -153,6 +156,7 @@ impl GpuRenderer {
         let bind_group =
             self.scene_bind_group(arrays, &globals_buffer, &materials_buffer, &lights_buffer);
         let shadows = self.shadow_resources(&plan, arrays);
+        let batch_variants = batch_variants(&key, &materials, &geometry.batches);
         Ok(PreparedScene {
             key,
             format,
@@ -164,6 +168,8 @@ impl GpuRenderer {
             vertex_buffer,
             index_buffer,
             draw_count: geometry.draw_count,
+            batch_variants,
+            batches: geometry.batches,
             globals_buffer,
             materials_buffer,
             lights_buffer,
@@ -193,7 +199,7 @@ impl GpuRenderer {
             prepared.display_scale = display_scale;
             return Ok(());
         }
-        self.pipeline(&key, prepared.layout, prepared.format, prepared.samples)?;
+        self.pipelines_for(&key, prepared.layout, prepared.format, prepared.samples)?;
         if !plan.is_empty() {
             self.pass_pipeline(prepared.layout.stride());
         }
@@ -243,6 +249,7 @@ impl GpuRenderer {
             prepared.plan = plan;
         }
         prepared.lights = lights;
+        prepared.batch_variants = batch_variants(&key, &materials, &prepared.batches);
         prepared.key = key;
         Ok(())
     }
@@ -311,7 +318,6 @@ impl GpuRenderer {
             drawn.shadow_layers = shadows.layer_views.len();
             prepared.shadows_stale = false;
         }
-        let pipeline = &self.pipelines[&(prepared.key.clone(), prepared.format, prepared.samples)];
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("scene"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -344,12 +350,22 @@ impl GpuRenderer {
         if let Some([x, y, w, h]) = target.viewport {
             pass.set_viewport(x, y, w, h, 0.0, 1.0);
         }
-        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &prepared.bind_group, &[]);
         if let Some(shadows) = &prepared.shadows {
             pass.set_bind_group(1, &shadows.scene_group, &[]);
         }
-        prepared.draw(&mut pass, 0..1);
+        prepared.bind_geometry(&mut pass);
+        // Each material's batch with the pipeline of its BRDF variant
+        // (consecutive batches of one variant share the bind).
+        let mut bound = None;
+        for (batch, &variant) in prepared.batches.iter().zip(&prepared.batch_variants) {
+            if bound != Some(variant) {
+                let key = (prepared.key.clone(), prepared.format, prepared.samples, variant);
+                pass.set_pipeline(&self.pipelines[&key]);
+                bound = Some(variant);
+            }
+            prepared.draw_range(&mut pass, batch.range.clone(), 0..1);
+        }
         drawn
     }
 
@@ -508,17 +524,42 @@ impl PreparedScene {
         self.shadows_stale = self.shadows.is_some();
     }
 
-    /// The one draw call of the scene (all meshes share one stream).
-    fn draw(&self, pass: &mut wgpu::RenderPass<'_>, instances: std::ops::Range<u32>) {
+    /// Binds the vertex stream (and index buffer) for [`Self::draw_range`].
+    fn bind_geometry(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
-        match &self.index_buffer {
-            Some(indices) => {
-                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..self.draw_count, 0, instances);
-            }
-            None => pass.draw(0..self.draw_count, instances),
+        if let Some(indices) = &self.index_buffer {
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
         }
     }
+
+    /// Draws `range` of the bound stream (indices or vertices).
+    fn draw_range(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        range: std::ops::Range<u32>,
+        instances: std::ops::Range<u32>,
+    ) {
+        match self.index_buffer {
+            Some(_) => pass.draw_indexed(range, 0, instances),
+            None => pass.draw(range, instances),
+        }
+    }
+
+    /// The whole scene in one draw call (all meshes share one stream).
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>, instances: std::ops::Range<u32>) {
+        self.bind_geometry(pass);
+        self.draw_range(pass, 0..self.draw_count, instances);
+    }
+}
+
+/// The pipeline specialization each batch is drawn with: its material's
+/// variant when `key` has several ([`GpuRenderer::specializations`]).
+fn batch_variants(key: &ShaderKey, materials: &[GpuMaterial], batches: &[Batch]) -> Vec<Option<u32>> {
+    let specialized = GpuRenderer::specializations(key).len() > 1;
+    batches
+        .iter()
+        .map(|b| specialized.then(|| materials[b.material as usize].variant))
+        .collect()
 }
 
 fn gpu_materials(scene: &Scene, key: &ShaderKey) -> Vec<GpuMaterial> {

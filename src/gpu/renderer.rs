@@ -27,6 +27,11 @@ use std::time::{Duration, Instant};
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const BYTES_PER_PIXEL: u32 = 16;
 
+/// What tells scene pipelines apart: features, colour format, samples
+/// per pixel, and the BRDF variant a pipeline draws (`None`: any of the
+/// key's, chosen per material at run time).
+pub(super) type PipelineKey = (ShaderKey, wgpu::TextureFormat, u32, Option<u32>);
+
 /// A renderer bound to one device, caching one pipeline per [`ShaderKey`]
 /// so re-rendering with new parameter values never recompiles.
 pub struct GpuRenderer {
@@ -34,8 +39,11 @@ pub struct GpuRenderer {
     /// Scene bind group and pipeline layouts, one set per choice of
     /// uniform or storage arrays (made on first use).
     pub(super) scene_layouts: HashMap<UniformArrays, SceneLayouts>,
-    /// Keyed by features, target format and samples per pixel.
-    pub(super) pipelines: HashMap<(ShaderKey, wgpu::TextureFormat, u32), wgpu::RenderPipeline>,
+    /// Keyed by features, target format, samples per pixel and the BRDF
+    /// variant a pipeline is specialized to (`None`: all of the key's).
+    pub(super) pipelines: HashMap<PipelineKey, wgpu::RenderPipeline>,
+    /// One module per key and output; its pipelines differ by constants.
+    modules: HashMap<(ShaderKey, Output), wgpu::ShaderModule>,
     pub(super) shadow_sampler: wgpu::Sampler,
     /// The depth-only passes: layers in group 0.
     pub(super) pass_bind_group_layout: wgpu::BindGroupLayout,
@@ -88,6 +96,7 @@ impl GpuRenderer {
         GpuRenderer {
             ctx,
             scene_layouts: HashMap::new(),
+            modules: HashMap::new(),
             pipelines: HashMap::new(),
             shadow_sampler,
             pass_bind_group_layout,
@@ -152,25 +161,44 @@ impl GpuRenderer {
         &self.ctx
     }
 
-    /// The pipeline for `key` drawing into `format`, compiled on first use.
-    pub(super) fn pipeline(
+    /// The variants `key`'s pipelines are specialized to: each of its BRDF
+    /// variants when it has several (each material's batch is drawn by the
+    /// pipeline of its variant), else `None` (one pipeline, no switch).
+    pub(super) fn specializations(key: &ShaderKey) -> Vec<Option<u32>> {
+        match key.variants.len() {
+            0 | 1 => vec![None],
+            n => (0..n as u32).map(Some).collect(),
+        }
+    }
+
+    /// Every pipeline `key` draws with into `format` (one per
+    /// [`Self::specializations`]), compiled on first use.
+    pub(super) fn pipelines_for(
         &mut self,
         key: &ShaderKey,
         layout: VertexLayout,
         format: wgpu::TextureFormat,
         samples: u32,
-    ) -> Result<&wgpu::RenderPipeline> {
-        let cache_key = (key.clone(), format, samples);
-        if !self.pipelines.contains_key(&cache_key) {
-            let attributes = layout.attributes();
-            let wgsl = shader_gen::compose_for(key, Output::for_format(format));
+    ) -> Result<()> {
+        for variant in Self::specializations(key) {
+            self.pipeline(key, layout, format, samples, variant)?;
+        }
+        Ok(())
+    }
+
+    /// The WGSL module of `key` writing `output`, generated and checked on
+    /// first use.
+    fn module(&mut self, key: &ShaderKey, output: Output) -> Result<&wgpu::ShaderModule> {
+        let module_key = (key.clone(), output);
+        if !self.modules.contains_key(&module_key) {
+            let wgsl = shader_gen::compose_for(key, output);
             // For reading what a scene compiles: GONIO_DUMP_WGSL=DIR writes
             // every generated module there.
             if let Some(dir) = std::env::var_os("GONIO_DUMP_WGSL") {
                 let name = format!("gonio-{:016x}.wgsl", {
                     use std::hash::{Hash, Hasher};
                     let mut h = std::collections::hash_map::DefaultHasher::new();
-                    cache_key.hash(&mut h);
+                    module_key.hash(&mut h);
                     h.finish()
                 });
                 let _ = std::fs::write(std::path::Path::new(&dir).join(name), &wgsl);
@@ -183,15 +211,45 @@ impl GpuRenderer {
                     key.describe()
                 ))
             })?;
+            let module = self
+                .ctx
+                .device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("gonio scene shader"),
+                    source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+                });
+            self.modules.insert(module_key.clone(), module);
+        }
+        Ok(&self.modules[&module_key])
+    }
+
+    /// The pipeline for `key` drawing into `format`, specialized to
+    /// `variant` (see [`Self::specializations`]), compiled on first use.
+    pub(super) fn pipeline(
+        &mut self,
+        key: &ShaderKey,
+        layout: VertexLayout,
+        format: wgpu::TextureFormat,
+        samples: u32,
+        variant: Option<u32>,
+    ) -> Result<&wgpu::RenderPipeline> {
+        let cache_key = (key.clone(), format, samples, variant);
+        if !self.pipelines.contains_key(&cache_key) {
+            let attributes = layout.attributes();
+            let module = self.module(key, Output::for_format(format))?.clone();
+            let constants: Vec<(&str, f64)> = variant
+                .map(|v| (shader_gen::BRDF_VARIANT, f64::from(v)))
+                .into_iter()
+                .collect();
+            let compilation_options = wgpu::PipelineCompilationOptions {
+                constants: &constants,
+                ..Default::default()
+            };
             let device = &self.ctx.device;
             let layouts = self
                 .scene_layouts
                 .entry(key.arrays)
                 .or_insert_with(|| SceneLayouts::new(device, key.arrays));
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("gonio scene shader"),
-                source: wgpu::ShaderSource::Wgsl(wgsl.into()),
-            });
             let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("gonio scene"),
                 layout: Some(if key.shadows.any() {
@@ -202,7 +260,7 @@ impl GpuRenderer {
                 vertex: wgpu::VertexState {
                     module: &module,
                     entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
+                    compilation_options: compilation_options.clone(),
                     buffers: &[Some(wgpu::VertexBufferLayout {
                         array_stride: layout.stride(),
                         step_mode: wgpu::VertexStepMode::Vertex,
@@ -231,7 +289,7 @@ impl GpuRenderer {
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
                     entry_point: Some("fs_main"),
-                    compilation_options: Default::default(),
+                    compilation_options,
                     targets: &[Some(wgpu::ColorTargetState {
                         format,
                         blend: None,

@@ -293,6 +293,30 @@ fn variant_body(v: &BrdfVariant) -> String {
     }
 }
 
+/// The pipeline constant that specializes a shader of several BRDF
+/// variants to one of them (see [`BRDF_VARIANT`]).
+const BRDF_VARIANT_WGSL: &str = "// The BRDF variant this pipeline draws: one (each material's batch is drawn
+// by the pipeline of its variant, src/gpu/prepared.rs; the compiler then
+// drops the other variants' code) or ALL_VARIANTS (the material decides).
+const ALL_VARIANTS: u32 = 0xffffffffu;
+override BRDF_VARIANT: u32 = ALL_VARIANTS;
+
+fn brdf_variant(m: Material) -> u32 {
+    if BRDF_VARIANT != ALL_VARIANTS {
+        return BRDF_VARIANT;
+    }
+    return m.variant;
+}
+
+";
+
+/// The name of the pipeline constant (WGSL `override`) that specializes a
+/// shader of several variants to the one with this index in
+/// [`ShaderKey::variants`]. Why: a software rasterizer runs every arm of
+/// the `switch` for every pixel, so a scene of a glossy sphere on a
+/// Lambert floor paid for Cook-Torrance on every floor pixel.
+pub const BRDF_VARIANT: &str = "BRDF_VARIANT";
+
 /// Generates a `switch` over `selector` with one arm per `(id, call)`; a
 /// single arm is emitted without a switch.
 fn dispatch(out: &mut String, selector: &str, arms: &[(u32, String)], fallback: &str) {
@@ -368,18 +392,26 @@ pub fn compose_brdf_library(variants: &BTreeSet<BrdfVariant>, features: &[&str])
             mirror_arms.push((index as u32, format!("mirror_{index}(m, cos_theta)")));
         }
     }
+    if arms.len() > 1 {
+        out.push_str(BRDF_VARIANT_WGSL);
+    }
     out.push_str("fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {\n");
     if arms.is_empty() {
         out.push_str("    return vec3<f32>(0.0);\n");
     } else {
-        dispatch(&mut out, "m.variant", &arms, "vec3<f32>(0.0)");
+        dispatch(&mut out, "brdf_variant(m)", &arms, "vec3<f32>(0.0)");
     }
     out.push_str("}\n\n");
     if !mirror_arms.is_empty() {
         // Non-mirror materials in the same scene reflect no environment:
         // the switch's default.
         out.push_str("fn mirror_reflectance(m: Material, cos_theta: f32) -> vec3<f32> {\n");
-        let _ = writeln!(out, "    switch m.variant {{");
+        let selector = if arms.len() > 1 {
+            "brdf_variant(m)"
+        } else {
+            "m.variant"
+        };
+        let _ = writeln!(out, "    switch {selector} {{");
         for (id, call) in &mirror_arms {
             let _ = writeln!(out, "        case {id}u: {{ return {call}; }}");
         }
