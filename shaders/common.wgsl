@@ -59,7 +59,7 @@ struct Light {
     shadow_pcf_radius: u32,   // (kernel − 1) / 2
     shadow_uv_scale: f32,     // map size / array side
     shadow_map: u32,          // index of its map in shadow_casters (≥ MAX_SHADOW_MAPS: none)
-    _pad0: u32,
+    shadow_array_texel: f32,  // 1 / array side: one texel in array uv (PCF steps)
     _pad1: u32,
     _pad2: u32,
 }

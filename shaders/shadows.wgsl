@@ -31,9 +31,10 @@ const MAX_SHADOW_MAPS: u32 = 64u;
 
 // Fraction of the (2r+1)² nearest-texel depth comparisons around uv that
 // find the receiver lit (one comparison without PCF).
-fn shadow_compare(uv: vec2<f32>, layer: i32, depth: f32, radius: u32) -> f32 {
+// `texel`: one texel in array uv (Light.shadow_array_texel, from the CPU:
+// textureDimensions per pixel cost lavapipe about a tenth of the lookup).
+fn shadow_compare(uv: vec2<f32>, layer: i32, depth: f32, radius: u32, texel: f32) -> f32 {
     let d = max(depth, 0.0); // an empty texel (0) never shadows
-    let texel = 1.0 / f32(textureDimensions(shadow_maps).x); // #if shadow_pcf
     let r = i32(radius); // #if !pcf_uniform
     let r = i32(PCF_RADIUS); // #if pcf_uniform
     var lit = 0.0; // #if shadow_pcf
@@ -65,20 +66,28 @@ fn shadow_point(light: Light, x: vec3<f32>, n_g: vec3<f32>, wi: vec3<f32>, texel
         + wi * (light.shadow_bias + light.shadow_slope_bias * texel * tan_theta);
 }
 
-// V of the point p of `layer`: its reversed depth against the map's.
-fn shadow_read(light: Light, layer: i32, p: vec3<f32>) -> f32 {
-    let clip = shadow_views[layer].clip_from_world * vec4<f32>(p, 1.0);
-    if clip.w <= 0.0 {
-        return 1.0; // behind a perspective layer: outside the light's reach
-    }
-    let uv = vec2<f32>(clip.x, -clip.y) / clip.w * 0.5 + 0.5;
-    return shadow_compare(uv * light.shadow_uv_scale, layer, clip.z / clip.w, light.shadow_pcf_radius);
+// V of the point with normalized device coordinates ndc on `layer`: its
+// reversed depth against the map's.
+fn shadow_read_ndc(light: Light, layer: i32, ndc: vec3<f32>) -> f32 {
+    let uv = vec2<f32>(ndc.x, -ndc.y) * 0.5 + 0.5;
+    return shadow_compare(uv * light.shadow_uv_scale, layer, ndc.z, light.shadow_pcf_radius, light.shadow_array_texel);
 }
 
-// Directional light: one orthographic map fitted to the scene bounds.
+// V of the point p of a perspective `layer`.
+fn shadow_read(light: Light, layer: i32, p: vec3<f32>) -> f32 { // #if shadow_projective
+    let clip = shadow_views[layer].clip_from_world * vec4<f32>(p, 1.0); // #if shadow_projective
+    if clip.w <= 0.0 { // #if shadow_projective
+        return 1.0; // behind a perspective layer: outside the light's reach // #if shadow_projective
+    } // #if shadow_projective
+    return shadow_read_ndc(light, layer, clip.xyz / clip.w); // #if shadow_projective
+} // #if shadow_projective
+
+// Directional light: one orthographic map fitted to the scene bounds. Its
+// clip w is exactly 1 (the view's last row is 0 0 0 1), so no divide.
 fn shadow_ortho(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 { // #if shadow_ortho
     let p = shadow_point(light, x, n_g, -light.direction, light.shadow_texel); // #if shadow_ortho
-    return shadow_read(light, light.shadow_layer, p); // #if shadow_ortho
+    let clip = shadow_views[light.shadow_layer].clip_from_world * vec4<f32>(p, 1.0); // #if shadow_ortho
+    return shadow_read_ndc(light, light.shadow_layer, clip.xyz); // #if shadow_ortho
 } // #if shadow_ortho
 
 // Spot light: one perspective map whose frustum holds the outer cone.

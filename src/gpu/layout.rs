@@ -69,7 +69,8 @@ pub struct GpuLight {
     pub shadow_pcf_radius: u32,
     pub shadow_uv_scale: f32,
     pub shadow_map: u32,
-    pub _pad: [u32; 3],
+    pub shadow_array_texel: f32,
+    pub _pad: [u32; 2],
 }
 
 /// `ShadowView` (storage buffer element, 64 bytes): one layer of the

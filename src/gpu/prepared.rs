@@ -360,7 +360,12 @@ impl GpuRenderer {
         let mut bound = None;
         for (batch, &variant) in prepared.batches.iter().zip(&prepared.batch_variants) {
             if bound != Some(variant) {
-                let key = (prepared.key.clone(), prepared.format, prepared.samples, variant);
+                let key = (
+                    prepared.key.clone(),
+                    prepared.format,
+                    prepared.samples,
+                    variant,
+                );
                 pass.set_pipeline(&self.pipelines[&key]);
                 bound = Some(variant);
             }
@@ -554,7 +559,11 @@ impl PreparedScene {
 
 /// The pipeline specialization each batch is drawn with: its material's
 /// variant when `key` has several ([`GpuRenderer::specializations`]).
-fn batch_variants(key: &ShaderKey, materials: &[GpuMaterial], batches: &[Batch]) -> Vec<Option<u32>> {
+fn batch_variants(
+    key: &ShaderKey,
+    materials: &[GpuMaterial],
+    batches: &[Batch],
+) -> Vec<Option<u32>> {
     let specialized = GpuRenderer::specializations(key).len() > 1;
     batches
         .iter()

@@ -295,7 +295,8 @@ fn variant_body(v: &BrdfVariant) -> String {
 
 /// The pipeline constant that specializes a shader of several BRDF
 /// variants to one of them (see [`BRDF_VARIANT`]).
-const BRDF_VARIANT_WGSL: &str = "// The BRDF variant this pipeline draws: one (each material's batch is drawn
+const BRDF_VARIANT_WGSL: &str =
+    "// The BRDF variant this pipeline draws: one (each material's batch is drawn
 // by the pipeline of its variant, src/gpu/prepared.rs; the compiler then
 // drops the other variants' code) or ALL_VARIANTS (the material decides).
 const ALL_VARIANTS: u32 = 0xffffffffu;

@@ -164,6 +164,14 @@ impl ShadowFeatures {
             }
         }
         f.extend(self.projections.iter().map(|p| p.feature()));
+        // Perspective and cube layers share the lookup with the w divide.
+        if self
+            .projections
+            .iter()
+            .any(|p| matches!(p, Projection::Perspective | Projection::Cube))
+        {
+            f.push("shadow_projective");
+        }
         f
     }
 
@@ -362,6 +370,8 @@ impl ShadowPlan {
             ShadowFilter::Pcf { kernel } => kernel / 2,
         };
         g.shadow_uv_scale = (s.settings.map_size as f64 / self.side.max(1) as f64) as f32;
+        // As the shader computed it from textureDimensions before (f32).
+        g.shadow_array_texel = 1.0 / self.side.max(1) as f32;
     }
 
     /// The layers as the GPU reads them.
