@@ -71,11 +71,13 @@ struct Incidence {
 }
 
 @group(0) @binding(0) var<uniform> globals: Globals;
-// Uniform buffers of a fixed capacity when the scene's arrays fit, storage
-// buffers otherwise (src/gpu/bindings.rs says why: lavapipe loads storage
-// buffers lane by lane).
-@group(0) @binding(1) var<uniform> materials: array<Material, MATERIAL_CAPACITY>; // #if uniform_materials
-@group(0) @binding(1) var<storage, read> materials: array<Material>; // #if !uniform_materials
+// The material of this draw: each material's triangles are one draw, bound
+// at its slot of the materials buffer (a dynamic offset), so every pixel
+// reads the same record (src/gpu/bindings.rs says why that matters).
+@group(0) @binding(1) var<uniform> material: Material;
+// Lights: a uniform buffer of a fixed capacity when they fit, a storage
+// buffer otherwise (src/gpu/bindings.rs: lavapipe loads storage buffers
+// lane by lane).
 @group(0) @binding(2) var<uniform> lights: array<Light, LIGHT_CAPACITY>; // #if uniform_lights
 @group(0) @binding(2) var<storage, read> lights: array<Light>; // #if !uniform_lights
 

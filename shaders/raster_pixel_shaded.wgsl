@@ -6,7 +6,6 @@
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) material: u32,
     @location(3) tangent: vec3<f32>, // #if tangents
 }
 
@@ -14,7 +13,6 @@ struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) @interpolate(flat) material: u32,
     @location(3) tangent: vec3<f32>, // #if tangents
 }
 
@@ -24,7 +22,6 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
     out.world = in.position;
     out.normal = in.normal;
-    out.material = in.material;
     out.tangent = in.tangent; // #if tangents
     return out;
 }
@@ -40,6 +37,6 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let n = normalize_or_zero(in.normal);
     let frame = surface_frame(n, in.tangent); // #if tangents
     let frame = surface_frame(n, any_tangent(n)); // #if !tangents
-    return target_output(reflected_radiance(materials[in.material], in.world, frame)); // #if !shadows
-    return target_output(reflected_radiance(materials[in.material], in.world, frame, n_g)); // #if shadows
+    return target_output(reflected_radiance(material, in.world, frame)); // #if !shadows
+    return target_output(reflected_radiance(material, in.world, frame, n_g)); // #if shadows
 }

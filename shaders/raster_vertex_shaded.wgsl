@@ -11,7 +11,6 @@
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) material: u32,
     @location(3) tangent: vec3<f32>, // #if tangents
     @location(4) shading_point: vec3<f32>, // #if flat
 }
@@ -31,10 +30,10 @@ fn vs_main(in: VertexIn) -> VertexOut {
     let x = in.position; // #if !flat
     var out: VertexOut;
     out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
-    out.radiance = reflected_radiance(materials[in.material], x, frame); // #if !shadows
+    out.radiance = reflected_radiance(material, x, frame); // #if !shadows
     // Shadows: looked up here, at the same shading point, offset along the
     // face normal (flat) or the vertex normal (gouraud), as the reference.
-    out.radiance = reflected_radiance(materials[in.material], x, frame, n); // #if shadows
+    out.radiance = reflected_radiance(material, x, frame, n); // #if shadows
     return out;
 }
 

@@ -43,17 +43,16 @@ struct Varyings {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) @interpolate(flat) material: u32,
 }
 
 @vertex
-fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) material: u32) -> Varyings {
-    return Varyings(globals.clip_from_world * vec4<f32>(position, 1.0), position, normal, material);
+fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> Varyings {
+    return Varyings(globals.clip_from_world * vec4<f32>(position, 1.0), position, normal);
 }
 
 @fragment
 fn fs_main(in: Varyings) -> @location(0) vec4<f32> {
-    let m = materials[in.material];
+    let m = material; // the draw's (src/gpu/bindings.rs)
     let light = lights[0];
     let n = normalize_or_zero(in.normal);
     let to_light = light.position - in.world;
@@ -76,17 +75,16 @@ struct Varyings {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) @interpolate(flat) material: u32,
 }
 
 @vertex
-fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) material: u32) -> Varyings {
-    return Varyings(globals.clip_from_world * vec4<f32>(position, 1.0), position, normal, material);
+fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> Varyings {
+    return Varyings(globals.clip_from_world * vec4<f32>(position, 1.0), position, normal);
 }
 
 @fragment
 fn fs_main(in: Varyings) -> @location(0) vec4<f32> {
-    let m = materials[in.material];
+    let m = material; // the draw's (src/gpu/bindings.rs)
     let n = normalize_or_zero(in.normal);
     let to_eye = globals.eye - in.world;
     var radiance = m.k_a * globals.ambient;

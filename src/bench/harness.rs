@@ -69,7 +69,8 @@ pub struct Harness {
     bind_group: wgpu::BindGroup,
     vertices: wgpu::Buffer,
     indices: Option<wgpu::Buffer>,
-    draw_count: u32,
+    /// One draw per material (its slot bound at this offset).
+    batches: Vec<(u32, std::ops::Range<u32>)>,
     color: wgpu::Texture,
     depth: wgpu::Texture,
     width: u32,
@@ -116,12 +117,14 @@ impl Harness {
             bytemuck::bytes_of(&globals),
             wgpu::BufferUsages::UNIFORM,
         );
-        // The renderer's bindings for this key (src/gpu/bindings.rs).
+        // The renderer's bindings for this key (src/gpu/bindings.rs): the
+        // material bound per draw, lights as the key says.
         let arrays = shader.key.arrays;
+        let material_stride = bindings::material_stride(device);
         let materials = init(
             "bench materials",
-            &bindings::material_bytes(&materials, arrays.materials),
-            bindings::usage(arrays.materials),
+            &bindings::material_bytes(&materials, material_stride),
+            wgpu::BufferUsages::UNIFORM,
         );
         let lights = init(
             "bench lights",
@@ -139,7 +142,7 @@ impl Harness {
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: materials.as_entire_binding(),
+                    resource: bindings::material_binding(&materials),
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
@@ -241,7 +244,16 @@ impl Harness {
             bind_group,
             vertices,
             indices,
-            draw_count: geometry.draw_count,
+            batches: geometry
+                .batches
+                .iter()
+                .map(|b| {
+                    (
+                        bindings::material_offset(b.material, material_stride),
+                        b.range.clone(),
+                    )
+                })
+                .collect(),
             color,
             depth,
             width: scene.width,
@@ -286,14 +298,16 @@ impl Harness {
             multiview_mask: None,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
         pass.set_vertex_buffer(0, self.vertices.slice(..));
-        match &self.indices {
-            Some(indices) => {
-                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..self.draw_count, 0, 0..1);
+        if let Some(indices) = &self.indices {
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+        }
+        for (offset, range) in &self.batches {
+            pass.set_bind_group(0, &self.bind_group, &[*offset]);
+            match self.indices {
+                Some(_) => pass.draw_indexed(range.clone(), 0, 0..1),
+                None => pass.draw(range.clone(), 0..1),
             }
-            None => pass.draw(0..self.draw_count, 0..1),
         }
     }
 

@@ -1,18 +1,26 @@
-//! Where the scene's arrays live on the GPU, and the bind group layouts
+//! Where the scene's data live on the GPU, and the bind group layouts
 //! that follow from it.
 //!
-//! Materials, lights and shadow-map views go into **uniform buffers** of a
-//! fixed capacity when they fit, and into storage buffers otherwise.
-//! Why: lavapipe (Mesa 22.3's llvmpipe) loads every word of a storage
-//! buffer lane by lane, each with its own bounds check, even at an index
-//! that is the same for every pixel; a uniform buffer at such an index is
-//! one scalar load. The shadow lookup reads a light and a 4×4 matrix per
-//! pixel, so on the viewer's 1080p benchmark scene (one shadowed
-//! directional light) the scene pass went from 44 to 34 ms with these
-//! arrays in uniform buffers, the same code otherwise. A uniform binding
-//! is limited to 64 KiB (WebGPU's default `maxUniformBufferBindingSize`),
-//! hence the capacities; a scene with more keeps storage buffers, and the
-//! shader is compiled for whichever it has (`#if uniform_*` features).
+//! Why it matters: lavapipe (Mesa 22.3's llvmpipe) loads every word of a
+//! storage buffer lane by lane, each with its own bounds check, even at an
+//! index that is the same for every pixel; a uniform buffer at such an
+//! index is one scalar load, and at an index that varies per pixel (a flat
+//! varying) a gather. Measured on the viewer's 1080p benchmark scene (a
+//! glossy sphere on a Lambert floor, one shadowed directional light):
+//!
+//! * Lights and shadow-map views go into **uniform buffers** of a fixed
+//!   capacity when they fit, storage buffers otherwise: the shadow lookup
+//!   reads a light and a 4×4 matrix per pixel, and the scene pass went
+//!   from 44 to 34 ms (the lights and materials moved together; same code
+//!   otherwise). A uniform binding is limited to 64 KiB (WebGPU's default
+//!   `maxUniformBufferBindingSize`), hence the capacities; a scene with
+//!   more keeps storage buffers, and the shader is compiled for whichever
+//!   it has (`#if uniform_*` features).
+//! * The **material** is bound per draw: each material's triangles are
+//!   one batch (src/gpu/geometry.rs), drawn with the materials buffer
+//!   bound at that material's slot (a dynamic offset), so the shader reads
+//!   one `Material` at an index the compiler knows is the same for every
+//!   pixel, where a per-vertex material index made it a gather.
 //!
 //! The shadow casters' indices (at most `MAX_SHADOW_MAPS` of them) are
 //! always in a uniform buffer, four to a 16-byte row (uniform arrays have
@@ -21,8 +29,6 @@
 use super::layout::{GpuLight, GpuMaterial, GpuShadowView};
 use super::shadows::MAX_SHADOW_MAPS;
 
-/// Materials a uniform buffer holds (96 bytes each: 24 KiB).
-pub const UNIFORM_MATERIALS: usize = 256;
 /// Lights (area-light samples included) a uniform buffer holds (112 bytes
 /// each: 28 KiB).
 pub const UNIFORM_LIGHTS: usize = 256;
@@ -37,16 +43,14 @@ pub const CASTER_ROWS: usize = MAX_SHADOW_MAPS / 4;
 /// it changes the WGSL declarations and the bind group layouts.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct UniformArrays {
-    pub materials: bool,
     pub lights: bool,
     pub shadow_views: bool,
 }
 
 impl UniformArrays {
     /// Uniform wherever the count fits the capacity.
-    pub fn for_counts(materials: usize, lights: usize, shadow_views: usize) -> Self {
+    pub fn for_counts(lights: usize, shadow_views: usize) -> Self {
         UniformArrays {
-            materials: materials <= UNIFORM_MATERIALS,
             lights: lights <= UNIFORM_LIGHTS,
             shadow_views: shadow_views <= UNIFORM_SHADOW_VIEWS,
         }
@@ -56,7 +60,6 @@ impl UniformArrays {
     /// shaders/shadows.wgsl).
     pub fn features(self) -> impl Iterator<Item = &'static str> {
         [
-            (self.materials, "uniform_materials"),
             (self.lights, "uniform_lights"),
             (self.shadow_views, "uniform_shadow_views"),
         ]
@@ -67,7 +70,7 @@ impl UniformArrays {
     /// The WGSL constants the uniform declarations size their arrays with.
     pub fn wgsl_capacities() -> String {
         format!(
-            "const MATERIAL_CAPACITY: u32 = {UNIFORM_MATERIALS}u;\nconst LIGHT_CAPACITY: u32 = {UNIFORM_LIGHTS}u;\nconst SHADOW_VIEW_CAPACITY: u32 = {UNIFORM_SHADOW_VIEWS}u;\nconst CASTER_ROWS: u32 = {CASTER_ROWS}u;\n"
+            "const LIGHT_CAPACITY: u32 = {UNIFORM_LIGHTS}u;\nconst SHADOW_VIEW_CAPACITY: u32 = {UNIFORM_SHADOW_VIEWS}u;\nconst CASTER_ROWS: u32 = {CASTER_ROWS}u;\n"
         )
     }
 }
@@ -84,14 +87,25 @@ pub fn array_bytes(contents: &[u8], uniform: bool, capacity: usize, element: usi
     bytes
 }
 
-/// [`array_bytes`] for materials.
-pub fn material_bytes(materials: &[GpuMaterial], uniform: bool) -> Vec<u8> {
-    array_bytes(
-        bytemuck::cast_slice(materials),
-        uniform,
-        UNIFORM_MATERIALS,
-        size_of::<GpuMaterial>(),
-    )
+/// Bytes between two materials' slots in the materials buffer: a record
+/// rounded up to the device's dynamic-offset alignment.
+pub fn material_stride(device: &wgpu::Device) -> u64 {
+    let align = u64::from(device.limits().min_uniform_buffer_offset_alignment);
+    (size_of::<GpuMaterial>() as u64).div_ceil(align) * align
+}
+
+/// The materials buffer: one record per `stride` bytes.
+pub fn material_bytes(materials: &[GpuMaterial], stride: u64) -> Vec<u8> {
+    let mut bytes = vec![0u8; materials.len() * stride as usize];
+    for (slot, m) in bytes.chunks_exact_mut(stride as usize).zip(materials) {
+        slot[..size_of::<GpuMaterial>()].copy_from_slice(bytemuck::bytes_of(m));
+    }
+    bytes
+}
+
+/// The dynamic offset that binds `material`'s slot.
+pub fn material_offset(material: u32, stride: u64) -> u32 {
+    (u64::from(material) * stride) as u32
 }
 
 /// [`array_bytes`] for lights.
@@ -128,6 +142,15 @@ pub fn usage(uniform: bool) -> wgpu::BufferUsages {
     }
 }
 
+/// A binding of the materials buffer that shows one record (the draw's).
+pub fn material_binding(buffer: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
+    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+        buffer,
+        offset: 0,
+        size: wgpu::BufferSize::new(size_of::<GpuMaterial>() as u64),
+    })
+}
+
 fn buffer_entry(binding: u32, uniform: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -145,13 +168,24 @@ fn buffer_entry(binding: u32, uniform: bool) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// Group 0 of a scene pipeline: globals, materials, lights.
+/// Group 0 of a scene pipeline: globals, the draw's material (dynamic
+/// offset), lights.
 pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu::BindGroupLayout {
+    let material = wgpu::BindGroupLayoutEntry {
+        binding: 1,
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: true,
+            min_binding_size: wgpu::BufferSize::new(size_of::<GpuMaterial>() as u64),
+        },
+        count: None,
+    };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio scene"),
         entries: &[
             buffer_entry(0, true),
-            buffer_entry(1, arrays.materials),
+            material,
             buffer_entry(2, arrays.lights),
         ],
     })
@@ -228,7 +262,6 @@ mod tests {
     fn uniform_arrays_fit_a_uniform_binding() {
         // WebGPU's default maxUniformBufferBindingSize, which gonio requests.
         let limit = 64 << 10;
-        assert!(UNIFORM_MATERIALS * size_of::<GpuMaterial>() <= limit);
         assert!(UNIFORM_LIGHTS * size_of::<GpuLight>() <= limit);
         assert!(UNIFORM_SHADOW_VIEWS * size_of::<GpuShadowView>() <= limit);
         // Uniform arrays have a 16-byte stride.
@@ -244,25 +277,33 @@ mod tests {
 
     #[test]
     fn counts_past_a_capacity_stay_in_storage() {
-        let a = UniformArrays::for_counts(UNIFORM_MATERIALS, UNIFORM_LIGHTS + 1, 6);
-        assert!(a.materials && !a.lights && a.shadow_views);
-        assert_eq!(
-            a.features().collect::<Vec<_>>(),
-            ["uniform_materials", "uniform_shadow_views"]
-        );
+        let a = UniformArrays::for_counts(UNIFORM_LIGHTS + 1, 6);
+        assert!(!a.lights && a.shadow_views);
+        assert_eq!(a.features().collect::<Vec<_>>(), ["uniform_shadow_views"]);
+        let b = UniformArrays::for_counts(UNIFORM_LIGHTS, UNIFORM_SHADOW_VIEWS + 1);
+        assert!(b.lights && !b.shadow_views);
     }
 
     #[test]
     fn uniform_arrays_are_padded_to_capacity() {
-        let m = [GpuMaterial::zeroed(); 3];
+        let l = [GpuLight::zeroed(); 3];
         assert_eq!(
-            material_bytes(&m, true).len(),
-            UNIFORM_MATERIALS * size_of::<GpuMaterial>()
+            light_bytes(&l, true).len(),
+            UNIFORM_LIGHTS * size_of::<GpuLight>()
         );
-        assert_eq!(
-            material_bytes(&m, false).len(),
-            3 * size_of::<GpuMaterial>()
-        );
+        assert_eq!(light_bytes(&l, false).len(), 3 * size_of::<GpuLight>());
         assert_eq!(caster_bytes(&[1, 2]).len(), 4 * MAX_SHADOW_MAPS);
+    }
+
+    #[test]
+    fn each_material_has_its_own_aligned_slot() {
+        let mut m = [GpuMaterial::zeroed(); 3];
+        m[2].k_e = 7.0;
+        let stride = 256;
+        let bytes = material_bytes(&m, stride);
+        assert_eq!(bytes.len(), 3 * 256);
+        let at = material_offset(2, stride) as usize;
+        let slot: &GpuMaterial = bytemuck::from_bytes(&bytes[at..at + size_of::<GpuMaterial>()]);
+        assert_eq!(slot.k_e, 7.0);
     }
 }

@@ -213,7 +213,7 @@ mod tests {
     /// Sizes must match what naga computes for the WGSL structs.
     #[test]
     fn sizes_match_wgsl() {
-        let common = crate::gpu::shader_gen::common(&["uniform_materials", "uniform_lights"]);
+        let common = crate::gpu::shader_gen::common(&["uniform_lights"]);
         let module = naga::front::wgsl::parse_str(&common).unwrap();
         let size_of = |name: &str| {
             let (_, ty) = module

@@ -144,8 +144,8 @@ impl GpuRenderer {
         let materials = gpu_materials(scene, &key);
         let materials_buffer = init(
             "materials",
-            &bindings::material_bytes(&materials, arrays.materials),
-            bindings::usage(arrays.materials) | dynamic,
+            &bindings::material_bytes(&materials, self.material_stride),
+            wgpu::BufferUsages::UNIFORM | dynamic,
         );
         let lights = gpu_lights(scene, &plan);
         let lights_buffer = init(
@@ -211,22 +211,23 @@ impl GpuRenderer {
         let arrays = key.arrays;
         let materials = gpu_materials(scene, &key);
         let lights = gpu_lights(scene, &plan);
-        let materials_bytes = bindings::material_bytes(&materials, arrays.materials);
+        let materials_bytes = bindings::material_bytes(&materials, self.material_stride);
         let lights_bytes = bindings::light_bytes(&lights, arrays.lights);
         let rebind = arrays != prepared.key.arrays
             || materials_bytes.len() as u64 != prepared.materials_buffer.size()
             || lights_bytes.len() as u64 != prepared.lights_buffer.size();
         if rebind {
             let device = &self.ctx.device;
-            let init = |label, contents: &[u8], uniform| {
+            let init = |label, contents: &[u8], usage| {
                 device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(label),
                     contents,
-                    usage: bindings::usage(uniform) | wgpu::BufferUsages::COPY_DST,
+                    usage: usage | wgpu::BufferUsages::COPY_DST,
                 })
             };
-            prepared.materials_buffer = init("materials", &materials_bytes, arrays.materials);
-            prepared.lights_buffer = init("lights", &lights_bytes, arrays.lights);
+            prepared.materials_buffer =
+                init("materials", &materials_bytes, wgpu::BufferUsages::UNIFORM);
+            prepared.lights_buffer = init("lights", &lights_bytes, bindings::usage(arrays.lights));
             prepared.bind_group = self.scene_bind_group(
                 arrays,
                 &prepared.globals_buffer,
@@ -350,13 +351,13 @@ impl GpuRenderer {
         if let Some([x, y, w, h]) = target.viewport {
             pass.set_viewport(x, y, w, h, 0.0, 1.0);
         }
-        pass.set_bind_group(0, &prepared.bind_group, &[]);
         if let Some(shadows) = &prepared.shadows {
             pass.set_bind_group(1, &shadows.scene_group, &[]);
         }
         prepared.bind_geometry(&mut pass);
-        // Each material's batch with the pipeline of its BRDF variant
-        // (consecutive batches of one variant share the bind).
+        // Each material's batch with its material bound (src/gpu/bindings.rs)
+        // and the pipeline of its BRDF variant (consecutive batches of one
+        // variant share the bind).
         let mut bound = None;
         for (batch, &variant) in prepared.batches.iter().zip(&prepared.batch_variants) {
             if bound != Some(variant) {
@@ -369,6 +370,8 @@ impl GpuRenderer {
                 pass.set_pipeline(&self.pipelines[&key]);
                 bound = Some(variant);
             }
+            let offset = bindings::material_offset(batch.material, self.material_stride);
+            pass.set_bind_group(0, &prepared.bind_group, &[offset]);
             prepared.draw_range(&mut pass, batch.range.clone(), 0..1);
         }
         drawn
@@ -401,14 +404,20 @@ impl GpuRenderer {
         materials: &wgpu::Buffer,
         lights: &wgpu::Buffer,
     ) -> wgpu::BindGroup {
-        let entries = [globals, materials, lights]
-            .into_iter()
-            .enumerate()
-            .map(|(binding, buffer)| wgpu::BindGroupEntry {
-                binding: binding as u32,
-                resource: buffer.as_entire_binding(),
-            })
-            .collect::<Vec<_>>();
+        let entries = [
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: globals.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: bindings::material_binding(materials),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: lights.as_entire_binding(),
+            },
+        ];
         self.ctx
             .device
             .create_bind_group(&wgpu::BindGroupDescriptor {

@@ -42,6 +42,9 @@ pub struct GpuRenderer {
     /// Keyed by features, target format, samples per pixel and the BRDF
     /// variant a pipeline is specialized to (`None`: all of the key's).
     pub(super) pipelines: HashMap<PipelineKey, wgpu::RenderPipeline>,
+    /// Bytes between materials in the materials buffer (dynamic-offset
+    /// alignment; src/gpu/bindings.rs).
+    pub(super) material_stride: u64,
     /// One module per key and output; its pipelines differ by constants.
     modules: HashMap<(ShaderKey, Output), wgpu::ShaderModule>,
     pub(super) shadow_sampler: wgpu::Sampler,
@@ -94,6 +97,7 @@ impl GpuRenderer {
                     immediate_size: 0,
                 });
         GpuRenderer {
+            material_stride: super::bindings::material_stride(&ctx.device),
             ctx,
             scene_layouts: HashMap::new(),
             modules: HashMap::new(),

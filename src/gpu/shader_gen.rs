@@ -109,11 +109,7 @@ impl ShaderKey {
                 shadow_maps,
                 pcf_radius: ShadowFeatures::uniform_pcf_radius(scene),
             },
-            arrays: UniformArrays::for_counts(
-                scene.materials.len(),
-                scene.lights.len(),
-                shadow_views,
-            ),
+            arrays: UniformArrays::for_counts(scene.lights.len(), shadow_views),
         }
     }
 
@@ -582,7 +578,6 @@ pub fn representative_keys() -> Vec<ShaderKey> {
     let variants = all_variants();
     // Uniform or storage buffers for every array, alternating.
     let arrays = |uniform: bool| UniformArrays {
-        materials: uniform,
         lights: uniform,
         shadow_views: uniform,
     };
