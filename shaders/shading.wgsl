@@ -8,7 +8,10 @@
 // `#if shadows` only when a light casts shadows: then V_l comes from
 // the shadow-map lookup (shaders/shadows.wgsl) at the shading point x, with
 // n_g the offset normal (geometric normal for phong and flat, the vertex
-// normal for gouraud).
+// normal for gouraud) (`#if shadow_pixel`), or, when the vertex shader
+// computed the one map's coordinates (`#if shadow_vertex`,
+// ShaderKey::shadow_coords_per_vertex), from those interpolated
+// coordinates `shadow_ndc`.
 
 // Radiance of the environment from unit direction d. Twin: Environment::radiance. // #if mirror
 fn environment_radiance(d: vec3<f32>) -> vec3<f32> { // #if mirror
@@ -20,7 +23,8 @@ fn environment_radiance(d: vec3<f32>) -> vec3<f32> { // #if mirror
 } // #if mirror
 
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> { // #if !shadows
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> { // #if shadows
+fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> { // #if shadow_pixel
+fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> { // #if shadow_vertex
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
     var radiance = m.k_a * globals.ambient;
@@ -32,7 +36,8 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
     // loops unroll; see LoopCounts in src/gpu/shader_gen.rs).
     var visibility: array<f32, SHADOW_MAP_COUNT>; // #if shadows
     for (var s = 0u; s < SHADOW_MAP_COUNT; s++) { // #if shadows
-        visibility[s] = shadow_visibility(lights[shadow_caster(s)], x, n_g); // #if shadows
+        visibility[s] = shadow_visibility(lights[shadow_caster(s)], x, n_g); // #if shadow_pixel
+        visibility[s] = shadow_read_ndc(lights[shadow_caster(s)], lights[shadow_caster(s)].shadow_layer, shadow_ndc); // #if shadow_vertex
     } // #if shadows
     for (var l = 0u; l < LIGHT_COUNT; l++) { // #if light_count
     for (var l = 0u; l < globals.light_count; l++) { // #if !light_count

@@ -84,10 +84,15 @@ fn shadow_read(light: Light, layer: i32, p: vec3<f32>) -> f32 { // #if shadow_pr
 
 // Directional light: one orthographic map fitted to the scene bounds. Its
 // clip w is exactly 1 (the view's last row is 0 0 0 1), so no divide.
-fn shadow_ortho(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 { // #if shadow_ortho
+// shadow_ortho_ndc is also what the vertex shader passes on when it computes
+// the coordinates (`#if shadow_vertex`, ShaderKey::shadow_coords_per_vertex).
+fn shadow_ortho_ndc(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> vec3<f32> { // #if shadow_ortho
     let p = shadow_point(light, x, n_g, -light.direction, light.shadow_texel); // #if shadow_ortho
-    let clip = shadow_views[light.shadow_layer].clip_from_world * vec4<f32>(p, 1.0); // #if shadow_ortho
-    return shadow_read_ndc(light, light.shadow_layer, clip.xyz); // #if shadow_ortho
+    return (shadow_views[light.shadow_layer].clip_from_world * vec4<f32>(p, 1.0)).xyz; // #if shadow_ortho
+} // #if shadow_ortho
+
+fn shadow_ortho(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 { // #if shadow_ortho
+    return shadow_read_ndc(light, light.shadow_layer, shadow_ortho_ndc(light, x, n_g)); // #if shadow_ortho
 } // #if shadow_ortho
 
 // Spot light: one perspective map whose frustum holds the outer cone.

@@ -839,3 +839,83 @@ fn shadow_pass_cost_is_measured() {
         );
     }
 }
+
+// ---------------------------------------------------------------------
+// (e) Shadow-map coordinates per vertex (one orthographic map, Phong
+// shading: ShaderKey::shadow_coords_per_vertex) against per pixel.
+//
+// The two compute the same affine function of the shading point, in a
+// different order of f32 operations: the lookup coordinates differ by a
+// few units in the last place, about δ = 10⁻⁶ of the map's [-1, 1] extent
+// (ten roundings of 6·10⁻⁸ on values up to 1), i.e. δ·side/2 ≈ 10⁻³ texel
+// at 2048 texels. A nearest-texel tap changes only when its sample point
+// lies within that distance of a texel edge: per tap and axis a chance of
+// 2·10⁻³; a 3×3 kernel crosses 3 column and 3 row edges, so at most about
+// 1.2 % of the lit-or-shadowed receiver pixels may see one tap (1/9 of
+// the light) change, and only by whole taps. Both are asserted: at most
+// 1.5 % of the pixels differ, and every difference is a multiple of one
+// tap's share of the direct light (within f32 rounding). Measured on
+// lavapipe: no pixel differs on either scene.
+#[test]
+fn e_vertex_shadow_coordinates_match_per_pixel_ones() {
+    let mut renderer = common::gpu_renderer();
+    for (label, scene) in [
+        (
+            "ShadowsDirectional.gltf",
+            gltf_scene(&["ambient.radiance=0.0"]),
+        ),
+        (
+            "viewer-bench.toml",
+            load(
+                SceneSource::File(
+                    std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+                        .join("assets/scenes/viewer-bench.toml"),
+                ),
+                &["ambient.radiance=0.0"],
+            ),
+        ),
+    ] {
+        renderer.vertex_shadow_coords = true;
+        let per_vertex = gpu(&mut renderer, &scene);
+        renderer.vertex_shadow_coords = false;
+        let per_pixel = gpu(&mut renderer, &scene);
+        renderer.vertex_shadow_coords = true;
+        let unshadowed = gpu(&mut renderer, &without_shadows(&scene));
+        let (mut covered, mut differ, mut not_whole_taps) = (0usize, 0usize, 0usize);
+        for i in 0..per_pixel.radiance.len() {
+            if !per_pixel.coverage[i] {
+                continue;
+            }
+            covered += 1;
+            let (a, b, full) = (
+                per_vertex.radiance[i],
+                per_pixel.radiance[i],
+                unshadowed.radiance[i],
+            );
+            if (0..3).all(|c| (a[c] - b[c]).abs() <= 1e-5 * full[c].abs().max(1e-30)) {
+                continue;
+            }
+            differ += 1;
+            // V difference in taps of a 3×3 kernel: a whole number.
+            let c = (0..3).max_by(|&p, &q| full[p].total_cmp(&full[q])).unwrap();
+            let taps = 9.0 * (a[c] - b[c]) / full[c];
+            if (taps - taps.round()).abs() > 1e-3 {
+                not_whole_taps += 1;
+            }
+        }
+        let fraction = differ as f64 / covered as f64;
+        println!(
+            "(e) {label}: {differ} of {covered} pixels differ ({:.3} %), {not_whole_taps} not by whole taps",
+            100.0 * fraction
+        );
+        assert!(covered > 4_000, "{label}: too few pixels");
+        assert!(
+            fraction <= 0.015,
+            "{label}: {differ} of {covered} pixels differ"
+        );
+        assert_eq!(
+            not_whole_taps, 0,
+            "{label}: differences other than whole taps"
+        );
+    }
+}

@@ -245,6 +245,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         counts: Default::default(),
         // The same buffers as the specialized shader: only the code differs.
         arrays: ShaderKey::for_scene(scene).arrays,
+        vertex_shadow_coords: false,
     }
 }
 

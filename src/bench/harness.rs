@@ -85,7 +85,11 @@ impl Harness {
         let device = &ctx.device;
         shader_gen::validate(&shader.wgsl)
             .map_err(|e| Error::Gpu(format!("bench shader `{}` is invalid: {e}", shader.label)))?;
-        let geometry = GeometryData::new(scene, shader.key.needs_tangents());
+        let geometry = GeometryData::new(
+            scene,
+            shader.key.needs_tangents(),
+            shader.key.shadow_coords_per_vertex(),
+        );
         let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),

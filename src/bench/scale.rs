@@ -224,7 +224,8 @@ fn point(
             times.push(measure::render_pass_ms(&timings));
         }
     }
-    let geometry = GeometryData::new(&scene, ShaderKey::for_scene(&scene).needs_tangents());
+    let key = ShaderKey::for_scene(&scene);
+    let geometry = GeometryData::new(&scene, key.needs_tangents(), key.shadow_coords_per_vertex());
     let mesh_bytes =
         4 * (geometry.words.len() + geometry.indices.as_ref().map_or(0, Vec::len)) as u64;
     let scene_bytes = scene

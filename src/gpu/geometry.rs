@@ -9,7 +9,7 @@
 //! stream at all; the shader locations match `shaders/raster_*.wgsl`.
 
 use crate::reference::flat_frame;
-use crate::scene::mesh::centroid;
+use crate::scene::mesh::{centroid, face_normal};
 use crate::scene::{Scene, ShadingMode};
 
 /// Which optional attributes the stream has.
@@ -19,6 +19,10 @@ pub struct VertexLayout {
     pub tangents: bool,
     /// `@location(4) shading_point` (flat shading: the centroid).
     pub shading_point: bool,
+    /// `@location(5) face_normal` (Phong shading with its shadow-map
+    /// coordinates computed per vertex: the triangle's geometric normal,
+    /// the offset normal of the lookup; the stream is then de-indexed).
+    pub face_normal: bool,
 }
 
 impl VertexLayout {
@@ -43,12 +47,18 @@ impl VertexLayout {
         if self.shading_point {
             push(4, wgpu::VertexFormat::Float32x3);
         }
+        if self.face_normal {
+            push(5, wgpu::VertexFormat::Float32x3);
+        }
         attributes
     }
 
     /// Bytes per vertex.
     pub fn stride(&self) -> u64 {
-        4 * (7 + 3 * self.tangents as u64 + 3 * self.shading_point as u64)
+        4 * (7
+            + 3 * self.tangents as u64
+            + 3 * self.shading_point as u64
+            + 3 * self.face_normal as u64)
     }
 }
 
@@ -101,10 +111,13 @@ fn push3(words: &mut Vec<u32>, v: glam::DVec3) {
 }
 
 impl GeometryData {
-    /// Lays out `scene`'s meshes for `scene.shading`, with tangents if asked.
-    pub fn new(scene: &Scene, tangents: bool) -> Self {
+    /// Lays out `scene`'s meshes for `scene.shading`, with tangents if
+    /// asked, and with face normals (de-indexed) if asked and shaded per
+    /// pixel.
+    pub fn new(scene: &Scene, tangents: bool, face_normals: bool) -> Self {
         match scene.shading {
             ShadingMode::Flat => Self::flat(scene, tangents),
+            ShadingMode::Phong if face_normals => Self::phong_faces(scene, tangents),
             ShadingMode::Gouraud | ShadingMode::Phong => Self::indexed(scene, tangents),
         }
     }
@@ -113,6 +126,7 @@ impl GeometryData {
         let layout = VertexLayout {
             tangents,
             shading_point: false,
+            face_normal: false,
         };
         let vertex_count: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
         let mut words = Vec::with_capacity(vertex_count * layout.stride() as usize / 4);
@@ -147,6 +161,7 @@ impl GeometryData {
         let layout = VertexLayout {
             tangents,
             shading_point: true,
+            face_normal: false,
         };
         let mut words =
             Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
@@ -165,6 +180,45 @@ impl GeometryData {
                         push3(&mut words, frame.t);
                     }
                     push3(&mut words, shading_point);
+                }
+            }
+        }
+        GeometryData {
+            draw_count: (words.len() as u64 * 4 / layout.stride()) as u32,
+            words,
+            indices: None,
+            batches,
+            layout,
+        }
+    }
+
+    /// De-indexed, for per-pixel shading: every corner carries its own
+    /// vertex's position, normal (and tangent) and the triangle's
+    /// geometric normal (`mesh::face_normal`, as the reference's offset
+    /// normal), from which the vertex shader computes the shadow-map
+    /// coordinates (shaders/shadows.wgsl `shadow_ortho_ndc`).
+    fn phong_faces(scene: &Scene, tangents: bool) -> Self {
+        let layout = VertexLayout {
+            tangents,
+            shading_point: false,
+            face_normal: true,
+        };
+        let mut words =
+            Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
+        let mut batches = Vec::new();
+        for mesh in meshes_by_material(scene) {
+            extend_batches(&mut batches, mesh.material, 3 * mesh.indices.len());
+            for (t, corners) in mesh.indices.iter().enumerate() {
+                let face = face_normal(mesh.triangle(t));
+                for &v in corners {
+                    let v = v as usize;
+                    push3(&mut words, mesh.positions[v]);
+                    push3(&mut words, mesh.normals[v]);
+                    words.push(mesh.material as u32);
+                    if tangents {
+                        push3(&mut words, mesh.tangent(v));
+                    }
+                    push3(&mut words, face);
                 }
             }
         }

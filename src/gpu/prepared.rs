@@ -107,7 +107,8 @@ impl GpuRenderer {
             ));
         }
         let (key, plan) = self.plan(scene)?;
-        let geometry = GeometryData::new(scene, key.needs_tangents());
+        let geometry =
+            GeometryData::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
         self.pipelines_for(&key, geometry.layout, format, samples)?;
         if !plan.is_empty() {
             self.pass_pipeline(geometry.layout.stride());
@@ -193,7 +194,10 @@ impl GpuRenderer {
             ));
         }
         let (key, plan) = self.plan(scene)?;
-        if key.shading != prepared.key.shading || key.needs_tangents() != prepared.layout.tangents {
+        if key.shading != prepared.key.shading
+            || key.needs_tangents() != prepared.layout.tangents
+            || key.shadow_coords_per_vertex() != prepared.layout.face_normal
+        {
             let display_scale = prepared.display_scale;
             *prepared = self.prepare_with_samples(scene, prepared.format, prepared.samples)?;
             prepared.display_scale = display_scale;
@@ -381,6 +385,7 @@ impl GpuRenderer {
     /// device's limits.
     fn plan(&self, scene: &Scene) -> Result<(ShaderKey, ShadowPlan)> {
         let mut key = ShaderKey::for_scene(scene);
+        key.vertex_shadow_coords = self.vertex_shadow_coords;
         let plan = if key.shadows.any() {
             ShadowPlan::new(scene)
         } else {

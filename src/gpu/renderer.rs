@@ -45,6 +45,9 @@ pub struct GpuRenderer {
     /// Bytes between materials in the materials buffer (dynamic-offset
     /// alignment; src/gpu/bindings.rs).
     pub(super) material_stride: u64,
+    /// Whether shadow-map coordinates may be computed per vertex
+    /// ([`ShaderKey::shadow_coords_per_vertex`]); default true.
+    pub vertex_shadow_coords: bool,
     /// One module per key and output; its pipelines differ by constants.
     modules: HashMap<(ShaderKey, Output), wgpu::ShaderModule>,
     pub(super) shadow_sampler: wgpu::Sampler,
@@ -97,6 +100,7 @@ impl GpuRenderer {
                     immediate_size: 0,
                 });
         GpuRenderer {
+            vertex_shadow_coords: true,
             material_stride: super::bindings::material_stride(&ctx.device),
             ctx,
             scene_layouts: HashMap::new(),
