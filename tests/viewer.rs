@@ -125,6 +125,10 @@ fn assert_matches(shot: &Path, area: (u32, u32, u32, u32), reference: &Path, wha
 #[test]
 fn the_viewer_screenshot_matches_render() {
     let dir = tempfile::tempdir().unwrap();
+    let bench_scene = format!(
+        "{}/assets/scenes/viewer-bench.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     // The window filled by the 3D view, and a window with the panel.
     for (name, args) in [
         (
@@ -157,14 +161,31 @@ fn the_viewer_screenshot_matches_render() {
                 "lights.0.shadows=true",
             ],
         ),
+        (
+            // Phong with one shadowed directional light: the shadow-map
+            // coordinates are computed per vertex (de-indexed stream).
+            "directional-shadows",
+            vec![
+                bench_scene.as_str(),
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+            ],
+        ),
     ] {
         let shot = dir.path().join(format!("{name}.png"));
         let (x, y, w, h) = view(&args, &shot);
         assert!(w >= 100 && h >= 100, "{name}: 3D area {w}x{h}");
-        let sets: Vec<&str> = args
-            .windows(2)
-            .filter(|p| p[0] == "--set")
-            .flat_map(|p| ["--set", p[1]])
+        let scene = args.iter().copied().filter(|a| a.ends_with(".toml"));
+        let sets: Vec<&str> = scene
+            .chain(
+                args.windows(2)
+                    .filter(|p| p[0] == "--set")
+                    .flat_map(|p| ["--set", p[1]]),
+            )
             .collect();
         let reference = dir.path().join(format!("{name}-render.png"));
         render(&sets, w, h, &reference);
