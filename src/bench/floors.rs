@@ -111,7 +111,7 @@ pub fn minimal_lambert_loop(scene: &Scene) -> HarnessShader {
             sources::LIGHT_INVERSE_SQUARE,
             sources::LIGHT_POINT
         ),
-        inputs: Inputs::PositionNormalMaterial,
+        inputs: Inputs::PositionNormal,
         key: specialized_key(scene),
     }
 }
@@ -138,7 +138,7 @@ pub fn minimal_lambert(scene: &Scene) -> HarnessShader {
     HarnessShader {
         label: "hand-minimal Lambert".into(),
         wgsl: format!("{}{MINIMAL_LAMBERT_WGSL}", common(scene)),
-        inputs: Inputs::PositionNormalMaterial,
+        inputs: Inputs::PositionNormal,
         key: specialized_key(scene),
     }
 }

@@ -32,8 +32,8 @@ const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub enum Inputs {
     /// `@location(0)` position only.
     Position,
-    /// Position, normal, material (locations 0–2).
-    PositionNormalMaterial,
+    /// Position and normal (locations 0–1).
+    PositionNormal,
     /// Everything the scene's layout has (a generated shader).
     All,
 }
@@ -165,7 +165,7 @@ impl Harness {
             .into_iter()
             .filter(|a| match shader.inputs {
                 Inputs::Position => a.shader_location == 0,
-                Inputs::PositionNormalMaterial => a.shader_location <= 2,
+                Inputs::PositionNormal => a.shader_location <= 1,
                 Inputs::All => true,
             })
             .collect();

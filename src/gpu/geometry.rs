@@ -1,12 +1,14 @@
 //! Vertex streams for each shading mode, built from the scene's meshes.
 //!
-//! All meshes go into one vertex buffer, ordered by material: each vertex
-//! carries its material index, and each material's triangles are one
-//! contiguous [`Batch`], so the renderer can draw a batch with a pipeline
-//! compiled for that material's BRDF variant alone (or the whole stream
-//! with one call and one pipeline). Attributes a scene does not need (tangents without an
-//! anisotropic model, shading points outside flat shading) are not in the
-//! stream at all; the shader locations match `shaders/raster_*.wgsl`.
+//! All meshes go into one vertex buffer, ordered by material: each
+//! material's triangles are one contiguous [`Batch`], which the renderer
+//! draws with that material bound (src/gpu/bindings.rs) and a pipeline
+//! compiled for its BRDF variant alone; the shadow passes draw the whole
+//! stream with one call. Attributes a scene does not need (tangents without
+//! an anisotropic model, shading points outside flat shading, face normals
+//! outside per-vertex shadow coordinates) are not in the stream at all; the
+//! shader locations match `shaders/raster_*.wgsl` (location 2, once the
+//! material index, is unused).
 
 use crate::reference::flat_frame;
 use crate::scene::mesh::{centroid, face_normal};
@@ -40,7 +42,6 @@ impl VertexLayout {
         };
         push(0, wgpu::VertexFormat::Float32x3);
         push(1, wgpu::VertexFormat::Float32x3);
-        push(2, wgpu::VertexFormat::Uint32);
         if self.tangents {
             push(3, wgpu::VertexFormat::Float32x3);
         }
@@ -55,7 +56,7 @@ impl VertexLayout {
 
     /// Bytes per vertex.
     pub fn stride(&self) -> u64 {
-        4 * (7
+        4 * (6
             + 3 * self.tangents as u64
             + 3 * self.shading_point as u64
             + 3 * self.face_normal as u64)
@@ -138,7 +139,6 @@ impl GeometryData {
             for v in 0..mesh.positions.len() {
                 push3(&mut words, mesh.positions[v]);
                 push3(&mut words, mesh.normals[v]);
-                words.push(mesh.material as u32);
                 if tangents {
                     push3(&mut words, mesh.tangent(v));
                 }
@@ -175,7 +175,6 @@ impl GeometryData {
                 for p in corners {
                     push3(&mut words, p);
                     push3(&mut words, frame.n);
-                    words.push(mesh.material as u32);
                     if tangents {
                         push3(&mut words, frame.t);
                     }
@@ -214,7 +213,6 @@ impl GeometryData {
                     let v = v as usize;
                     push3(&mut words, mesh.positions[v]);
                     push3(&mut words, mesh.normals[v]);
-                    words.push(mesh.material as u32);
                     if tangents {
                         push3(&mut words, mesh.tangent(v));
                     }
@@ -228,6 +226,79 @@ impl GeometryData {
             indices: None,
             batches,
             layout,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::scene_file::{self, SceneSource};
+
+    fn built_in(shading: &str) -> Scene {
+        scene_file::load(
+            &SceneSource::BuiltIn,
+            &[format!("shading.mode=\"{shading}\"")],
+        )
+        .unwrap()
+    }
+
+    /// Every stream is cut into one batch per material, in order, covering
+    /// the whole draw.
+    #[test]
+    fn batches_cover_the_stream_once_per_material() {
+        for (shading, faces) in [("phong", false), ("phong", true), ("flat", false)] {
+            let scene = built_in(shading);
+            let g = GeometryData::new(&scene, false, faces);
+            let mut end = 0;
+            let mut seen = Vec::new();
+            for b in &g.batches {
+                assert_eq!(b.range.start, end, "{shading}: contiguous");
+                end = b.range.end;
+                assert!(
+                    !seen.contains(&b.material),
+                    "{shading}: one batch per material"
+                );
+                seen.push(b.material);
+            }
+            assert_eq!(end, g.draw_count, "{shading}: the whole stream");
+            let triangles: usize = scene
+                .meshes
+                .iter()
+                .filter(|m| m.material as u32 == g.batches[0].material)
+                .map(|m| m.indices.len())
+                .sum();
+            assert_eq!(g.batches[0].range.len(), 3 * triangles);
+        }
+    }
+
+    /// The de-indexed Phong stream carries each corner's own normal and its
+    /// triangle's geometric normal.
+    #[test]
+    fn face_normal_stream_carries_the_triangle_normal() {
+        let scene = built_in("phong");
+        let g = GeometryData::new(&scene, false, true);
+        assert!(g.indices.is_none() && g.layout.face_normal);
+        let words = (g.layout.stride() / 4) as usize;
+        assert_eq!(g.words.len(), words * 3 * scene.triangle_count());
+        let mesh = meshes_by_material(&scene)[0];
+        let read = |corner: usize, at: usize| {
+            let w = &g.words[corner * words + at..corner * words + at + 3];
+            glam::DVec3::new(
+                f32::from_bits(w[0]) as f64,
+                f32::from_bits(w[1]) as f64,
+                f32::from_bits(w[2]) as f64,
+            )
+        };
+        for t in [0, mesh.indices.len() / 2, mesh.indices.len() - 1] {
+            let face = face_normal(mesh.triangle(t));
+            for c in 0..3 {
+                let corner = 3 * t + c;
+                let v = mesh.indices[t][c] as usize;
+                assert!((read(corner, 0) - mesh.positions[v]).length() < 1e-6);
+                assert!((read(corner, 3) - mesh.normals[v]).length() < 1e-6);
+                assert!((read(corner, 6) - face).length() < 1e-6);
+            }
         }
     }
 }
