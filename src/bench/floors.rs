@@ -66,7 +66,7 @@ fn fs_main(in: Varyings) -> @location(0) vec4<f32> {
 
 /// The hand-minimal shader with the generated shader's generic light
 /// loop instead of its one inline light: every light read from the
-/// storage buffer in a loop over `light_count`, through the shared
+/// lights buffer in a loop over `light_count`, through the shared
 /// `point_incidence` (inverse-square law with the optional range window
 /// and the zero-distance guard). Splits the specialization gap into "the
 /// light loop" and "the rest".

@@ -4,7 +4,7 @@
 //! The floors (an unlit pass, a hand-written Lambert shader) and the
 //! uber-shader comparison need pipelines the renderer does not build. They
 //! are drawn here with the renderer's own vertex data
-//! ([`GeometryData`]), uniform and storage buffers ([`crate::gpu::layout`])
+//! ([`GeometryData`]), its buffers and bindings ([`crate::gpu::bindings`])
 //! and the same colour and depth formats, and timed with the same GPU
 //! timestamp queries around the pass, so that the only difference between
 //! two measurements is the shader. Shadows are not drawn here: the

@@ -166,7 +166,7 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
         den: hand,
         target: Some(1.03),
         note: format!(
-            "built-in scene with the sphere Lambertian, {}x{}; both drawn by the bench's pass over the renderer's vertex stream and buffers, so only the shader differs; images differ from the renderer's by {diff_special:.1e} (generated) and {diff:.1e} (hand-written) relative RMS. The generated shader is {:.0}% slower; the hand-written shader with the generated shader's generic light loop (every light read from the storage buffer in a loop over `light_count`, the inverse-square law with its optional range window and zero-distance guard) is already {:.0}% slower{}",
+            "built-in scene with the sphere Lambertian, {}x{}; both drawn by the bench's pass over the renderer's vertex stream and buffers, so only the shader differs; images differ from the renderer's by {diff_special:.1e} (generated) and {diff:.1e} (hand-written) relative RMS. The generated shader is {:.0}% slower; the hand-written shader with the generated shader's generic light loop (every light read from the lights buffer in a loop over `light_count`, the inverse-square law with its optional range window and zero-distance guard) is already {:.0}% slower{}",
             scene.width,
             scene.height,
             100.0 * gap,
