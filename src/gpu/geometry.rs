@@ -11,7 +11,7 @@
 //! material index, is unused).
 
 use crate::reference::flat_frame;
-use crate::scene::mesh::{centroid, face_normal};
+use crate::scene::mesh::{Mesh, centroid, face_normal};
 use crate::scene::{Scene, ShadingMode};
 
 /// Which optional attributes the stream has.
@@ -86,7 +86,7 @@ pub struct Batch {
 
 /// The scene's meshes in material order (stable), so each material's
 /// triangles are contiguous.
-fn meshes_by_material(scene: &Scene) -> Vec<&crate::scene::mesh::Mesh> {
+fn meshes_by_material(scene: &Scene) -> Vec<&Mesh> {
     let mut meshes: Vec<_> = scene.meshes.iter().collect();
     meshes.sort_by_key(|m| m.material);
     meshes
@@ -163,32 +163,19 @@ impl GeometryData {
             shading_point: true,
             face_normal: false,
         };
-        let mut words =
-            Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
-        let mut batches = Vec::new();
-        for mesh in meshes_by_material(scene) {
-            extend_batches(&mut batches, mesh.material, 3 * mesh.indices.len());
-            for t in 0..mesh.indices.len() {
-                let corners = mesh.triangle(t);
-                let frame = flat_frame(mesh, t);
-                let shading_point = centroid(corners);
-                for p in corners {
-                    push3(&mut words, p);
-                    push3(&mut words, frame.n);
-                    if tangents {
-                        push3(&mut words, frame.t);
-                    }
-                    push3(&mut words, shading_point);
+        Self::de_indexed(scene, layout, |mesh, t, words| {
+            let corners = mesh.triangle(t);
+            let frame = flat_frame(mesh, t);
+            let shading_point = centroid(corners);
+            for p in corners {
+                push3(words, p);
+                push3(words, frame.n);
+                if tangents {
+                    push3(words, frame.t);
                 }
+                push3(words, shading_point);
             }
-        }
-        GeometryData {
-            draw_count: (words.len() as u64 * 4 / layout.stride()) as u32,
-            words,
-            indices: None,
-            batches,
-            layout,
-        }
+        })
     }
 
     /// De-indexed, for per-pixel shading: every corner carries its own
@@ -202,22 +189,33 @@ impl GeometryData {
             shading_point: false,
             face_normal: true,
         };
+        Self::de_indexed(scene, layout, |mesh, t, words| {
+            let face = face_normal(mesh.triangle(t));
+            for v in mesh.indices[t].map(|v| v as usize) {
+                push3(words, mesh.positions[v]);
+                push3(words, mesh.normals[v]);
+                if tangents {
+                    push3(words, mesh.tangent(v));
+                }
+                push3(words, face);
+            }
+        })
+    }
+
+    /// A non-indexed stream in material order: `triangle(mesh, t, words)`
+    /// appends the three corners of triangle `t` in `layout`.
+    fn de_indexed(
+        scene: &Scene,
+        layout: VertexLayout,
+        triangle: impl Fn(&Mesh, usize, &mut Vec<u32>),
+    ) -> Self {
         let mut words =
             Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
         let mut batches = Vec::new();
         for mesh in meshes_by_material(scene) {
             extend_batches(&mut batches, mesh.material, 3 * mesh.indices.len());
-            for (t, corners) in mesh.indices.iter().enumerate() {
-                let face = face_normal(mesh.triangle(t));
-                for &v in corners {
-                    let v = v as usize;
-                    push3(&mut words, mesh.positions[v]);
-                    push3(&mut words, mesh.normals[v]);
-                    if tangents {
-                        push3(&mut words, mesh.tangent(v));
-                    }
-                    push3(&mut words, face);
-                }
+            for t in 0..mesh.indices.len() {
+                triangle(mesh, t, &mut words);
             }
         }
         GeometryData {
