@@ -42,9 +42,11 @@ pub struct PreparedScene {
     vertex_buffer: wgpu::Buffer,
     index_buffer: Option<wgpu::Buffer>,
     draw_count: u32,
-    /// The stream's material runs, and the variant each is drawn with.
+    /// The stream's material runs, and for each the variant it is drawn
+    /// with and that pipeline (resolved when the scene changes, so a frame
+    /// looks nothing up).
     batches: Vec<Batch>,
-    batch_variants: Vec<Option<u32>>,
+    batch_pipelines: Vec<(Option<u32>, wgpu::RenderPipeline)>,
     globals_buffer: wgpu::Buffer,
     materials_buffer: wgpu::Buffer,
     lights_buffer: wgpu::Buffer,
@@ -157,7 +159,8 @@ impl GpuRenderer {
         let bind_group =
             self.scene_bind_group(arrays, &globals_buffer, &materials_buffer, &lights_buffer);
         let shadows = self.shadow_resources(&plan, arrays);
-        let batch_variants = batch_variants(&key, &materials, &geometry.batches);
+        let batch_pipelines =
+            self.batch_pipelines(&key, format, samples, &materials, &geometry.batches);
         Ok(PreparedScene {
             key,
             format,
@@ -169,7 +172,7 @@ impl GpuRenderer {
             vertex_buffer,
             index_buffer,
             draw_count: geometry.draw_count,
-            batch_variants,
+            batch_pipelines,
             batches: geometry.batches,
             globals_buffer,
             materials_buffer,
@@ -254,7 +257,13 @@ impl GpuRenderer {
             prepared.plan = plan;
         }
         prepared.lights = lights;
-        prepared.batch_variants = batch_variants(&key, &materials, &prepared.batches);
+        prepared.batch_pipelines = self.batch_pipelines(
+            &key,
+            prepared.format,
+            prepared.samples,
+            &materials,
+            &prepared.batches,
+        );
         prepared.key = key;
         Ok(())
     }
@@ -363,16 +372,10 @@ impl GpuRenderer {
         // and the pipeline of its BRDF variant (consecutive batches of one
         // variant share the bind).
         let mut bound = None;
-        for (batch, &variant) in prepared.batches.iter().zip(&prepared.batch_variants) {
-            if bound != Some(variant) {
-                let key = (
-                    prepared.key.clone(),
-                    prepared.format,
-                    prepared.samples,
-                    variant,
-                );
-                pass.set_pipeline(&self.pipelines[&key]);
-                bound = Some(variant);
+        for (batch, (variant, pipeline)) in prepared.batches.iter().zip(&prepared.batch_pipelines) {
+            if bound != Some(*variant) {
+                pass.set_pipeline(pipeline);
+                bound = Some(*variant);
             }
             let offset = bindings::material_offset(batch.material, self.material_stride);
             pass.set_bind_group(0, &prepared.bind_group, &[offset]);
@@ -571,18 +574,28 @@ impl PreparedScene {
     }
 }
 
-/// The pipeline specialization each batch is drawn with: its material's
-/// variant when `key` has several ([`GpuRenderer::specializations`]).
-fn batch_variants(
-    key: &ShaderKey,
-    materials: &[GpuMaterial],
-    batches: &[Batch],
-) -> Vec<Option<u32>> {
-    let specialized = GpuRenderer::specializations(key).len() > 1;
-    batches
-        .iter()
-        .map(|b| specialized.then(|| materials[b.material as usize].variant))
-        .collect()
+impl GpuRenderer {
+    /// The pipeline each batch is drawn with, compiled by
+    /// [`GpuRenderer::pipelines_for`]: specialized to its material's
+    /// variant when `key` has several ([`GpuRenderer::specializations`]).
+    fn batch_pipelines(
+        &self,
+        key: &ShaderKey,
+        format: wgpu::TextureFormat,
+        samples: u32,
+        materials: &[GpuMaterial],
+        batches: &[Batch],
+    ) -> Vec<(Option<u32>, wgpu::RenderPipeline)> {
+        let specialized = Self::specializations(key).len() > 1;
+        batches
+            .iter()
+            .map(|b| {
+                let variant = specialized.then(|| materials[b.material as usize].variant);
+                let pipeline = &self.pipelines[&(key.clone(), format, samples, variant)];
+                (variant, pipeline.clone())
+            })
+            .collect()
+    }
 }
 
 fn gpu_materials(scene: &Scene, key: &ShaderKey) -> Vec<GpuMaterial> {
