@@ -28,6 +28,10 @@ pub enum Error {
     /// The viewer cannot open a window (no display server).
     #[error("{0}")]
     NoDisplay(String),
+    /// The scene as assembled cannot be rendered (no material, no light):
+    /// the input's fault, so exit status 2 like every input error.
+    #[error("the scene cannot be rendered: {0}")]
+    Scene(String),
     /// The GPU failed while rendering (device lost, out of memory, ...).
     #[error("GPU error: {0}")]
     Gpu(String),

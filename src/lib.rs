@@ -6,6 +6,7 @@
 //! and the resulting [`frame::Frame`] is written, compared or measured by
 //! [`output`].
 
+pub mod base;
 pub mod bench;
 pub mod cli;
 pub mod error;

@@ -10,7 +10,8 @@
 
 use super::Labelled;
 use crate::material::{Material, ReflectanceModel};
-use crate::scene::scene_file::{MaterialEntry, apply_override, material_from_entry};
+use crate::material::{MaterialEntry, material_from_entry};
+use crate::scene::scene_file::apply_override;
 use crate::{Error, Result};
 use serde::Deserialize;
 

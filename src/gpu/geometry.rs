@@ -10,7 +10,6 @@
 //! shader locations match `shaders/raster_*.wgsl` (location 2, once the
 //! material index, is unused).
 
-use crate::reference::flat_frame;
 use crate::scene::mesh::{Mesh, centroid, face_normal};
 use crate::scene::{Scene, ShadingMode};
 
@@ -165,7 +164,7 @@ impl GeometryData {
         };
         Self::de_indexed(scene, layout, |mesh, t, words| {
             let corners = mesh.triangle(t);
-            let frame = flat_frame(mesh, t);
+            let frame = mesh.flat_frame(t);
             let shading_point = centroid(corners);
             for p in corners {
                 push3(words, p);

@@ -104,8 +104,8 @@ impl GpuRenderer {
         samples: u32,
     ) -> Result<PreparedScene> {
         if scene.materials.is_empty() || scene.lights.is_empty() {
-            return Err(Error::Gpu(
-                "a scene needs at least one material and one light".into(),
+            return Err(Error::Scene(
+                "it needs at least one material and one light".into(),
             ));
         }
         let (key, plan) = self.plan(scene)?;
@@ -192,8 +192,8 @@ impl GpuRenderer {
     /// the vertex stream (shading mode, tangents) rebuilds it.
     pub fn update(&mut self, prepared: &mut PreparedScene, scene: &Scene) -> Result<()> {
         if scene.materials.is_empty() || scene.lights.is_empty() {
-            return Err(Error::Gpu(
-                "a scene needs at least one material and one light".into(),
+            return Err(Error::Scene(
+                "it needs at least one material and one light".into(),
             ));
         }
         let (key, plan) = self.plan(scene)?;

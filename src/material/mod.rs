@@ -5,14 +5,16 @@
 //! file per family, mirrored function by function in `shaders/brdf/*.wgsl`.
 
 pub mod brdf;
+pub mod entry;
 mod model;
 pub mod presets;
 pub mod terms;
 
+pub use entry::{MaterialEntry, material_from_entry, material_table};
 pub use model::ReflectanceModel;
 pub use terms::{Denominator, Distribution, Fresnel, Geometry};
 
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use brdf::SurfaceFrame;
 use glam::DVec3;
 

@@ -5,7 +5,7 @@
 
 use super::Material;
 use super::terms::Fresnel;
-use crate::scene::Rgb;
+use crate::base::Rgb;
 
 /// What a preset sets.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -12,6 +12,4 @@ pub mod bvh;
 pub mod renderer;
 
 pub use bvh::{Bvh, Hit, TriangleId};
-pub use renderer::{
-    AreaLights, flat_frame, render, render_offset, render_with, shadow_epsilon, visibility,
-};
+pub use renderer::{AreaLights, render, render_offset, render_with, shadow_epsilon, visibility};

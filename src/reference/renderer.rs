@@ -129,7 +129,7 @@ impl<'a> Shader<'a> {
                             .into_par_iter()
                             .map(|t| {
                                 let corners = m.triangle(t);
-                                let frame = flat_frame(m, t);
+                                let frame = m.flat_frame(t);
                                 shader.shade(m, mesh::centroid(corners), &frame, frame.n)
                             })
                             .collect()
@@ -262,15 +262,6 @@ pub fn visibility(bvh: &Bvh, light: &Light, x: DVec3, n_offset: DVec3, epsilon: 
     };
     let ray = Ray { origin, direction };
     if bvh.occluded(&ray, t_max) { 0.0 } else { 1.0 }
-}
-
-/// Flat shading's frame of triangle `t`: the face normal and the corners'
-/// summed tangents made orthogonal to it (the GPU's flat vertices carry
-/// the same, computed by `gpu::geometry`).
-pub fn flat_frame(m: &Mesh, t: usize) -> SurfaceFrame {
-    let [a, b, c] = m.indices[t];
-    let tangent = m.tangent(a as usize) + m.tangent(b as usize) + m.tangent(c as usize);
-    SurfaceFrame::new(mesh::face_normal(m.triangle(t)), tangent)
 }
 
 /// `Σ w_k · values[idx_k]`: barycentric interpolation over one triangle.

@@ -1,6 +1,7 @@
 //! Triangle meshes in world space, and the normals the lecture's shading
 //! modes need.
 
+use crate::base::SurfaceFrame;
 use glam::{DMat4, DVec3};
 
 /// An indexed triangle mesh, already in world space.
@@ -46,8 +47,19 @@ impl Mesh {
     pub fn tangent(&self, v: usize) -> DVec3 {
         match self.tangents.get(v) {
             Some(t) => *t,
-            None => crate::material::brdf::any_tangent(self.normals[v]),
+            None => crate::base::any_tangent(self.normals[v]),
         }
+    }
+
+    /// Flat shading's frame of triangle `t`: the face normal and the
+    /// corners' summed tangents made orthogonal to it. Both renderers
+    /// shade a flat triangle in this frame (the GPU's flat vertices carry
+    /// it, `gpu::geometry`; the reference evaluates it per hit).
+    pub fn flat_frame(&self, t: usize) -> SurfaceFrame {
+        let [a, b, c] = self.indices[t];
+        let tangent =
+            self.tangent(a as usize) + self.tangent(b as usize) + self.tangent(c as usize);
+        SurfaceFrame::new(face_normal(self.triangle(t)), tangent)
     }
 
     /// Applies `world_from_object` to positions and its inverse transpose to

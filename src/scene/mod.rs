@@ -73,8 +73,7 @@ impl FromStr for ShadingMode {
     }
 }
 
-/// Linear RGB triple (radiance, reflectance, intensity, ...).
-pub type Rgb = DVec3;
+pub use crate::base::Rgb;
 
 /// A scene ready to render.
 #[derive(Clone, Debug)]

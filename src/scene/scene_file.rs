@@ -10,7 +10,8 @@
 //! A `.gltf`/`.glb` argument and the built-in scene go through the same
 //! steps: they are turned into an equivalent scene table first.
 
-use crate::material::{Material, ReflectanceModel, presets};
+use crate::base::ColorValue;
+use crate::material::{Material, MaterialEntry, ReflectanceModel, material_from_entry};
 use crate::scene::limits::{Limits, ReadError, read_regular_file};
 use crate::scene::{
     AreaLight, Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, ShadowFilter,
@@ -125,49 +126,6 @@ pub struct ObjectEntry {
     pub segments: Option<u32>,
     /// Material name in `[materials]`; overrides a glTF's own materials.
     pub material: Option<String>,
-}
-
-/// A colour given as `[r, g, b]` or as one number for all channels.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(untagged)]
-pub enum ColorValue {
-    Gray(f64),
-    Rgb([f64; 3]),
-}
-
-impl ColorValue {
-    fn rgb(self) -> Rgb {
-        match self {
-            ColorValue::Gray(v) => Rgb::splat(v),
-            ColorValue::Rgb(v) => Rgb::from_array(v),
-        }
-    }
-}
-
-/// `[materials.NAME]`: the model, an optional preset from the lecture's
-/// tables, then any parameter (given keys override the preset).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MaterialEntry {
-    pub model: String,
-    pub preset: Option<String>,
-    pub k_a: Option<ColorValue>,
-    pub k_d: Option<ColorValue>,
-    pub k_s: Option<ColorValue>,
-    pub k_e: Option<f64>,
-    pub roughness: Option<f64>,
-    /// Ward: sets σ_x and σ_y.
-    pub sigma: Option<f64>,
-    pub sigma_x: Option<f64>,
-    pub sigma_y: Option<f64>,
-    pub eta: Option<ColorValue>,
-    pub kappa: Option<ColorValue>,
-    pub eta_i: Option<f64>,
-    pub eta_t: Option<f64>,
-    pub distribution: Option<String>,
-    pub geometry: Option<String>,
-    pub fresnel: Option<String>,
-    pub denominator: Option<String>,
 }
 
 /// `[[lights]]`, tagged by `kind`. Every kind takes `shadows` and the
@@ -1013,64 +971,6 @@ pub fn default_light() -> Light {
     }
 }
 
-pub fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result<Material, String> {
-    let model: ReflectanceModel = e
-        .model
-        .parse()
-        .map_err(|p| format!("materials.{name}.model: {p}"))?;
-    let mut m = Material::new(name, model);
-    let key = |k: &str| format!("materials.{name}.{k}");
-    if let Some(p) = &e.preset {
-        presets::preset(p)
-            .map_err(|p| format!("{}: {p}", key("preset")))?
-            .apply(&mut m);
-    }
-    let colors = [
-        (e.k_a, &mut m.k_a),
-        (e.k_d, &mut m.k_d),
-        (e.k_s, &mut m.k_s),
-        (e.eta, &mut m.eta),
-        (e.kappa, &mut m.kappa),
-    ];
-    for (value, slot) in colors {
-        if let Some(c) = value {
-            *slot = c.rgb();
-        }
-    }
-    if let Some(s) = e.sigma {
-        (m.sigma_x, m.sigma_y) = (s, s);
-    }
-    let scalars = [
-        (e.k_e, &mut m.k_e),
-        (e.roughness, &mut m.roughness),
-        (e.sigma_x, &mut m.sigma_x),
-        (e.sigma_y, &mut m.sigma_y),
-        (e.eta_i, &mut m.eta_i),
-        (e.eta_t, &mut m.eta_t),
-    ];
-    for (value, slot) in scalars {
-        if let Some(v) = value {
-            *slot = v;
-        }
-    }
-    fn parse<T: std::str::FromStr<Err = String>>(
-        key: String,
-        v: &Option<String>,
-        slot: &mut T,
-    ) -> Result<(), String> {
-        if let Some(text) = v {
-            *slot = text.parse().map_err(|p| format!("{key}: {p}"))?;
-        }
-        Ok(())
-    }
-    parse(key("distribution"), &e.distribution, &mut m.distribution)?;
-    parse(key("geometry"), &e.geometry, &mut m.geometry)?;
-    parse(key("fresnel"), &e.fresnel, &mut m.fresnel)?;
-    parse(key("denominator"), &e.denominator, &mut m.denominator)?;
-    m.validate()?;
-    Ok(m)
-}
-
 /// The `segments` of a generated shape, range-checked.
 fn shape_segments(k: usize, o: &ObjectEntry) -> std::result::Result<u32, String> {
     let segments = o.segments.unwrap_or(48);
@@ -1252,7 +1152,7 @@ fn area_light_from_entry(
 ) -> std::result::Result<AreaLight, String> {
     let normal = unit_vec("normal", normal)?;
     let tangent = match tangent {
-        None => crate::material::brdf::any_tangent(normal),
+        None => crate::base::any_tangent(normal),
         Some(t) => {
             let t = unit_vec("tangent", t)?;
             (t - normal * normal.dot(t))

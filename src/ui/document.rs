@@ -232,17 +232,17 @@ pub fn edit_material(
     let mut table = toml::Table::new();
     table.insert(
         m.name.clone(),
-        toml::Value::Table(super::save::material_table(m)),
+        toml::Value::Table(crate::material::material_table(m)),
     );
     let mut root = toml::Table::new();
     root.insert("materials".into(), toml::Value::Table(table));
     scene_file::apply_override(&mut root, &format!("materials.{}.{field}={value}", m.name))
         .map_err(|e| e.to_string())?;
     let entry = root["materials"][m.name.as_str()].clone();
-    let entry: scene_file::MaterialEntry = entry
+    let entry: crate::material::MaterialEntry = entry
         .try_into()
         .map_err(|e: toml::de::Error| format!("materials.{}.{field}: {}", m.name, e.message()))?;
-    scene_file::material_from_entry(&m.name, &entry)
+    crate::material::material_from_entry(&m.name, &entry)
 }
 
 fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {

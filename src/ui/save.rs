@@ -7,7 +7,6 @@
 
 use super::document::Document;
 use crate::Result;
-use crate::material::Material;
 use crate::scene::Rgb;
 use crate::scene::scene_file;
 use toml::Value;
@@ -61,7 +60,10 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
                 .entry("materials")
                 .or_insert_with(|| Value::Table(toml::Table::new()));
             if let Value::Table(t) = materials {
-                t.insert(m.name.clone(), Value::Table(material_table(m)));
+                t.insert(
+                    m.name.clone(),
+                    Value::Table(crate::material::material_table(m)),
+                );
             }
         } else {
             unsaved.push(format!(
@@ -76,32 +78,6 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
         format!("# Saved by `gonio view` from {}.\n{text}", doc.title()),
         unsaved,
     ))
-}
-
-/// Every parameter of `m` under its scene-file key (no preset: the values
-/// it set are written out).
-pub fn material_table(m: &Material) -> toml::Table {
-    let mut t = toml::Table::new();
-    let mut put = |k: &str, v: Value| {
-        t.insert(k.into(), v);
-    };
-    put("model", Value::String(m.model.name().into()));
-    put("k_a", vec3(m.k_a));
-    put("k_d", vec3(m.k_d));
-    put("k_s", vec3(m.k_s));
-    put("k_e", Value::Float(m.k_e));
-    put("roughness", Value::Float(m.roughness));
-    put("sigma_x", Value::Float(m.sigma_x));
-    put("sigma_y", Value::Float(m.sigma_y));
-    put("eta", vec3(m.eta));
-    put("kappa", vec3(m.kappa));
-    put("eta_i", Value::Float(m.eta_i));
-    put("eta_t", Value::Float(m.eta_t));
-    put("distribution", Value::String(m.distribution.name().into()));
-    put("geometry", Value::String(m.geometry.name().into()));
-    put("fresnel", Value::String(m.fresnel.name().into()));
-    put("denominator", Value::String(m.denominator.name().into()));
-    t
 }
 
 fn vec3(v: Rgb) -> Value {

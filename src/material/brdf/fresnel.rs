@@ -10,7 +10,7 @@
 //! it into [0, 1]: reflection from the outside only, and rounding of unit
 //! vectors can push a cosine past 1.
 
-use crate::scene::Rgb;
+use crate::base::Rgb;
 
 /// Floor of the denominators of the Fresnel quotients, whose numerators
 /// are never larger than their denominators (each is `|x − y|² / |x + y|²`

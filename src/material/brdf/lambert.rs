@@ -1,7 +1,7 @@
 //! Lambert: ideal diffuse reflection (lecture: "Diffuse Reflection Model").
 //! WGSL twin: `shaders/brdf/lambert.wgsl`.
 
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use std::f64::consts::FRAC_1_PI;
 
 /// `f_r = k_d / π` with `k_d` the albedo. (The lecture's `k_d` is in 1/sr:

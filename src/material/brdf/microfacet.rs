@@ -20,7 +20,7 @@
 use super::COS_FLOOR;
 pub use super::phong::sin2_between;
 use super::phong::{EXP_CUTOFF, exp_cutoff, ln_cos};
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, LN_2, PI};
 
