@@ -9,7 +9,7 @@ use crate::scene::scene_file::{self, SceneSource};
 use crate::scene::{Scene, ShadingMode};
 use crate::{Error, Result, reference};
 use clap::{Parser, Subcommand};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -78,7 +78,18 @@ pub struct RenderArgs {
     /// lights (1024).
     #[arg(long = "limit", value_name = "KEY=VALUE")]
     pub limits: Vec<String>,
-    /// Render the cheapest configuration `gonio bench` measured on this
+    /// `--max-error E` and the results file it reads.
+    #[command(flatten)]
+    pub quality: MaxErrorArgs,
+}
+
+/// `--max-error E [--bench-results CSV]`, shared by `gonio render` and
+/// `gonio view`: the cheapest configuration `gonio bench` measured within
+/// a relative error, resolved here into `--set` overrides once, so the
+/// renderers and the viewer never reach into the bench.
+#[derive(Debug, Clone, clap::Args)]
+pub struct MaxErrorArgs {
+    /// Use the cheapest configuration `gonio bench` measured on this
     /// scene whose error (relative RMS against the truth image) is at
     /// most E, e.g. `--max-error 0.05`; explicit --set still apply after it.
     #[arg(long, value_name = "E")]
@@ -88,6 +99,25 @@ pub struct RenderArgs {
     pub bench_results: PathBuf,
 }
 
+impl MaxErrorArgs {
+    /// The chosen configuration's `--set` overrides for `scene` (none
+    /// without `--max-error`); an input error when no measured
+    /// configuration is accurate enough or the file holds none of `scene`.
+    pub fn overrides(&self, scene: Option<&Path>, verbose: bool) -> Result<Vec<String>> {
+        let Some(max_error) = self.max_error else {
+            return Ok(Vec::new());
+        };
+        let choice = crate::bench::auto::cheapest_within(max_error, &self.bench_results, scene)?;
+        if verbose {
+            eprintln!(
+                "--max-error {max_error}: `{}` (measured {:.3} ms, error {:.3e})",
+                choice.label, choice.time_ms, choice.error
+            );
+        }
+        Ok(choice.overrides)
+    }
+}
+
 /// Parses the command line, runs it, and maps errors to exit status 2
 /// (input the user can fix) with a one-paragraph message.
 pub fn main() -> ExitCode {
@@ -95,7 +125,10 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render(&args),
         #[cfg(feature = "viewer")]
-        Command::View(args) => crate::ui::run(args),
+        Command::View(args) => args
+            .quality
+            .overrides(args.scene.as_deref(), args.verbose)
+            .and_then(|chosen| crate::ui::run(args, chosen)),
         Command::Brdf(args) => crate::explore::cli::run(&args),
         Command::Bench(args) => crate::bench::run::run(&args),
     };
@@ -120,12 +153,9 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     // Claim the destination first: a bad path fails before any work.
     let output = OutputFile::prepare(&args.output)?;
 
-    let mut overrides = crate::bench::auto::max_error_overrides(
-        args.max_error,
-        &args.bench_results,
-        args.scene.as_deref(),
-        args.verbose,
-    )?;
+    let mut overrides = args
+        .quality
+        .overrides(args.scene.as_deref(), args.verbose)?;
     overrides.extend(args.set.iter().cloned());
     if let Some(w) = args.width {
         overrides.push(format!("image.width={w}"));

@@ -2,7 +2,7 @@
 //!
 //! The data flow reads top to bottom: a [`scene`] is loaded (glTF, scene
 //! `.toml` or the built-in default), its [`material`]s and lights decide which
-//! shader code exists, the [`gpu`] renders it or the CPU [`reference`] does,
+//! shader code exists, the [`gpu`] renders it or the CPU [`reference`](mod@reference) does,
 //! and the resulting [`frame::Frame`] is written, compared or measured by
 //! [`output`].
 

@@ -56,11 +56,7 @@ fn gpu_vs_cpu(label: &str, scene: &Scene) -> Comparison {
         c.compared > scene.width as usize * scene.height as usize / 10,
         "{label}: too few covered pixels"
     );
-    assert!(
-        c.passed(),
-        "{label}: GPU and reference disagree: {}",
-        c.summary()
-    );
+    common::assert_agrees(label, "GPU and reference disagree", &c, &gpu, &center);
     c
 }
 

@@ -371,11 +371,7 @@ fn lone_plane(renderer: &mut GpuRenderer, label: &str, light: &str, extra: &[&st
         c.compared > (WIDTH * HEIGHT / 4) as usize,
         "{label}: too few pixels"
     );
-    assert!(
-        c.passed(),
-        "{label}: shadow acne or bias error: {}",
-        c.summary()
-    );
+    common::assert_agrees(label, "shadow acne or bias error", &c, &frame, &center);
 }
 
 #[test]
@@ -566,7 +562,13 @@ fn b_every_light_kind_and_shading_mode_casts_shadows() {
             raw.failing,
             c.summary()
         );
-        assert!(c.passed(), "{mode}: {}", c.summary());
+        common::assert_agrees(
+            &format!("shadows-b-{mode}"),
+            "GPU and traced shadows disagree",
+            &c,
+            &masked,
+            &center,
+        );
     }
 }
 
@@ -663,7 +665,13 @@ fn c_shadowed_regions_receive_ambient_and_other_lights_only() {
         c.summary()
     );
     assert!(shadowed > 400, "too few shadowed pixels: {shadowed}");
-    assert!(c.passed(), "{}", c.summary());
+    common::assert_agrees(
+        "shadows-c",
+        "GPU and traced shadows disagree",
+        &c,
+        &masked,
+        &center,
+    );
 }
 
 // ---------------------------------------------------------------------

@@ -115,11 +115,46 @@ fn assert_matches(shot: &Path, area: (u32, u32, u32, u32), reference: &Path, wha
         "{what}: max difference {max} levels, {:.3} % of the pixels differ",
         100.0 * fraction
     );
-    assert!(
-        max <= 1 && fraction < 0.01,
-        "{what}: the viewer's 3D area differs from `gonio render` by up to {max} levels in {:.3} % of the pixels (allowed: 1 level, under 1 %)",
-        100.0 * fraction
+    if max <= 1 && fraction < 0.01 {
+        return;
+    }
+    let dir = save_failure(shot, area, reference, what);
+    panic!(
+        "{what}: the viewer's 3D area differs from `gonio render` by up to {max} levels in {:.3} % of the pixels (allowed: 1 level, under 1 %)\nactual, expected and difference images in {}",
+        100.0 * fraction,
+        dir.display()
     );
+}
+
+/// Saves the screenshot's 3D area (`actual.png`), the render
+/// (`expected.png`) and their difference scaled so that the largest is
+/// white (`difference.png`) for a failed comparison; returns the folder.
+fn save_failure(
+    shot: &Path,
+    (x, y, w, h): (u32, u32, u32, u32),
+    reference: &Path,
+    what: &str,
+) -> std::path::PathBuf {
+    let dir = common::failure_dir(&format!("viewer-{what}"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let actual =
+        image::imageops::crop_imm(&image::open(shot).unwrap().to_rgb8(), x, y, w, h).to_image();
+    let expected = image::open(reference).unwrap().to_rgb8();
+    let max = actual
+        .pixels()
+        .zip(expected.pixels())
+        .flat_map(|(a, b)| (0..3).map(move |c| a.0[c].abs_diff(b.0[c])))
+        .max()
+        .unwrap_or(0)
+        .max(1);
+    let difference = image::RgbImage::from_fn(w, h, |i, j| {
+        let (a, b) = (actual.get_pixel(i, j).0, expected.get_pixel(i, j).0);
+        image::Rgb([0, 1, 2].map(|c| (a[c].abs_diff(b[c]) as u32 * 255 / max as u32) as u8))
+    });
+    actual.save(dir.join("actual.png")).unwrap();
+    expected.save(dir.join("expected.png")).unwrap();
+    difference.save(dir.join("difference.png")).unwrap();
+    dir
 }
 
 #[test]

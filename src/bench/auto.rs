@@ -144,20 +144,12 @@ pub fn choose(rows: &[Measured], scene: &str, max_error: f64, path: &Path) -> Re
     }
 }
 
-/// The `--set` overrides for `gonio render --max-error`: none without
-/// `--max-error`; otherwise the chosen configuration's, read from
-/// `results` for `scene` (the label [`super::run::scene_label`] gives).
-pub fn max_error_overrides(
-    max_error: Option<f64>,
-    results: &Path,
-    scene: Option<&Path>,
-    verbose: bool,
-) -> Result<Vec<String>> {
-    let Some(max_error) = max_error else {
-        return Ok(Vec::new());
-    };
+/// The cheapest configuration measured on `scene` (the label
+/// [`super::run::scene_label`] gives) in `results` whose error is at most
+/// `max_error`: what `--max-error` resolves to (`crate::cli::MaxErrorArgs`).
+pub fn cheapest_within(max_error: f64, results: &Path, scene: Option<&Path>) -> Result<Choice> {
     if !max_error.is_finite() || max_error < 0.0 {
-        return choose(&[], "", max_error, results).map(|_| Vec::new());
+        return choose(&[], "", max_error, results);
     }
     let text = std::fs::read_to_string(results).map_err(|e| {
         Error::input(
@@ -166,14 +158,7 @@ pub fn max_error_overrides(
         )
     })?;
     let rows = parse_results(&text, results)?;
-    let choice = choose(&rows, &super::run::scene_label(scene), max_error, results)?;
-    if verbose {
-        eprintln!(
-            "--max-error {max_error}: `{}` (measured {:.3} ms, error {:.3e})",
-            choice.label, choice.time_ms, choice.error
-        );
-    }
-    Ok(choice.overrides)
+    choose(&rows, &super::run::scene_label(scene), max_error, results)
 }
 
 #[cfg(test)]

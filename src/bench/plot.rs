@@ -4,7 +4,7 @@
 //! atomic PNG/SVG files).
 
 use super::Row;
-use crate::explore::plot::{COLORS, Plot, number};
+use crate::output::plot::{COLORS, Plot, number};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

@@ -38,8 +38,18 @@ impl Ratio {
         match self.target {
             None => String::new(),
             Some(t) if self.value() <= t => "pass".into(),
-            Some(t) => super::report::miss(self.value(), t),
+            Some(t) => miss(self.value(), t),
         }
+    }
+}
+
+/// "miss by X%" for a value over its target (one decimal below 10%).
+pub fn miss(value: f64, target: f64) -> String {
+    let pct = (value / target - 1.0) * 100.0;
+    if pct < 10.0 {
+        format!("miss by {pct:.1}%")
+    } else {
+        format!("miss by {pct:.0}%")
     }
 }
 

@@ -8,9 +8,9 @@
 //! hold commas or quotes (RFC 4180).
 
 use super::BenchReport;
-use super::ratios::Ratio;
-use crate::explore::plot::number;
+use super::ratios::{Ratio, miss};
 use crate::gpu::timing::Clock;
+use crate::output::plot::number;
 use std::fmt::Write;
 
 /// The header of `results.csv`.
@@ -155,16 +155,6 @@ fn memory_note(s: &super::scale::Scale) -> String {
         frame as f64 / p.mesh_bytes as f64,
         mib(p.mesh_bytes)
     )
-}
-
-/// "miss by X%" for a value over its target (one decimal below 10%).
-pub fn miss(value: f64, target: f64) -> String {
-    let pct = (value / target - 1.0) * 100.0;
-    if pct < 10.0 {
-        format!("miss by {pct:.1}%")
-    } else {
-        format!("miss by {pct:.0}%")
-    }
 }
 
 /// A fitted slope, or "–" where there was nothing to fit (all zero).

@@ -3,11 +3,12 @@
 
 use super::albedo::albedo_curve;
 use super::gloss::{GEOMETRIES, gloss};
-use super::plot::{AlbedoPlot, PlotFile, SlicePlot, number};
+use super::plot::{AlbedoPlot, SlicePlot};
 use super::slice::{Quantity, slice};
 use super::{Channel, Labelled, direction, frame, spec, table};
 use crate::material::ReflectanceModel;
 use crate::material::brdf::mirror_reflectance;
+use crate::output::plot::{PlotFile, number};
 use crate::{Error, Result};
 use std::path::PathBuf;
 

@@ -1,7 +1,9 @@
-//! What happens to a rendered frame: written to PNG or EXR (atomically), or
-//! compared with another frame.
+//! What happens to a rendered frame: written to PNG or EXR (atomically),
+//! compared with another frame, or left behind beside a failed test.
 
 pub mod compare;
+pub mod failure;
+pub mod plot;
 pub mod write;
 
 pub use compare::{Comparison, Tolerance, compare_with_jitter};

@@ -12,14 +12,11 @@ pub struct ViewArgs {
     /// Override any scene-file key by its dotted path, as for `gonio render`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// Open with the cheapest configuration `gonio bench` measured on this
-    /// scene whose error is at most E (as `gonio render --max-error`);
-    /// explicit --set still apply after it.
-    #[arg(long, value_name = "E")]
-    pub max_error: Option<f64>,
-    /// The results file --max-error reads (written by `gonio bench`).
-    #[arg(long, value_name = "CSV", default_value = "gonio-bench/results.csv")]
-    pub bench_results: PathBuf,
+    /// `--max-error E`: open with the cheapest configuration `gonio bench`
+    /// measured on this scene within relative error E (as `gonio render
+    /// --max-error`); explicit --set still apply after it.
+    #[command(flatten)]
+    pub quality: crate::cli::MaxErrorArgs,
     /// Window size in pixels, e.g. `1280x720`.
     #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),

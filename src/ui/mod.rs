@@ -25,8 +25,9 @@ pub use cli::ViewArgs;
 
 /// `gonio view`: loads the scene (a bad one fails before any window
 /// opens), opens the window, runs until it is closed or the scripted
-/// frames are done.
-pub fn run(args: ViewArgs) -> Result<()> {
+/// frames are done. `chosen` are the overrides `--max-error` resolved to
+/// (`crate::cli::MaxErrorArgs`); the `--set`s apply after them.
+pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
     if !args.exposure.is_finite() {
         return Err(Error::argument(
             format!("--exposure {}", args.exposure),
@@ -48,12 +49,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
         Some(path) => SceneSource::File(path.clone()),
         None => SceneSource::BuiltIn,
     };
-    let mut overrides = crate::bench::auto::max_error_overrides(
-        args.max_error,
-        &args.bench_results,
-        args.scene.as_deref(),
-        args.verbose,
-    )?;
+    let mut overrides = chosen;
     overrides.extend(args.set.iter().cloned());
     let doc = document::Document::load(source, overrides, limits)?;
     if let Some(path) = &args.screenshot {

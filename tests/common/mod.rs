@@ -99,3 +99,40 @@ pub fn compare_to_reference(
 ) -> Comparison {
     compare_with_jitter(gpu, center, jittered, tolerance(scene, center))
 }
+
+/// Where a failing image test leaves its pictures:
+/// `target/tmp/image-failures/LABEL/`.
+pub fn failure_dir(label: &str) -> PathBuf {
+    let safe: String = label
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("image-failures")
+        .join(safe)
+}
+
+/// Asserts that `c` (a comparison of `actual` with `expected`) passed. On
+/// failure it first writes the actual frame, the expected one and their
+/// difference ([`gonio::output::failure::write_failure_images`]) and names
+/// the folder in the panic message.
+pub fn assert_agrees(label: &str, what: &str, c: &Comparison, actual: &Frame, expected: &Frame) {
+    if c.passed() {
+        return;
+    }
+    let dir = failure_dir(label);
+    let saved = match gonio::output::failure::write_failure_images(&dir, actual, expected) {
+        Ok(_) => format!(
+            "actual, expected and difference images in {}",
+            dir.display()
+        ),
+        Err(e) => format!("(could not save the images: {e})"),
+    };
+    panic!("{label}: {what}: {}\n{saved}", c.summary());
+}

@@ -8,13 +8,13 @@
 //!
 //! 1. The file must be a regular file within the byte limit; a GLB is
 //!    split into its chunks here, each length checked against the file
-//!    ([`container`]).
+//!    (`container`).
 //! 2. The JSON is counted before it is parsed (values, objects, nodes,
 //!    images), because parsing can multiply its size a hundredfold; then
 //!    it is parsed, required extensions are checked, and gltf-json's
 //!    validation runs (every index in range, every enum value known).
 //! 3. The nodes must form a forest: no cycle, no node with two parents,
-//!    checked over all nodes iteratively in linear time ([`graph`]). The
+//!    checked over all nodes iteratively in linear time (`graph`). The
 //!    vertices, triangles and lights the scene will draw are added up from
 //!    the declared counts, once per mesh instance, and checked against the
 //!    [`Limits`] before anything is read.
@@ -23,12 +23,12 @@
 //!    which must stay inside the glTF's folder after canonicalization (no
 //!    absolute paths, no escaping `..`, no URI schemes, no symlinks that
 //!    lead out) and be regular files. At most the declared `byteLength` is
-//!    read; a shorter file is an error ([`buffers`]).
+//!    read; a shorter file is an error (`buffers`).
 //! 5. Every accessor is checked against its buffer view and buffer (types,
 //!    offsets, strides, counts, with overflow-checked arithmetic) before
 //!    the `gltf` crate's reader touches it, because that reader slices and
 //!    indexes without checking; indices are checked against the vertex
-//!    count, and positions and normals must be finite ([`accessors`]).
+//!    count, and positions and normals must be finite (`accessors`).
 //!
 //! A panic inside the `gltf` crate is caught as a last line of defence and
 //! reported like any other malformed input, but every panic the fuzzers
