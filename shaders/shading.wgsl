@@ -40,7 +40,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     // rasterizer runs both sides of every branch, so a lookup inside the
     // light loop would cost one per light.
     // LIGHT_COUNT and SHADOW_MAP_COUNT are generated constants (the
-    // loops unroll; see LoopCounts in src/gpu/shader_gen.rs).
+    // loops unroll; see LoopCounts in src/gpu/shader_gen/key.rs).
     #if shadows
     var visibility: array<f32, SHADOW_MAP_COUNT>;
     for (var s = 0u; s < SHADOW_MAP_COUNT; s++) {
