@@ -2,8 +2,10 @@
 // Cook-Torrance terms it chose, the mirror's reflectance.
 // f64 twin: src/material/brdf/mod.rs (same functions, same arms, same order).
 // Each model's arm (and its helpers) is compiled only when the scene uses
-// the model (`#if MODEL`); which arm and which terms run are the pipeline
-// constants of shaders/brdf/variant.wgsl.
+// the model (`#if MODEL`), each term's arm only when some material uses
+// the term (`#if distribution=ggx`, ...): the compiler reads no unused
+// function. Which arm and which terms run are the pipeline constants of
+// shaders/brdf/variant.wgsl.
 
 fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let n = frame.n;
@@ -61,12 +63,24 @@ fn cook_torrance(m: Material, wi: vec3<f32>, wo: vec3<f32>, n: vec3<f32>) -> vec
 // d_norm: see d_blinn_lecture).
 fn distribution(m: Material, cos_h: f32, sin2_h: f32) -> f32 {
     switch brdf_distribution(m) {
+        #if distribution=beckmann
         case DISTRIBUTION_BECKMANN: { return d_beckmann(m.roughness, cos_h, sin2_h); }
+        #endif
+        #if distribution=blinn
         case DISTRIBUTION_BLINN: { return d_blinn_lecture(m.blinn_e, cos_h, sin2_h); }
+        #endif
+        #if distribution=blinn-normalized
         case DISTRIBUTION_BLINN_NORMALIZED: { return d_blinn_normalized(m.blinn_e, cos_h, sin2_h); }
+        #endif
+        #if distribution=gaussian
         case DISTRIBUTION_GAUSSIAN: { return d_gaussian_lecture(m.roughness, cos_h, sin2_h); }
+        #endif
+        #if distribution=gaussian-normalized
         case DISTRIBUTION_GAUSSIAN_NORMALIZED: { return d_gaussian_normalized(m.roughness, cos_h, sin2_h, m.d_norm); }
+        #endif
+        #if distribution=ggx
         case DISTRIBUTION_GGX: { return d_ggx(m.roughness, cos_h, sin2_h); }
+        #endif
         default: { return 0.0; }
     }
 }
@@ -75,8 +89,12 @@ fn distribution(m: Material, cos_h: f32, sin2_h: f32) -> f32 {
 // G1; Blinn and Gaussian use Beckmann's with a matched slope.
 fn smith_beckmann_slope(m: Material) -> f32 {
     switch brdf_distribution(m) {
+        #if distribution=blinn || distribution=blinn-normalized
         case DISTRIBUTION_BLINN, DISTRIBUTION_BLINN_NORMALIZED: { return beckmann_slope_of_blinn(m.blinn_e); }
+        #endif
+        #if distribution=gaussian || distribution=gaussian-normalized
         case DISTRIBUTION_GAUSSIAN, DISTRIBUTION_GAUSSIAN_NORMALIZED: { return beckmann_slope_of_gaussian(m.roughness); }
+        #endif
         case DISTRIBUTION_BECKMANN, DISTRIBUTION_GGX, default: { return m.roughness; }
     }
 }
@@ -84,14 +102,20 @@ fn smith_beckmann_slope(m: Material) -> f32 {
 // G of the chosen geometry term.
 fn geometry(m: Material, cos_h: f32, cos_i: f32, cos_o: f32, cos_ih: f32, cos_oh: f32) -> f32 {
     switch brdf_geometry(m) {
+        #if geometry=v-groove
         case GEOMETRY_V_GROOVE: { return g_vgroove(cos_h, cos_o, cos_i, cos_oh); }
+        #endif
+        #if geometry=smith
         case GEOMETRY_SMITH: {
+            #if distribution=ggx
             if brdf_distribution(m) == DISTRIBUTION_GGX {
                 return g1_ggx(m.roughness, cos_i, cos_ih) * g1_ggx(m.roughness, cos_o, cos_oh);
             }
+            #endif
             let slope = smith_beckmann_slope(m);
             return g1_beckmann(slope, cos_i, cos_ih) * g1_beckmann(slope, cos_o, cos_oh);
         }
+        #endif
         case GEOMETRY_NONE, default: { return 1.0; }
     }
 }
@@ -110,10 +134,18 @@ fn denominator(m: Material) -> f32 {
 // mirror).
 fn fresnel(m: Material, cos_theta: f32) -> vec3<f32> {
     switch brdf_fresnel(m) {
+        #if fresnel=conductor
         case FRESNEL_CONDUCTOR: { return fresnel_conductor(cos_theta, m.eta, m.kappa); }
+        #endif
+        #if fresnel=conductor-lecture
         case FRESNEL_CONDUCTOR_LECTURE: { return fresnel_conductor_lecture(cos_theta, m.eta, m.kappa); }
+        #endif
+        #if fresnel=dielectric
         case FRESNEL_DIELECTRIC: { return vec3<f32>(fresnel_dielectric(cos_theta, m.eta_i, m.eta_t)); }
+        #endif
+        #if fresnel=schlick
         case FRESNEL_SCHLICK: { return fresnel_schlick(cos_theta, f0_conductor(m.eta, m.kappa)); }
+        #endif
         case FRESNEL_NONE, default: { return vec3<f32>(1.0); }
     }
 }

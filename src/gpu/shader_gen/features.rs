@@ -2,7 +2,7 @@
 //! [`super::preprocess`]): a closed set, so that a misspelt name in a
 //! shader is an error rather than a line silently kept or dropped.
 
-use crate::material::ReflectanceModel;
+use crate::material::{Distribution, Fresnel, Geometry, ReflectanceModel};
 use std::fmt;
 
 /// One condition of the shader sources, with its WGSL spelling
@@ -17,6 +17,15 @@ pub enum Feature {
     /// contract name, e.g. `cook-torrance`): its `eval_brdf` arm and its
     /// helpers are compiled.
     Model(ReflectanceModel),
+    /// Some Cook-Torrance material uses this distribution
+    /// (`distribution=ggx`): its `switch` arm is compiled.
+    Distribution(Distribution),
+    /// Some Cook-Torrance material uses this geometry term
+    /// (`geometry=smith`).
+    Geometry(Geometry),
+    /// Some Cook-Torrance or mirror material uses this Fresnel term
+    /// (`fresnel=schlick`).
+    Fresnel(Fresnel),
     /// Some light casts shadows (`shadows`).
     Shadows,
     /// Some shadowed light filters with PCF (`shadow_pcf`).
@@ -71,15 +80,26 @@ impl Feature {
             Display,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
+        all.extend(
+            crate::material::Distribution::ALL
+                .iter()
+                .map(|&d| Distribution(d)),
+        );
+        all.extend(crate::material::Geometry::ALL.iter().map(|&g| Geometry(g)));
+        all.extend(crate::material::Fresnel::ALL.iter().map(|&f| Fresnel(f)));
         all
     }
 
     /// How `#if` names this feature in a WGSL file.
-    pub fn spelling(self) -> &'static str {
-        match self {
+    pub fn spelling(self) -> String {
+        let term = |kind: &str, name: &str| format!("{kind}={name}");
+        let flag = match self {
+            Feature::Model(model) => return model.name().into(),
+            Feature::Distribution(d) => return term("distribution", d.name()),
+            Feature::Geometry(g) => return term("geometry", g.name()),
+            Feature::Fresnel(f) => return term("fresnel", f.name()),
             Feature::Flat => "flat",
             Feature::Tangents => "tangents",
-            Feature::Model(model) => model.name(),
             Feature::Shadows => "shadows",
             Feature::ShadowPcf => "shadow_pcf",
             Feature::PcfUniform => "pcf_uniform",
@@ -93,7 +113,8 @@ impl Feature {
             Feature::UniformLights => "uniform_lights",
             Feature::UniformShadowViews => "uniform_shadow_views",
             Feature::Display => "display",
-        }
+        };
+        flag.into()
     }
 
     /// The feature spelt `name`, if there is one.
@@ -104,7 +125,7 @@ impl Feature {
 
 impl fmt::Display for Feature {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.spelling())
+        f.write_str(&self.spelling())
     }
 }
 
@@ -116,8 +137,12 @@ mod tests {
     fn spellings_are_distinct_and_parse_back() {
         let all = Feature::all();
         for f in &all {
-            assert_eq!(Feature::parse(f.spelling()), Some(*f));
+            assert_eq!(Feature::parse(&f.spelling()), Some(*f));
         }
+        assert_eq!(
+            Feature::parse("distribution=ggx"),
+            Some(Feature::Distribution(Distribution::Ggx))
+        );
         let mut names: Vec<_> = all.iter().map(|f| f.spelling()).collect();
         names.sort();
         names.dedup();

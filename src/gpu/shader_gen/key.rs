@@ -155,7 +155,7 @@ impl ShaderKey {
         if self.needs_tangents() {
             f.push(Feature::Tangents);
         }
-        f.extend(self.models().into_iter().map(Feature::Model));
+        f.extend(super::specialization::brdf_features(&self.variants));
         f.extend(self.shadows.features());
         if self.shadow_coords_per_vertex() {
             f.push(Feature::ShadowVertex);

@@ -5,6 +5,7 @@
 //! constants (`MODEL_COOK_TORRANCE`, `DISTRIBUTION_GGX`, ...), so the WGSL
 //! `switch`es name them and no number is kept in sync by hand.
 
+use super::features::Feature;
 use crate::material::{
     BrdfVariant, Denominator, Distribution, Fresnel, Geometry, ReflectanceModel,
 };
@@ -26,6 +27,40 @@ pub struct VariantCode {
     pub denominator: u32,
 }
 
+/// `v` with the terms its model uses filled in where it left them open
+/// (Cook-Torrance: Beckmann, Smith, conductor, microfacet, as the CPU's
+/// `Material` defaults; the mirror: no Fresnel, `k_s` unchanged) and the
+/// others cleared.
+pub fn resolved(v: &BrdfVariant) -> BrdfVariant {
+    let ct = v.model == ReflectanceModel::CookTorrance;
+    let fresnel_default = match v.model {
+        ReflectanceModel::CookTorrance => Some(Fresnel::Conductor),
+        ReflectanceModel::Mirror => Some(Fresnel::None),
+        _ => None,
+    };
+    BrdfVariant {
+        model: v.model,
+        distribution: ct.then(|| v.distribution.unwrap_or(Distribution::Beckmann)),
+        geometry: ct.then(|| v.geometry.unwrap_or(Geometry::Smith)),
+        fresnel: fresnel_default.map(|f| v.fresnel.unwrap_or(f)),
+        denominator: ct.then(|| v.denominator.unwrap_or(Denominator::Microfacet)),
+    }
+}
+
+/// The `#if` features of `variants`: their models and the Cook-Torrance
+/// and mirror terms they use (so a module holds the `switch` arms of
+/// those terms only, and the compiler reads no unused term function).
+pub fn brdf_features(variants: &BTreeSet<BrdfVariant>) -> Vec<Feature> {
+    let mut features = BTreeSet::new();
+    for v in variants.iter().map(resolved) {
+        features.insert(Feature::Model(v.model));
+        features.extend(v.distribution.map(Feature::Distribution));
+        features.extend(v.geometry.map(Feature::Geometry));
+        features.extend(v.fresnel.map(Feature::Fresnel));
+    }
+    features.into_iter().collect()
+}
+
 /// The index of `x` in `all` (the enums' `ALL`, which list every value).
 fn index<T: PartialEq>(all: &[T], x: T) -> u32 {
     all.iter()
@@ -38,30 +73,14 @@ impl VariantCode {
     /// (Beckmann, Smith, conductor, microfacet); the mirror without a
     /// Fresnel choice reflects `k_s` unchanged.
     pub fn of(v: &BrdfVariant) -> Self {
-        let mut code = VariantCode {
+        let v = resolved(v);
+        VariantCode {
             model: index(&ReflectanceModel::ALL, v.model),
-            distribution: 0,
-            geometry: 0,
-            fresnel: 0,
-            denominator: 0,
-        };
-        match v.model {
-            ReflectanceModel::CookTorrance => {
-                let d = v.distribution.unwrap_or(Distribution::Beckmann);
-                let g = v.geometry.unwrap_or(Geometry::Smith);
-                let f = v.fresnel.unwrap_or(Fresnel::Conductor);
-                let c = v.denominator.unwrap_or(Denominator::Microfacet);
-                code.distribution = index(Distribution::ALL, d);
-                code.geometry = index(Geometry::ALL, g);
-                code.fresnel = index(Fresnel::ALL, f);
-                code.denominator = index(Denominator::ALL, c);
-            }
-            ReflectanceModel::Mirror => {
-                code.fresnel = index(Fresnel::ALL, v.fresnel.unwrap_or(Fresnel::None));
-            }
-            _ => {}
+            distribution: v.distribution.map_or(0, |d| index(Distribution::ALL, d)),
+            geometry: v.geometry.map_or(0, |g| index(Geometry::ALL, g)),
+            fresnel: v.fresnel.map_or(0, |f| index(Fresnel::ALL, f)),
+            denominator: v.denominator.map_or(0, |c| index(Denominator::ALL, c)),
         }
-        code
     }
 
     /// `GpuMaterial.variant`: model in bits 0-7, distribution 8-11,

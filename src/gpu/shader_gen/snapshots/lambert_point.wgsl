@@ -258,8 +258,10 @@ fn lambert(k_d: vec3<f32>) -> vec3<f32> {
 // Cook-Torrance terms it chose, the mirror's reflectance.
 // f64 twin: src/material/brdf/mod.rs (same functions, same arms, same order).
 // Each model's arm (and its helpers) is compiled only when the scene uses
-// the model (`#if MODEL`); which arm and which terms run are the pipeline
-// constants of shaders/brdf/variant.wgsl.
+// the model (`#if MODEL`), each term's arm only when some material uses
+// the term (`#if distribution=ggx`, ...): the compiler reads no unused
+// function. Which arm and which terms run are the pipeline constants of
+// shaders/brdf/variant.wgsl.
 
 fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let n = frame.n;
