@@ -20,7 +20,9 @@ struct Globals {
 }
 
 // One material, roughness floor already applied (Material::with_roughness_floor).
-// `variant` indexes the scene's BRDF variants (the generated `eval_brdf` switch).
+// `variant` packs the material's model and Cook-Torrance terms (model in bits
+// 0-7, distribution 8-11, geometry 12-15, Fresnel 16-19, denominator 20-23;
+// shaders/brdf/variant.wgsl reads it when a pipeline does not fix them).
 struct Material {
     k_a: vec3<f32>,
     variant: u32,
@@ -78,8 +80,11 @@ struct Incidence {
 // Lights: a uniform buffer of a fixed capacity when they fit, a storage
 // buffer otherwise (src/gpu/bindings.rs: lavapipe loads storage buffers
 // lane by lane).
-@group(0) @binding(2) var<uniform> lights: array<Light, LIGHT_CAPACITY>; // #if uniform_lights
-@group(0) @binding(2) var<storage, read> lights: array<Light>; // #if !uniform_lights
+#if uniform_lights
+@group(0) @binding(2) var<uniform> lights: array<Light, LIGHT_CAPACITY>;
+#else
+@group(0) @binding(2) var<storage, read> lights: array<Light>;
+#endif
 
 // normalize(v), or zero for a zero vector (normalize would give NaN). The
 // CPU side uses glam's normalize_or_zero.
@@ -103,6 +108,9 @@ fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
 }
 
 fn target_output(radiance: vec3<f32>) -> vec4<f32> {
-    return vec4<f32>(radiance, 1.0); // #if !display
-    return vec4<f32>(srgb_encode(clamp(radiance * globals.display_scale, vec3<f32>(0.0), vec3<f32>(1.0))), 1.0); // #if display
+    #if display
+    return vec4<f32>(srgb_encode(clamp(radiance * globals.display_scale, vec3<f32>(0.0), vec3<f32>(1.0))), 1.0);
+    #else
+    return vec4<f32>(radiance, 1.0);
+    #endif
 }

@@ -5,35 +5,51 @@
 // point, so all three corners compute the same colour, passed without
 // interpolation. Gouraud: the shading point is the vertex, the frame the
 // vertex's, and colours are interpolated perspective-correctly.
-// Lines marked `#if FEATURE` are kept only when the feature is on
-// (src/gpu/shader_gen.rs): `flat`, `tangents`.
+// Blocks `#if FEATURE` ... `#endif` are kept only when the feature is on
+// (src/gpu/shader_gen/features.rs): `flat`, `tangents`, `shadows`.
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(3) tangent: vec3<f32>, // #if tangents
-    @location(4) shading_point: vec3<f32>, // #if flat
+    #if tangents
+    @location(3) tangent: vec3<f32>,
+    #endif
+    #if flat
+    @location(4) shading_point: vec3<f32>,
+    #endif
 }
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
-    @location(0) @interpolate(flat) radiance: vec3<f32>, // #if flat
-    @location(0) radiance: vec3<f32>, // #if !flat
+    #if flat
+    @location(0) @interpolate(flat) radiance: vec3<f32>,
+    #else
+    @location(0) radiance: vec3<f32>,
+    #endif
 }
 
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
     let n = normalize_or_zero(in.normal);
-    let frame = surface_frame(n, in.tangent); // #if tangents
-    let frame = surface_frame(n, any_tangent(n)); // #if !tangents
-    let x = in.shading_point; // #if flat
-    let x = in.position; // #if !flat
+    #if tangents
+    let frame = surface_frame(n, in.tangent);
+    #else
+    let frame = surface_frame(n, any_tangent(n));
+    #endif
+    #if flat
+    let x = in.shading_point;
+    #else
+    let x = in.position;
+    #endif
     var out: VertexOut;
     out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
-    out.radiance = reflected_radiance(material, x, frame); // #if !shadows
     // Shadows: looked up here, at the same shading point, offset along the
     // face normal (flat) or the vertex normal (gouraud), as the reference.
-    out.radiance = reflected_radiance(material, x, frame, n); // #if shadows
+    #if shadows
+    out.radiance = reflected_radiance(material, x, frame, n);
+    #else
+    out.radiance = reflected_radiance(material, x, frame);
+    #endif
     return out;
 }
 

@@ -2,9 +2,10 @@
 // L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
 // plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)).
 // f64 twin: reflected_radiance in src/shading.rs.
-// `mirror_reflectance` and `light_incidence` are generated for the scene's
-// BRDF variants and light kinds (src/gpu/shader_gen.rs); lines marked
-// `#if mirror` exist only when the scene has a mirror, lines marked
+// `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
+// over the scene's models; `light_incidence` is generated for its light
+// kinds (src/gpu/shader_gen/compose.rs). Blocks `#if mirror` exist only
+// when the scene has a mirror, blocks
 // `#if shadows` only when a light casts shadows: then V_l comes from
 // the shadow-map lookup (shaders/shadows.wgsl) at the shading point x, with
 // n_g the offset normal (geometric normal for phong and flat, the vertex
@@ -13,18 +14,24 @@
 // ShaderKey::shadow_coords_per_vertex), from those interpolated
 // coordinates `shadow_ndc`.
 
-// Radiance of the environment from unit direction d. Twin: Environment::radiance. // #if mirror
-fn environment_radiance(d: vec3<f32>) -> vec3<f32> { // #if mirror
-    let y = clamp(d.y, -1.0, 1.0); // #if mirror
-    if y >= 0.0 { // #if mirror
-        return globals.env_horizon + (globals.env_zenith - globals.env_horizon) * y; // #if mirror
-    } // #if mirror
-    return globals.env_horizon + (globals.env_ground - globals.env_horizon) * (-y); // #if mirror
-} // #if mirror
+#if mirror
+// Radiance of the environment from unit direction d. Twin: Environment::radiance.
+fn environment_radiance(d: vec3<f32>) -> vec3<f32> {
+    let y = clamp(d.y, -1.0, 1.0);
+    if y >= 0.0 {
+        return globals.env_horizon + (globals.env_zenith - globals.env_horizon) * y;
+    }
+    return globals.env_horizon + (globals.env_ground - globals.env_horizon) * (-y);
+}
+#endif
 
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> { // #if !shadows
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> { // #if shadow_pixel
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> { // #if shadow_vertex
+#if shadow_pixel
+fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> {
+#elif shadow_vertex
+fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> {
+#else
+fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+#endif
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
     var radiance = m.k_a * globals.ambient;
@@ -33,26 +40,39 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc
     // rasterizer runs both sides of every branch, so a lookup inside the
     // light loop would cost one per light.
     // LIGHT_COUNT and SHADOW_MAP_COUNT are generated constants (the
-    // loops unroll; see LoopCounts in src/gpu/shader_gen.rs).
-    var visibility: array<f32, SHADOW_MAP_COUNT>; // #if shadows
-    for (var s = 0u; s < SHADOW_MAP_COUNT; s++) { // #if shadows
-        visibility[s] = shadow_visibility(lights[shadow_caster(s)], x, n_g); // #if shadow_pixel
-        visibility[s] = shadow_read_ndc(lights[shadow_caster(s)], lights[shadow_caster(s)].shadow_layer, shadow_ndc); // #if shadow_vertex
-    } // #if shadows
-    for (var l = 0u; l < LIGHT_COUNT; l++) { // #if light_count
-    for (var l = 0u; l < globals.light_count; l++) { // #if !light_count
+    // loops unroll; see LoopCounts in src/gpu/shader_gen/key.rs).
+    #if shadows
+    var visibility: array<f32, SHADOW_MAP_COUNT>;
+    for (var s = 0u; s < SHADOW_MAP_COUNT; s++) {
+        #if shadow_pixel
+        visibility[s] = shadow_visibility(lights[shadow_caster(s)], x, n_g);
+        #else
+        visibility[s] = shadow_read_ndc(lights[shadow_caster(s)], lights[shadow_caster(s)].shadow_layer, shadow_ndc);
+        #endif
+    }
+    #endif
+    #if light_count
+    for (var l = 0u; l < LIGHT_COUNT; l++) {
+    #else
+    for (var l = 0u; l < globals.light_count; l++) {
+    #endif
         let light = lights[l];
         let incidence = light_incidence(light, x);
         let cos_theta_i = dot(n, incidence.wi);
         if cos_theta_i <= 0.0 {
             continue;
         }
-        let map = min(light.shadow_map, SHADOW_MAP_COUNT - 1u); // #if shadows
-        let v = select(1.0, visibility[map], light.shadow_map < SHADOW_MAP_COUNT); // #if shadows
-        radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * cos_theta_i; // #if !shadows
-        radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v); // #if shadows
+        #if shadows
+        let map = min(light.shadow_map, SHADOW_MAP_COUNT - 1u);
+        let v = select(1.0, visibility[map], light.shadow_map < SHADOW_MAP_COUNT);
+        radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
+        #else
+        radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * cos_theta_i;
+        #endif
     }
-    let reflected = mirror_direction(wo, n); // #if mirror
-    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected); // #if mirror
+    #if mirror
+    let reflected = mirror_direction(wo, n);
+    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected);
+    #endif
     return radiance;
 }

@@ -2,8 +2,9 @@
 // (shaders/shading.wgsl). The CPU reference ray-traces the same V
 // (reference::visibility); docs/shadows.md derives the offsets used here.
 // Compiled only when a light casts shadows (feature `shadows`); each
-// projection only when a light uses it (`shadow_ortho`, `shadow_perspective`,
-// `shadow_cube`), the PCF loop only when a light filters (`shadow_pcf`).
+// projection only when a light uses it (blocks `#if shadow_ortho`,
+// `shadow_perspective`, `shadow_cube`), the PCF loop only when a light
+// filters (`#if shadow_pcf`).
 // The maps are written by shaders/shadow_pass.wgsl with reversed depth
 // (larger = nearer the light).
 
@@ -14,8 +15,11 @@ struct ShadowView {
 
 @group(1) @binding(0) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison; // nearest, GreaterEqual: 1 where lit
-@group(1) @binding(2) var<uniform> shadow_views: array<ShadowView, SHADOW_VIEW_CAPACITY>; // #if uniform_shadow_views
-@group(1) @binding(2) var<storage, read> shadow_views: array<ShadowView>; // #if !uniform_shadow_views
+#if uniform_shadow_views
+@group(1) @binding(2) var<uniform> shadow_views: array<ShadowView, SHADOW_VIEW_CAPACITY>;
+#else
+@group(1) @binding(2) var<storage, read> shadow_views: array<ShadowView>;
+#endif
 // One light per shadow map (for an area light, its first sample): the
 // lights whose visibility `reflected_radiance` looks up, once each.
 // Four to a row: a uniform array's stride is 16 bytes (src/gpu/bindings.rs).
@@ -35,18 +39,24 @@ const MAX_SHADOW_MAPS: u32 = 64u;
 // textureDimensions per pixel cost lavapipe about a tenth of the lookup).
 fn shadow_compare(uv: vec2<f32>, layer: i32, depth: f32, radius: u32, texel: f32) -> f32 {
     let d = max(depth, 0.0); // an empty texel (0) never shadows
-    let r = i32(radius); // #if !pcf_uniform
-    let r = i32(PCF_RADIUS); // #if pcf_uniform
-    var lit = 0.0; // #if shadow_pcf
-    for (var i = -r; i <= r; i++) { // #if shadow_pcf
-        for (var j = -r; j <= r; j++) { // #if shadow_pcf
-            let offset = vec2<f32>(f32(i), f32(j)) * texel; // #if shadow_pcf
-            lit += textureSampleCompareLevel(shadow_maps, shadow_sampler, uv + offset, layer, d); // #if shadow_pcf
-        } // #if shadow_pcf
-    } // #if shadow_pcf
-    let side = f32(2 * r + 1); // #if shadow_pcf
-    return lit / (side * side); // #if shadow_pcf
-    return textureSampleCompareLevel(shadow_maps, shadow_sampler, uv, layer, d); // #if !shadow_pcf
+    #if pcf_uniform
+    let r = i32(PCF_RADIUS);
+    #else
+    let r = i32(radius);
+    #endif
+    #if shadow_pcf
+    var lit = 0.0;
+    for (var i = -r; i <= r; i++) {
+        for (var j = -r; j <= r; j++) {
+            let offset = vec2<f32>(f32(i), f32(j)) * texel;
+            lit += textureSampleCompareLevel(shadow_maps, shadow_sampler, uv + offset, layer, d);
+        }
+    }
+    let side = f32(2 * r + 1);
+    return lit / (side * side);
+    #else
+    return textureSampleCompareLevel(shadow_maps, shadow_sampler, uv, layer, d);
+    #endif
 }
 
 // Where x reads the map of a light towards unit direction wi whose texel
@@ -74,54 +84,62 @@ fn shadow_read_ndc(light: Light, layer: i32, ndc: vec3<f32>) -> f32 {
 }
 
 // V of the point p of a perspective `layer`.
-fn shadow_read(light: Light, layer: i32, p: vec3<f32>) -> f32 { // #if shadow_projective
-    let clip = shadow_views[layer].clip_from_world * vec4<f32>(p, 1.0); // #if shadow_projective
-    if clip.w <= 0.0 { // #if shadow_projective
-        return 1.0; // behind a perspective layer: outside the light's reach // #if shadow_projective
-    } // #if shadow_projective
-    return shadow_read_ndc(light, layer, clip.xyz / clip.w); // #if shadow_projective
-} // #if shadow_projective
+#if shadow_projective
+fn shadow_read(light: Light, layer: i32, p: vec3<f32>) -> f32 {
+    let clip = shadow_views[layer].clip_from_world * vec4<f32>(p, 1.0);
+    if clip.w <= 0.0 {
+        return 1.0; // behind a perspective layer: outside the light's reach
+    }
+    return shadow_read_ndc(light, layer, clip.xyz / clip.w);
+}
+#endif
 
 // Directional light: one orthographic map fitted to the scene bounds. Its
 // clip w is exactly 1 (the view's last row is 0 0 0 1), so no divide.
 // shadow_ortho_ndc is also what the vertex shader passes on when it computes
 // the coordinates (`#if shadow_vertex`, ShaderKey::shadow_coords_per_vertex).
-fn shadow_ortho_ndc(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> vec3<f32> { // #if shadow_ortho
-    let p = shadow_point(light, x, n_g, -light.direction, light.shadow_texel); // #if shadow_ortho
-    return (shadow_views[light.shadow_layer].clip_from_world * vec4<f32>(p, 1.0)).xyz; // #if shadow_ortho
-} // #if shadow_ortho
+#if shadow_ortho
+fn shadow_ortho_ndc(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> vec3<f32> {
+    let p = shadow_point(light, x, n_g, -light.direction, light.shadow_texel);
+    return (shadow_views[light.shadow_layer].clip_from_world * vec4<f32>(p, 1.0)).xyz;
+}
 
-fn shadow_ortho(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 { // #if shadow_ortho
-    return shadow_read_ndc(light, light.shadow_layer, shadow_ortho_ndc(light, x, n_g)); // #if shadow_ortho
-} // #if shadow_ortho
+fn shadow_ortho(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
+    return shadow_read_ndc(light, light.shadow_layer, shadow_ortho_ndc(light, x, n_g));
+}
+#endif
 
 // Spot light: one perspective map whose frustum holds the outer cone.
-fn shadow_perspective(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 { // #if shadow_perspective
-    let to_light = light.shadow_origin - x; // #if shadow_perspective
-    let r = length(to_light); // #if shadow_perspective
-    let p = shadow_point(light, x, n_g, to_light / max(r, 1e-30), light.shadow_texel * r); // #if shadow_perspective
-    return shadow_read(light, light.shadow_layer, p); // #if shadow_perspective
-} // #if shadow_perspective
+#if shadow_perspective
+fn shadow_perspective(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
+    let to_light = light.shadow_origin - x;
+    let r = length(to_light);
+    let p = shadow_point(light, x, n_g, to_light / max(r, 1e-30), light.shadow_texel * r);
+    return shadow_read(light, light.shadow_layer, p);
+}
+#endif
 
 // Point light (and an area light's shared map): six perspective maps, the
 // face chosen by the major axis of the direction from the light to the
 // lookup point.
-fn shadow_cube(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 { // #if shadow_cube
-    let to_light = light.shadow_origin - x; // #if shadow_cube
-    let r = length(to_light); // #if shadow_cube
-    let p = shadow_point(light, x, n_g, to_light / max(r, 1e-30), light.shadow_texel * r); // #if shadow_cube
-    let v = p - light.shadow_origin; // #if shadow_cube
-    let a = abs(v); // #if shadow_cube
-    var face = 0; // #if shadow_cube
-    if a.x >= a.y && a.x >= a.z { // #if shadow_cube
-        face = select(1, 0, v.x > 0.0); // #if shadow_cube
-    } else if a.y >= a.z { // #if shadow_cube
-        face = select(3, 2, v.y > 0.0); // #if shadow_cube
-    } else { // #if shadow_cube
-        face = select(5, 4, v.z > 0.0); // #if shadow_cube
-    } // #if shadow_cube
-    return shadow_read(light, light.shadow_layer + face, p); // #if shadow_cube
-} // #if shadow_cube
+#if shadow_cube
+fn shadow_cube(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
+    let to_light = light.shadow_origin - x;
+    let r = length(to_light);
+    let p = shadow_point(light, x, n_g, to_light / max(r, 1e-30), light.shadow_texel * r);
+    let v = p - light.shadow_origin;
+    let a = abs(v);
+    var face = 0;
+    if a.x >= a.y && a.x >= a.z {
+        face = select(1, 0, v.x > 0.0);
+    } else if a.y >= a.z {
+        face = select(3, 2, v.y > 0.0);
+    } else {
+        face = select(5, 4, v.z > 0.0);
+    }
+    return shadow_read(light, light.shadow_layer + face, p);
+}
+#endif
 
 // V_l at x (n_g: the offset normal).
 fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
@@ -129,9 +147,15 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
         return 1.0;
     }
     switch light.shadow_projection {
-        case 0u: { return shadow_ortho(light, x, n_g); } // #if shadow_ortho
-        case 1u: { return shadow_perspective(light, x, n_g); } // #if shadow_perspective
-        case 2u: { return shadow_cube(light, x, n_g); } // #if shadow_cube
+        #if shadow_ortho
+        case 0u: { return shadow_ortho(light, x, n_g); }
+        #endif
+        #if shadow_perspective
+        case 1u: { return shadow_perspective(light, x, n_g); }
+        #endif
+        #if shadow_cube
+        case 2u: { return shadow_cube(light, x, n_g); }
+        #endif
         default: { return 1.0; }
     }
 }

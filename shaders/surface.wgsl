@@ -1,6 +1,6 @@
 // The shading frame and the one-sided BRDF wrapper every model shares.
-// `eval_brdf` is generated per scene (src/gpu/shader_gen.rs) from the
-// variants in use; its CPU twin is material::brdf::eval.
+// `eval_brdf` is in shaders/brdf/eval.wgsl; its CPU twin is
+// material::brdf::eval.
 
 // An orthonormal shading frame. Twin: brdf::SurfaceFrame.
 struct SurfaceFrame {

@@ -201,7 +201,11 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             eprintln!("adapter: {}", context.describe());
             eprintln!(
                 "shader: {}",
-                crate::gpu::shader_gen::ShaderKey::for_scene(&scene).describe()
+                crate::gpu::shader_gen::ShaderKey::new(
+                    &scene,
+                    &crate::gpu::shadows::ShadowPlan::new(&scene)
+                )
+                .describe()
             );
         }
         let mut renderer = GpuRenderer::new(context);

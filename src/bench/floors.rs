@@ -16,6 +16,7 @@
 use super::harness::{HarnessShader, Inputs};
 use crate::frame::Frame;
 use crate::gpu::shader_gen::{self, ShaderKey, sources};
+use crate::gpu::shadows::ShadowPlan;
 use crate::gpu::{AdapterChoice, GpuContext};
 use crate::output::OutputFile;
 use crate::scene::{LightKind, Scene};
@@ -147,7 +148,7 @@ pub fn minimal_lambert(scene: &Scene) -> HarnessShader {
 /// shading, Lambert materials only, one point light without shadows or
 /// range, no mirror.
 pub fn is_lambert_one_point_light(scene: &Scene) -> bool {
-    let key = ShaderKey::for_scene(scene);
+    let key = ShaderKey::new(scene, &ShadowPlan::new(scene));
     scene.shading == crate::scene::ShadingMode::Phong
         && key
             .variants
@@ -179,7 +180,8 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
     use crate::material::{
         Denominator, Distribution, Fresnel, Geometry, Material, ReflectanceModel,
     };
-    let mut variants: std::collections::BTreeSet<_> = ShaderKey::for_scene(scene).variants;
+    let mut variants: std::collections::BTreeSet<_> =
+        ShaderKey::new(scene, &ShadowPlan::new(scene)).variants;
     for model in ReflectanceModel::ALL {
         let base = Material::new("uber", model);
         variants.insert(base.variant());
@@ -244,14 +246,14 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         // Light count read at run time, as an uber shader must.
         counts: Default::default(),
         // The same buffers as the specialized shader: only the code differs.
-        arrays: ShaderKey::for_scene(scene).arrays,
+        arrays: ShaderKey::new(scene, &ShadowPlan::new(scene)).arrays,
         vertex_shadow_coords: false,
     }
 }
 
 /// The scene's own specialized key without shadow code (for the harness).
 pub fn specialized_key(scene: &Scene) -> ShaderKey {
-    let mut key = ShaderKey::for_scene(scene);
+    let mut key = ShaderKey::new(scene, &ShadowPlan::new(scene));
     key.shadows = Default::default();
     key
 }

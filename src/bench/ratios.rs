@@ -182,7 +182,7 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
             100.0 * gap,
             100.0 * loop_gap,
             if gap <= 0.03 {
-                ": the generated shader has the scene's light count compiled in (`LoopCounts` in src/gpu/shader_gen.rs), so its loop unrolls like the hand-written one; the generic loop's cost is what that specialization saves"
+                ": the generated shader has the scene's light count compiled in (`LoopCounts` in src/gpu/shader_gen/key.rs), so its loop unrolls like the hand-written one; the generic loop's cost is what that specialization saves"
             } else if loop_gap >= 0.5 * gap {
                 ", so the light loop, not the BRDF code, is most of the gap: specializing it (a loop unrolled for the scene's light count, the range window only where a light has a range) is what would close it"
             } else {

@@ -319,7 +319,7 @@ pub fn markdown(r: &BenchReport) -> String {
     let _ = writeln!(o, "## Uber shader vs specialized\n");
     let _ = writeln!(
         o,
-        "The uber shader compiles every reflectance model, every Cook-Torrance distribution, geometry term, Fresnel term and denominator (each once, not their 192 combinations: on Mesa 22.3 lavapipe a shader with more than about 75 variants compiles but draws without direct light) and every light kind into one shader and dispatches on the material's variant index and the light's kind at run time, as a renderer without specialization would. Both are drawn by the bench's own pass over the same buffers; ratios are in the table above.\n"
+        "The uber shader compiles every reflectance model, every Cook-Torrance distribution, geometry term, Fresnel term and denominator (each once, not their 192 combinations: on Mesa 22.3 lavapipe a shader with more than about 75 variants compiles but draws without direct light) and every light kind into one shader and dispatches on the material's model and term codes (`FROM_MATERIAL`, shaders/brdf/variant.wgsl) and the light's kind at run time, as a renderer without specialization would. Both are drawn by the bench's own pass over the same buffers; ratios are in the table above.\n"
     );
     let _ = writeln!(
         o,

@@ -224,7 +224,7 @@ fn point(
             times.push(measure::render_pass_ms(&timings));
         }
     }
-    let key = ShaderKey::for_scene(&scene);
+    let key = ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene));
     let geometry = GeometryData::new(&scene, key.needs_tangents(), key.shadow_coords_per_vertex());
     let mesh_bytes =
         4 * (geometry.words.len() + geometry.indices.as_ref().map_or(0, Vec::len)) as u64;

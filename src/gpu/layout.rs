@@ -31,6 +31,7 @@ pub struct GpuGlobals {
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuMaterial {
     pub k_a: [f32; 3],
+    /// The model and terms, packed (`ShaderKey::variant_code`).
     pub variant: u32,
     pub k_d: [f32; 3],
     pub k_e: f32,
@@ -133,7 +134,7 @@ impl GpuMaterial {
         };
         GpuMaterial {
             k_a: f32x3(m.k_a),
-            variant: key.variant_index(&m.variant()),
+            variant: key.variant_code(&m.variant()),
             k_d: f32x3(m.k_d),
             k_e: m.k_e as f32,
             k_s: f32x3(m.k_s),
@@ -213,7 +214,8 @@ mod tests {
     /// Sizes must match what naga computes for the WGSL structs.
     #[test]
     fn sizes_match_wgsl() {
-        let common = crate::gpu::shader_gen::common(&["uniform_lights"]);
+        let common =
+            crate::gpu::shader_gen::common(&[crate::gpu::shader_gen::Feature::UniformLights]);
         let module = naga::front::wgsl::parse_str(&common).unwrap();
         let size_of = |name: &str| {
             let (_, ty) = module
@@ -230,9 +232,14 @@ mod tests {
             "{}{}",
             common,
             crate::gpu::shader_gen::preprocess(
+                "shadows.wgsl",
                 crate::gpu::shader_gen::sources::SHADOW_LOOKUP,
-                &["shadows", "shadow_pcf"]
+                &[
+                    crate::gpu::shader_gen::Feature::Shadows,
+                    crate::gpu::shader_gen::Feature::ShadowPcf
+                ]
             )
+            .unwrap()
         ))
         .unwrap();
         let (_, view) = shadows

@@ -387,19 +387,9 @@ impl GpuRenderer {
     /// The shader key and shadow plan of `scene`, checked against the
     /// device's limits.
     fn plan(&self, scene: &Scene) -> Result<(ShaderKey, ShadowPlan)> {
-        let mut key = ShaderKey::for_scene(scene);
+        let plan = ShadowPlan::new(scene);
+        let mut key = ShaderKey::new(scene, &plan);
         key.vertex_shadow_coords = self.vertex_shadow_coords;
-        let plan = if key.shadows.any() {
-            ShadowPlan::new(scene)
-        } else {
-            ShadowPlan::default()
-        };
-        if plan.is_empty() {
-            // Nothing to cast a shadow on (no geometry): no shadow code.
-            key.shadows = Default::default();
-            key.counts.shadow_maps = 0;
-            key.counts.pcf_radius = None;
-        }
         debug_assert_eq!(key.counts.shadow_maps as usize, plan.casters.len());
         self.check_shadow_limits(&plan)?;
         Ok((key, plan))

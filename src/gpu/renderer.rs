@@ -173,10 +173,7 @@ impl GpuRenderer {
     /// variants when it has several (each material's batch is drawn by the
     /// pipeline of its variant), else `None` (one pipeline, no switch).
     pub(super) fn specializations(key: &ShaderKey) -> Vec<Option<u32>> {
-        match key.variants.len() {
-            0 | 1 => vec![None],
-            n => (0..n as u32).map(Some).collect(),
-        }
+        key.specializations()
     }
 
     /// Every pipeline `key` draws with into `format` (one per
@@ -202,15 +199,15 @@ impl GpuRenderer {
             let wgsl = shader_gen::compose_for(key, output);
             // For reading what a scene compiles: GONIO_DUMP_WGSL=DIR writes
             // every generated module there.
-            if let Some(dir) = std::env::var_os("GONIO_DUMP_WGSL") {
-                let name = format!("gonio-{:016x}.wgsl", {
+            shader_gen::dump_if_asked(
+                {
                     use std::hash::{Hash, Hasher};
                     let mut h = std::collections::hash_map::DefaultHasher::new();
                     module_key.hash(&mut h);
                     h.finish()
-                });
-                let _ = std::fs::write(std::path::Path::new(&dir).join(name), &wgsl);
-            }
+                },
+                &wgsl,
+            );
             // naga validation first: a failure here is a bug in gonio, and
             // this way it is an error message, not a device panic.
             shader_gen::validate(&wgsl).map_err(|e| {
@@ -245,10 +242,7 @@ impl GpuRenderer {
         if !self.pipelines.contains_key(&cache_key) {
             let attributes = layout.attributes();
             let module = self.module(key, Output::for_format(format))?.clone();
-            let constants: Vec<(&str, f64)> = variant
-                .map(|v| (shader_gen::BRDF_VARIANT, f64::from(v)))
-                .into_iter()
-                .collect();
+            let constants = shader_gen::pipeline_constants(variant);
             let compilation_options = wgpu::PipelineCompilationOptions {
                 constants: &constants,
                 ..Default::default()

@@ -35,6 +35,7 @@
 //! comparison sampler (`GreaterEqual`: 1 where lit).
 
 use super::layout::{GpuLight, GpuShadowView};
+use super::shader_gen::Feature;
 use crate::scene::{Light, Scene, ShadowFilter, ShadowSettings};
 use glam::{DMat4, DVec3, DVec4};
 use std::collections::{BTreeSet, HashMap};
@@ -85,11 +86,11 @@ impl Projection {
     }
 
     /// The `#if` feature of its lookup code.
-    pub fn feature(self) -> &'static str {
+    pub fn feature(self) -> Feature {
         match self {
-            Projection::Ortho => "shadow_ortho",
-            Projection::Perspective => "shadow_perspective",
-            Projection::Cube => "shadow_cube",
+            Projection::Ortho => Feature::ShadowOrtho,
+            Projection::Perspective => Feature::ShadowPerspective,
+            Projection::Cube => Feature::ShadowCube,
         }
     }
 
@@ -155,12 +156,12 @@ impl ShadowFeatures {
     }
 
     /// The `#if` features.
-    pub fn features(&self) -> Vec<&'static str> {
+    pub fn features(&self) -> Vec<Feature> {
         let mut f = Vec::new();
         if self.any() {
-            f.push("shadows");
+            f.push(Feature::Shadows);
             if self.pcf {
-                f.push("shadow_pcf");
+                f.push(Feature::ShadowPcf);
             }
         }
         f.extend(self.projections.iter().map(|p| p.feature()));
@@ -170,7 +171,7 @@ impl ShadowFeatures {
             .iter()
             .any(|p| matches!(p, Projection::Perspective | Projection::Cube))
         {
-            f.push("shadow_projective");
+            f.push(Feature::ShadowProjective);
         }
         f
     }
@@ -248,6 +249,10 @@ impl ShadowPlan {
             lights: vec![None; scene.lights.len()],
             casters: Vec::new(),
         };
+        // No shadows: no maps, and no pass over the vertices for the bounds.
+        if !scene.lights.iter().any(|l| l.casts_shadows()) {
+            return plan;
+        }
         let Some((lo, hi)) = scene.bounds() else {
             return plan;
         };

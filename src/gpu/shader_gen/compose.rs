@@ -1,0 +1,230 @@
+//! Writing a scene's WGSL module: the files its key needs, each with its
+//! conditional blocks resolved, after the generated constants.
+
+use super::features::Feature;
+use super::key::ShaderKey;
+use super::preprocess::preprocess;
+use super::sources;
+use super::specialization;
+use crate::gpu::bindings::UniformArrays;
+use crate::material::{BrdfVariant, ReflectanceModel};
+use crate::scene::{LightKind, ShadingMode};
+use std::collections::BTreeSet;
+use std::fmt::Write;
+
+/// The embedded file at `path` (relative to `shaders/`) for `features`.
+/// Panics on a bad block: the files are embedded at build time and the
+/// test `every_shader_file_has_known_features_and_balanced_blocks` checks
+/// every one, so an error here is a bug in gonio, not in its input.
+fn file(path: &str, features: &[Feature]) -> String {
+    let text = sources::by_path(path).unwrap_or_else(|| panic!("shaders/{path} is not embedded"));
+    preprocess(&format!("shaders/{path}"), text, features).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// `shaders/common.wgsl` for `features`, after the capacities of its
+/// uniform arrays (src/gpu/bindings.rs). Every scene shader starts with it;
+/// the bench's hand-written shaders too.
+pub fn common(features: &[Feature]) -> String {
+    let mut out = UniformArrays::wgsl_capacities();
+    out.push_str(&file("common.wgsl", features));
+    out
+}
+
+/// The BRDF files a model needs, as paths in [`sources::BRDF_ORDER`].
+fn model_files(model: ReflectanceModel) -> &'static [&'static str] {
+    match model {
+        ReflectanceModel::Lambert => &["brdf/lambert.wgsl"],
+        ReflectanceModel::Phong
+        | ReflectanceModel::PhongNormalized
+        | ReflectanceModel::BlinnPhong
+        | ReflectanceModel::BlinnPhongNormalized => &["brdf/lambert.wgsl", "brdf/phong.wgsl"],
+        ReflectanceModel::Ward | ReflectanceModel::WardAnisotropic => {
+            &["brdf/lambert.wgsl", "brdf/phong.wgsl", "brdf/ward.wgsl"]
+        }
+        ReflectanceModel::CookTorrance => &[
+            "brdf/lambert.wgsl",
+            "brdf/phong.wgsl",
+            "brdf/fresnel.wgsl",
+            "brdf/microfacet.wgsl",
+        ],
+        ReflectanceModel::Mirror => &["brdf/lambert.wgsl", "brdf/phong.wgsl", "brdf/fresnel.wgsl"],
+    }
+}
+
+/// The BRDF part of a shader: shared declarations, the codes and
+/// specialization defaults of `variants`, the shading frame, the files
+/// their models need and `eval_brdf` / `mirror_reflectance`
+/// (shaders/brdf/eval.wgsl) with the arms of those models. The renderer
+/// and the GPU-vs-CPU test harness both compile exactly this code.
+pub fn compose_brdf_library(variants: &BTreeSet<BrdfVariant>, features: &[Feature]) -> String {
+    let models: BTreeSet<ReflectanceModel> = variants.iter().map(|v| v.model).collect();
+    let mut features = features.to_vec();
+    for feature in specialization::brdf_features(variants) {
+        if !features.contains(&feature) {
+            features.push(feature);
+        }
+    }
+    let mut out = common(&features);
+    out.push('\n');
+    out.push_str(&specialization::wgsl_codes());
+    out.push_str(&specialization::wgsl_defaults(variants));
+    out.push('\n');
+    out.push_str(&file("surface.wgsl", &features));
+    out.push('\n');
+    out.push_str(&file("brdf/variant.wgsl", &features));
+    out.push('\n');
+    let needed: BTreeSet<&str> = models
+        .iter()
+        .flat_map(|&m| model_files(m))
+        .copied()
+        .collect();
+    for path in sources::BRDF_ORDER.iter().filter(|p| needed.contains(*p)) {
+        out.push_str(&file(path, &features));
+        out.push('\n');
+    }
+    out.push_str(&file("brdf/eval.wgsl", &features));
+    out.push('\n');
+    out
+}
+
+/// What a scene pipeline writes, decided by its colour target.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Output {
+    /// Linear radiance and coverage in `Rgba32Float`, read back exactly
+    /// (`gonio render`, tests, bench).
+    #[default]
+    Radiance,
+    /// What a PNG holds, for an 8-bit window surface: exposure, clamp,
+    /// sRGB encoding in the shader (`#if display`), so the viewer draws
+    /// straight into the swapchain with no extra pass.
+    Display,
+}
+
+impl Output {
+    /// The output a colour target of `format` takes.
+    pub fn for_format(format: wgpu::TextureFormat) -> Output {
+        if format == wgpu::TextureFormat::Rgba32Float {
+            Output::Radiance
+        } else {
+            Output::Display
+        }
+    }
+}
+
+/// The files a light kind needs and its incidence function's name.
+fn light_wgsl(kind: LightKind) -> (&'static [&'static str], &'static str) {
+    match kind {
+        LightKind::Point => (
+            &["lights/inverse_square.wgsl", "lights/point.wgsl"],
+            "point_incidence",
+        ),
+        LightKind::Directional => (&["lights/directional.wgsl"], "directional_incidence"),
+        LightKind::Spot => (
+            &["lights/inverse_square.wgsl", "lights/spot.wgsl"],
+            "spot_incidence",
+        ),
+        LightKind::AreaSample => (
+            &["lights/inverse_square.wgsl", "lights/area_sample.wgsl"],
+            "area_sample_incidence",
+        ),
+    }
+}
+
+/// The light files of `kinds` and `light_incidence`, a `switch` over
+/// `Light.kind` with one arm per kind (none for one kind: a light's kind
+/// is data, not a pipeline constant, and a one-kind scene needs no test).
+fn lights(kinds: &BTreeSet<LightKind>, features: &[Feature]) -> String {
+    let mut out = String::new();
+    let mut included: Vec<&str> = Vec::new();
+    let mut arms = Vec::new();
+    for &kind in kinds {
+        let (files, function) = light_wgsl(kind);
+        for path in files {
+            if !included.contains(path) {
+                included.push(path);
+                out.push_str(&file(path, features));
+                out.push('\n');
+            }
+        }
+        arms.push((kind.id(), format!("{function}(light, x)")));
+    }
+    out.push_str("fn light_incidence(light: Light, x: vec3<f32>) -> Incidence {\n");
+    let none = "Incidence(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0))";
+    match arms.as_slice() {
+        [] => {
+            let _ = writeln!(out, "    return {none};");
+        }
+        [(_, call)] => {
+            let _ = writeln!(out, "    return {call};");
+        }
+        _ => {
+            out.push_str("    switch light.kind {\n");
+            for (id, call) in &arms {
+                let _ = writeln!(out, "        case {id}u: {{ return {call}; }}");
+            }
+            let _ = writeln!(out, "        default: {{ return {none}; }}\n    }}");
+        }
+    }
+    out.push_str("}\n\n");
+    out
+}
+
+/// The complete WGSL module for `key`, writing linear radiance.
+pub fn compose(key: &ShaderKey) -> String {
+    compose_for(key, Output::Radiance)
+}
+
+/// The complete WGSL module for `key` writing `output`.
+pub fn compose_for(key: &ShaderKey, output: Output) -> String {
+    let mut features = key.features();
+    if output == Output::Display {
+        features.push(Feature::Display);
+    }
+    let mut out = String::new();
+    let _ = writeln!(out, "// Generated by gonio for: {}", key.describe());
+    let spelt: Vec<String> = features.iter().map(|f| f.spelling()).collect();
+    let _ = writeln!(out, "// Features: {}\n", spelt.join(", "));
+    let counts = &key.counts;
+    if counts.lights > 0 {
+        let _ = writeln!(out, "const LIGHT_COUNT: u32 = {}u;", counts.lights);
+    }
+    if key.shadows.any() {
+        // An array needs at least one element; index 0 is then unused.
+        let _ = writeln!(
+            out,
+            "const SHADOW_MAP_COUNT: u32 = {}u;",
+            counts.shadow_maps.max(1)
+        );
+        if let Some(r) = counts.pcf_radius {
+            let _ = writeln!(out, "const PCF_RADIUS: u32 = {r}u;");
+        }
+    }
+    out.push_str(&compose_brdf_library(&key.variants, &features));
+    out.push_str(&lights(&key.light_kinds, &features));
+    // Shadow-map lookups, only when a light casts shadows.
+    if key.shadows.any() {
+        out.push_str(&file("shadows.wgsl", &features));
+        out.push('\n');
+    }
+    out.push_str(&file("shading.wgsl", &features));
+    out.push('\n');
+    let raster = match key.shading {
+        ShadingMode::Flat | ShadingMode::Gouraud => "raster_vertex_shaded.wgsl",
+        ShadingMode::Phong => "raster_pixel_shaded.wgsl",
+    };
+    out.push_str(&file(raster, &features));
+    out
+}
+
+/// Parses and validates WGSL with naga, as wgpu will; the error text names
+/// the line. Used before pipeline creation and by the shader tests.
+pub fn validate(wgsl: &str) -> Result<naga::Module, String> {
+    let module = naga::front::wgsl::parse_str(wgsl).map_err(|e| e.emit_to_string(wgsl))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .map_err(|e| e.emit_to_string(wgsl))?;
+    Ok(module)
+}

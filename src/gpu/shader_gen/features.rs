@@ -1,0 +1,152 @@
+//! The features a WGSL block can be conditional on (`#if NAME`, see
+//! [`super::preprocess`]): a closed set, so that a misspelt name in a
+//! shader is an error rather than a line silently kept or dropped.
+
+use crate::material::{Distribution, Fresnel, Geometry, ReflectanceModel};
+use std::fmt;
+
+/// One condition of the shader sources, with its WGSL spelling
+/// ([`Feature::spelling`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Feature {
+    /// Flat shading: one colour per triangle (`flat`).
+    Flat,
+    /// Some model needs a tangent frame in the vertex stream (`tangents`).
+    Tangents,
+    /// The scene uses this reflectance model (spelt as the model's
+    /// contract name, e.g. `cook-torrance`): its `eval_brdf` arm and its
+    /// helpers are compiled.
+    Model(ReflectanceModel),
+    /// Some Cook-Torrance material uses this distribution
+    /// (`distribution=ggx`): its `switch` arm is compiled.
+    Distribution(Distribution),
+    /// Some Cook-Torrance material uses this geometry term
+    /// (`geometry=smith`).
+    Geometry(Geometry),
+    /// Some Cook-Torrance or mirror material uses this Fresnel term
+    /// (`fresnel=schlick`).
+    Fresnel(Fresnel),
+    /// Some light casts shadows (`shadows`).
+    Shadows,
+    /// Some shadowed light filters with PCF (`shadow_pcf`).
+    ShadowPcf,
+    /// Every PCF light has the same kernel, compiled in as `PCF_RADIUS`
+    /// (`pcf_uniform`).
+    PcfUniform,
+    /// Orthographic shadow maps (directional lights) (`shadow_ortho`).
+    ShadowOrtho,
+    /// Perspective shadow maps (spot lights) (`shadow_perspective`).
+    ShadowPerspective,
+    /// Cube shadow maps (point and area lights) (`shadow_cube`).
+    ShadowCube,
+    /// Perspective or cube maps: the lookup with the w divide
+    /// (`shadow_projective`).
+    ShadowProjective,
+    /// The shadow-map coordinates are computed per vertex
+    /// (`shadow_vertex`; `ShaderKey::shadow_coords_per_vertex`).
+    ShadowVertex,
+    /// The shadow-map coordinates are computed per pixel (`shadow_pixel`).
+    ShadowPixel,
+    /// The light count is compiled in as `LIGHT_COUNT` (`light_count`).
+    LightCount,
+    /// The lights are a uniform array (`uniform_lights`; else storage).
+    UniformLights,
+    /// The shadow views are a uniform array (`uniform_shadow_views`).
+    UniformShadowViews,
+    /// The target is a display surface: exposure and sRGB in the shader
+    /// (`display`).
+    Display,
+}
+
+impl Feature {
+    /// Every feature, models included.
+    pub fn all() -> Vec<Feature> {
+        use Feature::*;
+        let mut all = vec![
+            Flat,
+            Tangents,
+            Shadows,
+            ShadowPcf,
+            PcfUniform,
+            ShadowOrtho,
+            ShadowPerspective,
+            ShadowCube,
+            ShadowProjective,
+            ShadowVertex,
+            ShadowPixel,
+            LightCount,
+            UniformLights,
+            UniformShadowViews,
+            Display,
+        ];
+        all.extend(ReflectanceModel::ALL.into_iter().map(Model));
+        all.extend(
+            crate::material::Distribution::ALL
+                .iter()
+                .map(|&d| Distribution(d)),
+        );
+        all.extend(crate::material::Geometry::ALL.iter().map(|&g| Geometry(g)));
+        all.extend(crate::material::Fresnel::ALL.iter().map(|&f| Fresnel(f)));
+        all
+    }
+
+    /// How `#if` names this feature in a WGSL file.
+    pub fn spelling(self) -> String {
+        let term = |kind: &str, name: &str| format!("{kind}={name}");
+        let flag = match self {
+            Feature::Model(model) => return model.name().into(),
+            Feature::Distribution(d) => return term("distribution", d.name()),
+            Feature::Geometry(g) => return term("geometry", g.name()),
+            Feature::Fresnel(f) => return term("fresnel", f.name()),
+            Feature::Flat => "flat",
+            Feature::Tangents => "tangents",
+            Feature::Shadows => "shadows",
+            Feature::ShadowPcf => "shadow_pcf",
+            Feature::PcfUniform => "pcf_uniform",
+            Feature::ShadowOrtho => "shadow_ortho",
+            Feature::ShadowPerspective => "shadow_perspective",
+            Feature::ShadowCube => "shadow_cube",
+            Feature::ShadowProjective => "shadow_projective",
+            Feature::ShadowVertex => "shadow_vertex",
+            Feature::ShadowPixel => "shadow_pixel",
+            Feature::LightCount => "light_count",
+            Feature::UniformLights => "uniform_lights",
+            Feature::UniformShadowViews => "uniform_shadow_views",
+            Feature::Display => "display",
+        };
+        flag.into()
+    }
+
+    /// The feature spelt `name`, if there is one.
+    pub fn parse(name: &str) -> Option<Feature> {
+        Feature::all().into_iter().find(|f| f.spelling() == name)
+    }
+}
+
+impl fmt::Display for Feature {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.spelling())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spellings_are_distinct_and_parse_back() {
+        let all = Feature::all();
+        for f in &all {
+            assert_eq!(Feature::parse(&f.spelling()), Some(*f));
+        }
+        assert_eq!(
+            Feature::parse("distribution=ggx"),
+            Some(Feature::Distribution(Distribution::Ggx))
+        );
+        let mut names: Vec<_> = all.iter().map(|f| f.spelling()).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), all.len(), "two features share a spelling");
+        assert_eq!(Feature::parse("shadow"), None);
+    }
+}

@@ -1,0 +1,192 @@
+//! What a scene's shader must contain: the [`ShaderKey`].
+
+use super::features::Feature;
+use super::specialization::VariantCode;
+use crate::gpu::bindings::UniformArrays;
+use crate::gpu::shadows::{Projection, ShadowFeatures, ShadowPlan};
+use crate::material::{BrdfVariant, ReflectanceModel};
+use crate::scene::{LightKind, Scene, ShadingMode};
+use std::collections::BTreeSet;
+
+/// What a scene's shader must contain. Equal keys share a pipeline.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct ShaderKey {
+    pub shading: ShadingMode,
+    /// The BRDF variants (a model with its chosen terms) of the materials
+    /// some mesh uses.
+    pub variants: BTreeSet<BrdfVariant>,
+    pub light_kinds: BTreeSet<LightKind>,
+    /// Shadow-map projections and filtering in use (empty: no shadow code).
+    pub shadows: ShadowFeatures,
+    /// Loop counts compiled in as constants.
+    pub counts: LoopCounts,
+    /// Which arrays are bound as uniform buffers (src/gpu/bindings.rs).
+    pub arrays: UniformArrays,
+    /// Compute the shadow-map coordinates per vertex where the key allows
+    /// it ([`ShaderKey::shadow_coords_per_vertex`]); `false`: always per
+    /// pixel (for tests and measurements of the difference).
+    pub vertex_shadow_coords: bool,
+}
+
+/// The counts of the shader's loops, compiled in as WGSL constants so the
+/// compiler can unroll them. A software rasterizer pays for every dynamic
+/// loop and every private array per pixel: with the light count read from
+/// a uniform and a 64-entry visibility array, lavapipe's scene pass took
+/// about twice as long as with constants (measured on the viewer's 1080p
+/// benchmark scene). Changing a count selects another pipeline; changing
+/// a value never does.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct LoopCounts {
+    /// Punctual lights (area-light samples included); 0: read from the
+    /// globals at run time (an uber shader for any light count).
+    pub lights: u32,
+    /// Shadow maps looked up per pixel (one per shadowed light; the
+    /// samples of an area light share one). 0 without shadows.
+    pub shadow_maps: u32,
+    /// The PCF kernel radius, `(k − 1) / 2`, when every shadowed light
+    /// uses the same one; `None`: read per light.
+    pub pcf_radius: Option<u32>,
+}
+
+impl ShaderKey {
+    /// The features `scene` uses with the shadow maps of `plan` (its
+    /// [`ShadowPlan::new`]): the variants of materials that some mesh
+    /// references, the kinds of lights present, the projections of the
+    /// maps. An empty plan (no light casts shadows, or nothing to cast a
+    /// shadow on) compiles no shadow code.
+    pub fn new(scene: &Scene, plan: &ShadowPlan) -> ShaderKey {
+        let shadows = if plan.is_empty() {
+            ShadowFeatures::default()
+        } else {
+            ShadowFeatures::for_scene(scene)
+        };
+        let pcf_radius = shadows
+            .any()
+            .then(|| ShadowFeatures::uniform_pcf_radius(scene))
+            .flatten();
+        ShaderKey {
+            shading: scene.shading,
+            variants: scene
+                .meshes
+                .iter()
+                .map(|m| scene.materials[m.material].variant())
+                .collect(),
+            light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
+            counts: LoopCounts {
+                lights: scene.lights.len() as u32,
+                shadow_maps: if shadows.any() {
+                    plan.casters.len() as u32
+                } else {
+                    0
+                },
+                pcf_radius,
+            },
+            shadows,
+            arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
+            vertex_shadow_coords: true,
+        }
+    }
+
+    /// `GpuMaterial.variant` of a material of `variant`: its packed codes
+    /// (the same in every key; see [`VariantCode::packed`]).
+    pub fn variant_code(&self, variant: &BrdfVariant) -> u32 {
+        VariantCode::of(variant).packed()
+    }
+
+    /// The packed variants `key`'s pipelines are specialized to: each of
+    /// its BRDF variants when it has several (each material's batch is
+    /// drawn by the pipeline of its variant), else `None` (one pipeline,
+    /// specialized by the module's defaults).
+    pub fn specializations(&self) -> Vec<Option<u32>> {
+        match self.variants.len() {
+            0 | 1 => vec![None],
+            _ => self
+                .variants
+                .iter()
+                .map(|v| Some(self.variant_code(v)))
+                .collect(),
+        }
+    }
+
+    /// Whether any variant needs a tangent frame in the vertex stream.
+    pub fn needs_tangents(&self) -> bool {
+        self.variants.iter().any(|v| v.model.needs_tangents())
+    }
+
+    /// Whether the vertex shader computes the shadow-map coordinates
+    /// (feature `shadow_vertex`, else `shadow_pixel`): per-pixel (Phong)
+    /// shading whose one shadow map is orthographic. The lookup point is
+    /// then `x` plus an offset that depends only on the light and the
+    /// triangle's geometric normal, so its map coordinates are an affine
+    /// function of `x` over each triangle and interpolating them from the
+    /// corners (perspective-correct, as `x` itself) gives what the
+    /// fragment shader would compute, without a matrix, the offset and the
+    /// position derivatives per pixel: on lavapipe, the 1080p viewer
+    /// benchmark's scene pass went from about 28 to about 25 ms
+    /// (tests/shadows.rs (e) checks that the images are the same). The
+    /// vertex stream is then de-indexed, each corner with its triangle's
+    /// normal (`VertexLayout::face_normal`).
+    pub fn shadow_coords_per_vertex(&self) -> bool {
+        self.vertex_shadow_coords
+            && self.shading == ShadingMode::Phong
+            && self.counts.shadow_maps == 1
+            && self.shadows.projections.len() == 1
+            && self.shadows.projections.contains(&Projection::Ortho)
+    }
+
+    /// Whether any variant is a mirror (environment reflection code).
+    pub fn has_mirror(&self) -> bool {
+        self.variants
+            .iter()
+            .any(|v| v.model == ReflectanceModel::Mirror)
+    }
+
+    /// The models of the variants, each once.
+    pub fn models(&self) -> BTreeSet<ReflectanceModel> {
+        self.variants.iter().map(|v| v.model).collect()
+    }
+
+    /// The `#if` features on for this key.
+    pub fn features(&self) -> Vec<Feature> {
+        let mut f = Vec::new();
+        if self.shading == ShadingMode::Flat {
+            f.push(Feature::Flat);
+        }
+        if self.needs_tangents() {
+            f.push(Feature::Tangents);
+        }
+        f.extend(super::specialization::brdf_features(&self.variants));
+        f.extend(self.shadows.features());
+        if self.shadow_coords_per_vertex() {
+            f.push(Feature::ShadowVertex);
+        } else if self.shadows.any() {
+            f.push(Feature::ShadowPixel);
+        }
+        if self.counts.lights > 0 {
+            f.push(Feature::LightCount);
+        }
+        if self.shadows.pcf && self.counts.pcf_radius.is_some() {
+            f.push(Feature::PcfUniform);
+        }
+        if self.arrays.lights {
+            f.push(Feature::UniformLights);
+        }
+        if self.arrays.shadow_views {
+            f.push(Feature::UniformShadowViews);
+        }
+        f
+    }
+
+    /// A one-line description for logs.
+    pub fn describe(&self) -> String {
+        let variants: Vec<_> = self.variants.iter().map(|v| v.describe()).collect();
+        let lights: Vec<_> = self.light_kinds.iter().map(|k| k.name()).collect();
+        format!(
+            "shading {}, models [{}], lights [{}], {}",
+            self.shading,
+            variants.join(", "),
+            lights.join(", "),
+            self.shadows.describe()
+        )
+    }
+}

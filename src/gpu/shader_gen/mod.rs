@@ -1,0 +1,259 @@
+//! Scene-specialized WGSL: only what a scene uses is compiled.
+//!
+//! A [`ShaderKey`] lists the features a scene needs: shading mode, BRDF
+//! variants (a model with its chosen terms), light kinds, shadow-map
+//! projections and filtering. [`compose`] concatenates the WGSL files
+//! ([`sources`]) for exactly those features, keeps only the conditional
+//! blocks (`#if FEATURE` ... `#endif`, [`preprocess`]) whose [`Feature`] is
+//! on, and writes the few constants that specialize it: loop counts, the
+//! codes of models and terms, and which variant the module draws
+//! ([`specialization`]). The BRDF dispatch itself (`eval_brdf`, the
+//! Cook-Torrance terms, the mirror) is WGSL, `switch`es on pipeline
+//! constants in shaders/brdf/eval.wgsl, with one arm per model the scene
+//! uses. A Lambert-only scene with a point light therefore contains no
+//! glossy lobe, no Fresnel, no spot-light code. Parameter values live in
+//! buffers, so changing them never rebuilds a pipeline; changing the key
+//! does.
+
+mod compose;
+mod features;
+mod key;
+mod preprocess;
+pub mod sources;
+pub mod specialization;
+
+pub use compose::{Output, common, compose, compose_brdf_library, compose_for, validate};
+pub use features::Feature;
+pub use key::{LoopCounts, ShaderKey};
+pub use preprocess::preprocess;
+pub use specialization::pipeline_constants;
+
+use crate::gpu::bindings::UniformArrays;
+use crate::gpu::shadows::{Projection, ShadowFeatures};
+use crate::material::{BrdfVariant, Distribution, Fresnel, Geometry, ReflectanceModel};
+use crate::scene::{LightKind, ShadingMode};
+
+/// For reading what a scene compiles: with `GONIO_DUMP_WGSL=DIR`, writes
+/// `wgsl` to `DIR/gonio-{id:016x}.wgsl` (`id`: a hash of the module's key),
+/// and says on stderr when it cannot.
+pub fn dump_if_asked(id: u64, wgsl: &str) {
+    if let Some(dir) = std::env::var_os("GONIO_DUMP_WGSL") {
+        let path = std::path::Path::new(&dir).join(format!("gonio-{id:016x}.wgsl"));
+        if let Err(e) = std::fs::write(&path, wgsl) {
+            eprintln!(
+                "warning: GONIO_DUMP_WGSL: cannot write {}: {e}",
+                path.display()
+            );
+        }
+    }
+}
+
+/// Every BRDF variant gonio can compile: each model, and Cook-Torrance and
+/// the mirror with every combination of their terms.
+pub fn all_variants() -> Vec<BrdfVariant> {
+    use crate::material::{Denominator, Material};
+    let mut out = Vec::new();
+    for model in ReflectanceModel::ALL {
+        let base = Material::new("v", model);
+        match model {
+            ReflectanceModel::CookTorrance => {
+                for &distribution in Distribution::ALL {
+                    for &geometry in Geometry::ALL {
+                        for &fresnel in Fresnel::ALL {
+                            for &denominator in Denominator::ALL {
+                                let m = Material {
+                                    distribution,
+                                    geometry,
+                                    fresnel,
+                                    denominator,
+                                    ..base.clone()
+                                };
+                                out.push(m.variant());
+                            }
+                        }
+                    }
+                }
+            }
+            ReflectanceModel::Mirror => {
+                for &fresnel in Fresnel::ALL {
+                    out.push(
+                        Material {
+                            fresnel,
+                            ..base.clone()
+                        }
+                        .variant(),
+                    );
+                }
+            }
+            _ => out.push(base.variant()),
+        }
+    }
+    out
+}
+
+/// Keys that together compile every line of every WGSL file: each shading
+/// mode with each variant alone (one light kind each, cycling), each
+/// shadow projection alone with and without PCF, plus all variants, all
+/// light kinds and all shadow code at once. Used by the shader validation
+/// test.
+pub fn representative_keys() -> Vec<ShaderKey> {
+    let all_kinds = LightKind::ALL;
+    let all_projections = [Projection::Ortho, Projection::Perspective, Projection::Cube];
+    let variants = all_variants();
+    // Uniform or storage buffers for every array, alternating.
+    let arrays = |uniform: bool| UniformArrays {
+        lights: uniform,
+        shadow_views: uniform,
+    };
+    let mut keys = Vec::new();
+    for shading in ShadingMode::ALL {
+        for (i, v) in variants.iter().enumerate() {
+            keys.push(ShaderKey {
+                shading,
+                variants: [*v].into(),
+                light_kinds: [all_kinds[i % all_kinds.len()]].into(),
+                shadows: ShadowFeatures::default(),
+                counts: LoopCounts {
+                    lights: 1,
+                    ..Default::default()
+                },
+                arrays: arrays(i % 2 == 0),
+                vertex_shadow_coords: false,
+            });
+        }
+        for (i, projection) in all_projections.into_iter().enumerate() {
+            for pcf in [false, true] {
+                keys.push(ShaderKey {
+                    shading,
+                    variants: [variants[i]].into(),
+                    light_kinds: [all_kinds[i]].into(),
+                    shadows: ShadowFeatures {
+                        projections: [projection].into(),
+                        pcf,
+                    },
+                    counts: LoopCounts {
+                        lights: 2,
+                        shadow_maps: 1,
+                        pcf_radius: (i % 2 == 0).then_some(1),
+                    },
+                    arrays: arrays(pcf),
+                    // Orthographic with PCF: the coordinates per vertex.
+                    vertex_shadow_coords: pcf,
+                });
+            }
+        }
+        for uniform in [false, true] {
+            keys.push(ShaderKey {
+                shading,
+                variants: variants.iter().copied().collect(),
+                light_kinds: all_kinds.into(),
+                shadows: ShadowFeatures {
+                    projections: all_projections.into(),
+                    pcf: true,
+                },
+                counts: LoopCounts {
+                    lights: 5,
+                    shadow_maps: 3,
+                    pcf_radius: None,
+                },
+                arrays: arrays(uniform),
+                vertex_shadow_coords: false,
+            });
+        }
+    }
+    keys
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::Material;
+
+    #[test]
+    fn lambert_only_scene_has_no_glossy_or_spot_code() {
+        let key = ShaderKey {
+            shading: ShadingMode::Phong,
+            variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
+            light_kinds: [LightKind::Point].into(),
+            shadows: ShadowFeatures::default(),
+            ..Default::default()
+        };
+        let wgsl = compose(&key);
+        for absent in [
+            "blinn_phong_lecture",
+            "fresnel_",
+            "d_beckmann",
+            "spot_attenuation",
+            "switch m.variant",
+            "switch light.kind",
+            "environment_radiance",
+            "tangent: vec3",
+            "shadow_visibility",
+            "shadow_maps",
+            "textureSampleCompare",
+            "area_sample",
+            "dpdx",
+        ] {
+            assert!(
+                !wgsl.contains(absent),
+                "`{absent}` compiled into a Lambert-only shader"
+            );
+        }
+        validate(&wgsl).unwrap();
+    }
+
+    #[test]
+    fn shadow_code_only_for_the_projections_in_use() {
+        let key = |projections: &[Projection], pcf| ShaderKey {
+            shading: ShadingMode::Phong,
+            variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
+            light_kinds: [LightKind::Point].into(),
+            shadows: ShadowFeatures {
+                projections: projections.iter().copied().collect(),
+                pcf,
+            },
+            ..Default::default()
+        };
+        let cube = compose(&key(&[Projection::Cube], false));
+        for present in [
+            "fn shadow_visibility",
+            "fn shadow_cube",
+            "textureSampleCompareLevel",
+            "dpdx",
+        ] {
+            assert!(cube.contains(present), "`{present}` missing");
+        }
+        for absent in [
+            "fn shadow_ortho",
+            "fn shadow_perspective",
+            "for (var i = -r",
+        ] {
+            assert!(
+                !cube.contains(absent),
+                "`{absent}` compiled without its feature"
+            );
+        }
+        validate(&cube).unwrap();
+        let ortho = compose(&key(&[Projection::Ortho], true));
+        assert!(ortho.contains("fn shadow_ortho") && ortho.contains("for (var i = -r"));
+        assert!(!ortho.contains("fn shadow_cube") && !ortho.contains("fn shadow_perspective"));
+        validate(&ortho).unwrap();
+    }
+
+    #[test]
+    fn every_representative_key_validates() {
+        let keys = representative_keys();
+        assert!(keys.len() > 3 * 180);
+        for key in keys {
+            if let Err(e) = validate(&compose_for(&key, Output::Display)) {
+                panic!("display output of {}: {e}", key.describe());
+            }
+            if let Err(e) = validate(&compose(&key)) {
+                panic!("{}:\n{e}", key.describe());
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod snapshot_tests;
