@@ -7,7 +7,7 @@ use super::plot::{AlbedoPlot, PlotFile, SlicePlot, number};
 use super::slice::{Quantity, slice};
 use super::{Channel, Labelled, direction, frame, spec, table};
 use crate::material::ReflectanceModel;
-use crate::material::brdf::mirror_reflectance;
+use crate::material::brdf::{Specular, mirror_reflectance};
 use crate::{Error, Result};
 use std::path::PathBuf;
 
@@ -96,8 +96,8 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
     let materials = materials(args)?;
     for m in &materials {
         let lobe = !matches!(
-            m.material.model,
-            ReflectanceModel::Lambert | ReflectanceModel::Mirror
+            m.material.brdf().specular,
+            Specular::None | Specular::Mirror(_)
         );
         if lobe && m.material.k_s == crate::scene::Rgb::ZERO {
             eprintln!(

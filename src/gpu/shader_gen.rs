@@ -47,6 +47,16 @@ pub mod sources {
         BRDF_MICROFACET,
         BRDF_WARD,
     ];
+
+    /// The paths (relative to `shaders/`) of [`BRDF_ORDER`], index for
+    /// index: how the table of models names them.
+    pub const BRDF_PATHS: [&str; 5] = [
+        "brdf/lambert.wgsl",
+        "brdf/phong.wgsl",
+        "brdf/fresnel.wgsl",
+        "brdf/microfacet.wgsl",
+        "brdf/ward.wgsl",
+    ];
 }
 
 /// What a scene's shader must contain. Equal keys share a pipeline.
@@ -222,19 +232,20 @@ pub fn preprocess(source: &str, features: &[&str]) -> String {
     out
 }
 
-/// The WGSL files a variant needs (by their index in `BRDF_ORDER`).
+/// The WGSL files a variant needs (by their index in `BRDF_ORDER`), from
+/// its model's row in the table of models.
 fn variant_files(v: &BrdfVariant) -> Vec<usize> {
-    let (lambert, phong, fresnel, microfacet, ward) = (0, 1, 2, 3, 4);
-    match v.model {
-        ReflectanceModel::Lambert => vec![lambert],
-        ReflectanceModel::Phong
-        | ReflectanceModel::PhongNormalized
-        | ReflectanceModel::BlinnPhong
-        | ReflectanceModel::BlinnPhongNormalized => vec![lambert, phong],
-        ReflectanceModel::Ward | ReflectanceModel::WardAnisotropic => vec![lambert, phong, ward],
-        ReflectanceModel::CookTorrance => vec![lambert, phong, fresnel, microfacet],
-        ReflectanceModel::Mirror => vec![lambert, phong, fresnel],
-    }
+    v.model
+        .row()
+        .wgsl
+        .iter()
+        .map(|path| {
+            sources::BRDF_PATHS
+                .iter()
+                .position(|p| p == path)
+                .unwrap_or_else(|| panic!("shaders/{path} is not in sources::BRDF_PATHS"))
+        })
+        .collect()
 }
 
 /// WGSL for `D` — mirrors `brdf::distribution`.
@@ -555,44 +566,34 @@ pub fn validate(wgsl: &str) -> Result<naga::Module, String> {
     Ok(module)
 }
 
-/// Every BRDF variant gonio can compile: each model, and Cook-Torrance and
-/// the mirror with every combination of their terms.
+/// Every BRDF variant gonio can compile: each model with every
+/// combination of the terms its row in the table of models selects.
 pub fn all_variants() -> Vec<BrdfVariant> {
-    use crate::material::{Denominator, Material};
+    use crate::material::Denominator;
+    fn each<T: Copy>(applies: bool, all: &[T]) -> Vec<Option<T>> {
+        if applies {
+            all.iter().copied().map(Some).collect()
+        } else {
+            vec![None]
+        }
+    }
     let mut out = Vec::new();
-    for model in ReflectanceModel::ALL {
-        let base = Material::new("v", model);
-        match model {
-            ReflectanceModel::CookTorrance => {
-                for &distribution in Distribution::ALL {
-                    for &geometry in Geometry::ALL {
-                        for &fresnel in Fresnel::ALL {
-                            for &denominator in Denominator::ALL {
-                                let m = Material {
-                                    distribution,
-                                    geometry,
-                                    fresnel,
-                                    denominator,
-                                    ..base.clone()
-                                };
-                                out.push(m.variant());
-                            }
-                        }
+    for row in crate::material::table::ROWS {
+        let terms = row.terms;
+        for &distribution in &each(terms.distribution, &Distribution::ALL) {
+            for &geometry in &each(terms.geometry, &Geometry::ALL) {
+                for &fresnel in &each(terms.fresnel, &Fresnel::ALL) {
+                    for &denominator in &each(terms.denominator, &Denominator::ALL) {
+                        out.push(BrdfVariant {
+                            model: row.model,
+                            distribution,
+                            geometry,
+                            fresnel,
+                            denominator,
+                        });
                     }
                 }
             }
-            ReflectanceModel::Mirror => {
-                for &fresnel in Fresnel::ALL {
-                    out.push(
-                        Material {
-                            fresnel,
-                            ..base.clone()
-                        }
-                        .variant(),
-                    );
-                }
-            }
-            _ => out.push(base.variant()),
         }
     }
     out
