@@ -21,21 +21,16 @@ the lecture's polar slice or the directional albedo. Frame: normal n = +Z, tange
 [materials.NAME] table."
 )]
 pub struct BrdfArgs {
-    /// Reflectance model (repeat to overlay several): lambert, phong,
-    /// phong-normalized, blinn-phong, blinn-phong-normalized, ward,
-    /// ward-anisotropic, cook-torrance, mirror.
-    #[arg(long = "model", value_name = "MODEL")]
+    // Help texts that list models or keys are generated from the table of
+    // models (`model_help`, `set_help`).
+    #[arg(long = "model", value_name = "MODEL", help = model_help())]
     pub models: Vec<String>,
     /// A material as `MODEL[,KEY=VALUE]...`, e.g.
     /// `cook-torrance,preset=gold,roughness=0.1` (repeat to overlay; its
     /// keys win over --set).
     #[arg(long = "compare", value_name = "SPEC")]
     pub compare: Vec<String>,
-    /// A material key for every material, as in a scene file: k_d, k_s,
-    /// k_a, k_e, roughness, sigma, sigma_x, sigma_y, eta, kappa, eta_i,
-    /// eta_t, distribution, geometry, fresnel, denominator, preset. Values
-    /// are TOML: `k_d=[0.8,0.2,0.1]`, `k_e=80`, `fresnel=schlick`.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
+    #[arg(long = "set", value_name = "KEY=VALUE", help = set_help())]
     pub set: Vec<String>,
     /// Incidence polar angle θ_i [°], from the normal.
     #[arg(
@@ -83,6 +78,29 @@ pub struct BrdfArgs {
     /// Print the Markdown albedo table of docs/brdf-models.md (all models).
     #[arg(long)]
     pub albedo_table: bool,
+}
+
+/// `--model`'s help: every model of the table.
+fn model_help() -> String {
+    let names: Vec<&str> = ReflectanceModel::ALL.iter().map(|m| m.name()).collect();
+    format!(
+        "Reflectance model (repeat to overlay several): {}",
+        names.join(", ")
+    )
+}
+
+/// `--set`'s help: every key a material takes.
+fn set_help() -> String {
+    let keys: Vec<&str> = crate::material::entry::keys()
+        .iter()
+        .copied()
+        .filter(|k| *k != "model")
+        .collect();
+    format!(
+        "A material key for every material, as in a scene file: {}. Values are TOML: \
+`k_d=[0.8,0.2,0.1]`, `k_e=80`, `fresnel=schlick`",
+        keys.join(", ")
+    )
 }
 
 /// Runs `gonio brdf`.

@@ -47,16 +47,6 @@ pub mod sources {
         BRDF_MICROFACET,
         BRDF_WARD,
     ];
-
-    /// The paths (relative to `shaders/`) of [`BRDF_ORDER`], index for
-    /// index: how the table of models names them.
-    pub const BRDF_PATHS: [&str; 5] = [
-        "brdf/lambert.wgsl",
-        "brdf/phong.wgsl",
-        "brdf/fresnel.wgsl",
-        "brdf/microfacet.wgsl",
-        "brdf/ward.wgsl",
-    ];
 }
 
 /// What a scene's shader must contain. Equal keys share a pipeline.
@@ -235,15 +225,23 @@ pub fn preprocess(source: &str, features: &[&str]) -> String {
 /// The WGSL files a variant needs (by their index in `BRDF_ORDER`), from
 /// its model's row in the table of models.
 fn variant_files(v: &BrdfVariant) -> Vec<usize> {
+    // The paths (under `shaders/`) of `sources::BRDF_ORDER`, index for index.
+    const PATHS: [&str; 5] = [
+        "brdf/lambert.wgsl",
+        "brdf/phong.wgsl",
+        "brdf/fresnel.wgsl",
+        "brdf/microfacet.wgsl",
+        "brdf/ward.wgsl",
+    ];
     v.model
         .row()
         .wgsl
         .iter()
         .map(|path| {
-            sources::BRDF_PATHS
+            PATHS
                 .iter()
                 .position(|p| p == path)
-                .unwrap_or_else(|| panic!("shaders/{path} is not in sources::BRDF_PATHS"))
+                .unwrap_or_else(|| panic!("shaders/{path} is not embedded in sources::BRDF_ORDER"))
         })
         .collect()
 }

@@ -42,6 +42,12 @@ static KEYS: LazyLock<Vec<&'static str>> = LazyLock::new(|| {
     keys
 });
 
+/// Every key a `[materials.NAME]` table accepts (`model`, `preset`, each
+/// model's parameters, the terms).
+pub fn keys() -> &'static [&'static str] {
+    &KEYS
+}
+
 impl<'de> Deserialize<'de> for MaterialEntry {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         deserializer.deserialize_map(EntryVisitor)
