@@ -3,7 +3,7 @@
 //!
 //! The lecture shows a BRDF "as a slice of the 6D function": for a given
 //! incident direction, a 2D polar plot with "intensity as length of vector
-//! from origin" ([`slice`]); it states energy conservation as
+//! from origin" ([`slice`](mod@slice)); it states energy conservation as
 //! `∫ f_r cos θ_o dω_o ≤ 1` for every incident direction ([`albedo`]); and it
 //! mentions the "Standardized Gloss Model" of industry, reflection measured
 //! at a few angles in the plane of incidence ([`gloss`]). This module

@@ -45,7 +45,7 @@ pub enum Kind {
 }
 
 /// The contract's range of a parameter (of every channel, for a triple);
-/// [`Range::check`] words the violation the way scene-file errors do.
+/// [`Param::check`] words the violation the way scene-file errors do.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Range {
     /// `[min, max]`; `text` is how messages write it, e.g. `[0, 1e6]`.
