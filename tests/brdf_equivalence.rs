@@ -31,7 +31,7 @@ use gonio::gpu::shader_gen::{ShaderKey, compose_brdf_library};
 use gonio::material::brdf::{self, SurfaceFrame};
 use gonio::material::param::{Kind, Value};
 use gonio::material::table::{self, ROWS};
-use gonio::material::{BrdfVariant, Distribution, Geometry, Material, ReflectanceModel};
+use gonio::material::{BrdfVariant, Distribution, Geometry, Material};
 use gonio::scene::Rgb;
 use std::collections::BTreeSet;
 use wgpu::util::DeviceExt;
@@ -224,21 +224,10 @@ fn perturbation_error(s: &Sample, base: (Rgb, Rgb)) -> (Rgb, Rgb) {
 ///   80/|ln(15/16)| ≈ 1240, so the relative error is 2⁻²¹ · min(k_e, 1240);
 /// * the lecture's Gaussian takes α from `atan2`, allowed 4096 ulp: a
 ///   relative error δ of α gives 2 ln2 (α/m)² δ with (α/m)² ≤ 80/ln 2.
-fn transcendental(v: &BrdfVariant, m: &Material) -> f64 {
-    let exp = 163.0 * U;
-    match v.model {
-        ReflectanceModel::Phong
-        | ReflectanceModel::PhongNormalized
-        | ReflectanceModel::BlinnPhong
-        | ReflectanceModel::BlinnPhongNormalized => exp + 2f64.powi(-21) * m.k_e.min(1240.0),
-        ReflectanceModel::CookTorrance => match v.distribution {
-            Some(Distribution::Gaussian) | Some(Distribution::GaussianNormalized) => {
-                exp + 2.0 * 80.0 * 4096.0 * U
-            }
-            _ => exp,
-        },
-        _ => exp,
-    }
+///
+/// Each model's row in the table of models gives its bound.
+fn transcendental(m: &Material) -> f64 {
+    (m.model.row().transcendental_error)(m)
 }
 
 /// The variants checked: every model of the table with its defaults and
@@ -452,7 +441,7 @@ fn every_brdf_variant_matches_its_f64_reference() {
                 let mut st = Stats::default();
                 let (f, mirror) = cpu_eval(s);
                 let (sf, sm) = perturbation_error(s, (f, mirror));
-                let t = transcendental(&variant, &s.material);
+                let t = transcendental(&s.material);
                 for (cpu, gpu, sens) in [(f, g_f, sf), (mirror, g_m, sm)] {
                     for ch in 0..3 {
                         let (c, g) = (cpu[ch], gpu[ch] as f64);

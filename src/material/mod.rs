@@ -62,19 +62,18 @@ pub struct Material {
 
 impl Material {
     /// A material with the given model and neutral parameters: `k_d = 0.8`,
-    /// `k_s = 0` (1 for a mirror), `k_a = 0`, `k_e = 32`, roughness 0.3,
-    /// σ = 0.2, gold's η/κ from the lecture's table, glass (1 → 1.5) for
-    /// the dielectric, Beckmann with Smith G and the exact conductor Fresnel
-    /// over the 4(N·V)(N·I) denominator. A mirror's Fresnel defaults to
-    /// `none` (reflectance `k_s`).
+    /// `k_s = 0`, `k_a = 0`, `k_e = 32`, roughness 0.3, σ = 0.2, gold's η/κ
+    /// from the lecture's table, glass (1 → 1.5) for the dielectric,
+    /// Beckmann with Smith G and the exact conductor Fresnel over the
+    /// 4(N·V)(N·I) denominator; then the model's own defaults from its row
+    /// (a mirror: `k_d = 0`, `k_s = 1`, Fresnel `none`, reflectance `k_s`).
     pub fn new(name: impl Into<String>, model: ReflectanceModel) -> Self {
-        let mirror = model == ReflectanceModel::Mirror;
-        Material {
+        let mut m = Material {
             name: name.into(),
             model,
             k_a: Rgb::ZERO,
-            k_d: if mirror { Rgb::ZERO } else { Rgb::splat(0.8) },
-            k_s: if mirror { Rgb::ONE } else { Rgb::ZERO },
+            k_d: Rgb::splat(0.8),
+            k_s: Rgb::ZERO,
             k_e: 32.0,
             roughness: 0.3,
             sigma_x: 0.2,
@@ -85,13 +84,11 @@ impl Material {
             eta_t: 1.5,
             distribution: Distribution::Beckmann,
             geometry: Geometry::Smith,
-            fresnel: if mirror {
-                Fresnel::None
-            } else {
-                Fresnel::Conductor
-            },
+            fresnel: Fresnel::Conductor,
             denominator: Denominator::Microfacet,
-        }
+        };
+        (model.row().defaults)(&mut m);
+        m
     }
 
     /// Checks every parameter against the contract's ranges (the table's,

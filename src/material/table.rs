@@ -30,6 +30,7 @@
 use super::brdf::{CookTorrance, FresnelTerm, Specular};
 use super::param::{Kind, Param, Range, Scale, Value, Widget};
 use super::{Material, ReflectanceModel};
+use crate::base::Rgb;
 
 /// Whether a model is the formula as the lecture writes it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -82,12 +83,18 @@ pub struct ModelRow {
     pub reciprocal: bool,
     /// Whether the bench's `model` knob measures it.
     pub benched: bool,
+    /// Its own defaults, applied by `Material::new` over the common ones.
+    pub defaults: fn(&mut Material),
     /// The specular term of a material of this model, its derived
     /// constants computed.
     pub specular: fn(&Material) -> Specular,
     /// The relative `f32` error of its shading beyond the light loop's
     /// (the GPU-vs-reference tolerance; derivation in tests/gpu_vs_cpu.rs).
     pub f32_error: fn(&Material) -> f64,
+    /// The extra error, relative to `|f_r|`, that Vulkan allows the
+    /// transcendental functions its WGSL calls (the per-sample tolerance
+    /// of tests/brdf_equivalence.rs, derived in its `transcendental`).
+    pub transcendental_error: fn(&Material) -> f64,
     /// Its rows in the albedo table of `docs/brdf-models.md`: parameters
     /// (`KEY=VALUE,...` after the model's name) and a remark.
     pub albedo_table: &'static [(&'static str, &'static str)],
@@ -384,6 +391,10 @@ fn slope_error(r: f64) -> f64 {
     128.0 * EPS / r
 }
 
+/// Every lobe ends in `exp(x)` with |x| ≤ 80 (the e⁻⁸⁰ cut-off): Vulkan
+/// allows 3 + 2|x| ≤ 163 ulp.
+const EXP_ERROR: f64 = 163.0 * EPS;
+
 fn no_error(_: &Material) -> f64 {
     0.0
 }
@@ -411,8 +422,10 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D],
         reciprocal: true,
         benched: true,
+        defaults: |_| {},
         specular: |_| Specular::None,
         f32_error: no_error,
+        transcendental_error: |_| EXP_ERROR,
         albedo_table: &[("k_d=1", "albedo k_d exactly")],
     },
     ModelRow {
@@ -425,8 +438,10 @@ pub static ROWS: &[ModelRow] = &[
         params: LOBE,
         reciprocal: false,
         benched: false,
+        defaults: |_| {},
         specular: |m| Specular::Phong { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
+        transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
         albedo_table: &[
             ("k_d=0,k_s=1,k_e=1", "lecture form: ÷ I·N"),
             ("k_d=0,k_s=1,k_e=10", "lecture form"),
@@ -443,8 +458,10 @@ pub static ROWS: &[ModelRow] = &[
         params: LOBE,
         reciprocal: true,
         benched: true,
+        defaults: |_| {},
         specular: |m| Specular::PhongNormalized { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
+        transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
         albedo_table: &[
             ("k_d=0,k_s=1,k_e=1", "(k_e+2)/2π"),
             ("k_d=0,k_s=1,k_e=10", ""),
@@ -462,8 +479,10 @@ pub static ROWS: &[ModelRow] = &[
         params: LOBE,
         reciprocal: false,
         benched: false,
+        defaults: |_| {},
         specular: |m| Specular::BlinnPhong { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
+        transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
         albedo_table: &[
             ("k_d=0,k_s=1,k_e=1", "lecture form: ÷ I·N"),
             ("k_d=0,k_s=1,k_e=10", "lecture form"),
@@ -480,8 +499,10 @@ pub static ROWS: &[ModelRow] = &[
         params: LOBE,
         reciprocal: true,
         benched: true,
+        defaults: |_| {},
         specular: |m| Specular::BlinnPhongNormalized { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
+        transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
         albedo_table: &[
             ("k_d=0,k_s=1,k_e=1", ""),
             ("k_d=0,k_s=1,k_e=10", ""),
@@ -499,8 +520,10 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &K_S, &WARD_SIGMA],
         reciprocal: true,
         benched: true,
+        defaults: |_| {},
         specular: |m| Specular::Ward { sigma: m.sigma_x },
         f32_error: |m| slope_error(m.sigma_x),
+        transcendental_error: |_| EXP_ERROR,
         albedo_table: &[
             ("k_d=0,k_s=1,sigma=0.05", "lecture form"),
             ("k_d=0,k_s=1,sigma=0.2", "lecture form"),
@@ -517,11 +540,13 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &K_S, &SIGMA_X, &SIGMA_Y],
         reciprocal: true,
         benched: false,
+        defaults: |_| {},
         specular: |m| Specular::WardAnisotropic {
             sigma_x: m.sigma_x,
             sigma_y: m.sigma_y,
         },
         f32_error: |m| slope_error(m.sigma_x.min(m.sigma_y)),
+        transcendental_error: |_| EXP_ERROR,
         albedo_table: &[("k_d=0,k_s=1,sigma_x=0.05,sigma_y=0.3", "φ_i along σ_x")],
     },
     ModelRow {
@@ -544,6 +569,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &K_S, &ROUGHNESS, &ETA, &KAPPA, &ETA_I, &ETA_T],
         reciprocal: true,
         benched: true,
+        defaults: |_| {},
         specular: |m| {
             Specular::CookTorrance(CookTorrance::new(
                 m.distribution,
@@ -566,6 +592,15 @@ pub static ROWS: &[ModelRow] = &[
                 _ => slope_error(m.roughness),
             }
         },
+        transcendental_error: |m| {
+            use super::Distribution;
+            match m.distribution {
+                Distribution::Gaussian | Distribution::GaussianNormalized => {
+                    EXP_ERROR + 2.0 * 80.0 * 4096.0 * EPS
+                }
+                _ => EXP_ERROR,
+            }
+        },
         albedo_table: CT_ALBEDO,
     },
     ModelRow {
@@ -581,8 +616,12 @@ pub static ROWS: &[ModelRow] = &[
         params: FRESNEL_PARAMS,
         reciprocal: true,
         benched: false,
+        defaults: |m| {
+            (m.k_d, m.k_s, m.fresnel) = (Rgb::ZERO, Rgb::ONE, super::Fresnel::None);
+        },
         specular: |m| Specular::Mirror(fresnel_term(m)),
         f32_error: no_error,
+        transcendental_error: |_| EXP_ERROR,
         albedo_table: &[
             ("k_s=1,fresnel=none", "δ lobe, closed form"),
             ("preset=silver", "silver, exact Fresnel"),
