@@ -56,8 +56,8 @@
 //! `k_s · F(cos θ_i)` is added in closed form (no error).
 
 use super::quadrature::{Tolerance, graded, insert_break, integrate as integrate_panels};
+use crate::material::Material;
 use crate::material::brdf::{self, CookTorrance, GeometryTerm, Specular, SurfaceFrame};
-use crate::material::{Material, ReflectanceModel};
 use crate::scene::Rgb;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -109,11 +109,8 @@ pub fn albedo_towards(material: &Material, wi: DVec3, frame: &SurfaceFrame) -> A
     }
     let geometry = MirrorFrame::new(local);
     let (q, error) = integrate(material, wi, frame, &geometry);
-    let dirac = if material.model == ReflectanceModel::Mirror {
-        brdf::mirror_reflectance(material, local.z)
-    } else {
-        Rgb::ZERO
-    };
+    // Zero but for a Dirac lobe (the mirror).
+    let dirac = brdf::mirror_reflectance(material, local.z);
     AlbedoEstimate {
         value: q + dirac,
         error_bound: error + 1e-12 * q.abs(),
@@ -242,6 +239,7 @@ fn kink_heights(material: &Material, cos_theta_i: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::ReflectanceModel;
 
     fn lambert(k_d: Rgb) -> Material {
         let mut m = Material::new("lambert", ReflectanceModel::Lambert);

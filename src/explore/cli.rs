@@ -284,7 +284,7 @@ fn print_values(materials: &[Labelled], a: &Angles) {
     for m in materials {
         let f = m.material.f_r(wi, wo, &frame());
         println!("{}: f_r = [{}, {}, {}] 1/sr", m.label, f.x, f.y, f.z);
-        if m.material.model == ReflectanceModel::Mirror {
+        if m.material.brdf().is_dirac() {
             let rho = mirror_reflectance(&m.material, wi.z);
             println!(
                 "  plus a Dirac δ lobe in the mirror direction of reflectance k_s·F(cos θ_i) = [{}, {}, {}]",

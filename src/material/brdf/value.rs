@@ -260,6 +260,12 @@ pub struct ShaderParams {
 }
 
 impl Brdf {
+    /// Whether it has a Dirac lobe ([`super::mirror_reflectance`]) beside
+    /// its function value.
+    pub fn is_dirac(&self) -> bool {
+        matches!(self.specular, Specular::Mirror(_))
+    }
+
     /// The values the GPU twin of this BRDF reads.
     pub fn shader_params(&self) -> ShaderParams {
         let mut p = ShaderParams {
