@@ -194,6 +194,38 @@ impl From<&Light> for GpuLight {
 mod tests {
     use super::*;
 
+    /// The values the WGSL reads are the material's, rounded once, and the
+    /// derived constants are computed in f64 (Blinn's exponent, the
+    /// Gaussian's normalization) whichever way the BRDF value is built.
+    #[test]
+    fn uploaded_values_are_the_materials() {
+        use crate::material::brdf::microfacet::{blinn_exponent, gaussian_normalization};
+        use crate::material::{Distribution, Fresnel, ReflectanceModel};
+        let key = ShaderKey::default();
+        let mut ct = Material::new("ct", ReflectanceModel::CookTorrance);
+        (ct.roughness, ct.k_s) = (0.37, glam::DVec3::new(0.1, 0.2, 0.3));
+        ct.distribution = Distribution::Blinn;
+        let g = GpuMaterial::new(&ct, &key);
+        assert_eq!(g.blinn_e, blinn_exponent(0.37) as f32);
+        assert_eq!((g.eta, g.kappa), (f32x3(ct.eta), f32x3(ct.kappa)));
+        assert_eq!((g.k_d, g.k_s), (f32x3(ct.k_d), f32x3(ct.k_s)));
+        ct.distribution = Distribution::GaussianNormalized;
+        let g = GpuMaterial::new(&ct, &key);
+        assert_eq!(g.d_norm, gaussian_normalization(0.37) as f32);
+        assert_eq!(g.roughness, 0.37f32);
+        let mut ward = Material::new("w", ReflectanceModel::WardAnisotropic);
+        (ward.sigma_x, ward.sigma_y) = (0.05, 0.3);
+        let g = GpuMaterial::new(&ward, &key);
+        assert_eq!((g.sigma_x, g.sigma_y), (0.05, 0.3));
+        let mut glass = Material::new("m", ReflectanceModel::Mirror);
+        (glass.fresnel, glass.eta_t) = (Fresnel::Dielectric, 1.33);
+        let g = GpuMaterial::new(&glass, &key);
+        assert_eq!((g.eta_i, g.eta_t, g.k_s), (1.0, 1.33, [1.0; 3]));
+        let mut phong = Material::new("p", ReflectanceModel::Phong);
+        phong.k_e = 77.0;
+        assert_eq!(GpuMaterial::new(&phong, &key).k_e, 77.0);
+    }
+
     /// Sizes must match what naga computes for the WGSL structs.
     #[test]
     fn sizes_match_wgsl() {
