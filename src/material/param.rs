@@ -1,4 +1,5 @@
-//! One material parameter as the table of models describes it: its
+//! Material parameters as the table of models describes them, and every
+//! parameter gonio's models take (`K_D`, `ROUGHNESS`, ...). Each has its
 //! scene-file key, its label in the viewer, its kind, its contract range
 //! (what [`super::Material::validate`] checks), its widget, and how it
 //! reads and writes the [`Material`] field(s) it stands for.
@@ -173,3 +174,188 @@ impl Param {
         }
     }
 }
+
+// ---------------------------------------------------------------------
+// The parameters of gonio's models (rows of the table refer to them).
+
+const UNIT: Range = Range::Closed {
+    min: 0.0,
+    max: 1.0,
+    text: "[0, 1]",
+};
+const SLOPE: Range = Range::OpenClosed {
+    min: 0.0,
+    max: 1.0,
+    text: "(0, 1]",
+};
+const SLOPE_SLIDER: Widget = Widget::Slider {
+    min: 1e-4,
+    max: 1.0,
+    scale: Scale::Log,
+};
+/// Roughness values the equivalence test sweeps, 1e-4 to 1.
+const SLOPE_SAMPLES: &[f64] = &[1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.5, 0.8, 1.0];
+const INDEX: Widget = Widget::Drag {
+    speed: 0.005,
+    min: 0.0,
+    max: 50.0,
+};
+const INDEX_SAMPLES: &[f64] = &[1.0, 1.0001, 1.01, 1.5, 0.37, 2.485];
+const MEDIUM: Widget = Widget::Drag {
+    speed: 0.005,
+    min: 0.01,
+    max: 10.0,
+};
+
+/// Ambient coefficient `k_a`.
+pub static K_A: Param = Param {
+    key: "k_a",
+    label: "k_a",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[0.0, 0.5, 1.0],
+    get: |m| Value::Color(m.k_a),
+    set: |m, v| m.k_a = v.color(),
+};
+/// Diffuse albedo `k_d`.
+pub static K_D: Param = Param {
+    key: "k_d",
+    label: "k_d",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[0.0, 0.2, 0.5, 1.0],
+    get: |m| Value::Color(m.k_d),
+    set: |m, v| m.k_d = v.color(),
+};
+/// Specular coefficient `k_s`.
+pub static K_S: Param = Param {
+    key: "k_s",
+    label: "k_s",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[0.0, 0.3, 0.7, 1.0],
+    get: |m| Value::Color(m.k_s),
+    set: |m, v| m.k_s = v.color(),
+};
+/// Phong exponent `k_e`.
+pub static K_E: Param = Param {
+    key: "k_e",
+    label: "k_e",
+    kind: Kind::Scalar,
+    range: Range::Closed {
+        min: 0.0,
+        max: 1e6,
+        text: "[0, 1e6]",
+    },
+    widget: Widget::Slider {
+        min: 1e-2,
+        max: 1e6,
+        scale: Scale::Log,
+    },
+    stored: true,
+    samples: &[0.0, 1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6],
+    get: |m| Value::Scalar(m.k_e),
+    set: |m, v| m.k_e = v.scalar(),
+};
+/// Microfacet roughness `m` (or α).
+pub static ROUGHNESS: Param = Param {
+    key: "roughness",
+    label: "roughness m",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: SLOPE_SLIDER,
+    stored: true,
+    samples: SLOPE_SAMPLES,
+    get: |m| Value::Scalar(m.roughness),
+    set: |m, v| m.roughness = v.scalar(),
+};
+/// Ward's isotropic σ: sets σ_x = σ_y.
+pub static WARD_SIGMA: Param = Param {
+    key: "sigma",
+    label: "σ",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: SLOPE_SLIDER,
+    stored: false,
+    samples: SLOPE_SAMPLES,
+    get: |m| Value::Scalar(m.sigma_x),
+    set: |m, v| (m.sigma_x, m.sigma_y) = (v.scalar(), v.scalar()),
+};
+/// Ward's σ_x, along the tangent.
+pub static SIGMA_X: Param = Param {
+    key: "sigma_x",
+    label: "σ_x",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: SLOPE_SLIDER,
+    stored: true,
+    samples: SLOPE_SAMPLES,
+    get: |m| Value::Scalar(m.sigma_x),
+    set: |m, v| m.sigma_x = v.scalar(),
+};
+/// Ward's σ_y, along the bitangent.
+pub static SIGMA_Y: Param = Param {
+    key: "sigma_y",
+    label: "σ_y",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: SLOPE_SLIDER,
+    stored: true,
+    samples: SLOPE_SAMPLES,
+    get: |m| Value::Scalar(m.sigma_y),
+    set: |m, v| m.sigma_y = v.scalar(),
+};
+/// A conductor's η (real part of the index), per channel.
+pub static ETA: Param = Param {
+    key: "eta",
+    label: "η (R G B)",
+    kind: Kind::Color,
+    range: Range::Positive,
+    widget: INDEX,
+    stored: true,
+    samples: INDEX_SAMPLES,
+    get: |m| Value::Color(m.eta),
+    set: |m, v| m.eta = v.color(),
+};
+/// A conductor's κ (extinction), per channel.
+pub static KAPPA: Param = Param {
+    key: "kappa",
+    label: "κ (R G B)",
+    kind: Kind::Color,
+    range: Range::NonNegative,
+    widget: INDEX,
+    stored: true,
+    samples: &[0.0, 0.5, 2.82, 3.638, 10.0],
+    get: |m| Value::Color(m.kappa),
+    set: |m, v| m.kappa = v.color(),
+};
+/// A dielectric's index on the incident side.
+pub static ETA_I: Param = Param {
+    key: "eta_i",
+    label: "η_i",
+    kind: Kind::Scalar,
+    range: Range::Positive,
+    widget: MEDIUM,
+    stored: true,
+    samples: &[1.0, 1.333, 1.5],
+    get: |m| Value::Scalar(m.eta_i),
+    set: |m, v| m.eta_i = v.scalar(),
+};
+/// A dielectric's index on the transmitted side.
+pub static ETA_T: Param = Param {
+    key: "eta_t",
+    label: "η_t",
+    kind: Kind::Scalar,
+    range: Range::Positive,
+    widget: MEDIUM,
+    stored: true,
+    samples: &[1.0, 1.0001, 1.01, 1.5],
+    get: |m| Value::Scalar(m.eta_t),
+    set: |m, v| m.eta_t = v.scalar(),
+};

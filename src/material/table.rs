@@ -17,8 +17,9 @@
 //!    `shaders/brdf/NAME.wgsl` with the same function names and order.
 //! 2. Its name in [`ReflectanceModel`] (`src/material/model.rs`).
 //! 3. Its row in [`ROWS`] below (new parameters as `static`s beside the
-//!    others; a new `Material` field, if it needs one, with its default in
-//!    `Material::new`).
+//!    others in `param.rs`; a new `Material` field, if it needs one, with
+//!    its default in `Material::new` and the model's own in the row's
+//!    `defaults`).
 //! 4. One [`Specular`] variant with its arm in `brdf::eval` and in
 //!    `Brdf::shader_params` (`brdf/value.rs`; the compiler points at both),
 //!    and one arm in the WGSL dispatch (`eval_brdf`).
@@ -28,7 +29,9 @@
 //! bench and `gonio brdf --albedo-table` all read this table.
 
 use super::brdf::{CookTorrance, FresnelTerm, Specular};
-use super::param::{Kind, Param, Range, Scale, Value, Widget};
+use super::param::{
+    ETA, ETA_I, ETA_T, K_A, K_D, K_E, K_S, KAPPA, Param, ROUGHNESS, SIGMA_X, SIGMA_Y, WARD_SIGMA,
+};
 use super::{Material, ReflectanceModel};
 use crate::base::Rgb;
 
@@ -188,191 +191,6 @@ pub fn each_term_once() -> Vec<Material> {
     }
     out
 }
-
-// ---------------------------------------------------------------------
-// Parameters.
-
-const UNIT: Range = Range::Closed {
-    min: 0.0,
-    max: 1.0,
-    text: "[0, 1]",
-};
-const SLOPE: Range = Range::OpenClosed {
-    min: 0.0,
-    max: 1.0,
-    text: "(0, 1]",
-};
-const SLOPE_SLIDER: Widget = Widget::Slider {
-    min: 1e-4,
-    max: 1.0,
-    scale: Scale::Log,
-};
-/// Roughness values the equivalence test sweeps, 1e-4 to 1.
-const SLOPE_SAMPLES: &[f64] = &[1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.5, 0.8, 1.0];
-const INDEX: Widget = Widget::Drag {
-    speed: 0.005,
-    min: 0.0,
-    max: 50.0,
-};
-const INDEX_SAMPLES: &[f64] = &[1.0, 1.0001, 1.01, 1.5, 0.37, 2.485];
-const MEDIUM: Widget = Widget::Drag {
-    speed: 0.005,
-    min: 0.01,
-    max: 10.0,
-};
-
-/// Ambient coefficient `k_a`.
-pub static K_A: Param = Param {
-    key: "k_a",
-    label: "k_a",
-    kind: Kind::Color,
-    range: UNIT,
-    widget: Widget::ColorPicker,
-    stored: true,
-    samples: &[0.0, 0.5, 1.0],
-    get: |m| Value::Color(m.k_a),
-    set: |m, v| m.k_a = v.color(),
-};
-/// Diffuse albedo `k_d`.
-pub static K_D: Param = Param {
-    key: "k_d",
-    label: "k_d",
-    kind: Kind::Color,
-    range: UNIT,
-    widget: Widget::ColorPicker,
-    stored: true,
-    samples: &[0.0, 0.2, 0.5, 1.0],
-    get: |m| Value::Color(m.k_d),
-    set: |m, v| m.k_d = v.color(),
-};
-/// Specular coefficient `k_s`.
-pub static K_S: Param = Param {
-    key: "k_s",
-    label: "k_s",
-    kind: Kind::Color,
-    range: UNIT,
-    widget: Widget::ColorPicker,
-    stored: true,
-    samples: &[0.0, 0.3, 0.7, 1.0],
-    get: |m| Value::Color(m.k_s),
-    set: |m, v| m.k_s = v.color(),
-};
-/// Phong exponent `k_e`.
-pub static K_E: Param = Param {
-    key: "k_e",
-    label: "k_e",
-    kind: Kind::Scalar,
-    range: Range::Closed {
-        min: 0.0,
-        max: 1e6,
-        text: "[0, 1e6]",
-    },
-    widget: Widget::Slider {
-        min: 1e-2,
-        max: 1e6,
-        scale: Scale::Log,
-    },
-    stored: true,
-    samples: &[0.0, 1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6],
-    get: |m| Value::Scalar(m.k_e),
-    set: |m, v| m.k_e = v.scalar(),
-};
-/// Microfacet roughness `m` (or α).
-pub static ROUGHNESS: Param = Param {
-    key: "roughness",
-    label: "roughness m",
-    kind: Kind::Scalar,
-    range: SLOPE,
-    widget: SLOPE_SLIDER,
-    stored: true,
-    samples: SLOPE_SAMPLES,
-    get: |m| Value::Scalar(m.roughness),
-    set: |m, v| m.roughness = v.scalar(),
-};
-/// Ward's isotropic σ: sets σ_x = σ_y.
-pub static WARD_SIGMA: Param = Param {
-    key: "sigma",
-    label: "σ",
-    kind: Kind::Scalar,
-    range: SLOPE,
-    widget: SLOPE_SLIDER,
-    stored: false,
-    samples: SLOPE_SAMPLES,
-    get: |m| Value::Scalar(m.sigma_x),
-    set: |m, v| (m.sigma_x, m.sigma_y) = (v.scalar(), v.scalar()),
-};
-/// Ward's σ_x, along the tangent.
-pub static SIGMA_X: Param = Param {
-    key: "sigma_x",
-    label: "σ_x",
-    kind: Kind::Scalar,
-    range: SLOPE,
-    widget: SLOPE_SLIDER,
-    stored: true,
-    samples: SLOPE_SAMPLES,
-    get: |m| Value::Scalar(m.sigma_x),
-    set: |m, v| m.sigma_x = v.scalar(),
-};
-/// Ward's σ_y, along the bitangent.
-pub static SIGMA_Y: Param = Param {
-    key: "sigma_y",
-    label: "σ_y",
-    kind: Kind::Scalar,
-    range: SLOPE,
-    widget: SLOPE_SLIDER,
-    stored: true,
-    samples: SLOPE_SAMPLES,
-    get: |m| Value::Scalar(m.sigma_y),
-    set: |m, v| m.sigma_y = v.scalar(),
-};
-/// A conductor's η (real part of the index), per channel.
-pub static ETA: Param = Param {
-    key: "eta",
-    label: "η (R G B)",
-    kind: Kind::Color,
-    range: Range::Positive,
-    widget: INDEX,
-    stored: true,
-    samples: INDEX_SAMPLES,
-    get: |m| Value::Color(m.eta),
-    set: |m, v| m.eta = v.color(),
-};
-/// A conductor's κ (extinction), per channel.
-pub static KAPPA: Param = Param {
-    key: "kappa",
-    label: "κ (R G B)",
-    kind: Kind::Color,
-    range: Range::NonNegative,
-    widget: INDEX,
-    stored: true,
-    samples: &[0.0, 0.5, 2.82, 3.638, 10.0],
-    get: |m| Value::Color(m.kappa),
-    set: |m, v| m.kappa = v.color(),
-};
-/// A dielectric's index on the incident side.
-pub static ETA_I: Param = Param {
-    key: "eta_i",
-    label: "η_i",
-    kind: Kind::Scalar,
-    range: Range::Positive,
-    widget: MEDIUM,
-    stored: true,
-    samples: &[1.0, 1.333, 1.5],
-    get: |m| Value::Scalar(m.eta_i),
-    set: |m, v| m.eta_i = v.scalar(),
-};
-/// A dielectric's index on the transmitted side.
-pub static ETA_T: Param = Param {
-    key: "eta_t",
-    label: "η_t",
-    kind: Kind::Scalar,
-    range: Range::Positive,
-    widget: MEDIUM,
-    stored: true,
-    samples: &[1.0, 1.0001, 1.01, 1.5],
-    get: |m| Value::Scalar(m.eta_t),
-    set: |m, v| m.eta_t = v.scalar(),
-};
 
 // ---------------------------------------------------------------------
 // f32 error bounds (derivation: tests/gpu_vs_cpu.rs).
@@ -723,6 +541,7 @@ const CT_ALBEDO: &[(&str, &str)] = &[
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::param::{Kind, Widget};
 
     #[test]
     fn every_model_has_one_row() {
