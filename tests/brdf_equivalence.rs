@@ -29,9 +29,9 @@ use glam::DVec3;
 use gonio::gpu::layout::GpuMaterial;
 use gonio::gpu::shader_gen::{ShaderKey, compose_brdf_library};
 use gonio::material::brdf::{self, SurfaceFrame};
-use gonio::material::{
-    BrdfVariant, Denominator, Distribution, Fresnel, Geometry, Material, ReflectanceModel,
-};
+use gonio::material::param::{Kind, Value};
+use gonio::material::table::{self, ROWS};
+use gonio::material::{BrdfVariant, Distribution, Geometry, Material};
 use gonio::scene::Rgb;
 use std::collections::BTreeSet;
 use wgpu::util::DeviceExt;
@@ -90,12 +90,24 @@ fn round_material(m: &Material) -> Material {
 
 /// The sample grid for a base material: angles of incidence and view up to
 /// 89.99° (and 5 % of samples below the horizon, up to 100°), azimuths over
-/// the full circle, and parameters over their whole ranges.
+/// the full circle, and each parameter of the model (its row in the table
+/// of models) over its `samples`, which span its whole range.
 fn samples(base: &Material) -> Vec<Sample> {
-    const ROUGHNESS: [f64; 9] = [1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.5, 0.8, 1.0];
-    const K_E: [f64; 8] = [0.0, 1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6];
-    const ETA: [f64; 6] = [1.0, 1.0001, 1.01, 1.5, 0.37, 2.485];
-    const KAPPA: [f64; 5] = [0.0, 0.5, 2.82, 3.638, 10.0];
+    // Each parameter channel steps through its samples with its own
+    // stride (1 and the odd primes), so that combinations mix.
+    let mut strides =
+        std::iter::once(1).chain((3u64..).step_by(2).filter(|n| (3..*n).all(|d| n % d != 0)));
+    let params: Vec<_> = table::all_params()
+        .into_iter()
+        .map(|p| {
+            let channels = if p.kind == Kind::Color { 3 } else { 1 };
+            let s: Vec<u64> = (0..channels)
+                .map(|_| strides.next().expect("enough strides"))
+                .collect();
+            (p, s)
+        })
+        .filter(|(p, _)| base.model.row().params.iter().any(|q| std::ptr::eq(*q, *p)))
+        .collect();
     (0..SAMPLES_PER_VARIANT as u64)
         .map(|i| {
             let j = i + 1;
@@ -116,16 +128,17 @@ fn samples(base: &Material) -> Vec<Sample> {
             };
             let pick = |list: &[f64], k: u64| list[((i / k) % list.len() as u64) as usize];
             let mut m = base.clone();
-            m.k_d = Rgb::new(0.5, 0.2, 0.0);
-            m.k_s = Rgb::new(1.0, 0.7, 0.3);
-            m.k_e = pick(&K_E, 1);
-            m.roughness = pick(&ROUGHNESS, 3);
-            m.sigma_x = pick(&ROUGHNESS, 5);
-            m.sigma_y = pick(&ROUGHNESS, 7);
-            m.eta = Rgb::new(pick(&ETA, 11), pick(&ETA, 13), pick(&ETA, 17));
-            m.kappa = Rgb::new(pick(&KAPPA, 19), pick(&KAPPA, 23), pick(&KAPPA, 2));
-            m.eta_i = pick(&[1.0, 1.333, 1.5], 29);
-            m.eta_t = pick(&ETA[..4], 31);
+            for (p, strides) in &params {
+                let value = match p.kind {
+                    Kind::Color => Value::Color(Rgb::new(
+                        pick(p.samples, strides[0]),
+                        pick(p.samples, strides[1]),
+                        pick(p.samples, strides[2]),
+                    )),
+                    Kind::Scalar => Value::Scalar(pick(p.samples, strides[0])),
+                };
+                p.write(&mut m, value);
+            }
             Sample {
                 wi: f32_round(wi),
                 wo: f32_round(wo),
@@ -143,11 +156,8 @@ fn cpu_eval(s: &Sample) -> (Rgb, Rgb) {
         b: DVec3::Y,
     };
     let f = s.material.f_r(s.wi, s.wo, &frame);
-    let mirror = if s.material.model == ReflectanceModel::Mirror {
-        brdf::mirror_reflectance(&s.material, s.wo.z)
-    } else {
-        Rgb::ZERO
-    };
+    // Zero for every model but the mirror.
+    let mirror = brdf::mirror_reflectance(&s.material, s.wo.z);
     (f, mirror)
 }
 
@@ -214,64 +224,39 @@ fn perturbation_error(s: &Sample, base: (Rgb, Rgb)) -> (Rgb, Rgb) {
 ///   80/|ln(15/16)| ≈ 1240, so the relative error is 2⁻²¹ · min(k_e, 1240);
 /// * the lecture's Gaussian takes α from `atan2`, allowed 4096 ulp: a
 ///   relative error δ of α gives 2 ln2 (α/m)² δ with (α/m)² ≤ 80/ln 2.
-fn transcendental(v: &BrdfVariant, m: &Material) -> f64 {
-    let exp = 163.0 * U;
-    match v.model {
-        ReflectanceModel::Phong
-        | ReflectanceModel::PhongNormalized
-        | ReflectanceModel::BlinnPhong
-        | ReflectanceModel::BlinnPhongNormalized => exp + 2f64.powi(-21) * m.k_e.min(1240.0),
-        ReflectanceModel::CookTorrance => match v.distribution {
-            Some(Distribution::Gaussian) | Some(Distribution::GaussianNormalized) => {
-                exp + 2.0 * 80.0 * 4096.0 * U
-            }
-            _ => exp,
-        },
-        _ => exp,
-    }
+///
+/// Each model's row in the table of models gives its bound.
+fn transcendental(m: &Material) -> f64 {
+    (m.model.row().transcendental_error)(m)
 }
 
-/// The variants checked: every model with its defaults, every Cook-Torrance
-/// term varied one at a time around the default (Beckmann, Smith, exact
-/// conductor, microfacet denominator), and the mirror with every Fresnel.
+/// The variants checked: every model of the table with its defaults and
+/// each of its terms varied alone around them (Cook-Torrance: Beckmann,
+/// Smith, exact conductor, microfacet denominator), and for a model with
+/// both D and G every distribution with the V-groove and every geometry
+/// with GGX.
 fn variants_under_test() -> Vec<Material> {
-    let mut out: Vec<Material> = ReflectanceModel::ALL
+    let mut out = table::each_term_once();
+    for row in ROWS
         .iter()
-        .map(|&m| Material::new("v", m))
-        .collect();
-    let ct = Material::new("v", ReflectanceModel::CookTorrance);
-    for &distribution in Distribution::ALL {
-        out.push(Material {
-            distribution,
-            ..ct.clone()
-        });
-        out.push(Material {
-            distribution,
-            geometry: Geometry::VGroove,
-            ..ct.clone()
-        });
+        .filter(|r| r.terms.distribution && r.terms.geometry)
+    {
+        let base = Material::new("v", row.model);
+        for distribution in Distribution::ALL {
+            out.push(Material {
+                distribution,
+                geometry: Geometry::VGroove,
+                ..base.clone()
+            });
+        }
+        for geometry in Geometry::ALL {
+            out.push(Material {
+                geometry,
+                distribution: Distribution::Ggx,
+                ..base.clone()
+            });
+        }
     }
-    for &geometry in Geometry::ALL {
-        out.push(Material {
-            geometry,
-            distribution: Distribution::Ggx,
-            ..ct.clone()
-        });
-    }
-    for &fresnel in Fresnel::ALL {
-        out.push(Material {
-            fresnel,
-            ..ct.clone()
-        });
-        out.push(Material {
-            fresnel,
-            ..Material::new("v", ReflectanceModel::Mirror)
-        });
-    }
-    out.push(Material {
-        denominator: Denominator::Lecture,
-        ..ct.clone()
-    });
     let mut seen = BTreeSet::new();
     out.retain(|m| seen.insert(m.variant()));
     out
@@ -456,7 +441,7 @@ fn every_brdf_variant_matches_its_f64_reference() {
                 let mut st = Stats::default();
                 let (f, mirror) = cpu_eval(s);
                 let (sf, sm) = perturbation_error(s, (f, mirror));
-                let t = transcendental(&variant, &s.material);
+                let t = transcendental(&s.material);
                 for (cpu, gpu, sens) in [(f, g_f, sf), (mirror, g_m, sm)] {
                     for ch in 0..3 {
                         let (c, g) = (cpu[ch], gpu[ch] as f64);

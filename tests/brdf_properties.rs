@@ -8,6 +8,7 @@
 use glam::DVec3;
 use gonio::explore::albedo::directional_albedo;
 use gonio::material::brdf::SurfaceFrame;
+use gonio::material::param::{Kind, Param, Scale, Value, Widget};
 use gonio::material::{Distribution, Fresnel, Geometry, Material, ReflectanceModel};
 use gonio::scene::Rgb;
 use proptest::prelude::*;
@@ -36,50 +37,58 @@ fn sphere() -> impl Strategy<Value = DVec3> {
     })
 }
 
-/// Every model, with every Cook-Torrance term, parameters over their
-/// whole contract ranges (roughness and σ log-uniform from 1e-4 to 1).
+/// A value of `p` for `u` in [0, 1): between its smallest and largest
+/// sample (its range in the table of models), log-uniform for a parameter
+/// on a logarithmic slider (shifted by one when the range starts at 0).
+fn draw(p: &Param, u: f64) -> f64 {
+    let lo = p.samples.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = p.samples.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    match p.widget {
+        Widget::Slider {
+            scale: Scale::Log, ..
+        } if lo > 0.0 => 10f64.powf(lo.log10() + u * (hi / lo).log10()),
+        Widget::Slider {
+            scale: Scale::Log, ..
+        } => lo - 1.0 + 10f64.powf(u * (hi - lo + 1.0).log10()),
+        _ => lo + u * (hi - lo),
+    }
+}
+
+/// Every model of the table, with every term it selects, each of its
+/// parameters over its whole range ([`draw`]; a triple grey).
 fn material() -> impl Strategy<Value = Material> {
     let model = prop::sample::select(ReflectanceModel::ALL.to_vec());
     let distribution = prop::sample::select(Distribution::ALL.to_vec());
     let geometry = prop::sample::select(Geometry::ALL.to_vec());
     let fresnel = prop::sample::select(Fresnel::ALL.to_vec());
-    let log_rough = -4.0..0.0f64;
     (
         model,
         (distribution, geometry, fresnel, any::<bool>()),
-        (log_rough.clone(), log_rough.clone(), log_rough),
-        (0.0..6.0f64, 0.9..3.0f64, 0.0..10.0f64, 1.0..2.5f64),
-        (0.0..1.0f64, 0.0..1.0f64),
+        prop::collection::vec(0.0..1.0f64, 16),
     )
-        .prop_map(
-            |(model, (d, g, f, lecture), (r, sx, sy), (log_ke, eta, kappa, eta_t), (kd, ks))| {
-                let mut m = Material::new("p", model);
-                m.distribution = d;
-                m.geometry = g;
-                m.fresnel = f;
-                if lecture {
-                    m.denominator = gonio::material::Denominator::Lecture;
-                }
-                m.roughness = 10f64.powf(r);
-                m.sigma_x = 10f64.powf(sx);
-                m.sigma_y = 10f64.powf(sy);
-                m.k_e = 10f64.powf(log_ke) - 1.0;
-                m.eta = Rgb::splat(eta);
-                m.kappa = Rgb::splat(kappa);
-                m.eta_t = eta_t;
-                m.k_d = Rgb::splat(kd);
-                m.k_s = Rgb::splat(ks);
-                m
-            },
-        )
+        .prop_map(|(model, (d, g, f, lecture), u)| {
+            let mut m = Material::new("p", model);
+            m.distribution = d;
+            m.geometry = g;
+            m.fresnel = f;
+            if lecture {
+                m.denominator = gonio::material::Denominator::Lecture;
+            }
+            for (p, &u) in model.row().params.iter().zip(u.iter().cycle()) {
+                let v = draw(p, u);
+                let value = match p.kind {
+                    Kind::Color => Value::Color(Rgb::splat(v)),
+                    Kind::Scalar => Value::Scalar(v),
+                };
+                p.write(&mut m, value);
+            }
+            m
+        })
 }
 
-/// Models whose f_r(i, o) = f_r(o, i) by construction.
+/// Models whose f_r(i, o) = f_r(o, i) by construction (the table says).
 fn reciprocal(m: &Material) -> bool {
-    !matches!(
-        m.model,
-        ReflectanceModel::Phong | ReflectanceModel::BlinnPhong
-    )
+    m.model.row().reciprocal
 }
 
 proptest! {

@@ -1,8 +1,10 @@
 //! The ground floor: small value types every other module builds on
-//! (colours, the shading frame). Nothing here imports anything of gonio's.
+//! (colours, the shading frame, closed sets of names). Nothing here imports anything of gonio's.
 
 pub mod color;
 pub mod frame;
+mod named;
 
 pub use color::{ColorValue, Rgb};
 pub use frame::{SurfaceFrame, any_tangent};
+pub(crate) use named::named_enum;

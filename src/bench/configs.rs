@@ -134,17 +134,16 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
             .collect()
     };
     let first = targets.first().copied();
-    let models = [
-        ReflectanceModel::CookTorrance,
-        ReflectanceModel::Ward,
-        ReflectanceModel::BlinnPhongNormalized,
-        ReflectanceModel::PhongNormalized,
-        ReflectanceModel::Lambert,
-    ];
+    // The models the table marks as benched, the later (more elaborate)
+    // ones first: a smoke run measures the first that differs from the base.
+    let models = crate::material::table::ROWS
+        .iter()
+        .rev()
+        .filter(|row| row.benched)
+        .map(|row| row.model);
     let model_settings = match first {
         Some(m) => models
-            .iter()
-            .map(|&model| {
+            .map(|model| {
                 (
                     model.name().to_string(),
                     set_all("model", model.name()),

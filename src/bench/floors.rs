@@ -177,67 +177,13 @@ pub fn is_lambert_one_point_light(scene: &Scene) -> bool {
 /// compiles but draws without its direct lighting (found by this bench's
 /// image check), so the uber shader takes each term once (25 variants).
 pub fn uber_key(scene: &Scene) -> ShaderKey {
-    use crate::material::{
-        Denominator, Distribution, Fresnel, Geometry, Material, ReflectanceModel,
-    };
     let mut variants: std::collections::BTreeSet<_> =
         ShaderKey::new(scene, &ShadowPlan::new(scene)).variants;
-    for model in ReflectanceModel::ALL {
-        let base = Material::new("uber", model);
-        variants.insert(base.variant());
-        match model {
-            ReflectanceModel::CookTorrance => {
-                for &distribution in Distribution::ALL {
-                    variants.insert(
-                        Material {
-                            distribution,
-                            ..base.clone()
-                        }
-                        .variant(),
-                    );
-                }
-                for &geometry in Geometry::ALL {
-                    variants.insert(
-                        Material {
-                            geometry,
-                            ..base.clone()
-                        }
-                        .variant(),
-                    );
-                }
-                for &fresnel in Fresnel::ALL {
-                    variants.insert(
-                        Material {
-                            fresnel,
-                            ..base.clone()
-                        }
-                        .variant(),
-                    );
-                }
-                for &denominator in Denominator::ALL {
-                    variants.insert(
-                        Material {
-                            denominator,
-                            ..base.clone()
-                        }
-                        .variant(),
-                    );
-                }
-            }
-            ReflectanceModel::Mirror => {
-                for &fresnel in Fresnel::ALL {
-                    variants.insert(
-                        Material {
-                            fresnel,
-                            ..base.clone()
-                        }
-                        .variant(),
-                    );
-                }
-            }
-            _ => {}
-        }
-    }
+    variants.extend(
+        crate::material::table::each_term_once()
+            .iter()
+            .map(|m| m.variant()),
+    );
     ShaderKey {
         shading: scene.shading,
         variants,

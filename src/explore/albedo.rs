@@ -56,8 +56,8 @@
 //! `k_s · F(cos θ_i)` is added in closed form (no error).
 
 use super::quadrature::{Tolerance, graded, insert_break, integrate as integrate_panels};
-use crate::material::brdf::{self, SurfaceFrame};
-use crate::material::{Distribution, Geometry, Material, ReflectanceModel};
+use crate::material::Material;
+use crate::material::brdf::{self, CookTorrance, GeometryTerm, Specular, SurfaceFrame};
 use crate::scene::Rgb;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -109,11 +109,8 @@ pub fn albedo_towards(material: &Material, wi: DVec3, frame: &SurfaceFrame) -> A
     }
     let geometry = MirrorFrame::new(local);
     let (q, error) = integrate(material, wi, frame, &geometry);
-    let dirac = if material.model == ReflectanceModel::Mirror {
-        brdf::mirror_reflectance(material, local.z)
-    } else {
-        Rgb::ZERO
-    };
+    // Zero but for a Dirac lobe (the mirror).
+    let dirac = brdf::mirror_reflectance(material, local.z);
     AlbedoEstimate {
         value: q + dirac,
         error_bound: error + 1e-12 * q.abs(),
@@ -228,12 +225,12 @@ fn integrate(material: &Material, wi: DVec3, frame: &SurfaceFrame, g: &MirrorFra
 /// slope `m_b` the branch `cot θ_o = 1.6 m_b` of its rational fit.
 fn kink_heights(material: &Material, cos_theta_i: f64) -> Vec<f64> {
     let mut heights = vec![cos_theta_i, brdf::COS_FLOOR];
-    if material.model == ReflectanceModel::CookTorrance
-        && material.geometry == Geometry::Smith
-        && material.distribution != Distribution::Ggx
+    if let Specular::CookTorrance(CookTorrance {
+        g: GeometryTerm::SmithBeckmann { slope },
+        ..
+    }) = material.brdf().specular
     {
-        let m = brdf::smith_beckmann_slope(material.distribution, material.roughness);
-        let cot = 1.6 * m;
+        let cot = 1.6 * slope;
         heights.push(cot / (1.0 + cot * cot).sqrt());
     }
     heights
@@ -242,6 +239,7 @@ fn kink_heights(material: &Material, cos_theta_i: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::ReflectanceModel;
 
     fn lambert(k_d: Rgb) -> Material {
         let mut m = Material::new("lambert", ReflectanceModel::Lambert);
@@ -308,7 +306,7 @@ mod tests {
         // ρ ≈ 1 for an almost-flat mirror-like surface.
         let mut ct = lobe(ReflectanceModel::CookTorrance);
         ct.roughness = 1e-3;
-        ct.distribution = Distribution::Beckmann;
+        ct.distribution = crate::material::Distribution::Beckmann;
         ct.geometry = crate::material::Geometry::None;
         ct.fresnel = crate::material::Fresnel::None;
         let e = directional_albedo(&ct, theta);

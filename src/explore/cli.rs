@@ -7,7 +7,7 @@ use super::plot::{AlbedoPlot, SlicePlot};
 use super::slice::{Quantity, slice};
 use super::{Channel, Labelled, direction, frame, spec, table};
 use crate::material::ReflectanceModel;
-use crate::material::brdf::mirror_reflectance;
+use crate::material::brdf::{Specular, mirror_reflectance};
 use crate::output::plot::{PlotFile, number};
 use crate::{Error, Result};
 use std::path::PathBuf;
@@ -22,21 +22,16 @@ the lecture's polar slice or the directional albedo. Frame: normal n = +Z, tange
 [materials.NAME] table."
 )]
 pub struct BrdfArgs {
-    /// Reflectance model (repeat to overlay several): lambert, phong,
-    /// phong-normalized, blinn-phong, blinn-phong-normalized, ward,
-    /// ward-anisotropic, cook-torrance, mirror.
-    #[arg(long = "model", value_name = "MODEL")]
+    // Help texts that list models or keys are generated from the table of
+    // models (`model_help`, `set_help`).
+    #[arg(long = "model", value_name = "MODEL", help = model_help())]
     pub models: Vec<String>,
     /// A material as `MODEL[,KEY=VALUE]...`, e.g.
     /// `cook-torrance,preset=gold,roughness=0.1` (repeat to overlay; its
     /// keys win over --set).
     #[arg(long = "compare", value_name = "SPEC")]
     pub compare: Vec<String>,
-    /// A material key for every material, as in a scene file: k_d, k_s,
-    /// k_a, k_e, roughness, sigma, sigma_x, sigma_y, eta, kappa, eta_i,
-    /// eta_t, distribution, geometry, fresnel, denominator, preset. Values
-    /// are TOML: `k_d=[0.8,0.2,0.1]`, `k_e=80`, `fresnel=schlick`.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
+    #[arg(long = "set", value_name = "KEY=VALUE", help = set_help())]
     pub set: Vec<String>,
     /// Incidence polar angle θ_i [°], from the normal.
     #[arg(
@@ -86,6 +81,29 @@ pub struct BrdfArgs {
     pub albedo_table: bool,
 }
 
+/// `--model`'s help: every model of the table.
+fn model_help() -> String {
+    let names: Vec<&str> = ReflectanceModel::ALL.iter().map(|m| m.name()).collect();
+    format!(
+        "Reflectance model (repeat to overlay several): {}",
+        names.join(", ")
+    )
+}
+
+/// `--set`'s help: every key a material takes.
+fn set_help() -> String {
+    let keys: Vec<&str> = crate::material::entry::keys()
+        .iter()
+        .copied()
+        .filter(|k| *k != "model")
+        .collect();
+    format!(
+        "A material key for every material, as in a scene file: {}. Values are TOML: \
+`k_d=[0.8,0.2,0.1]`, `k_e=80`, `fresnel=schlick`",
+        keys.join(", ")
+    )
+}
+
 /// Runs `gonio brdf`.
 pub fn run(args: &BrdfArgs) -> Result<()> {
     if args.albedo_table {
@@ -97,8 +115,8 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
     let materials = materials(args)?;
     for m in &materials {
         let lobe = !matches!(
-            m.material.model,
-            ReflectanceModel::Lambert | ReflectanceModel::Mirror
+            m.material.brdf().specular,
+            Specular::None | Specular::Mirror(_)
         );
         if lobe && m.material.k_s == crate::scene::Rgb::ZERO {
             eprintln!(
@@ -267,7 +285,7 @@ fn print_values(materials: &[Labelled], a: &Angles) {
     for m in materials {
         let f = m.material.f_r(wi, wo, &frame());
         println!("{}: f_r = [{}, {}, {}] 1/sr", m.label, f.x, f.y, f.z);
-        if m.material.model == ReflectanceModel::Mirror {
+        if m.material.brdf().is_dirac() {
             let rho = mirror_reflectance(&m.material, wi.z);
             println!(
                 "  plus a Dirac δ lobe in the mirror direction of reflectance k_s·F(cos θ_i) = [{}, {}, {}]",

@@ -43,8 +43,8 @@
 
 use super::Channel;
 use super::quadrature::{Tolerance, graded, integrate};
+use crate::material::Material;
 use crate::material::brdf::{self, fresnel::fresnel_dielectric};
-use crate::material::{Material, ReflectanceModel};
 use crate::scene::Rgb;
 use glam::DVec3;
 
@@ -105,11 +105,8 @@ pub fn gloss(material: &Material, geometry: GlossGeometry) -> GlossReading {
     let half_a = 0.5 * geometry.in_plane_deg.to_radians();
     let half_b = 0.5 * geometry.perpendicular_deg.to_radians();
     let (q, error) = aperture_integral(material, wi, theta, half_a, half_b);
-    let dirac = if material.model == ReflectanceModel::Mirror {
-        brdf::mirror_reflectance(material, theta.cos())
-    } else {
-        Rgb::ZERO
-    };
+    // Zero but for a Dirac lobe (the mirror).
+    let dirac = brdf::mirror_reflectance(material, theta.cos());
     let aperture_reflectance = q + dirac;
     let standard_reflectance = fresnel_dielectric(theta.cos(), 1.0, STANDARD_ETA);
     GlossReading {
@@ -162,6 +159,7 @@ fn aperture_integral(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::ReflectanceModel;
 
     #[test]
     fn black_glass_reads_100() {

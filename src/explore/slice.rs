@@ -96,7 +96,9 @@ pub fn slice(
             (t, v)
         })
         .collect();
-    let dirac = (material.model == crate::material::ReflectanceModel::Mirror)
+    let dirac = material
+        .brdf()
+        .is_dirac()
         .then(|| channel.of(mirror_reflectance(material, theta_i.cos())));
     Slice { points, dirac }
 }

@@ -16,139 +16,39 @@ use rayon::prelude::*;
 /// The incidence angles of the table, degrees.
 pub const ANGLES_DEG: [f64; 5] = [0.0, 30.0, 60.0, 80.0, 89.0];
 
-/// The rows: a material spec (see [`spec::compare_spec`]) and a remark.
-pub const ROWS: &[(&str, &str)] = &[
-    ("lambert,k_d=1", "albedo k_d exactly"),
-    ("phong,k_d=0,k_s=1,k_e=1", "lecture form: ÷ I·N"),
-    ("phong,k_d=0,k_s=1,k_e=10", "lecture form"),
-    ("phong,k_d=0,k_s=1,k_e=100", "lecture form"),
-    ("phong-normalized,k_d=0,k_s=1,k_e=1", "(k_e+2)/2π"),
-    ("phong-normalized,k_d=0,k_s=1,k_e=10", ""),
-    ("phong-normalized,k_d=0,k_s=1,k_e=100", ""),
-    ("phong-normalized,k_d=0,k_s=1,k_e=10000", ""),
-    ("blinn-phong,k_d=0,k_s=1,k_e=1", "lecture form: ÷ I·N"),
-    ("blinn-phong,k_d=0,k_s=1,k_e=10", "lecture form"),
-    ("blinn-phong,k_d=0,k_s=1,k_e=100", "lecture form"),
-    ("blinn-phong-normalized,k_d=0,k_s=1,k_e=1", ""),
-    ("blinn-phong-normalized,k_d=0,k_s=1,k_e=10", ""),
-    ("blinn-phong-normalized,k_d=0,k_s=1,k_e=100", ""),
-    ("blinn-phong-normalized,k_d=0,k_s=1,k_e=10000", ""),
-    ("ward,k_d=0,k_s=1,sigma=0.05", "lecture form"),
-    ("ward,k_d=0,k_s=1,sigma=0.2", "lecture form"),
-    ("ward,k_d=0,k_s=1,sigma=0.5", "lecture form"),
-    (
-        "ward-anisotropic,k_d=0,k_s=1,sigma_x=0.05,sigma_y=0.3",
-        "φ_i along σ_x",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=smith,roughness=0.05",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=smith,roughness=0.3",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=smith,roughness=1",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=v-groove,roughness=0.3",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=none,roughness=0.3",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=smith,roughness=0.05",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=smith,roughness=0.3",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=smith,roughness=1",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=v-groove,roughness=0.3",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=none,roughness=0.3",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=blinn-normalized,geometry=smith,roughness=0.3",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=blinn-normalized,geometry=smith,roughness=1",
-        "Smith G of the matched Beckmann slope",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=gaussian-normalized,geometry=smith,roughness=1",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=gaussian-normalized,geometry=smith,roughness=0.3",
-        "",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=blinn,geometry=smith,roughness=0.3",
-        "lecture D, peak 1",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=gaussian,geometry=smith,roughness=0.3",
-        "lecture D, peak 1",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=v-groove,denominator=lecture,roughness=0.3",
-        "lecture: ÷ π(N·V)(N·I)",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,fresnel=none,distribution=blinn,geometry=v-groove,denominator=lecture,roughness=0.3",
-        "all lecture terms",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,preset=gold,fresnel=conductor,roughness=0.3",
-        "gold, exact Fresnel",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,preset=gold,fresnel=conductor-lecture,roughness=0.3",
-        "gold, lecture Fresnel",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,preset=gold,fresnel=schlick,roughness=0.3",
-        "gold, Schlick",
-    ),
-    (
-        "cook-torrance,k_d=0,k_s=1,preset=glass,fresnel=dielectric,roughness=0.3",
-        "glass 1.5",
-    ),
-    ("mirror,k_s=1,fresnel=none", "δ lobe, closed form"),
-    ("mirror,preset=silver", "silver, exact Fresnel"),
-];
+/// The rows: a material spec (see [`spec::compare_spec`]) and a remark,
+/// from each model's `albedo_table` in the table of models.
+pub fn specs() -> Vec<(String, &'static str)> {
+    crate::material::table::ROWS
+        .iter()
+        .flat_map(|row| {
+            row.albedo_table
+                .iter()
+                .map(move |(params, remark)| (format!("{},{params}", row.model), *remark))
+        })
+        .collect()
+}
 
 /// One computed row.
 pub struct Row {
-    pub spec: &'static str,
+    pub spec: String,
     pub remark: &'static str,
     pub estimates: Vec<AlbedoEstimate>,
 }
 
 /// Computes every row (in parallel).
 pub fn compute() -> Result<Vec<Row>> {
-    let materials = ROWS
-        .iter()
-        .map(|(s, r)| Ok((*s, *r, spec::compare_spec(s, &[])?.material)))
+    let materials = specs()
+        .into_iter()
+        .map(|(s, r)| {
+            let m = spec::compare_spec(&s, &[])?.material;
+            Ok((s, r, m))
+        })
         .collect::<Result<Vec<_>>>()?;
     Ok(materials
         .par_iter()
         .map(|(spec, remark, m)| Row {
-            spec,
+            spec: spec.clone(),
             remark,
             estimates: ANGLES_DEG
                 .iter()
@@ -170,7 +70,7 @@ pub fn markdown(rows: &[Row]) -> String {
     out += &"---:|".repeat(ANGLES_DEG.len());
     out += "---:|---|\n";
     for row in rows {
-        let (model, params) = row.spec.split_once(',').unwrap_or((row.spec, ""));
+        let (model, params) = row.spec.split_once(',').unwrap_or((&row.spec, ""));
         let params = params
             .split(',')
             .filter(|p| !matches!(*p, "k_d=0" | "k_s=1"))
@@ -206,8 +106,8 @@ mod tests {
 
     #[test]
     fn every_row_parses() {
-        for (s, _) in ROWS {
-            spec::compare_spec(s, &[]).unwrap_or_else(|e| panic!("{s}: {e}"));
+        for (s, _) in specs() {
+            spec::compare_spec(&s, &[]).unwrap_or_else(|e| panic!("{s}: {e}"));
         }
     }
 }

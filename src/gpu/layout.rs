@@ -3,8 +3,7 @@
 //! follow WGSL's layout rules (vec3 aligned to 16 bytes).
 
 use super::shader_gen::ShaderKey;
-use crate::material::brdf::microfacet::{blinn_exponent, gaussian_normalization};
-use crate::material::{Distribution, Material, ReflectanceModel};
+use crate::material::Material;
 use crate::scene::{Light, Scene};
 use bytemuck::{Pod, Zeroable};
 
@@ -112,41 +111,26 @@ impl GpuGlobals {
 impl GpuMaterial {
     /// `m` as the GPU sees it: `m` must be an effective material (roughness
     /// floor applied), `key` the scene's shader key (for the variant index).
+    /// The BRDF's values come from [`Material::brdf`]: what the model's
+    /// WGSL twin reads, its derived constants computed in `f64`; fields the
+    /// model does not read are 0.
     pub fn new(m: &Material, key: &ShaderKey) -> Self {
-        // Derived from the material alone, computed here in f64 rather than
-        // on the GPU (see d_blinn_lecture: WGSL's sin is not accurate enough).
-        let ct = m.model == ReflectanceModel::CookTorrance;
-        let blinn_e = if ct
-            && matches!(
-                m.distribution,
-                Distribution::Blinn | Distribution::BlinnNormalized
-            ) {
-            blinn_exponent(m.roughness) as f32
-        } else {
-            0.0
-        };
-        let d_norm = if m.model == ReflectanceModel::CookTorrance
-            && m.distribution == Distribution::GaussianNormalized
-        {
-            gaussian_normalization(m.roughness) as f32
-        } else {
-            0.0
-        };
+        let p = m.brdf().shader_params();
         GpuMaterial {
             k_a: f32x3(m.k_a),
             variant: key.variant_code(&m.variant()),
-            k_d: f32x3(m.k_d),
-            k_e: m.k_e as f32,
-            k_s: f32x3(m.k_s),
-            roughness: m.roughness as f32,
-            eta: f32x3(m.eta),
-            sigma_x: m.sigma_x as f32,
-            kappa: f32x3(m.kappa),
-            sigma_y: m.sigma_y as f32,
-            eta_i: m.eta_i as f32,
-            eta_t: m.eta_t as f32,
-            d_norm,
-            blinn_e,
+            k_d: f32x3(p.k_d),
+            k_e: p.k_e as f32,
+            k_s: f32x3(p.k_s),
+            roughness: p.roughness as f32,
+            eta: f32x3(p.eta),
+            sigma_x: p.sigma_x as f32,
+            kappa: f32x3(p.kappa),
+            sigma_y: p.sigma_y as f32,
+            eta_i: p.eta_i as f32,
+            eta_t: p.eta_t as f32,
+            d_norm: p.d_norm as f32,
+            blinn_e: p.blinn_e as f32,
         }
     }
 }
@@ -210,6 +194,38 @@ impl From<&Light> for GpuLight {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The values the WGSL reads are the material's, rounded once, and the
+    /// derived constants are computed in f64 (Blinn's exponent, the
+    /// Gaussian's normalization) whichever way the BRDF value is built.
+    #[test]
+    fn uploaded_values_are_the_materials() {
+        use crate::material::brdf::microfacet::{blinn_exponent, gaussian_normalization};
+        use crate::material::{Distribution, Fresnel, ReflectanceModel};
+        let key = ShaderKey::default();
+        let mut ct = Material::new("ct", ReflectanceModel::CookTorrance);
+        (ct.roughness, ct.k_s) = (0.37, glam::DVec3::new(0.1, 0.2, 0.3));
+        ct.distribution = Distribution::Blinn;
+        let g = GpuMaterial::new(&ct, &key);
+        assert_eq!(g.blinn_e, blinn_exponent(0.37) as f32);
+        assert_eq!((g.eta, g.kappa), (f32x3(ct.eta), f32x3(ct.kappa)));
+        assert_eq!((g.k_d, g.k_s), (f32x3(ct.k_d), f32x3(ct.k_s)));
+        ct.distribution = Distribution::GaussianNormalized;
+        let g = GpuMaterial::new(&ct, &key);
+        assert_eq!(g.d_norm, gaussian_normalization(0.37) as f32);
+        assert_eq!(g.roughness, 0.37f32);
+        let mut ward = Material::new("w", ReflectanceModel::WardAnisotropic);
+        (ward.sigma_x, ward.sigma_y) = (0.05, 0.3);
+        let g = GpuMaterial::new(&ward, &key);
+        assert_eq!((g.sigma_x, g.sigma_y), (0.05, 0.3));
+        let mut glass = Material::new("m", ReflectanceModel::Mirror);
+        (glass.fresnel, glass.eta_t) = (Fresnel::Dielectric, 1.33);
+        let g = GpuMaterial::new(&glass, &key);
+        assert_eq!((g.eta_i, g.eta_t, g.k_s), (1.0, 1.33, [1.0; 3]));
+        let mut phong = Material::new("p", ReflectanceModel::Phong);
+        phong.k_e = 77.0;
+        assert_eq!(GpuMaterial::new(&phong, &key).k_e, 77.0);
+    }
 
     /// Sizes must match what naga computes for the WGSL structs.
     #[test]

@@ -1,37 +1,113 @@
 //! A material's text form: the keys of a scene file's `[materials.NAME]`
 //! table (also `gonio brdf --set` and `--compare`), and their validation
-//! into a [`Material`].
+//! into a [`Material`]. The keys and their types come from the table of
+//! models ([`super::table`]): `model`, `preset`, the term names and every
+//! model's parameters.
 
-use super::{Material, ReflectanceModel, presets};
-use crate::base::ColorValue;
-use crate::base::Rgb;
+use super::param::{Kind, Param, Value};
+use super::{Material, ReflectanceModel, presets, table};
+use crate::base::{ColorValue, Rgb};
 use serde::Deserialize;
-use toml::Value;
+use serde::de::{self, Deserializer, MapAccess, Visitor};
+use std::sync::LazyLock;
+use toml::Value as Toml;
+
+/// The keys of the selectable terms (`material/terms.rs`).
+const TERM_KEYS: [&str; 4] = ["distribution", "geometry", "fresnel", "denominator"];
 
 /// `[materials.NAME]`: the model, an optional preset from the lecture's
-/// tables, then any parameter (given keys override the preset).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// tables, then any parameter or term (given keys override the preset).
+/// Keys of another model than the given one are accepted (and kept for
+/// when the material switches models).
+#[derive(Clone, Debug, Default)]
 pub struct MaterialEntry {
     pub model: String,
     pub preset: Option<String>,
-    pub k_a: Option<ColorValue>,
-    pub k_d: Option<ColorValue>,
-    pub k_s: Option<ColorValue>,
-    pub k_e: Option<f64>,
-    pub roughness: Option<f64>,
-    /// Ward: sets σ_x and σ_y.
-    pub sigma: Option<f64>,
-    pub sigma_x: Option<f64>,
-    pub sigma_y: Option<f64>,
-    pub eta: Option<ColorValue>,
-    pub kappa: Option<ColorValue>,
-    pub eta_i: Option<f64>,
-    pub eta_t: Option<f64>,
-    pub distribution: Option<String>,
-    pub geometry: Option<String>,
-    pub fresnel: Option<String>,
-    pub denominator: Option<String>,
+    /// Parameters as given, by key, of the type the table says.
+    pub params: Vec<(String, Value)>,
+    /// Terms as given: (key, name).
+    pub terms: Vec<(&'static str, String)>,
+}
+
+/// Every key a `[materials.NAME]` table accepts, in the order errors list
+/// them.
+static KEYS: LazyLock<Vec<&'static str>> = LazyLock::new(|| {
+    let mut keys = vec!["model", "preset"];
+    for p in table::all_params() {
+        if !keys.contains(&p.key) {
+            keys.push(p.key);
+        }
+    }
+    keys.extend(TERM_KEYS);
+    keys
+});
+
+/// Every key a `[materials.NAME]` table accepts (`model`, `preset`, each
+/// model's parameters, the terms).
+pub fn keys() -> &'static [&'static str] {
+    &KEYS
+}
+
+impl<'de> Deserialize<'de> for MaterialEntry {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_map(EntryVisitor)
+    }
+}
+
+struct EntryVisitor;
+
+impl<'de> Visitor<'de> for EntryVisitor {
+    type Value = MaterialEntry;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a material table (`model = ...` and its parameters)")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<MaterialEntry, A::Error> {
+        let mut model = None;
+        let mut entry = MaterialEntry::default();
+        while let Some(key) = map.next_key::<String>()? {
+            let duplicate = |seen: bool| {
+                if seen {
+                    Err(de::Error::custom(format!("duplicate key `{key}`")))
+                } else {
+                    Ok(())
+                }
+            };
+            match key.as_str() {
+                "model" => {
+                    duplicate(model.is_some())?;
+                    model = Some(map.next_value::<String>()?);
+                }
+                "preset" => {
+                    duplicate(entry.preset.is_some())?;
+                    entry.preset = Some(map.next_value::<String>()?);
+                }
+                k if TERM_KEYS.contains(&k) => {
+                    let k = TERM_KEYS.into_iter().find(|t| *t == k).unwrap_or_default();
+                    duplicate(entry.terms.iter().any(|(t, _)| *t == k))?;
+                    entry.terms.push((k, map.next_value::<String>()?));
+                }
+                k => {
+                    // A key's type is the same for every parameter of that
+                    // key (checked by the table's tests).
+                    let kind = table::all_params()
+                        .into_iter()
+                        .find(|p| p.key == k)
+                        .map(|p| p.kind)
+                        .ok_or_else(|| de::Error::unknown_field(k, &KEYS))?;
+                    duplicate(entry.params.iter().any(|(p, _)| p == k))?;
+                    let value = match kind {
+                        Kind::Color => Value::Color(map.next_value::<ColorValue>()?.rgb()),
+                        Kind::Scalar => Value::Scalar(map.next_value::<f64>()?),
+                    };
+                    entry.params.push((key, value));
+                }
+            }
+        }
+        entry.model = model.ok_or_else(|| de::Error::missing_field("model"))?;
+        Ok(entry)
+    }
 }
 
 /// The validated material of entry `e`, named `name` (messages name the
@@ -48,78 +124,132 @@ pub fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result
             .map_err(|p| format!("{}: {p}", key("preset")))?
             .apply(&mut m);
     }
-    let colors = [
-        (e.k_a, &mut m.k_a),
-        (e.k_d, &mut m.k_d),
-        (e.k_s, &mut m.k_s),
-        (e.eta, &mut m.eta),
-        (e.kappa, &mut m.kappa),
-    ];
-    for (value, slot) in colors {
-        if let Some(c) = value {
-            *slot = c.rgb();
+    // In the table's key order, whatever the file's: a key that sets
+    // several fields (Ward's `sigma`) comes before the ones that set one
+    // of them (`sigma_x`), which then win.
+    for &k in KEYS.iter() {
+        if let Some((_, v)) = e.params.iter().find(|(p, _)| p == k)
+            && let Some(p) = table::param_for(model, k)
+        {
+            p.write(&mut m, *v);
         }
     }
-    if let Some(s) = e.sigma {
-        (m.sigma_x, m.sigma_y) = (s, s);
+    for (k, text) in &e.terms {
+        set_term(&mut m, k, text).map_err(|p| format!("{}: {p}", key(k)))?;
     }
-    let scalars = [
-        (e.k_e, &mut m.k_e),
-        (e.roughness, &mut m.roughness),
-        (e.sigma_x, &mut m.sigma_x),
-        (e.sigma_y, &mut m.sigma_y),
-        (e.eta_i, &mut m.eta_i),
-        (e.eta_t, &mut m.eta_t),
-    ];
-    for (value, slot) in scalars {
-        if let Some(v) = value {
-            *slot = v;
-        }
-    }
-    fn parse<T: std::str::FromStr<Err = String>>(
-        key: String,
-        v: &Option<String>,
-        slot: &mut T,
-    ) -> Result<(), String> {
-        if let Some(text) = v {
-            *slot = text.parse().map_err(|p| format!("{key}: {p}"))?;
-        }
-        Ok(())
-    }
-    parse(key("distribution"), &e.distribution, &mut m.distribution)?;
-    parse(key("geometry"), &e.geometry, &mut m.geometry)?;
-    parse(key("fresnel"), &e.fresnel, &mut m.fresnel)?;
-    parse(key("denominator"), &e.denominator, &mut m.denominator)?;
     m.validate()?;
     Ok(m)
 }
 
-/// Every parameter of `m` under its scene-file key (no preset: the values
-/// it set are written out).
+/// `m` with `key` set to `value` as a scene file would give it (the
+/// viewer's edits), validated; messages name `materials.NAME.KEY`.
+pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String> {
+    let name = &m.name;
+    let bad = |problem: String| format!("materials.{name}.{key}: {problem}");
+    let typed = |e: toml::de::Error| bad(e.message().to_string());
+    let mut out = m.clone();
+    match key {
+        "model" => {
+            let text: String = value.try_into().map_err(typed)?;
+            out.model = text.parse().map_err(bad)?;
+        }
+        "preset" => {
+            let text: String = value.try_into().map_err(typed)?;
+            presets::preset(&text).map_err(bad)?.apply(&mut out);
+        }
+        k if TERM_KEYS.contains(&k) => {
+            let text: String = value.try_into().map_err(typed)?;
+            set_term(&mut out, k, &text).map_err(bad)?;
+        }
+        k => {
+            let p = table::param_for(m.model, k).ok_or_else(|| {
+                bad(format!(
+                    "unknown key; expected one of {}",
+                    KEYS.iter()
+                        .map(|k| format!("`{k}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))
+            })?;
+            let v = match p.kind {
+                Kind::Color => Value::Color(value.try_into::<ColorValue>().map_err(typed)?.rgb()),
+                Kind::Scalar => Value::Scalar(value.try_into::<f64>().map_err(typed)?),
+            };
+            p.write(&mut out, v);
+        }
+    }
+    out.validate()?;
+    Ok(out)
+}
+
+/// Sets the term `key` (`distribution`, ...) of `m` from its name.
+pub fn set_term(m: &mut Material, key: &str, name: &str) -> Result<(), String> {
+    match key {
+        "distribution" => m.distribution = name.parse()?,
+        "geometry" => m.geometry = name.parse()?,
+        "fresnel" => m.fresnel = name.parse()?,
+        "denominator" => m.denominator = name.parse()?,
+        _ => return Err(format!("`{key}` is not a term")),
+    }
+    Ok(())
+}
+
+/// Every field of `m` under its scene-file key (no preset: the values
+/// it set are written out). A parameter is written under its key only when
+/// that key reads back as the same parameter for `m`'s model.
 pub fn material_table(m: &Material) -> toml::Table {
     let mut t = toml::Table::new();
-    let mut put = |k: &str, v: Value| {
-        t.insert(k.into(), v);
-    };
-    put("model", Value::String(m.model.name().into()));
-    put("k_a", vec3(m.k_a));
-    put("k_d", vec3(m.k_d));
-    put("k_s", vec3(m.k_s));
-    put("k_e", Value::Float(m.k_e));
-    put("roughness", Value::Float(m.roughness));
-    put("sigma_x", Value::Float(m.sigma_x));
-    put("sigma_y", Value::Float(m.sigma_y));
-    put("eta", vec3(m.eta));
-    put("kappa", vec3(m.kappa));
-    put("eta_i", Value::Float(m.eta_i));
-    put("eta_t", Value::Float(m.eta_t));
-    put("distribution", Value::String(m.distribution.name().into()));
-    put("geometry", Value::String(m.geometry.name().into()));
-    put("fresnel", Value::String(m.fresnel.name().into()));
-    put("denominator", Value::String(m.denominator.name().into()));
+    t.insert("model".into(), Toml::String(m.model.name().into()));
+    for p in table::stored_params() {
+        if table::param_for(m.model, p.key).is_some_and(|q| std::ptr::eq(p, q)) {
+            t.insert(p.key.into(), text_value(p, m));
+        }
+    }
+    for (key, name) in [
+        ("distribution", m.distribution.name()),
+        ("geometry", m.geometry.name()),
+        ("fresnel", m.fresnel.name()),
+        ("denominator", m.denominator.name()),
+    ] {
+        t.insert(key.into(), Toml::String(name.into()));
+    }
     t
 }
 
-fn vec3(v: Rgb) -> Value {
-    Value::Array(v.to_array().map(Value::Float).to_vec())
+/// `p`'s value in `m` as TOML.
+fn text_value(p: &Param, m: &Material) -> Toml {
+    match p.read(m) {
+        Value::Color(v) => vec3(v),
+        Value::Scalar(v) => Toml::Float(v),
+    }
+}
+
+fn vec3(v: Rgb) -> Toml {
+    Toml::Array(v.to_array().map(Toml::Float).to_vec())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_saved_material_reads_back_equal() {
+        let mut m = Material::new("m", ReflectanceModel::WardAnisotropic);
+        (m.sigma_x, m.sigma_y, m.k_e) = (0.1, 0.4, 7.0);
+        m.distribution = super::super::Distribution::Ggx;
+        let entry = MaterialEntry::deserialize(Toml::Table(material_table(&m))).unwrap();
+        assert_eq!(material_from_entry("m", &entry).unwrap(), m);
+    }
+
+    #[test]
+    fn every_key_has_one_type() {
+        for k in KEYS.iter() {
+            let kinds: Vec<Kind> = table::all_params()
+                .into_iter()
+                .filter(|p| p.key == *k)
+                .map(|p| p.kind)
+                .collect();
+            assert!(kinds.windows(2).all(|w| w[0] == w[1]), "{k}");
+        }
+    }
 }

@@ -7,7 +7,9 @@
 pub mod brdf;
 pub mod entry;
 mod model;
+pub mod param;
 pub mod presets;
+pub mod table;
 pub mod terms;
 
 pub use entry::{MaterialEntry, material_from_entry, material_table};
@@ -15,7 +17,7 @@ pub use model::ReflectanceModel;
 pub use terms::{Denominator, Distribution, Fresnel, Geometry};
 
 use crate::base::Rgb;
-use brdf::SurfaceFrame;
+use brdf::{Brdf, SurfaceFrame};
 use glam::DVec3;
 
 /// Smallest roughness (m, α or σ) the BRDFs evaluate: below it `1/α²`
@@ -60,19 +62,18 @@ pub struct Material {
 
 impl Material {
     /// A material with the given model and neutral parameters: `k_d = 0.8`,
-    /// `k_s = 0` (1 for a mirror), `k_a = 0`, `k_e = 32`, roughness 0.3,
-    /// σ = 0.2, gold's η/κ from the lecture's table, glass (1 → 1.5) for
-    /// the dielectric, Beckmann with Smith G and the exact conductor Fresnel
-    /// over the 4(N·V)(N·I) denominator. A mirror's Fresnel defaults to
-    /// `none` (reflectance `k_s`).
+    /// `k_s = 0`, `k_a = 0`, `k_e = 32`, roughness 0.3, σ = 0.2, gold's η/κ
+    /// from the lecture's table, glass (1 → 1.5) for the dielectric,
+    /// Beckmann with Smith G and the exact conductor Fresnel over the
+    /// 4(N·V)(N·I) denominator; then the model's own defaults from its row
+    /// (a mirror: `k_d = 0`, `k_s = 1`, Fresnel `none`, reflectance `k_s`).
     pub fn new(name: impl Into<String>, model: ReflectanceModel) -> Self {
-        let mirror = model == ReflectanceModel::Mirror;
-        Material {
+        let mut m = Material {
             name: name.into(),
             model,
             k_a: Rgb::ZERO,
-            k_d: if mirror { Rgb::ZERO } else { Rgb::splat(0.8) },
-            k_s: if mirror { Rgb::ONE } else { Rgb::ZERO },
+            k_d: Rgb::splat(0.8),
+            k_s: Rgb::ZERO,
             k_e: 32.0,
             roughness: 0.3,
             sigma_x: 0.2,
@@ -83,62 +84,30 @@ impl Material {
             eta_t: 1.5,
             distribution: Distribution::Beckmann,
             geometry: Geometry::Smith,
-            fresnel: if mirror {
-                Fresnel::None
-            } else {
-                Fresnel::Conductor
-            },
+            fresnel: Fresnel::Conductor,
             denominator: Denominator::Microfacet,
-        }
+        };
+        (model.row().defaults)(&mut m);
+        m
     }
 
-    /// Checks every parameter against the contract's ranges; the message
-    /// names the parameter and the offending value.
+    /// Checks every parameter against the contract's ranges (the table's,
+    /// [`table::stored_params`]); the message names the parameter and the
+    /// offending value.
     pub fn validate(&self) -> Result<(), String> {
-        let name = &self.name;
-        for (key, v) in [("k_a", self.k_a), ("k_d", self.k_d), ("k_s", self.k_s)] {
-            if !v.is_finite() || v.min_element() < 0.0 || v.max_element() > 1.0 {
-                return Err(format!(
-                    "material `{name}`: {key} = [{}, {}, {}] is outside [0, 1]³",
-                    v.x, v.y, v.z
-                ));
-            }
+        table::stored_params()
+            .into_iter()
+            .try_for_each(|p| p.check(self))
+    }
+
+    /// The BRDF of this material: its model's typed value, with the
+    /// derived constants computed (see [`brdf::Brdf`]).
+    pub fn brdf(&self) -> Brdf {
+        Brdf {
+            k_d: self.k_d,
+            k_s: self.k_s,
+            specular: (self.model.row().specular)(self),
         }
-        if !(0.0..=1e6).contains(&self.k_e) {
-            return Err(format!(
-                "material `{name}`: k_e = {} is outside [0, 1e6]",
-                self.k_e
-            ));
-        }
-        for (key, v) in [
-            ("roughness", self.roughness),
-            ("sigma_x", self.sigma_x),
-            ("sigma_y", self.sigma_y),
-        ] {
-            if !(v > 0.0 && v <= 1.0) {
-                return Err(format!("material `{name}`: {key} = {v} is outside (0, 1]"));
-            }
-        }
-        if !self.eta.is_finite() || self.eta.min_element() <= 0.0 {
-            return Err(format!(
-                "material `{name}`: eta = [{}, {}, {}] must be finite and > 0",
-                self.eta.x, self.eta.y, self.eta.z
-            ));
-        }
-        if !self.kappa.is_finite() || self.kappa.min_element() < 0.0 {
-            return Err(format!(
-                "material `{name}`: kappa = [{}, {}, {}] must be finite and ≥ 0",
-                self.kappa.x, self.kappa.y, self.kappa.z
-            ));
-        }
-        for (key, v) in [("eta_i", self.eta_i), ("eta_t", self.eta_t)] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(format!(
-                    "material `{name}`: {key} = {v} must be finite and > 0"
-                ));
-            }
-        }
-        Ok(())
     }
 
     /// The BRDF `f_r(ω_i, ω_o)` [1/sr] in the shading frame `frame`; `wi`
@@ -149,7 +118,7 @@ impl Material {
         if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
             return Rgb::ZERO;
         }
-        brdf::eval(self, wi, wo, frame)
+        brdf::eval(&self.brdf(), wi, wo, frame)
     }
 
     /// This material as the renderers evaluate it for a given roughness
@@ -172,16 +141,13 @@ impl Material {
     /// The part of the material that decides which shader code runs: the
     /// model and, where the model has them, its terms.
     pub fn variant(&self) -> BrdfVariant {
-        let (distribution, geometry, fresnel, denominator) = match self.model {
-            ReflectanceModel::CookTorrance => (
-                Some(self.distribution),
-                Some(self.geometry),
-                Some(self.fresnel),
-                Some(self.denominator),
-            ),
-            ReflectanceModel::Mirror => (None, None, Some(self.fresnel), None),
-            _ => (None, None, None, None),
-        };
+        let terms = self.model.row().terms;
+        let (distribution, geometry, fresnel, denominator) = (
+            terms.distribution.then_some(self.distribution),
+            terms.geometry.then_some(self.geometry),
+            terms.fresnel.then_some(self.fresnel),
+            terms.denominator.then_some(self.denominator),
+        );
         BrdfVariant {
             model: self.model,
             distribution,

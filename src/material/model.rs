@@ -1,90 +1,47 @@
-//! The closed set of reflectance models and their contract names.
+//! The closed set of reflectance models and their contract names. What
+//! each model needs (files, tangents, terms, parameters) is its row in
+//! [`super::table`].
 
-use std::fmt;
-use std::str::FromStr;
+use crate::base::named_enum;
 
-/// Every reflectance model gonio knows, by the contract's names. A material
-/// picks one; the GPU compiles only the models (and terms) a scene uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum ReflectanceModel {
-    /// `f_r = k_d / π` (lecture: "Diffuse Reflection Model").
-    Lambert,
-    /// The lecture's Phong: `k_d/π + k_s (R(I)·V)^k_e / (I·N)`, as written
-    /// (not normalized, not reciprocal).
-    Phong,
-    /// Normalized Phong: `k_d/π + k_s (k_e+2)/(2π) (R(I)·V)^k_e`
-    /// (reciprocal, energy conserving).
-    PhongNormalized,
-    /// The lecture's Blinn-Phong: `k_d/π + k_s (H·N)^k_e / (I·N)`, as
-    /// written (not normalized, not reciprocal).
-    BlinnPhong,
-    /// Normalized Blinn-Phong (reciprocal, energy conserving).
-    BlinnPhongNormalized,
-    /// Ward's isotropic model as the lecture writes it (σ = `sigma`).
-    Ward,
-    /// Ward's anisotropic model (σ_x along the tangent, σ_y along the bitangent).
-    WardAnisotropic,
-    /// Cook-Torrance: `k_d/π + k_s · D·G·F / (denominator (N·V)(N·I))`
-    /// with selectable D, G, F and denominator.
-    CookTorrance,
-    /// An ideal mirror: a Dirac lobe of reflectance `k_s · F(cos θ)`; it
-    /// reflects the environment and the discs of lights of finite size.
-    Mirror,
-}
+named_enum!(
+    /// Every reflectance model gonio knows, by the contract's names. A material
+    /// picks one; the GPU compiles only the models (and terms) a scene uses.
+    ReflectanceModel, "reflectance model" {
+        /// `f_r = k_d / π` (lecture: "Diffuse Reflection Model").
+        Lambert = "lambert",
+        /// The lecture's Phong: `k_d/π + k_s (R(I)·V)^k_e / (I·N)`, as written
+        /// (not normalized, not reciprocal).
+        Phong = "phong",
+        /// Normalized Phong: `k_d/π + k_s (k_e+2)/(2π) (R(I)·V)^k_e`
+        /// (reciprocal, energy conserving).
+        PhongNormalized = "phong-normalized",
+        /// The lecture's Blinn-Phong: `k_d/π + k_s (H·N)^k_e / (I·N)`, as
+        /// written (not normalized, not reciprocal).
+        BlinnPhong = "blinn-phong",
+        /// Normalized Blinn-Phong (reciprocal, energy conserving).
+        BlinnPhongNormalized = "blinn-phong-normalized",
+        /// Ward's isotropic model as the lecture writes it (σ = `sigma`).
+        Ward = "ward",
+        /// Ward's anisotropic model (σ_x along the tangent, σ_y along the bitangent).
+        WardAnisotropic = "ward-anisotropic",
+        /// Cook-Torrance: `k_d/π + k_s · D·G·F / (denominator (N·V)(N·I))`
+        /// with selectable D, G, F and denominator.
+        CookTorrance = "cook-torrance",
+        /// An ideal mirror: a Dirac lobe of reflectance `k_s · F(cos θ)`; it
+        /// reflects the environment and the discs of lights of finite size.
+        Mirror = "mirror",
+    }
+);
 
 impl ReflectanceModel {
-    /// All models, in the contract's order.
-    pub const ALL: [ReflectanceModel; 9] = [
-        ReflectanceModel::Lambert,
-        ReflectanceModel::Phong,
-        ReflectanceModel::PhongNormalized,
-        ReflectanceModel::BlinnPhong,
-        ReflectanceModel::BlinnPhongNormalized,
-        ReflectanceModel::Ward,
-        ReflectanceModel::WardAnisotropic,
-        ReflectanceModel::CookTorrance,
-        ReflectanceModel::Mirror,
-    ];
-
-    /// The contract's name.
-    pub fn name(self) -> &'static str {
-        match self {
-            ReflectanceModel::Lambert => "lambert",
-            ReflectanceModel::Phong => "phong",
-            ReflectanceModel::PhongNormalized => "phong-normalized",
-            ReflectanceModel::BlinnPhong => "blinn-phong",
-            ReflectanceModel::BlinnPhongNormalized => "blinn-phong-normalized",
-            ReflectanceModel::Ward => "ward",
-            ReflectanceModel::WardAnisotropic => "ward-anisotropic",
-            ReflectanceModel::CookTorrance => "cook-torrance",
-            ReflectanceModel::Mirror => "mirror",
-        }
+    /// The model's row in the table of models.
+    pub fn row(self) -> &'static super::table::ModelRow {
+        super::table::row(self)
     }
 
     /// Whether the model needs a tangent frame (anisotropy).
     pub fn needs_tangents(self) -> bool {
-        self == ReflectanceModel::WardAnisotropic
-    }
-}
-
-impl fmt::Display for ReflectanceModel {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for ReflectanceModel {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                let known: Vec<_> = Self::ALL.iter().map(|m| m.name()).collect();
-                format!(
-                    "unknown reflectance model `{s}`; expected one of {}",
-                    known.join(", ")
-                )
-            })
+        self.row().needs_tangents
     }
 }

@@ -1,46 +1,8 @@
 //! The selectable terms of Cook-Torrance (and the mirror's Fresnel), with
-//! the contract's names. A macro keeps name, parse and list in one place.
+//! the contract's names (`base::named_enum!` keeps name, parse and list in
+//! one place).
 
-use std::fmt;
-use std::str::FromStr;
-
-macro_rules! named_enum {
-    ($(#[$doc:meta])* $name:ident, $what:literal { $($(#[$vdoc:meta])* $variant:ident = $text:literal,)+ }) => {
-        $(#[$doc])*
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-        pub enum $name {
-            $($(#[$vdoc])* $variant,)+
-        }
-
-        impl $name {
-            /// Every value, in declaration order.
-            pub const ALL: &'static [$name] = &[$($name::$variant,)+];
-
-            /// The contract's name.
-            pub fn name(self) -> &'static str {
-                match self {
-                    $($name::$variant => $text,)+
-                }
-            }
-        }
-
-        impl fmt::Display for $name {
-            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str(self.name())
-            }
-        }
-
-        impl FromStr for $name {
-            type Err = String;
-            fn from_str(s: &str) -> Result<Self, String> {
-                Self::ALL.iter().copied().find(|v| v.name() == s).ok_or_else(|| {
-                    let known: Vec<_> = Self::ALL.iter().map(|v| v.name()).collect();
-                    format!("unknown {} `{s}`; expected one of {}", $what, known.join(", "))
-                })
-            }
-        }
-    };
-}
+use crate::base::named_enum;
 
 named_enum!(
     /// Microfacet distribution `D` (lecture: "Microfacet Distribution Functions").

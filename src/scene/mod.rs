@@ -22,56 +22,27 @@ pub use environment::Environment;
 pub use light::{Light, LightKind, ShadowFilter, ShadowSettings};
 pub use mesh::Mesh;
 
+use crate::base::named_enum;
 use crate::material::Material;
 use glam::DVec3;
-use std::fmt;
-use std::str::FromStr;
 
-/// How normals and shading are distributed over a triangle (lecture:
-/// "Surface Normals – Triangle Mesh").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum ShadingMode {
-    /// One normal per triangle (the geometric face normal); the reflection
-    /// equation is evaluated once, at the triangle's centroid, and the
-    /// colour is constant over the triangle.
-    Flat,
-    /// Shade at the vertices with the vertex normals, interpolate the
-    /// shaded colours (perspective-correct barycentrics).
-    Gouraud,
-    /// Interpolate the vertex normals, renormalize, shade every pixel.
-    #[default]
-    Phong,
-}
-
-impl ShadingMode {
-    /// All modes, in the contract's order.
-    pub const ALL: [ShadingMode; 3] = [ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong];
-
-    /// The contract's name.
-    pub fn name(self) -> &'static str {
-        match self {
-            ShadingMode::Flat => "flat",
-            ShadingMode::Gouraud => "gouraud",
-            ShadingMode::Phong => "phong",
-        }
+named_enum!(
+    /// How normals and shading are distributed over a triangle (lecture:
+    /// "Surface Normals – Triangle Mesh").
+    #[derive(Default)]
+    ShadingMode, "shading mode" {
+        /// One normal per triangle (the geometric face normal); the reflection
+        /// equation is evaluated once, at the triangle's centroid, and the
+        /// colour is constant over the triangle.
+        Flat = "flat",
+        /// Shade at the vertices with the vertex normals, interpolate the
+        /// shaded colours (perspective-correct barycentrics).
+        Gouraud = "gouraud",
+        /// Interpolate the vertex normals, renormalize, shade every pixel.
+        #[default]
+        Phong = "phong",
     }
-}
-
-impl fmt::Display for ShadingMode {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for ShadingMode {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        ShadingMode::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| format!("unknown shading mode `{s}`; expected flat, gouraud or phong"))
-    }
-}
+);
 
 pub use crate::base::Rgb;
 

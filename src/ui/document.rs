@@ -222,27 +222,16 @@ pub fn describe_error(e: &Error) -> String {
 }
 
 /// `m` with `field = value` (TOML), checked as the scene file checks it:
-/// the material is written out as a `[materials]` entry, the field
-/// replaced, and the entry read back.
+/// the value is read as the table of models types the key and set through
+/// the parameter's binding (no round trip through the scene file's text).
 pub fn edit_material(
     m: &Material,
     field: &str,
     value: &str,
 ) -> std::result::Result<Material, String> {
-    let mut table = toml::Table::new();
-    table.insert(
-        m.name.clone(),
-        toml::Value::Table(crate::material::material_table(m)),
-    );
-    let mut root = toml::Table::new();
-    root.insert("materials".into(), toml::Value::Table(table));
-    scene_file::apply_override(&mut root, &format!("materials.{}.{field}={value}", m.name))
-        .map_err(|e| e.to_string())?;
-    let entry = root["materials"][m.name.as_str()].clone();
-    let entry: crate::material::MaterialEntry = entry
-        .try_into()
-        .map_err(|e: toml::de::Error| format!("materials.{}.{field}: {}", m.name, e.message()))?;
-    crate::material::material_from_entry(&m.name, &entry)
+    let value: toml::Value =
+        toml_value(value).map_err(|e| format!("materials.{}.{field}: {e}", m.name))?;
+    crate::material::entry::with_key(m, field, value)
 }
 
 fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {

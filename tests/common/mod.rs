@@ -34,7 +34,7 @@ pub fn gonio() -> std::process::Command {
 // tests/gpu_vs_cpu.rs; see its module docs and gonio::output::compare).
 
 use gonio::frame::Frame;
-use gonio::material::{Distribution, Material, ReflectanceModel};
+use gonio::material::Material;
 use gonio::output::compare::{Comparison, JITTER_OFFSETS, Tolerance, compare_with_jitter};
 use gonio::scene::Scene;
 
@@ -58,28 +58,9 @@ pub fn tolerance(scene: &Scene, reference: &Frame) -> Tolerance {
 }
 
 /// Relative f32 error of one material's shading beyond the light loop's
-/// 64ε (derivation: tests/gpu_vs_cpu.rs).
+/// 64ε (derivation: tests/gpu_vs_cpu.rs): its model's row says it.
 pub fn arithmetic_rel(m: &Material) -> f64 {
-    let pow = |k: f64| k * (8.0 * EPS + 2f64.powi(-21) * std::f64::consts::LN_2);
-    let slope = |r: f64| 128.0 * EPS / r;
-    match m.model {
-        ReflectanceModel::Phong
-        | ReflectanceModel::PhongNormalized
-        | ReflectanceModel::BlinnPhong
-        | ReflectanceModel::BlinnPhongNormalized => pow(m.k_e),
-        ReflectanceModel::Ward => slope(m.sigma_x),
-        ReflectanceModel::WardAnisotropic => slope(m.sigma_x.min(m.sigma_y)),
-        ReflectanceModel::CookTorrance => match m.distribution {
-            Distribution::Blinn | Distribution::BlinnNormalized => {
-                pow(-std::f64::consts::LN_2 / m.roughness.cos().ln())
-            }
-            Distribution::Gaussian | Distribution::GaussianNormalized => {
-                2.0 * std::f64::consts::LN_2 * 30.0 * 4096.0 * EPS
-            }
-            _ => slope(m.roughness),
-        },
-        ReflectanceModel::Lambert | ReflectanceModel::Mirror => 0.0,
-    }
+    (m.model.row().f32_error)(m)
 }
 
 /// The reference frame at the pixel centres and the four jittered ones.

@@ -30,27 +30,6 @@ pub fn common(features: &[Feature]) -> String {
     out
 }
 
-/// The BRDF files a model needs, as paths in [`sources::BRDF_ORDER`].
-fn model_files(model: ReflectanceModel) -> &'static [&'static str] {
-    match model {
-        ReflectanceModel::Lambert => &["brdf/lambert.wgsl"],
-        ReflectanceModel::Phong
-        | ReflectanceModel::PhongNormalized
-        | ReflectanceModel::BlinnPhong
-        | ReflectanceModel::BlinnPhongNormalized => &["brdf/lambert.wgsl", "brdf/phong.wgsl"],
-        ReflectanceModel::Ward | ReflectanceModel::WardAnisotropic => {
-            &["brdf/lambert.wgsl", "brdf/phong.wgsl", "brdf/ward.wgsl"]
-        }
-        ReflectanceModel::CookTorrance => &[
-            "brdf/lambert.wgsl",
-            "brdf/phong.wgsl",
-            "brdf/fresnel.wgsl",
-            "brdf/microfacet.wgsl",
-        ],
-        ReflectanceModel::Mirror => &["brdf/lambert.wgsl", "brdf/phong.wgsl", "brdf/fresnel.wgsl"],
-    }
-}
-
 /// The BRDF part of a shader: shared declarations, the codes and
 /// specialization defaults of `variants`, the shading frame, the files
 /// their models need and `eval_brdf` / `mirror_reflectance`
@@ -75,8 +54,7 @@ pub fn compose_brdf_library(variants: &BTreeSet<BrdfVariant>, features: &[Featur
     out.push('\n');
     let needed: BTreeSet<&str> = models
         .iter()
-        .flat_map(|&m| model_files(m))
-        .copied()
+        .flat_map(|&m| m.row().wgsl.iter().copied())
         .collect();
     for path in sources::BRDF_ORDER.iter().filter(|p| needed.contains(*p)) {
         out.push_str(&file(path, &features));

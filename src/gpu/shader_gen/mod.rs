@@ -30,7 +30,7 @@ pub use specialization::pipeline_constants;
 
 use crate::gpu::bindings::UniformArrays;
 use crate::gpu::shadows::{Projection, ShadowFeatures};
-use crate::material::{BrdfVariant, Distribution, Fresnel, Geometry, ReflectanceModel};
+use crate::material::{BrdfVariant, Distribution, Fresnel, Geometry};
 use crate::scene::{LightKind, ShadingMode};
 
 /// For reading what a scene compiles: with `GONIO_DUMP_WGSL=DIR`, writes
@@ -48,44 +48,34 @@ pub fn dump_if_asked(id: u64, wgsl: &str) {
     }
 }
 
-/// Every BRDF variant gonio can compile: each model, and Cook-Torrance and
-/// the mirror with every combination of their terms.
+/// Every BRDF variant gonio can compile: each model with every
+/// combination of the terms its row in the table of models selects.
 pub fn all_variants() -> Vec<BrdfVariant> {
-    use crate::material::{Denominator, Material};
+    use crate::material::Denominator;
+    fn each<T: Copy>(applies: bool, all: &[T]) -> Vec<Option<T>> {
+        if applies {
+            all.iter().copied().map(Some).collect()
+        } else {
+            vec![None]
+        }
+    }
     let mut out = Vec::new();
-    for model in ReflectanceModel::ALL {
-        let base = Material::new("v", model);
-        match model {
-            ReflectanceModel::CookTorrance => {
-                for &distribution in Distribution::ALL {
-                    for &geometry in Geometry::ALL {
-                        for &fresnel in Fresnel::ALL {
-                            for &denominator in Denominator::ALL {
-                                let m = Material {
-                                    distribution,
-                                    geometry,
-                                    fresnel,
-                                    denominator,
-                                    ..base.clone()
-                                };
-                                out.push(m.variant());
-                            }
-                        }
+    for row in crate::material::table::ROWS {
+        let terms = row.terms;
+        for &distribution in &each(terms.distribution, &Distribution::ALL) {
+            for &geometry in &each(terms.geometry, &Geometry::ALL) {
+                for &fresnel in &each(terms.fresnel, &Fresnel::ALL) {
+                    for &denominator in &each(terms.denominator, &Denominator::ALL) {
+                        out.push(BrdfVariant {
+                            model: row.model,
+                            distribution,
+                            geometry,
+                            fresnel,
+                            denominator,
+                        });
                     }
                 }
             }
-            ReflectanceModel::Mirror => {
-                for &fresnel in Fresnel::ALL {
-                    out.push(
-                        Material {
-                            fresnel,
-                            ..base.clone()
-                        }
-                        .variant(),
-                    );
-                }
-            }
-            _ => out.push(base.variant()),
         }
     }
     out
@@ -167,7 +157,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::Material;
+    use crate::material::{Material, ReflectanceModel};
 
     #[test]
     fn lambert_only_scene_has_no_glossy_or_spot_code() {

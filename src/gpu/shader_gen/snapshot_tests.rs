@@ -5,7 +5,7 @@
 //! snapshot` and commit the diff.
 
 use super::*;
-use crate::material::{Denominator, Material};
+use crate::material::{Denominator, Material, ReflectanceModel};
 
 /// Compares `wgsl` with `snapshots/NAME.wgsl` (or rewrites it when
 /// `GONIO_UPDATE_SNAPSHOTS` is set).

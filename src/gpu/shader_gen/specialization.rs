@@ -76,10 +76,10 @@ impl VariantCode {
         let v = resolved(v);
         VariantCode {
             model: index(&ReflectanceModel::ALL, v.model),
-            distribution: v.distribution.map_or(0, |d| index(Distribution::ALL, d)),
-            geometry: v.geometry.map_or(0, |g| index(Geometry::ALL, g)),
-            fresnel: v.fresnel.map_or(0, |f| index(Fresnel::ALL, f)),
-            denominator: v.denominator.map_or(0, |c| index(Denominator::ALL, c)),
+            distribution: v.distribution.map_or(0, |d| index(&Distribution::ALL, d)),
+            geometry: v.geometry.map_or(0, |g| index(&Geometry::ALL, g)),
+            fresnel: v.fresnel.map_or(0, |f| index(&Fresnel::ALL, f)),
+            denominator: v.denominator.map_or(0, |c| index(&Denominator::ALL, c)),
         }
     }
 

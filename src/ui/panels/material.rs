@@ -1,8 +1,11 @@
 //! The material section: the selected material's model, terms and
-//! parameters.
+//! parameters, one row per entry of the model's row in the table of
+//! models ([`crate::material::table`]).
 
 use super::{color, combo, log_slider, triple};
+use crate::material::param::{Param, Scale, Value, Widget};
 use crate::material::presets::PRESETS;
+use crate::material::table::{self, Terms};
 use crate::material::terms::{Denominator, Distribution, Fresnel, Geometry};
 use crate::material::{Material, ReflectanceModel};
 
@@ -15,121 +18,14 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             v.name()
         });
         ui.end_row();
-        if m.model == ReflectanceModel::CookTorrance {
-            ui.label("distribution D");
-            changed |= combo(
-                ui,
-                "dist",
-                &mut m.distribution,
-                Distribution::ALL.iter().copied(),
-                |v| v.name(),
-            );
-            ui.end_row();
-            ui.label("geometry G");
-            changed |= combo(
-                ui,
-                "geom",
-                &mut m.geometry,
-                Geometry::ALL.iter().copied(),
-                |v| v.name(),
-            );
-            ui.end_row();
-            ui.label("denominator");
-            changed |= combo(
-                ui,
-                "denom",
-                &mut m.denominator,
-                Denominator::ALL.iter().copied(),
-                |v| v.name(),
-            );
+        let row = m.model.row();
+        changed |= terms(ui, m, row.terms);
+        for &p in table::COMMON.iter().chain(row.params) {
+            ui.label(p.label);
+            changed |= param(ui, p, m);
             ui.end_row();
         }
-        if matches!(
-            m.model,
-            ReflectanceModel::CookTorrance | ReflectanceModel::Mirror
-        ) {
-            ui.label("Fresnel F");
-            changed |= combo(
-                ui,
-                "fresnel",
-                &mut m.fresnel,
-                Fresnel::ALL.iter().copied(),
-                |v| v.name(),
-            );
-            ui.end_row();
-        }
-        for (label, value) in [
-            ("k_a", &mut m.k_a),
-            ("k_d", &mut m.k_d),
-            ("k_s", &mut m.k_s),
-        ] {
-            ui.label(label);
-            changed |= color(ui, value);
-            ui.end_row();
-        }
-        let lobe = |model| {
-            matches!(
-                model,
-                ReflectanceModel::Phong
-                    | ReflectanceModel::PhongNormalized
-                    | ReflectanceModel::BlinnPhong
-                    | ReflectanceModel::BlinnPhongNormalized
-            )
-        };
-        if lobe(m.model) {
-            ui.label("k_e");
-            changed |= log_slider(ui, &mut m.k_e, 1e-2..=1e6);
-            ui.end_row();
-        }
-        if m.model == ReflectanceModel::CookTorrance {
-            ui.label("roughness m");
-            changed |= log_slider(ui, &mut m.roughness, 1e-4..=1.0);
-            ui.end_row();
-        }
-        if matches!(
-            m.model,
-            ReflectanceModel::Ward | ReflectanceModel::WardAnisotropic
-        ) {
-            ui.label("σ_x");
-            changed |= log_slider(ui, &mut m.sigma_x, 1e-4..=1.0);
-            ui.end_row();
-            if m.model == ReflectanceModel::WardAnisotropic {
-                ui.label("σ_y");
-                changed |= log_slider(ui, &mut m.sigma_y, 1e-4..=1.0);
-                ui.end_row();
-            } else if m.sigma_y != m.sigma_x {
-                m.sigma_y = m.sigma_x;
-                changed = true;
-            }
-        }
-        if matches!(
-            m.model,
-            ReflectanceModel::CookTorrance | ReflectanceModel::Mirror
-        ) {
-            ui.label("η (R G B)");
-            changed |= triple(ui, &mut m.eta, 0.005, 0.0..=50.0);
-            ui.end_row();
-            ui.label("κ (R G B)");
-            changed |= triple(ui, &mut m.kappa, 0.005, 0.0..=50.0);
-            ui.end_row();
-            ui.label("η_i, η_t");
-            ui.horizontal(|ui| {
-                changed |= ui
-                    .add(
-                        egui::DragValue::new(&mut m.eta_i)
-                            .speed(0.005)
-                            .range(0.01..=10.0),
-                    )
-                    .changed();
-                changed |= ui
-                    .add(
-                        egui::DragValue::new(&mut m.eta_t)
-                            .speed(0.005)
-                            .range(0.01..=10.0),
-                    )
-                    .changed();
-            });
-            ui.end_row();
+        if row.terms.fresnel {
             ui.label("preset");
             egui::ComboBox::from_id_salt("preset")
                 .selected_text("apply…")
@@ -144,5 +40,58 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             ui.end_row();
         }
     });
+    changed
+}
+
+/// A combo box per term the model selects.
+fn terms(ui: &mut egui::Ui, m: &mut Material, terms: Terms) -> bool {
+    let mut changed = false;
+    if terms.distribution {
+        ui.label("distribution D");
+        changed |= combo(ui, "dist", &mut m.distribution, Distribution::ALL, |v| {
+            v.name()
+        });
+        ui.end_row();
+    }
+    if terms.geometry {
+        ui.label("geometry G");
+        changed |= combo(ui, "geom", &mut m.geometry, Geometry::ALL, |v| v.name());
+        ui.end_row();
+    }
+    if terms.denominator {
+        ui.label("denominator");
+        changed |= combo(ui, "denom", &mut m.denominator, Denominator::ALL, |v| {
+            v.name()
+        });
+        ui.end_row();
+    }
+    if terms.fresnel {
+        ui.label("Fresnel F");
+        changed |= combo(ui, "fresnel", &mut m.fresnel, Fresnel::ALL, |v| v.name());
+        ui.end_row();
+    }
+    changed
+}
+
+/// The widget of parameter `p`, editing `m` through the parameter's binding.
+fn param(ui: &mut egui::Ui, p: &Param, m: &mut Material) -> bool {
+    let mut value = p.read(m);
+    let changed = match (&mut value, p.widget) {
+        (Value::Color(c), Widget::ColorPicker) => color(ui, c),
+        (Value::Color(c), Widget::Drag { speed, min, max }) => triple(ui, c, speed, min..=max),
+        (Value::Scalar(v), Widget::Slider { min, max, scale }) => match scale {
+            Scale::Log => log_slider(ui, v, min..=max),
+            Scale::Linear => ui.add(egui::Slider::new(v, min..=max)).changed(),
+        },
+        (Value::Scalar(v), Widget::Drag { speed, min, max }) => ui
+            .add(egui::DragValue::new(v).speed(speed).range(min..=max))
+            .changed(),
+        // A colour with a slider or a number with a colour picker: the
+        // table's tests rule it out.
+        _ => false,
+    };
+    if changed {
+        p.write(m, value);
+    }
     changed
 }

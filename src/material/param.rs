@@ -1,0 +1,361 @@
+//! Material parameters as the table of models describes them, and every
+//! parameter gonio's models take (`K_D`, `ROUGHNESS`, ...). Each has its
+//! scene-file key, its label in the viewer, its kind, its contract range
+//! (what [`super::Material::validate`] checks), its widget, and how it
+//! reads and writes the [`Material`] field(s) it stands for.
+//!
+//! A parameter is a `static` (not a `const`): rows refer to it by address,
+//! and two parameters may share a key while binding different fields (Ward's
+//! `sigma` sets σ_x = σ_y; another model's `sigma` may be an angle of its
+//! own). [`super::table::param_for`] resolves a key for a model.
+
+use super::Material;
+use crate::base::Rgb;
+
+/// A parameter's value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    /// Three channels (a colour or a per-channel index of refraction).
+    Color(Rgb),
+    Scalar(f64),
+}
+
+impl Value {
+    /// The triple (one number stands for all three channels).
+    pub fn color(self) -> Rgb {
+        match self {
+            Value::Color(c) => c,
+            Value::Scalar(v) => Rgb::splat(v),
+        }
+    }
+
+    /// The number (a triple's first channel).
+    pub fn scalar(self) -> f64 {
+        match self {
+            Value::Color(c) => c.x,
+            Value::Scalar(v) => v,
+        }
+    }
+}
+
+/// Whether a parameter is a triple or one number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Color,
+    Scalar,
+}
+
+/// The contract's range of a parameter (of every channel, for a triple);
+/// [`Param::check`] words the violation the way scene-file errors do.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Range {
+    /// `[min, max]`; `text` is how messages write it, e.g. `[0, 1e6]`.
+    Closed {
+        min: f64,
+        max: f64,
+        text: &'static str,
+    },
+    /// `(min, max]`, e.g. a roughness in `(0, 1]`.
+    OpenClosed {
+        min: f64,
+        max: f64,
+        text: &'static str,
+    },
+    /// Finite and `> 0`.
+    Positive,
+    /// Finite and `≥ 0`.
+    NonNegative,
+}
+
+impl Range {
+    /// Whether `v` (one channel) is inside.
+    pub fn contains(self, v: f64) -> bool {
+        match self {
+            Range::Closed { min, max, .. } => v.is_finite() && v >= min && v <= max,
+            Range::OpenClosed { min, max, .. } => v > min && v <= max,
+            Range::Positive => v.is_finite() && v > 0.0,
+            Range::NonNegative => v.is_finite() && v >= 0.0,
+        }
+    }
+
+    /// The lower and upper end as numbers (for sweeps): an open lower end
+    /// and an unbounded upper end are returned as they are (`min`, ∞).
+    pub fn bounds(self) -> (f64, f64) {
+        match self {
+            Range::Closed { min, max, .. } | Range::OpenClosed { min, max, .. } => (min, max),
+            Range::Positive | Range::NonNegative => (0.0, f64::INFINITY),
+        }
+    }
+
+    /// What a message says after `key = value`: `is outside [0, 1]³`,
+    /// `must be finite and > 0`.
+    fn violation(self, kind: Kind) -> String {
+        let cube = if kind == Kind::Color { "³" } else { "" };
+        match self {
+            Range::Closed { text, .. } | Range::OpenClosed { text, .. } => {
+                format!("is outside {text}{cube}")
+            }
+            Range::Positive => "must be finite and > 0".into(),
+            Range::NonNegative => "must be finite and ≥ 0".into(),
+        }
+    }
+}
+
+/// How the viewer edits a parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Widget {
+    /// A colour picker (sRGB) beside the three linear values.
+    ColorPicker,
+    /// A slider over `[min, max]`, logarithmic or linear.
+    Slider { min: f64, max: f64, scale: Scale },
+    /// Drag values (one per channel of a triple) with this speed and range.
+    Drag { speed: f64, min: f64, max: f64 },
+}
+
+/// A slider's scale.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    Linear,
+    /// For parameters spanning decades (exponents, roughness).
+    Log,
+}
+
+/// One parameter: see the module doc.
+#[derive(Debug)]
+pub struct Param {
+    /// The scene-file key, `[materials.NAME] KEY = ...`.
+    pub key: &'static str,
+    /// The viewer's label.
+    pub label: &'static str,
+    pub kind: Kind,
+    pub range: Range,
+    pub widget: Widget,
+    /// Whether it is a field of its own: "Save scene" writes it and
+    /// [`Material::validate`] checks it. `false` for a parameter that only
+    /// sets fields others stand for (Ward's `sigma` sets σ_x and σ_y).
+    pub stored: bool,
+    /// Values across the range (per channel for a triple) that the
+    /// equivalence test sweeps; the property tests draw between the
+    /// smallest and the largest (log-uniformly for a [`Scale::Log`] slider).
+    pub samples: &'static [f64],
+    pub get: fn(&Material) -> Value,
+    pub set: fn(&mut Material, Value),
+}
+
+impl Param {
+    /// The value in `m`.
+    pub fn read(&self, m: &Material) -> Value {
+        (self.get)(m)
+    }
+
+    /// Sets the value in `m` (no range check: [`Material::validate`]).
+    pub fn write(&self, m: &mut Material, v: Value) {
+        (self.set)(m, v)
+    }
+
+    /// `m`'s value against the range; the message names the material and
+    /// the key, as [`Material::validate`] reports it.
+    pub fn check(&self, m: &Material) -> Result<(), String> {
+        let name = &m.name;
+        let (key, range) = (self.key, self.range);
+        match self.read(m) {
+            Value::Color(v) if !v.to_array().iter().all(|&c| range.contains(c)) => Err(format!(
+                "material `{name}`: {key} = [{}, {}, {}] {}",
+                v.x,
+                v.y,
+                v.z,
+                range.violation(self.kind)
+            )),
+            Value::Scalar(v) if !range.contains(v) => Err(format!(
+                "material `{name}`: {key} = {v} {}",
+                range.violation(self.kind)
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
+// ---------------------------------------------------------------------
+// The parameters of gonio's models (rows of the table refer to them).
+
+const UNIT: Range = Range::Closed {
+    min: 0.0,
+    max: 1.0,
+    text: "[0, 1]",
+};
+const SLOPE: Range = Range::OpenClosed {
+    min: 0.0,
+    max: 1.0,
+    text: "(0, 1]",
+};
+const SLOPE_SLIDER: Widget = Widget::Slider {
+    min: 1e-4,
+    max: 1.0,
+    scale: Scale::Log,
+};
+/// Roughness values the equivalence test sweeps, 1e-4 to 1.
+const SLOPE_SAMPLES: &[f64] = &[1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.5, 0.8, 1.0];
+const INDEX: Widget = Widget::Drag {
+    speed: 0.005,
+    min: 0.0,
+    max: 50.0,
+};
+const INDEX_SAMPLES: &[f64] = &[1.0, 1.0001, 1.01, 1.5, 0.37, 2.485];
+const MEDIUM: Widget = Widget::Drag {
+    speed: 0.005,
+    min: 0.01,
+    max: 10.0,
+};
+
+/// Ambient coefficient `k_a`.
+pub static K_A: Param = Param {
+    key: "k_a",
+    label: "k_a",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[0.0, 0.5, 1.0],
+    get: |m| Value::Color(m.k_a),
+    set: |m, v| m.k_a = v.color(),
+};
+/// Diffuse albedo `k_d`.
+pub static K_D: Param = Param {
+    key: "k_d",
+    label: "k_d",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[0.0, 0.2, 0.5, 1.0],
+    get: |m| Value::Color(m.k_d),
+    set: |m, v| m.k_d = v.color(),
+};
+/// Specular coefficient `k_s`.
+pub static K_S: Param = Param {
+    key: "k_s",
+    label: "k_s",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[0.0, 0.3, 0.7, 1.0],
+    get: |m| Value::Color(m.k_s),
+    set: |m, v| m.k_s = v.color(),
+};
+/// Phong exponent `k_e`.
+pub static K_E: Param = Param {
+    key: "k_e",
+    label: "k_e",
+    kind: Kind::Scalar,
+    range: Range::Closed {
+        min: 0.0,
+        max: 1e6,
+        text: "[0, 1e6]",
+    },
+    widget: Widget::Slider {
+        min: 1e-2,
+        max: 1e6,
+        scale: Scale::Log,
+    },
+    stored: true,
+    samples: &[0.0, 1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6],
+    get: |m| Value::Scalar(m.k_e),
+    set: |m, v| m.k_e = v.scalar(),
+};
+/// Microfacet roughness `m` (or α).
+pub static ROUGHNESS: Param = Param {
+    key: "roughness",
+    label: "roughness m",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: SLOPE_SLIDER,
+    stored: true,
+    samples: SLOPE_SAMPLES,
+    get: |m| Value::Scalar(m.roughness),
+    set: |m, v| m.roughness = v.scalar(),
+};
+/// Ward's isotropic σ: sets σ_x = σ_y.
+pub static WARD_SIGMA: Param = Param {
+    key: "sigma",
+    label: "σ",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: SLOPE_SLIDER,
+    stored: false,
+    samples: SLOPE_SAMPLES,
+    get: |m| Value::Scalar(m.sigma_x),
+    set: |m, v| (m.sigma_x, m.sigma_y) = (v.scalar(), v.scalar()),
+};
+/// Ward's σ_x, along the tangent.
+pub static SIGMA_X: Param = Param {
+    key: "sigma_x",
+    label: "σ_x",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: SLOPE_SLIDER,
+    stored: true,
+    samples: SLOPE_SAMPLES,
+    get: |m| Value::Scalar(m.sigma_x),
+    set: |m, v| m.sigma_x = v.scalar(),
+};
+/// Ward's σ_y, along the bitangent.
+pub static SIGMA_Y: Param = Param {
+    key: "sigma_y",
+    label: "σ_y",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: SLOPE_SLIDER,
+    stored: true,
+    samples: SLOPE_SAMPLES,
+    get: |m| Value::Scalar(m.sigma_y),
+    set: |m, v| m.sigma_y = v.scalar(),
+};
+/// A conductor's η (real part of the index), per channel.
+pub static ETA: Param = Param {
+    key: "eta",
+    label: "η (R G B)",
+    kind: Kind::Color,
+    range: Range::Positive,
+    widget: INDEX,
+    stored: true,
+    samples: INDEX_SAMPLES,
+    get: |m| Value::Color(m.eta),
+    set: |m, v| m.eta = v.color(),
+};
+/// A conductor's κ (extinction), per channel.
+pub static KAPPA: Param = Param {
+    key: "kappa",
+    label: "κ (R G B)",
+    kind: Kind::Color,
+    range: Range::NonNegative,
+    widget: INDEX,
+    stored: true,
+    samples: &[0.0, 0.5, 2.82, 3.638, 10.0],
+    get: |m| Value::Color(m.kappa),
+    set: |m, v| m.kappa = v.color(),
+};
+/// A dielectric's index on the incident side.
+pub static ETA_I: Param = Param {
+    key: "eta_i",
+    label: "η_i",
+    kind: Kind::Scalar,
+    range: Range::Positive,
+    widget: MEDIUM,
+    stored: true,
+    samples: &[1.0, 1.333, 1.5],
+    get: |m| Value::Scalar(m.eta_i),
+    set: |m, v| m.eta_i = v.scalar(),
+};
+/// A dielectric's index on the transmitted side.
+pub static ETA_T: Param = Param {
+    key: "eta_t",
+    label: "η_t",
+    kind: Kind::Scalar,
+    range: Range::Positive,
+    widget: MEDIUM,
+    stored: true,
+    samples: &[1.0, 1.0001, 1.01, 1.5],
+    get: |m| Value::Scalar(m.eta_t),
+    set: |m, v| m.eta_t = v.scalar(),
+};

@@ -1,0 +1,599 @@
+//! The table of reflectance models: one [`ModelRow`] per model says
+//! everything the rest of gonio needs to know about it — its name and
+//! summary, whether it is the lecture's form, the WGSL files its GPU twin
+//! needs, whether it needs tangents, which Cook-Torrance-style terms
+//! apply, its parameters (key, label, range, widget, field binding: see
+//! [`Param`]), its typed BRDF value and its `f32` error bound. From it come
+//! the scene-file keys and their validation (`entry.rs`), "Save scene"
+//! ([`super::material_table`]), the viewer's material panel, the shader
+//! generator's file list, the bench's model knob, the albedo table of
+//! `docs/brdf-models.md` and the parameter sweeps of the equivalence and
+//! property tests.
+//!
+//! # Adding a model
+//!
+//! 1. Its `f64` BRDF in `src/material/brdf/NAME.rs` (a `pub mod` line in
+//!    `brdf/mod.rs`), citing its source, and its WGSL twin
+//!    `shaders/brdf/NAME.wgsl` with the same function names and order.
+//! 2. Its name in [`ReflectanceModel`] (`src/material/model.rs`).
+//! 3. Its row in [`ROWS`] below (new parameters as `static`s beside the
+//!    others in `param.rs`; a new `Material` field, if it needs one, with
+//!    its default in `Material::new` and the model's own in the row's
+//!    `defaults`).
+//! 4. One [`Specular`] variant with its arm in `brdf::eval` and in
+//!    `Brdf::shader_params` (`brdf/value.rs`; the compiler points at both),
+//!    and one arm in the WGSL dispatch (`eval_brdf`).
+//!
+//! Nothing else lists models: the panel, the scene-file keys, "Save
+//! scene", the shader's file list, the tests' sweeps and tolerances, the
+//! bench and `gonio brdf --albedo-table` all read this table.
+
+use super::brdf::{CookTorrance, FresnelTerm, Specular};
+use super::param::{
+    ETA, ETA_I, ETA_T, K_A, K_D, K_E, K_S, KAPPA, Param, ROUGHNESS, SIGMA_X, SIGMA_Y, WARD_SIGMA,
+};
+use super::{Material, ReflectanceModel};
+use crate::base::Rgb;
+
+/// Whether a model is the formula as the lecture writes it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Form {
+    /// As the lecture writes it (not necessarily reciprocal or normalized).
+    Lecture,
+    /// A corrected form (normalized, reciprocal).
+    Corrected,
+    /// The lecture's model with terms to choose, lecture or corrected.
+    Terms,
+}
+
+/// Which selectable terms a model has (the keys `distribution`,
+/// `geometry`, `fresnel`, `denominator`; see `material/terms.rs`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Terms {
+    pub distribution: bool,
+    pub geometry: bool,
+    pub fresnel: bool,
+    pub denominator: bool,
+}
+
+impl Terms {
+    const NONE: Terms = Terms {
+        distribution: false,
+        geometry: false,
+        fresnel: false,
+        denominator: false,
+    };
+}
+
+/// Everything about one model: see the module doc.
+#[derive(Debug)]
+pub struct ModelRow {
+    pub model: ReflectanceModel,
+    /// One line for the docs and the panel's tooltip.
+    pub summary: &'static str,
+    pub form: Form,
+    /// The WGSL files of its GPU twin, relative to `shaders/`, in
+    /// dependency order (each may use the ones before).
+    pub wgsl: &'static [&'static str],
+    /// Whether it reads the tangent frame (anisotropy): the vertex stream
+    /// then carries tangents.
+    pub needs_tangents: bool,
+    pub terms: Terms,
+    /// Its parameters, in the panel's order (`k_a` is every model's: see
+    /// [`COMMON`]).
+    pub params: &'static [&'static Param],
+    /// Whether `f_r(i, o) = f_r(o, i)` (the property tests check it).
+    pub reciprocal: bool,
+    /// Whether the bench's `model` knob measures it.
+    pub benched: bool,
+    /// Its own defaults, applied by `Material::new` over the common ones.
+    pub defaults: fn(&mut Material),
+    /// The specular term of a material of this model, its derived
+    /// constants computed.
+    pub specular: fn(&Material) -> Specular,
+    /// The relative `f32` error of its shading beyond the light loop's
+    /// (the GPU-vs-reference tolerance; derivation in tests/gpu_vs_cpu.rs).
+    pub f32_error: fn(&Material) -> f64,
+    /// The extra error, relative to `|f_r|`, that Vulkan allows the
+    /// transcendental functions its WGSL calls (the per-sample tolerance
+    /// of tests/brdf_equivalence.rs, derived in its `transcendental`).
+    pub transcendental_error: fn(&Material) -> f64,
+    /// Its rows in the albedo table of `docs/brdf-models.md`: parameters
+    /// (`KEY=VALUE,...` after the model's name) and a remark.
+    pub albedo_table: &'static [(&'static str, &'static str)],
+}
+
+/// The model's row.
+pub fn row(model: ReflectanceModel) -> &'static ModelRow {
+    ROWS.iter()
+        .find(|r| r.model == model)
+        .expect("every model has a row (tests: every_model_has_one_row)")
+}
+
+/// Parameters of every model (not a BRDF's: the ambient term).
+pub const COMMON: &[&Param] = &[&K_A];
+
+/// Every distinct parameter: [`COMMON`], then each row's in table order
+/// (each once, by identity).
+pub fn all_params() -> Vec<&'static Param> {
+    let mut out: Vec<&'static Param> = Vec::new();
+    for &p in COMMON
+        .iter()
+        .chain(ROWS.iter().flat_map(|r| r.params.iter()))
+    {
+        if !out.iter().any(|q| std::ptr::eq(*q, p)) {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// The parameter `key` names for a material of `model`: the model's own
+/// (or a common one), else the first of that key in table order (a key of
+/// another model is kept for when the material switches to it).
+pub fn param_for(model: ReflectanceModel, key: &str) -> Option<&'static Param> {
+    let own = COMMON.iter().chain(row(model).params.iter());
+    own.copied()
+        .find(|p| p.key == key)
+        .or_else(|| all_params().into_iter().find(|p| p.key == key))
+}
+
+/// The parameters that are fields of their own, in table order: what
+/// "Save scene" writes and [`Material::validate`] checks.
+pub fn stored_params() -> Vec<&'static Param> {
+    all_params().into_iter().filter(|p| p.stored).collect()
+}
+
+/// For every model, a material with its defaults, then each of its terms
+/// varied alone around them: every term's code once (the bench's uber
+/// shader, the equivalence test).
+pub fn each_term_once() -> Vec<Material> {
+    use super::{Denominator, Distribution, Fresnel, Geometry};
+    let mut out = Vec::new();
+    for row in ROWS {
+        let base = Material::new("each term", row.model);
+        out.push(base.clone());
+        let vary =
+            |out: &mut Vec<Material>, applies: bool, set: &dyn Fn(&mut Material, usize), n| {
+                if applies {
+                    for i in 0..n {
+                        let mut m = base.clone();
+                        set(&mut m, i);
+                        out.push(m);
+                    }
+                }
+            };
+        let t = row.terms;
+        vary(
+            &mut out,
+            t.distribution,
+            &|m, i| m.distribution = Distribution::ALL[i],
+            Distribution::ALL.len(),
+        );
+        vary(
+            &mut out,
+            t.geometry,
+            &|m, i| m.geometry = Geometry::ALL[i],
+            Geometry::ALL.len(),
+        );
+        vary(
+            &mut out,
+            t.fresnel,
+            &|m, i| m.fresnel = Fresnel::ALL[i],
+            Fresnel::ALL.len(),
+        );
+        vary(
+            &mut out,
+            t.denominator,
+            &|m, i| m.denominator = Denominator::ALL[i],
+            Denominator::ALL.len(),
+        );
+    }
+    out
+}
+
+// ---------------------------------------------------------------------
+// f32 error bounds (derivation: tests/gpu_vs_cpu.rs).
+
+/// f32 unit roundoff, 2⁻²⁴.
+const EPS: f64 = 1.0 / 16_777_216.0;
+
+/// A power `c^k`: `k` times the error of `ln c` (8ε, and Vulkan's 2⁻²¹
+/// absolute for `log`).
+fn pow_error(k: f64) -> f64 {
+    k * (8.0 * EPS + 2f64.powi(-21) * std::f64::consts::LN_2)
+}
+
+/// A lobe of width `r` in slope: 128ε / r.
+fn slope_error(r: f64) -> f64 {
+    128.0 * EPS / r
+}
+
+/// Every lobe ends in `exp(x)` with |x| ≤ 80 (the e⁻⁸⁰ cut-off): Vulkan
+/// allows 3 + 2|x| ≤ 163 ulp.
+const EXP_ERROR: f64 = 163.0 * EPS;
+
+fn no_error(_: &Material) -> f64 {
+    0.0
+}
+
+// ---------------------------------------------------------------------
+// The rows.
+
+const LOBE: &[&Param] = &[&K_D, &K_S, &K_E];
+const PHONG_WGSL: &[&str] = &["brdf/lambert.wgsl", "brdf/phong.wgsl"];
+const FRESNEL_PARAMS: &[&Param] = &[&K_D, &K_S, &ETA, &KAPPA, &ETA_I, &ETA_T];
+
+fn fresnel_term(m: &Material) -> FresnelTerm {
+    FresnelTerm::new(m.fresnel, m.eta, m.kappa, m.eta_i, m.eta_t)
+}
+
+/// Every model's row, in the contract's order.
+pub static ROWS: &[ModelRow] = &[
+    ModelRow {
+        model: ReflectanceModel::Lambert,
+        summary: "ideal diffuse reflection, f_r = k_d/π",
+        form: Form::Lecture,
+        wgsl: &["brdf/lambert.wgsl"],
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[&K_D],
+        reciprocal: true,
+        benched: true,
+        defaults: |_| {},
+        specular: |_| Specular::None,
+        f32_error: no_error,
+        transcendental_error: |_| EXP_ERROR,
+        albedo_table: &[("k_d=1", "albedo k_d exactly")],
+    },
+    ModelRow {
+        model: ReflectanceModel::Phong,
+        summary: "the lecture's Phong lobe (R(I)·V)^k_e / (I·N)",
+        form: Form::Lecture,
+        wgsl: PHONG_WGSL,
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: LOBE,
+        reciprocal: false,
+        benched: false,
+        defaults: |_| {},
+        specular: |m| Specular::Phong { k_e: m.k_e },
+        f32_error: |m| pow_error(m.k_e),
+        transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
+        albedo_table: &[
+            ("k_d=0,k_s=1,k_e=1", "lecture form: ÷ I·N"),
+            ("k_d=0,k_s=1,k_e=10", "lecture form"),
+            ("k_d=0,k_s=1,k_e=100", "lecture form"),
+        ],
+    },
+    ModelRow {
+        model: ReflectanceModel::PhongNormalized,
+        summary: "Phong normalized: (k_e+2)/2π (R(I)·V)^k_e",
+        form: Form::Corrected,
+        wgsl: PHONG_WGSL,
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: LOBE,
+        reciprocal: true,
+        benched: true,
+        defaults: |_| {},
+        specular: |m| Specular::PhongNormalized { k_e: m.k_e },
+        f32_error: |m| pow_error(m.k_e),
+        transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
+        albedo_table: &[
+            ("k_d=0,k_s=1,k_e=1", "(k_e+2)/2π"),
+            ("k_d=0,k_s=1,k_e=10", ""),
+            ("k_d=0,k_s=1,k_e=100", ""),
+            ("k_d=0,k_s=1,k_e=10000", ""),
+        ],
+    },
+    ModelRow {
+        model: ReflectanceModel::BlinnPhong,
+        summary: "the lecture's Blinn-Phong lobe (H·N)^k_e / (I·N)",
+        form: Form::Lecture,
+        wgsl: PHONG_WGSL,
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: LOBE,
+        reciprocal: false,
+        benched: false,
+        defaults: |_| {},
+        specular: |m| Specular::BlinnPhong { k_e: m.k_e },
+        f32_error: |m| pow_error(m.k_e),
+        transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
+        albedo_table: &[
+            ("k_d=0,k_s=1,k_e=1", "lecture form: ÷ I·N"),
+            ("k_d=0,k_s=1,k_e=10", "lecture form"),
+            ("k_d=0,k_s=1,k_e=100", "lecture form"),
+        ],
+    },
+    ModelRow {
+        model: ReflectanceModel::BlinnPhongNormalized,
+        summary: "Blinn-Phong normalized (reciprocal, energy conserving)",
+        form: Form::Corrected,
+        wgsl: PHONG_WGSL,
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: LOBE,
+        reciprocal: true,
+        benched: true,
+        defaults: |_| {},
+        specular: |m| Specular::BlinnPhongNormalized { k_e: m.k_e },
+        f32_error: |m| pow_error(m.k_e),
+        transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
+        albedo_table: &[
+            ("k_d=0,k_s=1,k_e=1", ""),
+            ("k_d=0,k_s=1,k_e=10", ""),
+            ("k_d=0,k_s=1,k_e=100", ""),
+            ("k_d=0,k_s=1,k_e=10000", ""),
+        ],
+    },
+    ModelRow {
+        model: ReflectanceModel::Ward,
+        summary: "Ward's isotropic Gaussian lobe, RMS slope σ",
+        form: Form::Lecture,
+        wgsl: &["brdf/lambert.wgsl", "brdf/phong.wgsl", "brdf/ward.wgsl"],
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[&K_D, &K_S, &WARD_SIGMA],
+        reciprocal: true,
+        benched: true,
+        defaults: |_| {},
+        specular: |m| Specular::Ward { sigma: m.sigma_x },
+        f32_error: |m| slope_error(m.sigma_x),
+        transcendental_error: |_| EXP_ERROR,
+        albedo_table: &[
+            ("k_d=0,k_s=1,sigma=0.05", "lecture form"),
+            ("k_d=0,k_s=1,sigma=0.2", "lecture form"),
+            ("k_d=0,k_s=1,sigma=0.5", "lecture form"),
+        ],
+    },
+    ModelRow {
+        model: ReflectanceModel::WardAnisotropic,
+        summary: "Ward's anisotropic lobe, σ_x along the tangent, σ_y along the bitangent",
+        form: Form::Lecture,
+        wgsl: &["brdf/lambert.wgsl", "brdf/phong.wgsl", "brdf/ward.wgsl"],
+        needs_tangents: true,
+        terms: Terms::NONE,
+        params: &[&K_D, &K_S, &SIGMA_X, &SIGMA_Y],
+        reciprocal: true,
+        benched: false,
+        defaults: |_| {},
+        specular: |m| Specular::WardAnisotropic {
+            sigma_x: m.sigma_x,
+            sigma_y: m.sigma_y,
+        },
+        f32_error: |m| slope_error(m.sigma_x.min(m.sigma_y)),
+        transcendental_error: |_| EXP_ERROR,
+        albedo_table: &[("k_d=0,k_s=1,sigma_x=0.05,sigma_y=0.3", "φ_i along σ_x")],
+    },
+    ModelRow {
+        model: ReflectanceModel::CookTorrance,
+        summary: "Cook-Torrance microfacets D·G·F / (c (N·V)(N·I)), terms selectable",
+        form: Form::Terms,
+        wgsl: &[
+            "brdf/lambert.wgsl",
+            "brdf/phong.wgsl",
+            "brdf/fresnel.wgsl",
+            "brdf/microfacet.wgsl",
+        ],
+        needs_tangents: false,
+        terms: Terms {
+            distribution: true,
+            geometry: true,
+            fresnel: true,
+            denominator: true,
+        },
+        params: &[&K_D, &K_S, &ROUGHNESS, &ETA, &KAPPA, &ETA_I, &ETA_T],
+        reciprocal: true,
+        benched: true,
+        defaults: |_| {},
+        specular: |m| {
+            Specular::CookTorrance(CookTorrance::new(
+                m.distribution,
+                m.geometry,
+                fresnel_term(m),
+                m.denominator,
+                m.roughness,
+            ))
+        },
+        f32_error: |m| {
+            use super::Distribution;
+            match m.distribution {
+                Distribution::Blinn | Distribution::BlinnNormalized => {
+                    pow_error(-std::f64::consts::LN_2 / m.roughness.cos().ln())
+                }
+                // The lecture's Gaussian takes its angle from acos (4096 ulp).
+                Distribution::Gaussian | Distribution::GaussianNormalized => {
+                    2.0 * std::f64::consts::LN_2 * 30.0 * 4096.0 * EPS
+                }
+                _ => slope_error(m.roughness),
+            }
+        },
+        transcendental_error: |m| {
+            use super::Distribution;
+            match m.distribution {
+                Distribution::Gaussian | Distribution::GaussianNormalized => {
+                    EXP_ERROR + 2.0 * 80.0 * 4096.0 * EPS
+                }
+                _ => EXP_ERROR,
+            }
+        },
+        albedo_table: CT_ALBEDO,
+    },
+    ModelRow {
+        model: ReflectanceModel::Mirror,
+        summary: "ideal mirror: a Dirac lobe of reflectance k_s·F(cos θ)",
+        form: Form::Lecture,
+        wgsl: &["brdf/lambert.wgsl", "brdf/phong.wgsl", "brdf/fresnel.wgsl"],
+        needs_tangents: false,
+        terms: Terms {
+            fresnel: true,
+            ..Terms::NONE
+        },
+        params: FRESNEL_PARAMS,
+        reciprocal: true,
+        benched: false,
+        defaults: |m| {
+            (m.k_d, m.k_s, m.fresnel) = (Rgb::ZERO, Rgb::ONE, super::Fresnel::None);
+        },
+        specular: |m| Specular::Mirror(fresnel_term(m)),
+        f32_error: no_error,
+        transcendental_error: |_| EXP_ERROR,
+        albedo_table: &[
+            ("k_s=1,fresnel=none", "δ lobe, closed form"),
+            ("preset=silver", "silver, exact Fresnel"),
+        ],
+    },
+];
+
+const CT_ALBEDO: &[(&str, &str)] = &[
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=smith,roughness=0.05",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=smith,roughness=0.3",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=smith,roughness=1",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=v-groove,roughness=0.3",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=none,roughness=0.3",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=smith,roughness=0.05",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=smith,roughness=0.3",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=smith,roughness=1",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=v-groove,roughness=0.3",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=ggx,geometry=none,roughness=0.3",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=blinn-normalized,geometry=smith,roughness=0.3",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=blinn-normalized,geometry=smith,roughness=1",
+        "Smith G of the matched Beckmann slope",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=gaussian-normalized,geometry=smith,roughness=1",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=gaussian-normalized,geometry=smith,roughness=0.3",
+        "",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=blinn,geometry=smith,roughness=0.3",
+        "lecture D, peak 1",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=gaussian,geometry=smith,roughness=0.3",
+        "lecture D, peak 1",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=beckmann,geometry=v-groove,denominator=lecture,roughness=0.3",
+        "lecture: ÷ π(N·V)(N·I)",
+    ),
+    (
+        "k_d=0,k_s=1,fresnel=none,distribution=blinn,geometry=v-groove,denominator=lecture,roughness=0.3",
+        "all lecture terms",
+    ),
+    (
+        "k_d=0,k_s=1,preset=gold,fresnel=conductor,roughness=0.3",
+        "gold, exact Fresnel",
+    ),
+    (
+        "k_d=0,k_s=1,preset=gold,fresnel=conductor-lecture,roughness=0.3",
+        "gold, lecture Fresnel",
+    ),
+    (
+        "k_d=0,k_s=1,preset=gold,fresnel=schlick,roughness=0.3",
+        "gold, Schlick",
+    ),
+    (
+        "k_d=0,k_s=1,preset=glass,fresnel=dielectric,roughness=0.3",
+        "glass 1.5",
+    ),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::param::{Kind, Widget};
+
+    #[test]
+    fn every_model_has_one_row() {
+        for model in ReflectanceModel::ALL {
+            assert_eq!(ROWS.iter().filter(|r| r.model == model).count(), 1);
+        }
+        assert_eq!(ROWS.len(), ReflectanceModel::ALL.len());
+        let order: Vec<_> = ROWS.iter().map(|r| r.model).collect();
+        assert_eq!(order, ReflectanceModel::ALL, "rows in the contract's order");
+    }
+
+    #[test]
+    fn every_wgsl_file_exists() {
+        let shaders = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+        for r in ROWS {
+            for f in r.wgsl {
+                assert!(shaders.join(f).is_file(), "{}: no shaders/{f}", r.model);
+            }
+        }
+    }
+
+    #[test]
+    fn keys_resolve_to_the_models_own_parameter() {
+        assert!(std::ptr::eq(
+            param_for(ReflectanceModel::Ward, "sigma").unwrap(),
+            &WARD_SIGMA
+        ));
+        assert!(std::ptr::eq(
+            param_for(ReflectanceModel::Lambert, "roughness").unwrap(),
+            &ROUGHNESS
+        ));
+        assert!(param_for(ReflectanceModel::Lambert, "rougness").is_none());
+    }
+
+    #[test]
+    fn every_widget_fits_its_kind() {
+        for p in all_params() {
+            let fits = match p.widget {
+                Widget::ColorPicker => p.kind == Kind::Color,
+                Widget::Slider { .. } => p.kind == Kind::Scalar,
+                Widget::Drag { .. } => true,
+            };
+            assert!(fits, "{}: {:?} for a {:?}", p.key, p.widget, p.kind);
+        }
+    }
+
+    #[test]
+    fn samples_lie_in_the_range() {
+        for p in all_params() {
+            for &v in p.samples {
+                assert!(p.range.contains(v), "{}: sample {v}", p.key);
+            }
+        }
+    }
+}
