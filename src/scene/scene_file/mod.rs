@@ -18,6 +18,7 @@ pub mod lights;
 pub mod overrides;
 pub mod schema;
 pub mod shadow_keys;
+pub mod toml_value;
 mod values;
 
 pub use assembly::MAX_IMAGE_SIDE;

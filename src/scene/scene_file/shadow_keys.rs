@@ -9,7 +9,7 @@
 //! the keys' text form, so a new key is one row. Meanings and the
 //! derivations of the defaults: `docs/shadows.md`.
 
-use super::schema::TomlValue;
+use super::toml_value::TomlValue;
 use crate::scene::{ShadowFilter, ShadowSettings};
 use serde::Deserialize;
 
