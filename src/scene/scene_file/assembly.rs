@@ -9,7 +9,9 @@ use super::schema::{CameraSection, ObjectEntry, SceneFile};
 use super::values::{finite_vec, non_negative, unit_vec};
 use crate::base::ColorValue;
 use crate::material::{Material, ReflectanceModel, material_from_entry};
-use crate::scene::{Camera, Environment, Mesh, Rgb, Scene, ShadingMode, gltf_import, primitives};
+use crate::scene::{
+    Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, gltf_import, primitives,
+};
 use crate::{Error, Result};
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -19,7 +21,9 @@ use std::path::Path;
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 /// Validated assembly of the scene; also returns what its lights were
-/// made from (for [`LightSetup::assemble`] after a viewer edit).
+/// made from (for [`LightSetup::assemble`] after a viewer edit). The steps
+/// run in the file's order (image, shading, materials, objects, lights,
+/// ambient, camera), so of several problems the first is reported.
 pub fn assemble(
     origin: &Path,
     base_dir: &Path,
@@ -27,19 +31,7 @@ pub fn assemble(
     gltf_files: &mut gltf_import::GltfLoader,
 ) -> Result<(Scene, LightSetup)> {
     let bad = |problem: String| Error::input(origin, problem);
-
-    let (width, height) = (file.image.width, file.image.height);
-    for (key, v) in [("image.width", width), ("image.height", height)] {
-        if v == 0 || v > MAX_IMAGE_SIDE {
-            return Err(bad(format!("{key} = {v} is outside 1..={MAX_IMAGE_SIDE}")));
-        }
-    }
-    let msaa = file.image.msaa.unwrap_or(1);
-    if msaa != 1 && msaa != 4 {
-        return Err(bad(format!(
-            "image.msaa = {msaa}: the GPU renderer takes 1 (no multisampling) or 4 samples per pixel"
-        )));
-    }
+    let (width, height, msaa) = image_size(&file).map_err(bad)?;
     let shading = match &file.shading.mode {
         None => ShadingMode::default(),
         Some(s) => s.parse().map_err(|e| bad(format!("shading.mode: {e}")))?,
@@ -52,92 +44,27 @@ pub fn assemble(
         material_index.insert(name.clone(), materials.len());
         materials.push(material_from_entry(name, entry).map_err(bad)?);
     }
-
-    let mut meshes = Vec::new();
-    let mut imported_lights = Vec::new();
-    let mut gltf_camera = None;
-    for (k, object) in file.objects.iter().enumerate() {
-        let forced_material = match &object.material {
-            None => None,
-            Some(name) => Some(*material_index.get(name).ok_or_else(|| {
-                bad(format!(
-                    "objects[{k}].material = \"{name}\" names no material; defined: {}",
-                    names(&file.materials)
-                ))
-            })?),
-        };
-        match (&object.gltf, &object.shape) {
-            (Some(gltf), None) => {
-                let path = base_dir.join(gltf);
-                let imported = gltf_files.load(&path)?;
-                let offset = materials.len();
-                for mut mesh in imported.meshes {
-                    mesh.material = forced_material.unwrap_or(mesh.material + offset);
-                    meshes.push(mesh);
-                }
-                if forced_material.is_none() {
-                    materials.extend(imported.materials);
-                }
-                imported_lights.extend(imported.lights);
-                if gltf_camera.is_none() {
-                    gltf_camera = imported.camera;
-                }
-            }
-            (None, Some(shape)) => {
-                let material = match forced_material {
-                    Some(m) => m,
-                    None => {
-                        materials.push(Material::new(
-                            format!("objects[{k}] default"),
-                            ReflectanceModel::Lambert,
-                        ));
-                        materials.len() - 1
-                    }
-                };
-                // Charged to the budget before it is built: a fine
-                // tessellation must not allocate past the limits first.
-                let (vertices, triangles) = shape_size(k, object, shape).map_err(bad)?;
-                gltf_files
-                    .charge(vertices, triangles, 0)
-                    .map_err(|p| bad(format!("objects[{k}]: {p}")))?;
-                meshes.push(shape_mesh(k, object, shape, material).map_err(bad)?);
-            }
-            _ => {
-                return Err(bad(format!(
-                    "objects[{k}] needs exactly one of `gltf = \"file.gltf\"` or `shape = \"sphere\" | \"plane\"`"
-                )));
-            }
-        }
-    }
+    let objects = objects(
+        origin,
+        base_dir,
+        &file,
+        &material_index,
+        &mut materials,
+        gltf_files,
+    )?;
 
     gltf_files
         .charge(0, 0, file.lights.len() as u64)
         .map_err(|p| bad(format!("lights: {p}")))?;
     let light_setup = LightSetup {
-        imported: imported_lights,
+        imported: objects.lights,
         shadows: file.shadows.clone(),
         entries: file.lights.clone(),
     };
     let lights = light_setup.assemble().map_err(bad)?;
+    let (ambient, environment) = ambient_and_environment(&file).map_err(bad)?;
 
-    let ambient = match file.ambient.radiance {
-        None => Rgb::ZERO,
-        Some(c) => non_negative("ambient.radiance", c.rgb()).map_err(bad)?,
-    };
-
-    let environment = {
-        let e = &file.environment;
-        let get = |key: &str, c: Option<ColorValue>| match c {
-            None => Ok(ambient),
-            Some(c) => non_negative(&format!("environment.{key}"), c.rgb()),
-        };
-        Environment {
-            zenith: get("zenith", e.zenith).map_err(bad)?,
-            horizon: get("horizon", e.horizon).map_err(bad)?,
-            ground: get("ground", e.ground).map_err(bad)?,
-        }
-    };
-
+    let meshes = objects.meshes;
     let scene_bounds =
         crate::scene::mesh::bounds(meshes.iter().flat_map(|m| m.positions.iter().copied()))
             .filter(|_| meshes.iter().any(|m| !m.indices.is_empty()))
@@ -145,7 +72,7 @@ pub fn assemble(
     let aspect = width as f64 / height as f64;
     let camera = match &file.camera {
         Some(section) => camera_from_section(section, scene_bounds).map_err(bad)?,
-        None => match gltf_camera {
+        None => match objects.camera {
             Some(mut c) => {
                 c.fit_clip_planes(scene_bounds.0, scene_bounds.1);
                 c
@@ -169,6 +96,119 @@ pub fn assemble(
         environment,
     };
     Ok((scene, light_setup))
+}
+
+/// `[image]`: width, height and samples per pixel, range-checked.
+fn image_size(file: &SceneFile) -> std::result::Result<(u32, u32, u32), String> {
+    let (width, height) = (file.image.width, file.image.height);
+    for (key, v) in [("image.width", width), ("image.height", height)] {
+        if v == 0 || v > MAX_IMAGE_SIDE {
+            return Err(format!("{key} = {v} is outside 1..={MAX_IMAGE_SIDE}"));
+        }
+    }
+    let msaa = file.image.msaa.unwrap_or(1);
+    if msaa != 1 && msaa != 4 {
+        return Err(format!(
+            "image.msaa = {msaa}: the GPU renderer takes 1 (no multisampling) or 4 samples per pixel"
+        ));
+    }
+    Ok((width, height, msaa))
+}
+
+/// What the `[[objects]]` bring besides materials.
+struct Objects {
+    meshes: Vec<Mesh>,
+    /// The glTF files' lights, in file order.
+    lights: Vec<Light>,
+    /// The first glTF camera.
+    camera: Option<Camera>,
+}
+
+/// The meshes of every `[[objects]]` entry: glTF files (their materials
+/// appended to `materials` unless the entry names one) and generated
+/// shapes (a default Lambert material each unless the entry names one),
+/// all charged to the budget of `gltf_files`.
+fn objects(
+    origin: &Path,
+    base_dir: &Path,
+    file: &SceneFile,
+    material_index: &BTreeMap<String, usize>,
+    materials: &mut Vec<Material>,
+    gltf_files: &mut gltf_import::GltfLoader,
+) -> Result<Objects> {
+    let bad = |problem: String| Error::input(origin, problem);
+    let mut out = Objects {
+        meshes: Vec::new(),
+        lights: Vec::new(),
+        camera: None,
+    };
+    for (k, object) in file.objects.iter().enumerate() {
+        let forced_material = match &object.material {
+            None => None,
+            Some(name) => Some(*material_index.get(name).ok_or_else(|| {
+                bad(format!(
+                    "objects[{k}].material = \"{name}\" names no material; defined: {}",
+                    names(&file.materials)
+                ))
+            })?),
+        };
+        match (&object.gltf, &object.shape) {
+            (Some(gltf), None) => {
+                let imported = gltf_files.load(&base_dir.join(gltf))?;
+                let offset = materials.len();
+                for mut mesh in imported.meshes {
+                    mesh.material = forced_material.unwrap_or(mesh.material + offset);
+                    out.meshes.push(mesh);
+                }
+                if forced_material.is_none() {
+                    materials.extend(imported.materials);
+                }
+                out.lights.extend(imported.lights);
+                out.camera = out.camera.or(imported.camera);
+            }
+            (None, Some(shape)) => {
+                let material = forced_material.unwrap_or_else(|| {
+                    let name = format!("objects[{k}] default");
+                    materials.push(Material::new(name, ReflectanceModel::Lambert));
+                    materials.len() - 1
+                });
+                // Charged to the budget before it is built: a fine
+                // tessellation must not allocate past the limits first.
+                let (vertices, triangles) = shape_size(k, object, shape).map_err(bad)?;
+                gltf_files
+                    .charge(vertices, triangles, 0)
+                    .map_err(|p| bad(format!("objects[{k}]: {p}")))?;
+                out.meshes
+                    .push(shape_mesh(k, object, shape, material).map_err(bad)?);
+            }
+            _ => {
+                return Err(bad(format!(
+                    "objects[{k}] needs exactly one of `gltf = \"file.gltf\"` or `shape = \"sphere\" | \"plane\"`"
+                )));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// `[ambient]` and `[environment]` (whose keys default to the ambient
+/// radiance).
+fn ambient_and_environment(file: &SceneFile) -> std::result::Result<(Rgb, Environment), String> {
+    let ambient = match file.ambient.radiance {
+        None => Rgb::ZERO,
+        Some(c) => non_negative("ambient.radiance", c.rgb())?,
+    };
+    let e = &file.environment;
+    let get = |key: &str, c: Option<ColorValue>| match c {
+        None => Ok(ambient),
+        Some(c) => non_negative(&format!("environment.{key}"), c.rgb()),
+    };
+    let environment = Environment {
+        zenith: get("zenith", e.zenith)?,
+        horizon: get("horizon", e.horizon)?,
+        ground: get("ground", e.ground)?,
+    };
+    Ok((ambient, environment))
 }
 
 fn names<V>(map: &BTreeMap<String, V>) -> String {

@@ -116,7 +116,7 @@ pub struct ObjectEntry {
 }
 
 /// Generates a `[[lights]]` entry type: its own keys, then `shadows` and
-/// the shadow-map keys of [`with_shadow_keys`].
+/// the shadow-map keys of `with_shadow_keys!`.
 macro_rules! light_entry {
     ({
         $(#[$meta:meta])*

@@ -3,7 +3,7 @@
 //! Every `[[lights]]` entry takes `shadows` and six shadow-map keys
 //! (`shadow_map_size`, ...); `[shadows]` takes the same six without the
 //! prefix as the defaults of every entry that does not set its own. The
-//! one list below ([`with_shadow_keys`]) generates the entries' fields,
+//! one list below (`with_shadow_keys!`) generates the entries' fields,
 //! the `[shadows]` section, [`ShadowKeys`] (the six as one value, which
 //! assembly merges and validates and the viewer's light panel edits) and
 //! the keys' text form, so a new key is one row. Meanings and the
