@@ -1,10 +1,14 @@
 //! The viewer's window loop (winit 0.30 `ApplicationHandler`).
 //!
-//! One frame: run the egui panel (which may edit the document), fit the
-//! scene's image size and camera to the 3D area left of the panel, bring
-//! the [`PreparedScene`] up to date (one buffer write for most edits),
-//! draw the scene into the swapchain image through the same renderer as
-//! `gonio render`, draw egui over it, present.
+//! One frame (`App::frame`) runs these phases in order: scripted input
+//! (`apply_scripted_resize`, `apply_scripted_edits`), the egui panel
+//! (`run_panel`, which may edit the document; `report_message`,
+//! `take_new_document`), fitting the scene's image size and camera to the
+//! 3D area left of the panel (`fit_view`), bringing the [`PreparedScene`]
+//! up to date (`update_gpu_scene`: one buffer write for most edits), then
+//! drawing: the scene into the swapchain image through the same renderer
+//! as `gonio render` (`draw_scene`), egui over it (`draw_panel`),
+//! `present`, and afterwards `read_gpu_times` and `save_screenshot`.
 
 use super::cli::ViewArgs;
 use super::document::Document;
