@@ -389,4 +389,59 @@ mod tests {
             );
         }
     }
+
+    #[test]
+    fn light_entries_write_back_as_they_read() {
+        let lights = "lights=[\
+            {kind = \"point\", position = [0.0, 3.0, 0.0], intensity = 2, range = 9.0, shadows = true, shadow_map_size = 512, shadow_bias = 0.01, shadow_slope_bias = 1.5, shadow_normal_offset = 2.0, shadow_filter = \"pcf\", shadow_pcf_kernel = 5},\
+            {kind = \"directional\", direction = [0.0, -1.0, 0.2], irradiance = [1, 2, 3], shadow_filter = \"none\"},\
+            {kind = \"spot\", position = [0.0, 3.0, 0.0], direction = [0.0, -1.0, 0.0], intensity = 4.0, inner_cone_deg = 10.0, outer_cone_deg = 30.0},\
+            {kind = \"area\", shape = \"rect\", position = [0.0, 3.0, 0.0], normal = [0.0, -1.0, 0.0], size = [1.0, 2.0], tangent = [1.0, 0.0, 0.0], radiance = 1.0, samples = 4, shadow_per_sample = true, shadows = true}]";
+        let sets = [lights.to_string(), "shadows.map_size=1024".into()];
+        let loaded = load_for_editing(&SceneSource::BuiltIn, &sets, Limits::default()).unwrap();
+        assert_eq!(loaded.lights.entries.len(), 4);
+        let mut again = loaded.lights.clone();
+        for entry in &mut again.entries {
+            let table = entry.to_table();
+            *entry = LightEntry::deserialize(toml::Value::Table(table.clone())).unwrap();
+            assert_eq!(entry.to_table(), table);
+        }
+        let assembled = again.assemble().unwrap();
+        assert_eq!(assembled.lights, loaded.scene.lights);
+        assert_eq!(assembled.light_shadows, loaded.scene.light_shadows);
+        assert_eq!(assembled.area_lights, loaded.scene.area_lights);
+        // An entry's own key wins over `[shadows]`, which fills the rest.
+        assert_eq!(loaded.lights.shadow_settings(0).map_size, 512);
+        assert_eq!(loaded.lights.shadow_settings(1).map_size, 1024);
+        assert_eq!(
+            loaded.lights.shadow_settings(1),
+            loaded.scene.shadow_settings(1)
+        );
+    }
+
+    #[test]
+    fn one_list_names_the_shadow_keys_of_both_places() {
+        let keys = ShadowKeys {
+            map_size: Some(512),
+            bias: Some(0.5),
+            slope_bias: Some(1.0),
+            normal_offset: Some(2.0),
+            filter: Some("none".into()),
+            pcf_kernel: Some(3),
+        };
+        let section: Vec<_> = keys.to_toml(false);
+        let entry: Vec<_> = keys.to_toml(true);
+        assert_eq!(section.len(), 6);
+        for ((short, a), (long, b)) in section.iter().zip(&entry) {
+            assert_eq!(format!("shadow_{short}"), *long);
+            assert_eq!(a, b);
+            // Both spellings are keys the scene file accepts.
+            for set in [
+                format!("shadows.{short}={a}"),
+                format!("lights.0.{long}={a}"),
+            ] {
+                load(&SceneSource::BuiltIn, std::slice::from_ref(&set)).unwrap();
+            }
+        }
+    }
 }
