@@ -1,18 +1,21 @@
 //! The viewer's window loop (winit 0.30 `ApplicationHandler`).
 //!
-//! One frame: run the egui panel (which may edit the document), fit the
-//! scene's image size and camera to the 3D area left of the panel, bring
-//! the [`PreparedScene`] up to date (one buffer write for most edits),
-//! draw the scene into the swapchain image through the same renderer as
-//! `gonio render`, draw egui over it, present.
+//! One frame (`App::frame`) runs these phases in order: scripted input
+//! (`apply_scripted_resize`, `apply_scripted_edits`), the egui panel
+//! (`run_panel`, which may edit the document; `report_message`,
+//! `take_new_document`), fitting the scene's image size and camera to the
+//! 3D area left of the panel (`fit_view`), bringing the [`PreparedScene`]
+//! up to date (`update_gpu_scene`: one buffer write for most edits), then
+//! drawing: the scene into the swapchain image through the same renderer
+//! as `gonio render` (`draw_scene`), egui over it (`draw_panel`),
+//! `present`, and afterwards `read_gpu_times` and `save_screenshot`.
 
 use super::cli::ViewArgs;
 use super::document::Document;
 use super::orbit::Orbit;
-use super::plots::Plots;
+use super::state::ViewerState;
 use super::surface::{PendingScreenshot, WindowSurface};
 use crate::gpu::{AdapterChoice, FrameTarget, GpuContext, GpuRenderer, PreparedScene};
-use crate::scene::scene_file::SceneSource;
 use crate::{Error, Result};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -28,74 +31,6 @@ const PANEL_WIDTH: f32 = 380.0;
 /// How often the scene file is checked for changes.
 const RELOAD_CHECK: Duration = Duration::from_millis(500);
 
-/// Everything the panel edits, apart from the GPU.
-pub struct ViewerState {
-    pub doc: Document,
-    pub orbit: Orbit,
-    pub selected_material: usize,
-    pub plots: Plots,
-    pub exposure: f64,
-    pub vsync: bool,
-    pub show_panel: bool,
-    pub show_overlay: bool,
-    /// The last problem (rejected value, bad file), shown until dismissed.
-    pub message: Option<String>,
-    /// A new document to switch to (opened, dropped, reloaded).
-    pub replace: Option<Document>,
-    /// Something changed that the GPU must see.
-    pub dirty: bool,
-    /// Only the view changed (camera, size, exposure): globals only.
-    pub view_dirty: bool,
-    pub screenshot_path: PathBuf,
-    pub screenshot_requested: bool,
-    pub save_path: String,
-    pub open_path: String,
-    pub open_dialog: bool,
-    /// Frame-time statistics shown in the overlay.
-    pub frame_ms: f64,
-    pub gpu_ms: Option<f64>,
-    pub adapter: String,
-}
-
-impl ViewerState {
-    fn new(doc: Document, args: &ViewArgs) -> ViewerState {
-        ViewerState {
-            orbit: Orbit::from_camera(&doc.loaded_camera),
-            doc,
-            selected_material: 0,
-            plots: Plots::default(),
-            exposure: args.exposure,
-            vsync: !args.no_vsync,
-            show_panel: !args.no_panel,
-            show_overlay: !args.no_overlay,
-            message: None,
-            replace: None,
-            dirty: true,
-            view_dirty: true,
-            screenshot_path: args
-                .screenshot
-                .clone()
-                .unwrap_or_else(|| PathBuf::from("gonio-screenshot.png")),
-            screenshot_requested: false,
-            save_path: "gonio-view.toml".into(),
-            open_path: String::new(),
-            open_dialog: false,
-            frame_ms: 0.0,
-            gpu_ms: None,
-            adapter: String::new(),
-        }
-    }
-
-    /// Opens `path` as the new document; a bad file leaves the current
-    /// scene on screen and shows why.
-    pub fn open(&mut self, path: PathBuf) {
-        match Document::load(SceneSource::File(path), Vec::new(), self.doc.limits) {
-            Ok(doc) => self.replace = Some(doc),
-            Err(e) => self.message = Some(e.to_string()),
-        }
-    }
-}
-
 /// The GPU side of the window.
 struct Gfx {
     renderer: GpuRenderer,
@@ -109,6 +44,81 @@ struct Gfx {
     panel_cache: Option<super::panel_cache::PanelCache>,
     /// Timestamps around the egui pass (its slots 0 and 1).
     panel_timestamps: Option<crate::gpu::renderer::PassTimestamps>,
+}
+
+impl Gfx {
+    /// egui's new and changed textures, to its renderer and the panel
+    /// cache.
+    fn upload_textures(&mut self, textures: &egui::TexturesDelta) {
+        let ctx = self.renderer.context();
+        for (id, deltas) in &textures.set {
+            for delta in deltas {
+                self.egui_renderer
+                    .update_texture(&ctx.device, &ctx.queue, *id, delta);
+                if let Some(cache) = &mut self.panel_cache {
+                    cache.update_texture(&ctx.device, &ctx.queue, *id, delta);
+                }
+            }
+        }
+    }
+
+    /// Frees the textures egui no longer uses (after the frame drew).
+    fn free_textures(&mut self, textures: &egui::TexturesDelta) {
+        for id in &textures.free {
+            self.egui_renderer.free_texture(id);
+            if let Some(cache) = &mut self.panel_cache {
+                cache.free_texture(id);
+            }
+        }
+    }
+}
+
+/// What laying out the panel left for drawing it.
+struct PanelFrame {
+    ctx: egui::Context,
+    output: egui::FullOutput,
+    /// The 3D area (what the panel leaves), in points.
+    central: egui::Rect,
+    /// CPU time of the layout.
+    layout_time: Duration,
+}
+
+/// The egui render pass over the frame (loading what is there), with
+/// `timestamps` around it (slots 0 and 1) when given.
+fn encode_egui_pass(
+    renderer: &egui_wgpu::Renderer,
+    encoder: &mut wgpu::CommandEncoder,
+    view: &wgpu::TextureView,
+    paint_jobs: &[egui::ClippedPrimitive],
+    screen: &egui_wgpu::ScreenDescriptor,
+    timestamps: Option<&crate::gpu::renderer::PassTimestamps>,
+) {
+    let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("egui"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: timestamps.map(|t| wgpu::RenderPassTimestampWrites {
+            query_set: &t.set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        }),
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    let mut pass = pass.forget_lifetime();
+    renderer.render(&mut pass, paint_jobs, screen);
+    drop(pass);
+    if let Some(t) = timestamps {
+        t.resolve(encoder);
+    }
 }
 
 /// The application: window, GPU, state, and the scripted run's progress.
@@ -297,11 +307,59 @@ impl App {
         Ok(())
     }
 
-    /// One frame; `Err` ends the run.
+    /// One frame, phase by phase; `Err` ends the run.
     fn frame(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
-        let (Some(window), Some(gfx)) = (self.window.clone(), self.gfx.as_mut()) else {
+        let Some(window) = self.window.clone() else {
             return Ok(());
         };
+        if self.gfx.is_none() {
+            return Ok(());
+        }
+        if !self.apply_scripted_resize(&window) {
+            // Minimized: nothing to draw, but a scripted run still counts
+            // the frame so it ends.
+            self.frames += 1;
+            if self.args.frames == Some(self.frames) {
+                event_loop.exit();
+            }
+            return Ok(());
+        }
+        self.record_frame_time();
+        self.apply_scripted_edits()?;
+        let panel = self.run_panel(&window);
+        self.report_message();
+        self.take_new_document(&window);
+        self.fit_view(panel.central, panel.output.pixels_per_point);
+        self.update_gpu_scene()?;
+        let Some(frame) = self.acquire_surface_texture()? else {
+            return Ok(());
+        };
+        let gfx = self.gfx.as_mut().expect("checked above");
+        let mut encoder = gfx
+            .renderer
+            .context()
+            .device
+            .create_command_encoder(&Default::default());
+        let measure_gpu = gfx.timestamps.is_some() && self.frames % 10 == 5;
+        let view = frame.texture.create_view(&Default::default());
+        self.draw_scene(&view, &mut encoder, measure_gpu);
+        let extra = self.draw_panel(panel, &frame.texture, &view, &mut encoder, measure_gpu);
+        self.frames += 1;
+        let scripted_last = self.args.frames == Some(self.frames);
+        let screenshot = self.present(&window, frame, encoder, extra, scripted_last);
+        self.read_gpu_times(measure_gpu)?;
+        if let Some(pending) = screenshot {
+            self.save_screenshot(pending, scripted_last)?;
+        }
+        if scripted_last {
+            event_loop.exit();
+        }
+        Ok(())
+    }
+
+    /// A scripted `--resize` due at this frame; returns whether the window
+    /// has an area to draw into (not minimized).
+    fn apply_scripted_resize(&mut self, window: &Window) -> bool {
         if let Some(&(_, (w, h))) = self.args.resizes.iter().find(|(at, _)| *at == self.frames) {
             if w == 0 || h == 0 {
                 window.set_minimized(true);
@@ -311,15 +369,12 @@ impl App {
             }
         }
         let size = window.inner_size();
-        if size.width == 0 || size.height == 0 {
-            // Minimized: nothing to draw, but a scripted run still counts
-            // the frame so it ends.
-            self.frames += 1;
-            if self.args.frames == Some(self.frames) {
-                event_loop.exit();
-            }
-            return Ok(());
-        }
+        size.width != 0 && size.height != 0
+    }
+
+    /// The time since the last frame, and the overlay's median of the
+    /// last 30.
+    fn record_frame_time(&mut self) {
         let now = Instant::now();
         if let Some(last) = self.last_frame {
             self.frame_times.push(now - last);
@@ -329,75 +384,89 @@ impl App {
             self.state.frame_ms = ms[ms.len() / 2];
         }
         self.last_frame = Some(now);
+    }
 
-        // Scripted edits due at this frame, through the panel's path.
-        let due: Vec<String> = self
-            .args
-            .edits
-            .iter()
-            .filter(|(at, _)| *at == self.frames)
-            .map(|(_, kv)| kv.clone())
-            .collect();
-        for kv in due {
-            match self.state.doc.edit(&kv) {
-                Ok(Some(doc)) => self.state.replace = Some(doc),
-                Ok(None) => self.state.dirty = true,
-                Err(e) => return Err(e),
-            }
+    /// Scripted `--edit`s (through the panel's path: typed values applied
+    /// to the document) and `--drop`s due at this frame.
+    fn apply_scripted_edits(&mut self) -> Result<()> {
+        let frame = self.frames;
+        for (_, kv) in self.args.edits.iter().filter(|(at, _)| *at == frame) {
+            self.state.doc.edit(kv)?;
+            self.state.dirty = true;
         }
-
         let drops: Vec<PathBuf> = self
             .args
             .drops
             .iter()
-            .filter(|(at, _)| *at == self.frames)
+            .filter(|(at, _)| *at == frame)
             .map(|(_, p)| p.clone())
             .collect();
         for path in drops {
             self.state.open(path);
         }
+        Ok(())
+    }
 
-        // The panel.
-        let ui_start = Instant::now();
-        let raw_input = gfx.egui_state.take_egui_input(&window);
-        let egui_ctx = gfx.egui_state.egui_ctx().clone();
+    /// Lays out the panel (which may edit the state).
+    fn run_panel(&mut self, window: &Window) -> PanelFrame {
+        let gfx = self.gfx.as_mut().expect("initialized");
+        let start = Instant::now();
+        let raw_input = gfx.egui_state.take_egui_input(window);
+        let ctx = gfx.egui_state.egui_ctx().clone();
         let state = &mut self.state;
         let mut central = egui::Rect::NOTHING;
-        let full_output = egui_ctx.run_ui(raw_input, |ui| {
+        let mut output = ctx.run_ui(raw_input, |ui| {
             central = super::view::ui(ui, state, PANEL_WIDTH);
         });
+        let platform_output = std::mem::take(&mut output.platform_output);
         gfx.egui_state
-            .handle_platform_output(&window, full_output.platform_output);
-        let ui_elapsed = ui_start.elapsed();
+            .handle_platform_output(window, platform_output);
+        PanelFrame {
+            ctx,
+            output,
+            central,
+            layout_time: start.elapsed(),
+        }
+    }
 
-        // Messages also go to stderr (scripted runs, logs).
+    /// A new message also goes to stderr (scripted runs, logs).
+    fn report_message(&mut self) {
         if self.state.message != self.last_message {
             if let Some(m) = &self.state.message {
                 eprintln!("gonio view: {m}");
             }
             self.last_message = self.state.message.clone();
         }
+    }
 
-        // A new document replaces the old one (and its GPU resources).
-        if let Some(doc) = self.state.replace.take() {
-            window.set_title(&format!("gonio view: {}", doc.title()));
-            let keep_view = doc.path() == self.state.doc.path()
-                && doc.loaded_camera == self.state.doc.loaded_camera;
-            if !keep_view {
-                self.state.orbit = Orbit::from_camera(&doc.loaded_camera);
-                self.state.selected_material = 0;
-            }
-            // A light edit reloads the same meshes: the GPU keeps them and
-            // updates the rest; anything else is uploaded anew.
-            if doc.scene.meshes != self.state.doc.scene.meshes {
-                gfx.prepared = None;
-            }
-            self.state.doc = doc;
-            self.state.dirty = true;
+    /// A new document (opened, dropped, reloaded) replaces the old one
+    /// (and its GPU resources, unless the meshes are the same).
+    fn take_new_document(&mut self, window: &Window) {
+        let Some(doc) = self.state.replace.take() else {
+            return;
+        };
+        window.set_title(&format!("gonio view: {}", doc.title()));
+        let keep_view = doc.path() == self.state.doc.path()
+            && doc.loaded_camera == self.state.doc.loaded_camera;
+        if !keep_view {
+            self.state.orbit = Orbit::from_camera(&doc.loaded_camera);
+            self.state.selected_material = 0;
         }
+        // A reload with the same meshes (the file changed a light or a
+        // material): the GPU keeps them and updates the rest.
+        if doc.scene.meshes != self.state.doc.scene.meshes
+            && let Some(gfx) = &mut self.gfx
+        {
+            gfx.prepared = None;
+        }
+        self.state.doc = doc;
+        self.state.dirty = true;
+    }
 
-        // Fit the scene to the 3D area, in physical pixels.
-        let ppp = full_output.pixels_per_point;
+    /// Fits the scene's image size and camera to the 3D area the panel
+    /// left (`central`, in points), in physical pixels.
+    fn fit_view(&mut self, central: egui::Rect, ppp: f32) {
+        let gfx = self.gfx.as_ref().expect("initialized");
         let (sw, sh) = (gfx.surface.config.width, gfx.surface.config.height);
         let x0 = (central.min.x * ppp).round().clamp(0.0, sw as f32) as u32;
         let y0 = (central.min.y * ppp).round().clamp(0.0, sh as f32) as u32;
@@ -425,12 +494,18 @@ impl App {
         }
         scene.width = self.view_rect[2];
         scene.height = self.view_rect[3];
+    }
+
+    /// Brings the [`PreparedScene`] up to date: prepared anew after a new
+    /// document, updated after an edit, only its view after a camera move.
+    fn update_gpu_scene(&mut self) -> Result<()> {
+        let gfx = self.gfx.as_mut().expect("initialized");
+        let scene = &self.state.doc.scene;
         let renderer = &mut gfx.renderer;
-        let format = gfx.surface.config.format;
         let display_scale = self.state.exposure.exp2() as f32;
         match &mut gfx.prepared {
             None => {
-                let mut p = renderer.prepare(scene, format)?;
+                let mut p = renderer.prepare(scene, gfx.surface.config.format)?;
                 p.display_scale = display_scale;
                 renderer.update(&mut p, scene)?;
                 if self.args.verbose {
@@ -453,96 +528,97 @@ impl App {
             Some(_) => {}
         }
         self.state.view_dirty = false;
+        Ok(())
+    }
 
-        // Draw.
-        let ctx = renderer.context();
-        let frame = match gfx.surface.surface.get_current_texture() {
+    /// The swapchain image to draw into; `None` skips the frame (the
+    /// surface was reconfigured, timed out or is occluded).
+    fn acquire_surface_texture(&mut self) -> Result<Option<wgpu::SurfaceTexture>> {
+        let gfx = self.gfx.as_mut().expect("initialized");
+        match gfx.surface.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f)
-            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => Ok(Some(f)),
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                gfx.surface.reconfigure(ctx);
-                return Ok(());
+                gfx.surface.reconfigure(gfx.renderer.context());
+                Ok(None)
             }
             wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => {
-                return Ok(());
+                Ok(None)
             }
-            other => {
-                return Err(Error::Gpu(format!(
-                    "the window surface failed: {}",
-                    match other {
-                        wgpu::CurrentSurfaceTexture::Validation => "validation error",
-                        _ => "unknown",
-                    }
-                )));
-            }
-        };
-        let view = frame.texture.create_view(&Default::default());
-        let ctx = gfx.renderer.context();
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        let measure_gpu = gfx.timestamps.is_some() && self.frames % 10 == 5;
+            other => Err(Error::Gpu(format!(
+                "the window surface failed: {}",
+                match other {
+                    wgpu::CurrentSurfaceTexture::Validation => "validation error",
+                    _ => "unknown",
+                }
+            ))),
+        }
+    }
+
+    /// The scene into the 3D area, through the same renderer as
+    /// `gonio render`.
+    fn draw_scene(
+        &mut self,
+        view: &wgpu::TextureView,
+        encoder: &mut wgpu::CommandEncoder,
+        measure_gpu: bool,
+    ) {
+        let gfx = self.gfx.as_mut().expect("initialized");
         let [x, y, w, h] = self.view_rect;
         let depth = gfx.surface.depth_view(gfx.renderer.context()).clone();
-        let prepared = gfx.prepared.as_mut().expect("prepared above");
+        let prepared = gfx.prepared.as_mut().expect("prepared by update_gpu_scene");
+        let timestamps = gfx.timestamps.as_ref().filter(|_| measure_gpu);
         gfx.renderer.encode(
             prepared,
-            &mut encoder,
+            encoder,
             &FrameTarget {
-                color: &view,
+                color: view,
                 resolve: None,
                 depth: &depth,
                 viewport: Some([x as f32, y as f32, w as f32, h as f32]),
-                timestamps: if measure_gpu {
-                    gfx.timestamps.as_ref().map(|t| &t.set)
-                } else {
-                    None
-                },
+                timestamps: timestamps.map(|t| &t.set),
             },
         );
-        if measure_gpu && let Some(t) = &gfx.timestamps {
-            t.resolve(&mut encoder);
+        if let Some(t) = timestamps {
+            t.resolve(encoder);
         }
+    }
 
-        // egui over the scene.
+    /// egui over the scene: the side panel from its cache (drawn again
+    /// only when it changed), the rest (overlay, dialogs) now. Returns
+    /// command buffers egui needs submitted first.
+    fn draw_panel(
+        &mut self,
+        panel: PanelFrame,
+        texture: &wgpu::Texture,
+        view: &wgpu::TextureView,
+        encoder: &mut wgpu::CommandEncoder,
+        measure_gpu: bool,
+    ) -> Vec<wgpu::CommandBuffer> {
+        let gfx = self.gfx.as_mut().expect("initialized");
         let tessellate_start = Instant::now();
-        let ctx = gfx.renderer.context();
+        let ppp = panel.output.pixels_per_point;
         let screen = egui_wgpu::ScreenDescriptor {
             size_in_pixels: [gfx.surface.config.width, gfx.surface.config.height],
             pixels_per_point: ppp,
         };
-        let paint_jobs = egui_ctx.tessellate(full_output.shapes, ppp);
+        let paint_jobs = panel.ctx.tessellate(panel.output.shapes, ppp);
         if self.frames >= self.args.warmup {
-            self.ui_times.push(
-                ui_elapsed.as_secs_f64() * 1e3 + tessellate_start.elapsed().as_secs_f64() * 1e3,
-            );
+            let tessellation = tessellate_start.elapsed();
+            self.ui_times
+                .push((panel.layout_time + tessellation).as_secs_f64() * 1e3);
         }
-        for (id, deltas) in &full_output.textures_delta.set {
-            for delta in deltas {
-                gfx.egui_renderer
-                    .update_texture(&ctx.device, &ctx.queue, *id, delta);
-                if let Some(cache) = &mut gfx.panel_cache {
-                    cache.update_texture(&ctx.device, &ctx.queue, *id, delta);
-                }
-            }
-        }
-        // The panel from its cache, the rest (overlay, dialogs) drawn now.
+        let textures = &panel.output.textures_delta;
+        gfx.upload_textures(textures);
+        let ctx = gfx.renderer.context();
         let (paint_jobs, mut extra) = match &mut gfx.panel_cache {
             Some(cache) if self.state.show_panel && !self.state.open_dialog => {
-                let (panel_jobs, rest) = super::panel_cache::split_jobs(paint_jobs, central.max.x);
+                let (panel_jobs, rest) =
+                    super::panel_cache::split_jobs(paint_jobs, panel.central.max.x);
                 let x = self.view_rect[0] + self.view_rect[2];
-                let rect = [
-                    x,
-                    0,
-                    screen.size_in_pixels[0].saturating_sub(x),
-                    screen.size_in_pixels[1],
-                ];
-                let extra = cache.draw(
-                    ctx,
-                    &mut encoder,
-                    &panel_jobs,
-                    &screen,
-                    &frame.texture,
-                    rect,
-                );
+                let [sw, sh] = screen.size_in_pixels;
+                let rect = [x, 0, sw.saturating_sub(x), sh];
+                let extra = cache.draw(ctx, encoder, &panel_jobs, &screen, texture, rect);
                 (rest, extra)
             }
             _ => (paint_jobs, Vec::new()),
@@ -550,106 +626,101 @@ impl App {
         extra.extend(gfx.egui_renderer.update_buffers(
             &ctx.device,
             &ctx.queue,
-            &mut encoder,
+            encoder,
             &paint_jobs,
             &screen,
         ));
-        {
-            let pass =
-                encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("egui"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: &view,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Load,
-                            store: wgpu::StoreOp::Store,
-                        },
-                    })],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: gfx.panel_timestamps.as_ref().filter(|_| measure_gpu).map(
-                        |t| wgpu::RenderPassTimestampWrites {
-                            query_set: &t.set,
-                            beginning_of_pass_write_index: Some(0),
-                            end_of_pass_write_index: Some(1),
-                        },
-                    ),
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-            let mut pass = pass.forget_lifetime();
-            gfx.egui_renderer.render(&mut pass, &paint_jobs, &screen);
-        }
-        if measure_gpu && let Some(t) = &gfx.panel_timestamps {
-            t.resolve(&mut encoder);
-        }
-        for id in &full_output.textures_delta.free {
-            gfx.egui_renderer.free_texture(id);
-            if let Some(cache) = &mut gfx.panel_cache {
-                cache.free_texture(id);
-            }
-        }
+        let timestamps = gfx.panel_timestamps.as_ref().filter(|_| measure_gpu);
+        encode_egui_pass(
+            &gfx.egui_renderer,
+            encoder,
+            view,
+            &paint_jobs,
+            &screen,
+            timestamps,
+        );
+        gfx.free_textures(textures);
+        extra
+    }
 
-        self.frames += 1;
-        let scripted_last = self.args.frames == Some(self.frames);
+    /// Submits the frame and presents it; records the screenshot copy
+    /// first when one is due (`Some(None)`: due, but the surface cannot be
+    /// copied).
+    fn present(
+        &mut self,
+        window: &Window,
+        frame: wgpu::SurfaceTexture,
+        mut encoder: wgpu::CommandEncoder,
+        extra: Vec<wgpu::CommandBuffer>,
+        scripted_last: bool,
+    ) -> Option<Option<PendingScreenshot>> {
+        let gfx = self.gfx.as_mut().expect("initialized");
+        let ctx = gfx.renderer.context();
         let screenshot = (self.state.screenshot_requested
             || (scripted_last && self.args.screenshot.is_some()))
         .then(|| {
-            if gfx.surface.copyable {
-                Some(PendingScreenshot::record(
-                    &ctx.device,
-                    &mut encoder,
-                    &frame.texture,
-                ))
-            } else {
-                None
-            }
+            gfx.surface
+                .copyable
+                .then(|| PendingScreenshot::record(&ctx.device, &mut encoder, &frame.texture))
         });
         ctx.queue
             .submit(extra.into_iter().chain([encoder.finish()]));
         window.pre_present_notify();
         ctx.queue.present(frame);
+        screenshot
+    }
 
-        if measure_gpu && let Some(t) = &gfx.panel_timestamps {
+    /// The GPU times of the scene and egui passes, on the frames that
+    /// measured them.
+    fn read_gpu_times(&mut self, measured: bool) -> Result<()> {
+        let gfx = self.gfx.as_mut().expect("initialized");
+        let ctx = gfx.renderer.context();
+        let warm = self.frames > self.args.warmup;
+        if measured && let Some(t) = &gfx.panel_timestamps {
             let (panel_pass, _) = t.read(ctx)?;
-            if self.frames > self.args.warmup {
+            if warm {
                 self.panel_gpu_times.push(panel_pass.as_secs_f64() * 1e3);
             }
         }
-        if measure_gpu && let Some(t) = &gfx.timestamps {
+        if measured && let Some(t) = &gfx.timestamps {
             let (scene_pass, _) = t.read(ctx)?;
             self.state.gpu_ms = Some(scene_pass.as_secs_f64() * 1e3);
-            if self.frames > self.args.warmup {
+            if warm {
                 self.gpu_times.push(scene_pass.as_secs_f64() * 1e3);
             }
         }
-        if let Some(pending) = screenshot {
-            self.state.screenshot_requested = false;
-            let path = self.state.screenshot_path.clone();
-            let result = match pending {
-                Some(p) => p.save(&ctx.device, &path),
-                None => Err(Error::Gpu(
-                    "this window surface cannot be copied, so no screenshot".into(),
-                )),
-            };
-            match result {
-                Ok(()) => {
-                    let [x, y, w, h] = self.view_rect;
-                    println!(
-                        "screenshot {}: window {}x{}, 3D area x={x} y={y} {w}x{h}",
-                        path.display(),
-                        gfx.surface.config.width,
-                        gfx.surface.config.height
-                    );
-                    self.state.message = Some(format!("saved {}", path.display()));
-                }
-                Err(e) if scripted_last => return Err(e),
-                Err(e) => self.state.message = Some(e.to_string()),
+        Ok(())
+    }
+
+    /// Writes a due screenshot; a failure ends a scripted run and is a
+    /// message otherwise.
+    fn save_screenshot(
+        &mut self,
+        pending: Option<PendingScreenshot>,
+        scripted_last: bool,
+    ) -> Result<()> {
+        let gfx = self.gfx.as_ref().expect("initialized");
+        self.state.screenshot_requested = false;
+        let path = self.state.screenshot_path.clone();
+        let result = match pending {
+            Some(p) => p.save(&gfx.renderer.context().device, &path),
+            None => Err(Error::Gpu(
+                "this window surface cannot be copied, so no screenshot".into(),
+            )),
+        };
+        match result {
+            Ok(()) => {
+                let [x, y, w, h] = self.view_rect;
+                println!(
+                    "screenshot {}: window {}x{}, 3D area x={x} y={y} {w}x{h}",
+                    path.display(),
+                    gfx.surface.config.width,
+                    gfx.surface.config.height
+                );
+                self.state.message = Some(format!("saved {}", path.display()));
             }
-        }
-        if scripted_last {
-            event_loop.exit();
+            Err(e) if scripted_last => return Err(e),
+            Err(e) => self.state.message = Some(e.to_string()),
         }
         Ok(())
     }

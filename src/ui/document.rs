@@ -1,13 +1,13 @@
 //! What the viewer shows: a scene loaded like `gonio render` loads it, and
 //! the edits made since, kept so they can be saved as a scene file.
 //!
-//! Two kinds of edit, by cost:
-//! - material, camera, shading and ambient edits change the loaded
-//!   [`Scene`] in place (a slider drag redraws at frame rate; the GPU
-//!   side writes one buffer);
-//! - light edits are `--set` overrides of the file's `[[lights]]` entries
-//!   and reload the scene (an area light expands into samples, a light
-//!   moves its shadow maps: the loader does that once, as for `render`).
+//! Every edit is a typed value applied to the loaded [`Scene`]:
+//! - material, camera, shading and ambient edits change it in place (a
+//!   slider drag redraws at frame rate; the GPU side writes one buffer);
+//! - a light edit changes one typed `[[lights]]` entry and runs the
+//!   loader's light step again ([`LightSetup::assemble`]: area lights
+//!   expanded into samples, shadow settings merged with `[shadows]`),
+//!   without reading the scene file or importing its glTF files again.
 //!
 //! Saving writes the file's table with every edit applied, so
 //! `gonio render saved.toml` draws what the viewer shows.
@@ -15,8 +15,9 @@
 use crate::material::Material;
 use crate::scene::Scene;
 use crate::scene::limits::Limits;
-use crate::scene::scene_file::{self, SceneSource};
+use crate::scene::scene_file::{self, LightEntry, LightSetup, SceneSource};
 use crate::{Error, Result};
+use serde::Deserialize;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
@@ -24,10 +25,10 @@ use std::time::SystemTime;
 /// The scene on screen and how it was made.
 pub struct Document {
     pub source: SceneSource,
-    /// `--set` overrides: the command line's, then light edits.
+    /// The command line's `--set` overrides.
     pub overrides: Vec<String>,
     pub limits: Limits,
-    /// The scene as loaded, with in-place edits applied.
+    /// The scene as loaded, with edits applied.
     pub scene: Scene,
     /// Materials as loaded (to tell which ones were edited).
     loaded_materials: Vec<Material>,
@@ -36,8 +37,16 @@ pub struct Document {
     /// Names of the scene file's own `[materials]` (those a saved file can
     /// address; materials a glTF file brings have no key).
     pub file_materials: BTreeSet<String>,
-    /// The scene file's `[[lights]]` entries as tables (after overrides).
-    pub file_lights: Vec<toml::Table>,
+    /// The scene table with the overrides applied ("Save scene" writes it
+    /// with the edits).
+    pub table: toml::Table,
+    /// The folder the table's relative paths resolve in.
+    pub source_dir: PathBuf,
+    /// What the scene's lights are made from, with light edits applied.
+    pub lights: LightSetup,
+    /// The `[[lights]]` entries as loaded, written out (to tell which ones
+    /// were edited).
+    loaded_lights: Vec<toml::Table>,
     /// Modification time of the scene file when loaded (reload on change).
     modified: Option<SystemTime>,
 }
@@ -45,31 +54,32 @@ pub struct Document {
 impl Document {
     /// Loads `source` with `overrides`.
     pub fn load(source: SceneSource, overrides: Vec<String>, limits: Limits) -> Result<Document> {
-        let (scene, _notes) = scene_file::load_with_limits(&source, &overrides, limits)?;
-        let (_, _, mut table) = scene_file::scene_table(&source)?;
-        for kv in &overrides {
-            scene_file::apply_override(&mut table, kv)?;
-        }
-        let file_materials = table
+        let loaded = scene_file::load_for_editing(&source, &overrides, limits)?;
+        let file_materials = loaded
+            .table
             .get("materials")
             .and_then(|m| m.as_table())
             .map(|m| m.keys().cloned().collect())
             .unwrap_or_default();
-        let file_lights = table
-            .get("lights")
-            .and_then(|l| l.as_array())
-            .map(|a| a.iter().filter_map(|l| l.as_table().cloned()).collect())
-            .unwrap_or_default();
+        let scene = loaded.scene;
         Ok(Document {
             modified: modified_time(&source),
             loaded_materials: scene.materials.clone(),
             loaded_camera: scene.camera,
+            loaded_lights: loaded
+                .lights
+                .entries
+                .iter()
+                .map(LightEntry::to_table)
+                .collect(),
             source,
             overrides,
             limits,
             scene,
             file_materials,
-            file_lights,
+            table: loaded.table,
+            source_dir: loaded.base_dir,
+            lights: loaded.lights,
         })
     }
 
@@ -101,35 +111,39 @@ impl Document {
         self.modified = modified_time(&self.source);
     }
 
-    /// Reloads from the source with the same overrides, keeping in-place
-    /// edits of materials the new scene still has (by name), the shading
-    /// mode and ambient radiance. (The viewer keeps its own camera unless
-    /// the file's camera changed.)
+    /// Reloads from the source with the same overrides, keeping edits of
+    /// materials the new scene still has (by name), of `[[lights]]`
+    /// entries it still has (by index), the shading mode and ambient
+    /// radiance. (The viewer keeps its own camera unless the file's camera
+    /// changed.)
     pub fn reload(&self) -> Result<Document> {
         let mut fresh = Document::load(self.source.clone(), self.overrides.clone(), self.limits)?;
         fresh.keep_edits_of(self);
         Ok(fresh)
     }
 
-    /// Sets `lights.INDEX.KEY = VALUE` (a TOML value) and reloads; on error
-    /// nothing changes.
-    pub fn set_light(&self, index: usize, key: &str, value: &str) -> Result<Document> {
-        let assignment = format!("lights.{index}.{key}={value}");
-        let mut overrides = self.overrides.clone();
-        // The newest value of a key replaces the older one.
-        let prefix = format!("lights.{index}.{key}=");
-        overrides.retain(|o| !o.starts_with(&prefix));
-        overrides.push(assignment);
-        let mut fresh = Document::load(self.source.clone(), overrides, self.limits)?;
-        fresh.keep_edits_of(self);
-        Ok(fresh)
+    /// Replaces `[[lights]]` entry `index` and assembles the lights again;
+    /// on error (a value the scene file would refuse) nothing changes.
+    pub fn set_light(
+        &mut self,
+        index: usize,
+        entry: LightEntry,
+    ) -> std::result::Result<(), String> {
+        let mut setup = self.lights.clone();
+        let slot = setup
+            .entries
+            .get_mut(index)
+            .ok_or_else(|| format!("there is no light {index}"))?;
+        *slot = entry;
+        setup.assemble()?.install(&mut self.scene);
+        self.lights = setup;
+        Ok(())
     }
 
     /// Applies one `KEY=VALUE` edit as the panel would: materials, the
-    /// shading mode and the ambient radiance in place (validated like the
-    /// scene file), lights by reloading. Returns a new document when it
-    /// reloaded.
-    pub fn edit(&mut self, assignment: &str) -> Result<Option<Document>> {
+    /// shading mode, the ambient radiance and `[[lights]]` entries
+    /// (`lights.N.KEY`), each validated like the scene file.
+    pub fn edit(&mut self, assignment: &str) -> Result<()> {
         let bad = |problem: String| Error::argument(format!("edit {assignment}"), problem);
         let (key, value) = assignment
             .split_once('=')
@@ -144,12 +158,12 @@ impl Document {
                     .find(|m| m.name == *name)
                     .ok_or_else(|| bad(format!("no material is called `{name}`")))?;
                 *m = edit_material(m, field, value).map_err(bad)?;
-                Ok(None)
+                Ok(())
             }
             ["shading", "mode"] => {
                 let mode: String = toml_value(value).map_err(bad)?;
                 self.scene.shading = mode.parse().map_err(bad)?;
-                Ok(None)
+                Ok(())
             }
             ["ambient", "radiance"] => {
                 let v: [f64; 3] = toml_value(value).map_err(bad)?;
@@ -157,19 +171,40 @@ impl Document {
                     return Err(bad("radiance must be finite and ≥ 0".into()));
                 }
                 self.scene.ambient = crate::scene::Rgb::from_array(v);
-                Ok(None)
+                Ok(())
             }
-            ["lights", index, field] => {
+            ["lights", index, _field] => {
                 let index: usize = index
                     .parse()
                     .map_err(|_| bad(format!("`{index}` is not a light index")))?;
-                Ok(Some(self.set_light(index, field, value)?))
+                let entry = self.light_entry_with(index, assignment)?;
+                self.set_light(index, entry).map_err(bad)
             }
             _ => Err(bad(
                 "the viewer edits materials.NAME.KEY, lights.N.KEY, shading.mode and ambient.radiance"
                     .into(),
             )),
         }
+    }
+
+    /// The `[[lights]]` entry `lights.N.KEY=VALUE` makes: the entry as the
+    /// file writes it, the key set by the override rules of `--set`, read
+    /// back by the scene file's schema (so a misspelt key or a value of the
+    /// wrong type is refused with the file's message).
+    fn light_entry_with(&self, index: usize, assignment: &str) -> Result<LightEntry> {
+        let entries = self.lights.entries.iter();
+        let mut root = toml::Table::new();
+        root.insert(
+            "lights".into(),
+            toml::Value::Array(entries.map(|e| toml::Value::Table(e.to_table())).collect()),
+        );
+        scene_file::apply_override(&mut root, assignment)?;
+        LightEntry::deserialize(root["lights"][index].clone()).map_err(|e| {
+            Error::argument(
+                format!("edit {assignment}"),
+                scene_file::diagnostics::clean_toml_error(&e),
+            )
+        })
     }
 
     fn keep_edits_of(&mut self, old: &Document) {
@@ -182,6 +217,36 @@ impl Document {
         }
         self.scene.shading = old.scene.shading;
         self.scene.ambient = old.scene.ambient;
+        let mut lights = self.lights.clone();
+        for ((i, entry), loaded) in old
+            .lights
+            .entries
+            .iter()
+            .enumerate()
+            .zip(&old.loaded_lights)
+        {
+            if entry.to_table() != *loaded
+                && let Some(slot) = lights.entries.get_mut(i)
+            {
+                *slot = entry.clone();
+            }
+        }
+        // Edits the changed file no longer accepts are dropped.
+        if let Ok(assembled) = lights.assemble() {
+            assembled.install(&mut self.scene);
+            self.lights = lights;
+        }
+    }
+
+    /// `[[lights]]` entries changed since loading: index and entry.
+    pub fn edited_lights(&self) -> impl Iterator<Item = (usize, &LightEntry)> {
+        self.lights
+            .entries
+            .iter()
+            .enumerate()
+            .zip(&self.loaded_lights)
+            .filter(|((_, e), loaded)| e.to_table() != **loaded)
+            .map(|(entry, _)| entry)
     }
 
     /// Materials changed since loading, by index.
@@ -192,12 +257,6 @@ impl Document {
             .zip(&self.loaded_materials)
             .filter(|(m, loaded)| m != loaded)
             .map(|(m, _)| m)
-    }
-
-    /// The scene file that reproduces the current state; and the edits it
-    /// cannot express (materials of glTF files).
-    pub fn to_scene_file(&self) -> Result<(String, Vec<String>)> {
-        super::save::scene_file_text(self)
     }
 
     /// The folder relative paths of the source resolve in.
@@ -271,6 +330,7 @@ mod tests {
             Document::load(SceneSource::File(path.clone()), vec![], Limits::default()).unwrap();
         assert!(!doc.changed_on_disk());
         doc.edit("materials.ball.k_e=7").unwrap();
+        doc.edit("lights.0.intensity=[5.0, 5.0, 5.0]").unwrap();
         std::fs::write(&path, text.replace("fov_y_deg = 40.0", "fov_y_deg = 30.0")).unwrap();
         let later = std::time::SystemTime::now() + std::time::Duration::from_secs(5);
         std::fs::File::options()
@@ -282,6 +342,7 @@ mod tests {
         assert!(doc.changed_on_disk());
         let fresh = doc.reload().unwrap();
         assert_eq!(fresh.scene.materials, doc.scene.materials, "edits kept");
+        assert_eq!(fresh.scene.lights, doc.scene.lights, "light edits kept");
         assert_eq!(
             fresh.loaded_camera.fov_y_deg, 30.0,
             "the file's change is seen"
@@ -293,25 +354,65 @@ mod tests {
     }
 
     #[test]
-    fn documents_take_edits_and_save_what_they_show() {
+    fn light_edits_reassemble_the_lights_without_reloading() {
         let mut doc = Document::load(SceneSource::BuiltIn, vec![], Limits::default()).unwrap();
-        assert!(doc.edit("materials.ball.k_e=500").unwrap().is_none());
-        assert!(doc.edit("materials.ball.k_e=-3").is_err());
-        assert!(doc.edit("shading.mode=\"gouraud\"").unwrap().is_none());
-        let relit = doc
-            .edit("lights.0.intensity=[1.0, 2.0, 3.0]")
-            .unwrap()
-            .unwrap();
-        assert_eq!(relit.scene.materials, doc.scene.materials);
-        let (text, unsaved) = relit.to_scene_file().unwrap();
-        assert!(unsaved.is_empty());
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("saved.toml");
-        std::fs::write(&path, text).unwrap();
-        let saved = Document::load(SceneSource::File(path), vec![], Limits::default()).unwrap();
-        assert_eq!(saved.scene.materials, relit.scene.materials);
-        assert_eq!(saved.scene.lights, relit.scene.lights);
-        assert_eq!(saved.scene.shading, relit.scene.shading);
-        assert_eq!(saved.scene.camera, relit.scene.camera);
+        doc.edit("materials.ball.k_e=500").unwrap();
+        let materials = doc.scene.materials.clone();
+        let meshes = doc.scene.meshes.clone();
+        doc.edit("lights.0.intensity=[1.0, 2.0, 3.0]").unwrap();
+        assert_eq!(doc.scene.materials, materials, "material edits kept");
+        assert_eq!(doc.scene.meshes, meshes);
+        match &doc.scene.lights[0] {
+            crate::scene::Light::Point { intensity, .. } => {
+                assert_eq!(*intensity, crate::scene::Rgb::new(1.0, 2.0, 3.0))
+            }
+            other => panic!("{other:?}"),
+        }
+        // The same values through `--set` give the same lights.
+        let sets = vec!["lights.0.intensity=[1.0, 2.0, 3.0]".to_string()];
+        let set = Document::load(SceneSource::BuiltIn, sets, Limits::default()).unwrap();
+        assert_eq!(set.scene.lights, doc.scene.lights);
+        // Shadow keys merge with `[shadows]` as the loader merges them.
+        doc.edit("lights.0.shadows=true").unwrap();
+        doc.edit("lights.0.shadow_filter=\"none\"").unwrap();
+        assert!(doc.scene.has_shadows());
+        assert_eq!(
+            doc.scene.shadow_settings(0).filter,
+            crate::scene::ShadowFilter::None
+        );
+        assert_eq!(doc.lights.shadow_settings(0), doc.scene.shadow_settings(0));
+        // Refused values leave the document as it was.
+        let before = doc.scene.lights.clone();
+        for bad in [
+            "lights.0.intensity=-1",
+            "lights.0.intensty=1",
+            "lights.0.shadow_map_size=3",
+            "lights.1.intensity=1",
+            "lights.x.intensity=1",
+        ] {
+            let err = doc.edit(bad).expect_err(bad);
+            assert_eq!(err.exit_code(), 2, "{bad}");
+        }
+        assert_eq!(doc.scene.lights, before);
+    }
+
+    #[test]
+    fn an_area_light_edit_expands_into_its_samples() {
+        let light = "lights=[{kind = \"area\", shape = \"disk\", position = [0.0, 3.0, 0.0], normal = [0.0, -1.0, 0.0], radius = 0.5, radiance = 2.0, samples = 9}]";
+        let mut doc =
+            Document::load(SceneSource::BuiltIn, vec![light.into()], Limits::default()).unwrap();
+        assert_eq!(doc.scene.lights.len(), 9);
+        let mut entry = doc.lights.entries[0].clone();
+        if let LightEntry::Area(area) = &mut entry {
+            area.samples = Some(16);
+        }
+        doc.set_light(0, entry).unwrap();
+        assert_eq!(doc.scene.lights.len(), 16);
+        assert_eq!(doc.scene.light_shadows.len(), 16);
+        assert_eq!(doc.scene.area_lights[0].samples, 16);
+        let sets = vec![light.into(), "lights.0.samples=16".into()];
+        let set = Document::load(SceneSource::BuiltIn, sets, Limits::default()).unwrap();
+        assert_eq!(set.scene.lights, doc.scene.lights);
+        assert_eq!(doc.edited_lights().count(), 1);
     }
 }

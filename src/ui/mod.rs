@@ -3,9 +3,10 @@
 //! (through a [`crate::gpu::PreparedScene`] that lives across frames).
 //!
 //! [`app`] runs the window loop, [`view`] lays out the panel whose
-//! sections are in [`panels`] and [`plots`], [`document`] holds the scene
-//! and its edits ([`save`] writes them as a scene file), [`orbit`] moves
-//! the camera, [`surface`] owns the swapchain and screenshots.
+//! sections are in [`panels`] and [`plots`], [`state`] is what the panel
+//! edits, [`document`] holds the scene and its edits ([`save`] writes them
+//! as a scene file), [`orbit`] moves the camera, [`surface`] owns the
+//! swapchain and screenshots.
 
 pub mod app;
 pub mod cli;
@@ -15,6 +16,7 @@ pub mod panel_cache;
 pub mod panels;
 pub mod plots;
 pub mod save;
+pub mod state;
 pub mod surface;
 pub mod view;
 

@@ -2,21 +2,18 @@
 //!
 //! The saved file is the source's table with the overrides applied, the
 //! current camera, shading, ambient and image size, and every edited
-//! material of the file written out in full. glTF paths become absolute,
-//! so the saved file may live anywhere.
+//! material and `[[lights]]` entry of the file written out in full. glTF
+//! paths become absolute, so the saved file may live anywhere.
 
 use super::document::Document;
 use crate::Result;
 use crate::scene::Rgb;
-use crate::scene::scene_file;
 use toml::Value;
 
 /// The text of the saved file and notes on edits it cannot hold.
 pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
-    let (_, base_dir, mut table) = scene_file::scene_table(&doc.source)?;
-    for kv in &doc.overrides {
-        scene_file::apply_override(&mut table, kv)?;
-    }
+    let mut table = doc.table.clone();
+    let base_dir = &doc.source_dir;
     let scene = &doc.scene;
     let mut image = toml::Table::new();
     image.insert("width".into(), Value::Integer(scene.width as i64));
@@ -53,6 +50,14 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
         }
     }
 
+    if let Some(Value::Array(lights)) = table.get_mut("lights") {
+        for (i, entry) in doc.edited_lights() {
+            if let Some(slot) = lights.get_mut(i) {
+                *slot = Value::Table(entry.to_table());
+            }
+        }
+    }
+
     let mut unsaved = Vec::new();
     for m in doc.edited_materials() {
         if doc.file_materials.contains(&m.name) {
@@ -82,4 +87,33 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
 
 fn vec3(v: Rgb) -> Value {
     Value::Array(v.to_array().map(Value::Float).to_vec())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::limits::Limits;
+    use crate::scene::scene_file::SceneSource;
+
+    #[test]
+    fn documents_take_edits_and_save_what_they_show() {
+        let mut doc = Document::load(SceneSource::BuiltIn, vec![], Limits::default()).unwrap();
+        doc.edit("materials.ball.k_e=500").unwrap();
+        assert!(doc.edit("materials.ball.k_e=-3").is_err());
+        doc.edit("shading.mode=\"gouraud\"").unwrap();
+        let materials = doc.scene.materials.clone();
+        doc.edit("lights.0.intensity=[1.0, 2.0, 3.0]").unwrap();
+        let relit = doc;
+        assert_eq!(relit.scene.materials, materials);
+        let (text, unsaved) = scene_file_text(&relit).unwrap();
+        assert!(unsaved.is_empty());
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("saved.toml");
+        std::fs::write(&path, text).unwrap();
+        let saved = Document::load(SceneSource::File(path), vec![], Limits::default()).unwrap();
+        assert_eq!(saved.scene.materials, relit.scene.materials);
+        assert_eq!(saved.scene.lights, relit.scene.lights);
+        assert_eq!(saved.scene.shading, relit.scene.shading);
+        assert_eq!(saved.scene.camera, relit.scene.camera);
+    }
 }

@@ -2,8 +2,8 @@
 //! lights), the overlay over the 3D area, and the open-file dialog.
 //! Returns the 3D area (what the panel leaves), which the scene fills.
 
-use super::app::ViewerState;
 use super::panels;
+use super::state::ViewerState;
 use crate::scene::scene_file::SceneSource;
 use std::path::{Path, PathBuf};
 
@@ -92,7 +92,7 @@ fn file_section(ui: &mut egui::Ui, state: &mut ViewerState) {
 
 fn save_scene(state: &mut ViewerState) {
     let path = PathBuf::from(&state.save_path);
-    let result = state.doc.to_scene_file().and_then(|(text, unsaved)| {
+    let result = super::save::scene_file_text(&state.doc).and_then(|(text, unsaved)| {
         crate::output::write::AtomicFile::create(&path)?.commit(text.as_bytes())?;
         Ok(unsaved)
     });
@@ -167,37 +167,28 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
 }
 
 fn lights_section(ui: &mut egui::Ui, state: &mut ViewerState) {
-    let entries = state.doc.file_lights.clone();
-    let mut edit = None;
-    for (i, entry) in entries.iter().enumerate() {
+    let doc = &mut state.doc;
+    for i in 0..doc.lights.entries.len() {
+        let mut entry = doc.lights.entries[i].clone();
+        let effective = doc.lights.shadow_settings(i);
+        let mut changed = false;
         egui::CollapsingHeader::new(format!("light {i}"))
             .default_open(i == 0)
             .show(ui, |ui| {
-                if let Some(e) = panels::light_editor(ui, i, entry) {
-                    edit = Some((i, e));
-                }
+                changed = panels::light_editor(ui, i, &mut entry, effective);
             });
+        if changed {
+            match doc.set_light(i, entry) {
+                Ok(()) => state.dirty = true,
+                Err(e) => state.message = Some(format!("not applied: {e}")),
+            }
+        }
     }
-    let imported = state.doc.scene.lights.len() as isize
-        - state
-            .doc
-            .scene
-            .lights
-            .iter()
-            .filter(|l| !matches!(l, crate::scene::Light::AreaSample { .. }))
-            .count() as isize;
-    if entries.is_empty() {
+    if doc.lights.entries.is_empty() {
         ui.label(format!(
             "{} lights from the model (KHR_lights_punctual or the default light); a scene .toml's [[lights]] can be edited here",
-            state.doc.scene.lights.len()
+            doc.scene.lights.len()
         ));
-    }
-    let _ = imported;
-    if let Some((index, (key, value))) = edit {
-        match state.doc.set_light(index, &key, &value) {
-            Ok(doc) => state.replace = Some(doc),
-            Err(e) => state.message = Some(format!("not applied: {e}")),
-        }
     }
 }
 

@@ -5,7 +5,7 @@
 mod light;
 mod material;
 
-pub use light::{LightEdit, light_editor};
+pub use light::light_editor;
 pub use material::material_editor;
 
 use crate::scene::{Rgb, ShadingMode};

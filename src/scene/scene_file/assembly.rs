@@ -1,0 +1,315 @@
+//! Step 4 of loading, the assembly: validated values of the scene file
+//! (after overrides) become a [`Scene`]: materials, meshes of glTF files
+//! and generated shapes, lights ([`super::lights`]), ambient light and
+//! environment, and the camera (the file's, the first glTF camera, or one
+//! framing the geometry). Range errors name the key.
+
+use super::lights::LightSetup;
+use super::schema::{CameraSection, ObjectEntry, SceneFile};
+use super::values::{finite_vec, non_negative, unit_vec};
+use crate::base::ColorValue;
+use crate::material::{Material, ReflectanceModel, material_from_entry};
+use crate::scene::{
+    Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, gltf_import, primitives,
+};
+use crate::{Error, Result};
+use glam::DVec3;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// Largest image side gonio accepts (a 16k render is ~3 GiB of f32 RGBA).
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// Validated assembly of the scene; also returns what its lights were
+/// made from (for [`LightSetup::assemble`] after a viewer edit). The steps
+/// run in the file's order (image, shading, materials, objects, lights,
+/// ambient, camera), so of several problems the first is reported.
+pub fn assemble(
+    origin: &Path,
+    base_dir: &Path,
+    file: SceneFile,
+    gltf_files: &mut gltf_import::GltfLoader,
+) -> Result<(Scene, LightSetup)> {
+    let bad = |problem: String| Error::input(origin, problem);
+    let (width, height, msaa) = image_size(&file).map_err(bad)?;
+    let shading = match &file.shading.mode {
+        None => ShadingMode::default(),
+        Some(s) => s.parse().map_err(|e| bad(format!("shading.mode: {e}")))?,
+    };
+
+    // Named materials first, in name order; glTF materials are appended.
+    let mut materials = Vec::new();
+    let mut material_index = BTreeMap::new();
+    for (name, entry) in &file.materials {
+        material_index.insert(name.clone(), materials.len());
+        materials.push(material_from_entry(name, entry).map_err(bad)?);
+    }
+    let objects = objects(
+        origin,
+        base_dir,
+        &file,
+        &material_index,
+        &mut materials,
+        gltf_files,
+    )?;
+
+    gltf_files
+        .charge(0, 0, file.lights.len() as u64)
+        .map_err(|p| bad(format!("lights: {p}")))?;
+    let light_setup = LightSetup {
+        imported: objects.lights,
+        shadows: file.shadows.clone(),
+        entries: file.lights.clone(),
+    };
+    let lights = light_setup.assemble().map_err(bad)?;
+    let (ambient, environment) = ambient_and_environment(&file).map_err(bad)?;
+
+    let meshes = objects.meshes;
+    let scene_bounds =
+        crate::scene::mesh::bounds(meshes.iter().flat_map(|m| m.positions.iter().copied()))
+            .filter(|_| meshes.iter().any(|m| !m.indices.is_empty()))
+            .ok_or_else(|| bad("the scene has no triangles to draw".into()))?;
+    let aspect = width as f64 / height as f64;
+    let camera = match &file.camera {
+        Some(section) => camera_from_section(section, scene_bounds).map_err(bad)?,
+        None => match objects.camera {
+            Some(mut c) => {
+                c.fit_clip_planes(scene_bounds.0, scene_bounds.1);
+                c
+            }
+            None => Camera::framing(scene_bounds.0, scene_bounds.1, aspect),
+        },
+    };
+
+    let scene = Scene {
+        width,
+        height,
+        msaa,
+        camera,
+        shading,
+        meshes,
+        materials,
+        lights: lights.lights,
+        light_shadows: lights.light_shadows,
+        area_lights: lights.area_lights,
+        ambient,
+        environment,
+    };
+    Ok((scene, light_setup))
+}
+
+/// `[image]`: width, height and samples per pixel, range-checked.
+fn image_size(file: &SceneFile) -> std::result::Result<(u32, u32, u32), String> {
+    let (width, height) = (file.image.width, file.image.height);
+    for (key, v) in [("image.width", width), ("image.height", height)] {
+        if v == 0 || v > MAX_IMAGE_SIDE {
+            return Err(format!("{key} = {v} is outside 1..={MAX_IMAGE_SIDE}"));
+        }
+    }
+    let msaa = file.image.msaa.unwrap_or(1);
+    if msaa != 1 && msaa != 4 {
+        return Err(format!(
+            "image.msaa = {msaa}: the GPU renderer takes 1 (no multisampling) or 4 samples per pixel"
+        ));
+    }
+    Ok((width, height, msaa))
+}
+
+/// What the `[[objects]]` bring besides materials.
+struct Objects {
+    meshes: Vec<Mesh>,
+    /// The glTF files' lights, in file order.
+    lights: Vec<Light>,
+    /// The first glTF camera.
+    camera: Option<Camera>,
+}
+
+/// The meshes of every `[[objects]]` entry: glTF files (their materials
+/// appended to `materials` unless the entry names one) and generated
+/// shapes (a default Lambert material each unless the entry names one),
+/// all charged to the budget of `gltf_files`.
+fn objects(
+    origin: &Path,
+    base_dir: &Path,
+    file: &SceneFile,
+    material_index: &BTreeMap<String, usize>,
+    materials: &mut Vec<Material>,
+    gltf_files: &mut gltf_import::GltfLoader,
+) -> Result<Objects> {
+    let bad = |problem: String| Error::input(origin, problem);
+    let mut out = Objects {
+        meshes: Vec::new(),
+        lights: Vec::new(),
+        camera: None,
+    };
+    for (k, object) in file.objects.iter().enumerate() {
+        let forced_material = match &object.material {
+            None => None,
+            Some(name) => Some(*material_index.get(name).ok_or_else(|| {
+                bad(format!(
+                    "objects[{k}].material = \"{name}\" names no material; defined: {}",
+                    names(&file.materials)
+                ))
+            })?),
+        };
+        match (&object.gltf, &object.shape) {
+            (Some(gltf), None) => {
+                let imported = gltf_files.load(&base_dir.join(gltf))?;
+                let offset = materials.len();
+                for mut mesh in imported.meshes {
+                    mesh.material = forced_material.unwrap_or(mesh.material + offset);
+                    out.meshes.push(mesh);
+                }
+                if forced_material.is_none() {
+                    materials.extend(imported.materials);
+                }
+                out.lights.extend(imported.lights);
+                out.camera = out.camera.or(imported.camera);
+            }
+            (None, Some(shape)) => {
+                let material = forced_material.unwrap_or_else(|| {
+                    let name = format!("objects[{k}] default");
+                    materials.push(Material::new(name, ReflectanceModel::Lambert));
+                    materials.len() - 1
+                });
+                // Charged to the budget before it is built: a fine
+                // tessellation must not allocate past the limits first.
+                let (vertices, triangles) = shape_size(k, object, shape).map_err(bad)?;
+                gltf_files
+                    .charge(vertices, triangles, 0)
+                    .map_err(|p| bad(format!("objects[{k}]: {p}")))?;
+                out.meshes
+                    .push(shape_mesh(k, object, shape, material).map_err(bad)?);
+            }
+            _ => {
+                return Err(bad(format!(
+                    "objects[{k}] needs exactly one of `gltf = \"file.gltf\"` or `shape = \"sphere\" | \"plane\"`"
+                )));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// `[ambient]` and `[environment]` (whose keys default to the ambient
+/// radiance).
+fn ambient_and_environment(file: &SceneFile) -> std::result::Result<(Rgb, Environment), String> {
+    let ambient = match file.ambient.radiance {
+        None => Rgb::ZERO,
+        Some(c) => non_negative("ambient.radiance", c.rgb())?,
+    };
+    let e = &file.environment;
+    let get = |key: &str, c: Option<ColorValue>| match c {
+        None => Ok(ambient),
+        Some(c) => non_negative(&format!("environment.{key}"), c.rgb()),
+    };
+    let environment = Environment {
+        zenith: get("zenith", e.zenith)?,
+        horizon: get("horizon", e.horizon)?,
+        ground: get("ground", e.ground)?,
+    };
+    Ok((ambient, environment))
+}
+
+fn names<V>(map: &BTreeMap<String, V>) -> String {
+    if map.is_empty() {
+        "none".into()
+    } else {
+        map.keys()
+            .map(|k| format!("`{k}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// The `segments` of a generated shape, range-checked.
+fn shape_segments(k: usize, o: &ObjectEntry) -> std::result::Result<u32, String> {
+    let segments = o.segments.unwrap_or(48);
+    if !(1..=4096).contains(&segments) {
+        return Err(format!(
+            "objects[{k}].segments = {segments} is outside 1..=4096"
+        ));
+    }
+    Ok(segments)
+}
+
+/// Vertices and triangles of the shape `shape_mesh` would build.
+fn shape_size(k: usize, o: &ObjectEntry, shape: &str) -> std::result::Result<(u64, u64), String> {
+    let segments = shape_segments(k, o)?;
+    Ok(match shape {
+        "sphere" => primitives::uv_sphere_size(segments.max(3)),
+        "plane" => primitives::plane_size(segments),
+        // shape_mesh names the problem.
+        _ => (0, 0),
+    })
+}
+
+fn shape_mesh(
+    k: usize,
+    o: &ObjectEntry,
+    shape: &str,
+    material: usize,
+) -> std::result::Result<Mesh, String> {
+    let center = finite_vec(
+        &format!("objects[{k}].center"),
+        o.center.unwrap_or([0.0; 3]),
+    )?;
+    let positive = |key: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(format!(
+                "objects[{k}].{key} = {v} must be a positive number"
+            ))
+        }
+    };
+    let segments = shape_segments(k, o)?;
+    match shape {
+        "sphere" => Ok(primitives::uv_sphere(
+            center,
+            positive("radius", o.radius.unwrap_or(1.0))?,
+            segments.max(3),
+            material,
+        )),
+        "plane" => Ok(primitives::plane(
+            center,
+            positive("size", o.size.unwrap_or(10.0))?,
+            segments,
+            material,
+        )),
+        other => Err(format!(
+            "objects[{k}].shape = \"{other}\" is not a known shape; expected sphere or plane"
+        )),
+    }
+}
+
+fn camera_from_section(
+    s: &CameraSection,
+    (lo, hi): (DVec3, DVec3),
+) -> std::result::Result<Camera, String> {
+    let position = finite_vec("camera.position", s.position)?;
+    let target = finite_vec("camera.target", s.target)?;
+    let up = unit_vec("camera.up", s.up)?;
+    let forward = (target - position)
+        .try_normalize()
+        .ok_or("camera.position and camera.target coincide")?;
+    if forward.cross(up).length() < 1e-9 {
+        return Err("camera.up is parallel to the viewing direction".into());
+    }
+    if !(s.fov_y_deg > 0.0 && s.fov_y_deg < 180.0) {
+        return Err(format!(
+            "camera.fov_y_deg = {} is outside (0, 180)",
+            s.fov_y_deg
+        ));
+    }
+    let mut camera = Camera {
+        position,
+        target,
+        up,
+        fov_y_deg: s.fov_y_deg,
+        near: 0.0,
+        far: 0.0,
+    };
+    camera.fit_clip_planes(lo, hi);
+    Ok(camera)
+}

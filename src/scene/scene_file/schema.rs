@@ -1,0 +1,311 @@
+//! Step 1 of loading, the schema: the scene `.toml` of the contract as
+//! serde types. Unknown keys anywhere are errors; serde's messages (with
+//! their "expected one of" lists) are what a user sees, so the field order
+//! here is the documented order.
+//!
+//! The `[[lights]]` entries can also be written back ([`LightEntry::to_table`]):
+//! "Save scene" and the viewer's scripted light edits use that.
+
+use super::shadow_keys::{ShadowKeys, ShadowsSection, with_shadow_keys};
+use super::toml_value::TomlValue;
+use crate::base::ColorValue;
+use crate::material::MaterialEntry;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// The whole scene file. Unknown keys anywhere are errors.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    #[serde(default)]
+    pub image: ImageSection,
+    pub camera: Option<CameraSection>,
+    #[serde(default)]
+    pub shading: ShadingSection,
+    #[serde(default)]
+    pub objects: Vec<ObjectEntry>,
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialEntry>,
+    #[serde(default)]
+    pub lights: Vec<LightEntry>,
+    #[serde(default)]
+    pub shadows: ShadowsSection,
+    #[serde(default)]
+    pub ambient: AmbientSection,
+    #[serde(default)]
+    pub environment: EnvironmentSection,
+}
+
+/// `[image]`: output size in pixels.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImageSection {
+    #[serde(default = "default_width")]
+    pub width: u32,
+    #[serde(default = "default_height")]
+    pub height: u32,
+    /// Samples per pixel of the GPU renderer's multisampling: 1 (none,
+    /// the default) or 4. The CPU reference always takes one sample at
+    /// the pixel centre.
+    #[serde(default)]
+    pub msaa: Option<u32>,
+}
+
+fn default_width() -> u32 {
+    640
+}
+fn default_height() -> u32 {
+    480
+}
+
+impl Default for ImageSection {
+    fn default() -> Self {
+        ImageSection {
+            width: default_width(),
+            height: default_height(),
+            msaa: None,
+        }
+    }
+}
+
+/// `[camera]`: a perspective camera looking from `position` to `target`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    pub position: [f64; 3],
+    pub target: [f64; 3],
+    #[serde(default = "default_up")]
+    pub up: [f64; 3],
+    #[serde(default = "default_fov")]
+    pub fov_y_deg: f64,
+}
+
+fn default_up() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn default_fov() -> f64 {
+    45.0
+}
+
+/// `[shading]`: flat | gouraud | phong.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShadingSection {
+    #[serde(default)]
+    pub mode: Option<String>,
+}
+
+/// One `[[objects]]` entry: a glTF file or a generated shape.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectEntry {
+    /// A `.gltf`/`.glb`, relative to the scene file.
+    pub gltf: Option<String>,
+    /// A generated shape: `sphere` or `plane` (gonio's extension).
+    pub shape: Option<String>,
+    /// Sphere centre or plane centre.
+    pub center: Option<[f64; 3]>,
+    /// Sphere radius.
+    pub radius: Option<f64>,
+    /// Plane side length.
+    pub size: Option<f64>,
+    /// Tessellation: sphere slices, or plane divisions per side.
+    pub segments: Option<u32>,
+    /// Material name in `[materials]`; overrides a glTF's own materials.
+    pub material: Option<String>,
+}
+
+/// Generates a `[[lights]]` entry type: its own keys, then `shadows` and
+/// the shadow-map keys of `with_shadow_keys!`.
+macro_rules! light_entry {
+    ({
+        $(#[$meta:meta])*
+        $name:ident {
+            $($(#[$field_meta:meta])* $field:ident: $ty:ty,)*
+        }
+    }
+    $($key:ident $light_key:ident: $key_ty:ty,)*) => {
+        $(#[$meta])*
+        #[derive(Clone, Debug, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct $name {
+            $($(#[$field_meta])* pub $field: $ty,)*
+            /// The light casts shadows.
+            #[serde(default)]
+            pub shadows: bool,
+            $(#[serde(default)] pub $light_key: Option<$key_ty>,)*
+        }
+
+        impl $name {
+            /// The entry's shadow-map keys.
+            pub fn shadow_keys(&self) -> ShadowKeys {
+                ShadowKeys {
+                    $($key: self.$light_key.clone(),)*
+                }
+            }
+
+            /// Replaces the entry's shadow-map keys.
+            pub fn set_shadow_keys(&mut self, keys: ShadowKeys) {
+                $(self.$light_key = keys.$key;)*
+            }
+
+            /// The entry's own keys and `shadows` as `(name, value)`,
+            /// unset ones left out.
+            fn own_keys(&self) -> Vec<(&'static str, toml::Value)> {
+                let mut out = Vec::new();
+                $(
+                    if let Some(v) = self.$field.to_toml() {
+                        out.push((stringify!($field), v));
+                    }
+                )*
+                out.push(("shadows", toml::Value::Boolean(self.shadows)));
+                out
+            }
+        }
+    };
+}
+
+with_shadow_keys!(light_entry! {
+    /// `kind = "point"`: radiant intensity `I` [W/sr].
+    PointEntry {
+        position: [f64; 3],
+        intensity: ColorValue,
+        #[serde(default)]
+        range: Option<f64>,
+    }
+});
+
+with_shadow_keys!(light_entry! {
+    /// `kind = "directional"`: irradiance `E` [W/m²] facing the light.
+    DirectionalEntry {
+        direction: [f64; 3],
+        irradiance: ColorValue,
+    }
+});
+
+with_shadow_keys!(light_entry! {
+    /// `kind = "spot"`: a point light in a cone (glTF's falloff).
+    SpotEntry {
+        position: [f64; 3],
+        direction: [f64; 3],
+        intensity: ColorValue,
+        #[serde(default)]
+        inner_cone_deg: Option<f64>,
+        #[serde(default)]
+        outer_cone_deg: Option<f64>,
+        #[serde(default)]
+        range: Option<f64>,
+    }
+});
+
+with_shadow_keys!(light_entry! {
+    /// `kind = "area"`: a rectangle or disk emitting radiance `L` with a
+    /// cosine distribution about `normal`, rendered as `samples` point
+    /// lights.
+    AreaEntry {
+        shape: String,
+        position: [f64; 3],
+        normal: [f64; 3],
+        /// Rectangle: `[w, h]`, `w` along `tangent`.
+        #[serde(default)]
+        size: Option<[f64; 2]>,
+        #[serde(default)]
+        tangent: Option<[f64; 3]>,
+        /// Disk radius.
+        #[serde(default)]
+        radius: Option<f64>,
+        radiance: ColorValue,
+        #[serde(default)]
+        samples: Option<u32>,
+        /// GPU: one shadow cube per sample instead of one shared at the
+        /// centre.
+        #[serde(default)]
+        shadow_per_sample: bool,
+    }
+});
+
+/// `[[lights]]`, tagged by `kind`. Every kind takes `shadows` and the
+/// shadow-map keys (defaults from `[shadows]`; see
+/// [`super::shadow_keys`]).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum LightEntry {
+    Point(PointEntry),
+    Directional(DirectionalEntry),
+    Spot(SpotEntry),
+    Area(AreaEntry),
+}
+
+/// Calls `$body` with the entry of any kind as `$e`.
+macro_rules! any_kind {
+    ($entry:expr, $e:ident => $body:expr) => {
+        match $entry {
+            LightEntry::Point($e) => $body,
+            LightEntry::Directional($e) => $body,
+            LightEntry::Spot($e) => $body,
+            LightEntry::Area($e) => $body,
+        }
+    };
+}
+
+impl LightEntry {
+    /// The scene file's `kind`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            LightEntry::Point(_) => "point",
+            LightEntry::Directional(_) => "directional",
+            LightEntry::Spot(_) => "spot",
+            LightEntry::Area(_) => "area",
+        }
+    }
+
+    /// Whether the entry asks for shadows.
+    pub fn shadows(&self) -> bool {
+        any_kind!(self, e => e.shadows)
+    }
+
+    /// Turns shadows on or off.
+    pub fn set_shadows(&mut self, on: bool) {
+        any_kind!(self, e => e.shadows = on)
+    }
+
+    /// The entry's shadow-map keys.
+    pub fn shadow_keys(&self) -> ShadowKeys {
+        any_kind!(self, e => e.shadow_keys())
+    }
+
+    /// Replaces the entry's shadow-map keys.
+    pub fn set_shadow_keys(&mut self, keys: ShadowKeys) {
+        any_kind!(self, e => e.set_shadow_keys(keys))
+    }
+
+    /// The entry as the scene file writes it (keys it does not set left
+    /// out), which reads back as the same entry.
+    pub fn to_table(&self) -> toml::Table {
+        let mut table = toml::Table::new();
+        table.insert("kind".into(), toml::Value::String(self.kind().into()));
+        let own = any_kind!(self, e => e.own_keys());
+        for (key, value) in own.into_iter().chain(self.shadow_keys().to_toml(true)) {
+            table.insert(key.into(), value);
+        }
+        table
+    }
+}
+
+/// `[environment]`: the sky a mirror reflects (gonio's extension); every
+/// key defaults to the ambient radiance.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentSection {
+    pub zenith: Option<ColorValue>,
+    pub horizon: Option<ColorValue>,
+    pub ground: Option<ColorValue>,
+}
+
+/// `[ambient]`: constant incoming radiance `L_a`.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AmbientSection {
+    #[serde(default)]
+    pub radiance: Option<ColorValue>,
+}

@@ -1,0 +1,79 @@
+//! The viewer's state apart from the GPU: the document, the camera orbit,
+//! the panel's settings and requests, and the frame statistics it shows.
+//! The panel ([`super::view`]) edits it; the window loop
+//! ([`super::app`]) acts on it.
+
+use super::cli::ViewArgs;
+use super::document::Document;
+use super::orbit::Orbit;
+use super::plots::Plots;
+use crate::scene::scene_file::SceneSource;
+use std::path::PathBuf;
+
+/// Everything the panel edits, apart from the GPU.
+pub struct ViewerState {
+    pub doc: Document,
+    pub orbit: Orbit,
+    pub selected_material: usize,
+    pub plots: Plots,
+    pub exposure: f64,
+    pub vsync: bool,
+    pub show_panel: bool,
+    pub show_overlay: bool,
+    /// The last problem (rejected value, bad file), shown until dismissed.
+    pub message: Option<String>,
+    /// A new document to switch to (opened, dropped, reloaded).
+    pub replace: Option<Document>,
+    /// Something changed that the GPU must see.
+    pub dirty: bool,
+    /// Only the view changed (camera, size, exposure): globals only.
+    pub view_dirty: bool,
+    pub screenshot_path: PathBuf,
+    pub screenshot_requested: bool,
+    pub save_path: String,
+    pub open_path: String,
+    pub open_dialog: bool,
+    /// Frame-time statistics shown in the overlay.
+    pub frame_ms: f64,
+    pub gpu_ms: Option<f64>,
+    pub adapter: String,
+}
+
+impl ViewerState {
+    pub fn new(doc: Document, args: &ViewArgs) -> ViewerState {
+        ViewerState {
+            orbit: Orbit::from_camera(&doc.loaded_camera),
+            doc,
+            selected_material: 0,
+            plots: Plots::default(),
+            exposure: args.exposure,
+            vsync: !args.no_vsync,
+            show_panel: !args.no_panel,
+            show_overlay: !args.no_overlay,
+            message: None,
+            replace: None,
+            dirty: true,
+            view_dirty: true,
+            screenshot_path: args
+                .screenshot
+                .clone()
+                .unwrap_or_else(|| PathBuf::from("gonio-screenshot.png")),
+            screenshot_requested: false,
+            save_path: "gonio-view.toml".into(),
+            open_path: String::new(),
+            open_dialog: false,
+            frame_ms: 0.0,
+            gpu_ms: None,
+            adapter: String::new(),
+        }
+    }
+
+    /// Opens `path` as the new document; a bad file leaves the current
+    /// scene on screen and shows why.
+    pub fn open(&mut self, path: PathBuf) {
+        match Document::load(SceneSource::File(path), Vec::new(), self.doc.limits) {
+            Ok(doc) => self.replace = Some(doc),
+            Err(e) => self.message = Some(e.to_string()),
+        }
+    }
+}
