@@ -109,8 +109,8 @@ pub fn minimal_lambert_loop(scene: &Scene) -> HarnessShader {
         wgsl: format!(
             "{}{}{}{MINIMAL_LAMBERT_LOOP_WGSL}",
             common(scene),
-            sources::LIGHT_INVERSE_SQUARE,
-            sources::LIGHT_POINT
+            sources::get("lights/inverse_square.wgsl"),
+            sources::get("lights/point.wgsl")
         ),
         inputs: Inputs::PositionNormal,
         key: specialized_key(scene),

@@ -25,7 +25,7 @@ pub struct GpuGlobals {
     pub _pad3: f32,
 }
 
-/// `Material` (storage buffer element, 96 bytes).
+/// `Material` (storage buffer element, 112 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuMaterial {
@@ -44,6 +44,8 @@ pub struct GpuMaterial {
     pub eta_t: f32,
     pub d_norm: f32,
     pub blinn_e: f32,
+    /// A model's own derived constants (`ShaderParams::lobe`).
+    pub lobe: [f32; 4],
 }
 
 /// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
@@ -131,6 +133,7 @@ impl GpuMaterial {
             eta_t: p.eta_t as f32,
             d_norm: p.d_norm as f32,
             blinn_e: p.blinn_e as f32,
+            lobe: p.lobe.map(|v| v as f32),
         }
     }
 }
@@ -227,45 +230,134 @@ mod tests {
         assert_eq!(GpuMaterial::new(&phong, &key).k_e, 77.0);
     }
 
-    /// Sizes must match what naga computes for the WGSL structs.
-    #[test]
-    fn sizes_match_wgsl() {
-        let common =
-            crate::gpu::shader_gen::common(&[crate::gpu::shader_gen::Feature::UniformLights]);
-        let module = naga::front::wgsl::parse_str(&common).unwrap();
-        let size_of = |name: &str| {
-            let (_, ty) = module
-                .types
-                .iter()
-                .find(|(_, t)| t.name.as_deref() == Some(name))
-                .unwrap();
-            ty.inner.size(module.to_ctx()) as usize
+    /// `(field, byte offset)` of a Rust mirror, in declaration order.
+    macro_rules! offsets {
+        ($ty:ty { $($field:ident),+ $(,)? }) => {
+            vec![$((stringify!($field), std::mem::offset_of!($ty, $field))),+]
         };
-        assert_eq!(size_of("Globals"), std::mem::size_of::<GpuGlobals>());
-        assert_eq!(size_of("Material"), std::mem::size_of::<GpuMaterial>());
-        assert_eq!(size_of("Light"), std::mem::size_of::<GpuLight>());
+    }
+
+    /// The WGSL struct `name` in `module`: its size and `(member, offset)`
+    /// in declaration order.
+    fn wgsl_layout(module: &naga::Module, name: &str) -> (usize, Vec<(String, usize)>) {
+        let (_, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no struct {name} in the WGSL"));
+        let naga::TypeInner::Struct { members, .. } = &ty.inner else {
+            panic!("{name} is not a struct");
+        };
+        let fields = members
+            .iter()
+            .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
+            .collect();
+        (ty.inner.size(module.to_ctx()) as usize, fields)
+    }
+
+    /// Each Rust mirror has the WGSL struct's size and, field by field,
+    /// its names in its order at its offsets (padding fields, `_…`, are
+    /// named freely): a swapped or misplaced field fails here even when the
+    /// sizes agree.
+    fn assert_mirrors(module: &naga::Module, name: &str, size: usize, rust: Vec<(&str, usize)>) {
+        let (wgsl_size, wgsl) = wgsl_layout(module, name);
+        assert_eq!(wgsl_size, size, "size of {name}");
+        let named = |fields: Vec<(String, usize)>| -> Vec<(String, usize)> {
+            fields
+                .into_iter()
+                .filter(|(f, _)| !f.starts_with('_'))
+                .collect()
+        };
+        let rust = named(rust.into_iter().map(|(f, o)| (f.to_string(), o)).collect());
+        assert_eq!(named(wgsl), rust, "fields and offsets of {name}");
+    }
+
+    #[test]
+    fn rust_mirrors_match_the_wgsl_structs_field_by_field() {
+        use crate::gpu::shader_gen::{Feature, common, preprocess, sources};
+        let common = common(&[Feature::UniformLights]);
+        let module = naga::front::wgsl::parse_str(&common).unwrap();
+        assert_mirrors(
+            &module,
+            "Globals",
+            std::mem::size_of::<GpuGlobals>(),
+            offsets!(GpuGlobals {
+                clip_from_world,
+                eye,
+                light_count,
+                ambient,
+                display_scale,
+                env_zenith,
+                _pad1,
+                env_horizon,
+                _pad2,
+                env_ground,
+                _pad3
+            }),
+        );
+        assert_mirrors(
+            &module,
+            "Material",
+            std::mem::size_of::<GpuMaterial>(),
+            offsets!(GpuMaterial {
+                k_a,
+                variant,
+                k_d,
+                k_e,
+                k_s,
+                roughness,
+                eta,
+                sigma_x,
+                kappa,
+                sigma_y,
+                eta_i,
+                eta_t,
+                d_norm,
+                blinn_e,
+                lobe
+            }),
+        );
+        assert_mirrors(
+            &module,
+            "Light",
+            std::mem::size_of::<GpuLight>(),
+            offsets!(GpuLight {
+                position,
+                kind,
+                direction,
+                range,
+                intensity,
+                cos_inner,
+                shadow_origin,
+                cos_outer,
+                shadow_layer,
+                shadow_projection,
+                shadow_texel,
+                shadow_bias,
+                shadow_slope_bias,
+                shadow_normal_offset,
+                shadow_pcf_radius,
+                shadow_uv_scale,
+                shadow_map,
+                shadow_array_texel,
+                _pad
+            }),
+        );
         let shadows = naga::front::wgsl::parse_str(&format!(
-            "{}{}",
-            common,
-            crate::gpu::shader_gen::preprocess(
+            "{common}{}",
+            preprocess(
                 "shadows.wgsl",
-                crate::gpu::shader_gen::sources::SHADOW_LOOKUP,
-                &[
-                    crate::gpu::shader_gen::Feature::Shadows,
-                    crate::gpu::shader_gen::Feature::ShadowPcf
-                ]
+                sources::get("shadows.wgsl"),
+                &[Feature::Shadows, Feature::ShadowPcf]
             )
             .unwrap()
         ))
         .unwrap();
-        let (_, view) = shadows
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some("ShadowView"))
-            .unwrap();
-        assert_eq!(
-            view.inner.size(shadows.to_ctx()) as usize,
-            std::mem::size_of::<GpuShadowView>()
+        assert_mirrors(
+            &shadows,
+            "ShadowView",
+            std::mem::size_of::<GpuShadowView>(),
+            offsets!(GpuShadowView { clip_from_world }),
         );
     }
 }

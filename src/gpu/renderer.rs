@@ -122,7 +122,9 @@ impl GpuRenderer {
         self.pass_pipelines.entry(stride).or_insert_with(|| {
             let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("gonio shadow pass"),
-                source: wgpu::ShaderSource::Wgsl(shader_gen::sources::SHADOW_PASS.into()),
+                source: wgpu::ShaderSource::Wgsl(
+                    shader_gen::sources::get("shadow_pass.wgsl").into(),
+                ),
             });
             let attributes = [wgpu::VertexAttribute {
                 format: wgpu::VertexFormat::Float32x3,

@@ -17,8 +17,8 @@ use std::fmt::Write;
 /// test `every_shader_file_has_known_features_and_balanced_blocks` checks
 /// every one, so an error here is a bug in gonio, not in its input.
 fn file(path: &str, features: &[Feature]) -> String {
-    let text = sources::by_path(path).unwrap_or_else(|| panic!("shaders/{path} is not embedded"));
-    preprocess(&format!("shaders/{path}"), text, features).unwrap_or_else(|e| panic!("{e}"))
+    preprocess(&format!("shaders/{path}"), sources::get(path), features)
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// `shaders/common.wgsl` for `features`, after the capacities of its
@@ -56,13 +56,37 @@ pub fn compose_brdf_library(variants: &BTreeSet<BrdfVariant>, features: &[Featur
         .iter()
         .flat_map(|&m| m.row().wgsl.iter().copied())
         .collect();
-    for path in sources::BRDF_ORDER.iter().filter(|p| needed.contains(*p)) {
+    for path in brdf_file_order().into_iter().filter(|p| needed.contains(p)) {
         out.push_str(&file(path, &features));
         out.push('\n');
     }
     out.push_str(&file("brdf/eval.wgsl", &features));
     out.push('\n');
     out
+}
+
+/// Every model's BRDF files in one order that respects each row's
+/// dependency order (a row lists its files so that each may use the ones
+/// before): the rows' lists merged, each file placed right after its
+/// predecessor in the first row that names it. A scene's module includes
+/// the files its models need in this order.
+pub fn brdf_file_order() -> Vec<&'static str> {
+    let mut order: Vec<&'static str> = Vec::new();
+    for row in crate::material::table::ROWS {
+        let mut after: Option<usize> = None;
+        for &path in row.wgsl {
+            let at = match order.iter().position(|&p| p == path) {
+                Some(at) => at,
+                None => {
+                    let at = after.map_or(0, |a| a + 1);
+                    order.insert(at, path);
+                    at
+                }
+            };
+            after = Some(at);
+        }
+    }
+    order
 }
 
 /// What a scene pipeline writes, decided by its colour target.
@@ -205,4 +229,29 @@ pub fn validate(wgsl: &str) -> Result<naga::Module, String> {
     .validate(&module)
     .map_err(|e| e.emit_to_string(wgsl))?;
     Ok(module)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every row's files appear once, in the row's own order.
+    #[test]
+    fn brdf_file_order_keeps_every_rows_dependencies() {
+        let order = brdf_file_order();
+        for row in crate::material::table::ROWS {
+            let at: Vec<usize> = row
+                .wgsl
+                .iter()
+                .map(|p| order.iter().position(|q| q == p).unwrap())
+                .collect();
+            assert!(
+                at.windows(2).all(|w| w[0] < w[1]),
+                "{:?}: {order:?}",
+                row.model
+            );
+        }
+        let unique: BTreeSet<_> = order.iter().collect();
+        assert_eq!(unique.len(), order.len());
+    }
 }

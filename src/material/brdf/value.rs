@@ -257,6 +257,12 @@ pub struct ShaderParams {
     /// is not accurate enough to derive it on the GPU (see
     /// `microfacet::d_blinn_lecture`).
     pub blinn_e: f64,
+    /// A model's own constants, derived from its parameters once on the
+    /// CPU, for a model the named fields above do not cover: the model's
+    /// arm of [`Brdf::shader_params`] fills them and its WGSL twin reads
+    /// `m.lobe` (and says what each component is), so a new model needs
+    /// no change of the GPU layout.
+    pub lobe: [f64; 4],
 }
 
 impl Brdf {

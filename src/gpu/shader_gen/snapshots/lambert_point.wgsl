@@ -45,6 +45,7 @@ struct Material {
     eta_t: f32,
     d_norm: f32,          // gaussian-normalized: gaussian_normalization(roughness), from the CPU
     blinn_e: f32,         // blinn, blinn-normalized: blinn_exponent(roughness), from the CPU
+    lobe: vec4<f32>,      // a model's own constants, derived on the CPU (ShaderParams::lobe): its WGSL twin says what each is
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
