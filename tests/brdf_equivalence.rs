@@ -71,21 +71,15 @@ fn f32_round(v: DVec3) -> DVec3 {
 }
 
 fn round_material(m: &Material) -> Material {
-    let r = |x: f64| x as f32 as f64;
-    Material {
-        k_a: f32_round(m.k_a),
-        k_d: f32_round(m.k_d),
-        k_s: f32_round(m.k_s),
-        k_e: r(m.k_e),
-        roughness: r(m.roughness),
-        sigma_x: r(m.sigma_x),
-        sigma_y: r(m.sigma_y),
-        eta: f32_round(m.eta),
-        kappa: f32_round(m.kappa),
-        eta_i: r(m.eta_i),
-        eta_t: r(m.eta_t),
-        ..m.clone()
+    let mut rounded = m.clone();
+    for p in table::stored_params() {
+        let v = match p.read(m) {
+            Value::Color(c) => Value::Color(f32_round(c)),
+            Value::Scalar(x) => Value::Scalar(x as f32 as f64),
+        };
+        p.write(&mut rounded, v);
     }
+    rounded
 }
 
 /// The sample grid for a base material: angles of incidence and view up to
