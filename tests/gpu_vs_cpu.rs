@@ -132,8 +132,9 @@ fn box_glb_with_point_light() {
     gpu_vs_cpu("Box.glb, phong, point", &scene);
 }
 
-/// One image per reflectance model: the built-in scene's ball with each
-/// model (a mirror reflecting a sky gradient), Phong shading.
+/// One image per reflectance model of the table (and several per model
+/// with terms): the built-in scene's ball with each model (a mirror
+/// reflecting a sky gradient), Phong shading.
 #[test]
 fn every_reflectance_model_renders_like_the_reference() {
     let models: &[(&str, &[&str])] = &[
@@ -192,7 +193,15 @@ fn every_reflectance_model_renders_like_the_reference() {
             ],
         ),
     ];
-    for (model, extra) in models {
+    // Every model of the table renders: those not listed above with their
+    // defaults (a new model is checked without an edit here).
+    let unlisted: Vec<(&str, &[&str])> = gonio::material::table::ROWS
+        .iter()
+        .map(|row| row.model.name())
+        .filter(|name| !models.iter().any(|(m, _)| m == name))
+        .map(|name| (name, &[][..]))
+        .collect();
+    for &(model, extra) in models.iter().chain(&unlisted) {
         let mut sets = vec![format!("materials.ball.model={model}")];
         sets.extend(extra.iter().map(|s| s.to_string()));
         let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
