@@ -7,7 +7,7 @@ use super::plot::{AlbedoPlot, SlicePlot};
 use super::slice::{Quantity, slice};
 use super::{Channel, Labelled, direction, frame, spec, table};
 use crate::material::ReflectanceModel;
-use crate::material::brdf::{Specular, mirror_reflectance};
+use crate::material::brdf::mirror_reflectance;
 use crate::output::plot::{PlotFile, number};
 use crate::{Error, Result};
 use std::path::PathBuf;
@@ -114,11 +114,11 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
     }
     let materials = materials(args)?;
     for m in &materials {
-        let lobe = !matches!(
-            m.material.brdf().specular,
-            Specular::None | Specular::Mirror(_)
-        );
-        if lobe && m.material.k_s == crate::scene::Rgb::ZERO {
+        // A model whose row weighs a lobe by k_s (a Dirac lobe is not seen
+        // in f_r), asked with k_s = 0.
+        let weighs_a_lobe = m.material.model.row().params.iter().any(|p| p.key == "k_s")
+            && !m.material.brdf().is_dirac();
+        if weighs_a_lobe && m.material.k_s == crate::scene::Rgb::ZERO {
             eprintln!(
                 "gonio: note: `{}` has k_s = 0 (the scene-file default), so only its diffuse part k_d/π shows; try --set k_s=1 (and --set k_d=0 for the lobe alone)",
                 m.label
