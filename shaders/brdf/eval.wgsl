@@ -37,6 +37,12 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         #if cook-torrance
         case MODEL_COOK_TORRANCE: { return lambert(m.k_d) + m.k_s * cook_torrance(m, wi, wo, n); }
         #endif
+        #if oren-nayar
+        case MODEL_OREN_NAYAR: { return oren_nayar_qualitative(m.k_d, oren_nayar_terms(m.lobe), oren_nayar_angles(n, wi, wo)); }
+        #endif
+        #if oren-nayar-full
+        case MODEL_OREN_NAYAR_FULL: { return oren_nayar_full(m.k_d, oren_nayar_terms(m.lobe), oren_nayar_angles(n, wi, wo)); }
+        #endif
         default: { return vec3<f32>(0.0); }
     }
 }

@@ -48,6 +48,9 @@ pub struct Material {
     /// isotropic model); in (0, 1].
     pub sigma_x: f64,
     pub sigma_y: f64,
+    /// Oren-Nayar's σ: the standard deviation of the facets' slope angle,
+    /// in radians, in [0, π/2] (scene-file key `sigma` for those models).
+    pub facet_sigma: f64,
     /// Conductor complex index of refraction η + iκ, per channel.
     pub eta: Rgb,
     pub kappa: Rgb,
@@ -78,6 +81,7 @@ impl Material {
             roughness: 0.3,
             sigma_x: 0.2,
             sigma_y: 0.2,
+            facet_sigma: 0.5,
             eta: Rgb::splat(0.370),
             kappa: Rgb::splat(2.820),
             eta_i: 1.0,

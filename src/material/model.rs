@@ -31,6 +31,12 @@ named_enum!(
         /// An ideal mirror: a Dirac lobe of reflectance `k_s · F(cos θ)`; it
         /// reflects the environment and the discs of lights of finite size.
         Mirror = "mirror",
+        /// Oren-Nayar's qualitative model of rough diffuse surfaces (Oren &
+        /// Nayar 1994, eq. 30): `k_d/π (A + B max(0, cos Δφ) sin α tan β)`.
+        OrenNayar = "oren-nayar",
+        /// Oren-Nayar's full model (Oren & Nayar 1994, eqs. 27–29): the
+        /// direct term with C1, C2, C3 and one interreflection.
+        OrenNayarFull = "oren-nayar-full",
     }
 );
 

@@ -311,6 +311,28 @@ pub static SIGMA_Y: Param = Param {
     get: |m| Value::Scalar(m.sigma_y),
     set: |m, v| m.sigma_y = v.scalar(),
 };
+/// Oren-Nayar's σ, the standard deviation of the facets' slope angle in
+/// radians (Oren & Nayar 1994): 0 is Lambert, π/2 the roughest surface
+/// the model describes. Same key as Ward's `sigma`, another meaning.
+pub static FACET_SIGMA: Param = Param {
+    key: "sigma",
+    label: "σ (facet slope, rad)",
+    kind: Kind::Scalar,
+    range: Range::Closed {
+        min: 0.0,
+        max: std::f64::consts::FRAC_PI_2,
+        text: "[0, π/2]",
+    },
+    widget: Widget::Slider {
+        min: 0.0,
+        max: std::f64::consts::FRAC_PI_2,
+        scale: Scale::Linear,
+    },
+    stored: true,
+    samples: &[0.0, 0.05, 0.2, 0.5, 1.0, std::f64::consts::FRAC_PI_2],
+    get: |m| Value::Scalar(m.facet_sigma),
+    set: |m, v| m.facet_sigma = v.scalar(),
+};
 /// A conductor's η (real part of the index), per channel.
 pub static ETA: Param = Param {
     key: "eta",

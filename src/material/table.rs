@@ -28,9 +28,11 @@
 //! scene", the shader's file list, the tests' sweeps and tolerances, the
 //! bench and `gonio brdf --albedo-table` all read this table.
 
+use super::brdf::oren_nayar::oren_nayar_terms;
 use super::brdf::{CookTorrance, FresnelTerm, Specular};
 use super::param::{
-    ETA, ETA_I, ETA_T, K_A, K_D, K_E, K_S, KAPPA, Param, ROUGHNESS, SIGMA_X, SIGMA_Y, WARD_SIGMA,
+    ETA, ETA_I, ETA_T, FACET_SIGMA, K_A, K_D, K_E, K_S, KAPPA, Param, ROUGHNESS, SIGMA_X, SIGMA_Y,
+    WARD_SIGMA,
 };
 use super::{Material, ReflectanceModel};
 use crate::base::Rgb;
@@ -44,6 +46,8 @@ pub enum Form {
     Corrected,
     /// The lecture's model with terms to choose, lecture or corrected.
     Terms,
+    /// A published model the lecture points to but does not write out.
+    Paper,
 }
 
 /// Which selectable terms a model has (the keys `distribution`,
@@ -445,6 +449,65 @@ pub static ROWS: &[ModelRow] = &[
             ("preset=silver", "silver, exact Fresnel"),
         ],
     },
+    ModelRow {
+        model: ReflectanceModel::OrenNayar,
+        summary: "Oren-Nayar rough diffuse, qualitative: k_d/π (A + B max(0, cos Δφ) sin α tan β)",
+        form: Form::Paper,
+        wgsl: ON_WGSL,
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[&K_D, &FACET_SIGMA],
+        reciprocal: true,
+        benched: true,
+        defaults: |_| {},
+        specular: |m| Specular::OrenNayar(oren_nayar_terms(m.facet_sigma)),
+        f32_error: |_| ON_ERROR,
+        transcendental_error: |_| 0.0,
+        albedo_table: ON_ALBEDO,
+    },
+    ModelRow {
+        model: ReflectanceModel::OrenNayarFull,
+        summary: "Oren-Nayar rough diffuse, full: C1, C2, C3 and one interreflection",
+        form: Form::Paper,
+        wgsl: ON_WGSL,
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[&K_D, &FACET_SIGMA],
+        reciprocal: true,
+        benched: false,
+        defaults: |_| {},
+        specular: |m| Specular::OrenNayarFull(oren_nayar_terms(m.facet_sigma)),
+        f32_error: |_| ON_ERROR + ATAN2_TERMS_ERROR,
+        transcendental_error: |_| ATAN2_TERMS_ERROR,
+        albedo_table: ON_ALBEDO,
+    },
+];
+
+/// Oren-Nayar's WGSL: its file uses phong.wgsl's `COS_FLOOR`.
+const ON_WGSL: &[&str] = &[
+    "brdf/lambert.wgsl",
+    "brdf/phong.wgsl",
+    "brdf/oren_nayar.wgsl",
+];
+
+/// Oren-Nayar's rounding beyond the light loop's: about twenty more
+/// roundings, and `tan β = sin β / cos β` doubles the relative error of
+/// the cosines it divides by: 128ε.
+const ON_ERROR: f64 = 128.0 * EPS;
+
+/// The full Oren-Nayar model takes α and β from `atan2` (Vulkan allows
+/// 4096 ulp): its terms hold them to the powers 3 ((2β/π)³), 4
+/// ((4αβ/π²)²) and 2 ((2β/π)²), so each is off by at most 4 · 4096 ulp.
+const ATAN2_TERMS_ERROR: f64 = 4.0 * 4096.0 * EPS;
+
+const ON_ALBEDO: &[(&str, &str)] = &[
+    ("k_d=1,sigma=0", "Lambert"),
+    (
+        "k_d=1,sigma=0.2",
+        "fit, not energy-conserving: ρ > 1 near grazing",
+    ),
+    ("k_d=1,sigma=0.3", ""),
+    ("k_d=1,sigma=1.5707963", "σ = π/2"),
 ];
 
 const CT_ALBEDO: &[(&str, &str)] = &[

@@ -8,6 +8,7 @@
 pub mod fresnel;
 pub mod lambert;
 pub mod microfacet;
+pub mod oren_nayar;
 pub mod phong;
 mod value;
 pub mod ward;
@@ -49,6 +50,20 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
             sigma_x, sigma_y, n, frame.t, frame.b, wi, wo,
         )),
         Specular::CookTorrance(ct) => cook_torrance(&ct, wi, wo, n),
+        Specular::OrenNayar(t) => {
+            return oren_nayar::oren_nayar_qualitative(
+                brdf.k_d,
+                &t,
+                &oren_nayar::oren_nayar_angles(n, wi, wo),
+            );
+        }
+        Specular::OrenNayarFull(t) => {
+            return oren_nayar::oren_nayar_full(
+                brdf.k_d,
+                &t,
+                &oren_nayar::oren_nayar_angles(n, wi, wo),
+            );
+        }
     };
     diffuse + brdf.k_s * specular
 }

@@ -9,6 +9,7 @@
 //! `gpu::layout::GpuMaterial::new`) consume it, so neither decides per
 //! model what a material's fields mean.
 
+use super::oren_nayar::OrenNayarTerms;
 use super::{fresnel, microfacet};
 use crate::base::Rgb;
 use crate::material::{Denominator, Distribution, Fresnel, Geometry};
@@ -45,6 +46,12 @@ pub enum Specular {
     /// The ideal mirror: a Dirac lobe of reflectance `k_s · F(cos θ)`, not
     /// a function value ([`super::mirror_reflectance`]).
     Mirror(FresnelTerm),
+    /// Oren-Nayar, qualitative (`oren_nayar::oren_nayar_qualitative`): it
+    /// replaces the Lambert term (k_s is not read).
+    OrenNayar(OrenNayarTerms),
+    /// Oren-Nayar, full (`oren_nayar::oren_nayar_full`): it replaces the
+    /// Lambert term.
+    OrenNayarFull(OrenNayarTerms),
 }
 
 /// Cook-Torrance's `D·G·F / (denominator (N·V)(N·I))` (lecture:
@@ -305,6 +312,7 @@ impl Brdf {
                 ct.f.write_params(&mut p);
             }
             Specular::Mirror(f) => f.write_params(&mut p),
+            Specular::OrenNayar(t) | Specular::OrenNayarFull(t) => p.lobe = [t.a, t.b, t.c3, t.l2],
         }
         p
     }
