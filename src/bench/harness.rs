@@ -15,7 +15,7 @@ use crate::gpu::GpuContext;
 use crate::gpu::bindings;
 use crate::gpu::geometry::GeometryData;
 use crate::gpu::layout::{GpuGlobals, GpuLight, GpuMaterial};
-pub use crate::gpu::renderer::map_read;
+pub use crate::gpu::readback::map_read;
 use crate::gpu::shader_gen::{self, ShaderKey};
 use crate::gpu::timing::Clock;
 use crate::scene::Scene;
