@@ -7,7 +7,8 @@
 //! the same buffers, the same bind group and the same pass, so that two
 //! measurements differ only by the shader.
 
-use super::bindings::{self, SceneLayouts, UniformArrays};
+use super::bind_groups::{self, SceneLayouts};
+use super::bindings::{self, UniformArrays};
 use super::geometry::{Batch, GeometryData, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::shader_gen::ShaderKey;
@@ -143,15 +144,15 @@ impl SceneDraw {
             bytemuck::bytes_of(globals),
             wgpu::BufferUsages::UNIFORM | dynamic,
         );
-        let material_stride = bindings::material_stride(device);
+        let material_stride = bind_groups::material_stride(device);
         let materials_buffer = init(
             "materials",
-            &bindings::material_bytes(materials, material_stride),
+            &bind_groups::material_bytes(materials, material_stride),
             wgpu::BufferUsages::UNIFORM | dynamic,
         );
         let lights_buffer = init(
             "lights",
-            &bindings::light_bytes(lights, arrays.lights),
+            &bind_groups::light_bytes(lights, arrays.lights),
             bindings::usage(arrays.lights) | dynamic,
         );
         let bind_group = scene_bind_group(
@@ -205,8 +206,8 @@ impl SceneDraw {
         materials: &[GpuMaterial],
         lights: &[GpuLight],
     ) {
-        let materials_bytes = bindings::material_bytes(materials, self.material_stride);
-        let lights_bytes = bindings::light_bytes(lights, arrays.lights);
+        let materials_bytes = bind_groups::material_bytes(materials, self.material_stride);
+        let lights_bytes = bind_groups::light_bytes(lights, arrays.lights);
         let rebind = arrays != self.arrays
             || materials_bytes.len() as u64 != self.materials_buffer.size()
             || lights_bytes.len() as u64 != self.lights_buffer.size();
@@ -265,7 +266,7 @@ impl SceneDraw {
     /// Draws `batch` of the bound stream with its material bound (group
     /// 0 at the material's slot, src/gpu/bindings.rs).
     pub fn draw_batch(&self, pass: &mut wgpu::RenderPass<'_>, batch: &Batch) {
-        let offset = bindings::material_offset(batch.material, self.material_stride);
+        let offset = bind_groups::material_offset(batch.material, self.material_stride);
         pass.set_bind_group(0, &self.bind_group, &[offset]);
         self.draw_range(pass, batch.range.clone(), 0..1);
     }
@@ -296,7 +297,7 @@ fn scene_bind_group(
         },
         wgpu::BindGroupEntry {
             binding: 1,
-            resource: bindings::material_binding(materials),
+            resource: bind_groups::material_binding(materials),
         },
         wgpu::BindGroupEntry {
             binding: 2,

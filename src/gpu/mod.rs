@@ -5,40 +5,47 @@
 //!
 //! * [`context`] finds the device;
 //! * [`shader_gen`] writes a scene's WGSL, [`layout`] mirrors its structs,
-//!   [`bindings`] says where the arrays live and makes the bind group
+//!   [`bindings`] says which arrays live in uniform buffers (and why),
+//!   [`bind_groups`] packs the buffers' bytes and makes the bind group
 //!   layouts, [`geometry`] lays the meshes out for the shading mode,
 //!   [`shadows`] plans the shadow maps;
 //! * [`pipelines`] (the pipeline cache) owns every compiled module,
-//!   pipeline and layout;
+//!   pipeline and layout (and `GONIO_DUMP_WGSL`);
 //! * [`draw`] holds a vertex stream and its bind group and records the
 //!   scene pass; [`prepared`] is a scene uploaded once and drawn many
-//!   times (update by what changed, encode a frame, shadow maps);
+//!   times (update by what changed, shadow maps, encode a frame);
 //! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
 //!   and reads the timestamp queries; [`timing`] names the durations;
 //! * [`offscreen`] is the one-shot render (`scene -> Frame`);
 //! * [`renderer`]'s [`GpuRenderer`] owns the device and the cache and
-//!   hands them to the others (and gives the bench its pipeline with
-//!   another shader and its [`draw::SceneDraw`]).
+//!   hands them to the others, and gives the bench the renderer's
+//!   pipeline with another shader over a [`draw::SceneDraw`].
 //!
-//! Who imports whom (an arrow: "uses"); no file imports one above it in
-//! a cycle:
+//! Who imports whom inside `gpu/` (`a -> b`: `a` uses `b`; listed from
+//! the top, each file uses only files listed after it):
 //!
 //! ```text
-//! renderer ──> offscreen ──> prepared ──> draw ──> bindings
-//!    │            │             │  │        │
-//!    │            │             │  │        └─> geometry, layout, shader_gen
-//!    │            │             │  └─> pipelines ──> bindings, geometry,
-//!    │            │             │                    shader_gen, shadows
-//!    │            │             └─> shadows, layout, context
-//!    │            └─> readback ──> context
-//!    │            └─> timing
-//!    └─> (all of the above)
-//!
-//! shader_gen ──> bindings, shadows      shadows ──> layout
-//! layout ──> shader_gen                 bindings ──> (nothing in gpu/)
-//! geometry, timing, context ──> (nothing in gpu/)
+//! renderer    -> offscreen prepared pipelines draw readback timing
+//!                geometry layout shader_gen context
+//! offscreen   -> prepared pipelines draw readback timing context
+//! prepared    -> pipelines draw bind_groups bindings geometry layout
+//!                shader_gen shadows context
+//! draw        -> bind_groups bindings geometry layout shader_gen
+//! pipelines   -> bind_groups bindings geometry shader_gen shadows
+//! bind_groups -> bindings layout shadows
+//! readback    -> context
+//! layout      -> shader_gen        (ShaderKey, for GpuMaterial::new)
+//! shader_gen  -> bindings shadows
+//! shadows     -> layout            (GpuLight, GpuShadowView)
+//! bindings, geometry, timing, context -> nothing in gpu/
 //! ```
+//!
+//! Every edge above `layout` points down: a DAG. The one loop left is
+//! `layout -> shader_gen -> shadows -> layout`, in files this layer does
+//! not own; it goes when `GpuMaterial` is built from the material's BRDF
+//! value instead of a `ShaderKey` (issue 13, item 2).
 
+pub mod bind_groups;
 pub mod bindings;
 pub mod context;
 pub mod draw;

@@ -19,7 +19,8 @@
 //! `GONIO_DUMP_WGSL=DIR` writes every generated module to `DIR`, for
 //! reading what a scene compiles.
 
-use super::bindings::{SceneLayouts, UniformArrays};
+use super::bind_groups::SceneLayouts;
+use super::bindings::UniformArrays;
 use super::geometry::VertexLayout;
 use super::shader_gen::{self, Output, ShaderKey};
 use super::shadows;

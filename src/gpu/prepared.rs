@@ -12,6 +12,7 @@
 //! The scene's compiled code comes from the [`PipelineCache`] it is
 //! given; the stream and the bind group are a [`SceneDraw`].
 
+use super::bind_groups;
 use super::bindings::{self, UniformArrays};
 use super::context::GpuContext;
 use super::draw::{self, FrameTarget, SceneDraw};
@@ -392,12 +393,12 @@ fn shadow_resources(
     // `arrays` says) and by the depth passes (storage).
     let views_buffer = init(
         "shadow views",
-        &bindings::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views),
+        &bind_groups::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views),
         bindings::usage(arrays.shadow_views) | wgpu::BufferUsages::STORAGE,
     );
     let casters_buffer = init(
         "shadow casters",
-        &bindings::caster_bytes(&plan.casters),
+        &bind_groups::caster_bytes(&plan.casters),
         wgpu::BufferUsages::UNIFORM,
     );
     let layer_views = (0..plan.layers.len() as u32)
