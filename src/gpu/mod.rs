@@ -12,8 +12,9 @@
 //! * [`pipelines`] (the pipeline cache) owns every compiled module,
 //!   pipeline and layout (and `GONIO_DUMP_WGSL`);
 //! * [`draw`] holds a vertex stream and its bind group and records the
-//!   scene pass; [`prepared`] is a scene uploaded once and drawn many
-//!   times (update by what changed, shadow maps, encode a frame);
+//!   scene pass; [`shadow_maps`] holds a shadow plan's maps and records
+//!   their passes; [`prepared`] is a scene uploaded once and drawn many
+//!   times (update by what changed, encode a frame);
 //! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
 //!   and reads the timestamp queries; [`timing`] names the durations;
 //! * [`offscreen`] is the one-shot render (`scene -> Frame`);
@@ -28,8 +29,9 @@
 //! renderer    -> offscreen prepared pipelines draw readback timing
 //!                geometry layout shader_gen context
 //! offscreen   -> prepared pipelines draw readback timing context
-//! prepared    -> pipelines draw bind_groups bindings geometry layout
-//!                shader_gen shadows context
+//! prepared    -> shadow_maps pipelines draw geometry layout shader_gen
+//!                shadows context
+//! shadow_maps -> pipelines draw bind_groups bindings shadows
 //! draw        -> bind_groups bindings geometry layout shader_gen
 //! pipelines   -> bind_groups bindings geometry shader_gen shadows
 //! bind_groups -> bindings layout shadows
@@ -57,6 +59,7 @@ pub mod prepared;
 pub mod readback;
 pub mod renderer;
 pub mod shader_gen;
+pub mod shadow_maps;
 pub mod shadows;
 pub mod timing;
 
