@@ -294,8 +294,8 @@ impl PipelineCache {
     }
 }
 
-/// Writes a generated module to `dir` (named by the hash of its key); says
-/// so on stderr, once per module, when it cannot.
+/// Writes a generated module to `dir` (named by the hash of its key);
+/// says so on stderr when it cannot.
 fn dump_wgsl(dir: &Path, module_key: &(ShaderKey, Output), wgsl: &str) {
     let name = format!("gonio-{:016x}.wgsl", {
         use std::hash::{Hash, Hasher};
@@ -304,11 +304,17 @@ fn dump_wgsl(dir: &Path, module_key: &(ShaderKey, Output), wgsl: &str) {
         h.finish()
     });
     if let Err(e) = std::fs::write(dir.join(&name), wgsl) {
-        eprintln!(
-            "warning: {DUMP_WGSL_ENV}: cannot write {name} into {}: {e}",
-            dir.display()
-        );
+        eprintln!("{}", dump_warning(dir, &name, &e));
     }
+}
+
+/// The one line that says a module could not be dumped: the variable,
+/// the file, the directory and the OS error.
+fn dump_warning(dir: &Path, name: &str, error: &std::io::Error) -> String {
+    format!(
+        "warning: {DUMP_WGSL_ENV}: cannot write {name} into {}: {error}",
+        dir.display()
+    )
 }
 
 /// Everything a scene pipeline is made of that is not common to all.
@@ -426,4 +432,20 @@ fn shadow_pass_pipeline(
         multiview_mask: None,
         cache: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_dump_names_the_directory_and_the_os_error() {
+        let dir = Path::new("/nonexistent/gonio-dump");
+        let error = std::fs::write(dir.join("x.wgsl"), "").unwrap_err();
+        let line = dump_warning(dir, "gonio-0.wgsl", &error);
+        assert!(line.starts_with("warning: GONIO_DUMP_WGSL: "), "{line}");
+        assert!(line.contains("/nonexistent/gonio-dump"), "{line}");
+        assert!(line.contains(&error.to_string()), "{line}");
+        assert!(!line.contains('\n'));
+    }
 }
