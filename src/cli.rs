@@ -27,7 +27,7 @@ pub enum Command {
     Render(RenderArgs),
     /// Open the interactive viewer: the scene with a panel of every material and light setting.
     #[cfg(feature = "viewer")]
-    View(crate::ui::ViewArgs),
+    View(ViewCommand),
     /// Explore a reflectance model: print f_r, plot slices and albedo, read gloss.
     Brdf(crate::explore::cli::BrdfArgs),
     /// Measure the speed/accuracy trade: time and error of every knob, Pareto front, floors.
@@ -83,6 +83,20 @@ pub struct RenderArgs {
     pub quality: MaxErrorArgs,
 }
 
+/// `gonio view [SCENE] ...`: the viewer's own arguments and `--max-error`,
+/// which the command line resolves before the viewer starts.
+#[cfg(feature = "viewer")]
+#[derive(Debug, clap::Args)]
+pub struct ViewCommand {
+    #[command(flatten)]
+    pub view: crate::ui::ViewArgs,
+    /// `--max-error E`: open with the cheapest configuration `gonio bench`
+    /// measured on this scene within relative error E (as `gonio render
+    /// --max-error`); explicit --set still apply after it.
+    #[command(flatten)]
+    pub quality: MaxErrorArgs,
+}
+
 /// `--max-error E [--bench-results CSV]`, shared by `gonio render` and
 /// `gonio view`: the cheapest configuration `gonio bench` measured within
 /// a relative error, resolved here into `--set` overrides once, so the
@@ -125,10 +139,9 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render(&args),
         #[cfg(feature = "viewer")]
-        Command::View(args) => args
-            .quality
-            .overrides(args.scene.as_deref(), args.verbose)
-            .and_then(|chosen| crate::ui::run(args, chosen)),
+        Command::View(ViewCommand { view, quality }) => quality
+            .overrides(view.scene.as_deref(), view.verbose)
+            .and_then(|chosen| crate::ui::run(view, chosen)),
         Command::Brdf(args) => crate::explore::cli::run(&args),
         Command::Bench(args) => crate::bench::run::run(&args),
     };

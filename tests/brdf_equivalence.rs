@@ -340,7 +340,7 @@ fn gpu_eval(
         .collect();
     let materials: Vec<GpuMaterial> = samples
         .iter()
-        .map(|s| GpuMaterial::new(&s.material, &key))
+        .map(|s| GpuMaterial::new(&s.material, key.variant_code(&s.material.variant())))
         .collect();
     let init = |contents: &[u8], usage| {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

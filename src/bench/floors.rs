@@ -14,7 +14,7 @@
 //! kind compiled in) for the uber-vs-specialized comparison.
 
 use super::harness::{HarnessShader, Inputs};
-use crate::frame::Frame;
+use crate::gpu::readback::{COLOR_FORMAT, Readback};
 use crate::gpu::shader_gen::{self, ShaderKey, sources};
 use crate::gpu::shadows::ShadowPlan;
 use crate::gpu::{AdapterChoice, GpuContext};
@@ -229,7 +229,7 @@ fn fs_main() -> @location(0) vec4<f32> {
             .into(),
         ),
     });
-    let format = wgpu::TextureFormat::Rgba32Float;
+    let format = COLOR_FORMAT;
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some("triangle"),
         layout: None,
@@ -266,13 +266,7 @@ fn fs_main() -> @location(0) vec4<f32> {
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     });
-    let padded_row = (width * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("triangle readback"),
-        size: padded_row as u64 * height as u64,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
+    let readback = Readback::new(device, width, height);
     let view = texture.create_view(&Default::default());
     let mut encoder = device.create_command_encoder(&Default::default());
     {
@@ -295,35 +289,9 @@ fn fs_main() -> @location(0) vec4<f32> {
         pass.set_pipeline(&pipeline);
         pass.draw(0..3, 0..1);
     }
-    encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo {
-            texture: &texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        wgpu::TexelCopyBufferInfo {
-            buffer: &readback,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded_row),
-                rows_per_image: Some(height),
-            },
-        },
-        size,
-    );
+    readback.copy_from(&mut encoder, &texture);
     ctx.queue.submit([encoder.finish()]);
-    let bytes = super::harness::map_read(device, &readback)?;
-    let mut frame = Frame::new(width, height);
-    for i in 0..height {
-        let row = &bytes[(i * padded_row) as usize..][..(width * 16) as usize];
-        let texels: &[[f32; 4]] = bytemuck::cast_slice(row);
-        for (j, t) in texels.iter().enumerate() {
-            let k = frame.index(i, j as u32);
-            frame.radiance[k] = [t[0], t[1], t[2]];
-            frame.coverage[k] = t[3] > 0.5;
-        }
-    }
+    let frame = readback.read(device)?;
     if !frame.coverage.iter().any(|&c| c) {
         return Err(Error::Gpu("the floor triangle drew nothing".into()));
     }

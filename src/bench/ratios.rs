@@ -127,14 +127,10 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
         ));
     }
     let key = floors::specialized_key(&scene);
-    let minimal = Harness::new(renderer.context(), &scene, &floors::minimal_lambert(&scene))?;
-    let looped = Harness::new(
-        renderer.context(),
-        &scene,
-        &floors::minimal_lambert_loop(&scene),
-    )?;
+    let minimal = Harness::new(renderer, &scene, &floors::minimal_lambert(&scene))?;
+    let looped = Harness::new(renderer, &scene, &floors::minimal_lambert_loop(&scene))?;
     let special = Harness::new(
-        renderer.context(),
+        renderer,
         &scene,
         &HarnessShader::generated("specialized", key.clone()),
     )?;
@@ -217,7 +213,7 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
 /// scene's specialized shader, both in the harness on the same scene.
 /// Returns the ratio and the compile times (ms) of (specialized, uber).
 pub fn uber_vs_specialized(
-    renderer: &GpuRenderer,
+    renderer: &mut GpuRenderer,
     scene: &Scene,
     label: &str,
     effort: Effort,
@@ -225,12 +221,12 @@ pub fn uber_vs_specialized(
     let special_key = floors::specialized_key(scene);
     let uber_key = floors::uber_key(scene);
     let special = Harness::new(
-        renderer.context(),
+        renderer,
         scene,
         &HarnessShader::generated("specialized", special_key.clone()),
     )?;
     let uber = Harness::new(
-        renderer.context(),
+        renderer,
         scene,
         &HarnessShader::generated("uber", uber_key.clone()),
     )?;
@@ -302,7 +298,7 @@ pub fn ct_four_shadowed(hd: (u32, u32)) -> Result<Scene> {
 /// passes included) and that of the scene pass alone.
 pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<(Ratio, Ratio)> {
     let scene = ct_four_shadowed(effort.hd)?;
-    let unlit = Harness::new(renderer.context(), &scene, &floors::unlit(&scene))?;
+    let unlit = Harness::new(renderer, &scene, &floors::unlit(&scene))?;
     let (mut frames, mut passes, mut floor) = (Vec::new(), Vec::new(), Vec::new());
     let mut layers = String::new();
     for i in 0..effort.warmup + effort.repeats {

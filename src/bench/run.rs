@@ -288,7 +288,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 
     bar.set_message("unlit floor");
     let unlit = {
-        let h = Harness::new(renderer.context(), &base, &floors::unlit(&base))?;
+        let h = Harness::new(&mut renderer, &base, &floors::unlit(&base))?;
         let mut t = Vec::new();
         for _ in 0..budget.warmup + 2 * budget.per_pass {
             t.push(h.time_once(renderer.context())?.0);
@@ -315,7 +315,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     )?;
     for (scene, label) in [(&lambert, "Lambert scene"), (&base, "bench base scene")] {
         let (ratio, special_ms, uber_ms) =
-            ratios::uber_vs_specialized(&renderer, scene, label, effort)?;
+            ratios::uber_vs_specialized(&mut renderer, scene, label, effort)?;
         compile.push((format!("specialized shader, {label}"), special_ms));
         compile.push((format!("uber shader, {label}"), uber_ms));
         ratio_list.push(ratio);

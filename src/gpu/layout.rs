@@ -2,7 +2,6 @@
 //! padding so `bytemuck` can upload them as they are. Field order and sizes
 //! follow WGSL's layout rules (vec3 aligned to 16 bytes).
 
-use super::shader_gen::ShaderKey;
 use crate::material::Material;
 use crate::scene::{Light, Scene};
 use bytemuck::{Pod, Zeroable};
@@ -112,15 +111,16 @@ impl GpuGlobals {
 
 impl GpuMaterial {
     /// `m` as the GPU sees it: `m` must be an effective material (roughness
-    /// floor applied), `key` the scene's shader key (for the variant index).
+    /// floor applied), `variant` its code in the scene's shader
+    /// (`ShaderKey::variant_code`).
     /// The BRDF's values come from [`Material::brdf`]: what the model's
     /// WGSL twin reads, its derived constants computed in `f64`; fields the
     /// model does not read are 0.
-    pub fn new(m: &Material, key: &ShaderKey) -> Self {
+    pub fn new(m: &Material, variant: u32) -> Self {
         let p = m.brdf().shader_params();
         GpuMaterial {
             k_a: f32x3(m.k_a),
-            variant: key.variant_code(&m.variant()),
+            variant,
             k_d: f32x3(p.k_d),
             k_e: p.k_e as f32,
             k_s: f32x3(p.k_s),
@@ -205,29 +205,28 @@ mod tests {
     fn uploaded_values_are_the_materials() {
         use crate::material::brdf::microfacet::{blinn_exponent, gaussian_normalization};
         use crate::material::{Distribution, Fresnel, ReflectanceModel};
-        let key = ShaderKey::default();
         let mut ct = Material::new("ct", ReflectanceModel::CookTorrance);
         (ct.roughness, ct.k_s) = (0.37, glam::DVec3::new(0.1, 0.2, 0.3));
         ct.distribution = Distribution::Blinn;
-        let g = GpuMaterial::new(&ct, &key);
+        let g = GpuMaterial::new(&ct, 0);
         assert_eq!(g.blinn_e, blinn_exponent(0.37) as f32);
         assert_eq!((g.eta, g.kappa), (f32x3(ct.eta), f32x3(ct.kappa)));
         assert_eq!((g.k_d, g.k_s), (f32x3(ct.k_d), f32x3(ct.k_s)));
         ct.distribution = Distribution::GaussianNormalized;
-        let g = GpuMaterial::new(&ct, &key);
+        let g = GpuMaterial::new(&ct, 0);
         assert_eq!(g.d_norm, gaussian_normalization(0.37) as f32);
         assert_eq!(g.roughness, 0.37f32);
         let mut ward = Material::new("w", ReflectanceModel::WardAnisotropic);
         (ward.sigma_x, ward.sigma_y) = (0.05, 0.3);
-        let g = GpuMaterial::new(&ward, &key);
+        let g = GpuMaterial::new(&ward, 0);
         assert_eq!((g.sigma_x, g.sigma_y), (0.05, 0.3));
         let mut glass = Material::new("m", ReflectanceModel::Mirror);
         (glass.fresnel, glass.eta_t) = (Fresnel::Dielectric, 1.33);
-        let g = GpuMaterial::new(&glass, &key);
+        let g = GpuMaterial::new(&glass, 0);
         assert_eq!((g.eta_i, g.eta_t, g.k_s), (1.0, 1.33, [1.0; 3]));
         let mut phong = Material::new("p", ReflectanceModel::Phong);
         phong.k_e = 77.0;
-        assert_eq!(GpuMaterial::new(&phong, &key).k_e, 77.0);
+        assert_eq!(GpuMaterial::new(&phong, 0).k_e, 77.0);
     }
 
     /// `(field, byte offset)` of a Rust mirror, in declaration order.

@@ -1,20 +1,68 @@
 //! The GPU renderer: wgpu on Vulkan (Mesa lavapipe on machines without a
-//! GPU). One render path for the CLI, the tests and later the viewer:
-//! [`context`] finds the device, [`shader_gen`] writes the scene's WGSL,
-//! [`geometry`] lays the meshes out for the shading mode, [`shadows`]
-//! plans the shadow maps, [`renderer`] draws them and the scene and reads
-//! back a [`crate::frame::Frame`].
+//! GPU). One render path for the CLI, the tests, the viewer and the bench.
+//!
+//! One concern per file, each with one owner:
+//!
+//! * [`context`] finds the device;
+//! * [`shader_gen`] writes a scene's WGSL, [`layout`] mirrors its structs,
+//!   [`bindings`] says which arrays live in uniform buffers (and why),
+//!   [`bind_groups`] packs the buffers' bytes and makes the bind group
+//!   layouts, [`geometry`] lays the meshes out for the shading mode,
+//!   [`shadows`] plans the shadow maps;
+//! * [`pipelines`] (the pipeline cache) owns every compiled module,
+//!   pipeline and layout (and `GONIO_DUMP_WGSL`);
+//! * [`draw`] holds a vertex stream and its bind group and records the
+//!   scene pass; [`shadow_maps`] holds a shadow plan's maps and records
+//!   their passes; [`prepared`] is a scene uploaded once and drawn many
+//!   times (update by what changed, encode a frame);
+//! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
+//!   and reads the timestamp queries; [`timing`] names the durations;
+//! * [`offscreen`] is the one-shot render (`scene -> Frame`);
+//! * [`renderer`]'s [`GpuRenderer`] owns the device and the cache and
+//!   hands them to the others, and gives the bench the renderer's
+//!   pipeline with another shader over a [`draw::SceneDraw`].
+//!
+//! Who imports whom inside `gpu/` (`a -> b`: `a` uses `b`; listed from
+//! the top, each file uses only files listed after it):
+//!
+//! ```text
+//! renderer    -> offscreen prepared pipelines draw readback timing
+//!                geometry layout shader_gen context
+//! offscreen   -> prepared pipelines draw readback timing context
+//! prepared    -> shadow_maps pipelines draw geometry layout shader_gen
+//!                shadows context
+//! shadow_maps -> pipelines draw bind_groups bindings shadows
+//! draw        -> bind_groups bindings geometry layout shader_gen
+//! pipelines   -> bind_groups bindings geometry shader_gen shadows
+//! bind_groups -> bindings layout shadows
+//! readback    -> context
+//! layout      -> nothing in gpu/ (the material's BRDF value, the scene)
+//! shader_gen  -> bindings shadows
+//! shadows     -> layout            (GpuLight, GpuShadowView)
+//! bindings, geometry, timing, context -> nothing in gpu/
+//! ```
+//!
+//! Every edge points down: a DAG (`GpuMaterial::new` takes the variant's
+//! code, not the `ShaderKey`, so `layout` imports nothing of `gpu/`).
 
+pub mod bind_groups;
 pub mod bindings;
 pub mod context;
+pub mod draw;
 pub mod geometry;
 pub mod layout;
+pub mod offscreen;
+pub mod pipelines;
 pub mod prepared;
+pub mod readback;
 pub mod renderer;
 pub mod shader_gen;
+pub mod shadow_maps;
 pub mod shadows;
 pub mod timing;
 
 pub use context::{AdapterChoice, GpuContext};
-pub use prepared::{FrameTarget, PreparedScene};
+pub use draw::FrameTarget;
+pub use pipelines::DEPTH_FORMAT;
+pub use prepared::PreparedScene;
 pub use renderer::GpuRenderer;

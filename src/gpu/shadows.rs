@@ -35,7 +35,6 @@
 //! comparison sampler (`GreaterEqual`: 1 where lit).
 
 use super::layout::{GpuLight, GpuShadowView};
-use super::shader_gen::Feature;
 use crate::scene::{Light, Scene, ShadowFilter, ShadowSettings};
 use glam::{DMat4, DVec3, DVec4};
 use std::collections::{BTreeSet, HashMap};
@@ -82,15 +81,6 @@ impl Projection {
         match self {
             Projection::Cube => 6,
             _ => 1,
-        }
-    }
-
-    /// The `#if` feature of its lookup code.
-    pub fn feature(self) -> Feature {
-        match self {
-            Projection::Ortho => Feature::ShadowOrtho,
-            Projection::Perspective => Feature::ShadowPerspective,
-            Projection::Cube => Feature::ShadowCube,
         }
     }
 
@@ -153,27 +143,6 @@ impl ShadowFeatures {
     /// Whether any shadow code is compiled.
     pub fn any(&self) -> bool {
         !self.projections.is_empty()
-    }
-
-    /// The `#if` features.
-    pub fn features(&self) -> Vec<Feature> {
-        let mut f = Vec::new();
-        if self.any() {
-            f.push(Feature::Shadows);
-            if self.pcf {
-                f.push(Feature::ShadowPcf);
-            }
-        }
-        f.extend(self.projections.iter().map(|p| p.feature()));
-        // Perspective and cube layers share the lookup with the w divide.
-        if self
-            .projections
-            .iter()
-            .any(|p| matches!(p, Projection::Perspective | Projection::Cube))
-        {
-            f.push(Feature::ShadowProjective);
-        }
-        f
     }
 
     /// For logs: `shadows [orthographic, cube; pcf]`.

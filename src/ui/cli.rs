@@ -12,11 +12,6 @@ pub struct ViewArgs {
     /// Override any scene-file key by its dotted path, as for `gonio render`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// `--max-error E`: open with the cheapest configuration `gonio bench`
-    /// measured on this scene within relative error E (as `gonio render
-    /// --max-error`); explicit --set still apply after it.
-    #[command(flatten)]
-    pub quality: crate::cli::MaxErrorArgs,
     /// Window size in pixels, e.g. `1280x720`.
     #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),

@@ -28,7 +28,8 @@ pub use cli::ViewArgs;
 /// `gonio view`: loads the scene (a bad one fails before any window
 /// opens), opens the window, runs until it is closed or the scripted
 /// frames are done. `chosen` are the overrides `--max-error` resolved to
-/// (`crate::cli::MaxErrorArgs`); the `--set`s apply after them.
+/// (by the command line, `gonio view --max-error`); the `--set`s apply
+/// after them.
 pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
     if !args.exposure.is_finite() {
         return Err(Error::argument(

@@ -5,8 +5,8 @@
 //! `shader_gen::Output::Display`), so a frame is one scene pass, one egui
 //! pass and a present, with no intermediate copy.
 
+use crate::gpu::DEPTH_FORMAT;
 use crate::gpu::GpuContext;
-use crate::gpu::prepared::DEPTH_FORMAT;
 use crate::output::write::AtomicFile;
 use crate::{Error, Result};
 use std::path::Path;

@@ -2,6 +2,7 @@
 //! [`super::preprocess`]): a closed set, so that a misspelt name in a
 //! shader is an error rather than a line silently kept or dropped.
 
+use crate::gpu::shadows::{Projection, ShadowFeatures};
 use crate::material::{Distribution, Fresnel, Geometry, ReflectanceModel};
 use std::fmt;
 
@@ -126,6 +127,43 @@ impl Feature {
 impl fmt::Display for Feature {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.spelling())
+    }
+}
+
+impl Feature {
+    /// The feature of a shadow projection's lookup code.
+    pub fn of_projection(p: Projection) -> Feature {
+        match p {
+            Projection::Ortho => Feature::ShadowOrtho,
+            Projection::Perspective => Feature::ShadowPerspective,
+            Projection::Cube => Feature::ShadowCube,
+        }
+    }
+
+    /// The features of a scene's shadow code (none without shadows).
+    pub fn of_shadows(shadows: &ShadowFeatures) -> Vec<Feature> {
+        let mut f = Vec::new();
+        if shadows.any() {
+            f.push(Feature::Shadows);
+            if shadows.pcf {
+                f.push(Feature::ShadowPcf);
+            }
+        }
+        f.extend(
+            shadows
+                .projections
+                .iter()
+                .map(|&p| Feature::of_projection(p)),
+        );
+        // Perspective and cube layers share the lookup with the w divide.
+        if shadows
+            .projections
+            .iter()
+            .any(|p| matches!(p, Projection::Perspective | Projection::Cube))
+        {
+            f.push(Feature::ShadowProjective);
+        }
+        f
     }
 }
 

@@ -156,7 +156,7 @@ impl ShaderKey {
             f.push(Feature::Tangents);
         }
         f.extend(super::specialization::brdf_features(&self.variants));
-        f.extend(self.shadows.features());
+        f.extend(Feature::of_shadows(&self.shadows));
         if self.shadow_coords_per_vertex() {
             f.push(Feature::ShadowVertex);
         } else if self.shadows.any() {

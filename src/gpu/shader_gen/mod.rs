@@ -33,21 +33,6 @@ use crate::gpu::shadows::{Projection, ShadowFeatures};
 use crate::material::{BrdfVariant, Distribution, Fresnel, Geometry};
 use crate::scene::{LightKind, ShadingMode};
 
-/// For reading what a scene compiles: with `GONIO_DUMP_WGSL=DIR`, writes
-/// `wgsl` to `DIR/gonio-{id:016x}.wgsl` (`id`: a hash of the module's key),
-/// and says on stderr when it cannot.
-pub fn dump_if_asked(id: u64, wgsl: &str) {
-    if let Some(dir) = std::env::var_os("GONIO_DUMP_WGSL") {
-        let path = std::path::Path::new(&dir).join(format!("gonio-{id:016x}.wgsl"));
-        if let Err(e) = std::fs::write(&path, wgsl) {
-            eprintln!(
-                "warning: GONIO_DUMP_WGSL: cannot write {}: {e}",
-                path.display()
-            );
-        }
-    }
-}
-
 /// Every BRDF variant gonio can compile: each model with every
 /// combination of the terms its row in the table of models selects.
 pub fn all_variants() -> Vec<BrdfVariant> {

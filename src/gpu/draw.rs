@@ -1,0 +1,312 @@
+//! A scene's vertex stream and parameter buffers on the GPU, and the
+//! scene pass that draws them material batch by material batch.
+//!
+//! The renderer's [`super::PreparedScene`] draws through one, with a
+//! pipeline per BRDF variant and the shadow maps; the bench draws through
+//! one with a pipeline of its own (an unlit floor, a hand-written shader):
+//! the same buffers, the same bind group and the same pass, so that two
+//! measurements differ only by the shader.
+
+use super::bind_groups::{self, SceneLayouts};
+use super::bindings::{self, UniformArrays};
+use super::geometry::{Batch, GeometryData, VertexLayout};
+use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
+use super::shader_gen::ShaderKey;
+use crate::scene::Scene;
+use wgpu::util::DeviceExt;
+
+/// Where a scene pass draws.
+pub struct FrameTarget<'a> {
+    /// Colour attachment of the prepared scene's `format` and samples.
+    pub color: &'a wgpu::TextureView,
+    /// Where a multisampled `color` is resolved to.
+    pub resolve: Option<&'a wgpu::TextureView>,
+    /// Depth attachment ([`super::pipelines::DEPTH_FORMAT`]) of the same
+    /// size.
+    pub depth: &'a wgpu::TextureView,
+    /// `[x, y, width, height]` in pixels of the 3D area; `None`: all of it.
+    /// The scene's camera aspect should be `width / height` of this area.
+    pub viewport: Option<[f32; 4]>,
+    /// Timestamps written around the scene pass (indices 0, 1) and around
+    /// all shadow passes (2, 3), if given.
+    pub timestamps: Option<&'a wgpu::QuerySet>,
+}
+
+/// Begins the scene pass into `target`: clears the whole colour target to
+/// transparent black (coverage 0) and the depth to the far plane, writes
+/// timestamps 0 and 1 around the pass if asked, and sets the viewport.
+pub fn begin_scene_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    target: &FrameTarget,
+) -> wgpu::RenderPass<'e> {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("scene"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target.color,
+            depth_slice: None,
+            resolve_target: target.resolve,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: target.depth,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Discard,
+            }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: target
+            .timestamps
+            .map(|set| wgpu::RenderPassTimestampWrites {
+                query_set: set,
+                beginning_of_pass_write_index: Some(0),
+                end_of_pass_write_index: Some(1),
+            }),
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    if let Some([x, y, w, h]) = target.viewport {
+        pass.set_viewport(x, y, w, h, 0.0, 1.0);
+    }
+    pass
+}
+
+/// The GPU materials of `scene`, with the variant indices of `key`.
+pub fn gpu_materials(scene: &Scene, key: &ShaderKey) -> Vec<GpuMaterial> {
+    scene
+        .effective_materials()
+        .iter()
+        .map(|m| GpuMaterial::new(m, key.variant_code(&m.variant())))
+        .collect()
+}
+
+/// A vertex stream, its material batches, and the scene bind group
+/// (globals, materials, lights) that draws them.
+pub struct SceneDraw {
+    /// The stream's attributes.
+    pub layout: VertexLayout,
+    /// Bytes of vertex and index data on the GPU.
+    pub geometry_bytes: u64,
+    vertex_buffer: wgpu::Buffer,
+    index_buffer: Option<wgpu::Buffer>,
+    draw_count: u32,
+    /// The stream's material runs, in order.
+    batches: Vec<Batch>,
+    /// Bytes between materials in the materials buffer (dynamic-offset
+    /// alignment; src/gpu/bindings.rs).
+    material_stride: u64,
+    arrays: UniformArrays,
+    globals_buffer: wgpu::Buffer,
+    materials_buffer: wgpu::Buffer,
+    lights_buffer: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+}
+
+impl SceneDraw {
+    /// Uploads `geometry` and the parameters, bound as `arrays` says with
+    /// `layouts` (those of `arrays`).
+    pub fn new(
+        device: &wgpu::Device,
+        layouts: &SceneLayouts,
+        geometry: GeometryData,
+        arrays: UniformArrays,
+        globals: &GpuGlobals,
+        materials: &[GpuMaterial],
+        lights: &[GpuLight],
+    ) -> Self {
+        let init = |label, contents: &[u8], usage| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        let vertex_buffer = init(
+            "vertices",
+            bytemuck::cast_slice(&geometry.words),
+            wgpu::BufferUsages::VERTEX,
+        );
+        let index_buffer = geometry.indices.as_ref().map(|i| {
+            init(
+                "indices",
+                bytemuck::cast_slice(i),
+                wgpu::BufferUsages::INDEX,
+            )
+        });
+        let geometry_bytes =
+            4 * (geometry.words.len() + geometry.indices.as_ref().map_or(0, Vec::len)) as u64;
+        let dynamic = wgpu::BufferUsages::COPY_DST;
+        let globals_buffer = init(
+            "globals",
+            bytemuck::bytes_of(globals),
+            wgpu::BufferUsages::UNIFORM | dynamic,
+        );
+        let material_stride = bind_groups::material_stride(device);
+        let materials_buffer = init(
+            "materials",
+            &bind_groups::material_bytes(materials, material_stride),
+            wgpu::BufferUsages::UNIFORM | dynamic,
+        );
+        let lights_buffer = init(
+            "lights",
+            &bind_groups::light_bytes(lights, arrays.lights),
+            bindings::usage(arrays.lights) | dynamic,
+        );
+        let bind_group = scene_bind_group(
+            device,
+            layouts,
+            &globals_buffer,
+            &materials_buffer,
+            &lights_buffer,
+        );
+        SceneDraw {
+            layout: geometry.layout,
+            geometry_bytes,
+            vertex_buffer,
+            index_buffer,
+            draw_count: geometry.draw_count,
+            batches: geometry.batches,
+            material_stride,
+            arrays,
+            globals_buffer,
+            materials_buffer,
+            lights_buffer,
+            bind_group,
+        }
+    }
+
+    /// The stream's material batches, in drawing order.
+    pub fn batches(&self) -> &[Batch] {
+        &self.batches
+    }
+
+    /// Which arrays the bind group has in uniform buffers.
+    pub fn arrays(&self) -> UniformArrays {
+        self.arrays
+    }
+
+    /// Writes the per-view values.
+    pub fn write_globals(&self, queue: &wgpu::Queue, globals: &GpuGlobals) {
+        queue.write_buffer(&self.globals_buffer, 0, bytemuck::bytes_of(globals));
+    }
+
+    /// Writes new materials and lights, bound as `arrays` says: in place
+    /// when they fit the buffers and the bindings are the same, else into
+    /// new buffers and a new bind group (made with `layouts`, those of
+    /// `arrays`).
+    pub fn write_parameters(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &SceneLayouts,
+        arrays: UniformArrays,
+        materials: &[GpuMaterial],
+        lights: &[GpuLight],
+    ) {
+        let materials_bytes = bind_groups::material_bytes(materials, self.material_stride);
+        let lights_bytes = bind_groups::light_bytes(lights, arrays.lights);
+        let rebind = arrays != self.arrays
+            || materials_bytes.len() as u64 != self.materials_buffer.size()
+            || lights_bytes.len() as u64 != self.lights_buffer.size();
+        if rebind {
+            let init = |label, contents: &[u8], usage| {
+                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents,
+                    usage: usage | wgpu::BufferUsages::COPY_DST,
+                })
+            };
+            self.materials_buffer =
+                init("materials", &materials_bytes, wgpu::BufferUsages::UNIFORM);
+            self.lights_buffer = init("lights", &lights_bytes, bindings::usage(arrays.lights));
+            self.bind_group = scene_bind_group(
+                device,
+                layouts,
+                &self.globals_buffer,
+                &self.materials_buffer,
+                &self.lights_buffer,
+            );
+            self.arrays = arrays;
+        } else {
+            queue.write_buffer(&self.materials_buffer, 0, &materials_bytes);
+            queue.write_buffer(&self.lights_buffer, 0, &lights_bytes);
+        }
+    }
+
+    /// Binds the vertex stream (and index buffer) for [`Self::draw_range`].
+    pub fn bind_geometry(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
+        if let Some(indices) = &self.index_buffer {
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+        }
+    }
+
+    /// Draws `range` of the bound stream (indices or vertices).
+    pub fn draw_range(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        range: std::ops::Range<u32>,
+        instances: std::ops::Range<u32>,
+    ) {
+        match self.index_buffer {
+            Some(_) => pass.draw_indexed(range, 0, instances),
+            None => pass.draw(range, instances),
+        }
+    }
+
+    /// The whole stream in one draw call (the shadow passes: no material).
+    pub fn draw_all(&self, pass: &mut wgpu::RenderPass<'_>, instances: std::ops::Range<u32>) {
+        self.bind_geometry(pass);
+        self.draw_range(pass, 0..self.draw_count, instances);
+    }
+
+    /// Draws `batch` of the bound stream with its material bound (group
+    /// 0 at the material's slot, src/gpu/bindings.rs).
+    pub fn draw_batch(&self, pass: &mut wgpu::RenderPass<'_>, batch: &Batch) {
+        let offset = bind_groups::material_offset(batch.material, self.material_stride);
+        pass.set_bind_group(0, &self.bind_group, &[offset]);
+        self.draw_range(pass, batch.range.clone(), 0..1);
+    }
+
+    /// Draws every batch with `pipeline` (a pipeline for all the scene's
+    /// materials, as the bench's).
+    pub fn draw_with(&self, pass: &mut wgpu::RenderPass<'_>, pipeline: &wgpu::RenderPipeline) {
+        pass.set_pipeline(pipeline);
+        self.bind_geometry(pass);
+        for batch in &self.batches {
+            self.draw_batch(pass, batch);
+        }
+    }
+}
+
+/// Group 0 of a scene pipeline over these buffers.
+fn scene_bind_group(
+    device: &wgpu::Device,
+    layouts: &SceneLayouts,
+    globals: &wgpu::Buffer,
+    materials: &wgpu::Buffer,
+    lights: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    let entries = [
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: globals.as_entire_binding(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 1,
+            resource: bind_groups::material_binding(materials),
+        },
+        wgpu::BindGroupEntry {
+            binding: 2,
+            resource: lights.as_entire_binding(),
+        },
+    ];
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("gonio scene"),
+        layout: &layouts.scene_group,
+        entries: &entries,
+    })
+}

@@ -1,0 +1,176 @@
+//! The one-shot offscreen render: a [`Scene`] in, a [`Frame`] of
+//! radiance out (`gonio render`, the image tests).
+//!
+//! The colour target is `Rgba32Float`: linear radiance in RGB and coverage
+//! in alpha (cleared to 0, written as 1), read back exactly. Without
+//! multisampling each pixel is the surface seen at its centre, as in the
+//! CPU reference; with `image.msaa` the pass resolves the samples' mean.
+//!
+//! When a light casts shadows, depth-only passes fill its shadow maps
+//! first (one pass per array layer, [`super::shadows`]), and the scene
+//! pipeline gets a second bind group with the maps; otherwise neither the
+//! passes nor the bind group nor any shadow code exist.
+
+use super::context::GpuContext;
+use super::draw::FrameTarget;
+use super::pipelines::{DEPTH_FORMAT, PipelineCache};
+use super::prepared::PreparedScene;
+use super::readback::{COLOR_FORMAT, PassTimestamps, Readback};
+use super::timing::{Clock, Timings};
+use crate::frame::Frame;
+use crate::scene::Scene;
+use crate::{Error, Result};
+use std::time::Instant;
+
+/// Renders `scene` offscreen, returning the frame and the time of each
+/// step: a [`PreparedScene`] into an `Rgba32Float` target, one
+/// [`PreparedScene::encode`], and a readback.
+pub fn render(
+    ctx: &GpuContext,
+    cache: &mut PipelineCache,
+    vertex_shadow_coords: bool,
+    scene: &Scene,
+) -> Result<(Frame, Timings)> {
+    let mut timings = Timings::default();
+    let (width, height) = (scene.width, scene.height);
+    check_target_size(ctx, width, height)?;
+    let samples = scene.msaa.max(1);
+    if samples > 1 {
+        check_msaa(ctx, samples)?;
+    }
+    let start = Instant::now();
+    let mut prepared = PreparedScene::new(
+        ctx,
+        cache,
+        vertex_shadow_coords,
+        scene,
+        COLOR_FORMAT,
+        samples,
+    )?;
+    timings.push(
+        "build vertex data + pipeline + upload",
+        start.elapsed(),
+        Clock::Wall,
+    );
+
+    let start = Instant::now();
+    let device = &ctx.device;
+    let size = wgpu::Extent3d {
+        width,
+        height,
+        depth_or_array_layers: 1,
+    };
+    let target = |label, format, usage, sample_count| {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size,
+            mip_level_count: 1,
+            sample_count,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    };
+    let color = target(
+        "radiance",
+        COLOR_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        1,
+    );
+    let depth = target(
+        "depth",
+        DEPTH_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+        samples,
+    );
+    // With MSAA the pass draws into a multisampled target and resolves
+    // (averages the samples) into `color`: radiance is the pixel's
+    // mean, coverage the covered fraction.
+    let multisampled = (samples > 1).then(|| {
+        target(
+            "radiance (multisampled)",
+            COLOR_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+            samples,
+        )
+    });
+    let readback = Readback::new(device, width, height);
+    let queries = ctx.timestamps.then(|| PassTimestamps::new(device));
+    timings.push("create targets", start.elapsed(), Clock::Wall);
+
+    let start = Instant::now();
+    let color_view = color.create_view(&Default::default());
+    let depth_view = depth.create_view(&Default::default());
+    let multisampled_view = multisampled
+        .as_ref()
+        .map(|t| t.create_view(&Default::default()));
+    let mut encoder = device.create_command_encoder(&Default::default());
+    let drawn = prepared.encode(
+        &mut encoder,
+        &FrameTarget {
+            color: multisampled_view.as_ref().unwrap_or(&color_view),
+            resolve: multisampled_view.as_ref().map(|_| &color_view),
+            depth: &depth_view,
+            viewport: None,
+            timestamps: queries.as_ref().map(|q| &q.set),
+        },
+    );
+    readback.copy_from(&mut encoder, &color);
+    if let Some(q) = &queries {
+        q.resolve(&mut encoder);
+    }
+    ctx.queue.submit([encoder.finish()]);
+    let frame_bytes = readback.read_bytes(device)?;
+    timings.push("render pass + readback", start.elapsed(), Clock::Wall);
+    if let Some(q) = &queries {
+        let (scene_pass, shadow_passes) = q.read(ctx)?;
+        if drawn.shadow_layers > 0 {
+            timings.push(
+                format!("shadow passes ({} layers)", drawn.shadow_layers),
+                shadow_passes,
+                Clock::GpuTimestamp,
+            );
+        }
+        timings.push("render pass", scene_pass, Clock::GpuTimestamp);
+    }
+
+    let frame = timings.wall("unpack frame", || readback.unpack(&frame_bytes));
+    Ok((frame, timings))
+}
+
+/// Refuses a sample count the device cannot draw offscreen radiance
+/// with, naming `image.msaa`.
+fn check_msaa(ctx: &GpuContext, samples: u32) -> Result<()> {
+    let specific = ctx
+        .device
+        .features()
+        .contains(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES);
+    let flags = ctx.adapter.get_texture_format_features(COLOR_FORMAT).flags;
+    if specific
+        && flags.sample_count_supported(samples)
+        && flags.contains(wgpu::TextureFormatFeatureFlags::MULTISAMPLE_RESOLVE)
+    {
+        Ok(())
+    } else {
+        Err(Error::argument(
+            format!("image.msaa = {samples}"),
+            format!(
+                "the GPU adapter `{}` cannot multisample and resolve {COLOR_FORMAT:?} targets; use image.msaa = 1",
+                ctx.adapter_info.name
+            ),
+        ))
+    }
+}
+
+/// Refuses a target the device cannot hold.
+pub fn check_target_size(ctx: &GpuContext, width: u32, height: u32) -> Result<()> {
+    let max_side = ctx.device.limits().max_texture_dimension_2d;
+    if width > max_side || height > max_side {
+        return Err(Error::argument(
+            format!("{width}x{height}"),
+            format!("the image is larger than the GPU's maximum texture side of {max_side} pixels"),
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,221 @@
+//! The GPU side of a [`ShadowPlan`]: the shadow-map array, the bind
+//! groups that fill it (the depth-only passes) and read it (the scene
+//! pass), the passes themselves, and the check that the device can hold
+//! the maps.
+
+use super::bind_groups;
+use super::bindings::{self, UniformArrays};
+use super::draw::SceneDraw;
+use super::pipelines::PipelineCache;
+use super::shadows::{self, ShadowPlan};
+use crate::{Error, Result};
+use wgpu::util::DeviceExt;
+
+/// The shadow-map array and the bind groups that read and fill it, and
+/// the depth-only pipeline that fills it.
+pub struct ShadowMaps {
+    layer_views: Vec<wgpu::TextureView>,
+    scene_group: wgpu::BindGroup,
+    pass_group: wgpu::BindGroup,
+    pass_pipeline: wgpu::RenderPipeline,
+}
+
+impl ShadowMaps {
+    /// The shadow-map array of `plan` with one view per layer to render
+    /// into, the bind groups that read and fill it and the depth-only
+    /// pipeline for a stream of `stride` bytes; `None` without shadowed
+    /// lights.
+    pub fn new(
+        device: &wgpu::Device,
+        cache: &mut PipelineCache,
+        plan: &ShadowPlan,
+        arrays: UniformArrays,
+        stride: u64,
+    ) -> Option<Self> {
+        if plan.is_empty() {
+            return None;
+        }
+        cache.compile_shadow_pass(stride);
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("shadow maps"),
+            size: wgpu::Extent3d {
+                width: plan.side,
+                height: plan.side,
+                depth_or_array_layers: plan.layers.len() as u32,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: shadows::SHADOW_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let init = |label, contents: &[u8], usage| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        // The views are read by the scene pass (uniform or storage, as
+        // `arrays` says) and by the depth passes (storage).
+        let views_buffer = init(
+            "shadow views",
+            &bind_groups::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views),
+            bindings::usage(arrays.shadow_views) | wgpu::BufferUsages::STORAGE,
+        );
+        let casters_buffer = init(
+            "shadow casters",
+            &bind_groups::caster_bytes(&plan.casters),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let layer_views = (0..plan.layers.len() as u32)
+            .map(|layer| {
+                texture.create_view(&wgpu::TextureViewDescriptor {
+                    label: Some("shadow layer"),
+                    dimension: Some(wgpu::TextureViewDimension::D2),
+                    base_array_layer: layer,
+                    array_layer_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        let array_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("shadow maps"),
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        let sampler = cache.shadow_sampler().clone();
+        let scene_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("gonio shadow maps"),
+            layout: &cache.scene_layouts(arrays).shadow_group,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&array_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: views_buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: casters_buffer.as_entire_binding(),
+                },
+            ],
+        });
+        let pass_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("gonio shadow pass"),
+            layout: cache.shadow_pass_group_layout(),
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: views_buffer.as_entire_binding(),
+            }],
+        });
+        Some(ShadowMaps {
+            layer_views,
+            scene_group,
+            pass_group,
+            pass_pipeline: cache.shadow_pass(stride).clone(),
+        })
+    }
+
+    /// Group 1 of the scene pass: the maps, the comparison sampler, the
+    /// layer views and the casters.
+    pub fn scene_group(&self) -> &wgpu::BindGroup {
+        &self.scene_group
+    }
+
+    /// Records one depth-only pass per layer of `plan` (the stream of
+    /// `draw`, every face), with timestamps 2 and 3 around them all when
+    /// `timestamps` is given; returns the layers drawn.
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        plan: &ShadowPlan,
+        draw: &SceneDraw,
+        timestamps: Option<&wgpu::QuerySet>,
+    ) -> usize {
+        let last = self.layer_views.len() - 1;
+        for (i, (layer, view)) in plan.layers.iter().zip(&self.layer_views).enumerate() {
+            let timestamp_writes = timestamps.and_then(|set| {
+                (i == 0 || i == last).then_some(wgpu::RenderPassTimestampWrites {
+                    query_set: set,
+                    beginning_of_pass_write_index: (i == 0).then_some(2),
+                    end_of_pass_write_index: (i == last).then_some(3),
+                })
+            });
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow map"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view,
+                    depth_ops: Some(wgpu::Operations {
+                        // Reversed depth: 0 is "nothing here".
+                        load: wgpu::LoadOp::Clear(0.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            let size = layer.map_size as f32;
+            pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+            pass.set_pipeline(&self.pass_pipeline);
+            pass.set_bind_group(0, &self.pass_group, &[]);
+            draw.draw_all(&mut pass, i as u32..i as u32 + 1);
+        }
+        self.layer_views.len()
+    }
+}
+
+/// Refuses shadow maps the device cannot hold, naming the setting to
+/// lower.
+pub fn check_limits(device: &wgpu::Device, plan: &ShadowPlan) -> Result<()> {
+    if plan.is_empty() {
+        return Ok(());
+    }
+    let limits = device.limits();
+    let problem = if plan.casters.len() > shadows::MAX_SHADOW_MAPS {
+        Some(format!(
+            "{} lights cast shadows through their own maps (an area light with shadow_per_sample counts each sample); at most {} can",
+            plan.casters.len(),
+            shadows::MAX_SHADOW_MAPS
+        ))
+    } else if plan.side > limits.max_texture_dimension_2d {
+        Some(format!(
+            "a shadow map of {0}x{0} texels is larger than the GPU's maximum texture side of {1}",
+            plan.side, limits.max_texture_dimension_2d
+        ))
+    } else if plan.layers.len() as u32 > limits.max_texture_array_layers {
+        Some(format!(
+            "the shadow maps need {} layers (6 per point or area light, 1 per directional or spot light); the GPU allows {}",
+            plan.layers.len(),
+            limits.max_texture_array_layers
+        ))
+    } else if plan.bytes() > shadows::MAX_SHADOW_BYTES {
+        Some(format!(
+            "the shadow maps need {} MiB ({} layers of {}x{} texels, every layer as large as the largest map); at most {} MiB",
+            plan.bytes() >> 20,
+            plan.layers.len(),
+            plan.side,
+            plan.side,
+            shadows::MAX_SHADOW_BYTES >> 20
+        ))
+    } else {
+        None
+    };
+    match problem {
+        Some(p) => Err(Error::argument(
+            "shadow_map_size",
+            format!("{p}; lower shadow_map_size or turn shadows off for some lights"),
+        )),
+        None => Ok(()),
+    }
+}
