@@ -4,7 +4,7 @@
 
 /// Declares a `Copy` enum whose variants each carry their contract name:
 ///
-/// ```ignore
+/// ```text
 /// named_enum!(
 ///     /// doc
 ///     Shape, "shape" {

@@ -21,8 +21,17 @@
 //!    its default in `Material::new` and the model's own in the row's
 //!    `defaults`).
 //! 4. One [`Specular`] variant with its arm in `brdf::eval` and in
-//!    `Brdf::shader_params` (`brdf/value.rs`; the compiler points at both),
-//!    and one arm in the WGSL dispatch (`eval_brdf`).
+//!    `Brdf::shader_params` (`brdf/value.rs`; the compiler points at both:
+//!    constants the named GPU fields do not cover go in `lobe`, four
+//!    numbers the WGSL twin reads as `m.lobe`), and one arm in the WGSL
+//!    dispatch (`eval_brdf` in `shaders/brdf/eval.wgsl`, in a block
+//!    `#if NAME`; its code constant `MODEL_NAME` is generated).
+//!
+//! `build.rs` embeds the new WGSL file; the file order of a scene's module
+//! comes from the rows' `wgsl` lists. The shader snapshots
+//! (`GONIO_UPDATE_SNAPSHOTS=1`) gain the model's code constant, and
+//! `docs/brdf-models.md` its formula and its albedo rows (`gonio brdf
+//! --albedo-table`). `oren-nayar` was added this way: see its commit.
 //!
 //! Nothing else lists models: the panel, the scene-file keys, "Save
 //! scene", the shader's file list, the tests' sweeps and tolerances, the
