@@ -98,6 +98,16 @@ fn clip(text: String, max: usize) -> String {
 mod tests {
     use super::*;
 
+    /// Only a GPU failure that is not the input's fault exits with 1; a
+    /// scene that cannot be rendered (no material, no light) is input.
+    #[test]
+    fn input_errors_exit_with_2() {
+        assert_eq!(Error::Scene("no light".into()).exit_code(), 2);
+        assert_eq!(Error::input("f.toml", "bad").exit_code(), 2);
+        assert_eq!(Error::argument("--set", "bad").exit_code(), 2);
+        assert_eq!(Error::Gpu("device lost".into()).exit_code(), 1);
+    }
+
     #[test]
     fn long_problems_are_clipped_at_both_ends() {
         let long = format!("start {} end", "x".repeat(10_000));
