@@ -124,6 +124,7 @@ fn check_sparse(
         buffers,
     )
     .map_err(|p| format!("sparse indices: {p}"))?;
+    check_sparse_indices(&indices, sparse_count, count, buffers)?;
     let values = sparse.values();
     check_range(
         &values.view(),
@@ -133,6 +134,43 @@ fn check_sparse(
         buffers,
     )
     .map_err(|p| format!("sparse values: {p}"))
+}
+
+/// The sparse indices (tightly packed, in range: checked before) must
+/// each name an element of the accessor and strictly increase (glTF 2.0,
+/// "Sparse Accessors"); an index past `count` would otherwise be dropped
+/// without a word.
+fn check_sparse_indices(
+    indices: &gltf::accessor::sparse::Indices,
+    sparse_count: usize,
+    count: usize,
+    buffers: &[Cow<[u8]>],
+) -> Result<(), String> {
+    let view = indices.view();
+    let size = indices.index_type().size();
+    let start = view.offset() + indices.offset();
+    let bytes = &buffers[view.buffer().index()][start..start + sparse_count * size];
+    let mut previous: Option<usize> = None;
+    for (k, chunk) in bytes.chunks_exact(size).enumerate() {
+        let index = match size {
+            1 => chunk[0] as usize,
+            2 => u16::from_le_bytes([chunk[0], chunk[1]]) as usize,
+            _ => u32::from_le_bytes([chunk[0], chunk[1], chunk[2], chunk[3]]) as usize,
+        };
+        if index >= count {
+            return Err(format!(
+                "sparse index {k} is {index}, past the accessor's {count} elements"
+            ));
+        }
+        if previous.is_some_and(|p| index <= p) {
+            return Err(format!(
+                "sparse indices must strictly increase, but index {k} is {index} after {}",
+                previous.unwrap_or(0)
+            ));
+        }
+        previous = Some(index);
+    }
+    Ok(())
 }
 
 /// Checks `count ≥ 1` elements of `element` bytes, `offset` bytes into

@@ -192,11 +192,39 @@ pub(super) fn parse(
     Census::take(json)?.check(used_bytes, limits)?;
     let root: gltf::json::Root =
         gltf::json::deserialize::from_slice(json).map_err(|e| format!("invalid glTF: {e}"))?;
+    check_version(&root.asset)?;
     check_extensions(&root, notes)?;
     check_position_accessors(&root)?;
     check_cameras(&root)?;
     validate(&root, notes)?;
     Ok(gltf::Document::from_json_without_validation(root))
+}
+
+/// glTF 2.x only: a file of another major version may mean something else
+/// by the same keys, and one whose `minVersion` is above 2.0 asks for
+/// features of a later minor version (glTF 2.0, "Asset": a loader must
+/// refuse both).
+fn check_version(asset: &gltf::json::Asset) -> Result<(), String> {
+    let parse = |key: &str, text: &str| -> Result<(u32, u32), String> {
+        text.split_once('.')
+            .and_then(|(major, minor)| Some((major.parse().ok()?, minor.parse().ok()?)))
+            .ok_or_else(|| format!("asset.{key} is \"{text}\", not MAJOR.MINOR (e.g. \"2.0\")"))
+    };
+    let (major, _) = parse("version", &asset.version)?;
+    if major != 2 {
+        return Err(format!(
+            "asset.version is \"{}\": gonio reads glTF 2.x files only",
+            asset.version
+        ));
+    }
+    if let Some(min) = &asset.min_version
+        && parse("minVersion", min)? > (2, 0)
+    {
+        return Err(format!(
+            "asset.minVersion is \"{min}\": the file needs a later glTF than 2.0, which gonio implements"
+        ));
+    }
+    Ok(())
 }
 
 /// A required extension gonio does not implement makes the file

@@ -607,3 +607,68 @@ fn lights_and_scaled_nodes() {
     let result = load_written(dir.path(), "model.gltf", nested.as_bytes());
     assert_input_error(result, &["node 2", "light 1", "no direction"]);
 }
+
+#[test]
+fn other_major_versions_and_later_min_versions_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let gltf = triangle_gltf(&data_uri(&triangle_bytes([0, 1, 2])));
+    let v3 = gltf.replace(r#""version": "2.0""#, r#""version": "3.0""#);
+    assert_input_error(
+        load_written(dir.path(), "model.gltf", v3.as_bytes()),
+        &["asset.version is \"3.0\"", "glTF 2.x"],
+    );
+    let min = gltf.replace(
+        r#""version": "2.0""#,
+        r#""version": "2.1", "minVersion": "2.1""#,
+    );
+    assert_input_error(
+        load_written(dir.path(), "model.gltf", min.as_bytes()),
+        &["asset.minVersion is \"2.1\""],
+    );
+    let garbled = gltf.replace(r#""version": "2.0""#, r#""version": "two""#);
+    assert_input_error(
+        load_written(dir.path(), "model.gltf", garbled.as_bytes()),
+        &["not MAJOR.MINOR"],
+    );
+    // A later minor version without minVersion is read (forward compatible).
+    let minor = gltf.replace(r#""version": "2.0""#, r#""version": "2.1""#);
+    assert_eq!(
+        triangles(&load_written(dir.path(), "model.gltf", minor.as_bytes()).unwrap()),
+        1
+    );
+}
+
+#[test]
+fn sparse_indices_past_the_count_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    // The positions accessor gets one sparse element whose index is the
+    // u16 in the buffer's last two bytes (a view of its own), whose value
+    // is the first position.
+    let with_sparse = |index: u16| {
+        let mut bytes = triangle_bytes([0, 1, 2]);
+        let n = bytes.len();
+        bytes[n - 2..].copy_from_slice(&index.to_le_bytes());
+        triangle_gltf(&data_uri(&bytes))
+            .replace(
+                r#"{"buffer": 0, "byteOffset": 36, "byteLength": 6}"#,
+                r#"{"buffer": 0, "byteOffset": 36, "byteLength": 6},
+{"buffer": 0, "byteOffset": 42, "byteLength": 2}"#,
+            )
+            .replace(
+                r#""min": [0, 0, 0], "max": [1, 1, 0]}"#,
+                r#""min": [0, 0, 0], "max": [1, 1, 0],
+ "sparse": {"count": 1, "indices": {"bufferView": 2, "componentType": 5123},
+            "values": {"bufferView": 0}}}"#,
+            )
+    };
+    let ok = with_sparse(2);
+    assert_eq!(
+        triangles(&load_written(dir.path(), "model.gltf", ok.as_bytes()).unwrap()),
+        1
+    );
+    let past = with_sparse(7);
+    assert_input_error(
+        load_written(dir.path(), "model.gltf", past.as_bytes()),
+        &["sparse index 0 is 7", "3 elements"],
+    );
+}
