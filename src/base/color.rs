@@ -22,3 +22,9 @@ impl ColorValue {
         }
     }
 }
+
+/// `v` as a scene file writes a colour: `[r, g, b]` (the inverse of
+/// [`ColorValue::Rgb`]; Save scene and a material's text form use it).
+pub fn rgb_to_toml(v: Rgb) -> toml::Value {
+    toml::Value::Array(v.to_array().map(toml::Value::Float).to_vec())
+}

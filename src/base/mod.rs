@@ -5,6 +5,6 @@ pub mod color;
 pub mod frame;
 mod named;
 
-pub use color::{ColorValue, Rgb};
+pub use color::{ColorValue, Rgb, rgb_to_toml};
 pub use frame::{SurfaceFrame, any_tangent};
 pub(crate) use named::named_enum;

@@ -13,6 +13,7 @@
 
 use crate::frame::Frame;
 use crate::gpu::draw::{self, SceneDraw};
+use crate::gpu::offscreen::render_target;
 use crate::gpu::readback::{COLOR_FORMAT, PassTimestamps, Readback};
 use crate::gpu::shader_gen::{self, ShaderKey};
 use crate::gpu::timing::Clock;
@@ -98,20 +99,7 @@ impl Harness {
         // compile is inside `compile_ms`.
         let device = &renderer.context().device;
         let target = |label, format, usage| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: scene.width,
-                    height: scene.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
+            render_target(device, label, (scene.width, scene.height), format, usage, 1)
         };
         let color = target(
             "bench radiance",

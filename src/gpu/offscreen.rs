@@ -55,22 +55,8 @@ pub fn render(
 
     let start = Instant::now();
     let device = &ctx.device;
-    let size = wgpu::Extent3d {
-        width,
-        height,
-        depth_or_array_layers: 1,
-    };
     let target = |label, format, usage, sample_count| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size,
-            mip_level_count: 1,
-            sample_count,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
+        render_target(device, label, (width, height), format, usage, sample_count)
     };
     let color = target(
         "radiance",
@@ -173,4 +159,30 @@ pub fn check_target_size(ctx: &GpuContext, width: u32, height: u32) -> Result<()
         ));
     }
     Ok(())
+}
+
+/// A 2D texture of `size` pixels to render into (the colour or depth
+/// target of an offscreen pass); the bench's passes use the same.
+pub fn render_target(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+    sample_count: u32,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
 }

@@ -6,7 +6,7 @@
 
 use super::param::{Kind, Param, Value};
 use super::{Material, ReflectanceModel, presets, table};
-use crate::base::{ColorValue, Rgb};
+use crate::base::{ColorValue, rgb_to_toml};
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, Visitor};
 use std::sync::LazyLock;
@@ -219,13 +219,9 @@ pub fn material_table(m: &Material) -> toml::Table {
 /// `p`'s value in `m` as TOML.
 fn text_value(p: &Param, m: &Material) -> Toml {
     match p.read(m) {
-        Value::Color(v) => vec3(v),
+        Value::Color(v) => rgb_to_toml(v),
         Value::Scalar(v) => Toml::Float(v),
     }
-}
-
-fn vec3(v: Rgb) -> Toml {
-    Toml::Array(v.to_array().map(Toml::Float).to_vec())
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@
 
 use super::document::Document;
 use crate::Result;
-use crate::scene::Rgb;
+use crate::base::rgb_to_toml;
 use toml::Value;
 
 /// The text of the saved file and notes on edits it cannot hold.
@@ -22,9 +22,9 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
 
     let c = &scene.camera;
     let mut camera = toml::Table::new();
-    camera.insert("position".into(), vec3(c.position));
-    camera.insert("target".into(), vec3(c.target));
-    camera.insert("up".into(), vec3(c.up));
+    camera.insert("position".into(), rgb_to_toml(c.position));
+    camera.insert("target".into(), rgb_to_toml(c.target));
+    camera.insert("up".into(), rgb_to_toml(c.up));
     camera.insert("fov_y_deg".into(), Value::Float(c.fov_y_deg));
     table.insert("camera".into(), Value::Table(camera));
 
@@ -36,7 +36,7 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
         .entry("ambient")
         .or_insert_with(|| Value::Table(toml::Table::new()));
     if let Value::Table(t) = ambient {
-        t.insert("radiance".into(), vec3(scene.ambient));
+        t.insert("radiance".into(), rgb_to_toml(scene.ambient));
     }
 
     // glTF paths relative to the source's folder → absolute.
@@ -83,10 +83,6 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
         format!("# Saved by `gonio view` from {}.\n{text}", doc.title()),
         unsaved,
     ))
-}
-
-fn vec3(v: Rgb) -> Value {
-    Value::Array(v.to_array().map(Value::Float).to_vec())
 }
 
 #[cfg(test)]
