@@ -43,6 +43,9 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         #if oren-nayar-full
         case MODEL_OREN_NAYAR_FULL: { return oren_nayar_full(m.k_d, oren_nayar_terms(m.lobe), oren_nayar_angles(n, wi, wo)); }
         #endif
+        #if measured
+        case MODEL_MEASURED: { return measured_f_r(m, wi, wo, frame); }
+        #endif
         default: { return vec3<f32>(0.0); }
     }
 }

@@ -86,7 +86,8 @@ fn buffer_entry(binding: u32, uniform: bool) -> wgpu::BindGroupLayoutEntry {
 }
 
 /// Group 0 of a scene pipeline: globals, the draw's material (dynamic
-/// offset), lights.
+/// offset), lights, and the measured tables if the scene has a measured
+/// material.
 pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu::BindGroupLayout {
     let material = wgpu::BindGroupLayoutEntry {
         binding: 1,
@@ -98,13 +99,13 @@ pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu:
         },
         count: None,
     };
+    let mut entries = vec![buffer_entry(0, true), material, buffer_entry(2, arrays.lights)];
+    if arrays.measured {
+        entries.push(buffer_entry(3, false));
+    }
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio scene"),
-        entries: &[
-            buffer_entry(0, true),
-            material,
-            buffer_entry(2, arrays.lights),
-        ],
+        entries: &entries,
     })
 }
 

@@ -51,6 +51,7 @@ pub mod context;
 pub mod draw;
 pub mod geometry;
 pub mod layout;
+pub mod measured_tables;
 pub mod offscreen;
 pub mod pipelines;
 pub mod prepared;

@@ -79,6 +79,7 @@ impl PreparedScene {
         cache.compile_scene(&key, geometry.layout, format, samples)?;
         let arrays = key.arrays;
         let materials = draw::gpu_materials(scene, &key);
+        let measured = draw::measured_tables(scene);
         let lights = gpu_lights(scene, &plan);
         let draw = SceneDraw::new(
             &ctx.device,
@@ -87,6 +88,7 @@ impl PreparedScene {
             arrays,
             &GpuGlobals::new(scene),
             &materials,
+            &measured.data,
             &lights,
         );
         let shadows = ShadowMaps::new(&ctx.device, cache, &plan, arrays, draw.layout.stride());
@@ -143,6 +145,7 @@ impl PreparedScene {
 
         let arrays = key.arrays;
         let materials = draw::gpu_materials(scene, &key);
+        let measured = draw::measured_tables(scene);
         let lights = gpu_lights(scene, &plan);
         self.draw.write_parameters(
             &ctx.device,
@@ -150,6 +153,7 @@ impl PreparedScene {
             cache.scene_layouts(arrays),
             arrays,
             &materials,
+            &measured.data,
             &lights,
         );
         let lights_changed = bytemuck::cast_slice::<GpuLight, u8>(&self.lights)

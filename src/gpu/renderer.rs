@@ -125,6 +125,7 @@ impl GpuRenderer {
             key.arrays,
             &GpuGlobals::new(scene),
             &draw::gpu_materials(scene, key),
+            &draw::measured_tables(scene).data,
             &lights,
         )
     }

@@ -6,13 +6,14 @@
 
 pub mod brdf;
 pub mod entry;
+pub mod measured;
 mod model;
 pub mod param;
 pub mod presets;
 pub mod table;
 pub mod terms;
 
-pub use entry::{MaterialEntry, material_from_entry, material_table};
+pub use entry::{MaterialEntry, material_from_entry, material_from_entry_in, material_table};
 pub use model::ReflectanceModel;
 pub use terms::{Denominator, Distribution, Fresnel, Geometry};
 
@@ -61,6 +62,9 @@ pub struct Material {
     pub geometry: Geometry,
     pub fresnel: Fresnel,
     pub denominator: Denominator,
+    /// The measured BRDF of a `measured` material (scene-file key
+    /// `measured`); `None` for the other models.
+    pub measured: Option<&'static measured::MeasuredBrdf>,
 }
 
 impl Material {
@@ -90,6 +94,7 @@ impl Material {
             geometry: Geometry::Smith,
             fresnel: Fresnel::Conductor,
             denominator: Denominator::Microfacet,
+            measured: None,
         };
         (model.row().defaults)(&mut m);
         m
@@ -140,6 +145,13 @@ impl Material {
             sigma_y: widen(self.sigma_y),
             ..self.clone()
         }
+    }
+
+    /// The measured BRDF a `measured` material renders (the default
+    /// built-in one if none was chosen); `None` for the other models.
+    pub fn measured_brdf(&self) -> Option<&'static measured::MeasuredBrdf> {
+        (self.model == ReflectanceModel::Measured)
+            .then(|| self.measured.unwrap_or_else(measured::default_brdf))
     }
 
     /// The part of the material that decides which shader code runs: the

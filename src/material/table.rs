@@ -490,7 +490,35 @@ pub static ROWS: &[ModelRow] = &[
         transcendental_error: |_| ATAN2_TERMS_ERROR,
         albedo_table: ON_ALBEDO,
     },
+    ModelRow {
+        model: ReflectanceModel::Measured,
+        summary: "measured f_r: a MERL material (built-in Neural-BRDF network) or a MERL .binary table",
+        form: Form::Paper,
+        wgsl: &["brdf/measured.wgsl"],
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[],
+        reciprocal: false,
+        benched: false,
+        defaults: |m| {
+            (m.k_d, m.k_s) = (Rgb::ZERO, Rgb::ZERO);
+            m.measured = Some(super::measured::default_brdf());
+        },
+        specular: |m| Specular::Measured(m.measured.unwrap_or_else(super::measured::default_brdf)),
+        f32_error: |_| MEASURED_F32_ERROR,
+        transcendental_error: |_| 0.0,
+        albedo_table: &[
+            ("measured=gold-metallic-paint", "MERL, Neural-BRDF"),
+            ("measured=chrome", "MERL, Neural-BRDF"),
+            ("measured=blue-fabric", "MERL, Neural-BRDF"),
+        ],
+    },
 ];
+
+/// A measured material on the GPU is a trilinear look-up in a table of
+/// `f32`: eight samples, seven lerps, each rounding once (the table's own
+/// error against the source is the table test's, tests/measured.rs).
+const MEASURED_F32_ERROR: f64 = 32.0 * EPS;
 
 /// Oren-Nayar's WGSL: its file uses phong.wgsl's `COS_FLOOR`.
 const ON_WGSL: &[&str] = &[

@@ -315,6 +315,7 @@ mod tests {
             area_lights: Vec::new(),
             ambient: Rgb::ZERO,
             environment: crate::scene::Environment::uniform(Rgb::ZERO),
+            measured_table: crate::material::measured::DEFAULT_TABLE_RESOLUTION,
         }
     }
 

@@ -72,6 +72,10 @@ pub struct Scene {
     pub ambient: Rgb,
     /// What mirrors reflect (defaults to the constant `L_a`).
     pub environment: Environment,
+    /// Sample counts `(n_h, n_d, n_φ)` of the tables the GPU renders
+    /// measured materials from (`shading.measured_table`;
+    /// src/gpu/measured_tables.rs). The reference evaluates the source.
+    pub measured_table: [u32; 3],
 }
 
 impl Scene {

@@ -64,7 +64,7 @@ impl ShaderKey {
             .any()
             .then(|| ShadowFeatures::uniform_pcf_radius(scene))
             .flatten();
-        ShaderKey {
+        let mut key = ShaderKey {
             shading: scene.shading,
             variants: scene
                 .meshes
@@ -84,7 +84,9 @@ impl ShaderKey {
             shadows,
             arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
             vertex_shadow_coords: true,
-        }
+        };
+        key.arrays.measured = key.has_measured();
+        key
     }
 
     /// `GpuMaterial.variant` of a material of `variant`: its packed codes
@@ -132,6 +134,14 @@ impl ShaderKey {
             && self.counts.shadow_maps == 1
             && self.shadows.projections.len() == 1
             && self.shadows.projections.contains(&Projection::Ortho)
+    }
+
+    /// Whether any variant is measured: group 0 then binds the measured
+    /// tables ([`UniformArrays::measured`]).
+    pub fn has_measured(&self) -> bool {
+        self.variants
+            .iter()
+            .any(|v| v.model == ReflectanceModel::Measured)
     }
 
     /// Whether any variant is a mirror (environment reflection code).

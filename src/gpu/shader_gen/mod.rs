@@ -79,6 +79,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
     let arrays = |uniform: bool| UniformArrays {
         lights: uniform,
         shadow_views: uniform,
+        measured: false,
     };
     let mut keys = Vec::new();
     for shading in ShadingMode::ALL {
@@ -135,6 +136,9 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 vertex_shadow_coords: false,
             });
         }
+    }
+    for k in &mut keys {
+        k.arrays.measured = k.has_measured();
     }
     keys
 }

@@ -64,6 +64,7 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
                 &oren_nayar::oren_nayar_angles(n, wi, wo),
             );
         }
+        Specular::Measured(m) => return m.f_r(wi, wo, frame),
     };
     diffuse + brdf.k_s * specular
 }

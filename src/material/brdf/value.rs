@@ -12,6 +12,7 @@
 use super::oren_nayar::OrenNayarTerms;
 use super::{fresnel, microfacet};
 use crate::base::Rgb;
+use crate::material::measured::MeasuredBrdf;
 use crate::material::{Denominator, Distribution, Fresnel, Geometry};
 
 /// The BRDF `k_d/π + k_s · specular` of one material.
@@ -52,6 +53,9 @@ pub enum Specular {
     /// Oren-Nayar, full (`oren_nayar::oren_nayar_full`): it replaces the
     /// Lambert term.
     OrenNayarFull(OrenNayarTerms),
+    /// A measured BRDF (`crate::material::measured`): it replaces the whole
+    /// BRDF (k_d, k_s are not read).
+    Measured(&'static MeasuredBrdf),
 }
 
 /// Cook-Torrance's `D·G·F / (denominator (N·V)(N·I))` (lecture:
@@ -313,6 +317,9 @@ impl Brdf {
             }
             Specular::Mirror(f) => f.write_params(&mut p),
             Specular::OrenNayar(t) | Specular::OrenNayarFull(t) => p.lobe = [t.a, t.b, t.c3, t.l2],
+            // The table's place in the measured buffer is the GPU's
+            // (`gpu::measured_tables`), written into `lobe` there.
+            Specular::Measured(_) => {}
         }
         p
     }

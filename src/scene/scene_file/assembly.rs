@@ -8,7 +8,7 @@ use super::lights::LightSetup;
 use super::schema::{CameraSection, ObjectEntry, SceneFile};
 use super::values::{finite_vec, non_negative, unit_vec};
 use crate::base::ColorValue;
-use crate::material::{Material, ReflectanceModel, material_from_entry};
+use crate::material::{Material, ReflectanceModel, material_from_entry_in};
 use crate::scene::{
     Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, gltf_import, primitives,
 };
@@ -42,7 +42,7 @@ pub fn assemble(
     let mut material_index = BTreeMap::new();
     for (name, entry) in &file.materials {
         material_index.insert(name.clone(), materials.len());
-        materials.push(material_from_entry(name, entry).map_err(bad)?);
+        materials.push(material_from_entry_in(name, entry, base_dir).map_err(bad)?);
     }
     let objects = objects(
         origin,
@@ -94,8 +94,31 @@ pub fn assemble(
         area_lights: lights.area_lights,
         ambient,
         environment,
+        measured_table: measured_table(&file).map_err(bad)?,
     };
     Ok((scene, light_setup))
+}
+
+/// `shading.measured_table`: the GPU's measured-table resolution, each
+/// count in 2..=`MAX_SAMPLES_PER_AXIS` (a table of 2 × 2 × 2 samples is
+/// the smallest that interpolates).
+fn measured_table(file: &SceneFile) -> std::result::Result<[u32; 3], String> {
+    use crate::material::measured::merl::MAX_SAMPLES_PER_AXIS;
+    let Some(dims) = file.shading.measured_table else {
+        return Ok(crate::material::measured::DEFAULT_TABLE_RESOLUTION);
+    };
+    if dims.iter().any(|&n| n < 2 || n as usize > MAX_SAMPLES_PER_AXIS) {
+        return Err(format!(
+            "shading.measured_table = {dims:?}: each sample count (θ_h, θ_d, φ_d) must be in 2..={MAX_SAMPLES_PER_AXIS}"
+        ));
+    }
+    let bytes = 12 * dims.iter().map(|&n| n as u64).product::<u64>();
+    if bytes > 1 << 27 {
+        return Err(format!(
+            "shading.measured_table = {dims:?}: a table of {bytes} bytes is over the 128 MiB a storage buffer binding is guaranteed"
+        ));
+    }
+    Ok(dims)
 }
 
 /// `[image]`: width, height and samples per pixel, range-checked.
