@@ -27,11 +27,11 @@ mod common;
 
 use glam::DVec3;
 use gonio::gpu::layout::GpuMaterial;
+use gonio::gpu::measured_tables::MeasuredTables;
 use gonio::gpu::shader_gen::{ShaderKey, compose_brdf_library};
 use gonio::material::brdf::{self, SurfaceFrame};
 use gonio::material::param::{Kind, Value};
 use gonio::material::table::{self, ROWS};
-use gonio::gpu::measured_tables::MeasuredTables;
 use gonio::material::{BrdfVariant, Distribution, Geometry, Material, ReflectanceModel, measured};
 use gonio::scene::Rgb;
 use std::collections::BTreeSet;
@@ -419,7 +419,10 @@ fn gpu_eval(
     });
     // The measured tables (group 0, binding 3), for a measured variant.
     let measured_group = key.has_measured().then(|| {
-        let buffer = init(bytemuck::cast_slice(&tables.data), wgpu::BufferUsages::STORAGE);
+        let buffer = init(
+            bytemuck::cast_slice(&tables.data),
+            wgpu::BufferUsages::STORAGE,
+        );
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &pipeline.get_bind_group_layout(0),

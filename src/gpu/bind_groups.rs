@@ -99,7 +99,11 @@ pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu:
         },
         count: None,
     };
-    let mut entries = vec![buffer_entry(0, true), material, buffer_entry(2, arrays.lights)];
+    let mut entries = vec![
+        buffer_entry(0, true),
+        material,
+        buffer_entry(2, arrays.lights),
+    ];
     if arrays.measured {
         entries.push(buffer_entry(3, false));
     }

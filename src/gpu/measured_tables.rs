@@ -14,9 +14,9 @@
 //! Tables are built once per (BRDF, resolution) and kept: a viewer edit or
 //! a second render of the same material reuses them.
 
+use crate::material::Material;
 use crate::material::measured::merl::MerlTable;
 use crate::material::measured::{MeasuredBrdf, Source, coords};
-use crate::material::Material;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;

@@ -6,10 +6,10 @@
 
 use super::param::{Kind, Param, Value};
 use super::{Material, ReflectanceModel, measured, presets, table};
-use std::path::Path;
 use crate::base::{ColorValue, rgb_to_toml};
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, Visitor};
+use std::path::Path;
 use std::sync::LazyLock;
 use toml::Value as Toml;
 
@@ -142,8 +142,9 @@ pub fn material_from_entry_in(
         measured_keys_apply(e).map_err(|(k, p)| format!("{}: {p}", key(k)))?;
     }
     if let Some(text) = &e.measured {
-        m.measured =
-            Some(measured::resolve(text, base_dir).map_err(|p| format!("{}: {p}", key("measured")))?);
+        m.measured = Some(
+            measured::resolve(text, base_dir).map_err(|p| format!("{}: {p}", key("measured")))?,
+        );
     }
     if let Some(p) = &e.preset {
         presets::preset(p)
@@ -180,7 +181,11 @@ fn measured_keys_apply(e: &MaterialEntry) -> Result<(), (&str, String)> {
     if e.preset.is_some() {
         return Err(not_read("preset"));
     }
-    if let Some((k, _)) = e.params.iter().find(|(k, _)| !table::COMMON.iter().any(|p| p.key == k)) {
+    if let Some((k, _)) = e
+        .params
+        .iter()
+        .find(|(k, _)| !table::COMMON.iter().any(|p| p.key == k))
+    {
         return Err(not_read(k));
     }
     if let Some((k, _)) = e.terms.first() {

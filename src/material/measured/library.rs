@@ -92,7 +92,12 @@ mod tests {
     #[test]
     fn the_library_has_the_100_merl_materials() {
         assert_eq!(all().len(), MATERIAL_COUNT);
-        for name in ["gold-metallic-paint", "chrome", "blue-fabric", "alum-bronze"] {
+        for name in [
+            "gold-metallic-paint",
+            "chrome",
+            "blue-fabric",
+            "alum-bronze",
+        ] {
             assert_eq!(builtin(name).unwrap().name, name);
         }
         let e = builtin("gold").unwrap_err();

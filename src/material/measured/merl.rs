@@ -191,11 +191,15 @@ impl MerlTable {
     /// channel: linear interpolation over a step of 1 (index units) errs
     /// by at most `⅛ max|f''|`, and the axes add; `f''` along each axis is
     /// estimated by the largest second difference of the samples at the
-    /// cell's eight corners (an axis' end has none).
+    /// cell's corners and their neighbours (4 × 4 × 4 samples; an axis'
+    /// end has none): curvature varies within a cell, and the
+    /// neighbouring cells' second differences see where it grows.
     pub fn second_difference_bound(&self, theta_h: f64, theta_d: f64, phi_d: f64) -> Rgb {
         let [nh, nd, np] = self.dims;
-        let (h0, h1, _) = clamped(theta_h_index(theta_h, nh), nh);
-        let (d0, d1, _) = clamped(theta_d.max(0.0) / FRAC_PI_2 * nd as f64, nd);
+        let u_h = theta_h_index(theta_h, nh);
+        let u_d = theta_d.max(0.0) / FRAC_PI_2 * nd as f64;
+        let (h0, h1, _) = clamped(u_h, nh);
+        let (d0, d1, _) = clamped(u_d, nd);
         let (p0, p1, _) = wrapped(phi_index(phi_d, np), np);
         let mut out = [0.0; 3];
         for (c, ch) in self.channels.iter().enumerate() {
@@ -203,9 +207,9 @@ impl MerlTable {
             let mut sum = 0.0;
             for axis in 0..3 {
                 let mut worst: f64 = 0.0;
-                for ih in [h0, h1] {
-                    for id in [d0, d1] {
-                        for ip in [p0, p1] {
+                for ih in h0.saturating_sub(1)..=(h1 + 1).min(nh - 1) {
+                    for id in d0.saturating_sub(1)..=(d1 + 1).min(nd - 1) {
+                        for ip in [(p0 + np - 1) % np, p0, p1, (p1 + 1) % np] {
                             let second = match axis {
                                 0 if ih >= 1 && ih + 1 < nh => {
                                     at(ih - 1, id, ip) - 2.0 * at(ih, id, ip) + at(ih + 1, id, ip)
@@ -224,6 +228,19 @@ impl MerlTable {
                     }
                 }
                 sum += worst / 8.0;
+            }
+            // Past an axis' last sample the look-up is clamped (constant):
+            // there it errs by the slope times the distance, the slope
+            // estimated by the last step (times 2, as the curvature above).
+            let beyond = |u: f64, n: usize| (u - (n - 1) as f64).max(0.0);
+            let (bh, bd) = (beyond(u_h, nh), beyond(u_d, nd));
+            if nh >= 2 && bh > 0.0 {
+                let step = (at(nh - 1, d0, p0) - at(nh - 2, d0, p0)).abs();
+                sum += 2.0 * bh * step;
+            }
+            if nd >= 2 && bd > 0.0 {
+                let step = (at(h0, nd - 1, p0) - at(h0, nd - 2, p0)).abs();
+                sum += 2.0 * bd * step;
             }
             out[c] = sum;
         }
@@ -320,14 +337,25 @@ mod tests {
         assert!(e.starts_with("truncated"), "{e}");
         let mut long = good.clone();
         long.push(0);
-        assert!(MerlTable::parse(&long).unwrap_err().starts_with("wrong size"));
+        assert!(
+            MerlTable::parse(&long)
+                .unwrap_err()
+                .starts_with("wrong size")
+        );
         let mut header = good.clone();
         header[..4].copy_from_slice(&(-5i32).to_le_bytes());
-        assert!(MerlTable::parse(&header).unwrap_err().starts_with("wrong header"));
+        assert!(
+            MerlTable::parse(&header)
+                .unwrap_err()
+                .starts_with("wrong header")
+        );
         let mut nan = good.clone();
         nan[12 + 8 * 17..12 + 8 * 18].copy_from_slice(&f64::NAN.to_le_bytes());
         let e = MerlTable::parse(&nan).unwrap_err();
-        assert!(e.contains("NaN in the green channel at (θ_h, θ_d, φ_d) index (0, 0, 1)"), "{e}");
+        assert!(
+            e.contains("NaN in the green channel at (θ_h, θ_d, φ_d) index (0, 0, 1)"),
+            "{e}"
+        );
         let mut missing = good.clone();
         missing[12..20].copy_from_slice(&(-1.0f64).to_le_bytes());
         let t = MerlTable::parse(&missing).unwrap();

@@ -107,7 +107,10 @@ fn measured_table(file: &SceneFile) -> std::result::Result<[u32; 3], String> {
     let Some(dims) = file.shading.measured_table else {
         return Ok(crate::material::measured::DEFAULT_TABLE_RESOLUTION);
     };
-    if dims.iter().any(|&n| n < 2 || n as usize > MAX_SAMPLES_PER_AXIS) {
+    if dims
+        .iter()
+        .any(|&n| n < 2 || n as usize > MAX_SAMPLES_PER_AXIS)
+    {
         return Err(format!(
             "shading.measured_table = {dims:?}: each sample count (θ_h, θ_d, φ_d) must be in 2..={MAX_SAMPLES_PER_AXIS}"
         ));
