@@ -20,6 +20,7 @@ use crate::material::measured::{MeasuredBrdf, Source, coords};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::f64::consts::{PI, TAU};
 use std::sync::{Arc, LazyLock, Mutex};
 
 pub use crate::material::measured::DEFAULT_TABLE_RESOLUTION;
@@ -56,7 +57,8 @@ impl MeasuredTables {
     }
 
     /// `GpuMaterial.lobe` of a material of `brdf`: its first index (bits)
-    /// and the sample counts.
+    /// and the sample counts, `n_φ` negative for a φ_d axis over 2π (a
+    /// network's table, [`phi_period`]).
     pub fn lobe(&self, brdf: &MeasuredBrdf) -> [f32; 4] {
         let first = self
             .placements
@@ -64,7 +66,12 @@ impl MeasuredTables {
             .find(|(b, _)| std::ptr::eq(*b, brdf))
             .map_or(0, |(_, first)| *first);
         let [nh, nd, np] = self.resolution;
-        [f32::from_bits(first), nh as f32, nd as f32, np as f32]
+        let np = if phi_period(brdf) > PI {
+            -(np as f32)
+        } else {
+            np as f32
+        };
+        [f32::from_bits(first), nh as f32, nd as f32, np]
     }
 }
 
@@ -85,6 +92,17 @@ pub fn table(brdf: &'static MeasuredBrdf, resolution: [u32; 3]) -> Arc<Vec<f32>>
     built
 }
 
+/// The φ_d period of `brdf`'s tables: π for a file (MERL's fold), 2π for a
+/// network, whose value at φ_d + π differs slightly from that at φ_d (up
+/// to a few per cent: folding made a table render 1–3 % off the network
+/// at every resolution).
+pub fn phi_period(brdf: &MeasuredBrdf) -> f64 {
+    match &brdf.source {
+        Source::Network(_) => TAU,
+        Source::Table(t) => t.phi_period,
+    }
+}
+
 /// Samples `brdf` at the sample angles of a table of `dims` (in parallel
 /// over θ_h), RGB interleaved. A file at its own resolution is copied.
 pub fn build(brdf: &MeasuredBrdf, dims: [usize; 3]) -> Vec<f32> {
@@ -96,12 +114,18 @@ pub fn build(brdf: &MeasuredBrdf, dims: [usize; 3]) -> Vec<f32> {
             .collect();
     }
     let [nh, nd, np] = dims;
+    let period = phi_period(brdf);
     (0..nh)
         .into_par_iter()
         .flat_map_iter(|ih| {
             (0..nd * np).flat_map(move |k| {
-                let (th, td, pd) =
-                    crate::material::measured::merl::sample_angles(dims, ih, k / np, k % np);
+                let (th, td, pd) = crate::material::measured::merl::sample_angles_over(
+                    dims,
+                    period,
+                    ih,
+                    k / np,
+                    k % np,
+                );
                 let f = f_r_at(brdf, th, td, pd);
                 [f.x as f32, f.y as f32, f.z as f32]
             })
@@ -117,5 +141,7 @@ fn f_r_at(brdf: &MeasuredBrdf, theta_h: f64, theta_d: f64, phi_d: f64) -> DVec3 
 /// The table `build` makes, in `f64`, as a [`MerlTable`]: the CPU twin of
 /// the GPU's look-up (tests).
 pub fn as_merl_table(brdf: &MeasuredBrdf, dims: [usize; 3]) -> MerlTable {
-    MerlTable::sample(dims, |th, td, pd| f_r_at(brdf, th, td, pd))
+    MerlTable::sample_over(dims, phi_period(brdf), |th, td, pd| {
+        f_r_at(brdf, th, td, pd)
+    })
 }

@@ -49,6 +49,10 @@ pub struct MerlTable {
     pub sha256: String,
     /// The MERL material this file is, if its sha256 is one of the 100.
     pub known_as: Option<String>,
+    /// The period of the φ_d axis: π for MERL's files (reciprocity folds
+    /// φ_d by π), 2π for gonio's tables of a network (which is not exactly
+    /// symmetric under φ_d → φ_d + π, and is the truth as it is).
+    pub phi_period: f64,
 }
 
 impl MerlTable {
@@ -125,18 +129,28 @@ impl MerlTable {
             missing,
             sha256,
             known_as,
+            phi_period: PI,
         })
     }
 
     /// A table of `dims` samples of `f`, a function of `(θ_h, θ_d, φ_d)`
     /// (the samples' angles in the module doc).
     pub fn sample(dims: [usize; 3], f: impl Fn(f64, f64, f64) -> Rgb) -> MerlTable {
+        MerlTable::sample_over(dims, PI, f)
+    }
+
+    /// [`MerlTable::sample`] with the φ_d axis over `[0, phi_period)`.
+    pub fn sample_over(
+        dims: [usize; 3],
+        phi_period: f64,
+        f: impl Fn(f64, f64, f64) -> Rgb,
+    ) -> MerlTable {
         let count = dims.iter().product::<usize>();
         let mut channels: [Vec<f64>; 3] = std::array::from_fn(|_| Vec::with_capacity(count));
         for ih in 0..dims[0] {
             for id in 0..dims[1] {
                 for ip in 0..dims[2] {
-                    let (th, td, pd) = sample_angles(dims, ih, id, ip);
+                    let (th, td, pd) = sample_angles_over(dims, phi_period, ih, id, ip);
                     let v = f(th, td, pd);
                     for (c, ch) in channels.iter_mut().enumerate() {
                         ch.push(v[c]);
@@ -150,6 +164,7 @@ impl MerlTable {
             missing: 0,
             sha256: String::new(),
             known_as: None,
+            phi_period,
         }
     }
 
@@ -173,7 +188,7 @@ impl MerlTable {
         let [nh, nd, np] = self.dims;
         let (h0, h1, th) = clamped(theta_h_index(theta_h, nh), nh);
         let (d0, d1, td) = clamped(theta_d.max(0.0) / FRAC_PI_2 * nd as f64, nd);
-        let (p0, p1, tp) = wrapped(phi_index(phi_d, np), np);
+        let (p0, p1, tp) = wrapped(phi_index(phi_d, np, self.phi_period), np);
         let mut out = [0.0; 3];
         for (c, ch) in self.channels.iter().enumerate() {
             let at = |ih: usize, id: usize, ip: usize| ch[ip + np * (id + nd * ih)];
@@ -200,7 +215,7 @@ impl MerlTable {
         let u_d = theta_d.max(0.0) / FRAC_PI_2 * nd as f64;
         let (h0, h1, _) = clamped(u_h, nh);
         let (d0, d1, _) = clamped(u_d, nd);
-        let (p0, p1, _) = wrapped(phi_index(phi_d, np), np);
+        let (p0, p1, _) = wrapped(phi_index(phi_d, np, self.phi_period), np);
         let mut out = [0.0; 3];
         for (c, ch) in self.channels.iter().enumerate() {
             let at = |ih: usize, id: usize, ip: usize| ch[ip + np * (id + nd * ih)];
@@ -250,11 +265,22 @@ impl MerlTable {
 
 /// The angles of sample `(i_h, i_d, i_φ)` of a table of `dims` samples.
 pub fn sample_angles(dims: [usize; 3], ih: usize, id: usize, ip: usize) -> (f64, f64, f64) {
+    sample_angles_over(dims, PI, ih, id, ip)
+}
+
+/// [`sample_angles`] with the φ_d axis over `[0, phi_period)`.
+pub fn sample_angles_over(
+    dims: [usize; 3],
+    phi_period: f64,
+    ih: usize,
+    id: usize,
+    ip: usize,
+) -> (f64, f64, f64) {
     let s = ih as f64 / dims[0] as f64;
     (
         s * s * FRAC_PI_2,
         id as f64 / dims[1] as f64 * FRAC_PI_2,
-        ip as f64 / dims[2] as f64 * PI,
+        ip as f64 / dims[2] as f64 * phi_period,
     )
 }
 
@@ -263,9 +289,10 @@ pub fn theta_h_index(theta_h: f64, nh: usize) -> f64 {
     (theta_h.max(0.0) / FRAC_PI_2).sqrt() * nh as f64
 }
 
-/// The continuous φ_d index in [0, n_φ): `φ_d` folded into [0, π).
-pub fn phi_index(phi_d: f64, np: usize) -> f64 {
-    phi_d.rem_euclid(PI) / PI * np as f64
+/// The continuous φ_d index in [0, n_φ): `φ_d` folded into
+/// `[0, phi_period)`.
+pub fn phi_index(phi_d: f64, np: usize, phi_period: f64) -> f64 {
+    phi_d.rem_euclid(phi_period) / phi_period * np as f64
 }
 
 /// The two samples around index `u` and the weight of the second, the
