@@ -91,6 +91,14 @@ pub fn gpu_materials(scene: &Scene, key: &ShaderKey) -> Vec<GpuMaterial> {
         .collect()
 }
 
+/// What the GPU reads of a scene's materials: one record per material
+/// and the measured tables (empty without a measured material).
+#[derive(Clone, Copy)]
+pub struct MaterialData<'a> {
+    pub records: &'a [GpuMaterial],
+    pub measured_tables: &'a [f32],
+}
+
 /// The measured tables of `scene` (built once per material and
 /// resolution, then cached: src/gpu/measured_tables.rs).
 pub fn measured_tables(scene: &Scene) -> MeasuredTables {
@@ -130,10 +138,13 @@ impl SceneDraw {
         geometry: GeometryData,
         arrays: UniformArrays,
         globals: &GpuGlobals,
-        materials: &[GpuMaterial],
-        measured: &[f32],
+        materials: MaterialData<'_>,
         lights: &[GpuLight],
     ) -> Self {
+        let MaterialData {
+            records: materials,
+            measured_tables: measured,
+        } = materials;
         let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -223,10 +234,13 @@ impl SceneDraw {
         queue: &wgpu::Queue,
         layouts: &SceneLayouts,
         arrays: UniformArrays,
-        materials: &[GpuMaterial],
-        measured: &[f32],
+        materials: MaterialData<'_>,
         lights: &[GpuLight],
     ) {
+        let MaterialData {
+            records: materials,
+            measured_tables: measured,
+        } = materials;
         let measured_bytes: &[u8] = bytemuck::cast_slice(measured);
         let measured_changed = match &self.measured_buffer {
             None => arrays.measured,

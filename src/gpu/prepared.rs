@@ -87,8 +87,10 @@ impl PreparedScene {
             geometry,
             arrays,
             &GpuGlobals::new(scene),
-            &materials,
-            &measured.data,
+            draw::MaterialData {
+                records: &materials,
+                measured_tables: &measured.data,
+            },
             &lights,
         );
         let shadows = ShadowMaps::new(&ctx.device, cache, &plan, arrays, draw.layout.stride());
@@ -152,8 +154,10 @@ impl PreparedScene {
             &ctx.queue,
             cache.scene_layouts(arrays),
             arrays,
-            &materials,
-            &measured.data,
+            draw::MaterialData {
+                records: &materials,
+                measured_tables: &measured.data,
+            },
             &lights,
         );
         let lights_changed = bytemuck::cast_slice::<GpuLight, u8>(&self.lights)

@@ -41,7 +41,7 @@ static LIBRARY: LazyLock<Vec<MeasuredBrdf>> = LazyLock::new(|| {
     file.materials
         .into_iter()
         .map(|(name, w)| MeasuredBrdf {
-            source: Source::Network(network(&name, &w)),
+            source: Source::Network(Box::new(network(&name, &w))),
             name,
         })
         .collect()

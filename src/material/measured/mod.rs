@@ -31,7 +31,7 @@ pub struct MeasuredBrdf {
 #[derive(Debug)]
 pub enum Source {
     /// A built-in Neural-BRDF network.
-    Network(network::Network),
+    Network(Box<network::Network>),
     /// A MERL-format table read from a file.
     Table(merl::MerlTable),
 }
