@@ -187,3 +187,37 @@ fn bad_inputs_exit_2_with_a_clear_message_and_no_output() {
         run_case(d, case);
     }
 }
+
+/// Sizes over the GPU's limits (issue 19): each side fits, but the
+/// readback buffer (16384 × 8192 × 16 bytes = 2 GiB) or the vertex buffer
+/// (the flat-shaded 3200-segment plane: 2.2 GB) does not. Both panicked in
+/// wgpu; now exit 2 naming the setting and what would fit.
+#[test]
+fn buffers_over_the_gpus_limits_are_refused_before_creation() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let exr = d.join("out.exr").display().to_string();
+    let out = d.join("out.png").display().to_string();
+    let cases = [
+        Case {
+            name: "readback buffer over max_buffer_size",
+            args: s(&["-o", &exr, "--width", "16384", "--height", "8192"]),
+            names: "--width 16384 --height 8192",
+        },
+        Case {
+            name: "vertex buffer over max_buffer_size",
+            args: s(&[
+                "-o",
+                &out,
+                "--shading",
+                "flat",
+                "--set",
+                "objects.1.segments=3200",
+            ]),
+            names: "segments",
+        },
+    ];
+    for case in &cases {
+        run_case(d, case);
+    }
+}
