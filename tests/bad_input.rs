@@ -221,3 +221,37 @@ fn buffers_over_the_gpus_limits_are_refused_before_creation() {
         run_case(d, case);
     }
 }
+
+/// `WGPU_BACKEND` naming no backend is named in the message (it ended in
+/// "no adapter" with advice to install lavapipe), and the GL backend,
+/// whose llvmpipe cannot render into the Rgba32Float radiance target,
+/// fails with a message instead of a panic (issue 19), for `render` and
+/// `bench --smoke` alike.
+#[test]
+fn the_backend_variable_is_checked_and_gl_fails_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let run = |backend: &str, args: &[&str]| {
+        let result = common::gonio()
+            .args(args)
+            .env("WGPU_BACKEND", backend)
+            .current_dir(dir.path())
+            .output()
+            .expect("gonio runs");
+        let stderr = String::from_utf8_lossy(&result.stderr).into_owned();
+        (result.status.code(), stderr)
+    };
+    let render = ["render", "-o", out.to_str().unwrap()];
+    let (code, stderr) = run("nonsense", &render);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("WGPU_BACKEND=nonsense"), "{stderr}");
+    assert!(!out.exists());
+    for args in [&render[..], &["bench", "--smoke"][..]] {
+        let (code, stderr) = run("gl", args);
+        assert!(!stderr.contains("panicked"), "{args:?} on GL: {stderr}");
+        assert!(
+            code == Some(0) || (code == Some(1) && stderr.contains("gonio: error:")),
+            "{args:?} on GL: exit {code:?}: {stderr}"
+        );
+    }
+}
