@@ -205,6 +205,23 @@ fn buffers_over_the_gpus_limits_are_refused_before_creation() {
             names: "--width 16384 --height 8192",
         },
         Case {
+            name: "camera beyond f32 range",
+            args: s(&["-o", &out, "--set", "camera.position=[1e300,1e300,1e300]"]),
+            names: "camera.position = [1e300, 1e300, 1e300] is beyond",
+        },
+        Case {
+            name: "shadow maps over their memory cap",
+            args: s(&[
+                "-o",
+                &out,
+                "--set",
+                "lights.0.shadows=true",
+                "--set",
+                "lights.0.shadow_map_size=8192",
+            ]),
+            names: "lights.N.shadow_map_size or [shadows] map_size",
+        },
+        Case {
             name: "vertex buffer over max_buffer_size",
             args: s(&[
                 "-o",
