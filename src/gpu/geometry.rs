@@ -122,6 +122,26 @@ impl GeometryData {
         }
     }
 
+    /// Bytes of the vertex stream and of the index buffer that
+    /// [`Self::new`] would lay out, computed from the counts alone so a
+    /// stream over the GPU's limits is refused before it is built.
+    pub fn byte_sizes(scene: &Scene, tangents: bool, face_normals: bool) -> (u64, u64) {
+        let triangles = scene.triangle_count() as u64;
+        let layout = |shading_point, face_normal| VertexLayout {
+            tangents,
+            shading_point,
+            face_normal,
+        };
+        match scene.shading {
+            ShadingMode::Flat => (3 * triangles * layout(true, false).stride(), 0),
+            ShadingMode::Phong if face_normals => (3 * triangles * layout(false, true).stride(), 0),
+            ShadingMode::Gouraud | ShadingMode::Phong => {
+                let vertices: u64 = scene.meshes.iter().map(|m| m.positions.len() as u64).sum();
+                (vertices * layout(false, false).stride(), 3 * triangles * 4)
+            }
+        }
+    }
+
     fn indexed(scene: &Scene, tangents: bool) -> Self {
         let layout = VertexLayout {
             tangents,

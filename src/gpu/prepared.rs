@@ -74,6 +74,7 @@ impl PreparedScene {
     ) -> Result<Self> {
         check_drawable(scene)?;
         let (key, plan) = plan(&ctx.device, vertex_shadow_coords, scene)?;
+        check_geometry_size(&ctx.device, scene, &key)?;
         let geometry =
             GeometryData::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
         cache.compile_scene(&key, geometry.layout, format, samples)?;
@@ -242,6 +243,39 @@ fn check_drawable(scene: &Scene) -> Result<()> {
         ));
     }
     Ok(())
+}
+
+/// Refuses a vertex stream or index buffer larger than the device's
+/// `max_buffer_size` before building it (a flat-shaded 3200-segment plane
+/// is a 2.2 GB stream: issue 19), naming the settings that make it
+/// and how many triangles would fit.
+fn check_geometry_size(device: &wgpu::Device, scene: &Scene, key: &ShaderKey) -> Result<()> {
+    let (vertex_bytes, index_bytes) =
+        GeometryData::byte_sizes(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
+    let max = device.limits().max_buffer_size;
+    let (what, bytes) = if vertex_bytes >= index_bytes {
+        ("vertex buffer", vertex_bytes)
+    } else {
+        ("index buffer", index_bytes)
+    };
+    if bytes <= max {
+        return Ok(());
+    }
+    let triangles = scene.triangle_count() as u64;
+    let per_triangle = bytes.div_ceil(triangles.max(1));
+    Err(Error::argument(
+        "objects.*.segments / the model's meshes",
+        format!(
+            "the {what} of {triangles} triangles with shading `{}` would take {bytes} bytes, over the GPU's maximum buffer size of {max} bytes: at most about {} triangles fit; use fewer `segments` (a sphere of n segments has about n²/2 triangles, a plane 2n²) or a smaller model{}",
+            scene.shading.name(),
+            max / per_triangle,
+            if scene.shading == crate::scene::ShadingMode::Flat {
+                " (flat shading stores three vertices per triangle; gouraud or phong shares them)"
+            } else {
+                ""
+            }
+        ),
+    ))
 }
 
 /// The shader key and shadow plan of `scene`, checked against the

@@ -279,6 +279,14 @@ const LN_2: f32 = 0.6931471805599453;
 // precision while prefactors up to ~1e13 would show the CPU's f64 value.
 const EXP_CUTOFF: f32 = 80.0;
 
+// UNIFORM_BRANCHES: no `if` whose condition is a material (uniform) value
+// alone, in any shader file: Mesa 22.3's lavapipe "inlines" such uniforms,
+// compiling a new variant of the shader at every draw and never freeing
+// the old one (lvp_execute.c, update_inline_shader_state; cached from
+// Mesa 23.1). The viewer grew by 0.8 MiB a frame with Blinn-Phong (issue
+// 19). Such a test is a select(); both sides are computed anyway on a
+// software rasterizer. tests/viewer_soak.rs keeps the memory flat.
+
 // e^x − e^−80 for x > −80, else 0: continuous at the cut (no jump between
 // CPU and GPU), changes exp(x) by < 1.8e-35; max(…, 0) absorbs exp's
 // rounding just above the cut.
@@ -296,12 +304,10 @@ fn exp_cutoff(x: f32) -> f32 {
 // (and pow) is only absolutely accurate (2^-21) near 1, which k_e up to 1e6
 // would amplify. (Rust: ln_1p.) c ≤ 1 (clamped): a cosine of unit vectors
 // exceeds 1 only by rounding.
+// k_e = 0 is a select, not a branch: see UNIFORM_BRANCHES below.
 fn cos_power(c: f32, k_e: f32) -> f32 {
     if c <= 0.0 {
         return 0.0;
-    }
-    if k_e == 0.0 {
-        return 1.0;
     }
     let u = min(c, 1.0) - 1.0; // exact for c ≥ 0.5 (Sterbenz)
     var ln_c: f32;
@@ -310,7 +316,7 @@ fn cos_power(c: f32, k_e: f32) -> f32 {
     } else {
         ln_c = log(c);
     }
-    return exp_cutoff(k_e * ln_c);
+    return select(exp_cutoff(k_e * ln_c), 1.0, k_e == 0.0);
 }
 
 // R(I) = −I + 2 (I·N) N
@@ -378,10 +384,7 @@ fn cos_power_precise(cos: f32, sin2: f32, k_e: f32) -> f32 {
     if cos <= 0.0 {
         return 0.0;
     }
-    if k_e == 0.0 {
-        return 1.0;
-    }
-    return exp_cutoff(k_e * ln_cos(cos, min(sin2, 1.0)));
+    return select(exp_cutoff(k_e * ln_cos(cos, min(sin2, 1.0))), 1.0, k_e == 0.0);
 }
 
 // Fresnel reflectance of a smooth interface (lecture: "Electric
@@ -456,20 +459,20 @@ fn fresnel_conductor_lecture(cos_i: f32, eta: vec3<f32>, kappa: vec3<f32>) -> ve
 // Exact unpolarized dielectric Fresnel (lecture: "Dielectrics") with
 // Snell's law. η_i = η_t: 0 (no interface, every angle); total internal
 // reflection: 1; otherwise cos θ_t > 0 and both denominators are > 0.
+// η_i = η_t is a select, not a branch on material values alone (see
+// UNIFORM_BRANCHES in phong.wgsl); it discards the 0/0 at grazing incidence.
 fn fresnel_dielectric(cos_i: f32, eta_i: f32, eta_t: f32) -> f32 {
-    if eta_i == eta_t {
-        return 0.0; // no interface; also avoids 0/0 at grazing incidence
-    }
+    let no_interface = eta_i == eta_t;
     let cos_theta = clamp(cos_i, 0.0, 1.0);
     let eta = eta_i / eta_t;
     let sin2_t = eta * eta * (1.0 - cos_theta * cos_theta); // Snell: sin θ_t = η sin θ_i
     if sin2_t >= 1.0 {
-        return 1.0; // total internal reflection (and the critical angle)
+        return select(1.0, 0.0, no_interface); // total internal reflection (and the critical angle)
     }
     let cos_t = sqrt(1.0 - sin2_t); // > 0 here
     let r_par = (eta_t * cos_theta - eta_i * cos_t) / (eta_t * cos_theta + eta_i * cos_t);
     let r_perp = (eta_i * cos_theta - eta_t * cos_t) / (eta_i * cos_theta + eta_t * cos_t);
-    return 0.5 * (r_par * r_par + r_perp * r_perp);
+    return select(0.5 * (r_par * r_par + r_perp * r_perp), 0.0, no_interface);
 }
 
 // Schlick 1994: F0 + (1 − F0)(1 − cos)^5, the fifth power by multiplication.
