@@ -41,6 +41,11 @@ named_enum!(
         /// material's Neural-BRDF network or a MERL-format table
         /// (`src/material/measured/`); `f_r` in 1/sr, no `k_d`, `k_s`.
         Measured = "measured",
+        /// glTF 2.0's metallic-roughness BRDF (Appendix B, its `mix` form as
+        /// the Khronos sample renderer evaluates it): base colour, metallic,
+        /// and glTF's *perceptual* roughness r (GGX α = r², unlike
+        /// Cook-Torrance's `roughness`, which is α itself).
+        GltfPbr = "gltf-pbr",
     }
 );
 
