@@ -258,7 +258,9 @@ fn brdf_denominator(m: Material) -> u32 {
 // src/material/measured/merl.rs (MerlTable::f_r, same rule, same order).
 // The tables of all the scene's measured materials are one array, bound
 // only when the scene has a measured material; a material's `lobe` holds
-// its table's first index (its bits) and its sample counts (n_h, n_d, n_φ).
+// its table's first index (its bits) and its sample counts (n_h, n_d, n_φ),
+// n_φ negative for a φ_d axis over 2π (a network's table) rather than π
+// (MERL's fold).
 
 @group(0) @binding(3) var<storage, read> measured_tables: array<f32>;
 
@@ -292,16 +294,17 @@ fn measured_sample(base: u32, dims: vec3<u32>, ih: u32, id: u32, ip: u32) -> vec
 // f_r [1/sr]: the table's trilinear interpolation (MerlTable::f_r).
 fn measured_f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let base = bitcast<u32>(m.lobe.x);
-    let dims = vec3<u32>(m.lobe.yzw);
+    let dims = vec3<u32>(abs(m.lobe.yzw));
     let n = vec3<f32>(dims);
+    let phi_period = select(PI, 2.0 * PI, m.lobe.w < 0.0);
     let a = measured_half_diff(wi, wo, frame);
     let u_h = clamp(sqrt(max(a.x, 0.0) / (0.5 * PI)) * n.x, 0.0, n.x - 1.0);
     let u_d = clamp(max(a.y, 0.0) / (0.5 * PI) * n.y, 0.0, n.y - 1.0);
     var phi = a.z;
     if phi < 0.0 {
-        phi = phi + PI;
+        phi = phi + phi_period;
     }
-    let u_p = phi / PI * n.z;
+    let u_p = min(phi / phi_period, 1.0) * n.z;
     let h0 = min(u32(floor(u_h)), dims.x - 1u);
     let d0 = min(u32(floor(u_d)), dims.y - 1u);
     let p_floor = floor(u_p);
