@@ -11,6 +11,7 @@ pub mod param;
 pub mod presets;
 pub mod table;
 pub mod terms;
+pub mod texture;
 
 pub use entry::{MaterialEntry, material_from_entry, material_table};
 pub use model::ReflectanceModel;
@@ -61,6 +62,9 @@ pub struct Material {
     pub geometry: Geometry,
     pub fresnel: Fresnel,
     pub denominator: Denominator,
+    /// Parameters that vary over the surface: each texture multiplies the
+    /// constant above it names (empty: a uniform material).
+    pub textures: Vec<texture::MaterialTexture>,
 }
 
 impl Material {
@@ -90,6 +94,7 @@ impl Material {
             geometry: Geometry::Smith,
             fresnel: Fresnel::Conductor,
             denominator: Denominator::Microfacet,
+            textures: Vec::new(),
         };
         (model.row().defaults)(&mut m);
         m

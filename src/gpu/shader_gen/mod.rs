@@ -94,6 +94,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(i % 2 == 0),
                 vertex_shadow_coords: false,
+                texture_slots: 0,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -114,6 +115,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     arrays: arrays(pcf),
                     // Orthographic with PCF: the coordinates per vertex.
                     vertex_shadow_coords: pcf,
+                    texture_slots: 0,
                 });
             }
         }
@@ -133,6 +135,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(uniform),
                 vertex_shadow_coords: false,
+                texture_slots: 0,
             });
         }
     }

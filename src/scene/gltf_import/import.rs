@@ -10,6 +10,7 @@ use super::convert::{
 };
 use crate::scene::limits::Limits;
 use crate::scene::mesh::area_weighted_normals;
+use crate::scene::texture::Encoding;
 use crate::scene::{Mesh, Rgb};
 use glam::DMat4;
 use std::borrow::Cow;
@@ -27,6 +28,8 @@ pub(super) struct Importer<'a> {
     scene: GltfScene,
     /// Index of `gltf-default` in `scene.materials`, once a primitive needs it.
     default_material: Option<usize>,
+    /// Texture images, decoded as materials ask for them.
+    images: super::images::ImageSource<'a>,
 }
 
 impl<'a> Importer<'a> {
@@ -35,6 +38,7 @@ impl<'a> Importer<'a> {
         buffers: &'a [Cow<'a, [u8]>],
         limits: &Limits,
         notes: Vec<String>,
+        folder: &'a std::path::Path,
     ) -> Self {
         let clamp = |v: u64| usize::try_from(v).unwrap_or(usize::MAX);
         Importer {
@@ -49,8 +53,14 @@ impl<'a> Importer<'a> {
                 camera: None,
                 skipped_primitives: 0,
                 notes,
+                images: Vec::new(),
             },
             default_material: None,
+            images: super::images::ImageSource {
+                buffers,
+                folder,
+                store: crate::scene::texture::store::ImageStore::new(limits),
+            },
         }
     }
 
@@ -63,13 +73,24 @@ impl<'a> Importer<'a> {
                 .name()
                 .map_or_else(|| format!("material {index}"), str::to_string);
             let pbr = material.pbr_metallic_roughness();
-            let material = material_from_pbr(
+            let mut converted = material_from_pbr(
                 name,
                 pbr.base_color_factor(),
                 pbr.metallic_factor(),
                 pbr.roughness_factor(),
             )?;
-            self.scene.materials.push(material);
+            // The base colour texture multiplies what the base colour
+            // sets: k_d = b·(1 − m) and k_a = b (see the module docs).
+            if let Some(info) = pbr.base_color_texture() {
+                for key in ["k_d", "k_a"] {
+                    let t = self
+                        .images
+                        .texture(&info, key, Encoding::Srgb, 0)
+                        .map_err(|e| format!("material {index}: baseColorTexture: {e}"))?;
+                    converted.textures.push(t);
+                }
+            }
+            self.scene.materials.push(converted);
         }
 
         // Depth-first, children in order, with an explicit stack: a chain
@@ -96,6 +117,7 @@ impl<'a> Importer<'a> {
             let children: Vec<_> = node.children().collect();
             stack.extend(children.into_iter().rev().map(|child| (child, world)));
         }
+        self.scene.images = self.images.store.images.clone();
         Ok(self.scene)
     }
 
@@ -163,6 +185,7 @@ impl<'a> Importer<'a> {
                     tangents: Vec::new(),
                     indices: raw.indices,
                     material,
+                    tex_coords: Vec::new(),
                 },
                 None => Mesh::with_generated_normals(name, raw.positions, raw.indices, material),
             };
@@ -171,6 +194,7 @@ impl<'a> Importer<'a> {
             if let Some(tangents) = raw.tangents {
                 mesh.tangents = tangents;
             }
+            mesh.tex_coords = raw.tex_coords;
             mesh.transform(world);
             // The GPU draws in f32: a position beyond its range would
             // become infinite there even though it is finite here.

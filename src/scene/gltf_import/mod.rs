@@ -98,6 +98,7 @@ mod census;
 mod container;
 mod convert;
 mod graph;
+mod images;
 mod import;
 #[cfg(test)]
 mod tests;
@@ -136,6 +137,8 @@ pub struct GltfScene {
     /// does not implement, unknown GLB chunks, trailing bytes), one
     /// sentence each, for `--verbose`.
     pub notes: Vec<String>,
+    /// The images its materials' textures index.
+    pub images: Vec<std::sync::Arc<crate::scene::texture::Image>>,
 }
 
 impl GltfScene {
@@ -191,6 +194,8 @@ pub fn load_from_bytes(bytes: &[u8], base_dir: &Path, limits: &Limits) -> Result
 pub struct GltfLoader {
     remaining: Limits,
     notes: Vec<String>,
+    /// The scene's texture images, held to the same limits.
+    pub images: crate::scene::texture::store::ImageStore,
 }
 
 impl GltfLoader {
@@ -199,6 +204,7 @@ impl GltfLoader {
         GltfLoader {
             remaining: limits,
             notes: Vec::new(),
+            images: crate::scene::texture::store::ImageStore::new(&limits),
         }
     }
 
@@ -268,7 +274,7 @@ fn load_bytes(
     let roots = graph::scene_roots(&document, &parents)?;
     graph::check_cost(&document, &graph::descendants(&document, &roots), limits)?;
     let buffers = buffers::load(&document, container.bin, folder, &mut used_bytes, limits)?;
-    guarded(|| import::Importer::new(&document, &buffers, limits, notes).run(&roots))
+    guarded(|| import::Importer::new(&document, &buffers, limits, notes, folder).run(&roots))
         .and_then(|result| result)
 }
 
