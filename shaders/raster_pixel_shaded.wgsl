@@ -68,9 +68,9 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     #if shadow_pixel
     let n_g = cross(dpdx(in.world), dpdy(in.world));
     #endif
+    #if textures
     // Textures: the material at this pixel (shadowing the module's
     // `material`), read with the UVs' screen derivatives (per 2×2 quad).
-    #if textures
     let surface_uv = SurfaceUv(in.uv0, in.uv1, dpdx(in.uv0), dpdy(in.uv0), dpdx(in.uv1), dpdy(in.uv1));
     let material = textured_material(material, surface_uv);
     #endif

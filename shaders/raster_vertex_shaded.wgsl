@@ -45,9 +45,9 @@ fn vs_main(in: VertexIn) -> VertexOut {
     #else
     let x = in.position;
     #endif
+    #if textures
     // Textures: the material at the shading point (flat: the centroid's
     // UVs), level 0, shadowing the module's `material`.
-    #if textures
     let material = textured_material_level0(material, in.uv0, in.uv1);
     #endif
     var out: VertexOut;

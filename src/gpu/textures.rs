@@ -299,11 +299,17 @@ mod tests {
     #[test]
     fn slot_mirrors_the_wgsl_size() {
         assert_eq!(size_of::<GpuTextureSlot>(), 48);
-        let wgsl = format!(
-            "const MAX_TEXTURE_SLOTS: u32 = 6u;\nconst TEXTURE_SLOTS: u32 = 1u;\n{}\n{}",
-            crate::gpu::shader_gen::sources::get("common.wgsl"),
-            crate::gpu::shader_gen::sources::get("textures.wgsl")
-        );
+        let key = crate::gpu::shader_gen::ShaderKey {
+            variants: [crate::material::Material::new(
+                "m",
+                crate::material::ReflectanceModel::Lambert,
+            )
+            .variant()]
+            .into(),
+            texture_slots: 1,
+            ..Default::default()
+        };
+        let wgsl = crate::gpu::shader_gen::compose(&key);
         let module = naga::front::wgsl::parse_str(&wgsl).unwrap();
         let ty = module
             .types

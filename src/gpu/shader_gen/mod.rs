@@ -135,7 +135,12 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(uniform),
                 vertex_shadow_coords: false,
-                texture_slots: 0,
+                // Textures with the uber shader: all slots, all models.
+                texture_slots: if uniform {
+                    crate::gpu::textures::MAX_TEXTURE_SLOTS as u32
+                } else {
+                    0
+                },
             });
         }
     }
