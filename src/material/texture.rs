@@ -169,46 +169,6 @@ impl UvTransform {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The contract's rotation: r = 90° takes (1, 0) to (0, −1) and
-    /// (0, 1) to (1, 0), i.e. u' = v, v' = −u (rows of R).
-    #[test]
-    fn rotation_follows_the_contracts_sign() {
-        let t = UvTransform {
-            rotation: std::f64::consts::FRAC_PI_2,
-            ..Default::default()
-        };
-        assert!((t.apply(DVec2::X) - DVec2::new(0.0, -1.0)).length() < 1e-12);
-        assert!((t.apply(DVec2::Y) - DVec2::X).length() < 1e-12);
-        let t = UvTransform {
-            offset: DVec2::new(0.5, 0.25),
-            rotation: 0.0,
-            scale: DVec2::new(2.0, 3.0),
-        };
-        assert!((t.apply(DVec2::ONE) - DVec2::new(2.5, 3.25)).length() < 1e-12);
-        assert!((t.apply_vector(DVec2::ONE) - DVec2::new(2.0, 3.0)).length() < 1e-12);
-    }
-
-    #[test]
-    fn gltf_codes_map_to_samplers() {
-        let s = Sampler::from_gltf(Some(9728), Some(9986), 33648, 33071).unwrap();
-        assert_eq!(s.mag, Filter::Nearest);
-        assert_eq!((s.min, s.mipmap), (Filter::Nearest, Some(Filter::Linear)));
-        assert_eq!(
-            (s.wrap_u, s.wrap_v),
-            (Wrap::MirroredRepeat, Wrap::ClampToEdge)
-        );
-        assert_eq!(
-            Sampler::from_gltf(None, None, 10497, 10497).unwrap(),
-            Sampler::default()
-        );
-        assert!(Sampler::from_gltf(Some(1), None, 10497, 10497).is_err());
-    }
-}
-
 /// The GPU material's fields, in the order of their bits in a texture
 /// slot's field mask (`shaders/textures.wgsl` reads the same order), with
 /// their component counts: the values the WGSL `Material` holds for a
@@ -281,4 +241,44 @@ pub fn gpu_field_mask(m: &super::Material, key: &str) -> Result<u32, String> {
         mask |= 1 << bit;
     }
     Ok(mask)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The contract's rotation: r = 90° takes (1, 0) to (0, −1) and
+    /// (0, 1) to (1, 0), i.e. u' = v, v' = −u (rows of R).
+    #[test]
+    fn rotation_follows_the_contracts_sign() {
+        let t = UvTransform {
+            rotation: std::f64::consts::FRAC_PI_2,
+            ..Default::default()
+        };
+        assert!((t.apply(DVec2::X) - DVec2::new(0.0, -1.0)).length() < 1e-12);
+        assert!((t.apply(DVec2::Y) - DVec2::X).length() < 1e-12);
+        let t = UvTransform {
+            offset: DVec2::new(0.5, 0.25),
+            rotation: 0.0,
+            scale: DVec2::new(2.0, 3.0),
+        };
+        assert!((t.apply(DVec2::ONE) - DVec2::new(2.5, 3.25)).length() < 1e-12);
+        assert!((t.apply_vector(DVec2::ONE) - DVec2::new(2.0, 3.0)).length() < 1e-12);
+    }
+
+    #[test]
+    fn gltf_codes_map_to_samplers() {
+        let s = Sampler::from_gltf(Some(9728), Some(9986), 33648, 33071).unwrap();
+        assert_eq!(s.mag, Filter::Nearest);
+        assert_eq!((s.min, s.mipmap), (Filter::Nearest, Some(Filter::Linear)));
+        assert_eq!(
+            (s.wrap_u, s.wrap_v),
+            (Wrap::MirroredRepeat, Wrap::ClampToEdge)
+        );
+        assert_eq!(
+            Sampler::from_gltf(None, None, 10497, 10497).unwrap(),
+            Sampler::default()
+        );
+        assert!(Sampler::from_gltf(Some(1), None, 10497, 10497).is_err());
+    }
 }

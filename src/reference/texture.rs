@@ -108,6 +108,43 @@ pub fn wrap(mode: Wrap, i: i64, size: i64) -> i64 {
     }
 }
 
+/// `material` with its textures applied at a surface point whose UV sets
+/// are `uv` (and their footprints `footprint`): each texture multiplies
+/// the parameter it names, a colour by the texel's RGB, a scalar by the
+/// texture's channel (GPU twin: `textured_material` in
+/// shaders/textures.wgsl).
+pub fn textured(
+    material: &crate::material::Material,
+    images: &[std::sync::Arc<Image>],
+    uv: [DVec2; 2],
+    footprint: [Footprint; 2],
+) -> crate::material::Material {
+    use crate::material::param::Value;
+    use crate::material::texture::TextureTarget;
+    let mut m = material.clone();
+    for t in &material.textures {
+        let set = t.tex_coord.min(1);
+        let fp = Footprint {
+            duv_dx: t.transform.apply_vector(footprint[set].duv_dx),
+            duv_dy: t.transform.apply_vector(footprint[set].duv_dy),
+        };
+        let texel = sample(&images[t.image], &t.sampler, t.transform.apply(uv[set]), fp);
+        match t.target {
+            TextureTarget::Param(key) => {
+                let Some(p) = crate::material::table::param_for(m.model, key) else {
+                    continue;
+                };
+                let v = match p.read(&m) {
+                    Value::Color(c) => Value::Color(c * texel.truncate()),
+                    Value::Scalar(v) => Value::Scalar(v * texel[t.channel]),
+                };
+                p.write(&mut m, v);
+            }
+        }
+    }
+    m
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -172,41 +209,4 @@ mod tests {
         let v = sample(&image, &s, DVec2::new(0.25, 0.5), fp).x;
         assert!((v - 1.0).abs() < 1e-12, "{v}");
     }
-}
-
-/// `material` with its textures applied at a surface point whose UV sets
-/// are `uv` (and their footprints `footprint`): each texture multiplies
-/// the parameter it names, a colour by the texel's RGB, a scalar by the
-/// texture's channel (GPU twin: `textured_material` in
-/// shaders/textures.wgsl).
-pub fn textured(
-    material: &crate::material::Material,
-    images: &[std::sync::Arc<Image>],
-    uv: [DVec2; 2],
-    footprint: [Footprint; 2],
-) -> crate::material::Material {
-    use crate::material::param::Value;
-    use crate::material::texture::TextureTarget;
-    let mut m = material.clone();
-    for t in &material.textures {
-        let set = t.tex_coord.min(1);
-        let fp = Footprint {
-            duv_dx: t.transform.apply_vector(footprint[set].duv_dx),
-            duv_dy: t.transform.apply_vector(footprint[set].duv_dy),
-        };
-        let texel = sample(&images[t.image], &t.sampler, t.transform.apply(uv[set]), fp);
-        match t.target {
-            TextureTarget::Param(key) => {
-                let Some(p) = crate::material::table::param_for(m.model, key) else {
-                    continue;
-                };
-                let v = match p.read(&m) {
-                    Value::Color(c) => Value::Color(c * texel.truncate()),
-                    Value::Scalar(v) => Value::Scalar(v * texel[t.channel]),
-                };
-                p.write(&mut m, v);
-            }
-        }
-    }
-    m
 }

@@ -63,10 +63,10 @@ impl<'a> ImageSource<'a> {
             if let Some(set) = t.tex_coord() {
                 tex_coord = set as usize;
             }
-            if !(transform.offset.is_finite() && transform.scale.is_finite())
-                || !transform.rotation.is_finite()
-                || tex_coord > 1
-            {
+            let finite = transform.offset.is_finite()
+                && transform.scale.is_finite()
+                && transform.rotation.is_finite();
+            if !finite || tex_coord > 1 {
                 return Err(format!(
                     "{at}: KHR_texture_transform is not finite or reads a set past TEXCOORD_1"
                 ));
