@@ -9,7 +9,8 @@ use gltf::json::validation::{Checked, Validate as _};
 use gltf::mesh::Semantic;
 
 /// Required extensions this importer honours.
-pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &["KHR_lights_punctual"];
+pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] =
+    &["KHR_lights_punctual", "KHR_materials_emissive_strength"];
 
 /// Required extensions users are likely to meet, with what they do: the
 /// message says why the file cannot be drawn without them.

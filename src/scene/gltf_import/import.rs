@@ -62,13 +62,7 @@ impl<'a> Importer<'a> {
             let name = material
                 .name()
                 .map_or_else(|| format!("material {index}"), str::to_string);
-            let pbr = material.pbr_metallic_roughness();
-            let material = material_from_pbr(
-                name,
-                pbr.base_color_factor(),
-                pbr.metallic_factor(),
-                pbr.roughness_factor(),
-            )?;
+            let material = material_from_pbr(name, &material)?;
             self.scene.materials.push(material);
         }
 
