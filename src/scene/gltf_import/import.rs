@@ -27,6 +27,9 @@ pub(super) struct Importer<'a> {
     scene: GltfScene,
     /// Index of `gltf-default` in `scene.materials`, once a primitive needs it.
     default_material: Option<usize>,
+    /// The file uses `KHR_mesh_quantization`: integer vertex attributes
+    /// are allowed (`accessors::Usage::accepts`).
+    quantized: bool,
 }
 
 impl<'a> Importer<'a> {
@@ -51,6 +54,9 @@ impl<'a> Importer<'a> {
                 notes,
             },
             default_material: None,
+            quantized: document
+                .extensions_used()
+                .any(|e| e == "KHR_mesh_quantization"),
         }
     }
 
@@ -134,6 +140,7 @@ impl<'a> Importer<'a> {
                 self.buffers,
                 self.max_vertices,
                 self.max_corners,
+                self.quantized,
             )
             .map_err(|p| format!("{}: {p}", context()))?
             else {

@@ -712,3 +712,81 @@ fn sparse_indices_past_the_count_are_refused() {
         &["sparse index 0 is 7", "3 elements"],
     );
 }
+
+/// A triangle as `KHR_mesh_quantization` writes it: POSITION as unsigned
+/// shorts (non-normalized, stride 8), NORMAL as normalized signed bytes
+/// (stride 4), and the same accessors without the extension.
+fn quantized_triangle(extension: bool, position_normalized: bool) -> String {
+    let mut bytes = Vec::new();
+    for p in [[0u16, 0, 0], [2, 0, 0], [0, 3, 65535]] {
+        for c in p {
+            bytes.extend_from_slice(&c.to_le_bytes());
+        }
+        bytes.extend_from_slice(&[0, 0]);
+    }
+    for _ in 0..3 {
+        bytes.extend_from_slice(&[0u8, 0, 127, 0]); // +Z, normalized i8
+    }
+    let used = if extension {
+        r#""extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],"#
+    } else {
+        ""
+    };
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, {used}
+  "buffers": [{{"uri": "{}", "byteLength": 36}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 24, "byteStride": 8}},
+                  {{"buffer": 0, "byteOffset": 24, "byteLength": 12, "byteStride": 4}}],
+  "accessors": [{{"bufferView": 0, "componentType": 5123, "normalized": {position_normalized}, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [2, 3, 65535]}},
+                {{"bufferView": 1, "componentType": 5120, "normalized": true, "count": 3, "type": "VEC3"}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1}}}}]}}],
+  "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}]}}"#,
+        data_uri(&bytes)
+    )
+}
+
+#[test]
+fn quantized_attributes_decode_as_the_extension_says() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = load_written(
+        dir.path(),
+        "q.gltf",
+        quantized_triangle(true, false).as_bytes(),
+    )
+    .unwrap();
+    let mesh = &scene.meshes[0];
+    assert_eq!(
+        mesh.positions,
+        vec![
+            DVec3::ZERO,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(0.0, 3.0, 65535.0)
+        ]
+    );
+    assert!(
+        mesh.normals.iter().all(|&n| n == DVec3::Z),
+        "{:?}",
+        mesh.normals
+    );
+    // Normalized unsigned shorts: c / 65535.
+    let scene = load_written(
+        dir.path(),
+        "qn.gltf",
+        quantized_triangle(true, true).as_bytes(),
+    )
+    .unwrap();
+    assert_eq!(
+        scene.meshes[0].positions[2],
+        DVec3::new(0.0, 3.0 / 65535.0, 1.0)
+    );
+    // Without the extension, integer positions are refused by name.
+    let result = load_written(
+        dir.path(),
+        "model.gltf",
+        quantized_triangle(false, false).as_bytes(),
+    );
+    assert_input_error(
+        result,
+        &["accessor 0 (POSITION)", "U16", "KHR_mesh_quantization"],
+    );
+}
