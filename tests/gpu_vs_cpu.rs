@@ -183,6 +183,32 @@ fn every_reflectance_model_renders_like_the_reference() {
             ],
         ),
         (
+            "cook-torrance",
+            &[
+                "materials.ball.distribution=ggx",
+                "materials.ball.geometry=smith-correlated",
+                "materials.ball.fresnel=schlick",
+                "materials.ball.roughness=0.2",
+            ],
+        ),
+        (
+            "gltf-pbr",
+            &[
+                "materials.ball.base_color=[0.9, 0.6, 0.2]",
+                "materials.ball.metallic=0.5",
+                "materials.ball.roughness=0.4",
+                "materials.ball.emission=[0.05, 0.0, 0.1]",
+            ],
+        ),
+        (
+            "gltf-pbr",
+            &[
+                "materials.ball.base_color=[0.95, 0.64, 0.54]",
+                "materials.ball.metallic=1",
+                "materials.ball.roughness=0.15",
+            ],
+        ),
+        (
             "mirror",
             &[
                 "materials.ball.preset=silver",
@@ -241,4 +267,32 @@ fn mirror_smooth_highlight_stays_visible_and_finite() {
         "roughness 1e-4: floor {floor:.3e}, highlight peak {peak:.3e}, {}",
         c.summary()
     );
+}
+
+/// Emission adds to L_o on both sides: with the light and the ambient
+/// term off, the ball's centre pixel is its emission exactly (in f32, as
+/// the GPU holds it), and the floor, which emits nothing, is black.
+#[test]
+fn emission_is_what_an_unlit_surface_shows() {
+    let emission = [0.25f32, 0.5, 1.0];
+    let scene = load(
+        SceneSource::BuiltIn,
+        ShadingMode::Phong,
+        &[
+            "materials.ball.model=gltf-pbr",
+            "materials.ball.emission=[0.25, 0.5, 1.0]",
+            "lights.0.intensity=0.0",
+            "ambient.radiance=0.0",
+        ],
+    );
+    let mut renderer = common::gpu_renderer();
+    let (gpu, _) = renderer.render(&scene).expect("GPU render");
+    let reference = reference::render(&scene);
+    let (w, h) = (scene.width as usize, scene.height as usize);
+    let centre = (h / 2) * w + w / 2;
+    for frame in [&gpu, &reference] {
+        assert_eq!(frame.radiance[centre], emission, "centre pixel");
+        let bottom = (h - 2) * w + w / 2;
+        assert_eq!(frame.radiance[bottom], [0.0; 3], "floor pixel");
+    }
 }
