@@ -1,5 +1,5 @@
 // The reflection equation for punctual lights, summed (contract):
-// L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
+// L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
 // plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)).
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
@@ -34,7 +34,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
 #endif
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
-    var radiance = m.k_a * globals.ambient;
+    var radiance = m.emission + m.k_a * globals.ambient;
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the

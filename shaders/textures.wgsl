@@ -94,6 +94,9 @@ fn scale_fields(base: Material, fields: u32, f: vec3<f32>) -> Material {
     if (fields & 2048u) != 0u { m.d_norm *= f.x; }
     if (fields & 4096u) != 0u { m.blinn_e *= f.x; }
     if (fields & 8192u) != 0u { m.lobe *= f.x; }
+    if (fields & 16384u) != 0u { m.base_color *= f; }
+    if (fields & 32768u) != 0u { m.metallic *= f.x; }
+    if (fields & 65536u) != 0u { m.emission *= f; }
     return m;
 }
 

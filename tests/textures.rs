@@ -48,18 +48,7 @@ fn gpu(scene: &Scene) -> Frame {
 fn gpu_vs_reference(label: &str, scene: &Scene) {
     let frame = gpu(scene);
     let (center, jittered) = common::reference_with_jitter(scene);
-    let lod_up = gonio::reference::render_with_lod_bias(scene, 0.5);
-    let lod_down = gonio::reference::render_with_lod_bias(scene, -0.5);
-    let c = gonio::output::compare::compare_with_spreads(
-        &frame,
-        &center,
-        &[
-            (&jittered[0], &jittered[1]),
-            (&jittered[2], &jittered[3]),
-            (&lod_up, &lod_down),
-        ],
-        common::tolerance(scene, &center),
-    );
+    let c = common::compare_to_reference(scene, &frame, &center, &jittered);
     eprintln!("{label:<32} {}", c.summary());
     assert!(c.compared > (scene.width * scene.height) as usize / 10);
     common::assert_agrees(label, "GPU and reference disagree", &c, &frame, &center);

@@ -40,8 +40,8 @@
 use super::brdf::oren_nayar::oren_nayar_terms;
 use super::brdf::{CookTorrance, FresnelTerm, Specular};
 use super::param::{
-    ETA, ETA_I, ETA_T, FACET_SIGMA, K_A, K_D, K_E, K_S, KAPPA, Param, ROUGHNESS, SIGMA_X, SIGMA_Y,
-    WARD_SIGMA,
+    BASE_COLOR, EMISSION, ETA, ETA_I, ETA_T, FACET_SIGMA, K_A, K_D, K_E, K_S, KAPPA, METALLIC,
+    PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, SIGMA_X, SIGMA_Y, WARD_SIGMA,
 };
 use super::{Material, ReflectanceModel};
 use crate::base::Rgb;
@@ -123,8 +123,8 @@ pub fn row(model: ReflectanceModel) -> &'static ModelRow {
         .expect("every model has a row (tests: every_model_has_one_row)")
 }
 
-/// Parameters of every model (not a BRDF's: the ambient term).
-pub const COMMON: &[&Param] = &[&K_A];
+/// Parameters of every model (not a BRDF's: the ambient term, emission).
+pub const COMMON: &[&Param] = &[&K_A, &EMISSION];
 
 /// Every distinct parameter: [`COMMON`], then each row's in table order
 /// (each once, by identity).
@@ -490,6 +490,49 @@ pub static ROWS: &[ModelRow] = &[
         transcendental_error: |_| ATAN2_TERMS_ERROR,
         albedo_table: ON_ALBEDO,
     },
+    ModelRow {
+        model: ReflectanceModel::GltfPbr,
+        summary: "glTF 2.0 metallic-roughness (Appendix B, mix form): base colour, metallic, perceptual roughness r (α = r²)",
+        form: Form::Paper,
+        wgsl: &[
+            "brdf/lambert.wgsl",
+            "brdf/phong.wgsl",
+            "brdf/microfacet.wgsl",
+            "brdf/gltf_pbr.wgsl",
+        ],
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[&BASE_COLOR, &METALLIC, &PERCEPTUAL_ROUGHNESS],
+        reciprocal: true,
+        benched: false,
+        defaults: |_| {},
+        specular: |m| Specular::GltfPbr {
+            base_color: m.base_color,
+            metallic: m.metallic,
+            roughness: m.roughness,
+        },
+        // GGX's lobe of width α = r² (slope_error); no transcendental
+        // function: w = (1 − |V·H|)⁵ is taken by multiplications, the rest
+        // is arithmetic and sqrt.
+        f32_error: |m| slope_error((m.roughness * m.roughness).max(super::ROUGHNESS_FLOOR)),
+        transcendental_error: |_| 0.0,
+        albedo_table: GLTF_PBR_ALBEDO,
+    },
+];
+
+const GLTF_PBR_ALBEDO: &[(&str, &str)] = &[
+    (
+        "base_color=1,metallic=1,roughness=0.1",
+        "white metal: F = 1, D·Vis alone",
+    ),
+    ("base_color=1,metallic=1,roughness=0.5", ""),
+    (
+        "base_color=1,metallic=1,roughness=1",
+        "single scattering loses energy",
+    ),
+    ("base_color=1,metallic=0,roughness=0.5", "white dielectric"),
+    ("base_color=1,metallic=0,roughness=0.1", "white dielectric"),
+    ("base_color=0.5,metallic=0.5,roughness=0.5", ""),
 ];
 
 /// Oren-Nayar's WGSL: its file uses phong.wgsl's `COS_FLOOR`.

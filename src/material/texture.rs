@@ -192,6 +192,9 @@ pub fn gpu_field_values(m: &super::Material) -> Vec<(&'static str, Vec<f64>)> {
         ("d_norm", vec![p.d_norm]),
         ("blinn_e", vec![p.blinn_e]),
         ("lobe", p.lobe.to_vec()),
+        ("base_color", rgb(p.base_color)),
+        ("metallic", vec![p.metallic]),
+        ("emission", rgb(m.emission)),
     ]
 }
 

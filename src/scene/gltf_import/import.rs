@@ -30,6 +30,9 @@ pub(super) struct Importer<'a> {
     default_material: Option<usize>,
     /// Texture images, decoded as materials ask for them.
     images: super::images::ImageSource<'a>,
+    /// The file uses `KHR_mesh_quantization`: integer vertex attributes
+    /// are allowed (`accessors::Usage::accepts`).
+    quantized: bool,
 }
 
 impl<'a> Importer<'a> {
@@ -61,6 +64,9 @@ impl<'a> Importer<'a> {
                 folder,
                 store: crate::scene::texture::store::ImageStore::new(limits),
             },
+            quantized: document
+                .extensions_used()
+                .any(|e| e == "KHR_mesh_quantization"),
         }
     }
 
@@ -73,23 +79,9 @@ impl<'a> Importer<'a> {
                 .name()
                 .map_or_else(|| format!("material {index}"), str::to_string);
             let pbr = material.pbr_metallic_roughness();
-            let mut converted = material_from_pbr(
-                name,
-                pbr.base_color_factor(),
-                pbr.metallic_factor(),
-                pbr.roughness_factor(),
-            )?;
-            // The base colour texture multiplies what the base colour
-            // sets: k_d = b·(1 − m) and k_a = b (see the module docs).
-            if let Some(info) = pbr.base_color_texture() {
-                for key in ["k_d", "k_a"] {
-                    let t = self
-                        .images
-                        .texture(&info, key, Encoding::Srgb, 0)
-                        .map_err(|e| format!("material {index}: baseColorTexture: {e}"))?;
-                    converted.textures.push(t);
-                }
-            }
+            let mut converted = material_from_pbr(name, &material)?;
+            self.textures(&material, &pbr, &mut converted)
+                .map_err(|e| format!("material {index}: {e}"))?;
             self.scene.materials.push(converted);
         }
 
@@ -119,6 +111,54 @@ impl<'a> Importer<'a> {
         }
         self.scene.images = self.images.store.images.clone();
         Ok(self.scene)
+    }
+
+    /// The textures of glTF material `material` on `converted` (a
+    /// gltf-pbr material): base colour (sRGB) on `base_color` and on the
+    /// ambient `k_a` (which the import sets to the base colour),
+    /// metallic-roughness (linear) on `roughness` (G) and `metallic` (B),
+    /// emissive (sRGB) on `emission`. Normal and occlusion textures are not
+    /// read yet: a note says so.
+    fn textures(
+        &mut self,
+        material: &gltf::Material,
+        pbr: &gltf::material::PbrMetallicRoughness,
+        converted: &mut crate::material::Material,
+    ) -> Result<(), String> {
+        if let Some(info) = pbr.base_color_texture() {
+            for key in ["base_color", "k_a"] {
+                let t = self.images.texture(&info, key, Encoding::Srgb, 0);
+                converted
+                    .textures
+                    .push(t.map_err(|e| format!("baseColorTexture: {e}"))?);
+            }
+        }
+        if let Some(info) = pbr.metallic_roughness_texture() {
+            for (key, channel) in [("roughness", 1), ("metallic", 2)] {
+                let t = self.images.texture(&info, key, Encoding::Linear, channel);
+                converted
+                    .textures
+                    .push(t.map_err(|e| format!("metallicRoughnessTexture: {e}"))?);
+            }
+        }
+        if let Some(info) = material.emissive_texture() {
+            let t = self.images.texture(&info, "emission", Encoding::Srgb, 0);
+            converted
+                .textures
+                .push(t.map_err(|e| format!("emissiveTexture: {e}"))?);
+        }
+        let index = material.index().unwrap_or_default();
+        for (present, what) in [
+            (material.normal_texture().is_some(), "normalTexture"),
+            (material.occlusion_texture().is_some(), "occlusionTexture"),
+        ] {
+            if present {
+                self.scene.notes.push(format!(
+                    "material {index}: its {what} is ignored (gonio does not read it yet)"
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn visit(&mut self, node: &gltf::Node, world: DMat4) -> Result<(), String> {
@@ -162,6 +202,7 @@ impl<'a> Importer<'a> {
                 self.buffers,
                 self.max_vertices,
                 self.max_corners,
+                self.quantized,
             )
             .map_err(|p| format!("{}: {p}", context()))?
             else {

@@ -48,29 +48,24 @@
 //! line in [`GltfScene::notes`] (shown by `--verbose`).
 //! `NORMAL` is used when present, otherwise normals are generated
 //! (area-weighted). Textures, vertex colours, skins, morph targets,
-//! emission, alpha and `doubleSided` are ignored; skinned meshes are drawn
-//! in their rest pose.
+//! alpha and `doubleSided` are ignored; skinned meshes are drawn in their
+//! rest pose.
 //!
-//! # Materials: metallic-roughness → Cook-Torrance (GGX, Smith, Schlick)
+//! # Materials: metallic-roughness → `gltf-pbr`
 //!
-//! glTF describes surfaces with the metal/rough model, whose BRDF is a
-//! Lambert lobe plus a GGX microfacet lobe with Schlick's Fresnel; gonio
-//! maps each material to its Cook-Torrance with those terms. Only the
-//! factors are used (textures are ignored, so a textured model shows its
-//! factors, usually white). With base colour factor `b` (linear RGB, alpha
-//! dropped), metallic `m` and roughness `r`, each clamped to [0, 1]:
-//!
-//! | gonio | from glTF | why |
-//! |---|---|---|
-//! | `model` | `cook-torrance`, `ggx`, `smith`, `schlick`, `microfacet` | glTF's specular BRDF (gonio's Smith is separable, glTF's height-correlated) |
-//! | `k_d` | `b·(1 − m)` | metals have no diffuse lobe (glTF also weights it by 1 − F; gonio adds the lobes as the contract says) |
-//! | `k_s` | 1 | the Fresnel term carries the specular colour |
-//! | `roughness` | `max(r², 10⁻⁴)` | glTF's α = r² |
-//! | `eta`, `kappa` | `η = (1 + √F0)/(1 − √F0)`, `κ = 0`, `F0 = 0.04·(1 − m) + b·m` (capped at 0.99) | Schlick's F0 is computed from η, κ; this η gives exactly glTF's F0 |
-//! | `k_a` | `b` | an ambient light lights the base colour |
+//! Each material becomes a `gltf-pbr` material, glTF 2.0's own BRDF
+//! (Appendix B, `material::brdf::gltf_pbr`), from its factors: base colour
+//! `b` (linear RGB, alpha dropped), metallic `m` and roughness `r`, each
+//! clamped to [0, 1] (`r` kept ≥ 10⁻⁴, the contract's (0, 1]); `roughness`
+//! keeps glTF's perceptual meaning (α = r²). `k_a = b` (an ambient light
+//! lights the base colour) and `k_d = b·(1 − m)` (where a lecture model
+//! chosen in the viewer starts). `emission = emissiveFactor ×
+//! emissiveStrength` (`KHR_materials_emissive_strength`, 1 without it).
+//! A scene file's `material =` on the object replaces all of this with any
+//! model.
 //!
 //! Primitives without a material get glTF's default material (`b = 1`,
-//! `m = 1`, `r = 1`) mapped by the same rule, named `gltf-default`.
+//! `m = 1`, `r = 1`), named `gltf-default`.
 //!
 //! # Lights (`KHR_lights_punctual`)
 //!

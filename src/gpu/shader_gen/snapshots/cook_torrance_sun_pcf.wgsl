@@ -48,6 +48,10 @@ struct Material {
     d_norm: f32,          // gaussian-normalized: gaussian_normalization(roughness), from the CPU
     blinn_e: f32,         // blinn, blinn-normalized: blinn_exponent(roughness), from the CPU
     lobe: vec4<f32>,      // a model's own constants, derived on the CPU (ShaderParams::lobe): its WGSL twin says what each is
+    base_color: vec3<f32>, // gltf-pbr: base colour b (textures and vertex colours multiply it per pixel)
+    metallic: f32,         // gltf-pbr: metallic m (its perceptual roughness r is `roughness`)
+    emission: vec3<f32>,   // emitted radiance W/(m²·sr), added to L_o (every model)
+    _pad_end: f32,
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -129,6 +133,7 @@ const MODEL_COOK_TORRANCE: u32 = 7u;
 const MODEL_MIRROR: u32 = 8u;
 const MODEL_OREN_NAYAR: u32 = 9u;
 const MODEL_OREN_NAYAR_FULL: u32 = 10u;
+const MODEL_GLTF_PBR: u32 = 11u;
 const DISTRIBUTION_BECKMANN: u32 = 0u;
 const DISTRIBUTION_BLINN: u32 = 1u;
 const DISTRIBUTION_BLINN_NORMALIZED: u32 = 2u;
@@ -138,6 +143,7 @@ const DISTRIBUTION_GGX: u32 = 5u;
 const GEOMETRY_V_GROOVE: u32 = 0u;
 const GEOMETRY_SMITH: u32 = 1u;
 const GEOMETRY_NONE: u32 = 2u;
+const GEOMETRY_SMITH_CORRELATED: u32 = 3u;
 const FRESNEL_CONDUCTOR: u32 = 0u;
 const FRESNEL_CONDUCTOR_LECTURE: u32 = 1u;
 const FRESNEL_DIELECTRIC: u32 = 2u;
@@ -611,6 +617,38 @@ fn g1_ggx(alpha: f32, cos_v: f32, cos_vh: f32) -> f32 {
     return 2.0 * cos_vc / (cos_vc + sqrt(cos2 + alpha * alpha * sin2));
 }
 
+// Smith's Λ for Beckmann (Walter 2007's rational form, the Λ of g1_beckmann's
+// G1 = 1/(1 + Λ)): a ≥ 1.6 → 0; else (1 − 1.259a + 0.396a²)/(3.535a + 2.181a²).
+// Needs cos_v > 0 (the caller's χ⁺ test).
+fn lambda_beckmann(m: f32, cos_v: f32) -> f32 {
+    let cos_vc = min(cos_v, 1.0); // rounding can pass 1
+    let sin_v = sqrt(1.0 - cos_vc * cos_vc);
+    if cos_vc >= 1.6 * m * sin_v {
+        return 0.0; // a ≥ 1.6
+    }
+    let a = cos_vc / (m * sin_v);
+    let a2 = a * a;
+    return (1.0 - 1.259 * a + 0.396 * a2) / (3.535 * a + 2.181 * a2);
+}
+
+// Smith's Λ for GGX (Heitz 2014): (sqrt(1 + α² tan²) − 1)/2, as
+// α² sin² / (2 cos (cos + sqrt(cos² + α² sin²))) (no cancellation). cos_v > 0.
+fn lambda_ggx(alpha: f32, cos_v: f32) -> f32 {
+    let cos_vc = min(cos_v, 1.0); // rounding can pass 1
+    let cos2 = cos_vc * cos_vc;
+    let a2s2 = alpha * alpha * (1.0 - cos2);
+    return a2s2 / (2.0 * cos_vc * (cos_vc + sqrt(cos2 + a2s2)));
+}
+
+// Height-correlated Smith (Heitz 2014, eq. 99): χ⁺(I·H) χ⁺(V·H) / (1 + Λ(I) + Λ(V));
+// 0 below either horizon. In [0, 1].
+fn g_smith_correlated(lambda_i: f32, lambda_o: f32, cos_i: f32, cos_o: f32, cos_ih: f32, cos_oh: f32) -> f32 {
+    if cos_i <= 0.0 || cos_o <= 0.0 || cos_ih <= 0.0 || cos_oh <= 0.0 {
+        return 0.0; // below the horizon, or χ⁺ = 0
+    }
+    return 1.0 / (1.0 + lambda_i + lambda_o);
+}
+
 // Beckmann slope matching the lecture's Blinn of angle m: sqrt(2 / (e + 2))
 // (equal peaks of the normalized lobes; Walter 2007's e = 2/m_b² − 2).
 fn beckmann_slope_of_blinn(e: f32) -> f32 {
@@ -842,7 +880,7 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 }
 
 // The reflection equation for punctual lights, summed (contract):
-// L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
+// L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
 // plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)).
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
@@ -861,7 +899,7 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> {
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
-    var radiance = m.k_a * globals.ambient;
+    var radiance = m.emission + m.k_a * globals.ambient;
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the
