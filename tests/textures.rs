@@ -274,3 +274,108 @@ fn suzanne_textured_gpu_matches_reference() {
     assert!(scene.has_textures());
     gpu_vs_reference("Suzanne textured", &scene);
 }
+
+// ---------------------------------------------------------------------
+// Bad glTF images: the same one paragraph, naming the glTF and the image.
+
+/// A one-triangle glTF with a base colour texture whose image is
+/// `image` (a JSON object), and a buffer of `extra` bytes after the
+/// triangle's 60 (positions, then UVs).
+fn gltf_with_image(image: &str, extra: usize) -> String {
+    use base64::Engine as _;
+    let mut bin: Vec<u8> = Vec::new();
+    for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+        bin.extend(v.to_le_bytes());
+    }
+    for v in [0.0f32, 1.0, 1.0, 1.0, 0.0, 0.0] {
+        bin.extend(v.to_le_bytes());
+    }
+    bin.extend(std::iter::repeat_n(0u8, extra));
+    let data = base64::engine::general_purpose::STANDARD.encode(&bin);
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0}}],
+"meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}, "material": 0}}]}}],
+"materials": [{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0}}}}}}],
+"textures": [{{"source": 0}}], "images": [{image}],
+"accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}},
+  {{"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}}],
+"bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 36}}, {{"buffer": 0, "byteOffset": 36, "byteLength": 24}},
+  {{"buffer": 0, "byteOffset": 60, "byteLength": {extra}}}],
+"buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}"}}]}}"#,
+        len = bin.len()
+    )
+}
+
+fn bad_gltf_case(gltf: &str, names: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let model_dir = dir.path().join("model");
+    std::fs::create_dir_all(&model_dir).unwrap();
+    std::fs::write(dir.path().join("outside.png"), tiny_png()).unwrap();
+    let path = model_dir.join("m.gltf");
+    std::fs::write(&path, gltf).unwrap();
+    let out = dir.path().join("out.png");
+    let result = common::gonio()
+        .arg("render")
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(2), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let errors: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("gonio: error:"))
+        .collect();
+    assert_eq!(errors.len(), 1, "{stderr}");
+    for n in ["m.gltf", "image 0"].iter().chain(names) {
+        assert!(errors[0].contains(n), "`{n}` not named: {}", errors[0]);
+    }
+    assert!(!out.exists());
+}
+
+/// A well-formed image loads (the cases below fail for their one reason).
+#[test]
+fn a_gltf_image_beside_the_model_loads() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("t.png"), tiny_png()).unwrap();
+    let path = dir.path().join("m.gltf");
+    std::fs::write(&path, gltf_with_image(r#"{"uri": "t.png"}"#, 0)).unwrap();
+    let scene = load(&path, &[]);
+    assert!(scene.has_textures());
+    assert_eq!(scene.images.len(), 1);
+}
+
+#[test]
+fn a_gltf_image_outside_its_folder_is_refused() {
+    bad_gltf_case(
+        &gltf_with_image(r#"{"uri": "../outside.png"}"#, 0),
+        &["leaves"],
+    );
+}
+
+#[test]
+fn a_missing_gltf_image_is_named() {
+    bad_gltf_case(
+        &gltf_with_image(r#"{"uri": "nothere.png"}"#, 0),
+        &["nothere.png"],
+    );
+}
+
+#[test]
+fn a_gltf_image_view_past_its_buffer_is_refused() {
+    // View 2, the image's, declares 800 bytes at offset 60 of a 68-byte
+    // buffer.
+    let gltf = gltf_with_image(r#"{"bufferView": 2, "mimeType": "image/png"}"#, 8).replace(
+        r#""byteOffset": 60, "byteLength": 8"#,
+        r#""byteOffset": 60, "byteLength": 800"#,
+    );
+    bad_gltf_case(&gltf, &["past the end"]);
+}
+
+#[test]
+fn a_corrupt_gltf_image_is_named() {
+    let gltf = gltf_with_image(r#"{"bufferView": 2, "mimeType": "image/png"}"#, 8);
+    bad_gltf_case(&gltf, &["neither a PNG nor a JPEG"]);
+}
