@@ -46,11 +46,17 @@ fn gpu(scene: &Scene) -> Frame {
 }
 
 fn gpu_vs_reference(label: &str, scene: &Scene) {
+    gpu_vs_reference_covering(label, scene, 10);
+}
+
+/// [`gpu_vs_reference`] asserting that at least 1/`fraction` of the
+/// pixels were compared.
+fn gpu_vs_reference_covering(label: &str, scene: &Scene, fraction: usize) {
     let frame = gpu(scene);
     let (center, jittered) = common::reference_with_jitter(scene);
     let c = common::compare_to_reference(scene, &frame, &center, &jittered);
     eprintln!("{label:<32} {}", c.summary());
-    assert!(c.compared > (scene.width * scene.height) as usize / 10);
+    assert!(c.compared > (scene.width * scene.height) as usize / fraction);
     common::assert_agrees(label, "GPU and reference disagree", &c, &frame, &center);
 }
 
@@ -378,4 +384,31 @@ fn a_gltf_image_view_past_its_buffer_is_refused() {
 fn a_corrupt_gltf_image_is_named() {
     let gltf = gltf_with_image(r#"{"bufferView": 2, "mimeType": "image/png"}"#, 8);
     bad_gltf_case(&gltf, &["neither a PNG nor a JPEG"]);
+}
+
+/// `KHR_texture_transform` is read (offset, rotation, scale, texCoord)
+/// and both renderers apply it alike; the rotation's sign is the
+/// contract's (`material::texture` tests it on its matrix).
+#[test]
+fn khr_texture_transform_is_read_and_rendered_alike() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("t.png"), tiny_png()).unwrap();
+    let gltf = gltf_with_image(r#"{"uri": "t.png"}"#, 0)
+        .replace(
+            r#""baseColorTexture": {"index": 0}"#,
+            r#""baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0.25], "rotation": 0.5, "scale": [3.0, 2.0]}}}"#,
+        )
+        .replace(
+            r#"{"asset": {"version": "2.0"},"#,
+            r#"{"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_texture_transform"],"#,
+        );
+    let path = dir.path().join("m.gltf");
+    std::fs::write(&path, gltf).unwrap();
+    let scene = load(&path, &["image.width=160", "image.height=120"]);
+    let t = &scene.materials[0].textures[0].transform;
+    assert_eq!((t.offset.x, t.offset.y), (0.5, 0.25));
+    assert_eq!(t.rotation, 0.5);
+    assert_eq!((t.scale.x, t.scale.y), (3.0, 2.0));
+    // One triangle covers about a tenth of the frame.
+    gpu_vs_reference_covering("KHR_texture_transform", &scene, 20);
 }
