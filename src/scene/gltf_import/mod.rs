@@ -74,8 +74,10 @@
 //! and 1 lx as 1 W/m² (directional: `irradiance = color · intensity`), with
 //! no luminous-efficacy factor, so a file's relative light levels carry
 //! over unchanged. Lights shine along the node's world −Z axis; spot cone
-//! angles are converted from radians to degrees; `range` is kept; no light
-//! casts shadows (the scene file can ask for them).
+//! angles are converted from radians to degrees; `range` is kept. They
+//! are imported without shadows; the scene's light setup turns shadows on
+//! when the scene has no light of its own, or as `shadows.imported_lights`
+//! says (`scene_file::lights`).
 //!
 //! # Camera
 //!
