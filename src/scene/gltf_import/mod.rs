@@ -47,9 +47,13 @@
 //! Optional extensions gonio does not implement are ignored, each with a
 //! line in [`GltfScene::notes`] (shown by `--verbose`).
 //! `NORMAL` is used when present, otherwise normals are generated
-//! (area-weighted). Textures, vertex colours, skins, morph targets,
-//! alpha and `doubleSided` are ignored; skinned meshes are drawn in their
-//! rest pose.
+//! (area-weighted). `TEXCOORD_0` and `TEXCOORD_1` are read, and the
+//! base colour, metallic-roughness and emissive textures with their
+//! samplers and `KHR_texture_transform` (`images`: a buffer view, a
+//! `data:` URI or a file inside the glTF's folder, decoded within the
+//! limits); normal and occlusion textures, vertex colours, skins, morph
+//! targets, alpha and `doubleSided` are ignored (the textures with a
+//! note); skinned meshes are drawn in their rest pose.
 //!
 //! # Materials: metallic-roughness → `gltf-pbr`
 //!
