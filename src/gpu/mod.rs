@@ -60,6 +60,7 @@ pub mod renderer;
 pub mod shader_gen;
 pub mod shadow_maps;
 pub mod shadows;
+pub mod textures;
 pub mod timing;
 
 pub use context::{AdapterChoice, GpuContext};

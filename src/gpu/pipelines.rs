@@ -203,11 +203,7 @@ impl PipelineCache {
         let constants = shader_gen::pipeline_constants(variant);
         self.scene_layouts(key.arrays);
         let layouts = &self.scene_layouts[&key.arrays];
-        let pipeline_layout = if key.shadows.any() {
-            &layouts.shadowed
-        } else {
-            &layouts.plain
-        };
+        let pipeline_layout = layouts.pipeline_layout(key.shadows.any(), key.texture_slots > 0);
         let pipeline = scene_pipeline(
             &self.device,
             &ScenePipeline {

@@ -50,6 +50,8 @@ pub struct PreparedScene {
     shadows: Option<ShadowMaps>,
     /// The shadow maps must be drawn before the next scene pass.
     shadows_stale: bool,
+    /// The materials' textures (group 2), when the scene has any.
+    textures: Option<super::textures::SceneTextures>,
 }
 
 /// What one [`PreparedScene::encode`] drew.
@@ -96,6 +98,12 @@ impl PreparedScene {
         );
         let shadows = ShadowMaps::new(&ctx.device, cache, &plan, arrays, draw.layout.stride());
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
+        let textures = if key.texture_slots > 0 {
+            let layout = &cache.scene_layouts(arrays).texture_group;
+            Some(super::textures::SceneTextures::new(ctx, layout, scene)?)
+        } else {
+            None
+        };
         Ok(PreparedScene {
             key,
             format,
@@ -109,6 +117,7 @@ impl PreparedScene {
             shadows_stale: shadows.is_some(),
             plan,
             shadows,
+            textures,
         })
     }
 
@@ -127,9 +136,13 @@ impl PreparedScene {
         check_drawable(scene)?;
         let (key, plan) = plan(&ctx.device, vertex_shadow_coords, scene)?;
         let layout = self.draw.layout;
+        // Textures: their bind groups hold each material's slots, made
+        // with the materials, so a textured scene is prepared anew.
         if key.shading != self.key.shading
             || key.needs_tangents() != layout.tangents
             || key.shadow_coords_per_vertex() != layout.face_normal
+            || key.texture_slots > 0
+            || self.key.texture_slots > 0
         {
             let display_scale = self.display_scale;
             *self = Self::new(
@@ -217,6 +230,9 @@ impl PreparedScene {
             if bound != Some(*variant) {
                 pass.set_pipeline(pipeline);
                 bound = Some(*variant);
+            }
+            if let Some(textures) = &self.textures {
+                pass.set_bind_group(2, textures.group(batch.material), &[]);
             }
             self.draw.draw_batch(&mut pass, batch);
         }

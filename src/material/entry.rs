@@ -30,6 +30,18 @@ pub struct MaterialEntry {
     pub terms: Vec<(&'static str, String)>,
     /// `measured = NAME|PATH` as given (model `measured`).
     pub measured: Option<String>,
+    /// Textures as given: (`PARAM_texture` key, image path as written).
+    /// The scene file resolves the paths (`scene_file::textures`).
+    pub textures: Vec<(String, String)>,
+}
+
+/// The suffix that turns a parameter's key into its texture's key.
+pub const TEXTURE_SUFFIX: &str = "_texture";
+
+/// Whether `key` is `PARAM_texture` for some parameter of the table.
+pub fn is_texture_key(key: &str) -> bool {
+    key.strip_suffix(TEXTURE_SUFFIX)
+        .is_some_and(|p| table::all_params().iter().any(|q| q.key == p))
 }
 
 /// Every key a `[materials.NAME]` table accepts, in the order errors list
@@ -95,6 +107,12 @@ impl<'de> Visitor<'de> for EntryVisitor {
                     let k = TERM_KEYS.into_iter().find(|t| *t == k).unwrap_or_default();
                     duplicate(entry.terms.iter().any(|(t, _)| *t == k))?;
                     entry.terms.push((k, map.next_value::<String>()?));
+                }
+                k if is_texture_key(k) => {
+                    duplicate(entry.textures.iter().any(|(t, _)| t == k))?;
+                    entry
+                        .textures
+                        .push((key.clone(), map.next_value::<String>()?));
                 }
                 k => {
                     // A key's type is the same for every parameter of that

@@ -12,6 +12,7 @@ pub mod param;
 pub mod presets;
 pub mod table;
 pub mod terms;
+pub mod texture;
 
 pub use entry::{MaterialEntry, material_from_entry, material_from_entry_in, material_table};
 pub use model::ReflectanceModel;
@@ -75,6 +76,9 @@ pub struct Material {
     /// `emissiveFactor` × `KHR_materials_emissive_strength`). It lights
     /// nothing else: gonio's lights are the scene's lights.
     pub emission: Rgb,
+    /// Parameters that vary over the surface: each texture multiplies the
+    /// constant above it names (empty: a uniform material).
+    pub textures: Vec<texture::MaterialTexture>,
 }
 
 impl Material {
@@ -108,6 +112,7 @@ impl Material {
             base_color: Rgb::splat(0.8),
             metallic: 0.0,
             emission: Rgb::ZERO,
+            textures: Vec::new(),
         };
         (model.row().defaults)(&mut m);
         m

@@ -15,6 +15,7 @@ pub mod limits;
 pub mod mesh;
 pub mod primitives;
 pub mod scene_file;
+pub mod texture;
 
 pub use area_light::AreaLight;
 pub use camera::Camera;
@@ -76,6 +77,9 @@ pub struct Scene {
     /// measured materials from (`shading.measured_table`;
     /// src/gpu/measured_tables.rs). The reference evaluates the source.
     pub measured_table: [u32; 3],
+    /// The images materials' textures read (`MaterialTexture::image`
+    /// indexes this); shared, so cloning a scene does not copy texels.
+    pub images: Vec<std::sync::Arc<texture::Image>>,
 }
 
 impl Scene {
@@ -112,6 +116,13 @@ impl Scene {
     /// given).
     pub fn shadow_settings(&self, l: usize) -> ShadowSettings {
         self.light_shadows.get(l).copied().unwrap_or_default()
+    }
+
+    /// Whether a material some mesh uses has a texture.
+    pub fn has_textures(&self) -> bool {
+        self.meshes
+            .iter()
+            .any(|m| !self.materials[m.material].textures.is_empty())
     }
 
     /// Whether any light casts shadows.

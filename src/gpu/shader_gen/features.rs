@@ -57,6 +57,9 @@ pub enum Feature {
     /// The target is a display surface: exposure and sRGB in the shader
     /// (`display`).
     Display,
+    /// Some material has textures: UVs in the vertex stream, bind group 2
+    /// and shaders/textures.wgsl (`textures`).
+    Textures,
 }
 
 impl Feature {
@@ -79,6 +82,7 @@ impl Feature {
             UniformLights,
             UniformShadowViews,
             Display,
+            Textures,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -114,6 +118,7 @@ impl Feature {
             Feature::UniformLights => "uniform_lights",
             Feature::UniformShadowViews => "uniform_shadow_views",
             Feature::Display => "display",
+            Feature::Textures => "textures",
         };
         flag.into()
     }

@@ -26,6 +26,9 @@ pub struct ShaderKey {
     /// it ([`ShaderKey::shadow_coords_per_vertex`]); `false`: always per
     /// pixel (for tests and measurements of the difference).
     pub vertex_shadow_coords: bool,
+    /// Texture slots read per pixel: the most textures of one material the
+    /// scene draws (0: no texture code; `crate::gpu::textures`).
+    pub texture_slots: u32,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -84,6 +87,7 @@ impl ShaderKey {
             shadows,
             arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
             vertex_shadow_coords: true,
+            texture_slots: crate::gpu::textures::slot_count(scene),
         };
         key.arrays.measured = key.has_measured();
         key
@@ -183,6 +187,9 @@ impl ShaderKey {
         }
         if self.arrays.shadow_views {
             f.push(Feature::UniformShadowViews);
+        }
+        if self.texture_slots > 0 {
+            f.push(Feature::Textures);
         }
         f
     }

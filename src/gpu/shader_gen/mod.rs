@@ -95,6 +95,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(i % 2 == 0),
                 vertex_shadow_coords: false,
+                texture_slots: 0,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -115,6 +116,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     arrays: arrays(pcf),
                     // Orthographic with PCF: the coordinates per vertex.
                     vertex_shadow_coords: pcf,
+                    texture_slots: 0,
                 });
             }
         }
@@ -134,6 +136,12 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(uniform),
                 vertex_shadow_coords: false,
+                // Textures with the uber shader: all slots, all models.
+                texture_slots: if uniform {
+                    crate::gpu::textures::MAX_TEXTURE_SLOTS as u32
+                } else {
+                    0
+                },
             });
         }
     }

@@ -10,7 +10,7 @@
 //! a normal or tangent a normalized one, decoded as the extension says
 //! (signed: `max(c / (2ⁿ⁻¹ − 1), −1)`, unsigned: `c / (2ⁿ − 1)`).
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::{Mode, Semantic};
 use std::borrow::Cow;
@@ -22,6 +22,9 @@ pub(super) enum Usage {
     Normal,
     Tangent,
     Index,
+    /// `TEXCOORD_n`: VEC2 of FLOAT, or of normalized UNSIGNED_BYTE /
+    /// UNSIGNED_SHORT (glTF 2.0 §3.7.2.1).
+    TexCoord,
 }
 
 impl Usage {
@@ -31,6 +34,7 @@ impl Usage {
             Usage::Normal => "NORMAL",
             Usage::Tangent => "TANGENT",
             Usage::Index => "indices",
+            Usage::TexCoord => "TEXCOORD",
         }
     }
 
@@ -68,6 +72,11 @@ impl Usage {
                 matches!(data_type, DataType::U8 | DataType::U16 | DataType::U32)
                     && dimensions == Dimensions::Scalar
             }
+            Usage::TexCoord => {
+                dimensions == Dimensions::Vec2
+                    && (data_type == DataType::F32
+                        || (normalized && matches!(data_type, DataType::U8 | DataType::U16)))
+            }
         }
     }
 
@@ -87,6 +96,7 @@ impl Usage {
                 "VEC4 of FLOAT, or normalized BYTE or SHORT (KHR_mesh_quantization)"
             }
             (Usage::Index, _) => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
+            (Usage::TexCoord, _) => "VEC2 of FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT",
         }
     }
 }
@@ -273,6 +283,9 @@ pub(super) struct RawPrimitive {
     /// (H·b)² only), `None` when the primitive has none.
     pub tangents: Option<Vec<DVec3>>,
     pub indices: Vec<[u32; 3]>,
+    /// `TEXCOORD_0` and `TEXCOORD_1` where present (empty sets stop the
+    /// list: a missing set 0 with a set 1 keeps an empty set 0).
+    pub tex_coords: Vec<Vec<DVec2>>,
 }
 
 /// Reads a primitive, or `None` if it draws points or lines. The vertex
@@ -349,6 +362,37 @@ pub(super) fn read_primitive(
         )?),
     };
 
+    let mut tex_coords = Vec::new();
+    for set in 0..2u32 {
+        let Some(accessor) = primitive.get(&Semantic::TexCoords(set)) else {
+            continue;
+        };
+        check_accessor(&accessor, Usage::TexCoord, max_vertices, buffers, quantized)?;
+        if accessor.count() != vertex_count {
+            return Err(format!(
+                "accessor {} (TEXCOORD_{set}) has {} elements but POSITION has {vertex_count}",
+                accessor.index(),
+                accessor.count()
+            ));
+        }
+        let uvs: Vec<DVec2> = reader
+            .read_tex_coords(set)
+            .map(|t| {
+                t.into_f32()
+                    .map(|[u, v]| DVec2::new(u.into(), v.into()))
+                    .collect()
+            })
+            .unwrap_or_default();
+        if uvs.len() != vertex_count || uvs.iter().any(|uv| !uv.is_finite()) {
+            return Err(format!(
+                "accessor {} (TEXCOORD_{set}): not {vertex_count} finite UVs",
+                accessor.index()
+            ));
+        }
+        tex_coords.resize(set as usize, Vec::new());
+        tex_coords.push(uvs);
+    }
+
     let vertices: Vec<u32> = match primitive.indices() {
         None => (0..vertex_limit).collect(),
         Some(accessor) => read_indices(&reader, &accessor, vertex_limit, max_corners, buffers)?,
@@ -363,6 +407,7 @@ pub(super) fn read_primitive(
         normals,
         tangents,
         indices,
+        tex_coords,
     }))
 }
 

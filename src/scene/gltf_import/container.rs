@@ -13,6 +13,7 @@ pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_mesh_quantization",
+    "KHR_texture_transform",
 ];
 
 /// Required extensions users are likely to meet, with what they do: the

@@ -47,9 +47,13 @@
 //! Optional extensions gonio does not implement are ignored, each with a
 //! line in [`GltfScene::notes`] (shown by `--verbose`).
 //! `NORMAL` is used when present, otherwise normals are generated
-//! (area-weighted). Textures, vertex colours, skins, morph targets,
-//! alpha and `doubleSided` are ignored; skinned meshes are drawn in their
-//! rest pose.
+//! (area-weighted). `TEXCOORD_0` and `TEXCOORD_1` are read, and the
+//! base colour, metallic-roughness and emissive textures with their
+//! samplers and `KHR_texture_transform` (`images`: a buffer view, a
+//! `data:` URI or a file inside the glTF's folder, decoded within the
+//! limits); normal and occlusion textures, vertex colours, skins, morph
+//! targets, alpha and `doubleSided` are ignored (the textures with a
+//! note); skinned meshes are drawn in their rest pose.
 //!
 //! # Materials: metallic-roughness → `gltf-pbr`
 //!
@@ -95,6 +99,7 @@ mod census;
 mod container;
 mod convert;
 mod graph;
+mod images;
 mod import;
 #[cfg(test)]
 mod tests;
@@ -133,6 +138,8 @@ pub struct GltfScene {
     /// does not implement, unknown GLB chunks, trailing bytes), one
     /// sentence each, for `--verbose`.
     pub notes: Vec<String>,
+    /// The images its materials' textures index.
+    pub images: Vec<std::sync::Arc<crate::scene::texture::Image>>,
 }
 
 impl GltfScene {
@@ -188,6 +195,8 @@ pub fn load_from_bytes(bytes: &[u8], base_dir: &Path, limits: &Limits) -> Result
 pub struct GltfLoader {
     remaining: Limits,
     notes: Vec<String>,
+    /// The scene's texture images, held to the same limits.
+    pub images: crate::scene::texture::store::ImageStore,
 }
 
 impl GltfLoader {
@@ -196,6 +205,7 @@ impl GltfLoader {
         GltfLoader {
             remaining: limits,
             notes: Vec::new(),
+            images: crate::scene::texture::store::ImageStore::new(&limits),
         }
     }
 
@@ -265,7 +275,7 @@ fn load_bytes(
     let roots = graph::scene_roots(&document, &parents)?;
     graph::check_cost(&document, &graph::descendants(&document, &roots), limits)?;
     let buffers = buffers::load(&document, container.bin, folder, &mut used_bytes, limits)?;
-    guarded(|| import::Importer::new(&document, &buffers, limits, notes).run(&roots))
+    guarded(|| import::Importer::new(&document, &buffers, limits, notes, folder).run(&roots))
         .and_then(|result| result)
 }
 

@@ -42,7 +42,10 @@ pub fn assemble(
     let mut material_index = BTreeMap::new();
     for (name, entry) in &file.materials {
         material_index.insert(name.clone(), materials.len());
-        materials.push(material_from_entry_in(name, entry, base_dir).map_err(bad)?);
+        let mut material = material_from_entry_in(name, entry, base_dir).map_err(bad)?;
+        super::textures::attach(&mut material, name, entry, base_dir, &mut gltf_files.images)
+            .map_err(bad)?;
+        materials.push(material);
     }
     let objects = objects(
         origin,
@@ -95,6 +98,7 @@ pub fn assemble(
         ambient,
         environment,
         measured_table: measured_table(&file).map_err(bad)?,
+        images: gltf_files.images.images.clone(),
     };
     Ok((scene, light_setup))
 }
@@ -180,7 +184,15 @@ fn objects(
         };
         match (&object.gltf, &object.shape) {
             (Some(gltf), None) => {
-                let imported = gltf_files.load(&base_dir.join(gltf))?;
+                let mut imported = gltf_files.load(&base_dir.join(gltf))?;
+                let image_offset = gltf_files
+                    .images
+                    .append(std::mem::take(&mut imported.images));
+                for m in &mut imported.materials {
+                    for t in &mut m.textures {
+                        t.image += image_offset;
+                    }
+                }
                 let offset = materials.len();
                 for mut mesh in imported.meshes {
                     mesh.material = forced_material.unwrap_or(mesh.material + offset);

@@ -18,6 +18,7 @@ pub mod lights;
 pub mod overrides;
 pub mod schema;
 pub mod shadow_keys;
+pub mod textures;
 pub mod toml_value;
 mod values;
 
