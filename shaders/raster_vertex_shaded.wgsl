@@ -28,7 +28,12 @@ struct VertexOut {
     #if flat
     @location(0) @interpolate(flat) radiance: vec3<f32>,
     #else
-    @location(0) radiance: vec3<f32>,
+    // At the centroid of the covered samples, not the pixel centre: with
+    // MSAA the centre of a silhouette pixel may lie outside the triangle,
+    // where the colour is extrapolated (negative radiance, issue 19); the
+    // centroid is inside, so the value is a convex combination of the
+    // vertices' (≥ 0). One sample per pixel: the centroid is the centre.
+    @location(0) @interpolate(perspective, centroid) radiance: vec3<f32>,
     #endif
 }
 

@@ -210,6 +210,21 @@ fn buffers_over_the_gpus_limits_are_refused_before_creation() {
             names: "camera.position = [1e300, 1e300, 1e300] is beyond",
         },
         Case {
+            name: "light intensity beyond f32 range",
+            args: s(&["-o", &out, "--set", "lights.0.intensity=3.5e38"]),
+            names: "intensity = [3.5e38, 3.5e38, 3.5e38] is over 1e20",
+        },
+        Case {
+            name: "light position beyond f32 range",
+            args: s(&["-o", &out, "--set", "lights.0.position=[1e39,1e39,1e39]"]),
+            names: "position = [1e39, 1e39, 1e39] is beyond",
+        },
+        Case {
+            name: "ambient radiance beyond f32 range",
+            args: s(&["-o", &out, "--set", "ambient.radiance=[1e39,1e39,1e39]"]),
+            names: "ambient.radiance = [1e39, 1e39, 1e39] is over",
+        },
+        Case {
             name: "shadow maps over their memory cap",
             args: s(&[
                 "-o",

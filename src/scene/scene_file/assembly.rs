@@ -6,7 +6,7 @@
 
 use super::lights::LightSetup;
 use super::schema::{CameraSection, ObjectEntry, SceneFile};
-use super::values::{finite_vec, non_negative, unit_vec};
+use super::values::{finite_vec, gpu_coordinate, non_negative, unit_vec};
 use crate::base::ColorValue;
 use crate::material::{Material, ReflectanceModel, material_from_entry_in};
 use crate::scene::{
@@ -321,22 +321,6 @@ fn shape_mesh(
     }
 }
 
-/// Camera coordinates the GPU can compute with: the shaders square
-/// distances in f32, which overflows past about 1.8e19. A camera at
-/// [1e300, …] was refused as "position and target coincide" (the f64
-/// direction overflowed): issue 19.
-const MAX_CAMERA_COORDINATE: f64 = 1e18;
-
-fn within_gpu_range(key: &str, v: DVec3) -> std::result::Result<(), String> {
-    if v.abs().max_element() > MAX_CAMERA_COORDINATE {
-        return Err(format!(
-            "{key} = [{:e}, {:e}, {:e}] is beyond ±{MAX_CAMERA_COORDINATE:e}: the GPU squares distances in f32 (largest 3.4e38), so coordinates this large overflow; scale the scene down",
-            v.x, v.y, v.z
-        ));
-    }
-    Ok(())
-}
-
 fn camera_from_section(
     s: &CameraSection,
     (lo, hi): (DVec3, DVec3),
@@ -344,7 +328,7 @@ fn camera_from_section(
     let position = finite_vec("camera.position", s.position)?;
     let target = finite_vec("camera.target", s.target)?;
     for (key, v) in [("camera.position", position), ("camera.target", target)] {
-        within_gpu_range(key, v)?;
+        gpu_coordinate(key, v)?;
     }
     let up = unit_vec("camera.up", s.up)?;
     let forward = (target - position)

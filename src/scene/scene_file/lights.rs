@@ -7,7 +7,7 @@
 
 use super::schema::{AreaEntry, LightEntry};
 use super::shadow_keys::{ShadowsSection, shadow_settings};
-use super::values::{finite_vec, non_negative, range, unit_vec};
+use super::values::{finite_vec, gpu_coordinate, non_negative, range, unit_vec};
 use crate::scene::{AreaLight, Light, Rgb, Scene, ShadowSettings, area_light};
 use glam::DVec3;
 
@@ -156,7 +156,7 @@ enum LightSource {
 fn light_from_entry(e: &LightEntry) -> std::result::Result<LightSource, String> {
     Ok(match e {
         LightEntry::Point(e) => LightSource::Punctual(Light::Point {
-            position: finite_vec("position", e.position)?,
+            position: gpu_coordinate("position", finite_vec("position", e.position)?)?,
             intensity: non_negative("intensity", e.intensity.rgb())?,
             range: range(e.range)?,
             shadows: e.shadows,
@@ -176,7 +176,7 @@ fn light_from_entry(e: &LightEntry) -> std::result::Result<LightSource, String> 
                 ));
             }
             LightSource::Punctual(Light::Spot {
-                position: finite_vec("position", e.position)?,
+                position: gpu_coordinate("position", finite_vec("position", e.position)?)?,
                 direction: unit_vec("direction", e.direction)?,
                 intensity: non_negative("intensity", e.intensity.rgb())?,
                 inner_cone_deg: inner,
@@ -235,7 +235,7 @@ fn area_light_from_entry(e: &AreaEntry) -> std::result::Result<AreaLight, String
     }
     Ok(AreaLight {
         shape,
-        position: finite_vec("position", e.position)?,
+        position: gpu_coordinate("position", finite_vec("position", e.position)?)?,
         normal,
         tangent,
         radiance: non_negative("radiance", e.radiance.rgb())?,
