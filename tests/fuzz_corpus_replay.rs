@@ -80,6 +80,16 @@ fn scene_corpus_replays_without_panic_or_hang() {
     replay_target("scene_toml", harness::scene_toml, 5);
 }
 
+#[test]
+fn texture_corpus_replays_without_panic_or_hang() {
+    replay_target("texture_decode", harness::texture_decode, 5);
+}
+
+#[test]
+fn merl_corpus_replays_without_panic_or_hang() {
+    replay_target("merl_parse", harness::merl_parse, 4);
+}
+
 /// The generated seeds are valid and must load through the fuzz harness's
 /// path (`load_from_bytes`): a seed that fails early would fuzz only the
 /// first checks.
@@ -241,6 +251,64 @@ radiance = 0.1
     ]
 }
 
+/// Texture seeds: the project's PNGs, and small encoded images of each
+/// kind the decoder has a path for (JPEG, 16-bit, grey with alpha), with
+/// hostile variants (truncated, a header declaring 65535², not an image).
+fn texture_seeds() -> Vec<(&'static str, Vec<u8>)> {
+    let checker = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/textured/checker.png");
+    let checker = std::fs::read(checker).unwrap();
+    let encode = |image: image::DynamicImage, format: image::ImageFormat| {
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image.write_to(&mut bytes, format).unwrap();
+        bytes.into_inner()
+    };
+    let rgb = image::RgbImage::from_fn(8, 8, |x, y| image::Rgb([x as u8 * 30, y as u8 * 30, 128]));
+    let jpeg = encode(rgb.into(), image::ImageFormat::Jpeg);
+    let deep = image::ImageBuffer::<image::Rgba<u16>, _>::from_fn(4, 4, |x, y| {
+        image::Rgba([x as u16 * 9000, y as u16 * 9000, 65535, 40000])
+    });
+    let deep = encode(deep.into(), image::ImageFormat::Png);
+    let grey = image::GrayAlphaImage::from_fn(5, 3, |x, _| image::LumaA([x as u8 * 50, 200]));
+    let grey = encode(grey.into(), image::ImageFormat::Png);
+    // Width and height sit at bytes 16..24 of a PNG (the IHDR chunk).
+    let mut bomb = checker.clone();
+    bomb[16..24].copy_from_slice(&[0, 0, 0xff, 0xff, 0, 0, 0xff, 0xff]);
+    let truncated = checker[..checker.len() / 2].to_vec();
+    vec![
+        ("checker.png", checker),
+        ("small.jpg", jpeg),
+        ("rgba16.png", deep),
+        ("grey-alpha.png", grey),
+        ("dimension-bomb.png", bomb),
+        ("truncated.png", truncated),
+        ("not-an-image.txt", b"P6 2 2 255 not a texture".to_vec()),
+    ]
+}
+
+/// MERL seeds: a small table generated from a smooth function, one with
+/// missing (negative) samples, and hostile variants (truncated, a wrong
+/// header, a NaN value).
+fn merl_seeds() -> Vec<(&'static str, Vec<u8>)> {
+    use gonio::material::measured::merl::MerlTable;
+    let smooth = MerlTable::sample([4, 3, 6], |h, d, p| {
+        gonio::scene::Rgb::new(0.1 + h.cos(), 0.2 + d.cos(), 0.3 + p.sin().abs())
+    })
+    .encode();
+    let mut missing = smooth.clone();
+    missing[12..20].copy_from_slice(&(-1.0f64).to_le_bytes());
+    let mut nan = smooth.clone();
+    nan[20..28].copy_from_slice(&f64::NAN.to_le_bytes());
+    let mut header = smooth.clone();
+    header[0..4].copy_from_slice(&(-90i32).to_le_bytes());
+    vec![
+        ("smooth.binary", smooth.clone()),
+        ("missing.binary", missing),
+        ("nan.binary", nan),
+        ("wrong-header.binary", header),
+        ("truncated.binary", smooth[..smooth.len() - 5].to_vec()),
+    ]
+}
+
 #[test]
 #[ignore = "writes the seed corpus; run by hand after changing it"]
 fn regenerate_seed_corpus() {
@@ -271,5 +339,15 @@ fn regenerate_seed_corpus() {
     .unwrap();
     for (name, text) in handwritten_scene_seeds() {
         std::fs::write(scene_dir.join(name), text).unwrap();
+    }
+    for (target, seeds) in [
+        ("texture_decode", texture_seeds()),
+        ("merl_parse", merl_seeds()),
+    ] {
+        let dir = corpus_dir(target);
+        std::fs::create_dir_all(&dir).unwrap();
+        for (name, bytes) in seeds {
+            std::fs::write(dir.join(name), bytes).unwrap();
+        }
     }
 }

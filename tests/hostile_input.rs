@@ -1061,7 +1061,19 @@ fn non_finite(c: &mut Corpus) {
         CLASS,
         "scale-beyond-f32.gltf",
         far,
-        &["node 1", "beyond ±3.4e38"],
+        &["node 1", "beyond ±1e18"],
+    );
+    // Within f32 but too far to frame: squared distances overflow (issue
+    // 19: ±3e38 coordinates exited 0 with a blank image).
+    let framing = with_nodes(
+        "{\"scale\": [1e10, 1e10, 1e10], \"children\": [1]}, {\"mesh\": 0, \"scale\": [1e10, 1, 1]}",
+        "0",
+    );
+    c.gltf(
+        CLASS,
+        "scale-beyond-framing.gltf",
+        framing,
+        &["node 1", "beyond ±1e18", "scale it down"],
     );
     let chain = "{\"matrix\": [1e38,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1], \"children\": [1]}, {\"mesh\": 0, \"matrix\": [1e38,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}";
     c.gltf(

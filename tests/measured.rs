@@ -505,13 +505,20 @@ fn a_scene_files_table_path_is_relative_to_it() {
             .unwrap()
     };
     let out = render("ok.png");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(dir.path().join("ok.png").is_file());
     let bytes = std::fs::read(sub.join("ct.binary")).unwrap();
     std::fs::write(sub.join("ct.binary"), &bytes[..bytes.len() / 2]).unwrap();
     let out = render("bad.png");
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("ct.binary") && err.contains("truncated"), "{err}");
+    assert!(
+        err.contains("ct.binary") && err.contains("truncated"),
+        "{err}"
+    );
     assert!(!dir.path().join("bad.png").exists());
 }

@@ -25,6 +25,34 @@ pub fn limits() -> Limits {
     }
 }
 
+/// Bytes a fuzzed texture may decode to: a 64² image fits, the budget
+/// check and the decoder's own allocation limit are reached often.
+pub const TEXTURE_BUDGET: u64 = 4 << 20;
+
+/// Decodes `data` as a PNG or JPEG texture (colour, so the sRGB path runs)
+/// within [`TEXTURE_BUDGET`], and builds its mip chain as a load does.
+pub fn texture_decode(data: &[u8]) {
+    use gonio::scene::texture::{Encoding, decode, mips};
+    if let Ok(image) = decode::decode(data, Encoding::Srgb, TEXTURE_BUDGET) {
+        let texels = image.rgba.len();
+        assert_eq!(texels, (image.width * image.height) as usize);
+        let levels = mips::chain(image);
+        assert!(!levels.is_empty());
+    }
+}
+
+/// Parses `data` as a MERL `.binary` table; a table that parses is
+/// evaluated at a few directions, which must give finite values.
+pub fn merl_parse(data: &[u8]) {
+    use gonio::material::measured::merl::MerlTable;
+    if let Ok(table) = MerlTable::parse(data) {
+        for (h, d, p) in [(0.0, 0.0, 0.0), (0.3, 1.0, 2.0), (1.5, 1.5, 3.0)] {
+            let f = table.f_r(h, d, p);
+            assert!(f.is_finite(), "f_r({h}, {d}, {p}) = {f:?}");
+        }
+    }
+}
+
 /// The line that separates a scene file from `--set` overrides in a
 /// `scene_toml` input.
 pub const OVERRIDES_SEPARATOR: &str = "\n--- set\n";

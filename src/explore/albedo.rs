@@ -89,11 +89,15 @@ pub fn directional_albedo(material: &Material, theta_i: f64) -> AlbedoEstimate {
     albedo_towards(material, super::direction(theta_i, 0.0), &super::frame())
 }
 
-/// [`directional_albedo`] at several polar angles (radians), in parallel.
-pub fn albedo_curve(material: &Material, thetas: &[f64]) -> Vec<AlbedoEstimate> {
+/// The directional albedo at several polar angles `thetas` in the plane
+/// `φ_i = phi_i` (radians), in parallel. (`gonio brdf --plot-albedo` once
+/// ignored `--phi-i`, giving 0.626 where `--albedo` gave 0.6371 for an
+/// anisotropic Ward material: issue 17.)
+pub fn albedo_curve(material: &Material, thetas: &[f64], phi_i: f64) -> Vec<AlbedoEstimate> {
+    let frame = super::frame();
     thetas
         .par_iter()
-        .map(|&t| directional_albedo(material, t))
+        .map(|&t| albedo_towards(material, super::direction(t, phi_i), &frame))
         .collect()
 }
 
@@ -239,6 +243,25 @@ fn kink_heights(material: &Material, cos_theta_i: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The curve `--plot-albedo` draws takes φ_i as `--albedo` does
+    /// (issue 17): an anisotropic Ward material's albedo depends on it.
+    #[test]
+    fn the_albedo_curve_is_taken_at_phi_i() {
+        let mut m = Material::new("w", crate::material::ReflectanceModel::WardAnisotropic);
+        (m.sigma_x, m.sigma_y) = (0.05, 0.4);
+        (m.k_d, m.k_s) = (Rgb::ZERO, Rgb::ONE);
+        let (theta, phi) = (1.2, 90f64.to_radians());
+        let curve = albedo_curve(&m, &[theta], phi)[0];
+        let cli = albedo_towards(
+            &m,
+            crate::explore::direction(theta, phi),
+            &crate::explore::frame(),
+        );
+        assert_eq!(curve, cli);
+        let along_tangent = albedo_curve(&m, &[theta], 0.0)[0];
+        assert!((curve.value - along_tangent.value).abs().max_element() > 1e-3);
+    }
     use crate::material::ReflectanceModel;
 
     fn lambert(k_d: Rgb) -> Material {

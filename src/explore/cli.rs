@@ -165,6 +165,7 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         let phi_i = angles.phi_i.to_radians();
         let plot = SlicePlot {
             theta_i,
+            phi_i,
             quantity: args.quantity,
             channel: args.channel,
             series: materials
@@ -182,12 +183,14 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         println!("wrote {}", path.display());
     }
     if let Some(file) = albedo_file {
+        let phi_i = angles.phi_i.to_radians();
         let thetas_deg: Vec<f64> = (0..=89).map(f64::from).collect();
         let thetas: Vec<f64> = thetas_deg.iter().map(|d| d.to_radians()).collect();
         let plot = AlbedoPlot {
+            phi_i,
             series: materials
                 .iter()
-                .map(|m| (m.label.clone(), albedo_curve(&m.material, &thetas)))
+                .map(|m| (m.label.clone(), albedo_curve(&m.material, &thetas, phi_i)))
                 .collect(),
             thetas_deg,
             channel: args.channel,

@@ -16,6 +16,8 @@ const ALBEDO_CLIP: f64 = 3.0;
 pub struct SlicePlot {
     /// Incidence angle θ_i, radians.
     pub theta_i: f64,
+    /// Azimuth φ_i of the plane of incidence, radians.
+    pub phi_i: f64,
     pub quantity: Quantity,
     pub channel: Channel,
     /// `(legend label, slice)` per material.
@@ -34,8 +36,9 @@ impl Plot for SlicePlot {
     ) -> std::result::Result<(), String> {
         root.fill(&WHITE).map_err(err)?;
         let title = format!(
-            "BRDF slice in the plane of incidence, θ_i = {}°",
-            number(self.theta_i.to_degrees())
+            "BRDF slice in the plane of incidence, θ_i = {}°, φ_i = {}°",
+            number(self.theta_i.to_degrees()),
+            number(self.phi_i.to_degrees())
         );
         let root = root.titled(&title, ("sans-serif", 24)).map_err(err)?;
         let (_, h) = root.dim_in_pixel();
@@ -79,7 +82,10 @@ impl Plot for SlicePlot {
         let mut chart = ChartBuilder::on(&area)
             .build_cartesian_2d(-xh..xh, y0..y1)
             .map_err(err)?;
-        let polar = |radius: f64, t: f64| (radius * t.sin(), radius * t.cos());
+        let polar = |radius: f64, t: f64| {
+            let [x, y] = super::slice::polar(radius, t);
+            (x, y)
+        };
         let pixel = 2.0 * xh / w as f64;
         let grey = RGBColor(200, 200, 200);
         let label = TextStyle::from(("sans-serif", 14).into_font()).color(&BLACK);
@@ -211,6 +217,8 @@ impl Plot for SlicePlot {
 pub struct AlbedoPlot {
     /// Incidence angles θ_i, degrees.
     pub thetas_deg: Vec<f64>,
+    /// Azimuth φ_i of the incident light, radians.
+    pub phi_i: f64,
     /// `(legend label, estimate per angle)` per material.
     pub series: Vec<(String, Vec<AlbedoEstimate>)>,
     pub channel: Channel,
@@ -238,8 +246,9 @@ impl Plot for AlbedoPlot {
             .flat_map(|(_, e)| e.iter().map(|e| self.channel.of(e.error_bound)))
             .fold(0.0, f64::max);
         let mut line = format!(
-            "{}; φ_i = 0 (along the tangent); quadrature error ≤ {} (Gauss-Kronrod 7-15)",
+            "{}; φ_i = {}° (0: along the tangent); quadrature error ≤ {} (Gauss-Kronrod 7-15)",
             self.channel.describe(),
+            number(self.phi_i.to_degrees()),
             number(worst)
         );
         if !self.note.is_empty() {

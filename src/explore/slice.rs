@@ -74,6 +74,35 @@ pub struct Slice {
     pub dirac: Option<f64>,
 }
 
+/// A point of the polar plot: signed `θ` (radians) at `radius`, with the
+/// normal up (`+y`) and the light's side right (`+x`), the same in
+/// `gonio brdf` and the viewer.
+pub fn polar(radius: f64, theta: f64) -> [f64; 2] {
+    [radius * theta.sin(), radius * theta.cos()]
+}
+
+/// Where the plot marks ω_i at `radius`: `θ = +θ_i`, the light's side.
+/// (The viewer once drew it along the reflection lobe: issue 17.)
+pub fn light_marker(theta_i: f64, radius: f64) -> [f64; 2] {
+    polar(radius, theta_i)
+}
+
+/// Where the plot marks the mirror direction at `radius`: `θ = −θ_i`.
+pub fn mirror_marker(theta_i: f64, radius: f64) -> [f64; 2] {
+    polar(radius, -theta_i)
+}
+
+impl Slice {
+    /// The lobe as polar-plot points (non-finite values left out).
+    pub fn polar_points(&self) -> Vec<[f64; 2]> {
+        self.points
+            .iter()
+            .filter(|(_, v)| v.is_finite())
+            .map(|&(t, v)| polar(v, t))
+            .collect()
+    }
+}
+
 /// The slice of `material` for light at `theta_i` (radians) in the plane
 /// `φ = phi_i`.
 pub fn slice(
@@ -145,5 +174,36 @@ mod tests {
         assert!(t.contains(&-0.3));
         assert!(t.windows(2).all(|p| p[0] < p[1]));
         assert_eq!((t[0], *t.last().unwrap()), (-FRAC_PI_2, FRAC_PI_2));
+    }
+
+    /// The markers land where the directions say (issue 17: the viewer
+    /// drew the light along the lobe and the mirror on the light's side).
+    /// ω_i at φ_i = 0 has x = sin θ_i > 0; a glossy lobe peaks at the
+    /// mirror direction, so its farthest point and the mirror marker point
+    /// the same way, and the light marker the opposite way in x.
+    #[test]
+    fn light_and_mirror_markers_point_where_the_directions_are() {
+        let mut m = Material::new("p", ReflectanceModel::PhongNormalized);
+        (m.k_d, m.k_s, m.k_e) = (crate::base::Rgb::ZERO, crate::base::Rgb::ONE, 200.0);
+        let theta_i = 40f64.to_radians();
+        // f_r itself peaks at the mirror direction (f_r·cos θ_o a little
+        // towards the normal).
+        let s = slice(&m, theta_i, 0.0, Quantity::Fr, Channel::Mean);
+        let peak = s
+            .polar_points()
+            .into_iter()
+            .max_by(|a, b| a[0].hypot(a[1]).total_cmp(&b[0].hypot(b[1])))
+            .unwrap();
+        let r = peak[0].hypot(peak[1]);
+        let light = light_marker(theta_i, r);
+        let mirror = mirror_marker(theta_i, r);
+        let wi = super::super::direction(theta_i, 0.0);
+        assert!((light[0] - r * wi.x).abs() < 1e-12 && (light[1] - r * wi.z).abs() < 1e-12);
+        let angle = |p: [f64; 2]| p[0].atan2(p[1]);
+        assert!(
+            (angle(peak) - angle(mirror)).abs() < 1e-3,
+            "{peak:?} vs {mirror:?}"
+        );
+        assert!(light[0] > 0.0 && mirror[0] < 0.0 && peak[0] < 0.0);
     }
 }

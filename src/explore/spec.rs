@@ -59,7 +59,22 @@ pub fn material(
     }
     let entry = MaterialEntry::deserialize(toml::Value::Table(table))
         .map_err(|e| bad(one_line(&e.to_string())))?;
-    let material: Material = material_from_entry(&label, &entry).map_err(bad)?;
+    let given: Material = material_from_entry(&label, &entry).map_err(bad)?;
+    // The renderers evaluate roughness no smaller than the floor (f32's
+    // range on the GPU); `gonio brdf` shows what they render, and says so.
+    let material = given.with_roughness_floor(0.0);
+    for (key, was, is) in [
+        ("roughness", given.roughness, material.roughness),
+        ("sigma_x", given.sigma_x, material.sigma_x),
+        ("sigma_y", given.sigma_y, material.sigma_y),
+    ] {
+        let used = material.model.row().params.iter().any(|p| p.key == key);
+        if used && was != is {
+            eprintln!(
+                "gonio: note: {label}: {key} = {was:e} is below the roughness floor; evaluated as {is:e}, as the renderers do"
+            );
+        }
+    }
     Ok(Labelled { label, material })
 }
 

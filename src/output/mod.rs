@@ -3,6 +3,7 @@
 
 pub mod compare;
 pub mod failure;
+pub mod interrupt;
 pub mod plot;
 pub mod write;
 

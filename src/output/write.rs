@@ -7,6 +7,7 @@
 //! only after everything succeeded. The temporary file is created before
 //! rendering, so an unwritable destination fails before any work is done.
 
+use super::interrupt;
 use crate::frame::Frame;
 use crate::{Error, Result};
 use std::io::{Cursor, Write};
@@ -43,10 +44,13 @@ impl OutputFormat {
 /// A file that appears complete or not at all: created as a temporary
 /// file in the destination's folder (so an unwritable destination fails
 /// before any work is done), renamed over the destination by
-/// [`AtomicFile::commit`], removed if dropped uncommitted.
+/// [`AtomicFile::commit`], removed if dropped uncommitted or if the
+/// process is interrupted ([`super::interrupt`]).
 pub struct AtomicFile {
     path: PathBuf,
     temp: tempfile::NamedTempFile,
+    /// Declared after `temp`: unregistered once the file is gone.
+    _pending: interrupt::Pending,
 }
 
 impl AtomicFile {
@@ -59,9 +63,11 @@ impl AtomicFile {
             Some(p) if !p.as_os_str().is_empty() => p,
             _ => Path::new("."),
         };
+        interrupt::remove_stale(dir);
+        let prefix = interrupt::own_prefix();
         let temp = tempfile::Builder::new()
-            .prefix(".gonio-")
-            .suffix(".partial")
+            .prefix(&prefix)
+            .suffix(interrupt::SUFFIX)
             .tempfile_in(dir)
             .map_err(|e| {
                 Error::output(
@@ -71,6 +77,7 @@ impl AtomicFile {
             })?;
         Ok(AtomicFile {
             path: path.to_path_buf(),
+            _pending: interrupt::Pending::register(temp.path()),
             temp,
         })
     }

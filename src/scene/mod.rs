@@ -47,6 +47,13 @@ named_enum!(
 
 pub use crate::base::Rgb;
 
+/// Largest coordinate of a position gonio draws (vertex, camera, light):
+/// the GPU squares distances in f32, which overflows past about 1.8e19. A
+/// camera at [1e300, …] was refused as "position and target coincide"
+/// (the f64 direction overflowed), a light there gave Inf pixels and a
+/// glTF with ±3e38 coordinates a blank image: issue 19.
+pub const MAX_COORDINATE: f64 = 1e18;
+
 /// A scene ready to render.
 #[derive(Clone, Debug)]
 pub struct Scene {

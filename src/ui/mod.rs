@@ -11,6 +11,7 @@
 pub mod app;
 pub mod cli;
 pub mod document;
+pub mod memory;
 pub mod orbit;
 pub mod panel_cache;
 pub mod panels;
@@ -31,6 +32,7 @@ pub use cli::ViewArgs;
 /// (by the command line, `gonio view --max-error`); the `--set`s apply
 /// after them.
 pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
+    memory::return_large_blocks_to_the_system();
     if !args.exposure.is_finite() {
         return Err(Error::argument(
             format!("--exposure {}", args.exposure),

@@ -12,7 +12,7 @@
 
 use crate::explore::albedo::albedo_curve;
 use crate::explore::gloss::{GEOMETRIES, GlossReading, gloss};
-use crate::explore::slice::{Quantity, Slice, slice};
+use crate::explore::slice::{Quantity, Slice, light_marker, mirror_marker, slice};
 use crate::explore::{Channel, albedo::AlbedoEstimate};
 use crate::material::Material;
 use egui_plot::{Legend, Line, Plot, PlotPoints, Points};
@@ -88,7 +88,7 @@ impl Plots {
             let thetas: Vec<f64> = (0..ALBEDO_ANGLES)
                 .map(|k| (k as f64 * 89.0 / (ALBEDO_ANGLES - 1) as f64).to_radians())
                 .collect();
-            let albedo = albedo_curve(&m, &thetas);
+            let albedo = albedo_curve(&m, &thetas, 0.0);
             let gloss = GEOMETRIES.iter().map(|g| gloss(&m, *g)).collect();
             let _ = tx.send(Integrals {
                 albedo: thetas.iter().map(|t| t.to_degrees()).zip(albedo).collect(),
@@ -111,21 +111,16 @@ impl Plots {
             self.slice = Some((material.clone(), theta_i, s));
         }
         let s = &self.slice.as_ref().expect("computed above").2;
-        // θ_o signed in the plane of incidence; the viewer's side of the
-        // normal on the right, as in the lecture's figures.
-        let lobe: Vec<[f64; 2]> = s
-            .points
-            .iter()
-            .filter(|(_, v)| v.is_finite())
-            .map(|&(t, v)| [v * t.sin(), v * t.cos()])
-            .collect();
+        // θ_o signed in the plane of incidence, the light's side right,
+        // as `gonio brdf` draws it (crate::explore::slice::polar).
+        let lobe = s.polar_points();
         let peak = lobe
             .iter()
             .map(|p| p[0].hypot(p[1]))
             .fold(0.0_f64, f64::max)
             .max(s.dirac.unwrap_or(0.0))
             .max(1e-12);
-        let incident = vec![[-theta_i.sin() * peak, theta_i.cos() * peak], [0.0, 0.0]];
+        let incident = vec![light_marker(theta_i, peak), [0.0, 0.0]];
         ui.label("Polar slice: f_r·cos θ_o [1/sr] (mean of R, G, B)");
         Plot::new("slice")
             .width(ui.available_width() - 12.0)
@@ -140,7 +135,7 @@ impl Plots {
                     p.points(
                         Points::new(
                             "mirror (Dirac) reflectance",
-                            vec![[theta_i.sin() * d, theta_i.cos() * d]],
+                            vec![mirror_marker(theta_i, d)],
                         )
                         .radius(4.0),
                     );

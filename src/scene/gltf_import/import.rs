@@ -11,12 +11,9 @@ use super::convert::{
 use crate::scene::limits::Limits;
 use crate::scene::mesh::area_weighted_normals;
 use crate::scene::texture::Encoding;
-use crate::scene::{Mesh, Rgb};
+use crate::scene::{MAX_COORDINATE, Mesh, Rgb};
 use glam::DMat4;
 use std::borrow::Cow;
-
-/// The largest magnitude an f32 holds.
-const F32_MAX: f64 = f32::MAX as f64;
 
 /// One import: the document, its loaded buffers and what has been gathered.
 pub(super) struct Importer<'a> {
@@ -237,16 +234,19 @@ impl<'a> Importer<'a> {
             }
             mesh.tex_coords = raw.tex_coords;
             mesh.transform(world);
-            // The GPU draws in f32: a position beyond its range would
-            // become infinite there even though it is finite here.
-            if mesh
+            // The GPU draws in f32 and squares distances: a position
+            // beyond ±1e18 overflows there even though it is finite here.
+            if let Some(p) = mesh
                 .positions
                 .iter()
-                .any(|p| !p.is_finite() || p.abs().max_element() > F32_MAX)
+                .find(|p| !p.is_finite() || p.abs().max_element() > MAX_COORDINATE)
             {
                 return Err(format!(
-                    "{}: the node's world transform sends vertices beyond ±3.4e38, the range of the GPU's f32",
-                    context()
+                    "{}: a vertex lands at [{:e}, {:e}, {:e}] in the world, beyond ±{MAX_COORDINATE:e}: the GPU computes in f32 and squares distances (largest 3.4e38), so the asset cannot be drawn or framed; scale it down (its node transforms or positions)",
+                    context(),
+                    p.x,
+                    p.y,
+                    p.z
                 ));
             }
             // A singular transform (a zero scale) has no normal matrix;

@@ -19,11 +19,7 @@ pub fn unit_vec(key: &str, v: [f64; 3]) -> std::result::Result<DVec3, String> {
         .ok_or_else(|| format!("{key} = {v:?} has no direction (zero length)"))
 }
 
-/// Largest coordinate of a camera or light position: the GPU squares
-/// distances in f32, which overflows past about 1.8e19. A camera at
-/// [1e300, …] was refused as "position and target coincide" (the f64
-/// direction overflowed), a light there gave Inf pixels: issue 19.
-pub const MAX_COORDINATE: f64 = 1e18;
+use crate::scene::MAX_COORDINATE;
 
 /// Largest radiance, intensity or irradiance component: the GPU
 /// multiplies it in f32 by a BRDF value (the lecture's forms reach about
