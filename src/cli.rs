@@ -3,7 +3,7 @@
 use crate::frame::Frame;
 use crate::gpu::timing::{Clock, Timings};
 use crate::gpu::{AdapterChoice, GpuContext, GpuRenderer};
-use crate::output::OutputFile;
+use crate::output::{OutputFile, OutputFormat};
 use crate::scene::limits::Limits;
 use crate::scene::scene_file::{self, SceneSource};
 use crate::scene::{Scene, ShadingMode};
@@ -161,6 +161,17 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         return Err(Error::argument(
             format!("--exposure {}", args.exposure),
             "the exposure must be a finite number of stops",
+        ));
+    }
+    // EXR holds linear radiance; an exposure there would be ignored
+    // without a word (issue 17).
+    if args.exposure != 0.0 && OutputFormat::from_path(&args.output)? == OutputFormat::Exr {
+        return Err(Error::argument(
+            format!("--exposure {}", args.exposure),
+            format!(
+                "{} is an EXR, which holds linear radiance without exposure or tone mapping; drop --exposure, or write a .png",
+                args.output.display()
+            ),
         ));
     }
     // Claim the destination first: a bad path fails before any work.

@@ -79,7 +79,10 @@ fn unknown_name_suggestion(message: &str) -> Option<&str> {
 /// The candidate closest to `unknown` by edit distance (ignoring case), if
 /// within a third of its length (at least 2 edits), or if one is a prefix
 /// of the other (`fov` for `fov_y_deg`).
-fn nearest_name<'c>(unknown: &str, candidates: impl Iterator<Item = &'c str>) -> Option<&'c str> {
+pub(super) fn nearest_name<'c>(
+    unknown: &str,
+    candidates: impl Iterator<Item = &'c str>,
+) -> Option<&'c str> {
     // Keys are short; a long one is not a typo, and edit distance is
     // quadratic.
     if unknown.is_empty() || unknown.len() > 64 {

@@ -158,6 +158,10 @@ pub fn scene_table(source: &SceneSource) -> Result<(PathBuf, PathBuf, toml::Tabl
                     );
                     Ok((path.clone(), base_dir, table))
                 }
+                _ if path.is_dir() => Err(Error::input(
+                    path,
+                    "it is a directory; SCENE is a scene file: a .toml, a .gltf or a .glb",
+                )),
                 _ => Err(Error::input(
                     path,
                     "unknown scene type: expected a .toml scene file, a .gltf or a .glb",

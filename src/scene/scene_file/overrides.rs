@@ -38,6 +38,7 @@ pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
             ),
         ));
     }
+    must_exist(table, &parts).map_err(|p| Error::argument(arg(), p))?;
     let (last, path) = parts.split_last().expect("non-empty key");
     let mut node = TableOrArray::Table(table);
     for (depth, part) in path.iter().enumerate() {
@@ -48,6 +49,47 @@ pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
     }
     node.set(last, value)
         .map_err(|p| Error::argument(arg(), format!("`{key}`: {p}")))
+}
+
+/// Refuses a path into something the scene must already have, with the
+/// reason in the user's words (issue 17): a misspelt material
+/// (`materials.bal.k_e` said "missing field `model`") and an array entry
+/// of an array the scene lacks (`lights.0.shadows` on a bare glTF said
+/// "invalid type: map, expected a sequence").
+fn must_exist(table: &toml::Table, parts: &[&str]) -> std::result::Result<(), String> {
+    if let ["materials", name, key, ..] = parts {
+        let names: Vec<&str> = match table.get("materials") {
+            Some(toml::Value::Table(m)) => m.keys().map(String::as_str).collect(),
+            _ => Vec::new(),
+        };
+        if !names.contains(name) && *key != "model" {
+            let listed = if names.is_empty() {
+                "it has none".to_string()
+            } else {
+                format!("it has {}", names.join(", "))
+            };
+            let hint = super::diagnostics::nearest_name(name, names.iter().copied())
+                .map(|n| format!("; did you mean `{n}`?"))
+                .unwrap_or_else(|| ".".into());
+            return Err(format!(
+                "the scene has no material `{name}` ({listed}){hint} A new material starts with its model (`--set materials.{name}.model=lambert`); a glTF's own materials are not scene-file entries: put a scene material on a glTF object with `--set objects.N.material=NAME`"
+            ));
+        }
+    }
+    if let [array, index, ..] = parts
+        && index.parse::<usize>().is_ok()
+        && !table.contains_key(*array)
+    {
+        let extra = if *array == "lights" {
+            "; a glTF's own lights (KHR_lights_punctual) are not `lights` entries: `--set shadows.imported_lights=true` makes them cast shadows"
+        } else {
+            ""
+        };
+        return Err(format!(
+            "the scene has no `{array}`, so no entry {index}: entries of `[[{array}]]` are added in a scene file{extra}"
+        ));
+    }
+    Ok(())
 }
 
 /// VALUE of a `--set` (and of the viewer's `--edit`): a TOML value, or
