@@ -201,8 +201,11 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let (scene, notes) = scene_file::load_with_limits(&source, &overrides, limits)?;
     timings.push("load scene", start.elapsed(), Clock::Wall);
     warn_unsupported(&scene);
+    for warning in notes.iter().filter(|n| n.starts_with(scene_file::WARNING)) {
+        eprintln!("gonio: {warning}");
+    }
     if args.verbose {
-        for note in &notes {
+        for note in notes.iter().filter(|n| !n.starts_with(scene_file::WARNING)) {
             eprintln!("gonio: note: {note}");
         }
         eprintln!("{}", describe_scene(&scene));

@@ -74,3 +74,39 @@ fn verbose_names_the_adapter() {
     assert!(stderr.contains("adapter: "), "{stderr}");
     assert!(stderr.contains("shader: shading phong"), "{stderr}");
 }
+
+/// A key the material's model does not read is rendered without, with a
+/// warning that names it and the model's parameters (issue 17: `sigma_x`
+/// on blinn-phong, `k_e` on lambert were ignored without a word); keys
+/// the model reads give no warning.
+#[test]
+fn keys_a_model_does_not_read_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |sets: &[&str]| {
+        let mut cmd = common::gonio();
+        cmd.args(["render", "--width", "32", "--height", "24", "-o"])
+            .arg(dir.path().join("w.png"));
+        for s in sets {
+            cmd.args(["--set", s]);
+        }
+        let out = cmd.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(
+            out.status.success(),
+            "{stderr}{}",
+            common::LAVAPIPE_TEST_HINT
+        );
+        stderr
+    };
+    let stderr = run(&["materials.ball.sigma_x=0.3", "materials.floor.k_e=4"]);
+    assert!(
+        stderr.contains("materials.ball: `sigma_x` not read by model `blinn-phong` (its parameters: k_d, k_s, k_e)"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("materials.floor: `k_e` not read by model `lambert`"),
+        "{stderr}"
+    );
+    let quiet = run(&["materials.ball.k_e=20"]);
+    assert!(!quiet.contains("warning"), "{quiet}");
+}

@@ -186,6 +186,29 @@ pub fn material_from_entry_in(
     Ok(m)
 }
 
+/// The parameter keys of `e` that its model does not read (`sigma_x` on
+/// `ward`, `roughness` on `blinn-phong`, `k_e` on `lambert`): accepted, so
+/// a material can switch models in the viewer and back, but worth a
+/// warning (issue 17: they were ignored without a word). `measured`
+/// refuses them instead ([`measured_keys_apply`]).
+pub fn keys_not_applying(e: &MaterialEntry) -> Vec<&str> {
+    let Ok(model) = e.model.parse::<ReflectanceModel>() else {
+        return Vec::new();
+    };
+    let row = model.row();
+    let applies = |k: &str| {
+        table::COMMON
+            .iter()
+            .chain(row.params.iter())
+            .any(|p| p.key == k)
+    };
+    e.params
+        .iter()
+        .map(|(k, _)| k.as_str())
+        .filter(|k| !applies(k))
+        .collect()
+}
+
 /// For a `measured` material: the `measured` key is given, and no key a
 /// measured BRDF does not read (its `f_r` is the data's, in 1/sr; `k_a`,
 /// the ambient term, still applies). Else the key and the problem.

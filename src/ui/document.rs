@@ -55,6 +55,14 @@ impl Document {
     /// Loads `source` with `overrides`.
     pub fn load(source: SceneSource, overrides: Vec<String>, limits: Limits) -> Result<Document> {
         let loaded = scene_file::load_for_editing(&source, &overrides, limits)?;
+        // As `gonio render` does: warnings are shown, other notes are not.
+        for warning in loaded
+            .notes
+            .iter()
+            .filter(|n| n.starts_with(scene_file::WARNING))
+        {
+            eprintln!("gonio: {warning}");
+        }
         let file_materials = loaded
             .table
             .get("materials")

@@ -92,9 +92,10 @@ pub fn load_for_editing(
         file = SceneFile::deserialize(toml::Value::Table(table.clone()))
             .map_err(|e| Error::argument(format!("--set {kv}"), clean_toml_error(&e)))?;
     }
+    let mut notes = inapplicable_keys(&file);
     let mut gltf_files = gltf_import::GltfLoader::new(limits);
     let (scene, lights) = assembly::assemble(&origin, &base_dir, file, &mut gltf_files)?;
-    let mut notes = gltf_files.notes().to_vec();
+    notes.extend(gltf_files.notes().iter().cloned());
     notes.extend(lights.notes());
     Ok(Loaded {
         scene,
@@ -104,6 +105,32 @@ pub fn load_for_editing(
         notes,
     })
 }
+/// Notes that begin with this are warnings: shown without `--verbose`.
+pub const WARNING: &str = "warning: ";
+
+/// A warning per material with keys its model does not read.
+fn inapplicable_keys(file: &SceneFile) -> Vec<String> {
+    file.materials
+        .iter()
+        .filter_map(|(name, entry)| {
+            let keys = crate::material::entry::keys_not_applying(entry);
+            (!keys.is_empty()).then(|| {
+                let params: Vec<&str> = entry
+                    .model
+                    .parse::<crate::material::ReflectanceModel>()
+                    .map(|m| m.row().params.iter().map(|p| p.key).collect())
+                    .unwrap_or_default();
+                format!(
+                    "{WARNING}materials.{name}: {} not read by model `{}` (its parameters: {}); ignored",
+                    keys.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", "),
+                    entry.model,
+                    params.join(", ")
+                )
+            })
+        })
+        .collect()
+}
+
 /// The scene table of `source` before overrides, with the file (or a
 /// pseudo-path for the built-in scene) that errors name and the folder
 /// its relative paths resolve in.
