@@ -1,6 +1,9 @@
 // The reflection equation for punctual lights, summed (contract):
 // L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
-// plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)).
+// plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)),
+// plus, with an environment map (`#if environment`), the diffuse term of
+// every model lit by it, k_d/π · E(n), E by spherical harmonics
+// (shaders/environment.wgsl).
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
@@ -17,11 +20,15 @@
 #if mirror
 // Radiance of the environment from unit direction d. Twin: Environment::radiance.
 fn environment_radiance(d: vec3<f32>) -> vec3<f32> {
+    #if environment
+    return environment_map_radiance(d);
+    #else
     let y = clamp(d.y, -1.0, 1.0);
     if y >= 0.0 {
         return globals.env_horizon + (globals.env_zenith - globals.env_horizon) * y;
     }
     return globals.env_horizon + (globals.env_ground - globals.env_horizon) * (-y);
+    #endif
 }
 #endif
 
@@ -70,6 +77,9 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
         radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * cos_theta_i;
         #endif
     }
+    #if environment
+    radiance += m.k_d * FRAC_1_PI * sh_irradiance(n);
+    #endif
     #if mirror
     let reflected = mirror_direction(wo, n);
     radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected);

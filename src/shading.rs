@@ -1,7 +1,10 @@
 //! The reflection equation for punctual lights, summed (contract):
 //! `L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l`,
 //! plus, for the ideal mirror, `ρ_s(θ_o) · L_env(R(V))` (lecture: "Mirror
-//! BRDF": `L_o = ρ_s(θ_o) L_i(θ_o, φ_o ± π)`).
+//! BRDF": `L_o = ρ_s(θ_o) L_i(θ_o, φ_o ± π)`),
+//! plus, with an environment map, the diffuse term of every model lit by
+//! it, `k_d/π · E(n)` (Ramamoorthi & Hanrahan 2001): `E` by SH on the GPU,
+//! integrated (or by the same SH, `environment.reference = "sh"`) here.
 //!
 //! This is the CPU twin of `reflected_radiance` in `shaders/shading.wgsl`.
 
@@ -9,6 +12,7 @@ use crate::material::brdf::{self, SurfaceFrame, phong::mirror_direction};
 use crate::material::{Material, ReflectanceModel};
 use crate::scene::{Rgb, Scene};
 use glam::DVec3;
+use std::f64::consts::FRAC_1_PI;
 
 /// Reflected radiance at `x` with shading frame `frame`, seen from `eye`.
 /// `material` is an effective material (`Scene::effective_materials`).
@@ -36,6 +40,9 @@ pub fn reflected_radiance(
         }
         radiance +=
             material.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
+    }
+    if let Some(map) = &scene.environment.map {
+        radiance += material.brdf().k_d * FRAC_1_PI * map.irradiance_reference(n);
     }
     if material.model == ReflectanceModel::Mirror {
         let reflected = mirror_direction(wo, n);

@@ -194,6 +194,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         // The same buffers as the specialized shader: only the code differs.
         arrays: ShaderKey::new(scene, &ShadowPlan::new(scene)).arrays,
         vertex_shadow_coords: false,
+        environment: false,
     }
 }
 

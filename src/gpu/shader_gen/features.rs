@@ -57,6 +57,9 @@ pub enum Feature {
     /// The target is a display surface: exposure and sRGB in the shader
     /// (`display`).
     Display,
+    /// The scene has an environment map: group 3, the map lights every
+    /// surface and is the background (`environment`).
+    Environment,
 }
 
 impl Feature {
@@ -79,6 +82,7 @@ impl Feature {
             UniformLights,
             UniformShadowViews,
             Display,
+            Environment,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -114,6 +118,7 @@ impl Feature {
             Feature::UniformLights => "uniform_lights",
             Feature::UniformShadowViews => "uniform_shadow_views",
             Feature::Display => "display",
+            Feature::Environment => "environment",
         };
         flag.into()
     }

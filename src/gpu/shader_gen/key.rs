@@ -26,6 +26,8 @@ pub struct ShaderKey {
     /// it ([`ShaderKey::shadow_coords_per_vertex`]); `false`: always per
     /// pixel (for tests and measurements of the difference).
     pub vertex_shadow_coords: bool,
+    /// The scene has an environment map (`Feature::Environment`).
+    pub environment: bool,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -84,6 +86,7 @@ impl ShaderKey {
             shadows,
             arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
             vertex_shadow_coords: true,
+            environment: scene.environment.map.is_some(),
         }
     }
 
@@ -174,6 +177,9 @@ impl ShaderKey {
         if self.arrays.shadow_views {
             f.push(Feature::UniformShadowViews);
         }
+        if self.environment {
+            f.push(Feature::Environment);
+        }
         f
     }
 
@@ -182,11 +188,16 @@ impl ShaderKey {
         let variants: Vec<_> = self.variants.iter().map(|v| v.describe()).collect();
         let lights: Vec<_> = self.light_kinds.iter().map(|k| k.name()).collect();
         format!(
-            "shading {}, models [{}], lights [{}], {}",
+            "shading {}, models [{}], lights [{}], {}{}",
             self.shading,
             variants.join(", "),
             lights.join(", "),
-            self.shadows.describe()
+            self.shadows.describe(),
+            if self.environment {
+                ", environment map"
+            } else {
+                ""
+            }
         )
     }
 }

@@ -22,7 +22,9 @@ mod preprocess;
 pub mod sources;
 pub mod specialization;
 
-pub use compose::{Output, common, compose, compose_brdf_library, compose_for, validate};
+pub use compose::{
+    Output, common, compose, compose_background, compose_brdf_library, compose_for, validate,
+};
 pub use features::Feature;
 pub use key::{LoopCounts, ShaderKey};
 pub use preprocess::preprocess;
@@ -94,6 +96,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(i % 2 == 0),
                 vertex_shadow_coords: false,
+                environment: i % 3 == 0,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -114,6 +117,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     arrays: arrays(pcf),
                     // Orthographic with PCF: the coordinates per vertex.
                     vertex_shadow_coords: pcf,
+                    environment: pcf,
                 });
             }
         }
@@ -133,6 +137,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(uniform),
                 vertex_shadow_coords: false,
+                environment: uniform,
             });
         }
     }
@@ -213,6 +218,13 @@ mod tests {
         assert!(ortho.contains("fn shadow_ortho") && ortho.contains("for (var i = -r"));
         assert!(!ortho.contains("fn shadow_cube") && !ortho.contains("fn shadow_perspective"));
         validate(&ortho).unwrap();
+    }
+
+    #[test]
+    fn the_background_validates() {
+        for output in [Output::Radiance, Output::Display] {
+            validate(&compose_background(output)).unwrap();
+        }
     }
 
     #[test]

@@ -77,6 +77,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         },
         arrays: UniformArrays::for_counts(1, 1),
         vertex_shadow_coords: true,
+        environment: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -98,6 +99,7 @@ fn snapshot_everything() {
         },
         arrays: UniformArrays::for_counts(5, 8),
         vertex_shadow_coords: true,
+        environment: true,
     };
     check_snapshot("everything", &compose(&key));
 }

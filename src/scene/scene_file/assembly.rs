@@ -62,7 +62,16 @@ pub fn assemble(
         entries: file.lights.clone(),
     };
     let lights = light_setup.assemble().map_err(bad)?;
-    let (ambient, environment) = ambient_and_environment(&file).map_err(bad)?;
+    let (ambient, environment) = ambient_and_environment(&file, base_dir).map_err(bad)?;
+    // The contract: no default light in a scene lit by an environment map.
+    let mut lights = lights;
+    if environment.map.is_some()
+        && light_setup.imported.is_empty()
+        && light_setup.entries.is_empty()
+    {
+        lights.lights.clear();
+        lights.light_shadows.clear();
+    }
 
     let meshes = objects.meshes;
     let scene_bounds =
@@ -191,9 +200,12 @@ fn objects(
     Ok(out)
 }
 
-/// `[ambient]` and `[environment]` (whose keys default to the ambient
-/// radiance).
-fn ambient_and_environment(file: &SceneFile) -> std::result::Result<(Rgb, Environment), String> {
+/// `[ambient]` and `[environment]` (whose gradient keys default to the
+/// ambient radiance; its map is read relative to `base_dir`).
+fn ambient_and_environment(
+    file: &SceneFile,
+    base_dir: &Path,
+) -> std::result::Result<(Rgb, Environment), String> {
     let ambient = match file.ambient.radiance {
         None => Rgb::ZERO,
         Some(c) => non_negative("ambient.radiance", c.rgb())?,
@@ -207,6 +219,7 @@ fn ambient_and_environment(file: &SceneFile) -> std::result::Result<(Rgb, Enviro
         zenith: get("zenith", e.zenith)?,
         horizon: get("horizon", e.horizon)?,
         ground: get("ground", e.ground)?,
+        map: super::environment_keys::environment_map(e, base_dir)?,
     };
     Ok((ambient, environment))
 }

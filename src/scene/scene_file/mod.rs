@@ -14,6 +14,7 @@
 
 pub mod assembly;
 pub mod diagnostics;
+pub mod environment_keys;
 pub mod lights;
 pub mod overrides;
 pub mod schema;

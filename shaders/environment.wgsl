@@ -1,0 +1,110 @@
+// The environment map (group 3; only in shaders of scenes with
+// `[environment] map`, feature `environment`). CPU twins: the lat-long
+// convention src/environment/latlong.rs, the lookup MapData::lookup
+// (src/environment/map.rs), the SH basis and sum src/environment/sh.rs.
+// CPU mirror of the struct: GpuEnvironmentUniform (src/gpu/environment.rs).
+
+struct EnvironmentUniform {
+    // The camera's ray basis, as Camera::ray builds it: a pixel at
+    // normalized device coordinates (x, y) looks along
+    // normalize(forward + right·x + up·y) (the background pass).
+    forward: vec3<f32>,
+    scale: f32,            // environment.scale
+    right: vec3<f32>,      // camera right · tan(fov_y/2) · aspect
+    width: u32,            // the map's texels
+    up: vec3<f32>,         // camera up · tan(fov_y/2)
+    height: u32,
+    // scale · Â_l · L_lm (rgb), bands 0-4, zero above environment.sh_order:
+    // E(n) = Σ sh[i] · Y_i(n) (EnvironmentMap::irradiance_coefficients).
+    sh: array<vec4<f32>, 25>,
+}
+
+@group(3) @binding(0) var<uniform> environment: EnvironmentUniform;
+// Linear radiance, Rgba32Float (not filterable: the bilinear filter is
+// done here, as on the CPU, on the same f32 texels).
+@group(3) @binding(1) var environment_texels: texture_2d<f32>;
+
+// (u, v) of unit direction d: u = atan2(d.x, −d.z)/(2π) wrapped into
+// [0, 1), v = acos(d.y)/π (the contract's convention). Twin: latlong::uv.
+fn latlong_uv(d: vec3<f32>) -> vec2<f32> {
+    var u = atan2(d.x, -d.z) / (2.0 * PI);
+    if u < 0.0 {
+        u += 1.0;
+    }
+    if u >= 1.0 {
+        u -= 1.0;
+    }
+    return vec2<f32>(u, acos(clamp(d.y, -1.0, 1.0)) / PI);
+}
+
+fn environment_texel(col: i32, row: i32) -> vec3<f32> {
+    return textureLoad(environment_texels, vec2<i32>(col, row), 0).rgb;
+}
+
+// Bilinear lookup, texel centres at ((col + ½)/W, (row + ½)/H), u wraps,
+// v clamps. Twin: MapData::lookup.
+fn environment_lookup(d: vec3<f32>) -> vec3<f32> {
+    let uv = latlong_uv(d);
+    let w = i32(environment.width);
+    let h = i32(environment.height);
+    let x = uv.x * f32(w) - 0.5;
+    let y = uv.y * f32(h) - 0.5;
+    let x0 = floor(x);
+    let y0 = floor(y);
+    let fx = x - x0;
+    let fy = y - y0;
+    let c0 = ((i32(x0) % w) + w) % w;
+    let c1 = ((i32(x0) + 1) % w + w) % w;
+    let r0 = clamp(i32(y0), 0, h - 1);
+    let r1 = clamp(i32(y0) + 1, 0, h - 1);
+    let top = environment_texel(c0, r0) * (1.0 - fx) + environment_texel(c1, r0) * fx;
+    let bottom = environment_texel(c0, r1) * (1.0 - fx) + environment_texel(c1, r1) * fx;
+    return top * (1.0 - fy) + bottom * fy;
+}
+
+// scale · L_env(d). Twin: EnvironmentMap::radiance.
+fn environment_map_radiance(d: vec3<f32>) -> vec3<f32> {
+    return environment.scale * environment_lookup(d);
+}
+
+// E(n) = Σ_i sh[i] · Y_i(n), the 25 real SH of bands 0-4 in the order and
+// form of sh::basis (Sloan 2008). Twin: sh::evaluate.
+fn sh_irradiance(n: vec3<f32>) -> vec3<f32> {
+    let x = n.x;
+    let y = n.y;
+    let z = n.z;
+    let x2 = x * x;
+    let y2 = y * y;
+    let z2 = z * z;
+    var b: array<f32, 25>;
+    b[0] = 0.2820947917738781;
+    b[1] = 0.4886025119029199 * y;
+    b[2] = 0.4886025119029199 * z;
+    b[3] = 0.4886025119029199 * x;
+    b[4] = 1.092548430592079 * x * y;
+    b[5] = 1.092548430592079 * y * z;
+    b[6] = 0.31539156525252005 * (3.0 * z2 - 1.0);
+    b[7] = 1.092548430592079 * x * z;
+    b[8] = 0.5462742152960395 * (x2 - y2);
+    b[9] = 0.5900435899266435 * y * (3.0 * x2 - y2);
+    b[10] = 2.890611442640554 * x * y * z;
+    b[11] = 0.4570457994644658 * y * (5.0 * z2 - 1.0);
+    b[12] = 0.3731763325901154 * z * (5.0 * z2 - 3.0);
+    b[13] = 0.4570457994644658 * x * (5.0 * z2 - 1.0);
+    b[14] = 1.445305721320277 * z * (x2 - y2);
+    b[15] = 0.5900435899266435 * x * (x2 - 3.0 * y2);
+    b[16] = 2.503342941796705 * x * y * (x2 - y2);
+    b[17] = 1.770130769779931 * y * z * (3.0 * x2 - y2);
+    b[18] = 0.946174695757560 * x * y * (7.0 * z2 - 1.0);
+    b[19] = 0.669046543557289 * y * z * (7.0 * z2 - 3.0);
+    b[20] = 0.105785546915204 * (35.0 * z2 * z2 - 30.0 * z2 + 3.0);
+    b[21] = 0.669046543557289 * x * z * (7.0 * z2 - 3.0);
+    b[22] = 0.473087347878780 * (x2 - y2) * (7.0 * z2 - 1.0);
+    b[23] = 1.770130769779931 * x * z * (x2 - 3.0 * y2);
+    b[24] = 0.625835735449176 * (x2 * x2 - 6.0 * x2 * y2 + y2 * y2);
+    var e = vec3<f32>(0.0);
+    for (var i = 0u; i < 25u; i++) {
+        e += environment.sh[i].rgb * b[i];
+    }
+    return e;
+}
