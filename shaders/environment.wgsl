@@ -17,6 +17,8 @@ struct EnvironmentUniform {
     // scale · Â_l · L_lm (rgb), bands 0-4, zero above environment.sh_order:
     // E(n) = Σ sh[i] · Y_i(n) (EnvironmentMap::irradiance_coefficients).
     sh: array<vec4<f32>, 25>,
+    // (cos θ, sin θ, 0, 0) of environment.rotation_deg.
+    rotation: vec4<f32>,
 }
 
 @group(3) @binding(0) var<uniform> environment: EnvironmentUniform;
@@ -62,14 +64,24 @@ fn environment_lookup(d: vec3<f32>) -> vec3<f32> {
     return top * (1.0 - fy) + bottom * fy;
 }
 
+// The direction in the file's frame of world direction d: R_y(−θ) d.
+// Twin: EnvironmentMap::to_map.
+fn environment_to_map(d: vec3<f32>) -> vec3<f32> {
+    let c = environment.rotation.x;
+    let s = environment.rotation.y;
+    return vec3<f32>(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
+}
+
 // scale · L_env(d). Twin: EnvironmentMap::radiance.
 fn environment_map_radiance(d: vec3<f32>) -> vec3<f32> {
-    return environment.scale * environment_lookup(d);
+    return environment.scale * environment_lookup(environment_to_map(d));
 }
 
 // E(n) = Σ_i sh[i] · Y_i(n), the 25 real SH of bands 0-4 in the order and
-// form of sh::basis (Sloan 2008). Twin: sh::evaluate.
-fn sh_irradiance(n: vec3<f32>) -> vec3<f32> {
+// form of sh::basis (Sloan 2008), at the normal in the file's frame.
+// Twin: EnvironmentMap::irradiance_sh.
+fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
+    let n = environment_to_map(world_n);
     let x = n.x;
     let y = n.y;
     let z = n.z;

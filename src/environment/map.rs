@@ -55,6 +55,10 @@ pub struct MapSettings {
     pub sh_order: u32,
     /// What the CPU reference integrates (`environment.reference`).
     pub reference: ReferenceDiffuse,
+    /// Turns the map about +Y by this many degrees
+    /// (`environment.rotation_deg`; counter-clockwise seen from above):
+    /// what the file holds towards `d₀` arrives from `R_y(θ) d₀`.
+    pub rotation_deg: f64,
 }
 
 impl Default for MapSettings {
@@ -63,6 +67,7 @@ impl Default for MapSettings {
             scale: 1.0,
             sh_order: 2,
             reference: ReferenceDiffuse::Integrated,
+            rotation_deg: 0.0,
         }
     }
 }
@@ -153,9 +158,17 @@ impl MapData {
 }
 
 impl EnvironmentMap {
+    /// The direction in the file's frame of world direction `d`:
+    /// `R_y(−θ) d`. Twin: `environment_to_map` in shaders/environment.wgsl
+    /// (with the cosine and sine rounded to f32 on the CPU).
+    pub fn to_map(&self, d: DVec3) -> DVec3 {
+        let (sin, cos) = self.settings.rotation_deg.to_radians().sin_cos();
+        DVec3::new(cos * d.x - sin * d.z, d.y, sin * d.x + cos * d.z)
+    }
+
     /// Radiance arriving from unit direction `d`: `scale · L_env(d)`.
     pub fn radiance(&self, d: DVec3) -> Rgb {
-        self.data.lookup(d) * self.settings.scale
+        self.data.lookup(self.to_map(d)) * self.settings.scale
     }
 
     /// `scale · Â_l · L_lm` up to `sh_order` (zero above): what the GPU's
@@ -169,12 +182,12 @@ impl EnvironmentMap {
 
     /// Irradiance by SH of `sh_order` (the GPU's diffuse term).
     pub fn irradiance_sh(&self, n: DVec3) -> Rgb {
-        sh::evaluate(&self.irradiance_coefficients(), n)
+        sh::evaluate(&self.irradiance_coefficients(), self.to_map(n))
     }
 
     /// The integrated irradiance `scale · ∫ L max(0, n·ω) dω`.
     pub fn irradiance_integrated(&self, n: DVec3) -> Rgb {
-        self.data.truth.irradiance(n) * self.settings.scale
+        self.data.truth.irradiance(self.to_map(n)) * self.settings.scale
     }
 
     /// The irradiance the CPU reference uses (`settings.reference`).
@@ -214,6 +227,29 @@ mod tests {
         assert!((map.lookup(seam).x - 3.5).abs() < 1e-9);
         // Above the first row's centre: clamped to row 0.
         assert!((map.lookup(DVec3::Y).y).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rotation_moves_what_arrives_from_where() {
+        let data = Arc::new(ramp(8, 4));
+        let map = |deg| EnvironmentMap {
+            data: data.clone(),
+            settings: MapSettings {
+                rotation_deg: deg,
+                ..Default::default()
+            },
+        };
+        let d0 = latlong::texel_direction(1, 1, 8, 4);
+        // A quarter turn counter-clockwise seen from above (+Y) takes
+        // −Z to −X: R_y(90°) d₀.
+        let (s, c) = 90f64.to_radians().sin_cos();
+        let turned = DVec3::new(c * d0.x + s * d0.z, d0.y, -s * d0.x + c * d0.z);
+        assert!((map(90.0).radiance(turned) - map(0.0).radiance(d0)).length() < 1e-9);
+        assert!((map(90.0).to_map(DVec3::NEG_X) - DVec3::NEG_Z).length() < 1e-12);
+        let n = DVec3::new(0.3, 0.5, -0.8).normalize();
+        let e0 = map(0.0).irradiance_integrated(n);
+        let e1 = map(90.0).irradiance_integrated(map(0.0).to_map(n));
+        assert!(e0.is_finite() && e1.is_finite());
     }
 
     #[test]

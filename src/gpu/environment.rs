@@ -15,7 +15,7 @@ use crate::{Error, Result};
 use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
 
-/// `EnvironmentUniform` in shaders/environment.wgsl (464 bytes).
+/// `EnvironmentUniform` in shaders/environment.wgsl (480 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuEnvironmentUniform {
@@ -27,6 +27,8 @@ pub struct GpuEnvironmentUniform {
     pub height: u32,
     /// `scale · Â_l · L_lm`, RGB and a zero.
     pub sh: [[f32; 4]; sh::COUNT],
+    /// `(cos θ, sin θ, 0, 0)` of `rotation_deg` (`EnvironmentMap::to_map`).
+    pub rotation: [f32; 4],
 }
 
 impl GpuEnvironmentUniform {
@@ -49,6 +51,10 @@ impl GpuEnvironmentUniform {
                 let v = c[i].as_vec3();
                 [v.x, v.y, v.z, 0.0]
             }),
+            rotation: {
+                let (sin, cos) = map.settings.rotation_deg.to_radians().sin_cos();
+                [cos as f32, sin as f32, 0.0, 0.0]
+            },
         }
     }
 }
@@ -291,7 +297,7 @@ mod tests {
 
     #[test]
     fn the_uniform_has_the_wgsl_layout() {
-        // 3 × 16 bytes of vectors and scalars, then 25 vec4.
-        assert_eq!(size_of::<GpuEnvironmentUniform>(), 48 + 25 * 16);
+        // 3 × 16 bytes of vectors and scalars, 25 vec4, the rotation.
+        assert_eq!(size_of::<GpuEnvironmentUniform>(), 48 + 25 * 16 + 16);
     }
 }

@@ -1,6 +1,6 @@
-//! `[environment]`'s map keys: `map`, `scale`, `sh_order`, `reference`
-//! (the contract's `[environment]` section; gonio's `sh_order` and
-//! `reference` extend it). Errors name the key.
+//! `[environment]`'s map keys: `map`, `scale`, `sh_order`, `reference`,
+//! `rotation_deg` (the contract's `[environment]` section; gonio's
+//! `sh_order`, `reference` and `rotation_deg` extend it). Errors name the key.
 
 use super::schema::EnvironmentSection;
 use crate::environment::map::ReferenceDiffuse;
@@ -20,6 +20,7 @@ pub fn environment_map(
             ("scale", e.scale.is_some()),
             ("sh_order", e.sh_order.is_some()),
             ("reference", e.reference.is_some()),
+            ("rotation_deg", e.rotation_deg.is_some()),
         ];
         if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
             return Err(format!(
@@ -55,6 +56,12 @@ fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
             ));
         }
         s.sh_order = order as u32;
+    }
+    if let Some(deg) = e.rotation_deg {
+        if !deg.is_finite() {
+            return Err(format!("environment.rotation_deg = {deg} must be finite"));
+        }
+        s.rotation_deg = deg;
     }
     if let Some(r) = &e.reference {
         s.reference = ReferenceDiffuse::parse(r).ok_or_else(|| {

@@ -311,6 +311,8 @@ pub struct EnvironmentSection {
     /// What the CPU reference integrates: `"integrated"` (default) or
     /// `"sh"` (the GPU's approximation in f64).
     pub reference: Option<String>,
+    /// Turns the map about +Y (degrees, counter-clockwise from above).
+    pub rotation_deg: Option<f64>,
 }
 
 /// `[ambient]`: constant incoming radiance `L_a`.
