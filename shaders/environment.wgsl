@@ -17,8 +17,10 @@ struct EnvironmentUniform {
     // scale · Â_l · L_lm (rgb), bands 0-4, zero above environment.sh_order:
     // E(n) = Σ sh[i] · Y_i(n) (EnvironmentMap::irradiance_coefficients).
     sh: array<vec4<f32>, 25>,
-    // (cos θ, sin θ, 0, 0) of environment.rotation_deg.
-    rotation: vec4<f32>,
+    // (cos θ, sin θ) of environment.rotation_deg.
+    rotation: vec2<f32>,
+    samples: u32,          // environment.samples (sampled mode)
+    _pad: u32,
 }
 
 @group(3) @binding(0) var<uniform> environment: EnvironmentUniform;
@@ -120,3 +122,24 @@ fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
     }
     return e;
 }
+
+#if environment_sampled
+// L_o = ∫ f_r L_env cos θ dω by N cosine-weighted Hammersley directions:
+// (π/N) Σ_k f_r(ω_k, ω_o) L_env(ω_k). Twin: sampled::estimate.
+fn environment_sampled(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    let n = environment.samples;
+    // The directions' frame from the normal alone (as sampled::estimate).
+    let t = any_tangent(frame.n);
+    let b = cross(frame.n, t);
+    var sum = vec3<f32>(0.0);
+    for (var k = 0u; k < n; k++) {
+        let u1 = (f32(k) + 0.5) / f32(n);
+        let u2 = f32(reverseBits(k)) * 2.3283064365386963e-10;
+        let r = sqrt(u1);
+        let phi = 2.0 * PI * u2;
+        let wi = t * (r * cos(phi)) + b * (r * sin(phi)) + frame.n * sqrt(1.0 - u1);
+        sum += f_r(m, wi, wo, frame) * environment_map_radiance(wi);
+    }
+    return sum * (PI / f32(n));
+}
+#endif

@@ -77,7 +77,9 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
         radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * cos_theta_i;
         #endif
     }
-    #if environment
+    #if environment_sampled
+    radiance += environment_sampled(m, wo, frame);
+    #elif environment
     radiance += m.k_d * FRAC_1_PI * sh_irradiance(n);
     #endif
     #if mirror

@@ -42,7 +42,17 @@ pub fn reflected_radiance(
             material.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
     }
     if let Some(map) = &scene.environment.map {
-        radiance += material.brdf().k_d * FRAC_1_PI * map.irradiance_reference(n);
+        use crate::environment::map::{ReferenceDiffuse, Specular};
+        use crate::environment::sampled;
+        radiance += match (map.settings.specular, map.settings.reference) {
+            (Specular::None, _) => material.brdf().k_d * FRAC_1_PI * map.irradiance_reference(n),
+            (Specular::Sampled, ReferenceDiffuse::Sh) => {
+                sampled::estimate(map, material, frame, wo)
+            }
+            (Specular::Sampled, ReferenceDiffuse::Integrated) => {
+                sampled::integrated(map, &map.data.nodes, material, frame, wo)
+            }
+        };
     }
     if material.model == ReflectanceModel::Mirror {
         let reflected = mirror_direction(wo, n);

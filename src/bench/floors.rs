@@ -195,6 +195,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         arrays: ShaderKey::new(scene, &ShadowPlan::new(scene)).arrays,
         vertex_shadow_coords: false,
         environment: false,
+        environment_sampled: false,
     }
 }
 

@@ -59,6 +59,39 @@ pub struct MapSettings {
     /// (`environment.rotation_deg`; counter-clockwise seen from above):
     /// what the file holds towards `d₀` arrives from `R_y(θ) d₀`.
     pub rotation_deg: f64,
+    /// How the environment lights surfaces (`environment.specular`).
+    pub specular: Specular,
+    /// Directions per shading point of [`Specular::Sampled`]
+    /// (`environment.samples`, default 64).
+    pub samples: u32,
+}
+
+/// How the environment lights surfaces (`environment.specular`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Specular {
+    /// The diffuse term only, by SH irradiance (`"none"`, the default).
+    #[default]
+    None,
+    /// The whole BRDF integrated with `samples` directions per shading
+    /// point (`"sampled"`, [`super::sampled`]).
+    Sampled,
+}
+
+impl Specular {
+    /// The scene-file spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Specular::None => "none",
+            Specular::Sampled => "sampled",
+        }
+    }
+
+    /// Parses the scene-file spelling.
+    pub fn parse(s: &str) -> Option<Self> {
+        [Specular::None, Specular::Sampled]
+            .into_iter()
+            .find(|m| m.name() == s)
+    }
 }
 
 impl Default for MapSettings {
@@ -68,6 +101,8 @@ impl Default for MapSettings {
             sh_order: 2,
             reference: ReferenceDiffuse::Integrated,
             rotation_deg: 0.0,
+            specular: Specular::None,
+            samples: 64,
         }
     }
 }
@@ -83,6 +118,8 @@ pub struct MapData {
     pub texels: Vec<[f32; 3]>,
     /// The integrated truth and the radiance's SH coefficients.
     pub truth: Truth,
+    /// The texel quadrature's nodes (the sampled mode's truth).
+    pub nodes: Vec<super::quadrature::Node>,
 }
 
 /// An environment map with its settings. The pixels are shared: changing
@@ -126,12 +163,14 @@ impl MapData {
             ));
         }
         let truth = Truth::new(width, height, &texels);
+        let nodes = super::quadrature::nodes(width, height, &texels);
         Ok(MapData {
             name: name.into(),
             width,
             height,
             texels,
             truth,
+            nodes,
         })
     }
 
@@ -164,6 +203,13 @@ impl EnvironmentMap {
     pub fn to_map(&self, d: DVec3) -> DVec3 {
         let (sin, cos) = self.settings.rotation_deg.to_radians().sin_cos();
         DVec3::new(cos * d.x - sin * d.z, d.y, sin * d.x + cos * d.z)
+    }
+
+    /// The world direction of direction `d` in the file's frame:
+    /// `R_y(θ) d`, the inverse of [`Self::to_map`].
+    pub fn from_map(&self, d: DVec3) -> DVec3 {
+        let (sin, cos) = self.settings.rotation_deg.to_radians().sin_cos();
+        DVec3::new(cos * d.x + sin * d.z, d.y, -sin * d.x + cos * d.z)
     }
 
     /// Radiance arriving from unit direction `d`: `scale · L_env(d)`.

@@ -12,6 +12,8 @@
 //!   `assets/environment/blobs.hdr` among them).
 //! * [`sh`]: spherical harmonics: projection of a map, the irradiance
 //!   convolution of Ramamoorthi & Hanrahan (2001), evaluation.
+//! * [`sampled`]: the whole BRDF integrated with N directions
+//!   (`environment.specular = "sampled"`) and its quadrature truth.
 //! * [`sh_error`]: SH irradiance error vs order against the truth.
 //! * [`quadrature`]: the integrated truth `E(n) = ∫ L(ω) max(0, n·ω) dω`
 //!   the reference uses and SH is measured against.
@@ -20,6 +22,7 @@ pub mod latlong;
 pub mod load;
 pub mod map;
 pub mod quadrature;
+pub mod sampled;
 pub mod sh;
 pub mod sh_error;
 pub mod sky;

@@ -27,8 +27,11 @@ pub struct GpuEnvironmentUniform {
     pub height: u32,
     /// `scale · Â_l · L_lm`, RGB and a zero.
     pub sh: [[f32; 4]; sh::COUNT],
-    /// `(cos θ, sin θ, 0, 0)` of `rotation_deg` (`EnvironmentMap::to_map`).
-    pub rotation: [f32; 4],
+    /// `(cos θ, sin θ)` of `rotation_deg` (`EnvironmentMap::to_map`).
+    pub rotation: [f32; 2],
+    /// Directions per shading point of the sampled mode.
+    pub samples: u32,
+    pub _pad: u32,
 }
 
 impl GpuEnvironmentUniform {
@@ -53,8 +56,10 @@ impl GpuEnvironmentUniform {
             }),
             rotation: {
                 let (sin, cos) = map.settings.rotation_deg.to_radians().sin_cos();
-                [cos as f32, sin as f32, 0.0, 0.0]
+                [cos as f32, sin as f32]
             },
+            samples: map.settings.samples.max(1),
+            _pad: 0,
         }
     }
 }

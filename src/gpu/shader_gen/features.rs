@@ -60,6 +60,9 @@ pub enum Feature {
     /// The scene has an environment map: group 3, the map lights every
     /// surface and is the background (`environment`).
     Environment,
+    /// The environment lights through the whole BRDF with N sampled
+    /// directions (`environment_sampled`).
+    EnvironmentSampled,
 }
 
 impl Feature {
@@ -83,6 +86,7 @@ impl Feature {
             UniformShadowViews,
             Display,
             Environment,
+            EnvironmentSampled,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -119,6 +123,7 @@ impl Feature {
             Feature::UniformShadowViews => "uniform_shadow_views",
             Feature::Display => "display",
             Feature::Environment => "environment",
+            Feature::EnvironmentSampled => "environment_sampled",
         };
         flag.into()
     }

@@ -28,6 +28,9 @@ pub struct ShaderKey {
     pub vertex_shadow_coords: bool,
     /// The scene has an environment map (`Feature::Environment`).
     pub environment: bool,
+    /// It lights through the whole BRDF, sampled
+    /// (`Feature::EnvironmentSampled`).
+    pub environment_sampled: bool,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -87,6 +90,11 @@ impl ShaderKey {
             arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
             vertex_shadow_coords: true,
             environment: scene.environment.map.is_some(),
+            environment_sampled: scene
+                .environment
+                .map
+                .as_ref()
+                .is_some_and(|m| m.settings.specular == crate::environment::map::Specular::Sampled),
         }
     }
 
@@ -179,6 +187,9 @@ impl ShaderKey {
         }
         if self.environment {
             f.push(Feature::Environment);
+            if self.environment_sampled {
+                f.push(Feature::EnvironmentSampled);
+            }
         }
         f
     }

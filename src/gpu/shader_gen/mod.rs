@@ -97,6 +97,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 arrays: arrays(i % 2 == 0),
                 vertex_shadow_coords: false,
                 environment: i % 3 == 0,
+                environment_sampled: i % 6 == 0,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -118,6 +119,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     // Orthographic with PCF: the coordinates per vertex.
                     vertex_shadow_coords: pcf,
                     environment: pcf,
+                    environment_sampled: false,
                 });
             }
         }
@@ -138,6 +140,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 arrays: arrays(uniform),
                 vertex_shadow_coords: false,
                 environment: uniform,
+                environment_sampled: uniform,
             });
         }
     }

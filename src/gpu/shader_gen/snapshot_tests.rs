@@ -78,6 +78,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         arrays: UniformArrays::for_counts(1, 1),
         vertex_shadow_coords: true,
         environment: false,
+        environment_sampled: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -100,6 +101,7 @@ fn snapshot_everything() {
         arrays: UniformArrays::for_counts(5, 8),
         vertex_shadow_coords: true,
         environment: true,
+        environment_sampled: true,
     };
     check_snapshot("everything", &compose(&key));
 }

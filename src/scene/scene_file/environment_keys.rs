@@ -1,12 +1,16 @@
 //! `[environment]`'s map keys: `map`, `scale`, `sh_order`, `reference`,
-//! `rotation_deg` (the contract's `[environment]` section; gonio's
-//! `sh_order`, `reference` and `rotation_deg` extend it). Errors name the key.
+//! `rotation_deg`, `specular`, `samples` (the contract's `[environment]`
+//! section; gonio's keys beyond `map` and `scale` extend it). Errors name
+//! the key.
 
 use super::schema::EnvironmentSection;
-use crate::environment::map::ReferenceDiffuse;
+use crate::environment::map::{ReferenceDiffuse, Specular};
 use crate::environment::{EnvironmentMap, MapSettings, load, sh};
 use std::path::Path;
 use std::sync::Arc;
+
+/// Most directions per shading point `environment.samples` takes.
+pub const MAX_SAMPLES: i64 = 4096;
 
 /// The map `e` names, loaded relative to `base_dir` with its settings;
 /// `None` without `map`. A setting given without a map is an error (it
@@ -21,6 +25,8 @@ pub fn environment_map(
             ("sh_order", e.sh_order.is_some()),
             ("reference", e.reference.is_some()),
             ("rotation_deg", e.rotation_deg.is_some()),
+            ("specular", e.specular.is_some()),
+            ("samples", e.samples.is_some()),
         ];
         if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
             return Err(format!(
@@ -62,6 +68,22 @@ fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
             return Err(format!("environment.rotation_deg = {deg} must be finite"));
         }
         s.rotation_deg = deg;
+    }
+    if let Some(m) = &e.specular {
+        s.specular = Specular::parse(m).ok_or_else(|| {
+            format!("environment.specular = \"{m}\" is neither \"none\" nor \"sampled\"")
+        })?;
+    }
+    if let Some(n) = e.samples {
+        if !(1..=MAX_SAMPLES).contains(&n) {
+            return Err(format!(
+                "environment.samples = {n} is outside 1..={MAX_SAMPLES}"
+            ));
+        }
+        if s.specular != Specular::Sampled {
+            return Err("environment.samples applies to environment.specular = \"sampled\"".into());
+        }
+        s.samples = n as u32;
     }
     if let Some(r) = &e.reference {
         s.reference = ReferenceDiffuse::parse(r).ok_or_else(|| {

@@ -313,6 +313,11 @@ pub struct EnvironmentSection {
     pub reference: Option<String>,
     /// Turns the map about +Y (degrees, counter-clockwise from above).
     pub rotation_deg: Option<f64>,
+    /// `"none"` (the diffuse term by SH, default) or `"sampled"` (the
+    /// whole BRDF integrated with `samples` directions).
+    pub specular: Option<String>,
+    /// Directions per shading point of `specular = "sampled"` (default 64).
+    pub samples: Option<i64>,
 }
 
 /// `[ambient]`: constant incoming radiance `L_a`.
