@@ -39,6 +39,10 @@ struct Material {
     d_norm: f32,          // gaussian-normalized: gaussian_normalization(roughness), from the CPU
     blinn_e: f32,         // blinn, blinn-normalized: blinn_exponent(roughness), from the CPU
     lobe: vec4<f32>,      // a model's own constants, derived on the CPU (ShaderParams::lobe): its WGSL twin says what each is
+    base_color: vec3<f32>, // gltf-pbr: base colour b (textures and vertex colours multiply it per pixel)
+    metallic: f32,         // gltf-pbr: metallic m (its perceptual roughness r is `roughness`)
+    emission: vec3<f32>,   // emitted radiance W/(m²·sr), added to L_o (every model)
+    _pad_end: f32,
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,

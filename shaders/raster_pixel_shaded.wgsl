@@ -15,6 +15,10 @@ struct VertexIn {
     #if shadow_vertex
     @location(5) face_normal: vec3<f32>,
     #endif
+    #if textures
+    @location(6) uv0: vec2<f32>,
+    @location(7) uv1: vec2<f32>,
+    #endif
 }
 
 struct VertexOut {
@@ -27,6 +31,10 @@ struct VertexOut {
     #if shadow_vertex
     @location(4) shadow_ndc: vec3<f32>,
     #endif
+    #if textures
+    @location(5) uv0: vec2<f32>,
+    @location(6) uv1: vec2<f32>,
+    #endif
 }
 
 @vertex
@@ -37,6 +45,10 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.normal = in.normal;
     #if tangents
     out.tangent = in.tangent;
+    #endif
+    #if textures
+    out.uv0 = in.uv0;
+    out.uv1 = in.uv1;
     #endif
     // The one orthographic map's coordinates of this corner's lookup point
     // (ShaderKey::shadow_coords_per_vertex says why this is exact).
@@ -55,6 +67,12 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // lie in the triangle's plane.
     #if shadow_pixel
     let n_g = cross(dpdx(in.world), dpdy(in.world));
+    #endif
+    #if textures
+    // Textures: the material at this pixel (shadowing the module's
+    // `material`), read with the UVs' screen derivatives (per 2×2 quad).
+    let surface_uv = SurfaceUv(in.uv0, in.uv1, dpdx(in.uv0), dpdy(in.uv0), dpdx(in.uv1), dpdy(in.uv1));
+    let material = textured_material(material, surface_uv);
     #endif
     let n = normalize_or_zero(in.normal);
     #if tangents

@@ -17,6 +17,10 @@ struct VertexIn {
     #if flat
     @location(4) shading_point: vec3<f32>,
     #endif
+    #if textures
+    @location(6) uv0: vec2<f32>,
+    @location(7) uv1: vec2<f32>,
+    #endif
 }
 
 struct VertexOut {
@@ -24,7 +28,12 @@ struct VertexOut {
     #if flat
     @location(0) @interpolate(flat) radiance: vec3<f32>,
     #else
-    @location(0) radiance: vec3<f32>,
+    // At the centroid of the covered samples, not the pixel centre: with
+    // MSAA the centre of a silhouette pixel may lie outside the triangle,
+    // where the colour is extrapolated (negative radiance, issue 19); the
+    // centroid is inside, so the value is a convex combination of the
+    // vertices' (≥ 0). One sample per pixel: the centroid is the centre.
+    @location(0) @interpolate(perspective, centroid) radiance: vec3<f32>,
     #endif
 }
 
@@ -40,6 +49,11 @@ fn vs_main(in: VertexIn) -> VertexOut {
     let x = in.shading_point;
     #else
     let x = in.position;
+    #endif
+    #if textures
+    // Textures: the material at the shading point (flat: the centroid's
+    // UVs), level 0, shadowing the module's `material`.
+    let material = textured_material_level0(material, in.uv0, in.uv1);
     #endif
     var out: VertexOut;
     out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);

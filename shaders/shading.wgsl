@@ -1,9 +1,10 @@
 // The reflection equation for punctual lights, summed (contract):
-// L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
+// L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
 // plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)),
 // plus, with an environment map (`#if environment`), the diffuse term of
 // every model lit by it, k_d/π · E(n), E by spherical harmonics
-// (shaders/environment.wgsl).
+// (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
+// BRDF integrated over the map with N directions.
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
@@ -41,7 +42,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
 #endif
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
-    var radiance = m.k_a * globals.ambient;
+    var radiance = m.emission + m.k_a * globals.ambient;
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the

@@ -1,5 +1,6 @@
 //! The reflection equation for punctual lights, summed (contract):
-//! `L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l`,
+//! `L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l`
+//! (`L_e` the material's emission, the contract's extension),
 //! plus, for the ideal mirror, `ρ_s(θ_o) · L_env(R(V))` (lecture: "Mirror
 //! BRDF": `L_o = ρ_s(θ_o) L_i(θ_o, φ_o ± π)`),
 //! plus, with an environment map, the diffuse term of every model lit by
@@ -27,7 +28,7 @@ pub fn reflected_radiance(
 ) -> Rgb {
     let n = frame.n;
     let wo = (eye - x).normalize_or_zero();
-    let mut radiance = material.k_a * scene.ambient;
+    let mut radiance = material.emission + material.k_a * scene.ambient;
     for (l, light) in scene.lights.iter().enumerate() {
         let incidence = light.incidence(x);
         let cos_theta_i = n.dot(incidence.wi);

@@ -187,3 +187,103 @@ fn bad_inputs_exit_2_with_a_clear_message_and_no_output() {
         run_case(d, case);
     }
 }
+
+/// Sizes over the GPU's limits (issue 19): each side fits, but the
+/// readback buffer (16384 × 8192 × 16 bytes = 2 GiB) or the vertex buffer
+/// (the flat-shaded 3200-segment plane: 2.2 GB) does not. Both panicked in
+/// wgpu; now exit 2 naming the setting and what would fit.
+#[test]
+fn buffers_over_the_gpus_limits_are_refused_before_creation() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let exr = d.join("out.exr").display().to_string();
+    let out = d.join("out.png").display().to_string();
+    let cases = [
+        Case {
+            name: "readback buffer over max_buffer_size",
+            args: s(&["-o", &exr, "--width", "16384", "--height", "8192"]),
+            names: "--width 16384 --height 8192",
+        },
+        Case {
+            name: "camera beyond f32 range",
+            args: s(&["-o", &out, "--set", "camera.position=[1e300,1e300,1e300]"]),
+            names: "camera.position = [1e300, 1e300, 1e300] is beyond",
+        },
+        Case {
+            name: "light intensity beyond f32 range",
+            args: s(&["-o", &out, "--set", "lights.0.intensity=3.5e38"]),
+            names: "intensity = [3.5e38, 3.5e38, 3.5e38] is over 1e20",
+        },
+        Case {
+            name: "light position beyond f32 range",
+            args: s(&["-o", &out, "--set", "lights.0.position=[1e39,1e39,1e39]"]),
+            names: "position = [1e39, 1e39, 1e39] is beyond",
+        },
+        Case {
+            name: "ambient radiance beyond f32 range",
+            args: s(&["-o", &out, "--set", "ambient.radiance=[1e39,1e39,1e39]"]),
+            names: "ambient.radiance = [1e39, 1e39, 1e39] is over",
+        },
+        Case {
+            name: "shadow maps over their memory cap",
+            args: s(&[
+                "-o",
+                &out,
+                "--set",
+                "lights.0.shadows=true",
+                "--set",
+                "lights.0.shadow_map_size=8192",
+            ]),
+            names: "lights.N.shadow_map_size or [shadows] map_size",
+        },
+        Case {
+            name: "vertex buffer over max_buffer_size",
+            args: s(&[
+                "-o",
+                &out,
+                "--shading",
+                "flat",
+                "--set",
+                "objects.1.segments=3200",
+            ]),
+            names: "segments",
+        },
+    ];
+    for case in &cases {
+        run_case(d, case);
+    }
+}
+
+/// `WGPU_BACKEND` naming no backend is named in the message (it ended in
+/// "no adapter" with advice to install lavapipe), and the GL backend,
+/// whose llvmpipe cannot render into the Rgba32Float radiance target,
+/// fails with a message instead of a panic (issue 19), for `render` and
+/// `bench --smoke` alike.
+#[test]
+fn the_backend_variable_is_checked_and_gl_fails_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let run = |backend: &str, args: &[&str]| {
+        let result = common::gonio()
+            .args(args)
+            .env("WGPU_BACKEND", backend)
+            .current_dir(dir.path())
+            .output()
+            .expect("gonio runs");
+        let stderr = String::from_utf8_lossy(&result.stderr).into_owned();
+        (result.status.code(), stderr)
+    };
+    let render = ["render", "-o", out.to_str().unwrap()];
+    let (code, stderr) = run("nonsense", &render);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("WGPU_BACKEND=nonsense"), "{stderr}");
+    assert!(!out.exists());
+    for args in [&render[..], &["bench", "--smoke"][..]] {
+        let (code, stderr) = run("gl", args);
+        assert!(!stderr.contains("panicked"), "{args:?} on GL: {stderr}");
+        assert!(
+            code == Some(0) || (code == Some(1) && stderr.contains("gonio: error:")),
+            "{args:?} on GL: exit {code:?}: {stderr}"
+        );
+    }
+}

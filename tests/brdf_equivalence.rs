@@ -27,11 +27,12 @@ mod common;
 
 use glam::DVec3;
 use gonio::gpu::layout::GpuMaterial;
+use gonio::gpu::measured_tables::MeasuredTables;
 use gonio::gpu::shader_gen::{ShaderKey, compose_brdf_library};
 use gonio::material::brdf::{self, SurfaceFrame};
 use gonio::material::param::{Kind, Value};
 use gonio::material::table::{self, ROWS};
-use gonio::material::{BrdfVariant, Distribution, Geometry, Material};
+use gonio::material::{BrdfVariant, Distribution, Geometry, Material, ReflectanceModel, measured};
 use gonio::scene::Rgb;
 use std::collections::BTreeSet;
 use wgpu::util::DeviceExt;
@@ -193,6 +194,14 @@ fn perturbation_error(s: &Sample, base: (Rgb, Rgb)) -> (Rgb, Rgb) {
     perturbations.push(Box::new(|s: &mut Sample, d: f64| {
         s.material.eta_t *= 1.0 + d
     }));
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| {
+        s.material.metallic *= 1.0 + d
+    }));
+    for axis in 0..3 {
+        perturbations.push(Box::new(move |s: &mut Sample, d: f64| {
+            s.material.base_color[axis] *= 1.0 + d
+        }));
+    }
     for p in &perturbations {
         let mut worst = (Rgb::ZERO, Rgb::ZERO);
         for d in [step, -step] {
@@ -253,7 +262,28 @@ fn variants_under_test() -> Vec<Material> {
     }
     let mut seen = BTreeSet::new();
     out.retain(|m| seen.insert(m.variant()));
+    for m in &mut out {
+        if m.model == ReflectanceModel::Measured {
+            m.measured = Some(measured_table_twin());
+        }
+    }
     out
+}
+
+/// Sample counts of the measured table the equivalence test uses.
+const MEASURED_DIMS: [usize; 3] = [16, 16, 32];
+
+/// A measured material's GPU table is a MERL-format table filtered by
+/// `MerlTable::f_r`'s rule: the test takes a table source (the default
+/// built-in material sampled at [`MEASURED_DIMS`]), which the GPU gets
+/// value for value (rounded to f32), so the f64 reference is its exact
+/// twin (the table against the network is tests/measured.rs).
+fn measured_table_twin() -> &'static measured::MeasuredBrdf {
+    let table = gonio::gpu::measured_tables::as_merl_table(measured::default_brdf(), MEASURED_DIMS);
+    Box::leak(Box::new(measured::MeasuredBrdf {
+        name: "table twin".into(),
+        source: measured::Source::Table(table),
+    }))
 }
 
 /// The compute shader around the renderer's BRDF library.
@@ -338,9 +368,19 @@ fn gpu_eval(
             [a.x, a.y, a.z, 0.0, b.x, b.y, b.z, 0.0]
         })
         .collect();
+    let tables = MeasuredTables::new(
+        &[samples[0].material.clone()],
+        MEASURED_DIMS.map(|n| n as u32),
+    );
     let materials: Vec<GpuMaterial> = samples
         .iter()
-        .map(|s| GpuMaterial::new(&s.material, key.variant_code(&s.material.variant())))
+        .map(|s| {
+            let mut g = GpuMaterial::new(&s.material, key.variant_code(&s.material.variant()));
+            if let Some(b) = s.material.measured_brdf() {
+                g.lobe = tables.lobe(b);
+            }
+            g
+        })
         .collect();
     let init = |contents: &[u8], usage| {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -385,10 +425,28 @@ fn gpu_eval(
             },
         ],
     });
+    // The measured tables (group 0, binding 3), for a measured variant.
+    let measured_group = key.has_measured().then(|| {
+        let buffer = init(
+            bytemuck::cast_slice(&tables.data),
+            wgpu::BufferUsages::STORAGE,
+        );
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[wgpu::BindGroupEntry {
+                binding: 3,
+                resource: buffer.as_entire_binding(),
+            }],
+        })
+    });
     let mut encoder = device.create_command_encoder(&Default::default());
     {
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline);
+        if let Some(group) = &measured_group {
+            pass.set_bind_group(0, group, &[]);
+        }
         pass.set_bind_group(1, &bind_group, &[]);
         pass.dispatch_workgroups((samples.len() as u32).div_ceil(64), 1, 1);
     }

@@ -1123,7 +1123,7 @@ fn extensions(c: &mut Corpus) {
     for (name, needle) in [
         ("KHR_draco_mesh_compression", "Draco"),
         ("EXT_meshopt_compression", "meshoptimizer"),
-        ("KHR_mesh_quantization", "quantized"),
+        ("KHR_texture_basisu", "Basis Universal"),
         ("VENDOR_made_up", "VENDOR_made_up"),
     ] {
         let text = with_top_level(

@@ -91,3 +91,40 @@ fn an_unsupported_sample_count_is_refused() {
     let err = err.to_string();
     assert!(err.contains("image.msaa = 8"), "{err}");
 }
+
+/// Gouraud shading with `image.msaa = 4` (issue 19): the colour varying
+/// was interpolated at the pixel centre, extrapolated outside the
+/// triangle at silhouettes (11 pixels of the built-in scene down to
+/// −1.305). Interpolated at the centroid of the covered samples
+/// (shaders/raster_vertex_shaded.wgsl) it is a convex combination of the
+/// vertices' radiance, which is ≥ 0, so every resolved pixel is too.
+#[test]
+fn gouraud_with_msaa_has_no_negative_radiance_at_silhouettes() {
+    let mut renderer = common::gpu_renderer();
+    for size in [(200, 150), (320, 240)] {
+        let scene = scene_file::load(
+            &SceneSource::BuiltIn,
+            &[
+                format!("image.width={}", size.0),
+                format!("image.height={}", size.1),
+                "image.msaa=4".into(),
+                "shading.mode=\"gouraud\"".into(),
+            ],
+        )
+        .expect("built-in scene loads");
+        let (frame, _) = renderer.render(&scene).expect("renders");
+        let negative: Vec<(usize, [f32; 3])> = frame
+            .radiance
+            .iter()
+            .copied()
+            .enumerate()
+            .filter(|(_, r)| r.iter().any(|&c| c < 0.0))
+            .collect();
+        assert!(
+            negative.is_empty(),
+            "{size:?}: {} pixels with negative radiance, e.g. {:?}",
+            negative.len(),
+            &negative[..negative.len().min(5)]
+        );
+    }
+}

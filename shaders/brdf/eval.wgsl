@@ -43,6 +43,12 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         #if oren-nayar-full
         case MODEL_OREN_NAYAR_FULL: { return oren_nayar_full(m.k_d, oren_nayar_terms(m.lobe), oren_nayar_angles(n, wi, wo)); }
         #endif
+        #if measured
+        case MODEL_MEASURED: { return measured_f_r(m, wi, wo, frame); }
+        #endif
+        #if gltf-pbr
+        case MODEL_GLTF_PBR: { return gltf_pbr(m.base_color, m.metallic, m.roughness, n, wi, wo); }
+        #endif
         default: { return vec3<f32>(0.0); }
     }
 }
@@ -120,6 +126,17 @@ fn geometry(m: Material, cos_h: f32, cos_i: f32, cos_o: f32, cos_ih: f32, cos_oh
             #endif
             let slope = smith_beckmann_slope(m);
             return g1_beckmann(slope, cos_i, cos_ih) * g1_beckmann(slope, cos_o, cos_oh);
+        }
+        #endif
+        #if geometry=smith-correlated
+        case GEOMETRY_SMITH_CORRELATED: {
+            #if distribution=ggx
+            if brdf_distribution(m) == DISTRIBUTION_GGX {
+                return g_smith_correlated(lambda_ggx(m.roughness, cos_i), lambda_ggx(m.roughness, cos_o), cos_i, cos_o, cos_ih, cos_oh);
+            }
+            #endif
+            let slope = smith_beckmann_slope(m);
+            return g_smith_correlated(lambda_beckmann(slope, cos_i), lambda_beckmann(slope, cos_o), cos_i, cos_o, cos_ih, cos_oh);
         }
         #endif
         case GEOMETRY_NONE, default: { return 1.0; }

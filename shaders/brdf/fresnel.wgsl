@@ -70,20 +70,20 @@ fn fresnel_conductor_lecture(cos_i: f32, eta: vec3<f32>, kappa: vec3<f32>) -> ve
 // Exact unpolarized dielectric Fresnel (lecture: "Dielectrics") with
 // Snell's law. η_i = η_t: 0 (no interface, every angle); total internal
 // reflection: 1; otherwise cos θ_t > 0 and both denominators are > 0.
+// η_i = η_t is a select, not a branch on material values alone (see
+// UNIFORM_BRANCHES in phong.wgsl); it discards the 0/0 at grazing incidence.
 fn fresnel_dielectric(cos_i: f32, eta_i: f32, eta_t: f32) -> f32 {
-    if eta_i == eta_t {
-        return 0.0; // no interface; also avoids 0/0 at grazing incidence
-    }
+    let no_interface = eta_i == eta_t;
     let cos_theta = clamp(cos_i, 0.0, 1.0);
     let eta = eta_i / eta_t;
     let sin2_t = eta * eta * (1.0 - cos_theta * cos_theta); // Snell: sin θ_t = η sin θ_i
     if sin2_t >= 1.0 {
-        return 1.0; // total internal reflection (and the critical angle)
+        return select(1.0, 0.0, no_interface); // total internal reflection (and the critical angle)
     }
     let cos_t = sqrt(1.0 - sin2_t); // > 0 here
     let r_par = (eta_t * cos_theta - eta_i * cos_t) / (eta_t * cos_theta + eta_i * cos_t);
     let r_perp = (eta_i * cos_theta - eta_t * cos_t) / (eta_i * cos_theta + eta_t * cos_t);
-    return 0.5 * (r_par * r_par + r_perp * r_perp);
+    return select(0.5 * (r_par * r_par + r_perp * r_perp), 0.0, no_interface);
 }
 
 // Schlick 1994: F0 + (1 − F0)(1 − cos)^5, the fifth power by multiplication.

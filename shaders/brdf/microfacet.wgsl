@@ -115,6 +115,38 @@ fn g1_ggx(alpha: f32, cos_v: f32, cos_vh: f32) -> f32 {
     return 2.0 * cos_vc / (cos_vc + sqrt(cos2 + alpha * alpha * sin2));
 }
 
+// Smith's Λ for Beckmann (Walter 2007's rational form, the Λ of g1_beckmann's
+// G1 = 1/(1 + Λ)): a ≥ 1.6 → 0; else (1 − 1.259a + 0.396a²)/(3.535a + 2.181a²).
+// Needs cos_v > 0 (the caller's χ⁺ test).
+fn lambda_beckmann(m: f32, cos_v: f32) -> f32 {
+    let cos_vc = min(cos_v, 1.0); // rounding can pass 1
+    let sin_v = sqrt(1.0 - cos_vc * cos_vc);
+    if cos_vc >= 1.6 * m * sin_v {
+        return 0.0; // a ≥ 1.6
+    }
+    let a = cos_vc / (m * sin_v);
+    let a2 = a * a;
+    return (1.0 - 1.259 * a + 0.396 * a2) / (3.535 * a + 2.181 * a2);
+}
+
+// Smith's Λ for GGX (Heitz 2014): (sqrt(1 + α² tan²) − 1)/2, as
+// α² sin² / (2 cos (cos + sqrt(cos² + α² sin²))) (no cancellation). cos_v > 0.
+fn lambda_ggx(alpha: f32, cos_v: f32) -> f32 {
+    let cos_vc = min(cos_v, 1.0); // rounding can pass 1
+    let cos2 = cos_vc * cos_vc;
+    let a2s2 = alpha * alpha * (1.0 - cos2);
+    return a2s2 / (2.0 * cos_vc * (cos_vc + sqrt(cos2 + a2s2)));
+}
+
+// Height-correlated Smith (Heitz 2014, eq. 99): χ⁺(I·H) χ⁺(V·H) / (1 + Λ(I) + Λ(V));
+// 0 below either horizon. In [0, 1].
+fn g_smith_correlated(lambda_i: f32, lambda_o: f32, cos_i: f32, cos_o: f32, cos_ih: f32, cos_oh: f32) -> f32 {
+    if cos_i <= 0.0 || cos_o <= 0.0 || cos_ih <= 0.0 || cos_oh <= 0.0 {
+        return 0.0; // below the horizon, or χ⁺ = 0
+    }
+    return 1.0 / (1.0 + lambda_i + lambda_o);
+}
+
 // Beckmann slope matching the lecture's Blinn of angle m: sqrt(2 / (e + 2))
 // (equal peaks of the normalized lobes; Walter 2007's e = 2/m_b² − 2).
 fn beckmann_slope_of_blinn(e: f32) -> f32 {

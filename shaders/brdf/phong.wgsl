@@ -17,6 +17,14 @@ const LN_2: f32 = 0.6931471805599453;
 // precision while prefactors up to ~1e13 would show the CPU's f64 value.
 const EXP_CUTOFF: f32 = 80.0;
 
+// UNIFORM_BRANCHES: no `if` whose condition is a material (uniform) value
+// alone, in any shader file: Mesa 22.3's lavapipe "inlines" such uniforms,
+// compiling a new variant of the shader at every draw and never freeing
+// the old one (lvp_execute.c, update_inline_shader_state; cached from
+// Mesa 23.1). The viewer grew by 0.8 MiB a frame with Blinn-Phong (issue
+// 19). Such a test is a select(); both sides are computed anyway on a
+// software rasterizer. tests/viewer_soak.rs keeps the memory flat.
+
 // e^x − e^−80 for x > −80, else 0: continuous at the cut (no jump between
 // CPU and GPU), changes exp(x) by < 1.8e-35; max(…, 0) absorbs exp's
 // rounding just above the cut.
@@ -34,12 +42,10 @@ fn exp_cutoff(x: f32) -> f32 {
 // (and pow) is only absolutely accurate (2^-21) near 1, which k_e up to 1e6
 // would amplify. (Rust: ln_1p.) c ≤ 1 (clamped): a cosine of unit vectors
 // exceeds 1 only by rounding.
+// k_e = 0 is a select, not a branch: see UNIFORM_BRANCHES below.
 fn cos_power(c: f32, k_e: f32) -> f32 {
     if c <= 0.0 {
         return 0.0;
-    }
-    if k_e == 0.0 {
-        return 1.0;
     }
     let u = min(c, 1.0) - 1.0; // exact for c ≥ 0.5 (Sterbenz)
     var ln_c: f32;
@@ -48,7 +54,7 @@ fn cos_power(c: f32, k_e: f32) -> f32 {
     } else {
         ln_c = log(c);
     }
-    return exp_cutoff(k_e * ln_c);
+    return select(exp_cutoff(k_e * ln_c), 1.0, k_e == 0.0);
 }
 
 // R(I) = −I + 2 (I·N) N
@@ -116,8 +122,5 @@ fn cos_power_precise(cos: f32, sin2: f32, k_e: f32) -> f32 {
     if cos <= 0.0 {
         return 0.0;
     }
-    if k_e == 0.0 {
-        return 1.0;
-    }
-    return exp_cutoff(k_e * ln_cos(cos, min(sin2, 1.0)));
+    return select(exp_cutoff(k_e * ln_cos(cos, min(sin2, 1.0))), 1.0, k_e == 0.0);
 }

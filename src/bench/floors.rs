@@ -179,9 +179,13 @@ pub fn is_lambert_one_point_light(scene: &Scene) -> bool {
 pub fn uber_key(scene: &Scene) -> ShaderKey {
     let mut variants: std::collections::BTreeSet<_> =
         ShaderKey::new(scene, &ShadowPlan::new(scene)).variants;
+    // A measured material needs its tables bound (group 0, binding 3),
+    // which only a scene with one has: the uber shader takes it from the
+    // scene's own variants only.
     variants.extend(
         crate::material::table::each_term_once()
             .iter()
+            .filter(|m| m.model != crate::material::ReflectanceModel::Measured)
             .map(|m| m.variant()),
     );
     ShaderKey {
@@ -196,6 +200,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         vertex_shadow_coords: false,
         environment: false,
         environment_sampled: false,
+        texture_slots: 0,
     }
 }
 

@@ -86,7 +86,8 @@ fn buffer_entry(binding: u32, uniform: bool) -> wgpu::BindGroupLayoutEntry {
 }
 
 /// Group 0 of a scene pipeline: globals, the draw's material (dynamic
-/// offset), lights.
+/// offset), lights, and the measured tables if the scene has a measured
+/// material.
 pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu::BindGroupLayout {
     let material = wgpu::BindGroupLayoutEntry {
         binding: 1,
@@ -98,13 +99,17 @@ pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu:
         },
         count: None,
     };
+    let mut entries = vec![
+        buffer_entry(0, true),
+        material,
+        buffer_entry(2, arrays.lights),
+    ];
+    if arrays.measured {
+        entries.push(buffer_entry(3, false));
+    }
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio scene"),
-        entries: &[
-            buffer_entry(0, true),
-            material,
-            buffer_entry(2, arrays.lights),
-        ],
+        entries: &entries,
     })
 }
 
@@ -141,10 +146,16 @@ pub fn shadow_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu
 pub struct SceneLayouts {
     pub scene_group: wgpu::BindGroupLayout,
     pub shadow_group: wgpu::BindGroupLayout,
+    /// Group 2: material textures (src/gpu/textures.rs).
+    pub texture_group: wgpu::BindGroupLayout,
     /// Group 0 only.
     pub plain: wgpu::PipelineLayout,
     /// Groups 0 and 1.
     pub shadowed: wgpu::PipelineLayout,
+    /// Groups 0 and 2 (group 1 unused).
+    pub textured: wgpu::PipelineLayout,
+    /// Groups 0, 1 and 2.
+    pub shadowed_textured: wgpu::PipelineLayout,
 }
 
 impl SceneLayouts {
@@ -161,11 +172,40 @@ impl SceneLayouts {
             bind_group_layouts: &[Some(&scene_group), Some(&shadow_group)],
             immediate_size: 0,
         });
+        let texture_group = super::textures::group_layout(device);
+        let textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gonio scene with textures"),
+            bind_group_layouts: &[Some(&scene_group), None, Some(&texture_group)],
+            immediate_size: 0,
+        });
+        let shadowed_textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gonio scene with shadows and textures"),
+            bind_group_layouts: &[
+                Some(&scene_group),
+                Some(&shadow_group),
+                Some(&texture_group),
+            ],
+            immediate_size: 0,
+        });
         SceneLayouts {
             scene_group,
             shadow_group,
+            texture_group,
             plain,
             shadowed,
+            textured,
+            shadowed_textured,
+        }
+    }
+
+    /// The pipeline layout of a scene with or without shadows and
+    /// textures.
+    pub fn pipeline_layout(&self, shadows: bool, textures: bool) -> &wgpu::PipelineLayout {
+        match (shadows, textures) {
+            (false, false) => &self.plain,
+            (true, false) => &self.shadowed,
+            (false, true) => &self.textured,
+            (true, true) => &self.shadowed_textured,
         }
     }
 }

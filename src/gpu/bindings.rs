@@ -48,6 +48,10 @@ pub const CASTER_ROWS: usize = 16;
 pub struct UniformArrays {
     pub lights: bool,
     pub shadow_views: bool,
+    /// Not a uniform array: the scene has a measured material, so group 0
+    /// has the measured tables' storage buffer at binding 3
+    /// (src/gpu/measured_tables.rs).
+    pub measured: bool,
 }
 
 impl UniformArrays {
@@ -56,6 +60,7 @@ impl UniformArrays {
         UniformArrays {
             lights: lights <= UNIFORM_LIGHTS,
             shadow_views: shadow_views <= UNIFORM_SHADOW_VIEWS,
+            measured: false,
         }
     }
 

@@ -11,6 +11,27 @@ pub const LAVAPIPE_HINT: &str = "gonio renders with Vulkan; on a machine without
 software rasterizer lavapipe with `sudo apt-get install mesa-vulkan-drivers libvulkan1` (or run \
 ./setup.sh), then check with `vulkaninfo --summary` that a device is listed";
 
+/// The backends to look for adapters on: Vulkan, or what `WGPU_BACKEND`
+/// names (e.g. `gl`, `vulkan,gl`). A value that names no backend is an
+/// error naming it (it used to end in "no adapter found" with advice to
+/// install lavapipe: issue 19).
+fn backends() -> Result<wgpu::Backends> {
+    match std::env::var("WGPU_BACKEND") {
+        Ok(text) if !text.trim().is_empty() => {
+            let backends = wgpu::Backends::from_comma_list(&text);
+            if backends.is_empty() {
+                Err(Error::argument(
+                    format!("WGPU_BACKEND={text}"),
+                    "names no GPU backend; use vulkan, gl, metal or dx12 (a comma-separated list picks several), or unset it for Vulkan",
+                ))
+            } else {
+                Ok(backends)
+            }
+        }
+        _ => Ok(wgpu::Backends::VULKAN),
+    }
+}
+
 /// Which adapter to use.
 #[derive(Clone, Debug, Default)]
 pub enum AdapterChoice {
@@ -54,9 +75,34 @@ impl GpuContext {
 
     async fn new_async(choice: &AdapterChoice) -> Result<Self> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+        desc.backends = backends()?;
         let instance = wgpu::Instance::new(desc);
-        Self::open(&instance, choice, None).await
+        let ctx = Self::open(&instance, choice, None).await?;
+        ctx.check_radiance_format()?;
+        Ok(ctx)
+    }
+
+    /// Refuses an adapter that cannot render into the offscreen radiance
+    /// targets ([`super::readback::COLOR_FORMAT`]) that every headless use
+    /// (render, bench) draws into: wgpu's GL backend on Mesa's llvmpipe
+    /// (`WGPU_BACKEND=gl`) lacks `EXT_color_buffer_float` and panicked in
+    /// pipeline creation (issue 19). A clear error until a fallback format
+    /// exists (`Rgba32Uint` holding the f32 bits would read back the same
+    /// bytes; the bench's hand-written shaders would need it too). The
+    /// viewer draws into the window's 8-bit format and works there.
+    fn check_radiance_format(&self) -> Result<()> {
+        let format = super::readback::COLOR_FORMAT;
+        let usages = self
+            .adapter
+            .get_texture_format_features(format)
+            .allowed_usages;
+        if usages.contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+            return Ok(());
+        }
+        Err(Error::Gpu(format!(
+            "the GPU adapter `{}` ({:?} backend) cannot render into {format:?} targets, which hold gonio's linear radiance; use another backend (unset WGPU_BACKEND for Vulkan; `gonio view` works on this one)",
+            self.adapter_info.name, self.adapter_info.backend
+        )))
     }
 
     /// Opens a device that can present to `window`, and the window's
@@ -69,7 +115,7 @@ impl GpuContext {
         W: wgpu::WindowHandle + wgpu::rwh::HasDisplayHandle + std::fmt::Debug + Clone + 'static,
     {
         let mut desc = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(window.clone()));
-        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+        desc.backends = backends()?;
         let instance = wgpu::Instance::new(desc);
         let surface = instance.create_surface(window).map_err(|e| {
             Error::NoAdapter(format!(

@@ -11,6 +11,7 @@ use super::bind_groups::{self, SceneLayouts};
 use super::bindings::{self, UniformArrays};
 use super::geometry::{Batch, GeometryData, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
+use super::measured_tables::MeasuredTables;
 use super::shader_gen::ShaderKey;
 use crate::scene::Scene;
 use wgpu::util::DeviceExt;
@@ -76,11 +77,32 @@ pub fn begin_scene_pass<'e>(
 
 /// The GPU materials of `scene`, with the variant indices of `key`.
 pub fn gpu_materials(scene: &Scene, key: &ShaderKey) -> Vec<GpuMaterial> {
+    let tables = measured_tables(scene);
     scene
         .effective_materials()
         .iter()
-        .map(|m| GpuMaterial::new(m, key.variant_code(&m.variant())))
+        .map(|m| {
+            let mut g = GpuMaterial::new(m, key.variant_code(&m.variant()));
+            if let Some(brdf) = m.measured_brdf() {
+                g.lobe = tables.lobe(brdf);
+            }
+            g
+        })
         .collect()
+}
+
+/// What the GPU reads of a scene's materials: one record per material
+/// and the measured tables (empty without a measured material).
+#[derive(Clone, Copy)]
+pub struct MaterialData<'a> {
+    pub records: &'a [GpuMaterial],
+    pub measured_tables: &'a [f32],
+}
+
+/// The measured tables of `scene` (built once per material and
+/// resolution, then cached: src/gpu/measured_tables.rs).
+pub fn measured_tables(scene: &Scene) -> MeasuredTables {
+    MeasuredTables::new(&scene.materials, scene.measured_table)
 }
 
 /// A vertex stream, its material batches, and the scene bind group
@@ -102,6 +124,8 @@ pub struct SceneDraw {
     globals_buffer: wgpu::Buffer,
     materials_buffer: wgpu::Buffer,
     lights_buffer: wgpu::Buffer,
+    /// The measured tables (binding 3), when the scene has any.
+    measured_buffer: Option<wgpu::Buffer>,
     bind_group: wgpu::BindGroup,
 }
 
@@ -114,9 +138,13 @@ impl SceneDraw {
         geometry: GeometryData,
         arrays: UniformArrays,
         globals: &GpuGlobals,
-        materials: &[GpuMaterial],
+        materials: MaterialData<'_>,
         lights: &[GpuLight],
     ) -> Self {
+        let MaterialData {
+            records: materials,
+            measured_tables: measured,
+        } = materials;
         let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -155,12 +183,14 @@ impl SceneDraw {
             &bind_groups::light_bytes(lights, arrays.lights),
             bindings::usage(arrays.lights) | dynamic,
         );
+        let measured_buffer = measured_buffer(device, arrays, measured);
         let bind_group = scene_bind_group(
             device,
             layouts,
             &globals_buffer,
             &materials_buffer,
             &lights_buffer,
+            measured_buffer.as_ref(),
         );
         SceneDraw {
             layout: geometry.layout,
@@ -174,6 +204,7 @@ impl SceneDraw {
             globals_buffer,
             materials_buffer,
             lights_buffer,
+            measured_buffer,
             bind_group,
         }
     }
@@ -203,12 +234,29 @@ impl SceneDraw {
         queue: &wgpu::Queue,
         layouts: &SceneLayouts,
         arrays: UniformArrays,
-        materials: &[GpuMaterial],
+        materials: MaterialData<'_>,
         lights: &[GpuLight],
     ) {
+        let MaterialData {
+            records: materials,
+            measured_tables: measured,
+        } = materials;
+        let measured_bytes: &[u8] = bytemuck::cast_slice(measured);
+        let measured_changed = match &self.measured_buffer {
+            None => arrays.measured,
+            Some(b) => !arrays.measured || b.size() != measured_bytes.len().max(4) as u64,
+        };
+        if measured_changed {
+            self.measured_buffer = measured_buffer(device, arrays, measured);
+        } else if let Some(b) = &self.measured_buffer
+            && !measured_bytes.is_empty()
+        {
+            queue.write_buffer(b, 0, measured_bytes);
+        }
         let materials_bytes = bind_groups::material_bytes(materials, self.material_stride);
         let lights_bytes = bind_groups::light_bytes(lights, arrays.lights);
         let rebind = arrays != self.arrays
+            || measured_changed
             || materials_bytes.len() as u64 != self.materials_buffer.size()
             || lights_bytes.len() as u64 != self.lights_buffer.size();
         if rebind {
@@ -228,6 +276,7 @@ impl SceneDraw {
                 &self.globals_buffer,
                 &self.materials_buffer,
                 &self.lights_buffer,
+                self.measured_buffer.as_ref(),
             );
             self.arrays = arrays;
         } else {
@@ -296,8 +345,9 @@ fn scene_bind_group(
     globals: &wgpu::Buffer,
     materials: &wgpu::Buffer,
     lights: &wgpu::Buffer,
+    measured: Option<&wgpu::Buffer>,
 ) -> wgpu::BindGroup {
-    let entries = [
+    let mut entries = vec![
         wgpu::BindGroupEntry {
             binding: 0,
             resource: globals.as_entire_binding(),
@@ -311,9 +361,33 @@ fn scene_bind_group(
             resource: lights.as_entire_binding(),
         },
     ];
+    if let Some(m) = measured {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 3,
+            resource: m.as_entire_binding(),
+        });
+    }
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("gonio scene"),
         layout: &layouts.scene_group,
         entries: &entries,
+    })
+}
+
+/// The measured tables' storage buffer, if `arrays` binds one (at least
+/// one word: a binding cannot be empty).
+fn measured_buffer(
+    device: &wgpu::Device,
+    arrays: UniformArrays,
+    measured: &[f32],
+) -> Option<wgpu::Buffer> {
+    arrays.measured.then(|| {
+        let mut bytes = bytemuck::cast_slice::<f32, u8>(measured).to_vec();
+        bytes.resize(bytes.len().max(4), 0);
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("measured tables"),
+            contents: &bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        })
     })
 }

@@ -71,11 +71,15 @@ pub struct EnvironmentLayouts {
     pub plain: wgpu::PipelineLayout,
     /// Groups 0, 1 and 3.
     pub shadowed: wgpu::PipelineLayout,
+    /// Groups 0, 2 and 3.
+    pub textured: wgpu::PipelineLayout,
+    /// Groups 0, 1, 2 and 3.
+    pub shadowed_textured: wgpu::PipelineLayout,
 }
 
 impl EnvironmentLayouts {
-    /// The layouts over `scene`'s groups 0 and 1. Group 2 (material
-    /// textures) is left empty here.
+    /// The layouts over `scene`'s groups 0, 1 and 2 (material textures),
+    /// each with group 3.
     pub fn new(device: &wgpu::Device, scene: &SceneLayouts) -> Self {
         let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -120,10 +124,43 @@ impl EnvironmentLayouts {
             ],
             immediate_size: 0,
         });
+        let textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gonio scene with textures and environment"),
+            bind_group_layouts: &[
+                Some(&scene.scene_group),
+                None,
+                Some(&scene.texture_group),
+                Some(&group),
+            ],
+            immediate_size: 0,
+        });
+        let shadowed_textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gonio scene with shadows, textures and environment"),
+            bind_group_layouts: &[
+                Some(&scene.scene_group),
+                Some(&scene.shadow_group),
+                Some(&scene.texture_group),
+                Some(&group),
+            ],
+            immediate_size: 0,
+        });
         EnvironmentLayouts {
             group,
             plain,
             shadowed,
+            textured,
+            shadowed_textured,
+        }
+    }
+
+    /// The pipeline layout of a scene with the environment, with or
+    /// without shadows and textures (as [`SceneLayouts::pipeline_layout`]).
+    pub fn pipeline_layout(&self, shadows: bool, textures: bool) -> &wgpu::PipelineLayout {
+        match (shadows, textures) {
+            (false, false) => &self.plain,
+            (true, false) => &self.shadowed,
+            (false, true) => &self.textured,
+            (true, true) => &self.shadowed_textured,
         }
     }
 }

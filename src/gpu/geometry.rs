@@ -24,6 +24,9 @@ pub struct VertexLayout {
     /// coordinates computed per vertex: the triangle's geometric normal,
     /// the offset normal of the lookup; the stream is then de-indexed).
     pub face_normal: bool,
+    /// `@location(6) uv0`, `@location(7) uv1` (a material has textures;
+    /// flat shading: the centroid's UVs at every corner).
+    pub tex_coords: bool,
 }
 
 impl VertexLayout {
@@ -50,6 +53,10 @@ impl VertexLayout {
         if self.face_normal {
             push(5, wgpu::VertexFormat::Float32x3);
         }
+        if self.tex_coords {
+            push(6, wgpu::VertexFormat::Float32x2);
+            push(7, wgpu::VertexFormat::Float32x2);
+        }
         attributes
     }
 
@@ -58,7 +65,8 @@ impl VertexLayout {
         4 * (6
             + 3 * self.tangents as u64
             + 3 * self.shading_point as u64
-            + 3 * self.face_normal as u64)
+            + 3 * self.face_normal as u64
+            + 4 * self.tex_coords as u64)
     }
 }
 
@@ -110,23 +118,62 @@ fn push3(words: &mut Vec<u32>, v: glam::DVec3) {
     words.extend(v.as_vec3().to_array().map(f32::to_bits));
 }
 
+/// Both UV sets of a vertex (or of a centroid), if the stream has them.
+fn push_uvs(words: &mut Vec<u32>, layout: &VertexLayout, uvs: [glam::DVec2; 2]) {
+    if layout.tex_coords {
+        for uv in uvs {
+            words.extend(uv.as_vec2().to_array().map(f32::to_bits));
+        }
+    }
+}
+
+/// The UV sets of vertex `v` of `mesh`.
+fn vertex_uvs(mesh: &Mesh, v: usize) -> [glam::DVec2; 2] {
+    [mesh.tex_coord(0, v), mesh.tex_coord(1, v)]
+}
+
 impl GeometryData {
     /// Lays out `scene`'s meshes for `scene.shading`, with tangents if
     /// asked, and with face normals (de-indexed) if asked and shaded per
     /// pixel.
+    /// The UV sets are in the stream when a material has textures.
     pub fn new(scene: &Scene, tangents: bool, face_normals: bool) -> Self {
+        let tex_coords = scene.has_textures();
         match scene.shading {
-            ShadingMode::Flat => Self::flat(scene, tangents),
-            ShadingMode::Phong if face_normals => Self::phong_faces(scene, tangents),
-            ShadingMode::Gouraud | ShadingMode::Phong => Self::indexed(scene, tangents),
+            ShadingMode::Flat => Self::flat(scene, tangents, tex_coords),
+            ShadingMode::Phong if face_normals => Self::phong_faces(scene, tangents, tex_coords),
+            ShadingMode::Gouraud | ShadingMode::Phong => Self::indexed(scene, tangents, tex_coords),
         }
     }
 
-    fn indexed(scene: &Scene, tangents: bool) -> Self {
+    /// Bytes of the vertex stream and of the index buffer that
+    /// [`Self::new`] would lay out, computed from the counts alone so a
+    /// stream over the GPU's limits is refused before it is built.
+    pub fn byte_sizes(scene: &Scene, tangents: bool, face_normals: bool) -> (u64, u64) {
+        let triangles = scene.triangle_count() as u64;
+        let tex_coords = scene.has_textures();
+        let layout = |shading_point, face_normal| VertexLayout {
+            tangents,
+            shading_point,
+            face_normal,
+            tex_coords,
+        };
+        match scene.shading {
+            ShadingMode::Flat => (3 * triangles * layout(true, false).stride(), 0),
+            ShadingMode::Phong if face_normals => (3 * triangles * layout(false, true).stride(), 0),
+            ShadingMode::Gouraud | ShadingMode::Phong => {
+                let vertices: u64 = scene.meshes.iter().map(|m| m.positions.len() as u64).sum();
+                (vertices * layout(false, false).stride(), 3 * triangles * 4)
+            }
+        }
+    }
+
+    fn indexed(scene: &Scene, tangents: bool, tex_coords: bool) -> Self {
         let layout = VertexLayout {
             tangents,
             shading_point: false,
             face_normal: false,
+            tex_coords,
         };
         let vertex_count: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
         let mut words = Vec::with_capacity(vertex_count * layout.stride() as usize / 4);
@@ -141,6 +188,7 @@ impl GeometryData {
                 if tangents {
                     push3(&mut words, mesh.tangent(v));
                 }
+                push_uvs(&mut words, &layout, vertex_uvs(mesh, v));
             }
             indices.extend(mesh.indices.iter().flatten().map(|i| base + i));
             base += mesh.positions.len() as u32;
@@ -156,16 +204,24 @@ impl GeometryData {
 
     /// De-indexed: every corner carries the triangle's frame and centroid
     /// (computed in f64 exactly as the reference's flat shading does).
-    fn flat(scene: &Scene, tangents: bool) -> Self {
+    fn flat(scene: &Scene, tangents: bool, tex_coords: bool) -> Self {
         let layout = VertexLayout {
             tangents,
             shading_point: true,
             face_normal: false,
+            tex_coords,
         };
         Self::de_indexed(scene, layout, |mesh, t, words| {
             let corners = mesh.triangle(t);
             let frame = mesh.flat_frame(t);
             let shading_point = centroid(corners);
+            let uvs = [0, 1].map(|set| {
+                mesh.indices[t]
+                    .iter()
+                    .map(|&v| mesh.tex_coord(set, v as usize))
+                    .sum::<glam::DVec2>()
+                    / 3.0
+            });
             for p in corners {
                 push3(words, p);
                 push3(words, frame.n);
@@ -173,6 +229,7 @@ impl GeometryData {
                     push3(words, frame.t);
                 }
                 push3(words, shading_point);
+                push_uvs(words, &layout, uvs);
             }
         })
     }
@@ -182,11 +239,12 @@ impl GeometryData {
     /// geometric normal (`mesh::face_normal`, as the reference's offset
     /// normal), from which the vertex shader computes the shadow-map
     /// coordinates (shaders/shadows.wgsl `shadow_ortho_ndc`).
-    fn phong_faces(scene: &Scene, tangents: bool) -> Self {
+    fn phong_faces(scene: &Scene, tangents: bool, tex_coords: bool) -> Self {
         let layout = VertexLayout {
             tangents,
             shading_point: false,
             face_normal: true,
+            tex_coords,
         };
         Self::de_indexed(scene, layout, |mesh, t, words| {
             let face = face_normal(mesh.triangle(t));
@@ -197,6 +255,7 @@ impl GeometryData {
                     push3(words, mesh.tangent(v));
                 }
                 push3(words, face);
+                push_uvs(words, &layout, vertex_uvs(mesh, v));
             }
         })
     }

@@ -24,7 +24,7 @@ pub struct GpuGlobals {
     pub _pad3: f32,
 }
 
-/// `Material` (storage buffer element, 112 bytes).
+/// `Material` (storage buffer element, 144 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuMaterial {
@@ -45,6 +45,12 @@ pub struct GpuMaterial {
     pub blinn_e: f32,
     /// A model's own derived constants (`ShaderParams::lobe`).
     pub lobe: [f32; 4],
+    /// gltf-pbr's base colour and metallic (`ShaderParams::base_color`).
+    pub base_color: [f32; 3],
+    pub metallic: f32,
+    /// Emitted radiance, added to `L_o` (`Material::emission`).
+    pub emission: [f32; 3],
+    pub _pad_end: f32,
 }
 
 /// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
@@ -134,6 +140,10 @@ impl GpuMaterial {
             d_norm: p.d_norm as f32,
             blinn_e: p.blinn_e as f32,
             lobe: p.lobe.map(|v| v as f32),
+            base_color: f32x3(p.base_color),
+            metallic: p.metallic as f32,
+            emission: f32x3(m.emission),
+            _pad_end: 0.0,
         }
     }
 }
@@ -313,7 +323,11 @@ mod tests {
                 eta_t,
                 d_norm,
                 blinn_e,
-                lobe
+                lobe,
+                base_color,
+                metallic,
+                emission,
+                _pad_end
             }),
         );
         assert_mirrors(

@@ -52,6 +52,7 @@ pub mod draw;
 pub mod environment;
 pub mod geometry;
 pub mod layout;
+pub mod measured_tables;
 pub mod offscreen;
 pub mod pipelines;
 pub mod prepared;
@@ -60,6 +61,7 @@ pub mod renderer;
 pub mod shader_gen;
 pub mod shadow_maps;
 pub mod shadows;
+pub mod textures;
 pub mod timing;
 
 pub use context::{AdapterChoice, GpuContext};

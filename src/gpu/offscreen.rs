@@ -149,13 +149,30 @@ fn check_msaa(ctx: &GpuContext, samples: u32) -> Result<()> {
     }
 }
 
-/// Refuses a target the device cannot hold.
+/// Refuses a target the device cannot hold: a side over
+/// `max_texture_dimension_2d`, or a readback buffer (16 bytes a pixel,
+/// rows padded to 256 bytes) over `max_buffer_size` (16384 × 8192 is
+/// 2 GiB: issue 19). The message says what size would fit.
 pub fn check_target_size(ctx: &GpuContext, width: u32, height: u32) -> Result<()> {
-    let max_side = ctx.device.limits().max_texture_dimension_2d;
+    let limits = ctx.device.limits();
+    let max_side = limits.max_texture_dimension_2d;
+    let argument = || format!("--width {width} --height {height} (image.width, image.height)");
     if width > max_side || height > max_side {
         return Err(Error::argument(
-            format!("{width}x{height}"),
+            argument(),
             format!("the image is larger than the GPU's maximum texture side of {max_side} pixels"),
+        ));
+    }
+    let row = Readback::padded_row(width);
+    let bytes = u64::from(row) * u64::from(height);
+    if bytes > limits.max_buffer_size {
+        let rows = limits.max_buffer_size / u64::from(row);
+        return Err(Error::argument(
+            argument(),
+            format!(
+                "reading the image back takes a buffer of {bytes} bytes (16 a pixel), over the GPU's maximum buffer size of {} bytes; at this width at most {rows} rows fit (e.g. --width {width} --height {rows})",
+                limits.max_buffer_size,
+            ),
         ));
     }
     Ok(())

@@ -243,11 +243,11 @@ impl PipelineCache {
             self.environment_layouts(key.arrays);
         }
         let layouts = &self.scene_layouts[&key.arrays];
-        let pipeline_layout = match (key.environment, key.shadows.any()) {
-            (false, false) => &layouts.plain,
-            (false, true) => &layouts.shadowed,
-            (true, false) => &self.environment_layouts[&key.arrays].plain,
-            (true, true) => &self.environment_layouts[&key.arrays].shadowed,
+        let (shadows, textures) = (key.shadows.any(), key.texture_slots > 0);
+        let pipeline_layout = if key.environment {
+            self.environment_layouts[&key.arrays].pipeline_layout(shadows, textures)
+        } else {
+            layouts.pipeline_layout(shadows, textures)
         };
         let pipeline = scene_pipeline(
             &self.device,

@@ -53,6 +53,8 @@ pub struct PreparedScene {
     shadows_stale: bool,
     /// The environment map, its uniform and the background pipeline.
     environment: Option<GpuEnvironment>,
+    /// The materials' textures (group 2), when the scene has any.
+    textures: Option<super::textures::SceneTextures>,
 }
 
 /// What one [`PreparedScene::encode`] drew.
@@ -77,11 +79,13 @@ impl PreparedScene {
     ) -> Result<Self> {
         check_drawable(scene)?;
         let (key, plan) = plan(&ctx.device, vertex_shadow_coords, scene)?;
+        check_geometry_size(&ctx.device, scene, &key)?;
         let geometry =
             GeometryData::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
         cache.compile_scene(&key, geometry.layout, format, samples)?;
         let arrays = key.arrays;
         let materials = draw::gpu_materials(scene, &key);
+        let measured = draw::measured_tables(scene);
         let lights = gpu_lights(scene, &plan);
         let draw = SceneDraw::new(
             &ctx.device,
@@ -89,12 +93,21 @@ impl PreparedScene {
             geometry,
             arrays,
             &GpuGlobals::new(scene),
-            &materials,
+            draw::MaterialData {
+                records: &materials,
+                measured_tables: &measured.data,
+            },
             &lights,
         );
         let shadows = ShadowMaps::new(&ctx.device, cache, &plan, arrays, draw.layout.stride());
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
         let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
+        let textures = if key.texture_slots > 0 {
+            let layout = &cache.scene_layouts(arrays).texture_group;
+            Some(super::textures::SceneTextures::new(ctx, layout, scene)?)
+        } else {
+            None
+        };
         Ok(PreparedScene {
             key,
             format,
@@ -109,6 +122,7 @@ impl PreparedScene {
             plan,
             shadows,
             environment,
+            textures,
         })
     }
 
@@ -127,9 +141,13 @@ impl PreparedScene {
         check_drawable(scene)?;
         let (key, plan) = plan(&ctx.device, vertex_shadow_coords, scene)?;
         let layout = self.draw.layout;
+        // Textures: their bind groups hold each material's slots, made
+        // with the materials, so a textured scene is prepared anew.
         if key.shading != self.key.shading
             || key.needs_tangents() != layout.tangents
             || key.shadow_coords_per_vertex() != layout.face_normal
+            || key.texture_slots > 0
+            || self.key.texture_slots > 0
         {
             let display_scale = self.display_scale;
             *self = Self::new(
@@ -152,13 +170,17 @@ impl PreparedScene {
 
         let arrays = key.arrays;
         let materials = draw::gpu_materials(scene, &key);
+        let measured = draw::measured_tables(scene);
         let lights = gpu_lights(scene, &plan);
         self.draw.write_parameters(
             &ctx.device,
             &ctx.queue,
             cache.scene_layouts(arrays),
             arrays,
-            &materials,
+            draw::MaterialData {
+                records: &materials,
+                measured_tables: &measured.data,
+            },
             &lights,
         );
         let lights_changed = bytemuck::cast_slice::<GpuLight, u8>(&self.lights)
@@ -226,6 +248,9 @@ impl PreparedScene {
                 pass.set_pipeline(pipeline);
                 bound = Some(*variant);
             }
+            if let Some(textures) = &self.textures {
+                pass.set_bind_group(2, textures.group(batch.material), &[]);
+            }
             self.draw.draw_batch(&mut pass, batch);
         }
         drawn
@@ -270,6 +295,39 @@ fn prepare_environment(
     let background = cache.background(key.arrays, format, samples)?;
     let layouts = cache.environment_layouts(key.arrays);
     GpuEnvironment::new(&ctx.device, &ctx.queue, layouts, background, scene)
+}
+
+/// Refuses a vertex stream or index buffer larger than the device's
+/// `max_buffer_size` before building it (a flat-shaded 3200-segment plane
+/// is a 2.2 GB stream: issue 19), naming the settings that make it
+/// and how many triangles would fit.
+fn check_geometry_size(device: &wgpu::Device, scene: &Scene, key: &ShaderKey) -> Result<()> {
+    let (vertex_bytes, index_bytes) =
+        GeometryData::byte_sizes(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
+    let max = device.limits().max_buffer_size;
+    let (what, bytes) = if vertex_bytes >= index_bytes {
+        ("vertex buffer", vertex_bytes)
+    } else {
+        ("index buffer", index_bytes)
+    };
+    if bytes <= max {
+        return Ok(());
+    }
+    let triangles = scene.triangle_count() as u64;
+    let per_triangle = bytes.div_ceil(triangles.max(1));
+    Err(Error::argument(
+        "objects.*.segments / the model's meshes",
+        format!(
+            "the {what} of {triangles} triangles with shading `{}` would take {bytes} bytes, over the GPU's maximum buffer size of {max} bytes: at most about {} triangles fit; use fewer `segments` (a sphere of n segments has about n²/2 triangles, a plane 2n²) or a smaller model{}",
+            scene.shading.name(),
+            max / per_triangle,
+            if scene.shading == crate::scene::ShadingMode::Flat {
+                " (flat shading stores three vertices per triangle; gouraud or phong shares them)"
+            } else {
+                ""
+            }
+        ),
+    ))
 }
 
 /// The shader key and shadow plan of `scene`, checked against the

@@ -51,8 +51,7 @@ pub struct Readback {
 impl Readback {
     /// A readback buffer for a `width` × `height` radiance target.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
-        let padded_row =
-            (width * BYTES_PER_PIXEL).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let padded_row = Self::padded_row(width);
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
             size: padded_row as u64 * height as u64,
@@ -65,6 +64,12 @@ impl Readback {
             height,
             padded_row,
         }
+    }
+
+    /// Bytes per buffer row of a `width`-texel row: rounded up to the copy
+    /// alignment.
+    pub fn padded_row(width: u32) -> u32 {
+        (width * BYTES_PER_PIXEL).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
     }
 
     /// Records the copy of `texture` (of this size and [`COLOR_FORMAT`])

@@ -124,7 +124,10 @@ impl GpuRenderer {
             geometry,
             key.arrays,
             &GpuGlobals::new(scene),
-            &draw::gpu_materials(scene, key),
+            draw::MaterialData {
+                records: &draw::gpu_materials(scene, key),
+                measured_tables: &draw::measured_tables(scene).data,
+            },
             &lights,
         )
     }

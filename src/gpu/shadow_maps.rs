@@ -201,21 +201,35 @@ pub fn check_limits(device: &wgpu::Device, plan: &ShadowPlan) -> Result<()> {
         ))
     } else if plan.bytes() > shadows::MAX_SHADOW_BYTES {
         Some(format!(
-            "the shadow maps need {} MiB ({} layers of {}x{} texels, every layer as large as the largest map); at most {} MiB",
+            "the shadow maps need {} MiB ({} layers of {}x{} texels, every layer as large as the largest map; a point or area light has 6); at most {} MiB, which holds these {} layers at a side of at most {} texels",
             plan.bytes() >> 20,
             plan.layers.len(),
             plan.side,
             plan.side,
-            shadows::MAX_SHADOW_BYTES >> 20
+            shadows::MAX_SHADOW_BYTES >> 20,
+            plan.layers.len(),
+            largest_side(plan.layers.len() as u64, plan.bytes(), plan.side)
         ))
     } else {
         None
     };
     match problem {
         Some(p) => Err(Error::argument(
-            "shadow_map_size",
+            "shadow_map_size (lights.N.shadow_map_size or [shadows] map_size in the scene file, or --set)",
             format!("{p}; lower shadow_map_size or turn shadows off for some lights"),
         )),
         None => Ok(()),
     }
+}
+
+/// The largest power-of-two side at which `layers` layers fit
+/// [`shadows::MAX_SHADOW_BYTES`], from the `bytes` they take at `side`.
+fn largest_side(layers: u64, bytes: u64, side: u32) -> u32 {
+    let per_texel = bytes / (layers.max(1) * u64::from(side).pow(2)).max(1);
+    let mut fit = side;
+    while fit > 16 && layers * u64::from(fit).pow(2) * per_texel.max(1) > shadows::MAX_SHADOW_BYTES
+    {
+        fit /= 2;
+    }
+    fit
 }

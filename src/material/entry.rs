@@ -5,10 +5,11 @@
 //! model's parameters.
 
 use super::param::{Kind, Param, Value};
-use super::{Material, ReflectanceModel, presets, table};
+use super::{Material, ReflectanceModel, measured, presets, table};
 use crate::base::{ColorValue, rgb_to_toml};
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, Visitor};
+use std::path::Path;
 use std::sync::LazyLock;
 use toml::Value as Toml;
 
@@ -27,6 +28,20 @@ pub struct MaterialEntry {
     pub params: Vec<(String, Value)>,
     /// Terms as given: (key, name).
     pub terms: Vec<(&'static str, String)>,
+    /// `measured = NAME|PATH` as given (model `measured`).
+    pub measured: Option<String>,
+    /// Textures as given: (`PARAM_texture` key, image path as written).
+    /// The scene file resolves the paths (`scene_file::textures`).
+    pub textures: Vec<(String, String)>,
+}
+
+/// The suffix that turns a parameter's key into its texture's key.
+pub const TEXTURE_SUFFIX: &str = "_texture";
+
+/// Whether `key` is `PARAM_texture` for some parameter of the table.
+pub fn is_texture_key(key: &str) -> bool {
+    key.strip_suffix(TEXTURE_SUFFIX)
+        .is_some_and(|p| table::all_params().iter().any(|q| q.key == p))
 }
 
 /// Every key a `[materials.NAME]` table accepts, in the order errors list
@@ -39,6 +54,7 @@ static KEYS: LazyLock<Vec<&'static str>> = LazyLock::new(|| {
         }
     }
     keys.extend(TERM_KEYS);
+    keys.push("measured");
     keys
 });
 
@@ -83,10 +99,20 @@ impl<'de> Visitor<'de> for EntryVisitor {
                     duplicate(entry.preset.is_some())?;
                     entry.preset = Some(map.next_value::<String>()?);
                 }
+                "measured" => {
+                    duplicate(entry.measured.is_some())?;
+                    entry.measured = Some(map.next_value::<String>()?);
+                }
                 k if TERM_KEYS.contains(&k) => {
                     let k = TERM_KEYS.into_iter().find(|t| *t == k).unwrap_or_default();
                     duplicate(entry.terms.iter().any(|(t, _)| *t == k))?;
                     entry.terms.push((k, map.next_value::<String>()?));
+                }
+                k if is_texture_key(k) => {
+                    duplicate(entry.textures.iter().any(|(t, _)| t == k))?;
+                    entry
+                        .textures
+                        .push((key.clone(), map.next_value::<String>()?));
                 }
                 k => {
                     // A key's type is the same for every parameter of that
@@ -111,14 +137,33 @@ impl<'de> Visitor<'de> for EntryVisitor {
 }
 
 /// The validated material of entry `e`, named `name` (messages name the
-/// key as `materials.NAME.KEY`).
+/// key as `materials.NAME.KEY`); a `measured` path is relative to the
+/// working directory.
 pub fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result<Material, String> {
+    material_from_entry_in(name, e, Path::new(""))
+}
+
+/// [`material_from_entry`] for an entry of a file in `base_dir`: a
+/// `measured` path is relative to it.
+pub fn material_from_entry_in(
+    name: &str,
+    e: &MaterialEntry,
+    base_dir: &Path,
+) -> std::result::Result<Material, String> {
     let model: ReflectanceModel = e
         .model
         .parse()
         .map_err(|p| format!("materials.{name}.model: {p}"))?;
     let mut m = Material::new(name, model);
     let key = |k: &str| format!("materials.{name}.{k}");
+    if model == ReflectanceModel::Measured {
+        measured_keys_apply(e).map_err(|(k, p)| format!("{}: {p}", key(k)))?;
+    }
+    if let Some(text) = &e.measured {
+        m.measured = Some(
+            measured::resolve(text, base_dir).map_err(|p| format!("{}: {p}", key("measured")))?,
+        );
+    }
     if let Some(p) = &e.preset {
         presets::preset(p)
             .map_err(|p| format!("{}: {p}", key("preset")))?
@@ -141,8 +186,44 @@ pub fn material_from_entry(name: &str, e: &MaterialEntry) -> std::result::Result
     Ok(m)
 }
 
+/// For a `measured` material: the `measured` key is given, and no key a
+/// measured BRDF does not read (its `f_r` is the data's, in 1/sr; `k_a`,
+/// the ambient term, still applies). Else the key and the problem.
+fn measured_keys_apply(e: &MaterialEntry) -> Result<(), (&str, String)> {
+    let not_read = |k| {
+        (
+            k,
+            "does not apply to model `measured` (its f_r is the measured data, in 1/sr; only `measured` and `k_a` apply); remove it".to_string(),
+        )
+    };
+    if e.preset.is_some() {
+        return Err(not_read("preset"));
+    }
+    if let Some((k, _)) = e
+        .params
+        .iter()
+        .find(|(k, _)| !table::COMMON.iter().any(|p| p.key == k))
+    {
+        return Err(not_read(k));
+    }
+    if let Some((k, _)) = e.terms.first() {
+        return Err(not_read(k));
+    }
+    if e.measured.is_none() {
+        return Err((
+            "measured",
+            format!(
+                "model `measured` needs `measured = NAME` (a built-in MERL material, e.g. \"{}\") or `measured = \"path/file.binary\"` (a MERL table, relative to the scene file)",
+                measured::DEFAULT_NAME
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// `m` with `key` set to `value` as a scene file would give it (the
-/// viewer's edits), validated; messages name `materials.NAME.KEY`.
+/// viewer's edits), validated; messages name `materials.NAME.KEY` (a
+/// `measured` path is relative to the working directory).
 pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String> {
     let name = &m.name;
     let bad = |problem: String| format!("materials.{name}.{key}: {problem}");
@@ -156,6 +237,10 @@ pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String
         "preset" => {
             let text: String = value.try_into().map_err(typed)?;
             presets::preset(&text).map_err(bad)?.apply(&mut out);
+        }
+        "measured" => {
+            let text: String = value.try_into().map_err(typed)?;
+            out.measured = Some(measured::resolve(&text, Path::new("")).map_err(bad)?);
         }
         k if TERM_KEYS.contains(&k) => {
             let text: String = value.try_into().map_err(typed)?;
@@ -200,6 +285,15 @@ pub fn set_term(m: &mut Material, key: &str, name: &str) -> Result<(), String> {
 pub fn material_table(m: &Material) -> toml::Table {
     let mut t = toml::Table::new();
     t.insert("model".into(), Toml::String(m.model.name().into()));
+    if m.model == ReflectanceModel::Measured {
+        // Only what applies (`measured_keys_apply`).
+        for p in table::COMMON {
+            t.insert(p.key.into(), text_value(p, m));
+        }
+        let brdf = m.measured.unwrap_or_else(measured::default_brdf);
+        t.insert("measured".into(), Toml::String(brdf.key_text().into()));
+        return t;
+    }
     for p in table::stored_params() {
         if table::param_for(m.model, p.key).is_some_and(|q| std::ptr::eq(p, q)) {
             t.insert(p.key.into(), text_value(p, m));

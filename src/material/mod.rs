@@ -6,13 +6,15 @@
 
 pub mod brdf;
 pub mod entry;
+pub mod measured;
 mod model;
 pub mod param;
 pub mod presets;
 pub mod table;
 pub mod terms;
+pub mod texture;
 
-pub use entry::{MaterialEntry, material_from_entry, material_table};
+pub use entry::{MaterialEntry, material_from_entry, material_from_entry_in, material_table};
 pub use model::ReflectanceModel;
 pub use terms::{Denominator, Distribution, Fresnel, Geometry};
 
@@ -42,7 +44,8 @@ pub struct Material {
     /// Phong / Blinn-Phong exponent, in [0, 1e6].
     pub k_e: f64,
     /// Cook-Torrance `m`: Beckmann's RMS slope, GGX's α, the angle (radians)
-    /// of the lecture's Blinn and Gaussian distributions; in (0, 1].
+    /// of the lecture's Blinn and Gaussian distributions; in (0, 1]. For
+    /// gltf-pbr it is glTF's *perceptual* roughness r, and GGX's α is r².
     pub roughness: f64,
     /// Ward RMS slopes along the tangent and the bitangent (equal for the
     /// isotropic model); in (0, 1].
@@ -61,6 +64,21 @@ pub struct Material {
     pub geometry: Geometry,
     pub fresnel: Fresnel,
     pub denominator: Denominator,
+    /// The measured BRDF of a `measured` material (scene-file key
+    /// `measured`); `None` for the other models.
+    pub measured: Option<&'static measured::MeasuredBrdf>,
+    /// gltf-pbr's base colour `b` (glTF's `baseColorFactor`, linear), in
+    /// [0, 1]³.
+    pub base_color: Rgb,
+    /// gltf-pbr's metallic `m` (glTF's `metallicFactor`), in [0, 1].
+    pub metallic: f64,
+    /// Emitted radiance [W/(m²·sr)], added to `L_o` (every model; glTF's
+    /// `emissiveFactor` × `KHR_materials_emissive_strength`). It lights
+    /// nothing else: gonio's lights are the scene's lights.
+    pub emission: Rgb,
+    /// Parameters that vary over the surface: each texture multiplies the
+    /// constant above it names (empty: a uniform material).
+    pub textures: Vec<texture::MaterialTexture>,
 }
 
 impl Material {
@@ -90,6 +108,11 @@ impl Material {
             geometry: Geometry::Smith,
             fresnel: Fresnel::Conductor,
             denominator: Denominator::Microfacet,
+            measured: None,
+            base_color: Rgb::splat(0.8),
+            metallic: 0.0,
+            emission: Rgb::ZERO,
+            textures: Vec::new(),
         };
         (model.row().defaults)(&mut m);
         m
@@ -132,14 +155,29 @@ impl Material {
     /// lobe convolved with the footprint (both roughly Gaussian in slope),
     /// so a point light seen in a perfectly smooth surface still lights
     /// about one pixel instead of falling between pixel centres.
+    ///
+    /// gltf-pbr's `roughness` is the perceptual r (α = r²): its α is widened
+    /// the same way, `r' = sqrt(α')`.
     pub fn with_roughness_floor(&self, floor: f64) -> Material {
         let widen = |r: f64| (r * r + floor * floor).sqrt().max(ROUGHNESS_FLOOR);
+        let roughness = if self.model == ReflectanceModel::GltfPbr {
+            widen(self.roughness * self.roughness).sqrt()
+        } else {
+            widen(self.roughness)
+        };
         Material {
-            roughness: widen(self.roughness),
+            roughness,
             sigma_x: widen(self.sigma_x),
             sigma_y: widen(self.sigma_y),
             ..self.clone()
         }
+    }
+
+    /// The measured BRDF a `measured` material renders (the default
+    /// built-in one if none was chosen); `None` for the other models.
+    pub fn measured_brdf(&self) -> Option<&'static measured::MeasuredBrdf> {
+        (self.model == ReflectanceModel::Measured)
+            .then(|| self.measured.unwrap_or_else(measured::default_brdf))
     }
 
     /// The part of the material that decides which shader code runs: the

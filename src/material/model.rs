@@ -37,6 +37,15 @@ named_enum!(
         /// Oren-Nayar's full model (Oren & Nayar 1994, eqs. 27–29): the
         /// direct term with C1, C2, C3 and one interreflection.
         OrenNayarFull = "oren-nayar-full",
+        /// A measured BRDF (`measured = NAME|PATH`): a built-in MERL
+        /// material's Neural-BRDF network or a MERL-format table
+        /// (`src/material/measured/`); `f_r` in 1/sr, no `k_d`, `k_s`.
+        Measured = "measured",
+        /// glTF 2.0's metallic-roughness BRDF (Appendix B, its `mix` form as
+        /// the Khronos sample renderer evaluates it): base colour, metallic,
+        /// and glTF's *perceptual* roughness r (GGX α = r², unlike
+        /// Cook-Torrance's `roughness`, which is α itself).
+        GltfPbr = "gltf-pbr",
     }
 );
 

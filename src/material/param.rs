@@ -381,3 +381,65 @@ pub static ETA_T: Param = Param {
     get: |m| Value::Scalar(m.eta_t),
     set: |m, v| m.eta_t = v.scalar(),
 };
+/// gltf-pbr's base colour `b` (glTF's `baseColorFactor`, linear).
+pub static BASE_COLOR: Param = Param {
+    key: "base_color",
+    label: "base colour",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[0.0, 0.2, 0.5, 1.0],
+    get: |m| Value::Color(m.base_color),
+    set: |m, v| m.base_color = v.color(),
+};
+/// gltf-pbr's metallic `m` (glTF's `metallicFactor`).
+pub static METALLIC: Param = Param {
+    key: "metallic",
+    label: "metallic",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: Widget::Slider {
+        min: 0.0,
+        max: 1.0,
+        scale: Scale::Linear,
+    },
+    stored: true,
+    samples: &[0.0, 0.25, 0.5, 0.9, 1.0],
+    get: |m| Value::Scalar(m.metallic),
+    set: |m, v| m.metallic = v.scalar(),
+};
+/// gltf-pbr's roughness: glTF's *perceptual* roughness r, GGX α = r² (the
+/// same key and field as Cook-Torrance's `roughness`, which is α itself).
+/// Its samples start at 0.01 (α = 1e-4, the renderer's floor).
+pub static PERCEPTUAL_ROUGHNESS: Param = Param {
+    key: "roughness",
+    label: "roughness r (α = r²)",
+    kind: Kind::Scalar,
+    range: SLOPE,
+    widget: Widget::Slider {
+        min: 0.01,
+        max: 1.0,
+        scale: Scale::Linear,
+    },
+    stored: false,
+    samples: &[0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.0],
+    get: |m| Value::Scalar(m.roughness),
+    set: |m, v| m.roughness = v.scalar(),
+};
+/// Emitted radiance [W/(m²·sr)], every model's: it adds to `L_o`.
+pub static EMISSION: Param = Param {
+    key: "emission",
+    label: "emission [W/(m²·sr)]",
+    kind: Kind::Color,
+    range: Range::NonNegative,
+    widget: Widget::Drag {
+        speed: 0.01,
+        min: 0.0,
+        max: 1e6,
+    },
+    stored: true,
+    samples: &[0.0, 1.0],
+    get: |m| Value::Color(m.emission),
+    set: |m, v| m.emission = v.color(),
+};

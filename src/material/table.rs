@@ -40,8 +40,8 @@
 use super::brdf::oren_nayar::oren_nayar_terms;
 use super::brdf::{CookTorrance, FresnelTerm, Specular};
 use super::param::{
-    ETA, ETA_I, ETA_T, FACET_SIGMA, K_A, K_D, K_E, K_S, KAPPA, Param, ROUGHNESS, SIGMA_X, SIGMA_Y,
-    WARD_SIGMA,
+    BASE_COLOR, EMISSION, ETA, ETA_I, ETA_T, FACET_SIGMA, K_A, K_D, K_E, K_S, KAPPA, METALLIC,
+    PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, SIGMA_X, SIGMA_Y, WARD_SIGMA,
 };
 use super::{Material, ReflectanceModel};
 use crate::base::Rgb;
@@ -123,8 +123,8 @@ pub fn row(model: ReflectanceModel) -> &'static ModelRow {
         .expect("every model has a row (tests: every_model_has_one_row)")
 }
 
-/// Parameters of every model (not a BRDF's: the ambient term).
-pub const COMMON: &[&Param] = &[&K_A];
+/// Parameters of every model (not a BRDF's: the ambient term, emission).
+pub const COMMON: &[&Param] = &[&K_A, &EMISSION];
 
 /// Every distinct parameter: [`COMMON`], then each row's in table order
 /// (each once, by identity).
@@ -490,7 +490,79 @@ pub static ROWS: &[ModelRow] = &[
         transcendental_error: |_| ATAN2_TERMS_ERROR,
         albedo_table: ON_ALBEDO,
     },
+    ModelRow {
+        model: ReflectanceModel::Measured,
+        summary: "measured f_r: a MERL material (built-in Neural-BRDF network) or a MERL .binary table",
+        form: Form::Paper,
+        wgsl: &["brdf/measured.wgsl"],
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[],
+        reciprocal: false,
+        benched: false,
+        defaults: |m| {
+            (m.k_d, m.k_s) = (Rgb::ZERO, Rgb::ZERO);
+            m.measured = Some(super::measured::default_brdf());
+        },
+        specular: |m| Specular::Measured(m.measured.unwrap_or_else(super::measured::default_brdf)),
+        f32_error: |_| MEASURED_F32_ERROR,
+        transcendental_error: |_| 0.0,
+        // Broad lobes only: chrome's highlight (about 1° wide) is narrower
+        // than the albedo quadrature resolves (it reports 0.08 at 0°).
+        albedo_table: &[
+            ("measured=gold-metallic-paint", "MERL, Neural-BRDF"),
+            ("measured=blue-fabric", "MERL, Neural-BRDF"),
+        ],
+    },
+    ModelRow {
+        model: ReflectanceModel::GltfPbr,
+        summary: "glTF 2.0 metallic-roughness (Appendix B, mix form): base colour, metallic, perceptual roughness r (α = r²)",
+        form: Form::Paper,
+        wgsl: &[
+            "brdf/lambert.wgsl",
+            "brdf/phong.wgsl",
+            "brdf/microfacet.wgsl",
+            "brdf/gltf_pbr.wgsl",
+        ],
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[&BASE_COLOR, &METALLIC, &PERCEPTUAL_ROUGHNESS],
+        reciprocal: true,
+        benched: false,
+        defaults: |_| {},
+        specular: |m| Specular::GltfPbr {
+            base_color: m.base_color,
+            metallic: m.metallic,
+            roughness: m.roughness,
+        },
+        // GGX's lobe of width α = r² (slope_error); no transcendental
+        // function: w = (1 − |V·H|)⁵ is taken by multiplications, the rest
+        // is arithmetic and sqrt.
+        f32_error: |m| slope_error((m.roughness * m.roughness).max(super::ROUGHNESS_FLOOR)),
+        transcendental_error: |_| 0.0,
+        albedo_table: GLTF_PBR_ALBEDO,
+    },
 ];
+
+const GLTF_PBR_ALBEDO: &[(&str, &str)] = &[
+    (
+        "base_color=1,metallic=1,roughness=0.1",
+        "white metal: F = 1, D·Vis alone",
+    ),
+    ("base_color=1,metallic=1,roughness=0.5", ""),
+    (
+        "base_color=1,metallic=1,roughness=1",
+        "single scattering loses energy",
+    ),
+    ("base_color=1,metallic=0,roughness=0.5", "white dielectric"),
+    ("base_color=1,metallic=0,roughness=0.1", "white dielectric"),
+    ("base_color=0.5,metallic=0.5,roughness=0.5", ""),
+];
+
+/// A measured material on the GPU is a trilinear look-up in a table of
+/// `f32`: eight samples, seven lerps, each rounding once (the table's own
+/// error against the source is the table test's, tests/measured.rs).
+const MEASURED_F32_ERROR: f64 = 32.0 * EPS;
 
 /// Oren-Nayar's WGSL: its file uses phong.wgsl's `COS_FLOOR`.
 const ON_WGSL: &[&str] = &[

@@ -33,6 +33,10 @@ named_enum!(
         Smith = "smith",
         /// `G = 1`.
         None = "none",
+        /// Height-correlated Smith `1 / (1 + Λ(I) + Λ(V))` (Heitz 2014,
+        /// "Understanding the Masking-Shadowing Function", eq. 99), Λ matched
+        /// to the distribution as `smith`'s G1; glTF 2.0's `Vis` for GGX.
+        SmithCorrelated = "smith-correlated",
     }
 );
 

@@ -89,12 +89,33 @@ pub fn compare_with_jitter(
     jittered: &[Frame; 4],
     tolerance: Tolerance,
 ) -> Comparison {
+    compare_with_spreads(
+        gpu,
+        center,
+        &[(&jittered[0], &jittered[1]), (&jittered[2], &jittered[3])],
+        tolerance,
+    )
+}
+
+/// [`compare_with_jitter`] with any pairs of perturbed reference frames:
+/// each pair adds its spread `max(|L₊ − L|, |L₋ − L|)` to a pixel's
+/// tolerance (the jitter along x and along y are two pairs; a texture's
+/// level of detail moved both ways is another, tests/textures.rs).
+pub fn compare_with_spreads(
+    gpu: &Frame,
+    center: &Frame,
+    pairs: &[(&Frame, &Frame)],
+    tolerance: Tolerance,
+) -> Comparison {
     assert_eq!((gpu.width, gpu.height), (center.width, center.height));
     let mut c = Comparison::default();
     let mut sum = 0.0;
     for k in 0..center.len() {
         let covered = center.coverage[k];
-        if jittered.iter().any(|f| f.coverage[k] != covered) {
+        if pairs
+            .iter()
+            .any(|(a, b)| a.coverage[k] != covered || b.coverage[k] != covered)
+        {
             c.silhouette += 1;
             continue;
         }
@@ -114,7 +135,7 @@ pub fn compare_with_jitter(
                 ((a.radiance[k][ch] as f64 - reference).abs())
                     .max((b.radiance[k][ch] as f64 - reference).abs())
             };
-            let geometric = spread(&jittered[0], &jittered[1]) + spread(&jittered[2], &jittered[3]);
+            let geometric: f64 = pairs.iter().map(|(a, b)| spread(a, b)).sum();
             let tol = geometric + tolerance.rel * reference.abs() + tolerance.abs;
             let err = (value - reference).abs();
             // A NaN on either side fails.

@@ -10,6 +10,10 @@
 pub mod area;
 pub mod bvh;
 pub mod renderer;
+pub mod texture;
 
 pub use bvh::{Bvh, Hit, TriangleId};
-pub use renderer::{AreaLights, render, render_offset, render_with, shadow_epsilon, visibility};
+pub use renderer::{
+    AreaLights, render, render_offset, render_with, render_with_lod_bias, shadow_epsilon,
+    visibility,
+};

@@ -2,7 +2,7 @@
 //! modes need.
 
 use crate::base::SurfaceFrame;
-use glam::{DMat4, DVec3};
+use glam::{DMat4, DVec2, DVec3};
 
 /// An indexed triangle mesh, already in world space.
 #[derive(Clone, Debug, PartialEq)]
@@ -20,6 +20,10 @@ pub struct Mesh {
     pub indices: Vec<[u32; 3]>,
     /// Index into [`crate::scene::Scene::materials`].
     pub material: usize,
+    /// Texture coordinates per UV set (`TEXCOORD_0`, `TEXCOORD_1`), one
+    /// per position each; glTF's convention, (0, 0) at the image's top-left
+    /// corner. A set the mesh lacks reads as (0, 0).
+    pub tex_coords: Vec<Vec<DVec2>>,
 }
 
 impl Mesh {
@@ -39,7 +43,17 @@ impl Mesh {
             tangents: Vec::new(),
             indices,
             material,
+            tex_coords: Vec::new(),
         }
+    }
+
+    /// The UV of vertex `v` in set `set`, (0, 0) where the mesh has none.
+    pub fn tex_coord(&self, set: usize, v: usize) -> DVec2 {
+        self.tex_coords
+            .get(set)
+            .and_then(|s| s.get(v))
+            .copied()
+            .unwrap_or(DVec2::ZERO)
     }
 
     /// The tangent of vertex `v`: the stored one, or one derived from the

@@ -15,6 +15,7 @@ pub mod limits;
 pub mod mesh;
 pub mod primitives;
 pub mod scene_file;
+pub mod texture;
 
 pub use area_light::AreaLight;
 pub use camera::Camera;
@@ -72,6 +73,13 @@ pub struct Scene {
     pub ambient: Rgb,
     /// What mirrors reflect (defaults to the constant `L_a`).
     pub environment: Environment,
+    /// Sample counts `(n_h, n_d, n_φ)` of the tables the GPU renders
+    /// measured materials from (`shading.measured_table`;
+    /// src/gpu/measured_tables.rs). The reference evaluates the source.
+    pub measured_table: [u32; 3],
+    /// The images materials' textures read (`MaterialTexture::image`
+    /// indexes this); shared, so cloning a scene does not copy texels.
+    pub images: Vec<std::sync::Arc<texture::Image>>,
 }
 
 impl Scene {
@@ -108,6 +116,13 @@ impl Scene {
     /// given).
     pub fn shadow_settings(&self, l: usize) -> ShadowSettings {
         self.light_shadows.get(l).copied().unwrap_or_default()
+    }
+
+    /// Whether a material some mesh uses has a texture.
+    pub fn has_textures(&self) -> bool {
+        self.meshes
+            .iter()
+            .any(|m| !self.materials[m.material].textures.is_empty())
     }
 
     /// Whether any light casts shadows.

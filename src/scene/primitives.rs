@@ -1,7 +1,7 @@
 //! Meshes gonio generates itself (so the built-in scene ships no assets).
 
 use crate::scene::Mesh;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use std::f64::consts::{PI, TAU};
 
 /// Vertices and triangles [`uv_sphere`] builds for `segments`, known
@@ -27,6 +27,7 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
     let mut positions = Vec::new();
     let mut normals = Vec::new();
     let mut tangents = Vec::new();
+    let mut uvs = Vec::new();
     for s in 0..=stacks {
         let theta = PI * s as f64 / stacks as f64; // from +Y down
         for k in 0..=slices {
@@ -41,6 +42,11 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
             // ∂n/∂φ: along the parallels, so anisotropic lobes stretch
             // around the sphere like brushed metal on a lathe.
             tangents.push(DVec3::new(phi.cos(), 0.0, -phi.sin()));
+            // Latitude-longitude UVs: u around +Y, v from the north pole.
+            uvs.push(DVec2::new(
+                k as f64 / slices as f64,
+                s as f64 / stacks as f64,
+            ));
         }
     }
     let row = slices + 1;
@@ -66,6 +72,7 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
         tangents,
         indices,
         material,
+        tex_coords: vec![uvs],
     }
 }
 
@@ -74,11 +81,15 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
 pub fn plane(center: DVec3, size: f64, divisions: u32, material: usize) -> Mesh {
     let n = divisions.max(1);
     let mut positions = Vec::new();
+    let mut uvs = Vec::new();
     for i in 0..=n {
         for j in 0..=n {
             let x = (j as f64 / n as f64 - 0.5) * size;
             let z = (i as f64 / n as f64 - 0.5) * size;
             positions.push(center + DVec3::new(x, 0.0, z));
+            // u along +X, v along +Z: the image lies on the plane as seen
+            // from above with −Z at its top.
+            uvs.push(DVec2::new(j as f64 / n as f64, i as f64 / n as f64));
         }
     }
     let row = n + 1;
@@ -100,6 +111,7 @@ pub fn plane(center: DVec3, size: f64, divisions: u32, material: usize) -> Mesh 
         tangents,
         indices,
         material,
+        tex_coords: vec![uvs],
     }
 }
 

@@ -293,12 +293,10 @@ pub fn edit_material(
     crate::material::entry::with_key(m, field, value)
 }
 
+/// VALUE of an `--edit` read as `--set` reads it (unquoted words are
+/// strings: `shading.mode=flat`), then as a `T`.
 fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {
-    let table: toml::Table = format!("v = {text}")
-        .parse()
-        .map_err(|e: toml::de::Error| format!("`{text}` is not a TOML value: {}", e.message()))?;
-    table["v"]
-        .clone()
+    crate::scene::scene_file::overrides::value_of(text.trim())
         .try_into()
         .map_err(|e: toml::de::Error| format!("`{text}`: {}", e.message()))
 }
@@ -351,6 +349,20 @@ mod tests {
         std::fs::write(&path, "[camera\n").unwrap();
         let err = doc.reload().err().expect("broken file").to_string();
         assert!(err.contains("scene.toml"), "{err}");
+    }
+
+    #[test]
+    fn edits_read_values_as_set_does() {
+        // Issue 19: `--edit 35:shading.mode=flat` said "invalid boolean"
+        // where `--set shading.mode=flat` works: unquoted words are strings.
+        let mut doc = Document::load(SceneSource::BuiltIn, vec![], Limits::default()).unwrap();
+        doc.edit("shading.mode=flat").unwrap();
+        assert_eq!(doc.scene.shading, crate::scene::ShadingMode::Flat);
+        doc.edit("shading.mode=\"gouraud\"").unwrap();
+        assert_eq!(doc.scene.shading, crate::scene::ShadingMode::Gouraud);
+        doc.edit("materials.ball.model=phong").unwrap();
+        assert_eq!(doc.scene.materials[0].model, ReflectanceModel::Phong);
+        assert!(doc.edit("shading.mode=sideways").is_err());
     }
 
     #[test]

@@ -201,7 +201,19 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
             let _ = writeln!(out, "const PCF_RADIUS: u32 = {r}u;");
         }
     }
+    if key.texture_slots > 0 {
+        let _ = writeln!(
+            out,
+            "const TEXTURE_SLOTS: u32 = {}u;\nconst MAX_TEXTURE_SLOTS: u32 = {}u;",
+            key.texture_slots,
+            crate::gpu::textures::MAX_TEXTURE_SLOTS
+        );
+    }
     out.push_str(&compose_brdf_library(&key.variants, &features));
+    if key.texture_slots > 0 {
+        out.push_str(&file("textures.wgsl", &features));
+        out.push('\n');
+    }
     out.push_str(&lights(&key.light_kinds, &features));
     if key.environment {
         out.push_str(&file("environment.wgsl", &features));

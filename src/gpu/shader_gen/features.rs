@@ -63,6 +63,9 @@ pub enum Feature {
     /// The environment lights through the whole BRDF with N sampled
     /// directions (`environment_sampled`).
     EnvironmentSampled,
+    /// Some material has textures: UVs in the vertex stream, bind group 2
+    /// and shaders/textures.wgsl (`textures`).
+    Textures,
 }
 
 impl Feature {
@@ -87,6 +90,7 @@ impl Feature {
             Display,
             Environment,
             EnvironmentSampled,
+            Textures,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -124,6 +128,7 @@ impl Feature {
             Feature::Display => "display",
             Feature::Environment => "environment",
             Feature::EnvironmentSampled => "environment_sampled",
+            Feature::Textures => "textures",
         };
         flag.into()
     }

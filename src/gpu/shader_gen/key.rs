@@ -31,6 +31,9 @@ pub struct ShaderKey {
     /// It lights through the whole BRDF, sampled
     /// (`Feature::EnvironmentSampled`).
     pub environment_sampled: bool,
+    /// Texture slots read per pixel: the most textures of one material the
+    /// scene draws (0: no texture code; `crate::gpu::textures`).
+    pub texture_slots: u32,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -69,33 +72,35 @@ impl ShaderKey {
             .any()
             .then(|| ShadowFeatures::uniform_pcf_radius(scene))
             .flatten();
-        ShaderKey {
-            shading: scene.shading,
-            variants: scene
-                .meshes
-                .iter()
-                .map(|m| scene.materials[m.material].variant())
-                .collect(),
-            light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
-            counts: LoopCounts {
-                lights: scene.lights.len() as u32,
-                shadow_maps: if shadows.any() {
-                    plan.casters.len() as u32
-                } else {
-                    0
+        let mut key =
+            ShaderKey {
+                shading: scene.shading,
+                variants: scene
+                    .meshes
+                    .iter()
+                    .map(|m| scene.materials[m.material].variant())
+                    .collect(),
+                light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
+                counts: LoopCounts {
+                    lights: scene.lights.len() as u32,
+                    shadow_maps: if shadows.any() {
+                        plan.casters.len() as u32
+                    } else {
+                        0
+                    },
+                    pcf_radius,
                 },
-                pcf_radius,
-            },
-            shadows,
-            arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
-            vertex_shadow_coords: true,
-            environment: scene.environment.map.is_some(),
-            environment_sampled: scene
-                .environment
-                .map
-                .as_ref()
-                .is_some_and(|m| m.settings.specular == crate::environment::map::Specular::Sampled),
-        }
+                shadows,
+                arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
+                vertex_shadow_coords: true,
+                environment: scene.environment.map.is_some(),
+                environment_sampled: scene.environment.map.as_ref().is_some_and(|m| {
+                    m.settings.specular == crate::environment::map::Specular::Sampled
+                }),
+                texture_slots: crate::gpu::textures::slot_count(scene),
+            };
+        key.arrays.measured = key.has_measured();
+        key
     }
 
     /// `GpuMaterial.variant` of a material of `variant`: its packed codes
@@ -145,6 +150,14 @@ impl ShaderKey {
             && self.shadows.projections.contains(&Projection::Ortho)
     }
 
+    /// Whether any variant is measured: group 0 then binds the measured
+    /// tables ([`UniformArrays::measured`]).
+    pub fn has_measured(&self) -> bool {
+        self.variants
+            .iter()
+            .any(|v| v.model == ReflectanceModel::Measured)
+    }
+
     /// Whether any variant is a mirror (environment reflection code).
     pub fn has_mirror(&self) -> bool {
         self.variants
@@ -190,6 +203,9 @@ impl ShaderKey {
             if self.environment_sampled {
                 f.push(Feature::EnvironmentSampled);
             }
+        }
+        if self.texture_slots > 0 {
+            f.push(Feature::Textures);
         }
         f
     }

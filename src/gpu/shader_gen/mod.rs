@@ -81,6 +81,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
     let arrays = |uniform: bool| UniformArrays {
         lights: uniform,
         shadow_views: uniform,
+        measured: false,
     };
     let mut keys = Vec::new();
     for shading in ShadingMode::ALL {
@@ -98,6 +99,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 vertex_shadow_coords: false,
                 environment: i % 3 == 0,
                 environment_sampled: i % 6 == 0,
+                texture_slots: 0,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -120,6 +122,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     vertex_shadow_coords: pcf,
                     environment: pcf,
                     environment_sampled: false,
+                    texture_slots: 0,
                 });
             }
         }
@@ -141,8 +144,17 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 vertex_shadow_coords: false,
                 environment: uniform,
                 environment_sampled: uniform,
+                // Textures with the uber shader: all slots, all models.
+                texture_slots: if uniform {
+                    crate::gpu::textures::MAX_TEXTURE_SLOTS as u32
+                } else {
+                    0
+                },
             });
         }
+    }
+    for k in &mut keys {
+        k.arrays.measured = k.has_measured();
     }
     keys
 }

@@ -79,6 +79,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         vertex_shadow_coords: true,
         environment: false,
         environment_sampled: false,
+        texture_slots: 0,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -102,6 +103,7 @@ fn snapshot_everything() {
         vertex_shadow_coords: true,
         environment: true,
         environment_sampled: true,
+        texture_slots: 0,
     };
     check_snapshot("everything", &compose(&key));
 }

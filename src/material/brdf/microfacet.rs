@@ -257,6 +257,54 @@ pub fn g1_ggx(alpha: f64, cos_v: f64, cos_vh: f64) -> f64 {
     2.0 * cos_vc / (cos_vc + (cos2 + alpha * alpha * sin2).sqrt())
 }
 
+/// Smith's Λ for Beckmann, Walter et al. 2007's rational approximation
+/// (the Λ of [`g1_beckmann`]'s G1 = 1/(1 + Λ)): `a = 1/(m tanθ_v)`;
+/// `a ≥ 1.6 → 0`; else `(1 − 1.259a + 0.396a²) / (3.535a + 2.181a²)`.
+/// Needs `cos_v > 0` (the caller's χ⁺ test); grows as `1/(3.535a)` towards
+/// grazing (∞ where `a` underflows, which [`g_smith_correlated`] turns
+/// into G = 0, the limit).
+pub fn lambda_beckmann(m: f64, cos_v: f64) -> f64 {
+    let cos_vc = cos_v.min(1.0); // rounding can pass 1
+    let sin_v = (1.0 - cos_vc * cos_vc).sqrt();
+    if cos_vc >= 1.6 * m * sin_v {
+        return 0.0; // a ≥ 1.6
+    }
+    let a = cos_vc / (m * sin_v);
+    let a2 = a * a;
+    (1.0 - 1.259 * a + 0.396 * a2) / (3.535 * a + 2.181 * a2)
+}
+
+/// Smith's Λ for GGX (Heitz 2014, eq. 72): `(sqrt(1 + α² tan²θ_v) − 1) / 2`,
+/// evaluated as `α² sin² / (2 cos (cos + sqrt(cos² + α² sin²)))` (the same
+/// number without the cancellation of `sqrt(1 + x) − 1` for small α).
+/// Needs `cos_v > 0`, like [`lambda_beckmann`].
+pub fn lambda_ggx(alpha: f64, cos_v: f64) -> f64 {
+    let cos_vc = cos_v.min(1.0); // rounding can pass 1
+    let cos2 = cos_vc * cos_vc;
+    let a2s2 = alpha * alpha * (1.0 - cos2);
+    a2s2 / (2.0 * cos_vc * (cos_vc + (cos2 + a2s2).sqrt()))
+}
+
+/// Height-correlated Smith (Heitz 2014, "Understanding the
+/// Masking-Shadowing Function in Microfacet-Based BRDFs", eq. 99):
+/// `G2 = χ⁺(I·H) χ⁺(V·H) / (1 + Λ(I) + Λ(V))`, from the two Λ
+/// ([`lambda_ggx`], [`lambda_beckmann`]); 0 below either horizon. Never
+/// below the separable `G1(I)·G1(V)` (masking and shadowing by the same
+/// heights are correlated); in [0, 1].
+pub fn g_smith_correlated(
+    lambda_i: f64,
+    lambda_o: f64,
+    cos_i: f64,
+    cos_o: f64,
+    cos_ih: f64,
+    cos_oh: f64,
+) -> f64 {
+    if cos_i <= 0.0 || cos_o <= 0.0 || cos_ih <= 0.0 || cos_oh <= 0.0 {
+        return 0.0; // below the horizon, or χ⁺ = 0
+    }
+    1.0 / (1.0 + lambda_i + lambda_o)
+}
+
 /// The Beckmann slope whose lobe matches the lecture's Blinn distribution
 /// of angle `m`: `sqrt(2 / (e + 2))`, `e` = [`blinn_exponent`]`(m)`.
 ///

@@ -6,6 +6,7 @@
 //! `gpu::shader_gen` generates: the same terms, called in the same order.
 
 pub mod fresnel;
+pub mod gltf_pbr;
 pub mod lambert;
 pub mod microfacet;
 pub mod oren_nayar;
@@ -64,6 +65,12 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
                 &oren_nayar::oren_nayar_angles(n, wi, wo),
             );
         }
+        Specular::Measured(m) => return m.f_r(wi, wo, frame),
+        Specular::GltfPbr {
+            base_color,
+            metallic,
+            roughness,
+        } => return gltf_pbr::gltf_pbr(base_color, metallic, roughness, n, wi, wo),
     };
     diffuse + brdf.k_s * specular
 }

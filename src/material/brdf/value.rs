@@ -12,6 +12,7 @@
 use super::oren_nayar::OrenNayarTerms;
 use super::{fresnel, microfacet};
 use crate::base::Rgb;
+use crate::material::measured::MeasuredBrdf;
 use crate::material::{Denominator, Distribution, Fresnel, Geometry};
 
 /// The BRDF `k_d/π + k_s · specular` of one material.
@@ -52,6 +53,18 @@ pub enum Specular {
     /// Oren-Nayar, full (`oren_nayar::oren_nayar_full`): it replaces the
     /// Lambert term.
     OrenNayarFull(OrenNayarTerms),
+    /// A measured BRDF (`crate::material::measured`): it replaces the whole
+    /// BRDF (k_d, k_s are not read).
+    Measured(&'static MeasuredBrdf),
+    /// glTF 2.0's metallic-roughness BRDF (`gltf_pbr::gltf_pbr`): the whole
+    /// `f_r` (k_d and k_s are not read). `roughness` is glTF's perceptual
+    /// roughness r; the GGX α is r², squared by the twins themselves (so a
+    /// per-pixel roughness on the GPU is squared the same way).
+    GltfPbr {
+        base_color: Rgb,
+        metallic: f64,
+        roughness: f64,
+    },
 }
 
 /// Cook-Torrance's `D·G·F / (denominator (N·V)(N·I))` (lecture:
@@ -148,6 +161,10 @@ pub enum GeometryTerm {
     /// Smith with Beckmann's `G1` at the slope matched to the distribution
     /// ([`smith_beckmann_slope`]).
     SmithBeckmann { slope: f64 },
+    /// Height-correlated Smith with GGX's own Λ, `α`.
+    SmithCorrelatedGgx { alpha: f64 },
+    /// Height-correlated Smith with Beckmann's Λ at the matched slope.
+    SmithCorrelatedBeckmann { slope: f64 },
 }
 
 impl GeometryTerm {
@@ -159,6 +176,12 @@ impl GeometryTerm {
                 GeometryTerm::SmithGgx { alpha: roughness }
             }
             Geometry::Smith => GeometryTerm::SmithBeckmann {
+                slope: smith_beckmann_slope(distribution, roughness),
+            },
+            Geometry::SmithCorrelated if distribution == Distribution::Ggx => {
+                GeometryTerm::SmithCorrelatedGgx { alpha: roughness }
+            }
+            Geometry::SmithCorrelated => GeometryTerm::SmithCorrelatedBeckmann {
                 slope: smith_beckmann_slope(distribution, roughness),
             },
         }
@@ -176,6 +199,22 @@ impl GeometryTerm {
                 microfacet::g1_beckmann(slope, cos_i, cos_ih)
                     * microfacet::g1_beckmann(slope, cos_o, cos_oh)
             }
+            GeometryTerm::SmithCorrelatedGgx { alpha } => microfacet::g_smith_correlated(
+                microfacet::lambda_ggx(alpha, cos_i),
+                microfacet::lambda_ggx(alpha, cos_o),
+                cos_i,
+                cos_o,
+                cos_ih,
+                cos_oh,
+            ),
+            GeometryTerm::SmithCorrelatedBeckmann { slope } => microfacet::g_smith_correlated(
+                microfacet::lambda_beckmann(slope, cos_i),
+                microfacet::lambda_beckmann(slope, cos_o),
+                cos_i,
+                cos_o,
+                cos_ih,
+                cos_oh,
+            ),
         }
     }
 }
@@ -270,6 +309,11 @@ pub struct ShaderParams {
     /// `m.lobe` (and says what each component is), so a new model needs
     /// no change of the GPU layout.
     pub lobe: [f64; 4],
+    /// gltf-pbr's base colour and metallic (its perceptual roughness is in
+    /// `roughness`): named fields, not `lobe` constants, because textures
+    /// and vertex colours multiply them per pixel on the GPU.
+    pub base_color: Rgb,
+    pub metallic: f64,
 }
 
 impl Brdf {
@@ -313,6 +357,14 @@ impl Brdf {
             }
             Specular::Mirror(f) => f.write_params(&mut p),
             Specular::OrenNayar(t) | Specular::OrenNayarFull(t) => p.lobe = [t.a, t.b, t.c3, t.l2],
+            // The table's place in the measured buffer is the GPU's
+            // (`gpu::measured_tables`), written into `lobe` there.
+            Specular::Measured(_) => {}
+            Specular::GltfPbr {
+                base_color,
+                metallic,
+                roughness,
+            } => (p.base_color, p.metallic, p.roughness) = (base_color, metallic, roughness),
         }
         p
     }

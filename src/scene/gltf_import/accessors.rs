@@ -3,8 +3,14 @@
 //! overflow-checked arithmetic) before the `gltf` crate's reader touches
 //! it, because that reader slices and indexes without checking. Only then
 //! is anything allocated from its count.
+//!
+//! Vertex attributes are decoded here ([`read_attribute`]), not by the
+//! reader's `read_positions` (which takes every component for an `f32`):
+//! with `KHR_mesh_quantization` a position may be a (normalized) integer,
+//! a normal or tangent a normalized one, decoded as the extension says
+//! (signed: `max(c / (2ⁿ⁻¹ − 1), −1)`, unsigned: `c / (2ⁿ − 1)`).
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::{Mode, Semantic};
 use std::borrow::Cow;
@@ -16,6 +22,9 @@ pub(super) enum Usage {
     Normal,
     Tangent,
     Index,
+    /// `TEXCOORD_n`: VEC2 of FLOAT, or of normalized UNSIGNED_BYTE /
+    /// UNSIGNED_SHORT (glTF 2.0 §3.7.2.1).
+    TexCoord,
 }
 
 impl Usage {
@@ -25,29 +34,69 @@ impl Usage {
             Usage::Normal => "NORMAL",
             Usage::Tangent => "TANGENT",
             Usage::Index => "indices",
+            Usage::TexCoord => "TEXCOORD",
         }
     }
 
     /// The types the reader can decode for this usage; the `gltf` reader
-    /// misreads or panics (`unreachable!`) on anything else.
-    fn accepts(self, data_type: DataType, dimensions: Dimensions) -> bool {
+    /// misreads or panics (`unreachable!`) on anything else. With
+    /// `quantized` (the file uses `KHR_mesh_quantization`) also the
+    /// extension's integer types: any 8- or 16-bit integer for POSITION
+    /// (normalized or not), normalized signed ones for NORMAL and TANGENT.
+    fn accepts(
+        self,
+        data_type: DataType,
+        dimensions: Dimensions,
+        normalized: bool,
+        quantized: bool,
+    ) -> bool {
+        let signed_normalized = normalized && matches!(data_type, DataType::I8 | DataType::I16);
+        let small_integer = matches!(
+            data_type,
+            DataType::I8 | DataType::U8 | DataType::I16 | DataType::U16
+        );
         match self {
-            Usage::Position | Usage::Normal => {
-                data_type == DataType::F32 && dimensions == Dimensions::Vec3
+            Usage::Position => {
+                dimensions == Dimensions::Vec3
+                    && (data_type == DataType::F32 || (quantized && small_integer))
             }
-            Usage::Tangent => data_type == DataType::F32 && dimensions == Dimensions::Vec4,
+            Usage::Normal => {
+                dimensions == Dimensions::Vec3
+                    && (data_type == DataType::F32 || (quantized && signed_normalized))
+            }
+            Usage::Tangent => {
+                dimensions == Dimensions::Vec4
+                    && (data_type == DataType::F32 || (quantized && signed_normalized))
+            }
             Usage::Index => {
                 matches!(data_type, DataType::U8 | DataType::U16 | DataType::U32)
                     && dimensions == Dimensions::Scalar
             }
+            Usage::TexCoord => {
+                dimensions == Dimensions::Vec2
+                    && (data_type == DataType::F32
+                        || (normalized && matches!(data_type, DataType::U8 | DataType::U16)))
+            }
         }
     }
 
-    fn expected(self) -> &'static str {
-        match self {
-            Usage::Position | Usage::Normal => "VEC3 of FLOAT",
-            Usage::Tangent => "VEC4 of FLOAT",
-            Usage::Index => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
+    fn expected(self, quantized: bool) -> &'static str {
+        match (self, quantized) {
+            (Usage::Position, false) | (Usage::Normal, false) => {
+                "VEC3 of FLOAT (integer types need KHR_mesh_quantization)"
+            }
+            (Usage::Position, true) => {
+                "VEC3 of FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT (KHR_mesh_quantization)"
+            }
+            (Usage::Normal, true) => {
+                "VEC3 of FLOAT, or normalized BYTE or SHORT (KHR_mesh_quantization)"
+            }
+            (Usage::Tangent, false) => "VEC4 of FLOAT (integer types need KHR_mesh_quantization)",
+            (Usage::Tangent, true) => {
+                "VEC4 of FLOAT, or normalized BYTE or SHORT (KHR_mesh_quantization)"
+            }
+            (Usage::Index, _) => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
+            (Usage::TexCoord, _) => "VEC2 of FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT",
         }
     }
 }
@@ -65,6 +114,7 @@ pub(super) fn check_accessor(
     usage: Usage,
     max_count: usize,
     buffers: &[Cow<[u8]>],
+    quantized: bool,
 ) -> Result<(), String> {
     let fail = |problem: String| {
         format!(
@@ -74,10 +124,15 @@ pub(super) fn check_accessor(
         )
     };
     let (data_type, dimensions) = (accessor.data_type(), accessor.dimensions());
-    if !usage.accepts(data_type, dimensions) {
+    if !usage.accepts(data_type, dimensions, accessor.normalized(), quantized) {
+        let normalized = if accessor.normalized() {
+            "normalized "
+        } else {
+            ""
+        };
         return Err(fail(format!(
-            "has type {dimensions:?} of {data_type:?}, expected {}",
-            usage.expected()
+            "has type {dimensions:?} of {normalized}{data_type:?}, expected {}",
+            usage.expected(quantized)
         )));
     }
     let element = accessor.size();
@@ -228,17 +283,22 @@ pub(super) struct RawPrimitive {
     /// (H·b)² only), `None` when the primitive has none.
     pub tangents: Option<Vec<DVec3>>,
     pub indices: Vec<[u32; 3]>,
+    /// `TEXCOORD_0` and `TEXCOORD_1` where present (empty sets stop the
+    /// list: a missing set 0 with a set 1 keeps an empty set 0).
+    pub tex_coords: Vec<Vec<DVec2>>,
 }
 
 /// Reads a primitive, or `None` if it draws points or lines. The vertex
 /// and triangle budget was checked from the declared counts beforehand
 /// (see `graph::check_cost`); `max_vertices` and `max_corners` are those
 /// limits, which bound accessors without data behind every element.
+/// `quantized`: the file uses `KHR_mesh_quantization` (integer attributes).
 pub(super) fn read_primitive(
     primitive: &gltf::Primitive,
     buffers: &[Cow<[u8]>],
     max_vertices: usize,
     max_corners: usize,
+    quantized: bool,
 ) -> Result<Option<RawPrimitive>, String> {
     let mode = primitive.mode();
     if !matches!(
@@ -252,8 +312,18 @@ pub(super) fn read_primitive(
     let position_accessor = primitive
         .get(&Semantic::Positions)
         .ok_or("has no POSITION attribute")?;
-    check_accessor(&position_accessor, Usage::Position, max_vertices, buffers)?;
-    let positions = collect_vec3(reader.read_positions(), &position_accessor, Usage::Position)?;
+    check_accessor(
+        &position_accessor,
+        Usage::Position,
+        max_vertices,
+        buffers,
+        quantized,
+    )?;
+    let positions: Vec<DVec3> = read_attribute::<3>(&position_accessor, buffers)
+        .ok_or_else(|| unreadable(&position_accessor, Usage::Position))?
+        .into_iter()
+        .map(DVec3::from)
+        .collect();
     if let Some(k) = positions.iter().position(|p| !p.is_finite()) {
         return Err(format!(
             "accessor {} (POSITION): vertex {k} is not finite ({})",
@@ -267,13 +337,61 @@ pub(super) fn read_primitive(
 
     let normals = match primitive.get(&Semantic::Normals) {
         None => None,
-        Some(accessor) => Some(read_normals(&reader, &accessor, vertex_count, buffers)?),
+        Some(accessor) => Some(read_directions(
+            &accessor,
+            Usage::Normal,
+            vertex_count,
+            buffers,
+            quantized,
+            |a| read_attribute::<3>(a, buffers),
+        )?),
     };
 
     let tangents = match primitive.get(&Semantic::Tangents) {
         None => None,
-        Some(accessor) => Some(read_tangents(&reader, &accessor, vertex_count, buffers)?),
+        Some(accessor) => Some(read_directions(
+            &accessor,
+            Usage::Tangent,
+            vertex_count,
+            buffers,
+            quantized,
+            |a| {
+                read_attribute::<4>(a, buffers)
+                    .map(|v| v.into_iter().map(|[x, y, z, _w]| [x, y, z]).collect())
+            },
+        )?),
     };
+
+    let mut tex_coords = Vec::new();
+    for set in 0..2u32 {
+        let Some(accessor) = primitive.get(&Semantic::TexCoords(set)) else {
+            continue;
+        };
+        check_accessor(&accessor, Usage::TexCoord, max_vertices, buffers, quantized)?;
+        if accessor.count() != vertex_count {
+            return Err(format!(
+                "accessor {} (TEXCOORD_{set}) has {} elements but POSITION has {vertex_count}",
+                accessor.index(),
+                accessor.count()
+            ));
+        }
+        let uvs: Vec<DVec2> = reader
+            .read_tex_coords(set)
+            .map(|t| {
+                t.into_f32()
+                    .map(|[u, v]| DVec2::new(u.into(), v.into()))
+                    .collect()
+            })
+            .unwrap_or_default();
+        if uvs.len() != vertex_count || uvs.iter().any(|uv| !uv.is_finite()) {
+            return Err(format!(
+                "accessor {} (TEXCOORD_{set}): not {vertex_count} finite UVs",
+                accessor.index()
+            ));
+        }
+        tex_coords.resize(set as usize, Vec::new());
+        tex_coords.push(uvs);
+    }
 
     let vertices: Vec<u32> = match primitive.indices() {
         None => (0..vertex_limit).collect(),
@@ -289,52 +407,72 @@ pub(super) fn read_primitive(
         normals,
         tangents,
         indices,
+        tex_coords,
     }))
 }
 
-/// Unit normals (zero where the file's normal has no length); as many as
-/// there are positions, all finite.
-fn read_normals<'a, 's, F>(
-    reader: &gltf::mesh::Reader<'a, 's, F>,
+/// The elements of a vertex attribute accessor (checked by
+/// [`check_accessor`]: in bounds, of a type its usage accepts), each
+/// component decoded to `f64`: floats as they are, normalized integers as
+/// glTF and `KHR_mesh_quantization` say (signed `max(c / (2ⁿ⁻¹ − 1), −1)`,
+/// unsigned `c / (2ⁿ − 1)`), other integers as their value. Sparse
+/// accessors are applied by the `gltf` crate's iterator. `None` if the
+/// accessor has a type no usage accepts or the reader fails.
+pub(super) fn read_attribute<const N: usize>(
     accessor: &gltf::Accessor,
-    vertex_count: usize,
     buffers: &[Cow<[u8]>],
-) -> Result<Vec<DVec3>, String>
+) -> Option<Vec<[f64; N]>>
 where
-    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+    [f32; N]: gltf::accessor::Item,
+    [i8; N]: gltf::accessor::Item,
+    [u8; N]: gltf::accessor::Item,
+    [i16; N]: gltf::accessor::Item,
+    [u16; N]: gltf::accessor::Item,
 {
-    read_directions(accessor, Usage::Normal, vertex_count, buffers, || {
-        reader.read_normals()
-    })
+    let normalized = accessor.normalized();
+    let values = match accessor.data_type() {
+        DataType::F32 => decode::<f32, N>(accessor, buffers, |c| c),
+        DataType::I8 if normalized => decode::<i8, N>(accessor, buffers, |c| (c / 127.0).max(-1.0)),
+        DataType::U8 if normalized => decode::<u8, N>(accessor, buffers, |c| c / 255.0),
+        DataType::I16 if normalized => {
+            decode::<i16, N>(accessor, buffers, |c| (c / 32767.0).max(-1.0))
+        }
+        DataType::U16 if normalized => decode::<u16, N>(accessor, buffers, |c| c / 65535.0),
+        DataType::I8 => decode::<i8, N>(accessor, buffers, |c| c),
+        DataType::U8 => decode::<u8, N>(accessor, buffers, |c| c),
+        DataType::I16 => decode::<i16, N>(accessor, buffers, |c| c),
+        DataType::U16 => decode::<u16, N>(accessor, buffers, |c| c),
+        DataType::U32 => None,
+    }?;
+    (values.len() == accessor.count()).then_some(values)
 }
 
-/// Unit tangents from `TANGENT` (xyz; zero where it has no length); as
-/// many as there are positions, all finite.
-fn read_tangents<'a, 's, F>(
-    reader: &gltf::mesh::Reader<'a, 's, F>,
+/// The accessor's elements as `[T; N]`, each component mapped by `f`.
+fn decode<T, const N: usize>(
     accessor: &gltf::Accessor,
-    vertex_count: usize,
     buffers: &[Cow<[u8]>],
-) -> Result<Vec<DVec3>, String>
+    f: impl Fn(f64) -> f64,
+) -> Option<Vec<[f64; N]>>
 where
-    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+    T: Copy + Into<f64>,
+    [T; N]: gltf::accessor::Item,
 {
-    read_directions(accessor, Usage::Tangent, vertex_count, buffers, || {
-        reader
-            .read_tangents()
-            .map(|t| t.map(|[x, y, z, _w]| [x, y, z]))
-    })
+    let iter = gltf::accessor::Iter::<[T; N]>::new(accessor.clone(), |buffer: gltf::Buffer| {
+        buffers.get(buffer.index()).map(|b| &b[..])
+    })?;
+    Some(iter.map(|v| v.map(|c| f(c.into()))).collect())
 }
 
 /// A per-vertex direction attribute: one element per position, types
-/// checked before `read` runs the reader, all finite, normalized (zero
-/// where the file's vector has no length).
-fn read_directions<I: Iterator<Item = [f32; 3]>>(
+/// checked before `read` decodes it, all finite, normalized (zero where
+/// the file's vector has no length).
+fn read_directions(
     accessor: &gltf::Accessor,
     usage: Usage,
     vertex_count: usize,
     buffers: &[Cow<[u8]>],
-    read: impl FnOnce() -> Option<I>,
+    quantized: bool,
+    read: impl FnOnce(&gltf::Accessor) -> Option<Vec<[f64; 3]>>,
 ) -> Result<Vec<DVec3>, String> {
     let name = usage.name();
     if accessor.count() != vertex_count {
@@ -344,8 +482,12 @@ fn read_directions<I: Iterator<Item = [f32; 3]>>(
             accessor.count()
         ));
     }
-    check_accessor(accessor, usage, vertex_count, buffers)?;
-    let values = collect_vec3(read(), accessor, usage)?;
+    check_accessor(accessor, usage, vertex_count, buffers, quantized)?;
+    let values: Vec<DVec3> = read(accessor)
+        .ok_or_else(|| unreadable(accessor, usage))?
+        .into_iter()
+        .map(DVec3::from)
+        .collect();
     if let Some(k) = values.iter().position(|v| !v.is_finite()) {
         return Err(format!(
             "accessor {} ({name}): {} {k} is not finite ({})",
@@ -368,7 +510,7 @@ fn read_indices<'a, 's, F>(
 where
     F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
 {
-    check_accessor(accessor, Usage::Index, max_corners, buffers)?;
+    check_accessor(accessor, Usage::Index, max_corners, buffers, false)?;
     let indices: Vec<u32> = reader
         .read_indices()
         .ok_or_else(|| unreadable(accessor, Usage::Index))?
@@ -385,21 +527,6 @@ where
         ));
     }
     Ok(indices)
-}
-
-fn collect_vec3(
-    iter: Option<impl Iterator<Item = [f32; 3]>>,
-    accessor: &gltf::Accessor,
-    usage: Usage,
-) -> Result<Vec<DVec3>, String> {
-    let values: Vec<DVec3> = iter
-        .ok_or_else(|| unreadable(accessor, usage))?
-        .map(|v| DVec3::from(v.map(f64::from)))
-        .collect();
-    if values.len() != accessor.count() {
-        return Err(unreadable(accessor, usage));
-    }
-    Ok(values)
 }
 
 /// Reported if the reader still fails after [`check_accessor`] passed.

@@ -102,7 +102,7 @@ fn load_uri(uri: &str, declared: usize, folder: &Path) -> Result<Vec<u8>, String
 /// Resolves `relative` inside `folder`, following symlinks, and refuses the
 /// result unless it is still inside the folder: a lexically clean path can
 /// still lead out through a symlink.
-fn confine(folder: &Path, relative: &Path) -> Result<PathBuf, String> {
+pub(super) fn confine(folder: &Path, relative: &Path) -> Result<PathBuf, String> {
     let root = folder
         .canonicalize()
         .map_err(|e| format!("cannot be resolved: the glTF's folder is not accessible: {e}"))?;
@@ -156,7 +156,21 @@ fn read_prefix(path: &Path, declared: usize) -> Result<Vec<u8>, String> {
 }
 
 /// Decodes a `data:[<media type>];base64,<data>` URI.
-fn decode_data_uri(uri: &str, declared: usize) -> Result<Vec<u8>, String> {
+pub(super) fn decode_data_uri(uri: &str, declared: usize) -> Result<Vec<u8>, String> {
+    let mut data = decode_base64_uri(uri)?;
+    if data.len() < declared {
+        return Err(format!(
+            "is a data: URI that decodes to {} bytes, fewer than the declared byteLength {declared}",
+            data.len()
+        ));
+    }
+    data.truncate(declared);
+    Ok(data)
+}
+
+/// All bytes of a `data:[<media type>];base64,<data>` URI (images have no
+/// declared length).
+pub(super) fn decode_base64_uri(uri: &str) -> Result<Vec<u8>, String> {
     let (_, payload) = uri.split_once(";base64,").ok_or(
         "is a data: URI without base64 encoding; only the `data:...;base64,` form is supported",
     )?;
@@ -166,17 +180,9 @@ fn decode_data_uri(uri: &str, declared: usize) -> Result<Vec<u8>, String> {
         base64::engine::GeneralPurposeConfig::new()
             .with_decode_padding_mode(base64::engine::DecodePaddingMode::Indifferent),
     );
-    let mut data = engine
+    engine
         .decode(payload)
-        .map_err(|e| format!("is a data: URI with invalid base64 data ({e})"))?;
-    if data.len() < declared {
-        return Err(format!(
-            "is a data: URI that decodes to {} bytes, fewer than the declared byteLength {declared}",
-            data.len()
-        ));
-    }
-    data.truncate(declared);
-    Ok(data)
+        .map_err(|e| format!("is a data: URI with invalid base64 data ({e})"))
 }
 
 /// Whether a URI reference starts with a scheme (`http:`, `file:`, `C:`,

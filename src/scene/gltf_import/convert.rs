@@ -1,20 +1,15 @@
 //! The parts of a glTF that are not geometry: materials, lights, cameras,
 //! node transforms, each turned into gonio's types.
 
-use crate::material::{
-    Distribution, Fresnel, Geometry, Material, ROUGHNESS_FLOOR, ReflectanceModel,
-};
+use crate::material::{Material, ROUGHNESS_FLOOR, ReflectanceModel};
 use crate::scene::{Camera, Light, Rgb};
 use glam::{DMat4, DQuat, DVec3, DVec4};
 use gltf::khr_lights_punctual::Kind as LightKind;
 
-/// glTF's metal/rough F0 for dielectrics.
-const DIELECTRIC_F0: f64 = 0.04;
-
-/// The glTF mapping of metallic-roughness factors to gonio's Cook-Torrance
-/// with GGX, Smith and Schlick's Fresnel: the glTF core BRDF's terms (see
-/// the module documentation for the table). Inputs outside [0, 1] are
-/// clamped.
+/// glTF's metallic-roughness factors as a `gltf-pbr` material, glTF 2.0's
+/// own BRDF (see the module documentation). Inputs outside [0, 1] are
+/// clamped; a roughness of 0 becomes 10⁻⁴ (the contract's range is
+/// (0, 1]; the renderers' floor widens α further).
 pub fn material_from_metallic_roughness(
     name: impl Into<String>,
     base_color: Rgb,
@@ -24,41 +19,38 @@ pub fn material_from_metallic_roughness(
     let b = base_color.clamp(Rgb::ZERO, Rgb::ONE);
     let m = metallic.clamp(0.0, 1.0);
     let r = roughness.clamp(0.0, 1.0);
-    let f0 = Rgb::splat(DIELECTRIC_F0 * (1.0 - m)) + b * m;
-    let mut material = Material::new(name, ReflectanceModel::CookTorrance);
-    material.distribution = Distribution::Ggx;
-    material.geometry = Geometry::Smith;
-    material.fresnel = Fresnel::Schlick;
-    material.k_d = b * (1.0 - m);
-    material.k_s = Rgb::ONE;
+    let mut material = Material::new(name, ReflectanceModel::GltfPbr);
+    material.base_color = b;
+    material.metallic = m;
+    material.roughness = r.max(ROUGHNESS_FLOOR);
+    // An ambient light lights the base colour; a lecture model chosen
+    // in the viewer starts from the diffuse part.
     material.k_a = b;
-    // glTF's α = roughness², kept inside the contract's (0, 1].
-    material.roughness = (r * r).max(ROUGHNESS_FLOOR);
-    // Schlick's F0 comes from η, κ (f0_conductor): with κ = 0,
-    // F0 = ((η − 1)/(η + 1))², so η = (1 + √F0)/(1 − √F0). F0 is capped at
-    // 0.99 (η ≈ 400) to keep η finite for a white metal.
-    let sqrt_f0 = f0.min(Rgb::splat(0.99)).map(f64::sqrt);
-    material.eta = (Rgb::ONE + sqrt_f0) / (Rgb::ONE - sqrt_f0);
-    material.kappa = Rgb::ZERO;
+    material.k_d = b * (1.0 - m);
     material
 }
 
+/// A glTF material's factors: base colour (alpha dropped), metallic,
+/// roughness, and emission = `emissiveFactor` × `emissive_strength`
+/// (`KHR_materials_emissive_strength`, 1 without it).
 pub(super) fn material_from_pbr(
     name: String,
-    base_color: [f32; 4],
-    metallic: f32,
-    roughness: f32,
+    material: &gltf::Material,
 ) -> Result<Material, String> {
-    let [r, g, b, _alpha] = base_color.map(f64::from);
-    let material = material_from_metallic_roughness(
+    let pbr = material.pbr_metallic_roughness();
+    let [r, g, b, _alpha] = pbr.base_color_factor().map(f64::from);
+    let mut out = material_from_metallic_roughness(
         name,
         Rgb::new(r, g, b),
-        f64::from(metallic),
-        f64::from(roughness),
+        f64::from(pbr.metallic_factor()),
+        f64::from(pbr.roughness_factor()),
     );
-    // Clamping leaves only non-finite factors to fail here.
-    material.validate()?;
-    Ok(material)
+    let strength = f64::from(material.emissive_strength().unwrap_or(1.0));
+    out.emission = Rgb::from(material.emissive_factor().map(f64::from)) * strength;
+    // Clamping leaves only non-finite factors and a negative emission to
+    // fail here.
+    out.validate()?;
+    Ok(out)
 }
 
 pub(super) fn convert_light(

@@ -10,6 +10,7 @@ use super::convert::{
 };
 use crate::scene::limits::Limits;
 use crate::scene::mesh::area_weighted_normals;
+use crate::scene::texture::Encoding;
 use crate::scene::{Mesh, Rgb};
 use glam::DMat4;
 use std::borrow::Cow;
@@ -27,6 +28,11 @@ pub(super) struct Importer<'a> {
     scene: GltfScene,
     /// Index of `gltf-default` in `scene.materials`, once a primitive needs it.
     default_material: Option<usize>,
+    /// Texture images, decoded as materials ask for them.
+    images: super::images::ImageSource<'a>,
+    /// The file uses `KHR_mesh_quantization`: integer vertex attributes
+    /// are allowed (`accessors::Usage::accepts`).
+    quantized: bool,
 }
 
 impl<'a> Importer<'a> {
@@ -35,6 +41,7 @@ impl<'a> Importer<'a> {
         buffers: &'a [Cow<'a, [u8]>],
         limits: &Limits,
         notes: Vec<String>,
+        folder: &'a std::path::Path,
     ) -> Self {
         let clamp = |v: u64| usize::try_from(v).unwrap_or(usize::MAX);
         Importer {
@@ -49,8 +56,17 @@ impl<'a> Importer<'a> {
                 camera: None,
                 skipped_primitives: 0,
                 notes,
+                images: Vec::new(),
             },
             default_material: None,
+            images: super::images::ImageSource {
+                buffers,
+                folder,
+                store: crate::scene::texture::store::ImageStore::new(limits),
+            },
+            quantized: document
+                .extensions_used()
+                .any(|e| e == "KHR_mesh_quantization"),
         }
     }
 
@@ -63,13 +79,10 @@ impl<'a> Importer<'a> {
                 .name()
                 .map_or_else(|| format!("material {index}"), str::to_string);
             let pbr = material.pbr_metallic_roughness();
-            let material = material_from_pbr(
-                name,
-                pbr.base_color_factor(),
-                pbr.metallic_factor(),
-                pbr.roughness_factor(),
-            )?;
-            self.scene.materials.push(material);
+            let mut converted = material_from_pbr(name, &material)?;
+            self.textures(&material, &pbr, &mut converted)
+                .map_err(|e| format!("material {index}: {e}"))?;
+            self.scene.materials.push(converted);
         }
 
         // Depth-first, children in order, with an explicit stack: a chain
@@ -96,7 +109,56 @@ impl<'a> Importer<'a> {
             let children: Vec<_> = node.children().collect();
             stack.extend(children.into_iter().rev().map(|child| (child, world)));
         }
+        self.scene.images = self.images.store.images.clone();
         Ok(self.scene)
+    }
+
+    /// The textures of glTF material `material` on `converted` (a
+    /// gltf-pbr material): base colour (sRGB) on `base_color` and on the
+    /// ambient `k_a` (which the import sets to the base colour),
+    /// metallic-roughness (linear) on `roughness` (G) and `metallic` (B),
+    /// emissive (sRGB) on `emission`. Normal and occlusion textures are not
+    /// read yet: a note says so.
+    fn textures(
+        &mut self,
+        material: &gltf::Material,
+        pbr: &gltf::material::PbrMetallicRoughness,
+        converted: &mut crate::material::Material,
+    ) -> Result<(), String> {
+        if let Some(info) = pbr.base_color_texture() {
+            for key in ["base_color", "k_a"] {
+                let t = self.images.texture(&info, key, Encoding::Srgb, 0);
+                converted
+                    .textures
+                    .push(t.map_err(|e| format!("baseColorTexture: {e}"))?);
+            }
+        }
+        if let Some(info) = pbr.metallic_roughness_texture() {
+            for (key, channel) in [("roughness", 1), ("metallic", 2)] {
+                let t = self.images.texture(&info, key, Encoding::Linear, channel);
+                converted
+                    .textures
+                    .push(t.map_err(|e| format!("metallicRoughnessTexture: {e}"))?);
+            }
+        }
+        if let Some(info) = material.emissive_texture() {
+            let t = self.images.texture(&info, "emission", Encoding::Srgb, 0);
+            converted
+                .textures
+                .push(t.map_err(|e| format!("emissiveTexture: {e}"))?);
+        }
+        let index = material.index().unwrap_or_default();
+        for (present, what) in [
+            (material.normal_texture().is_some(), "normalTexture"),
+            (material.occlusion_texture().is_some(), "occlusionTexture"),
+        ] {
+            if present {
+                self.scene.notes.push(format!(
+                    "material {index}: its {what} is ignored (gonio does not read it yet)"
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn visit(&mut self, node: &gltf::Node, world: DMat4) -> Result<(), String> {
@@ -140,6 +202,7 @@ impl<'a> Importer<'a> {
                 self.buffers,
                 self.max_vertices,
                 self.max_corners,
+                self.quantized,
             )
             .map_err(|p| format!("{}: {p}", context()))?
             else {
@@ -163,6 +226,7 @@ impl<'a> Importer<'a> {
                     tangents: Vec::new(),
                     indices: raw.indices,
                     material,
+                    tex_coords: Vec::new(),
                 },
                 None => Mesh::with_generated_normals(name, raw.positions, raw.indices, material),
             };
@@ -171,6 +235,7 @@ impl<'a> Importer<'a> {
             if let Some(tangents) = raw.tangents {
                 mesh.tangents = tangents;
             }
+            mesh.tex_coords = raw.tex_coords;
             mesh.transform(world);
             // The GPU draws in f32: a position beyond its range would
             // become infinite there even though it is finite here.

@@ -47,30 +47,29 @@
 //! Optional extensions gonio does not implement are ignored, each with a
 //! line in [`GltfScene::notes`] (shown by `--verbose`).
 //! `NORMAL` is used when present, otherwise normals are generated
-//! (area-weighted). Textures, vertex colours, skins, morph targets,
-//! emission, alpha and `doubleSided` are ignored; skinned meshes are drawn
-//! in their rest pose.
+//! (area-weighted). `TEXCOORD_0` and `TEXCOORD_1` are read, and the
+//! base colour, metallic-roughness and emissive textures with their
+//! samplers and `KHR_texture_transform` (`images`: a buffer view, a
+//! `data:` URI or a file inside the glTF's folder, decoded within the
+//! limits); normal and occlusion textures, vertex colours, skins, morph
+//! targets, alpha and `doubleSided` are ignored (the textures with a
+//! note); skinned meshes are drawn in their rest pose.
 //!
-//! # Materials: metallic-roughness → Cook-Torrance (GGX, Smith, Schlick)
+//! # Materials: metallic-roughness → `gltf-pbr`
 //!
-//! glTF describes surfaces with the metal/rough model, whose BRDF is a
-//! Lambert lobe plus a GGX microfacet lobe with Schlick's Fresnel; gonio
-//! maps each material to its Cook-Torrance with those terms. Only the
-//! factors are used (textures are ignored, so a textured model shows its
-//! factors, usually white). With base colour factor `b` (linear RGB, alpha
-//! dropped), metallic `m` and roughness `r`, each clamped to [0, 1]:
-//!
-//! | gonio | from glTF | why |
-//! |---|---|---|
-//! | `model` | `cook-torrance`, `ggx`, `smith`, `schlick`, `microfacet` | glTF's specular BRDF (gonio's Smith is separable, glTF's height-correlated) |
-//! | `k_d` | `b·(1 − m)` | metals have no diffuse lobe (glTF also weights it by 1 − F; gonio adds the lobes as the contract says) |
-//! | `k_s` | 1 | the Fresnel term carries the specular colour |
-//! | `roughness` | `max(r², 10⁻⁴)` | glTF's α = r² |
-//! | `eta`, `kappa` | `η = (1 + √F0)/(1 − √F0)`, `κ = 0`, `F0 = 0.04·(1 − m) + b·m` (capped at 0.99) | Schlick's F0 is computed from η, κ; this η gives exactly glTF's F0 |
-//! | `k_a` | `b` | an ambient light lights the base colour |
+//! Each material becomes a `gltf-pbr` material, glTF 2.0's own BRDF
+//! (Appendix B, `material::brdf::gltf_pbr`), from its factors: base colour
+//! `b` (linear RGB, alpha dropped), metallic `m` and roughness `r`, each
+//! clamped to [0, 1] (`r` kept ≥ 10⁻⁴, the contract's (0, 1]); `roughness`
+//! keeps glTF's perceptual meaning (α = r²). `k_a = b` (an ambient light
+//! lights the base colour) and `k_d = b·(1 − m)` (where a lecture model
+//! chosen in the viewer starts). `emission = emissiveFactor ×
+//! emissiveStrength` (`KHR_materials_emissive_strength`, 1 without it).
+//! A scene file's `material =` on the object replaces all of this with any
+//! model.
 //!
 //! Primitives without a material get glTF's default material (`b = 1`,
-//! `m = 1`, `r = 1`) mapped by the same rule, named `gltf-default`.
+//! `m = 1`, `r = 1`), named `gltf-default`.
 //!
 //! # Lights (`KHR_lights_punctual`)
 //!
@@ -79,8 +78,10 @@
 //! and 1 lx as 1 W/m² (directional: `irradiance = color · intensity`), with
 //! no luminous-efficacy factor, so a file's relative light levels carry
 //! over unchanged. Lights shine along the node's world −Z axis; spot cone
-//! angles are converted from radians to degrees; `range` is kept; no light
-//! casts shadows (the scene file can ask for them).
+//! angles are converted from radians to degrees; `range` is kept. They
+//! are imported without shadows; the scene's light setup turns shadows on
+//! when the scene has no light of its own, or as `shadows.imported_lights`
+//! says (`scene_file::lights`).
 //!
 //! # Camera
 //!
@@ -98,6 +99,7 @@ mod census;
 mod container;
 mod convert;
 mod graph;
+mod images;
 mod import;
 #[cfg(test)]
 mod tests;
@@ -136,6 +138,8 @@ pub struct GltfScene {
     /// does not implement, unknown GLB chunks, trailing bytes), one
     /// sentence each, for `--verbose`.
     pub notes: Vec<String>,
+    /// The images its materials' textures index.
+    pub images: Vec<std::sync::Arc<crate::scene::texture::Image>>,
 }
 
 impl GltfScene {
@@ -191,6 +195,8 @@ pub fn load_from_bytes(bytes: &[u8], base_dir: &Path, limits: &Limits) -> Result
 pub struct GltfLoader {
     remaining: Limits,
     notes: Vec<String>,
+    /// The scene's texture images, held to the same limits.
+    pub images: crate::scene::texture::store::ImageStore,
 }
 
 impl GltfLoader {
@@ -199,6 +205,7 @@ impl GltfLoader {
         GltfLoader {
             remaining: limits,
             notes: Vec::new(),
+            images: crate::scene::texture::store::ImageStore::new(&limits),
         }
     }
 
@@ -268,7 +275,7 @@ fn load_bytes(
     let roots = graph::scene_roots(&document, &parents)?;
     graph::check_cost(&document, &graph::descendants(&document, &roots), limits)?;
     let buffers = buffers::load(&document, container.bin, folder, &mut used_bytes, limits)?;
-    guarded(|| import::Importer::new(&document, &buffers, limits, notes).run(&roots))
+    guarded(|| import::Importer::new(&document, &buffers, limits, notes, folder).run(&roots))
         .and_then(|result| result)
 }
 

@@ -62,8 +62,8 @@ fn box_gltf_and_glb_agree() {
     assert_unit_normals(&text);
     assert_eq!(text.materials.len(), 1);
     assert_eq!(text.materials[0].name, "Red");
-    assert_eq!(text.materials[0].model, ReflectanceModel::CookTorrance);
-    assert!((text.materials[0].k_d - DVec3::new(0.8, 0.0, 0.0)).length() < 1e-6);
+    assert_eq!(text.materials[0].model, ReflectanceModel::GltfPbr);
+    assert!((text.materials[0].base_color - DVec3::new(0.8, 0.0, 0.0)).length() < 1e-6);
     assert_eq!(text.skipped_primitives, 0);
 }
 
@@ -101,9 +101,10 @@ fn triangle_without_indices_gets_generated_normals() {
     // No material in the file: glTF's default, mapped like the others.
     let material = &scene.materials[scene.meshes[0].material];
     assert_eq!(material.name, "gltf-default");
-    assert_eq!(material.k_d, Rgb::ZERO);
     // b = m = r = 1: a white rough metal.
-    assert_eq!(material.k_s, Rgb::ONE);
+    assert_eq!(material.model, ReflectanceModel::GltfPbr);
+    assert_eq!(material.base_color, Rgb::ONE);
+    assert_eq!(material.metallic, 1.0);
     assert_eq!(material.roughness, 1.0);
 }
 
@@ -197,24 +198,63 @@ fn cameras_takes_the_perspective_camera() {
 }
 
 #[test]
-fn metallic_roughness_mapping() {
-    use crate::material::brdf::fresnel::f0_conductor;
+fn metallic_roughness_factors_make_a_gltf_pbr_material() {
     let b = Rgb::new(0.9, 0.5, 0.1);
     let dielectric = material_from_metallic_roughness("d", b, 0.0, 0.5);
-    assert_eq!(dielectric.k_d, b);
+    assert_eq!(dielectric.model, ReflectanceModel::GltfPbr);
+    assert_eq!(dielectric.base_color, b);
+    assert_eq!(dielectric.metallic, 0.0);
     assert_eq!(dielectric.k_a, b);
-    assert_eq!(dielectric.roughness, 0.25);
-    // Schlick's F0, computed from η and κ, is glTF's 0.04.
-    let f0 = f0_conductor(dielectric.eta, dielectric.kappa);
-    assert!((f0 - Rgb::splat(0.04)).abs().max_element() < 1e-12, "{f0}");
+    // The perceptual roughness as the file gives it (α = r² is the model's).
+    assert_eq!(dielectric.roughness, 0.5);
     let metal = material_from_metallic_roughness("m", b, 1.0, 0.0);
-    assert_eq!(metal.k_d, Rgb::ZERO);
-    let f0 = f0_conductor(metal.eta, metal.kappa);
-    assert!((f0 - b).abs().max_element() < 1e-12, "{f0}");
+    assert_eq!(metal.metallic, 1.0);
     assert_eq!(metal.roughness, crate::material::ROUGHNESS_FLOOR);
     let wild = material_from_metallic_roughness("w", Rgb::splat(7.0), -3.0, 9.0);
     wild.validate().unwrap();
     assert_eq!(wild.roughness, 1.0);
+    assert_eq!(wild.base_color, Rgb::ONE);
+    assert_eq!(wild.metallic, 0.0);
+}
+
+#[test]
+fn emissive_factor_times_strength_is_the_emission() {
+    let json = r#"{"asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_materials_emissive_strength"],
+  "materials": [
+    {"name": "glow", "emissiveFactor": [1.0, 0.5, 0.25],
+     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}}},
+    {"name": "plain", "emissiveFactor": [0.2, 0.0, 0.0]},
+    {"name": "bad", "emissiveFactor": [1.0, 1.0, 1.0],
+     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": -1.0}}}
+  ]}"#;
+    let err = crate::scene::gltf_import::load_from_bytes(
+        json.as_bytes(),
+        std::path::Path::new("."),
+        &Limits::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("bad") && err.contains("emission"), "{err}");
+    let ok = json.replace("-1.0", "2.0");
+    let scene = crate::scene::gltf_import::load_from_bytes(
+        ok.as_bytes(),
+        std::path::Path::new("."),
+        &Limits::default(),
+    )
+    .unwrap();
+    assert_eq!(scene.materials[0].emission, Rgb::new(4.0, 2.0, 1.0));
+    // The file's f32, widened.
+    assert_eq!(
+        scene.materials[1].emission,
+        Rgb::new(0.2f32.into(), 0.0, 0.0)
+    );
+    assert_eq!(scene.materials[2].emission, Rgb::splat(2.0));
+    assert!(
+        !scene.notes.iter().any(|n| n.contains("emissive_strength")),
+        "{:?}",
+        scene.notes
+    );
 }
 
 #[test]
@@ -670,5 +710,83 @@ fn sparse_indices_past_the_count_are_refused() {
     assert_input_error(
         load_written(dir.path(), "model.gltf", past.as_bytes()),
         &["sparse index 0 is 7", "3 elements"],
+    );
+}
+
+/// A triangle as `KHR_mesh_quantization` writes it: POSITION as unsigned
+/// shorts (non-normalized, stride 8), NORMAL as normalized signed bytes
+/// (stride 4), and the same accessors without the extension.
+fn quantized_triangle(extension: bool, position_normalized: bool) -> String {
+    let mut bytes = Vec::new();
+    for p in [[0u16, 0, 0], [2, 0, 0], [0, 3, 65535]] {
+        for c in p {
+            bytes.extend_from_slice(&c.to_le_bytes());
+        }
+        bytes.extend_from_slice(&[0, 0]);
+    }
+    for _ in 0..3 {
+        bytes.extend_from_slice(&[0u8, 0, 127, 0]); // +Z, normalized i8
+    }
+    let used = if extension {
+        r#""extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],"#
+    } else {
+        ""
+    };
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, {used}
+  "buffers": [{{"uri": "{}", "byteLength": 36}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 24, "byteStride": 8}},
+                  {{"buffer": 0, "byteOffset": 24, "byteLength": 12, "byteStride": 4}}],
+  "accessors": [{{"bufferView": 0, "componentType": 5123, "normalized": {position_normalized}, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [2, 3, 65535]}},
+                {{"bufferView": 1, "componentType": 5120, "normalized": true, "count": 3, "type": "VEC3"}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1}}}}]}}],
+  "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}]}}"#,
+        data_uri(&bytes)
+    )
+}
+
+#[test]
+fn quantized_attributes_decode_as_the_extension_says() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = load_written(
+        dir.path(),
+        "q.gltf",
+        quantized_triangle(true, false).as_bytes(),
+    )
+    .unwrap();
+    let mesh = &scene.meshes[0];
+    assert_eq!(
+        mesh.positions,
+        vec![
+            DVec3::ZERO,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(0.0, 3.0, 65535.0)
+        ]
+    );
+    assert!(
+        mesh.normals.iter().all(|&n| n == DVec3::Z),
+        "{:?}",
+        mesh.normals
+    );
+    // Normalized unsigned shorts: c / 65535.
+    let scene = load_written(
+        dir.path(),
+        "qn.gltf",
+        quantized_triangle(true, true).as_bytes(),
+    )
+    .unwrap();
+    assert_eq!(
+        scene.meshes[0].positions[2],
+        DVec3::new(0.0, 3.0 / 65535.0, 1.0)
+    );
+    // Without the extension, integer positions are refused by name.
+    let result = load_written(
+        dir.path(),
+        "model.gltf",
+        quantized_triangle(false, false).as_bytes(),
+    );
+    assert_input_error(
+        result,
+        &["accessor 0 (POSITION)", "U16", "KHR_mesh_quantization"],
     );
 }

@@ -6,9 +6,9 @@
 
 use super::lights::LightSetup;
 use super::schema::{CameraSection, ObjectEntry, SceneFile};
-use super::values::{finite_vec, non_negative, unit_vec};
+use super::values::{finite_vec, gpu_coordinate, non_negative, unit_vec};
 use crate::base::ColorValue;
-use crate::material::{Material, ReflectanceModel, material_from_entry};
+use crate::material::{Material, ReflectanceModel, material_from_entry_in};
 use crate::scene::{
     Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, gltf_import, primitives,
 };
@@ -42,7 +42,10 @@ pub fn assemble(
     let mut material_index = BTreeMap::new();
     for (name, entry) in &file.materials {
         material_index.insert(name.clone(), materials.len());
-        materials.push(material_from_entry(name, entry).map_err(bad)?);
+        let mut material = material_from_entry_in(name, entry, base_dir).map_err(bad)?;
+        super::textures::attach(&mut material, name, entry, base_dir, &mut gltf_files.images)
+            .map_err(bad)?;
+        materials.push(material);
     }
     let objects = objects(
         origin,
@@ -103,8 +106,35 @@ pub fn assemble(
         area_lights: lights.area_lights,
         ambient,
         environment,
+        measured_table: measured_table(&file).map_err(bad)?,
+        images: gltf_files.images.images.clone(),
     };
     Ok((scene, light_setup))
+}
+
+/// `shading.measured_table`: the GPU's measured-table resolution, each
+/// count in 2..=`MAX_SAMPLES_PER_AXIS` (a table of 2 × 2 × 2 samples is
+/// the smallest that interpolates).
+fn measured_table(file: &SceneFile) -> std::result::Result<[u32; 3], String> {
+    use crate::material::measured::merl::MAX_SAMPLES_PER_AXIS;
+    let Some(dims) = file.shading.measured_table else {
+        return Ok(crate::material::measured::DEFAULT_TABLE_RESOLUTION);
+    };
+    if dims
+        .iter()
+        .any(|&n| n < 2 || n as usize > MAX_SAMPLES_PER_AXIS)
+    {
+        return Err(format!(
+            "shading.measured_table = {dims:?}: each sample count (θ_h, θ_d, φ_d) must be in 2..={MAX_SAMPLES_PER_AXIS}"
+        ));
+    }
+    let bytes = 12 * dims.iter().map(|&n| n as u64).product::<u64>();
+    if bytes > 1 << 27 {
+        return Err(format!(
+            "shading.measured_table = {dims:?}: a table of {bytes} bytes is over the 128 MiB a storage buffer binding is guaranteed"
+        ));
+    }
+    Ok(dims)
 }
 
 /// `[image]`: width, height and samples per pixel, range-checked.
@@ -163,7 +193,15 @@ fn objects(
         };
         match (&object.gltf, &object.shape) {
             (Some(gltf), None) => {
-                let imported = gltf_files.load(&base_dir.join(gltf))?;
+                let mut imported = gltf_files.load(&base_dir.join(gltf))?;
+                let image_offset = gltf_files
+                    .images
+                    .append(std::mem::take(&mut imported.images));
+                for m in &mut imported.materials {
+                    for t in &mut m.textures {
+                        t.image += image_offset;
+                    }
+                }
                 let offset = materials.len();
                 for mut mesh in imported.meshes {
                     mesh.material = forced_material.unwrap_or(mesh.material + offset);
@@ -302,6 +340,9 @@ fn camera_from_section(
 ) -> std::result::Result<Camera, String> {
     let position = finite_vec("camera.position", s.position)?;
     let target = finite_vec("camera.target", s.target)?;
+    for (key, v) in [("camera.position", position), ("camera.target", target)] {
+        gpu_coordinate(key, v)?;
+    }
     let up = unit_vec("camera.up", s.up)?;
     let forward = (target - position)
         .try_normalize()

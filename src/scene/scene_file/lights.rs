@@ -7,7 +7,7 @@
 
 use super::schema::{AreaEntry, LightEntry};
 use super::shadow_keys::{ShadowsSection, shadow_settings};
-use super::values::{finite_vec, non_negative, range, unit_vec};
+use super::values::{finite_vec, gpu_coordinate, non_negative, range, unit_vec};
 use crate::scene::{AreaLight, Light, Rgb, Scene, ShadowSettings, area_light};
 use glam::DVec3;
 
@@ -54,7 +54,7 @@ impl LightSetup {
         let shadow_defaults = shadow_settings(&section_keys, &|key| format!("shadows.{key}"))?;
         let mut lights = self.imported.clone();
         let mut light_shadows = vec![shadow_defaults; lights.len()];
-        if self.shadows.imported_lights {
+        if self.imported_lights_cast_shadows() {
             lights.iter_mut().for_each(|l| l.set_shadows(true));
         }
         let mut area_lights: Vec<AreaLight> = Vec::new();
@@ -93,6 +93,38 @@ impl LightSetup {
         })
     }
 
+    /// Whether the glTF files' lights cast shadows: `[shadows]
+    /// imported_lights` when given, else when the scene has no
+    /// `[[lights]]` entry (the file's lights are then all the scene has).
+    pub fn imported_lights_cast_shadows(&self) -> bool {
+        self.shadows
+            .imported_lights
+            .unwrap_or(self.entries.is_empty())
+    }
+
+    /// What [`LightSetup::assemble`] decided without being asked, one
+    /// sentence each, for `--verbose`: the default light of a scene
+    /// without lights, and shadows of imported lights by default.
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes = Vec::new();
+        if self.imported.is_empty() && self.entries.is_empty() {
+            notes.push(
+                "the scene has no light: added the default light (directional, 3 W/m² from the upper front left)"
+                    .to_string(),
+            );
+        }
+        if !self.imported.is_empty()
+            && self.shadows.imported_lights.is_none()
+            && self.entries.is_empty()
+        {
+            notes.push(format!(
+                "the {} KHR_lights_punctual light(s) of the glTF file(s) cast shadows, as the scene has no other light (`--set shadows.imported_lights=false` turns that off)",
+                self.imported.len()
+            ));
+        }
+        notes
+    }
+
     /// The shadow settings entry `k` renders with: its own keys over
     /// `[shadows]` over the built-in defaults (the defaults if they are
     /// invalid, which assembly would have refused).
@@ -124,7 +156,7 @@ enum LightSource {
 fn light_from_entry(e: &LightEntry) -> std::result::Result<LightSource, String> {
     Ok(match e {
         LightEntry::Point(e) => LightSource::Punctual(Light::Point {
-            position: finite_vec("position", e.position)?,
+            position: gpu_coordinate("position", finite_vec("position", e.position)?)?,
             intensity: non_negative("intensity", e.intensity.rgb())?,
             range: range(e.range)?,
             shadows: e.shadows,
@@ -144,7 +176,7 @@ fn light_from_entry(e: &LightEntry) -> std::result::Result<LightSource, String> 
                 ));
             }
             LightSource::Punctual(Light::Spot {
-                position: finite_vec("position", e.position)?,
+                position: gpu_coordinate("position", finite_vec("position", e.position)?)?,
                 direction: unit_vec("direction", e.direction)?,
                 intensity: non_negative("intensity", e.intensity.rgb())?,
                 inner_cone_deg: inner,
@@ -203,7 +235,7 @@ fn area_light_from_entry(e: &AreaEntry) -> std::result::Result<AreaLight, String
     }
     Ok(AreaLight {
         shape,
-        position: finite_vec("position", e.position)?,
+        position: gpu_coordinate("position", finite_vec("position", e.position)?)?,
         normal,
         tangent,
         radiance: non_negative("radiance", e.radiance.rgb())?,

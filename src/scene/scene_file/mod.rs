@@ -19,6 +19,7 @@ pub mod lights;
 pub mod overrides;
 pub mod schema;
 pub mod shadow_keys;
+pub mod textures;
 pub mod toml_value;
 mod values;
 
@@ -94,12 +95,14 @@ pub fn load_for_editing(
     }
     let mut gltf_files = gltf_import::GltfLoader::new(limits);
     let (scene, lights) = assembly::assemble(&origin, &base_dir, file, &mut gltf_files)?;
+    let mut notes = gltf_files.notes().to_vec();
+    notes.extend(lights.notes());
     Ok(Loaded {
         scene,
         table,
         base_dir,
         lights,
-        notes: gltf_files.notes().to_vec(),
+        notes,
     })
 }
 /// The scene table of `source` before overrides, with the file (or a
@@ -271,7 +274,32 @@ mod tests {
         let path = Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("assets/gltf/ShadowsDirectional/shadows-directional.gltf");
         let source = SceneSource::File(path);
-        assert!(!load(&source, &[]).unwrap().has_shadows());
+        // The file's light is the scene's only light: it casts shadows by
+        // default, and --verbose says so.
+        let (scene, notes) = load_with_limits(&source, &[], Limits::default()).unwrap();
+        assert!(scene.has_shadows());
+        assert!(
+            notes.iter().any(|n| n.contains("cast shadows")),
+            "{notes:?}"
+        );
+        let off = ["shadows.imported_lights=false".to_string()];
+        assert!(!load(&source, &off).unwrap().has_shadows());
+        // With a light of the scene's own, the imported ones do not.
+        let own = [
+            "lights=[{kind = \"point\", position = [0.0, 3.0, 0.0], intensity = 1.0}]".to_string(),
+        ];
+        let scene = load(&source, &own).unwrap();
+        assert!(!scene.lights[0].casts_shadows());
+        // A glTF without any light gets the default one, said in the notes.
+        let bare = SceneSource::File(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/gltf/Box/Box.gltf"),
+        );
+        let (scene, notes) = load_with_limits(&bare, &[], Limits::default()).unwrap();
+        assert_eq!(scene.lights.len(), 1);
+        assert!(
+            notes.iter().any(|n| n.contains("default light")),
+            "{notes:?}"
+        );
         let scene = load(
             &source,
             &[

@@ -26,11 +26,7 @@ pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
             "the key is empty or has an empty part",
         ));
     }
-    let value = format!("v = {raw}")
-        .parse::<toml::Table>()
-        .ok()
-        .and_then(|mut t| t.remove("v"))
-        .unwrap_or_else(|| toml::Value::String(raw.to_string()));
+    let value = value_of(raw);
 
     let parts: Vec<&str> = key.split('.').collect();
     if parts.len() > MAX_KEY_DEPTH {
@@ -52,6 +48,16 @@ pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
     }
     node.set(last, value)
         .map_err(|p| Error::argument(arg(), format!("`{key}`: {p}")))
+}
+
+/// VALUE of a `--set` (and of the viewer's `--edit`): a TOML value, or
+/// the text as a string when it is not valid TOML (`flat`, `ggx`).
+pub fn value_of(raw: &str) -> toml::Value {
+    format!("v = {raw}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| toml::Value::String(raw.to_string()))
 }
 
 /// A step in a dotted path: tables by key (created when missing), arrays by

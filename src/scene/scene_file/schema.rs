@@ -93,6 +93,10 @@ fn default_fov() -> f64 {
 pub struct ShadingSection {
     #[serde(default)]
     pub mode: Option<String>,
+    /// Sample counts `(n_h, n_d, n_φ)` of the GPU's measured tables
+    /// (default `[90, 90, 180]`, MERL's own).
+    #[serde(default)]
+    pub measured_table: Option<[u32; 3]>,
 }
 
 /// One `[[objects]]` entry: a glTF file or a generated shape.

@@ -74,9 +74,11 @@ macro_rules! shadow_key_types {
         #[derive(Clone, Debug, Default, Deserialize)]
         #[serde(deny_unknown_fields)]
         pub struct ShadowsSection {
-            /// `KHR_lights_punctual` lights cast shadows (default: no).
+            /// `KHR_lights_punctual` lights cast shadows. Unset: they do
+            /// when the scene has no `[[lights]]` entry (the file's own
+            /// lights are then the only ones), else not.
             #[serde(default)]
-            pub imported_lights: bool,
+            pub imported_lights: Option<bool>,
             $(pub $key: Option<$ty>,)*
         }
 

@@ -19,15 +19,44 @@ pub fn unit_vec(key: &str, v: [f64; 3]) -> std::result::Result<DVec3, String> {
         .ok_or_else(|| format!("{key} = {v:?} has no direction (zero length)"))
 }
 
+/// Largest coordinate of a camera or light position: the GPU squares
+/// distances in f32, which overflows past about 1.8e19. A camera at
+/// [1e300, …] was refused as "position and target coincide" (the f64
+/// direction overflowed), a light there gave Inf pixels: issue 19.
+pub const MAX_COORDINATE: f64 = 1e18;
+
+/// Largest radiance, intensity or irradiance component: the GPU
+/// multiplies it in f32 by a BRDF value (the lecture's forms reach about
+/// 4e16, shaders/brdf/phong.wgsl) and a cosine, which must stay below
+/// f32's 3.4e38; 1e20 leaves a factor of 200 (`lights.0.intensity =
+/// 3.5e38` gave Inf pixels where the reference stayed finite: issue 19).
+pub const MAX_RADIANCE: f64 = 1e20;
+
+/// `v` as a position the GPU can compute with ([`MAX_COORDINATE`]).
+pub fn gpu_coordinate(key: &str, v: DVec3) -> std::result::Result<DVec3, String> {
+    if v.abs().max_element() > MAX_COORDINATE {
+        return Err(format!(
+            "{key} = [{:e}, {:e}, {:e}] is beyond ±{MAX_COORDINATE:e}: the GPU squares distances in f32 (largest 3.4e38), so coordinates this large overflow; scale the scene down",
+            v.x, v.y, v.z
+        ));
+    }
+    Ok(v)
+}
+
 pub fn non_negative(key: &str, c: Rgb) -> std::result::Result<Rgb, String> {
-    if c.is_finite() && c.min_element() >= 0.0 {
-        Ok(c)
-    } else {
-        Err(format!(
+    if !(c.is_finite() && c.min_element() >= 0.0) {
+        return Err(format!(
             "{key} = [{}, {}, {}] must be finite and ≥ 0",
             c.x, c.y, c.z
-        ))
+        ));
     }
+    if c.max_element() > MAX_RADIANCE {
+        return Err(format!(
+            "{key} = [{:e}, {:e}, {:e}] is over {MAX_RADIANCE:e}: the GPU computes in f32 (largest 3.4e38) and multiplies it by BRDF values up to about 4e16, so it would overflow to Inf; scale the scene's units down",
+            c.x, c.y, c.z
+        ));
+    }
+    Ok(c)
 }
 
 pub fn range(v: Option<f64>) -> std::result::Result<Option<f64>, String> {

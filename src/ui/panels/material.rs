@@ -7,7 +7,7 @@ use crate::material::param::{Param, Scale, Value, Widget};
 use crate::material::presets::PRESETS;
 use crate::material::table::{self, Terms};
 use crate::material::terms::{Denominator, Distribution, Fresnel, Geometry};
-use crate::material::{Material, ReflectanceModel};
+use crate::material::{Material, ReflectanceModel, measured};
 
 /// Edits `m` in place; returns whether anything changed.
 pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
@@ -25,6 +25,11 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             changed |= param(ui, p, m);
             ui.end_row();
         }
+        if m.model == ReflectanceModel::Measured {
+            ui.label("measured");
+            changed |= measured_choice(ui, m);
+            ui.end_row();
+        }
         if row.terms.fresnel {
             ui.label("preset");
             egui::ComboBox::from_id_salt("preset")
@@ -40,6 +45,25 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             ui.end_row();
         }
     });
+    changed
+}
+
+/// The built-in measured materials (a file's table stays selected until
+/// another is picked).
+fn measured_choice(ui: &mut egui::Ui, m: &mut Material) -> bool {
+    let current = m.measured_brdf().map_or("", |b| b.name.as_str());
+    let mut changed = false;
+    egui::ComboBox::from_id_salt("measured")
+        .selected_text(current)
+        .height(400.0)
+        .show_ui(ui, |ui| {
+            for b in measured::library::all() {
+                if ui.selectable_label(b.name == current, &b.name).clicked() {
+                    m.measured = Some(b);
+                    changed = true;
+                }
+            }
+        });
     changed
 }
 

@@ -48,6 +48,10 @@ struct Material {
     d_norm: f32,          // gaussian-normalized: gaussian_normalization(roughness), from the CPU
     blinn_e: f32,         // blinn, blinn-normalized: blinn_exponent(roughness), from the CPU
     lobe: vec4<f32>,      // a model's own constants, derived on the CPU (ShaderParams::lobe): its WGSL twin says what each is
+    base_color: vec3<f32>, // gltf-pbr: base colour b (textures and vertex colours multiply it per pixel)
+    metallic: f32,         // gltf-pbr: metallic m (its perceptual roughness r is `roughness`)
+    emission: vec3<f32>,   // emitted radiance W/(m²·sr), added to L_o (every model)
+    _pad_end: f32,
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -129,6 +133,8 @@ const MODEL_COOK_TORRANCE: u32 = 7u;
 const MODEL_MIRROR: u32 = 8u;
 const MODEL_OREN_NAYAR: u32 = 9u;
 const MODEL_OREN_NAYAR_FULL: u32 = 10u;
+const MODEL_MEASURED: u32 = 11u;
+const MODEL_GLTF_PBR: u32 = 12u;
 const DISTRIBUTION_BECKMANN: u32 = 0u;
 const DISTRIBUTION_BLINN: u32 = 1u;
 const DISTRIBUTION_BLINN_NORMALIZED: u32 = 2u;
@@ -138,6 +144,7 @@ const DISTRIBUTION_GGX: u32 = 5u;
 const GEOMETRY_V_GROOVE: u32 = 0u;
 const GEOMETRY_SMITH: u32 = 1u;
 const GEOMETRY_NONE: u32 = 2u;
+const GEOMETRY_SMITH_CORRELATED: u32 = 3u;
 const FRESNEL_CONDUCTOR: u32 = 0u;
 const FRESNEL_CONDUCTOR_LECTURE: u32 = 1u;
 const FRESNEL_DIELECTRIC: u32 = 2u;
@@ -278,6 +285,14 @@ const LN_2: f32 = 0.6931471805599453;
 // precision while prefactors up to ~1e13 would show the CPU's f64 value.
 const EXP_CUTOFF: f32 = 80.0;
 
+// UNIFORM_BRANCHES: no `if` whose condition is a material (uniform) value
+// alone, in any shader file: Mesa 22.3's lavapipe "inlines" such uniforms,
+// compiling a new variant of the shader at every draw and never freeing
+// the old one (lvp_execute.c, update_inline_shader_state; cached from
+// Mesa 23.1). The viewer grew by 0.8 MiB a frame with Blinn-Phong (issue
+// 19). Such a test is a select(); both sides are computed anyway on a
+// software rasterizer. tests/viewer_soak.rs keeps the memory flat.
+
 // e^x − e^−80 for x > −80, else 0: continuous at the cut (no jump between
 // CPU and GPU), changes exp(x) by < 1.8e-35; max(…, 0) absorbs exp's
 // rounding just above the cut.
@@ -295,12 +310,10 @@ fn exp_cutoff(x: f32) -> f32 {
 // (and pow) is only absolutely accurate (2^-21) near 1, which k_e up to 1e6
 // would amplify. (Rust: ln_1p.) c ≤ 1 (clamped): a cosine of unit vectors
 // exceeds 1 only by rounding.
+// k_e = 0 is a select, not a branch: see UNIFORM_BRANCHES below.
 fn cos_power(c: f32, k_e: f32) -> f32 {
     if c <= 0.0 {
         return 0.0;
-    }
-    if k_e == 0.0 {
-        return 1.0;
     }
     let u = min(c, 1.0) - 1.0; // exact for c ≥ 0.5 (Sterbenz)
     var ln_c: f32;
@@ -309,7 +322,7 @@ fn cos_power(c: f32, k_e: f32) -> f32 {
     } else {
         ln_c = log(c);
     }
-    return exp_cutoff(k_e * ln_c);
+    return select(exp_cutoff(k_e * ln_c), 1.0, k_e == 0.0);
 }
 
 // R(I) = −I + 2 (I·N) N
@@ -377,10 +390,7 @@ fn cos_power_precise(cos: f32, sin2: f32, k_e: f32) -> f32 {
     if cos <= 0.0 {
         return 0.0;
     }
-    if k_e == 0.0 {
-        return 1.0;
-    }
-    return exp_cutoff(k_e * ln_cos(cos, min(sin2, 1.0)));
+    return select(exp_cutoff(k_e * ln_cos(cos, min(sin2, 1.0))), 1.0, k_e == 0.0);
 }
 
 // Fresnel reflectance of a smooth interface (lecture: "Electric
@@ -455,20 +465,20 @@ fn fresnel_conductor_lecture(cos_i: f32, eta: vec3<f32>, kappa: vec3<f32>) -> ve
 // Exact unpolarized dielectric Fresnel (lecture: "Dielectrics") with
 // Snell's law. η_i = η_t: 0 (no interface, every angle); total internal
 // reflection: 1; otherwise cos θ_t > 0 and both denominators are > 0.
+// η_i = η_t is a select, not a branch on material values alone (see
+// UNIFORM_BRANCHES in phong.wgsl); it discards the 0/0 at grazing incidence.
 fn fresnel_dielectric(cos_i: f32, eta_i: f32, eta_t: f32) -> f32 {
-    if eta_i == eta_t {
-        return 0.0; // no interface; also avoids 0/0 at grazing incidence
-    }
+    let no_interface = eta_i == eta_t;
     let cos_theta = clamp(cos_i, 0.0, 1.0);
     let eta = eta_i / eta_t;
     let sin2_t = eta * eta * (1.0 - cos_theta * cos_theta); // Snell: sin θ_t = η sin θ_i
     if sin2_t >= 1.0 {
-        return 1.0; // total internal reflection (and the critical angle)
+        return select(1.0, 0.0, no_interface); // total internal reflection (and the critical angle)
     }
     let cos_t = sqrt(1.0 - sin2_t); // > 0 here
     let r_par = (eta_t * cos_theta - eta_i * cos_t) / (eta_t * cos_theta + eta_i * cos_t);
     let r_perp = (eta_i * cos_theta - eta_t * cos_t) / (eta_i * cos_theta + eta_t * cos_t);
-    return 0.5 * (r_par * r_par + r_perp * r_perp);
+    return select(0.5 * (r_par * r_par + r_perp * r_perp), 0.0, no_interface);
 }
 
 // Schlick 1994: F0 + (1 − F0)(1 − cos)^5, the fifth power by multiplication.
@@ -609,6 +619,38 @@ fn g1_ggx(alpha: f32, cos_v: f32, cos_vh: f32) -> f32 {
     let cos2 = cos_vc * cos_vc;
     let sin2 = 1.0 - cos2;
     return 2.0 * cos_vc / (cos_vc + sqrt(cos2 + alpha * alpha * sin2));
+}
+
+// Smith's Λ for Beckmann (Walter 2007's rational form, the Λ of g1_beckmann's
+// G1 = 1/(1 + Λ)): a ≥ 1.6 → 0; else (1 − 1.259a + 0.396a²)/(3.535a + 2.181a²).
+// Needs cos_v > 0 (the caller's χ⁺ test).
+fn lambda_beckmann(m: f32, cos_v: f32) -> f32 {
+    let cos_vc = min(cos_v, 1.0); // rounding can pass 1
+    let sin_v = sqrt(1.0 - cos_vc * cos_vc);
+    if cos_vc >= 1.6 * m * sin_v {
+        return 0.0; // a ≥ 1.6
+    }
+    let a = cos_vc / (m * sin_v);
+    let a2 = a * a;
+    return (1.0 - 1.259 * a + 0.396 * a2) / (3.535 * a + 2.181 * a2);
+}
+
+// Smith's Λ for GGX (Heitz 2014): (sqrt(1 + α² tan²) − 1)/2, as
+// α² sin² / (2 cos (cos + sqrt(cos² + α² sin²))) (no cancellation). cos_v > 0.
+fn lambda_ggx(alpha: f32, cos_v: f32) -> f32 {
+    let cos_vc = min(cos_v, 1.0); // rounding can pass 1
+    let cos2 = cos_vc * cos_vc;
+    let a2s2 = alpha * alpha * (1.0 - cos2);
+    return a2s2 / (2.0 * cos_vc * (cos_vc + sqrt(cos2 + a2s2)));
+}
+
+// Height-correlated Smith (Heitz 2014, eq. 99): χ⁺(I·H) χ⁺(V·H) / (1 + Λ(I) + Λ(V));
+// 0 below either horizon. In [0, 1].
+fn g_smith_correlated(lambda_i: f32, lambda_o: f32, cos_i: f32, cos_o: f32, cos_ih: f32, cos_oh: f32) -> f32 {
+    if cos_i <= 0.0 || cos_o <= 0.0 || cos_ih <= 0.0 || cos_oh <= 0.0 {
+        return 0.0; // below the horizon, or χ⁺ = 0
+    }
+    return 1.0 / (1.0 + lambda_i + lambda_o);
 }
 
 // Beckmann slope matching the lecture's Blinn of angle m: sqrt(2 / (e + 2))
@@ -842,11 +884,12 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 }
 
 // The reflection equation for punctual lights, summed (contract):
-// L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
+// L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
 // plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)),
 // plus, with an environment map (`#if environment`), the diffuse term of
 // every model lit by it, k_d/π · E(n), E by spherical harmonics
-// (shaders/environment.wgsl).
+// (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
+// BRDF integrated over the map with N directions.
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
@@ -864,7 +907,7 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> {
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
-    var radiance = m.k_a * globals.ambient;
+    var radiance = m.emission + m.k_a * globals.ambient;
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the

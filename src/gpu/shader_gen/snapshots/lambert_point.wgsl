@@ -46,6 +46,10 @@ struct Material {
     d_norm: f32,          // gaussian-normalized: gaussian_normalization(roughness), from the CPU
     blinn_e: f32,         // blinn, blinn-normalized: blinn_exponent(roughness), from the CPU
     lobe: vec4<f32>,      // a model's own constants, derived on the CPU (ShaderParams::lobe): its WGSL twin says what each is
+    base_color: vec3<f32>, // gltf-pbr: base colour b (textures and vertex colours multiply it per pixel)
+    metallic: f32,         // gltf-pbr: metallic m (its perceptual roughness r is `roughness`)
+    emission: vec3<f32>,   // emitted radiance W/(m²·sr), added to L_o (every model)
+    _pad_end: f32,
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -127,6 +131,8 @@ const MODEL_COOK_TORRANCE: u32 = 7u;
 const MODEL_MIRROR: u32 = 8u;
 const MODEL_OREN_NAYAR: u32 = 9u;
 const MODEL_OREN_NAYAR_FULL: u32 = 10u;
+const MODEL_MEASURED: u32 = 11u;
+const MODEL_GLTF_PBR: u32 = 12u;
 const DISTRIBUTION_BECKMANN: u32 = 0u;
 const DISTRIBUTION_BLINN: u32 = 1u;
 const DISTRIBUTION_BLINN_NORMALIZED: u32 = 2u;
@@ -136,6 +142,7 @@ const DISTRIBUTION_GGX: u32 = 5u;
 const GEOMETRY_V_GROOVE: u32 = 0u;
 const GEOMETRY_SMITH: u32 = 1u;
 const GEOMETRY_NONE: u32 = 2u;
+const GEOMETRY_SMITH_CORRELATED: u32 = 3u;
 const FRESNEL_CONDUCTOR: u32 = 0u;
 const FRESNEL_CONDUCTOR_LECTURE: u32 = 1u;
 const FRESNEL_DIELECTRIC: u32 = 2u;
@@ -307,11 +314,12 @@ fn light_incidence(light: Light, x: vec3<f32>) -> Incidence {
 }
 
 // The reflection equation for punctual lights, summed (contract):
-// L_o = k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
+// L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
 // plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)),
 // plus, with an environment map (`#if environment`), the diffuse term of
 // every model lit by it, k_d/π · E(n), E by spherical harmonics
-// (shaders/environment.wgsl).
+// (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
+// BRDF integrated over the map with N directions.
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
@@ -329,7 +337,7 @@ fn light_incidence(light: Light, x: vec3<f32>) -> Incidence {
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
-    var radiance = m.k_a * globals.ambient;
+    var radiance = m.emission + m.k_a * globals.ambient;
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the

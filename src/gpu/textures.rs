@@ -1,0 +1,322 @@
+//! Material textures on the GPU (bind group 2, `shaders/textures.wgsl`):
+//! the scene's images uploaded once as `rgba16float` with their mip
+//! chains (the half floats the CPU reference reads,
+//! `scene::texture::Image`), one `wgpu::Sampler` per distinct glTF
+//! sampler, and one bind group per material: its slots' transforms,
+//! UV sets and field masks in a small uniform buffer, then a texture view
+//! and a sampler per slot (unused slots: a 1×1 white texel).
+//!
+//! Why `rgba16float`: colour textures must be filtered after the sRGB
+//! decode (glTF 2.0 §3.9.6), which an 8-bit linear format would quantize
+//! in the darks, and `rgba8unorm-srgb` decodes with the GPU's own
+//! approximation; f16 holds the exactly decoded values to 2⁻¹¹ relative,
+//! and the CPU reference reads the very same halves. 8 bytes per texel,
+//! × 4/3 for the mips.
+
+use super::context::GpuContext;
+use crate::material::texture::{self as mt, Filter, Sampler, TextureTarget, Wrap};
+use crate::scene::Scene;
+use crate::scene::texture::Image;
+use crate::{Error, Result};
+use bytemuck::{Pod, Zeroable};
+use std::collections::HashMap;
+use wgpu::util::DeviceExt;
+
+/// Texture slots a material can have (bindings 1–6 textures, 7–12
+/// samplers).
+pub const MAX_TEXTURE_SLOTS: usize = 6;
+
+/// The format of every texture.
+pub const TEXTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// `TextureSlot` of `shaders/textures.wgsl` (48 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct GpuTextureSlot {
+    pub row_u: [f32; 4],
+    pub row_v: [f32; 4],
+    pub fields: u32,
+    pub channel: u32,
+    pub tex_coord: u32,
+    pub _pad: u32,
+}
+
+/// The most textures one material the scene draws has (the shader's
+/// `TEXTURE_SLOTS`).
+pub fn slot_count(scene: &Scene) -> u32 {
+    scene
+        .meshes
+        .iter()
+        .map(|m| scene.materials[m.material].textures.len())
+        .max()
+        .unwrap_or(0)
+        .min(MAX_TEXTURE_SLOTS) as u32
+}
+
+/// Group 2's layout: the slots' uniform, the textures, the samplers.
+pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
+    let mut entries = vec![wgpu::BindGroupLayoutEntry {
+        binding: 0,
+        visibility: stage,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }];
+    for s in 0..MAX_TEXTURE_SLOTS as u32 {
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 1 + s,
+            visibility: stage,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        });
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 1 + MAX_TEXTURE_SLOTS as u32 + s,
+            visibility: stage,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            count: None,
+        });
+    }
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("gonio material textures"),
+        entries: &entries,
+    })
+}
+
+/// The slots of one material: what the GPU multiplies, from the material
+/// as rendered (roughness floor applied). An error when a texture names
+/// a parameter the GPU cannot vary ([`mt::gpu_field_mask`]) or a
+/// material has more textures than slots.
+pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlot>> {
+    if m.textures.len() > MAX_TEXTURE_SLOTS {
+        return Err(Error::Scene(format!(
+            "material `{}` has {} textures; the GPU renderer binds at most {MAX_TEXTURE_SLOTS}",
+            m.name,
+            m.textures.len()
+        )));
+    }
+    let mut slots = vec![GpuTextureSlot::default(); MAX_TEXTURE_SLOTS];
+    for (slot, t) in slots.iter_mut().zip(&m.textures) {
+        let TextureTarget::Param(key) = t.target;
+        let fields = mt::gpu_field_mask(m, key)
+            .map_err(|e| Error::Scene(format!("material `{}`: {e}", m.name)))?;
+        let colour = matches!(
+            crate::material::table::param_for(m.model, key).map(|p| p.kind),
+            Some(crate::material::param::Kind::Color)
+        );
+        let matrix = t.transform.matrix();
+        let row = |r: usize| {
+            [
+                matrix.x_axis[r] as f32,
+                matrix.y_axis[r] as f32,
+                matrix.z_axis[r] as f32,
+                0.0,
+            ]
+        };
+        *slot = GpuTextureSlot {
+            row_u: row(0),
+            row_v: row(1),
+            // A texture on a zero constant changes nothing: 0 fields is
+            // an unused slot, which is the same.
+            fields,
+            channel: if colour { 4 } else { t.channel as u32 },
+            tex_coord: t.tex_coord as u32,
+            _pad: 0,
+        };
+    }
+    Ok(slots)
+}
+
+/// The sampler descriptor of a glTF sampler. Without mipmaps the view is
+/// one level (see [`SceneTextures`]), so the mipmap filter is moot.
+fn sampler_descriptor(s: &Sampler) -> wgpu::SamplerDescriptor<'static> {
+    let address = |w: Wrap| match w {
+        Wrap::Repeat => wgpu::AddressMode::Repeat,
+        Wrap::ClampToEdge => wgpu::AddressMode::ClampToEdge,
+        Wrap::MirroredRepeat => wgpu::AddressMode::MirrorRepeat,
+    };
+    let filter = |f: Filter| match f {
+        Filter::Nearest => wgpu::FilterMode::Nearest,
+        Filter::Linear => wgpu::FilterMode::Linear,
+    };
+    let mipmap = match s.mipmap {
+        Some(Filter::Linear) => wgpu::MipmapFilterMode::Linear,
+        _ => wgpu::MipmapFilterMode::Nearest,
+    };
+    wgpu::SamplerDescriptor {
+        label: Some("gonio material texture"),
+        address_mode_u: address(s.wrap_u),
+        address_mode_v: address(s.wrap_v),
+        mag_filter: filter(s.mag),
+        min_filter: filter(s.min),
+        mipmap_filter: mipmap,
+        ..Default::default()
+    }
+}
+
+/// An image's texture with every level written.
+fn upload(ctx: &GpuContext, image: &Image) -> wgpu::Texture {
+    let base = &image.levels[0];
+    let texels: Vec<u16> = image
+        .levels
+        .iter()
+        .flat_map(|l| l.texels.iter().flatten().copied())
+        .collect();
+    ctx.device.create_texture_with_data(
+        &ctx.queue,
+        &wgpu::TextureDescriptor {
+            label: Some(&image.name),
+            size: wgpu::Extent3d {
+                width: base.width,
+                height: base.height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: image.levels.len() as u32,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: TEXTURE_FORMAT,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&texels),
+    )
+}
+
+/// A scene's textures on the GPU and each material's group 2.
+pub struct SceneTextures {
+    /// One bind group per scene material (index for index).
+    groups: Vec<wgpu::BindGroup>,
+    /// Bytes of texels on the GPU (all levels).
+    pub bytes: u64,
+}
+
+impl SceneTextures {
+    /// Uploads `scene`'s images and makes every material's bind group
+    /// with `layout` ([`group_layout`]).
+    pub fn new(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, scene: &Scene) -> Result<Self> {
+        let device = &ctx.device;
+        let textures: Vec<wgpu::Texture> = scene.images.iter().map(|i| upload(ctx, i)).collect();
+        let full: Vec<wgpu::TextureView> = textures
+            .iter()
+            .map(|t| t.create_view(&Default::default()))
+            .collect();
+        // Level 0 alone, for samplers without mipmaps (glTF minFilter
+        // NEAREST or LINEAR): the view clamps the level, the sampler still
+        // chooses the mag or min filter from the true footprint.
+        let base: Vec<wgpu::TextureView> = textures
+            .iter()
+            .map(|t| {
+                t.create_view(&wgpu::TextureViewDescriptor {
+                    mip_level_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        let white = upload(
+            ctx,
+            &Image::new(
+                "white",
+                crate::scene::texture::Encoding::Linear,
+                crate::scene::texture::decode::Decoded {
+                    width: 1,
+                    height: 1,
+                    rgba: vec![[1.0; 4]],
+                },
+            ),
+        )
+        .create_view(&Default::default());
+        let mut samplers: HashMap<Sampler, wgpu::Sampler> = HashMap::new();
+        let default_sampler = device.create_sampler(&sampler_descriptor(&Sampler::default()));
+        let materials = scene.effective_materials();
+        let mut groups = Vec::with_capacity(materials.len());
+        for m in &materials {
+            let slots = material_slots(m)?;
+            for t in &m.textures {
+                samplers
+                    .entry(t.sampler)
+                    .or_insert_with(|| device.create_sampler(&sampler_descriptor(&t.sampler)));
+            }
+            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("gonio texture slots"),
+                contents: bytemuck::cast_slice(&slots),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let mut entries = vec![wgpu::BindGroupEntry {
+                binding: 0,
+                resource: buffer.as_entire_binding(),
+            }];
+            for s in 0..MAX_TEXTURE_SLOTS {
+                let (view, sampler) = match m.textures.get(s) {
+                    Some(t) => (
+                        if t.sampler.mipmap.is_some() {
+                            &full[t.image]
+                        } else {
+                            &base[t.image]
+                        },
+                        &samplers[&t.sampler],
+                    ),
+                    None => (&white, &default_sampler),
+                };
+                entries.push(wgpu::BindGroupEntry {
+                    binding: 1 + s as u32,
+                    resource: wgpu::BindingResource::TextureView(view),
+                });
+                entries.push(wgpu::BindGroupEntry {
+                    binding: 1 + (MAX_TEXTURE_SLOTS + s) as u32,
+                    resource: wgpu::BindingResource::Sampler(sampler),
+                });
+            }
+            groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("gonio material textures"),
+                layout,
+                entries: &entries,
+            }));
+        }
+        Ok(SceneTextures {
+            groups,
+            bytes: scene.images.iter().map(|i| i.gpu_bytes()).sum(),
+        })
+    }
+
+    /// Group 2 of material `m`.
+    pub fn group(&self, m: u32) -> &wgpu::BindGroup {
+        &self.groups[m as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slot_mirrors_the_wgsl_size() {
+        assert_eq!(size_of::<GpuTextureSlot>(), 48);
+        let key = crate::gpu::shader_gen::ShaderKey {
+            variants: [crate::material::Material::new(
+                "m",
+                crate::material::ReflectanceModel::Lambert,
+            )
+            .variant()]
+            .into(),
+            texture_slots: 1,
+            ..Default::default()
+        };
+        let wgsl = crate::gpu::shader_gen::compose(&key);
+        let module = naga::front::wgsl::parse_str(&wgsl).unwrap();
+        let ty = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some("TextureSlot"))
+            .unwrap()
+            .1;
+        assert_eq!(ty.inner.size(module.to_ctx()), 48);
+    }
+}

@@ -1,0 +1,287 @@
+//! Where a material parameter varies over the surface: the lecture's
+//! spatially varying BRDF `f_r(x, ω_i, ω_o)` as textures. A
+//! [`MaterialTexture`] says which parameter an image multiplies and how
+//! the image is read at a surface point: which UV set, the
+//! `KHR_texture_transform` of it, and the glTF sampler (wrap modes,
+//! filters). The images themselves are the scene's
+//! (`crate::scene::texture::Image`, by index); both renderers read them
+//! with the rules here (GPU: `shaders/textures.wgsl`, reference:
+//! `crate::reference::texture`).
+
+use glam::{DMat3, DVec2};
+
+/// What a texture does to the material at a point.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TextureTarget {
+    /// Multiplies the parameter with this scene-file key (`k_d`,
+    /// `roughness`, ...): a colour parameter by the texel's RGB, a scalar
+    /// one by one channel ([`MaterialTexture::channel`]).
+    Param(&'static str),
+}
+
+/// One texture of a material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialTexture {
+    pub target: TextureTarget,
+    /// Index into the scene's images.
+    pub image: usize,
+    /// The channel a scalar parameter reads (0 = R; glTF's metallic is B,
+    /// its roughness G). Colour parameters read RGB.
+    pub channel: usize,
+    /// Which `TEXCOORD_n` (0 or 1).
+    pub tex_coord: usize,
+    pub transform: UvTransform,
+    pub sampler: Sampler,
+}
+
+/// How texel indices outside `0..size` wrap (glTF `wrapS` / `wrapT`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Wrap {
+    /// glTF 10497, the default.
+    #[default]
+    Repeat,
+    /// glTF 33071.
+    ClampToEdge,
+    /// glTF 33648.
+    MirroredRepeat,
+}
+
+/// One texel or a bilinear blend of four (glTF NEAREST / LINEAR).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Filter {
+    Nearest,
+    #[default]
+    Linear,
+}
+
+/// A glTF sampler. `mipmap: None` reads level 0 only (glTF's minFilter
+/// NEAREST or LINEAR); `Some(f)` chooses levels from the pixel footprint
+/// and blends two (`Linear`) or takes the nearest (`Nearest`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Sampler {
+    pub wrap_u: Wrap,
+    pub wrap_v: Wrap,
+    pub mag: Filter,
+    pub min: Filter,
+    pub mipmap: Option<Filter>,
+}
+
+impl Default for Sampler {
+    /// glTF leaves the filters of a texture without a sampler to the
+    /// implementation; gonio takes what the Khronos sample viewer takes:
+    /// repeat, bilinear magnification, trilinear minification.
+    fn default() -> Self {
+        Sampler {
+            wrap_u: Wrap::Repeat,
+            wrap_v: Wrap::Repeat,
+            mag: Filter::Linear,
+            min: Filter::Linear,
+            mipmap: Some(Filter::Linear),
+        }
+    }
+}
+
+impl Sampler {
+    /// The sampler of glTF's numeric codes (`None`: the default's).
+    pub fn from_gltf(
+        mag: Option<u32>,
+        min: Option<u32>,
+        wrap_s: u32,
+        wrap_t: u32,
+    ) -> Result<Self, String> {
+        let wrap = |code: u32| match code {
+            10497 => Ok(Wrap::Repeat),
+            33071 => Ok(Wrap::ClampToEdge),
+            33648 => Ok(Wrap::MirroredRepeat),
+            other => Err(format!("wrap mode {other} is not one glTF defines")),
+        };
+        let d = Sampler::default();
+        let mag = match mag {
+            None => d.mag,
+            Some(9728) => Filter::Nearest,
+            Some(9729) => Filter::Linear,
+            Some(other) => return Err(format!("magFilter {other} is not one glTF defines")),
+        };
+        use Filter::{Linear as L, Nearest as N};
+        let (min, mipmap) = match min {
+            None => (d.min, d.mipmap),
+            Some(9728) => (N, None),
+            Some(9729) => (L, None),
+            Some(9984) => (N, Some(N)),
+            Some(9985) => (L, Some(N)),
+            Some(9986) => (N, Some(L)),
+            Some(9987) => (L, Some(L)),
+            Some(other) => return Err(format!("minFilter {other} is not one glTF defines")),
+        };
+        Ok(Sampler {
+            wrap_u: wrap(wrap_s)?,
+            wrap_v: wrap(wrap_t)?,
+            mag,
+            min,
+            mipmap,
+        })
+    }
+}
+
+/// `KHR_texture_transform`: `uv' = offset + R·(scale ⊙ uv)` with
+/// `R = [[cos r, sin r], [−sin r, cos r]]` (rows), the sign the Khronos
+/// sample viewer, three.js and Babylon.js use (the extension's own GLSL
+/// listing has it wrong: KhronosGroup/glTF#1563; the contract,
+/// `shared/spec/conventions.md`). The identity without the extension.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvTransform {
+    pub offset: DVec2,
+    /// Radians.
+    pub rotation: f64,
+    pub scale: DVec2,
+}
+
+impl Default for UvTransform {
+    fn default() -> Self {
+        UvTransform {
+            offset: DVec2::ZERO,
+            rotation: 0.0,
+            scale: DVec2::ONE,
+        }
+    }
+}
+
+impl UvTransform {
+    /// The affine map as a 3×3 matrix acting on `(u, v, 1)`.
+    pub fn matrix(&self) -> DMat3 {
+        let (s, c) = self.rotation.sin_cos();
+        // Columns: images of (1,0), (0,1) and the translation.
+        DMat3::from_cols(
+            glam::DVec3::new(c * self.scale.x, -s * self.scale.x, 0.0),
+            glam::DVec3::new(s * self.scale.y, c * self.scale.y, 0.0),
+            glam::DVec3::new(self.offset.x, self.offset.y, 1.0),
+        )
+    }
+
+    /// `uv` transformed.
+    pub fn apply(&self, uv: DVec2) -> DVec2 {
+        self.matrix().transform_point2(uv)
+    }
+
+    /// A UV difference (a derivative) transformed: no offset.
+    pub fn apply_vector(&self, d: DVec2) -> DVec2 {
+        self.matrix().transform_vector2(d)
+    }
+}
+
+/// The GPU material's fields, in the order of their bits in a texture
+/// slot's field mask (`shaders/textures.wgsl` reads the same order), with
+/// their component counts: the values the WGSL `Material` holds for a
+/// material (`k_a` from the material, the rest from
+/// [`super::brdf::ShaderParams`]).
+pub fn gpu_field_values(m: &super::Material) -> Vec<(&'static str, Vec<f64>)> {
+    let p = m.brdf().shader_params();
+    let rgb = |c: crate::base::Rgb| c.to_array().to_vec();
+    vec![
+        ("k_a", rgb(m.k_a)),
+        ("k_d", rgb(p.k_d)),
+        ("k_s", rgb(p.k_s)),
+        ("k_e", vec![p.k_e]),
+        ("roughness", vec![p.roughness]),
+        ("sigma_x", vec![p.sigma_x]),
+        ("sigma_y", vec![p.sigma_y]),
+        ("eta", rgb(p.eta)),
+        ("kappa", rgb(p.kappa)),
+        ("eta_i", vec![p.eta_i]),
+        ("eta_t", vec![p.eta_t]),
+        ("d_norm", vec![p.d_norm]),
+        ("blinn_e", vec![p.blinn_e]),
+        ("lobe", p.lobe.to_vec()),
+        ("base_color", rgb(p.base_color)),
+        ("metallic", vec![p.metallic]),
+        ("emission", rgb(m.emission)),
+    ]
+}
+
+/// Which GPU material fields a texture on parameter `key` scales, as a
+/// bit mask over [`gpu_field_values`]: found by scaling the parameter in a
+/// copy of `m` and seeing which fields change. Each must change by
+/// exactly the same factor (channel by channel for a colour), so that
+/// multiplying the GPU's field by the texel is the same as multiplying
+/// the parameter: an error names the field when a model derives it from
+/// the parameter some other way (e.g. Blinn's exponent from the
+/// roughness), which the GPU could not follow per pixel.
+pub fn gpu_field_mask(m: &super::Material, key: &str) -> Result<u32, String> {
+    use super::param::Value;
+    let p = super::table::param_for(m.model, key)
+        .ok_or_else(|| format!("{} has no parameter `{key}`", m.model.name()))?;
+    let scale = [0.5, 0.25, 0.125];
+    let mut probe = m.clone();
+    let scaled = match p.read(m) {
+        Value::Color(c) => Value::Color(c * crate::base::Rgb::from_array(scale)),
+        Value::Scalar(v) => Value::Scalar(0.5 * v),
+    };
+    p.write(&mut probe, scaled);
+    let colour = matches!(scaled, Value::Color(_));
+    let mut mask = 0;
+    for (bit, ((name, before), (_, after))) in gpu_field_values(m)
+        .into_iter()
+        .zip(gpu_field_values(&probe))
+        .enumerate()
+    {
+        if before == after {
+            continue;
+        }
+        let linear = before.iter().zip(&after).enumerate().all(|(c, (b, a))| {
+            let s = if colour && before.len() == 3 {
+                scale[c]
+            } else {
+                scale[0]
+            };
+            (a - s * b).abs() <= 1e-12 * b.abs()
+        });
+        if !linear || (colour && before.len() != 3) {
+            return Err(format!(
+                "{key}_texture: {} derives `{name}` from {key} on the CPU, so it cannot vary over the surface",
+                m.model.name()
+            ));
+        }
+        mask |= 1 << bit;
+    }
+    Ok(mask)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The contract's rotation: r = 90° takes (1, 0) to (0, −1) and
+    /// (0, 1) to (1, 0), i.e. u' = v, v' = −u (rows of R).
+    #[test]
+    fn rotation_follows_the_contracts_sign() {
+        let t = UvTransform {
+            rotation: std::f64::consts::FRAC_PI_2,
+            ..Default::default()
+        };
+        assert!((t.apply(DVec2::X) - DVec2::new(0.0, -1.0)).length() < 1e-12);
+        assert!((t.apply(DVec2::Y) - DVec2::X).length() < 1e-12);
+        let t = UvTransform {
+            offset: DVec2::new(0.5, 0.25),
+            rotation: 0.0,
+            scale: DVec2::new(2.0, 3.0),
+        };
+        assert!((t.apply(DVec2::ONE) - DVec2::new(2.5, 3.25)).length() < 1e-12);
+        assert!((t.apply_vector(DVec2::ONE) - DVec2::new(2.0, 3.0)).length() < 1e-12);
+    }
+
+    #[test]
+    fn gltf_codes_map_to_samplers() {
+        let s = Sampler::from_gltf(Some(9728), Some(9986), 33648, 33071).unwrap();
+        assert_eq!(s.mag, Filter::Nearest);
+        assert_eq!((s.min, s.mipmap), (Filter::Nearest, Some(Filter::Linear)));
+        assert_eq!(
+            (s.wrap_u, s.wrap_v),
+            (Wrap::MirroredRepeat, Wrap::ClampToEdge)
+        );
+        assert_eq!(
+            Sampler::from_gltf(None, None, 10497, 10497).unwrap(),
+            Sampler::default()
+        );
+        assert!(Sampler::from_gltf(Some(1), None, 10497, 10497).is_err());
+    }
+}

@@ -1,0 +1,150 @@
+//! glTF textures: the images (a buffer view, a base64 `data:` URI, or a
+//! file inside the glTF's folder, under the same rules as buffers), the
+//! samplers (glTF's default when a texture has none), `texCoord` and
+//! `KHR_texture_transform`, as a [`MaterialTexture`] for a parameter.
+//! Images are decoded once per encoding, within the limits
+//! (`scene::texture::store`).
+
+use super::buffers::{confine, decode_base64_uri, has_scheme, percent_decode, relative_path};
+use crate::material::texture::{MaterialTexture, Sampler, TextureTarget, UvTransform};
+use crate::scene::limits::read_regular_file;
+use crate::scene::texture::{Encoding, store::ImageStore};
+use glam::DVec2;
+use std::borrow::Cow;
+use std::path::Path;
+
+/// Where the images of one file come from and go to.
+pub(super) struct ImageSource<'a> {
+    pub buffers: &'a [Cow<'a, [u8]>],
+    pub folder: &'a Path,
+    pub store: ImageStore,
+}
+
+impl<'a> ImageSource<'a> {
+    /// The texture of `info` on parameter `key`, its image read as
+    /// `encoding`, reading channel `channel` when the parameter is a
+    /// scalar. Errors name the texture and the image.
+    pub fn texture(
+        &mut self,
+        info: &gltf::texture::Info,
+        key: &'static str,
+        encoding: Encoding,
+        channel: usize,
+    ) -> Result<MaterialTexture, String> {
+        let texture = info.texture();
+        let at = format!("texture {}", texture.index());
+        let tex_coord = info.tex_coord() as usize;
+        if tex_coord > 1 {
+            return Err(format!(
+                "{at} reads TEXCOORD_{tex_coord}; gonio reads TEXCOORD_0 and TEXCOORD_1"
+            ));
+        }
+        let image = self
+            .image(&texture.source(), encoding)
+            .map_err(|e| format!("{at}: {e}"))?;
+        let s = texture.sampler();
+        let sampler = Sampler::from_gltf(
+            s.mag_filter().map(|f| f.as_gl_enum()),
+            s.min_filter().map(|f| f.as_gl_enum()),
+            s.wrap_s().as_gl_enum(),
+            s.wrap_t().as_gl_enum(),
+        )
+        .map_err(|e| format!("{at}: sampler: {e}"))?;
+        let mut transform = UvTransform::default();
+        let mut tex_coord = tex_coord;
+        if let Some(t) = info.texture_transform() {
+            let [ox, oy] = t.offset();
+            let [sx, sy] = t.scale();
+            transform = UvTransform {
+                offset: DVec2::new(ox.into(), oy.into()),
+                rotation: t.rotation().into(),
+                scale: DVec2::new(sx.into(), sy.into()),
+            };
+            if let Some(set) = t.tex_coord() {
+                tex_coord = set as usize;
+            }
+            let finite = transform.offset.is_finite()
+                && transform.scale.is_finite()
+                && transform.rotation.is_finite();
+            if !finite || tex_coord > 1 {
+                return Err(format!(
+                    "{at}: KHR_texture_transform is not finite or reads a set past TEXCOORD_1"
+                ));
+            }
+        }
+        Ok(MaterialTexture {
+            target: TextureTarget::Param(key),
+            image,
+            channel,
+            tex_coord,
+            transform,
+            sampler,
+        })
+    }
+
+    /// The index of glTF image `image` decoded as `encoding`.
+    fn image(&mut self, image: &gltf::Image, encoding: Encoding) -> Result<usize, String> {
+        let index = image.index();
+        let name = image.name().map_or_else(
+            || format!("image {index}"),
+            |n| format!("image {index} (\"{n}\")"),
+        );
+        let bytes =
+            image_bytes(self.buffers, self.folder, image).map_err(|e| format!("{name} {e}"))?;
+        self.store
+            .load_bytes(
+                format!("{}:{name}", self.folder.display()),
+                &bytes,
+                encoding,
+            )
+            .map_err(|e| format!("{name}: {e}"))
+    }
+}
+
+/// An image's encoded bytes; errors follow "image N ...".
+fn image_bytes<'a>(
+    buffers: &'a [Cow<'a, [u8]>],
+    folder: &Path,
+    image: &gltf::Image,
+) -> Result<Cow<'a, [u8]>, String> {
+    match image.source() {
+        gltf::image::Source::View { view, .. } => {
+            let buffer = &buffers[view.buffer().index()];
+            let (start, length) = (view.offset(), view.length());
+            let end = start.checked_add(length).filter(|&e| e <= buffer.len());
+            match end {
+                Some(end) => Ok(Cow::Borrowed(&buffer[start..end])),
+                None => Err(format!(
+                    "has buffer view {} (bytes {start}.. +{length}) past the end of buffer {} ({} bytes)",
+                    view.index(),
+                    view.buffer().index(),
+                    buffer.len()
+                )),
+            }
+        }
+        gltf::image::Source::Uri { uri, .. } => {
+            let shown = super::abbreviate(uri);
+            if uri
+                .get(..5)
+                .is_some_and(|s| s.eq_ignore_ascii_case("data:"))
+            {
+                return decode_base64_uri(uri)
+                    .map(Cow::Owned)
+                    .map_err(|e| format!("(uri \"{shown}\") {e}"));
+            }
+            if has_scheme(uri) {
+                return Err(format!(
+                    "(uri \"{shown}\") has a URI scheme; images must be relative file references, data: URIs or buffer views"
+                ));
+            }
+            let reference = uri.split(['?', '#']).next().unwrap_or_default();
+            let path = percent_decode(reference)
+                .and_then(|p| relative_path(&p))
+                .and_then(|rel| confine(folder, &rel))
+                .map_err(|e| format!("(uri \"{shown}\") {e}"))?;
+            read_regular_file(&path, 1 << 32)
+                .map(Cow::Owned)
+                .map_err(|e| format!("(uri \"{shown}\", {}) {e}", path.display()))
+        }
+    }
+}

@@ -1,0 +1,55 @@
+//! `[materials.NAME] PARAM_texture = "image.png"`: a texture on any
+//! colour or scalar parameter (the contract's "Textures"), relative to the
+//! scene file. The texture multiplies the parameter's constant; a colour
+//! parameter (one the viewer edits with a colour picker: `k_a`, `k_d`,
+//! `k_s`, ...) reads an sRGB-encoded image's RGB decoded to linear, any
+//! other parameter (`roughness`, `k_e`, `eta`, ...) a linear image, a
+//! scalar one its first channel. Scene-file textures read UV set 0 with
+//! glTF's default sampler (repeat, bilinear, trilinear mipmaps).
+
+use crate::material::param::Widget;
+use crate::material::texture::{MaterialTexture, Sampler, TextureTarget, UvTransform};
+use crate::material::{Material, MaterialEntry, entry::TEXTURE_SUFFIX, table};
+use crate::scene::texture::{Encoding, store::ImageStore};
+use std::path::Path;
+
+/// Loads the textures `entry` names into `images` and attaches them to
+/// `m` (the material made from `entry`, named `name`); the message of a
+/// failure names the key and the image file.
+pub fn attach(
+    m: &mut Material,
+    name: &str,
+    entry: &MaterialEntry,
+    base_dir: &Path,
+    images: &mut ImageStore,
+) -> Result<(), String> {
+    for (key, file) in &entry.textures {
+        let param_key = key.strip_suffix(TEXTURE_SUFFIX).unwrap_or(key);
+        let at = format!("materials.{name}.{key}");
+        let param = table::param_for(m.model, param_key).ok_or_else(|| {
+            format!(
+                "{at}: the model {} has no parameter `{param_key}` to texture",
+                m.model.name()
+            )
+        })?;
+        let encoding = match param.widget {
+            Widget::ColorPicker => Encoding::Srgb,
+            _ => Encoding::Linear,
+        };
+        let path = base_dir.join(file);
+        let image = images
+            .load_file(&path, encoding)
+            .map_err(|e| format!("{at}: the image {}: {e}", path.display()))?;
+        m.textures.push(MaterialTexture {
+            target: TextureTarget::Param(param.key),
+            image,
+            channel: 0,
+            tex_coord: 0,
+            transform: UvTransform::default(),
+            sampler: Sampler::default(),
+        });
+        crate::material::texture::gpu_field_mask(m, param_key)
+            .map_err(|e| format!("materials.{name}.{e}"))?;
+    }
+    Ok(())
+}

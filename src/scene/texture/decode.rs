@@ -1,0 +1,208 @@
+//! PNG and JPEG bytes to linear RGBA, with the size checked before any
+//! pixel is decoded.
+//!
+//! Colour images in 8- or 16-bit formats are sRGB-encoded (glTF 2.0 §3.9.6
+//! for base colour and emission; the contract for scene files' colour
+//! parameters) and are decoded to linear here, before any filtering;
+//! data images (metallic-roughness, normals, occlusion, scalar
+//! parameters) are linear and only scaled to [0, 1]. Embedded gamma
+//! (`gAMA`), `sRGB` and ICC chunks are ignored, as the Khronos
+//! TextureEncodingTest requires: a PNG's values are taken as sRGB whatever
+//! it declares.
+
+use image::ImageDecoder;
+use std::io::Cursor;
+
+/// How an image's values are to be read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Encoding {
+    /// Colour: the sRGB transfer function is undone (IEC 61966-2-1) on
+    /// R, G, B; alpha is linear.
+    Srgb,
+    /// Data: values as stored, scaled to [0, 1].
+    Linear,
+}
+
+/// A decoded image: linear RGBA, row 0 at the top (glTF's UV (0, 0) is the
+/// top-left corner).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Decoded {
+    pub width: u32,
+    pub height: u32,
+    /// `width · height` texels.
+    pub rgba: Vec<[f32; 4]>,
+}
+
+/// Largest side of a texture: wgpu's default `max_texture_dimension_2d`,
+/// which gonio's device requests (larger images would not upload).
+pub const MAX_TEXTURE_SIDE: u32 = 8192;
+
+/// Bytes gonio holds per texel of a texture with its mip chain, for the
+/// budget: the decoder's RGBA at up to 16 bits per channel (8 B), the f32
+/// linear copy (16 B), and the f16 levels (8 B · 4/3 ≈ 11 B).
+pub const BYTES_PER_TEXEL: u64 = 8 + 16 + 11;
+
+/// The size the header of `bytes` declares, read without decoding pixels.
+pub fn dimensions(bytes: &[u8]) -> Result<(u32, u32), String> {
+    let reader = image::ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| format!("cannot read it: {e}"))?;
+    match reader.format() {
+        Some(image::ImageFormat::Png | image::ImageFormat::Jpeg) => {}
+        Some(other) => {
+            return Err(format!(
+                "it is a {other:?} image; gonio reads PNG and JPEG textures"
+            ));
+        }
+        None => return Err("it is neither a PNG nor a JPEG image".into()),
+    }
+    reader
+        .into_dimensions()
+        .map_err(|e| format!("its header is corrupt: {e}"))
+}
+
+/// Checks a declared size against the texture limits and `budget` (bytes
+/// left); returns the bytes it will take.
+pub fn check_size(width: u32, height: u32, budget: u64) -> Result<u64, String> {
+    if width == 0 || height == 0 || width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
+        return Err(format!(
+            "its size {width}×{height} is outside 1..={MAX_TEXTURE_SIDE} per side"
+        ));
+    }
+    let bytes = u64::from(width) * u64::from(height) * BYTES_PER_TEXEL;
+    if bytes > budget {
+        return Err(crate::scene::limits::exceeded(
+            &format!("decoding its {width}×{height} texels"),
+            format!("{bytes} bytes"),
+            "bytes",
+            budget,
+        ));
+    }
+    Ok(bytes)
+}
+
+/// Decodes `bytes` (PNG or JPEG) to linear RGBA after checking the
+/// declared size against `budget` bytes; the decoder is held to the same
+/// allocation limit. Grey images repeat their value in R, G and B.
+pub fn decode(bytes: &[u8], encoding: Encoding, budget: u64) -> Result<Decoded, String> {
+    let (width, height) = dimensions(bytes)?;
+    check_size(width, height, budget)?;
+    let mut reader = image::ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| format!("cannot read it: {e}"))?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+    limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+    limits.max_alloc = Some(budget);
+    reader.limits(limits);
+    let mut decoder = reader
+        .into_decoder()
+        .map_err(|e| format!("it is corrupt: {e}"))?;
+    // No colour management: an embedded ICC profile is not applied.
+    let _ = decoder.icc_profile();
+    let image =
+        image::DynamicImage::from_decoder(decoder).map_err(|e| format!("it is corrupt: {e}"))?;
+    let rgba = image.into_rgba32f();
+    let to_linear = |v: f32| match encoding {
+        Encoding::Srgb => srgb_to_linear(v),
+        Encoding::Linear => v,
+    };
+    let rgba = rgba
+        .pixels()
+        .map(|p| {
+            let [r, g, b, a] = p.0;
+            [to_linear(r), to_linear(g), to_linear(b), a]
+        })
+        .collect();
+    Ok(Decoded {
+        width,
+        height,
+        rgba,
+    })
+}
+
+/// The sRGB EOTF (IEC 61966-2-1), encoded value in [0, 1] to linear; in
+/// f64 and rounded once, so the result is the correctly rounded f32 of
+/// the exact value.
+pub fn srgb_to_linear(v: f32) -> f32 {
+    let v = f64::from(v);
+    let linear = if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    };
+    linear as f32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn png(width: u32, height: u32, pixels: &[u8]) -> Vec<u8> {
+        let mut out = Vec::new();
+        image::codecs::png::PngEncoder::new(&mut out)
+            .write_image(pixels, width, height, image::ExtendedColorType::Rgb8)
+            .unwrap();
+        out
+    }
+
+    use image::ImageEncoder;
+
+    #[test]
+    fn srgb_values_decode_to_linear_and_data_values_stay() {
+        let bytes = png(2, 1, &[255, 128, 0, 10, 20, 30]);
+        let srgb = decode(&bytes, Encoding::Srgb, 1 << 20).unwrap();
+        assert_eq!((srgb.width, srgb.height), (2, 1));
+        assert_eq!(srgb.rgba[0][0], 1.0);
+        // sRGB 128/255 is 0.2158605 linear.
+        assert!((srgb.rgba[0][1] - 0.215_860_5).abs() < 1e-6);
+        assert_eq!(srgb.rgba[0][3], 1.0);
+        assert!((srgb.rgba[1][0] - (10.0 / 255.0 / 12.92)).abs() < 1e-7);
+        let data = decode(&bytes, Encoding::Linear, 1 << 20).unwrap();
+        assert!((data.rgba[0][1] - 128.0 / 255.0).abs() < 1e-7);
+    }
+
+    /// A header declaring 65535² texels in a few dozen bytes is refused
+    /// from the header alone.
+    #[test]
+    fn a_huge_declared_size_is_refused_before_decoding() {
+        let mut bytes = png(1, 1, &[1, 2, 3]);
+        // IHDR's width and height at bytes 16..24, and its CRC (over
+        // bytes 12..29) made right, so the header is valid.
+        bytes[16..20].copy_from_slice(&65535u32.to_be_bytes());
+        bytes[20..24].copy_from_slice(&65535u32.to_be_bytes());
+        let mut crc = !0u32;
+        for &b in &bytes[12..29] {
+            crc ^= u32::from(b);
+            for _ in 0..8 {
+                crc = if crc & 1 != 0 {
+                    (crc >> 1) ^ 0xEDB8_8320
+                } else {
+                    crc >> 1
+                };
+            }
+        }
+        let crc = !crc;
+        bytes[29..33].copy_from_slice(&crc.to_be_bytes());
+        let e = decode(&bytes, Encoding::Srgb, 1 << 40).unwrap_err();
+        assert!(e.contains("65535×65535"), "{e}");
+        let e = check_size(4096, 4096, 1 << 20).unwrap_err();
+        assert!(e.contains("--limit bytes="), "{e}");
+    }
+
+    #[test]
+    fn corrupt_and_foreign_bytes_are_named() {
+        let mut bytes = png(4, 4, &[7; 48]);
+        let n = bytes.len();
+        bytes.truncate(n - 20);
+        assert!(
+            decode(&bytes, Encoding::Srgb, 1 << 20)
+                .unwrap_err()
+                .contains("corrupt")
+        );
+        let e = decode(b"GIF89a......", Encoding::Srgb, 1 << 20).unwrap_err();
+        assert!(e.contains("PNG and JPEG"), "{e}");
+        let e = decode(b"hello", Encoding::Srgb, 1 << 20).unwrap_err();
+        assert!(e.contains("neither"), "{e}");
+    }
+}

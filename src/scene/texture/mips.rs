@@ -1,0 +1,81 @@
+//! The mip chain of an image, built on load in linear space.
+//!
+//! Each level halves the one above (sizes rounded down, at least 1, as
+//! Vulkan and wgpu count levels: `⌊log₂ max(w, h)⌋ + 1` of them) and each
+//! of its texels is the mean of the 2×2 block it covers (at an odd edge the
+//! block's missing column or row repeats the last one: a box filter, the
+//! usual `generateMipmap` rule). Filtering happens on linear values in
+//! f32, from the unrounded level above, because averaging sRGB-encoded
+//! values darkens (glTF 2.0 §3.9.6: colour textures are filtered in
+//! linear space); every level is then rounded to f16 once.
+
+use super::decode::Decoded;
+use super::{Level, to_half_bits};
+
+/// Every level of `image`, level 0 first.
+pub fn chain(image: Decoded) -> Vec<Level> {
+    let (mut width, mut height, mut rgba) = (image.width, image.height, image.rgba);
+    let mut levels = vec![round(width, height, &rgba)];
+    while width > 1 || height > 1 {
+        let (w, h) = ((width / 2).max(1), (height / 2).max(1));
+        rgba = halve(width, height, &rgba, w, h);
+        (width, height) = (w, h);
+        levels.push(round(width, height, &rgba));
+    }
+    levels
+}
+
+/// The next level `w × h` of `src` (`width × height`).
+fn halve(width: u32, height: u32, src: &[[f32; 4]], w: u32, h: u32) -> Vec<[f32; 4]> {
+    let at = |x: u32, y: u32| src[(y.min(height - 1) * width + x.min(width - 1)) as usize];
+    let mut out = Vec::with_capacity((w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let (x0, y0) = (2 * x, 2 * y);
+            let block = [
+                at(x0, y0),
+                at(x0 + 1, y0),
+                at(x0, y0 + 1),
+                at(x0 + 1, y0 + 1),
+            ];
+            let mut mean = [0.0f32; 4];
+            for (c, m) in mean.iter_mut().enumerate() {
+                *m = 0.25 * block.iter().map(|t| t[c]).sum::<f32>();
+            }
+            out.push(mean);
+        }
+    }
+    out
+}
+
+fn round(width: u32, height: u32, rgba: &[[f32; 4]]) -> Level {
+    Level {
+        width,
+        height,
+        texels: rgba.iter().map(|t| t.map(to_half_bits)).collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_halve_down_to_one_texel_and_average_in_linear_space() {
+        // A 5×2 image: black and white columns alternate.
+        let rgba = (0..10)
+            .map(|i| if i % 2 == 0 { [0.0; 4] } else { [1.0; 4] })
+            .collect();
+        let levels = chain(Decoded {
+            width: 5,
+            height: 2,
+            rgba,
+        });
+        let sizes: Vec<_> = levels.iter().map(|l| (l.width, l.height)).collect();
+        assert_eq!(sizes, [(5, 2), (2, 1), (1, 1)]);
+        // Level 1: blocks (0,1) and (2,3) are half white: linear 0.5.
+        assert_eq!(levels[1].texel(0, 0).x, 0.5);
+        assert_eq!(levels[1].texel(1, 0).x, 0.5);
+        assert_eq!(levels[2].texel(0, 0).x, 0.5);
+    }
+}
