@@ -127,6 +127,9 @@ fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
 // L_o = ∫ f_r L_env cos θ dω by N cosine-weighted Hammersley directions:
 // (π/N) Σ_k f_r(ω_k, ω_o) L_env(ω_k). Twin: sampled::estimate.
 fn environment_sampled(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    // The loop bound is a uniform, but group 3's, which every draw of a
+    // frame shares (unlike the material's: UNIFORM_BRANCHES in
+    // brdf/phong.wgsl), so lavapipe inlines it once per setting.
     let n = environment.samples;
     // The directions' frame from the normal alone (as sampled::estimate).
     let t = any_tangent(frame.n);

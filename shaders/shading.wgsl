@@ -81,7 +81,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     #if environment_sampled
     radiance += environment_sampled(m, wo, frame);
     #elif environment
-    radiance += m.k_d * FRAC_1_PI * sh_irradiance(n);
+    radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
     #endif
     #if mirror
     let reflected = mirror_direction(wo, n);
@@ -89,3 +89,16 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     #endif
     return radiance;
 }
+
+#if environment
+// The albedo the environment's SH irradiance lights: k_d; gltf-pbr's
+// Lambert part (1 − m)·b (per pixel, after textures); 0 for a measured
+// table. Selects, not branches (UNIFORM_BRANCHES in brdf/phong.wgsl).
+// f64 twin: environment_diffuse_albedo in src/shading.rs.
+fn environment_diffuse_albedo(m: Material) -> vec3<f32> {
+    let model = brdf_model(m);
+    let pbr = (1.0 - m.metallic) * m.base_color;
+    let albedo = select(m.k_d, pbr, model == MODEL_GLTF_PBR);
+    return select(albedo, vec3<f32>(0.0), model == MODEL_MEASURED);
+}
+#endif

@@ -46,7 +46,9 @@ pub fn reflected_radiance(
         use crate::environment::map::{ReferenceDiffuse, Specular};
         use crate::environment::sampled;
         radiance += match (map.settings.specular, map.settings.reference) {
-            (Specular::None, _) => material.brdf().k_d * FRAC_1_PI * map.irradiance_reference(n),
+            (Specular::None, _) => {
+                environment_diffuse_albedo(material) * FRAC_1_PI * map.irradiance_reference(n)
+            }
             (Specular::Sampled, ReferenceDiffuse::Sh) => {
                 sampled::estimate(map, material, frame, wo)
             }
@@ -61,4 +63,20 @@ pub fn reflected_radiance(
             brdf::mirror_reflectance(material, n.dot(wo)) * scene.environment.radiance(reflected);
     }
     radiance
+}
+
+/// The albedo the environment's SH irradiance lights (`specular =
+/// "none"`): `k_d` for the lecture's models; for gltf-pbr its Lambert part
+/// `(1 − m)·b` from the per-pixel base colour and metallic (the factor
+/// `1 − F_d` of the mix form depends on `V·H` and is left out: at most 4 %
+/// at normal incidence, more towards grazing); nothing for a measured table
+/// (its `f_r` has no separate diffuse term; `specular = "sampled"`
+/// integrates all of it). WGSL twin: `environment_diffuse_albedo` in
+/// shaders/shading.wgsl.
+pub fn environment_diffuse_albedo(material: &Material) -> Rgb {
+    match material.model {
+        ReflectanceModel::GltfPbr => material.base_color * (1.0 - material.metallic),
+        ReflectanceModel::Measured => Rgb::ZERO,
+        _ => material.brdf().k_d,
+    }
 }

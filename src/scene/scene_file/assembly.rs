@@ -59,22 +59,14 @@ pub fn assemble(
     gltf_files
         .charge(0, 0, file.lights.len() as u64)
         .map_err(|p| bad(format!("lights: {p}")))?;
+    let (ambient, environment) = ambient_and_environment(&file, base_dir).map_err(bad)?;
     let light_setup = LightSetup {
         imported: objects.lights,
         shadows: file.shadows.clone(),
         entries: file.lights.clone(),
+        environment_map: environment.map.is_some(),
     };
     let lights = light_setup.assemble().map_err(bad)?;
-    let (ambient, environment) = ambient_and_environment(&file, base_dir).map_err(bad)?;
-    // The contract: no default light in a scene lit by an environment map.
-    let mut lights = lights;
-    if environment.map.is_some()
-        && light_setup.imported.is_empty()
-        && light_setup.entries.is_empty()
-    {
-        lights.lights.clear();
-        lights.light_shadows.clear();
-    }
 
     let meshes = objects.meshes;
     let scene_bounds =

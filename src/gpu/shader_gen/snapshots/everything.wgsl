@@ -1278,6 +1278,9 @@ fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
 // L_o = ∫ f_r L_env cos θ dω by N cosine-weighted Hammersley directions:
 // (π/N) Σ_k f_r(ω_k, ω_o) L_env(ω_k). Twin: sampled::estimate.
 fn environment_sampled(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    // The loop bound is a uniform, but group 3's, which every draw of a
+    // frame shares (unlike the material's: UNIFORM_BRANCHES in
+    // brdf/phong.wgsl), so lavapipe inlines it once per setting.
     let n = environment.samples;
     // The directions' frame from the normal alone (as sampled::estimate).
     let t = any_tangent(frame.n);
@@ -1484,6 +1487,17 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
     let reflected = mirror_direction(wo, n);
     radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected);
     return radiance;
+}
+
+// The albedo the environment's SH irradiance lights: k_d; gltf-pbr's
+// Lambert part (1 − m)·b (per pixel, after textures); 0 for a measured
+// table. Selects, not branches (UNIFORM_BRANCHES in brdf/phong.wgsl).
+// f64 twin: environment_diffuse_albedo in src/shading.rs.
+fn environment_diffuse_albedo(m: Material) -> vec3<f32> {
+    let model = brdf_model(m);
+    let pbr = (1.0 - m.metallic) * m.base_color;
+    let albedo = select(m.k_d, pbr, model == MODEL_GLTF_PBR);
+    return select(albedo, vec3<f32>(0.0), model == MODEL_MEASURED);
 }
 
 // Phong shading (lecture: "Shading Model: Phong Shading"): the normal is

@@ -356,6 +356,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     return radiance;
 }
 
+
 // Phong shading (lecture: "Shading Model: Phong Shading"): the normal is
 // interpolated (perspective-correct barycentrics), renormalized, and the
 // reflection equation is evaluated at every pixel's interpolated position.
