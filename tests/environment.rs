@@ -505,3 +505,58 @@ fn the_sampled_mode_matches_its_twin_and_converges() {
     }
     assert!(errors[3] < errors[1] && errors[1] < errors[0], "{errors:?}");
 }
+
+/// The SH diffuse term lights gltf-pbr's Lambert part `(1 − m)·b` (a
+/// metallic glTF was black when it took the stored `k_d`) and a measured
+/// table not at all (its `f_r` has no separate diffuse term), on the GPU
+/// as in the twin: with no other light, the gltf-pbr sphere shows
+/// `(1 − m)·b/π · E` within the SH sum's tolerance, and the measured
+/// sphere is black.
+#[test]
+fn sh_diffuse_of_gltf_pbr_and_measured_materials() {
+    let s = scene(&[
+        "environment.map=../environment/blobs.hdr",
+        "environment.reference=sh",
+        "materials.lambert={model=\"gltf-pbr\", base_color=[0.9, 0.6, 0.2], metallic=0.5}",
+        "materials.gold={model=\"measured\", measured=\"gold-metallic-paint\"}",
+    ]);
+    let env = s.environment.map.clone().unwrap();
+    let frame = gpu(&s);
+    let (center, jittered) = common::reference_with_jitter(&s);
+    let mut tol = common::tolerance(&s, &center);
+    tol.abs += sh_tolerance(&env, 0.45) + lookup_tolerance(&env, None);
+    let c = gonio::output::compare::compare_with_jitter(&frame, &center, &jittered, tol);
+    eprintln!("gltf-pbr and measured under SH: {}", c.summary());
+    common::assert_agrees(
+        "gltf-pbr, measured",
+        "GPU and its twin disagree",
+        &c,
+        &frame,
+        &center,
+    );
+    // The spheres' centres: left (gltf-pbr) lit, middle (measured) black.
+    let row = frame.height / 2;
+    let at = |col: u32| {
+        let k = (row * frame.width + col) as usize;
+        assert!(frame.coverage[k], "column {col} is not covered");
+        frame.radiance[k]
+    };
+    let col = frame.width * 30 / 160;
+    let pbr = at(col);
+    assert!(pbr[0] > 0.01, "gltf-pbr: {pbr:?}");
+    assert_eq!(at(frame.width / 2), [0.0; 3], "measured");
+    // The same pixel of a Lambert sphere of k_d = (1 − m)·b: the same
+    // arithmetic on the GPU up to the albedo's rounding (a few ε).
+    let lambert = gpu(&scene(&[
+        "environment.map=../environment/blobs.hdr",
+        "materials.lambert.k_d=[0.45, 0.3, 0.1]",
+    ]));
+    let k = (row * frame.width + col) as usize;
+    for (c, (&a, &b)) in pbr.iter().zip(&lambert.radiance[k]).enumerate() {
+        let (a, b) = (a as f64, b as f64);
+        assert!(
+            (a - b).abs() <= 16.0 * common::EPS * b.max(1e-3),
+            "channel {c}: {a} vs {b}"
+        );
+    }
+}
