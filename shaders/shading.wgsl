@@ -1,6 +1,10 @@
 // The reflection equation for punctual lights, summed (contract):
 // L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
-// plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)).
+// plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)),
+// plus, with an environment map (`#if environment`), the diffuse term of
+// every model lit by it, k_d/π · E(n), E by spherical harmonics
+// (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
+// BRDF integrated over the map with N directions.
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
@@ -17,11 +21,15 @@
 #if mirror
 // Radiance of the environment from unit direction d. Twin: Environment::radiance.
 fn environment_radiance(d: vec3<f32>) -> vec3<f32> {
+    #if environment
+    return environment_map_radiance(d);
+    #else
     let y = clamp(d.y, -1.0, 1.0);
     if y >= 0.0 {
         return globals.env_horizon + (globals.env_zenith - globals.env_horizon) * y;
     }
     return globals.env_horizon + (globals.env_ground - globals.env_horizon) * (-y);
+    #endif
 }
 #endif
 
@@ -70,9 +78,27 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
         radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * cos_theta_i;
         #endif
     }
+    #if environment_sampled
+    radiance += environment_sampled(m, wo, frame);
+    #elif environment
+    radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
+    #endif
     #if mirror
     let reflected = mirror_direction(wo, n);
     radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected);
     #endif
     return radiance;
 }
+
+#if environment
+// The albedo the environment's SH irradiance lights: k_d; gltf-pbr's
+// Lambert part (1 − m)·b (per pixel, after textures); 0 for a measured
+// table. Selects, not branches (UNIFORM_BRANCHES in brdf/phong.wgsl).
+// f64 twin: environment_diffuse_albedo in src/shading.rs.
+fn environment_diffuse_albedo(m: Material) -> vec3<f32> {
+    let model = brdf_model(m);
+    let pbr = (1.0 - m.metallic) * m.base_color;
+    let albedo = select(m.k_d, pbr, model == MODEL_GLTF_PBR);
+    return select(albedo, vec3<f32>(0.0), model == MODEL_MEASURED);
+}
+#endif

@@ -2,7 +2,10 @@
 //! `L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l`
 //! (`L_e` the material's emission, the contract's extension),
 //! plus, for the ideal mirror, `ρ_s(θ_o) · L_env(R(V))` (lecture: "Mirror
-//! BRDF": `L_o = ρ_s(θ_o) L_i(θ_o, φ_o ± π)`).
+//! BRDF": `L_o = ρ_s(θ_o) L_i(θ_o, φ_o ± π)`),
+//! plus, with an environment map, the diffuse term of every model lit by
+//! it, `k_d/π · E(n)` (Ramamoorthi & Hanrahan 2001): `E` by SH on the GPU,
+//! integrated (or by the same SH, `environment.reference = "sh"`) here.
 //!
 //! This is the CPU twin of `reflected_radiance` in `shaders/shading.wgsl`.
 
@@ -10,6 +13,7 @@ use crate::material::brdf::{self, SurfaceFrame, phong::mirror_direction};
 use crate::material::{Material, ReflectanceModel};
 use crate::scene::{Rgb, Scene};
 use glam::DVec3;
+use std::f64::consts::FRAC_1_PI;
 
 /// Reflected radiance at `x` with shading frame `frame`, seen from `eye`.
 /// `material` is an effective material (`Scene::effective_materials`).
@@ -38,10 +42,41 @@ pub fn reflected_radiance(
         radiance +=
             material.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
     }
+    if let Some(map) = &scene.environment.map {
+        use crate::environment::map::{ReferenceDiffuse, Specular};
+        use crate::environment::sampled;
+        radiance += match (map.settings.specular, map.settings.reference) {
+            (Specular::None, _) => {
+                environment_diffuse_albedo(material) * FRAC_1_PI * map.irradiance_reference(n)
+            }
+            (Specular::Sampled, ReferenceDiffuse::Sh) => {
+                sampled::estimate(map, material, frame, wo)
+            }
+            (Specular::Sampled, ReferenceDiffuse::Integrated) => {
+                sampled::integrated(map, &map.data.nodes, material, frame, wo)
+            }
+        };
+    }
     if material.model == ReflectanceModel::Mirror {
         let reflected = mirror_direction(wo, n);
         radiance +=
             brdf::mirror_reflectance(material, n.dot(wo)) * scene.environment.radiance(reflected);
     }
     radiance
+}
+
+/// The albedo the environment's SH irradiance lights (`specular =
+/// "none"`): `k_d` for the lecture's models; for gltf-pbr its Lambert part
+/// `(1 − m)·b` from the per-pixel base colour and metallic (the factor
+/// `1 − F_d` of the mix form depends on `V·H` and is left out: at most 4 %
+/// at normal incidence, more towards grazing); nothing for a measured table
+/// (its `f_r` has no separate diffuse term; `specular = "sampled"`
+/// integrates all of it). WGSL twin: `environment_diffuse_albedo` in
+/// shaders/shading.wgsl.
+pub fn environment_diffuse_albedo(material: &Material) -> Rgb {
+    match material.model {
+        ReflectanceModel::GltfPbr => material.base_color * (1.0 - material.metallic),
+        ReflectanceModel::Measured => Rgb::ZERO,
+        _ => material.brdf().k_d,
+    }
 }

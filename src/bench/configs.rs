@@ -267,6 +267,38 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
     };
     knob("area_samples", samples, "no area light in the scene file");
 
+    // How the environment lights the surfaces: the diffuse term by SH
+    // alone, or the whole BRDF with N directions (the truth integrates
+    // the whole BRDF: measure::truth).
+    let specular = match &base.environment.map {
+        Some(map) => {
+            use crate::environment::map::Specular;
+            let s = map.settings;
+            let mut v = vec![(
+                "sh diffuse".to_string(),
+                vec!["environment.specular=none".to_string()],
+                s.specular == Specular::None,
+            )];
+            for n in [16u32, 64, 256] {
+                v.push((
+                    format!("sampled {n}"),
+                    vec![
+                        "environment.specular=sampled".into(),
+                        format!("environment.samples={n}"),
+                    ],
+                    s.specular == Specular::Sampled && s.samples == n,
+                ));
+            }
+            v
+        }
+        None => Vec::new(),
+    };
+    knob(
+        "environment_specular",
+        specular,
+        "the scene has no environment map",
+    );
+
     // Not in the renderer yet: the loader refuses the key and the knob is
     // reported as not measured (see the module docs).
     knob(
@@ -311,6 +343,8 @@ pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
         && a.area_lights == b.area_lights
         && a.triangle_count() == b.triangle_count()
         && used(a) == used(b)
+        && a.environment.map.as_ref().map(|m| m.settings)
+            == b.environment.map.as_ref().map(|m| m.settings)
 }
 
 /// `(width, height)` scaled by `s`, at least 1 pixel.
@@ -356,7 +390,12 @@ mod tests {
     fn builtin_base_has_something_for_every_knob() {
         let base = builtin_base();
         let (configs, skipped) = configs(&base, false);
-        assert!(skipped.is_empty(), "{skipped:?}");
+        // The built-in base has no environment map (its truth would
+        // integrate the map per pixel): environment_specular_is_a_knob.
+        assert!(
+            skipped.len() == 1 && skipped[0].knob == "environment_specular",
+            "{skipped:?}"
+        );
         let knobs: std::collections::BTreeSet<_> =
             configs.iter().map(|c| c.knob.as_str()).collect();
         for k in [
@@ -389,6 +428,32 @@ mod tests {
             if c.knob != "msaa" {
                 loaded.unwrap_or_else(|e| panic!("{}: {e}", c.label()));
             }
+        }
+    }
+
+    /// With an environment map the specular mode is a knob: every
+    /// setting loads, and each draws something else than the base.
+    #[test]
+    fn environment_specular_is_a_knob() {
+        let overrides: Vec<String> = BUILTIN_BASE
+            .iter()
+            .map(|s| s.to_string())
+            .chain(["environment.map=\"sky\"".to_string()])
+            .collect();
+        let base = load(&SceneSource::BuiltIn, &overrides).unwrap();
+        let (configs, skipped) = configs(&base, false);
+        assert!(skipped.is_empty(), "{skipped:?}");
+        let settings: Vec<_> = configs
+            .iter()
+            .filter(|c| c.knob == "environment_specular")
+            .collect();
+        // The base (SH diffuse) is not repeated: the three sampled ones.
+        assert_eq!(settings.len(), 3, "{settings:?}");
+        for c in settings {
+            let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
+            let scene =
+                load(&SceneSource::BuiltIn, &all).unwrap_or_else(|e| panic!("{}: {e}", c.label()));
+            assert!(!draws_the_same(&base, &scene), "{}", c.label());
         }
     }
 

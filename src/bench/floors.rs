@@ -198,14 +198,20 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         // The same buffers as the specialized shader: only the code differs.
         arrays: ShaderKey::new(scene, &ShadowPlan::new(scene)).arrays,
         vertex_shadow_coords: false,
+        environment: false,
+        environment_sampled: false,
         texture_slots: 0,
     }
 }
 
-/// The scene's own specialized key without shadow code (for the harness).
+/// The scene's own specialized key without shadow, environment or texture
+/// code (for the harness, which binds group 0 alone, as [`uber_key`]).
 pub fn specialized_key(scene: &Scene) -> ShaderKey {
     let mut key = ShaderKey::new(scene, &ShadowPlan::new(scene));
     key.shadows = Default::default();
+    key.environment = false;
+    key.environment_sampled = false;
+    key.texture_slots = 0;
     key
 }
 

@@ -101,10 +101,17 @@ pub fn render_pass_ms(timings: &Timings) -> f64 {
 }
 
 /// The truth image of `base`: the CPU reference (f64, ray-traced shadows)
-/// with per-pixel shading and every area light at `area_samples` samples.
+/// with per-pixel shading and every area light at `area_samples` samples;
+/// an environment map lights through the whole BRDF, integrated by the
+/// map's texel quadrature (`environment::sampled::integrated`), whatever
+/// `environment.specular` the GPU uses.
 pub fn truth(base: &Scene, area_samples: u32) -> Frame {
     let mut scene = base.with_area_samples(area_samples);
     scene.shading = crate::scene::ShadingMode::Phong;
+    if let Some(map) = &mut scene.environment.map {
+        map.settings.specular = crate::environment::map::Specular::Sampled;
+        map.settings.reference = crate::environment::map::ReferenceDiffuse::Integrated;
+    }
     reference::render(&scene)
 }
 

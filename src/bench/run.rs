@@ -175,10 +175,11 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     base_overrides.extend(args.set.iter().cloned());
     let base = scene_file::load(&source, &base_overrides)?;
-    if base.lights.is_empty() || base.meshes.is_empty() {
+    // An environment map lights the scene as lights do.
+    if (base.lights.is_empty() && base.environment.map.is_none()) || base.meshes.is_empty() {
         return Err(Error::argument(
             scene_label(args.scene.as_deref()),
-            "the scene has no geometry or no light: there is nothing to measure",
+            "the scene has no geometry or no light (nor an environment map): there is nothing to measure",
         ));
     }
     let (all, mut not_measured) = configs::configs(&base, args.smoke);

@@ -320,6 +320,13 @@ impl SceneDraw {
         self.draw_range(pass, batch.range.clone(), 0..1);
     }
 
+    /// Binds group 0 at material `material`'s slot (for a pass that reads
+    /// only the globals, as the environment's background).
+    pub fn bind_scene_group(&self, pass: &mut wgpu::RenderPass<'_>, material: u32) {
+        let offset = bind_groups::material_offset(material, self.material_stride);
+        pass.set_bind_group(0, &self.bind_group, &[offset]);
+    }
+
     /// Draws every batch with `pipeline` (a pipeline for all the scene's
     /// materials, as the bench's).
     pub fn draw_with(&self, pass: &mut wgpu::RenderPass<'_>, pipeline: &wgpu::RenderPipeline) {

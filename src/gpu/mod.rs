@@ -49,6 +49,7 @@ pub mod bind_groups;
 pub mod bindings;
 pub mod context;
 pub mod draw;
+pub mod environment;
 pub mod geometry;
 pub mod layout;
 pub mod measured_tables;

@@ -21,6 +21,7 @@
 
 use super::bind_groups::SceneLayouts;
 use super::bindings::UniformArrays;
+use super::environment::{EnvironmentLayouts, background_pipeline};
 use super::geometry::VertexLayout;
 use super::shader_gen::{self, Output, ShaderKey};
 use super::shadows;
@@ -57,6 +58,10 @@ pub struct PipelineCache {
     pass_pipelines: HashMap<u64, wgpu::RenderPipeline>,
     /// The comparison sampler every shadow-map bind group uses.
     shadow_sampler: wgpu::Sampler,
+    /// Layouts with the environment's group 3, per [`UniformArrays`].
+    environment_layouts: HashMap<UniformArrays, EnvironmentLayouts>,
+    /// Background pipelines by arrays, colour format and samples.
+    backgrounds: HashMap<(UniformArrays, wgpu::TextureFormat, u32), wgpu::RenderPipeline>,
 }
 
 impl PipelineCache {
@@ -105,6 +110,8 @@ impl PipelineCache {
             pass_pipeline_layout,
             pass_pipelines: HashMap::new(),
             shadow_sampler,
+            environment_layouts: HashMap::new(),
+            backgrounds: HashMap::new(),
         }
     }
 
@@ -145,6 +152,36 @@ impl PipelineCache {
         self.scene_layouts
             .entry(arrays)
             .or_insert_with(|| SceneLayouts::new(device, arrays))
+    }
+
+    /// The layouts with the environment's group 3 for `arrays`, made on
+    /// first use.
+    pub fn environment_layouts(&mut self, arrays: UniformArrays) -> &EnvironmentLayouts {
+        self.scene_layouts(arrays);
+        let scene = &self.scene_layouts[&arrays];
+        let device = &self.device;
+        self.environment_layouts
+            .entry(arrays)
+            .or_insert_with(|| EnvironmentLayouts::new(device, scene))
+    }
+
+    /// The background pass's pipeline for scenes bound as `arrays`
+    /// drawing into `format` with `samples`, compiled on first use.
+    pub fn background(
+        &mut self,
+        arrays: UniformArrays,
+        format: wgpu::TextureFormat,
+        samples: u32,
+    ) -> Result<wgpu::RenderPipeline> {
+        if let Some(p) = self.backgrounds.get(&(arrays, format, samples)) {
+            return Ok(p.clone());
+        }
+        self.environment_layouts(arrays);
+        let layouts = &self.environment_layouts[&arrays];
+        let pipeline = background_pipeline(&self.device, layouts, format, samples)?;
+        self.backgrounds
+            .insert((arrays, format, samples), pipeline.clone());
+        Ok(pipeline)
     }
 
     /// The comparison sampler of shadow-map bind groups.
@@ -202,8 +239,16 @@ impl PipelineCache {
         let module = self.module(key, Output::for_format(format))?.clone();
         let constants = shader_gen::pipeline_constants(variant);
         self.scene_layouts(key.arrays);
+        if key.environment {
+            self.environment_layouts(key.arrays);
+        }
         let layouts = &self.scene_layouts[&key.arrays];
-        let pipeline_layout = layouts.pipeline_layout(key.shadows.any(), key.texture_slots > 0);
+        let (shadows, textures) = (key.shadows.any(), key.texture_slots > 0);
+        let pipeline_layout = if key.environment {
+            self.environment_layouts[&key.arrays].pipeline_layout(shadows, textures)
+        } else {
+            layouts.pipeline_layout(shadows, textures)
+        };
         let pipeline = scene_pipeline(
             &self.device,
             &ScenePipeline {

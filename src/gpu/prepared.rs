@@ -14,6 +14,7 @@
 
 use super::context::GpuContext;
 use super::draw::{self, FrameTarget, SceneDraw};
+use super::environment::GpuEnvironment;
 use super::geometry::GeometryData;
 use super::layout::{GpuGlobals, GpuLight};
 use super::pipelines::PipelineCache;
@@ -50,6 +51,8 @@ pub struct PreparedScene {
     shadows: Option<ShadowMaps>,
     /// The shadow maps must be drawn before the next scene pass.
     shadows_stale: bool,
+    /// The environment map, its uniform and the background pipeline.
+    environment: Option<GpuEnvironment>,
     /// The materials' textures (group 2), when the scene has any.
     textures: Option<super::textures::SceneTextures>,
 }
@@ -98,6 +101,7 @@ impl PreparedScene {
         );
         let shadows = ShadowMaps::new(&ctx.device, cache, &plan, arrays, draw.layout.stride());
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
+        let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
         let textures = if key.texture_slots > 0 {
             let layout = &cache.scene_layouts(arrays).texture_group;
             Some(super::textures::SceneTextures::new(ctx, layout, scene)?)
@@ -117,6 +121,7 @@ impl PreparedScene {
             shadows_stale: shadows.is_some(),
             plan,
             shadows,
+            environment,
             textures,
         })
     }
@@ -157,6 +162,10 @@ impl PreparedScene {
             return Ok(());
         }
         cache.compile_scene(&key, layout, self.format, self.samples)?;
+        if !self.environment.as_ref().is_some_and(|e| e.holds(scene)) {
+            self.environment =
+                prepare_environment(ctx, cache, &key, scene, self.format, self.samples)?;
+        }
         self.update_view(ctx, scene);
 
         let arrays = key.arrays;
@@ -205,6 +214,9 @@ impl PreparedScene {
         let mut globals = GpuGlobals::new(scene);
         globals.display_scale = self.display_scale;
         self.draw.write_globals(&ctx.queue, &globals);
+        if let Some(environment) = &self.environment {
+            environment.write(&ctx.queue, scene);
+        }
     }
 
     /// Records the shadow passes (if the maps are stale) and the scene
@@ -220,6 +232,11 @@ impl PreparedScene {
         let mut pass = draw::begin_scene_pass(encoder, target);
         if let Some(shadows) = &self.shadows {
             pass.set_bind_group(1, shadows.scene_group(), &[]);
+        }
+        // The environment's background first, under everything.
+        if let Some(environment) = &self.environment {
+            self.draw.bind_scene_group(&mut pass, 0);
+            environment.encode_background(&mut pass);
         }
         self.draw.bind_geometry(&mut pass);
         // Each material's batch with its material bound (src/gpu/bindings.rs)
@@ -251,14 +268,33 @@ impl PreparedScene {
     }
 }
 
-/// A scene without a material or a light cannot be drawn.
+/// A scene without a material, or without a light or an environment map,
+/// cannot be drawn.
 fn check_drawable(scene: &Scene) -> Result<()> {
-    if scene.materials.is_empty() || scene.lights.is_empty() {
+    if scene.materials.is_empty() || (scene.lights.is_empty() && scene.environment.map.is_none()) {
         return Err(Error::Scene(
-            "it needs at least one material and one light".into(),
+            "it needs at least one material and one light (or an environment map)".into(),
         ));
     }
     Ok(())
+}
+
+/// `scene`'s environment map on the GPU (`None` without one) with the
+/// background pipeline of `format` and `samples`.
+fn prepare_environment(
+    ctx: &GpuContext,
+    cache: &mut PipelineCache,
+    key: &ShaderKey,
+    scene: &Scene,
+    format: wgpu::TextureFormat,
+    samples: u32,
+) -> Result<Option<GpuEnvironment>> {
+    if scene.environment.map.is_none() {
+        return Ok(None);
+    }
+    let background = cache.background(key.arrays, format, samples)?;
+    let layouts = cache.environment_layouts(key.arrays);
+    GpuEnvironment::new(&ctx.device, &ctx.queue, layouts, background, scene)
 }
 
 /// Refuses a vertex stream or index buffer larger than the device's

@@ -6,6 +6,9 @@
 //! the same near/far clipping, the same shading points and normals, the
 //! same interpolation of per-vertex results.
 //!
+//! With an environment map, rays that miss see the map (the background),
+//! and the diffuse term integrates it (`crate::shading`).
+//!
 //! Shadows are ray traced ([`visibility`]): the truth the GPU's shadow maps
 //! are measured against. Visibility is evaluated at the shading point of
 //! the mode (flat: the centroid; Gouraud: the vertex, then interpolated
@@ -98,6 +101,10 @@ fn render_inner(
                 if let Some(hit) = bvh.intersect(&ray, camera.near / cos, camera.far / cos) {
                     *covered = true;
                     *out = shader.radiance(&hit, (i, j)).as_vec3().to_array();
+                } else if let Some(map) = &scene.environment.map {
+                    // Contract: a ray that misses sees scale · L_env(d)
+                    // (coverage stays 0, as on the GPU).
+                    *out = map.radiance(ray.direction).as_vec3().to_array();
                 }
             }
         });

@@ -215,6 +215,10 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
         out.push('\n');
     }
     out.push_str(&lights(&key.light_kinds, &features));
+    if key.environment {
+        out.push_str(&file("environment.wgsl", &features));
+        out.push('\n');
+    }
     // Shadow-map lookups, only when a light casts shadows.
     if key.shadows.any() {
         out.push_str(&file("shadows.wgsl", &features));
@@ -227,6 +231,22 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
         ShadingMode::Phong => "raster_pixel_shaded.wgsl",
     };
     out.push_str(&file(raster, &features));
+    out
+}
+
+/// The background pass's module (shaders/environment_background.wgsl)
+/// writing `output`: the shared declarations, the environment map and the
+/// full-screen triangle.
+pub fn compose_background(output: Output) -> String {
+    let mut features = vec![Feature::Environment];
+    if output == Output::Display {
+        features.push(Feature::Display);
+    }
+    let mut out = common(&features);
+    out.push('\n');
+    out.push_str(&file("environment.wgsl", &features));
+    out.push('\n');
+    out.push_str(&file("environment_background.wgsl", &features));
     out
 }
 

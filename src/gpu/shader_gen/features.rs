@@ -57,6 +57,12 @@ pub enum Feature {
     /// The target is a display surface: exposure and sRGB in the shader
     /// (`display`).
     Display,
+    /// The scene has an environment map: group 3, the map lights every
+    /// surface and is the background (`environment`).
+    Environment,
+    /// The environment lights through the whole BRDF with N sampled
+    /// directions (`environment_sampled`).
+    EnvironmentSampled,
     /// Some material has textures: UVs in the vertex stream, bind group 2
     /// and shaders/textures.wgsl (`textures`).
     Textures,
@@ -82,6 +88,8 @@ impl Feature {
             UniformLights,
             UniformShadowViews,
             Display,
+            Environment,
+            EnvironmentSampled,
             Textures,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
@@ -118,6 +126,8 @@ impl Feature {
             Feature::UniformLights => "uniform_lights",
             Feature::UniformShadowViews => "uniform_shadow_views",
             Feature::Display => "display",
+            Feature::Environment => "environment",
+            Feature::EnvironmentSampled => "environment_sampled",
             Feature::Textures => "textures",
         };
         flag.into()

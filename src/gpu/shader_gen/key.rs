@@ -26,6 +26,11 @@ pub struct ShaderKey {
     /// it ([`ShaderKey::shadow_coords_per_vertex`]); `false`: always per
     /// pixel (for tests and measurements of the difference).
     pub vertex_shadow_coords: bool,
+    /// The scene has an environment map (`Feature::Environment`).
+    pub environment: bool,
+    /// It lights through the whole BRDF, sampled
+    /// (`Feature::EnvironmentSampled`).
+    pub environment_sampled: bool,
     /// Texture slots read per pixel: the most textures of one material the
     /// scene draws (0: no texture code; `crate::gpu::textures`).
     pub texture_slots: u32,
@@ -67,28 +72,33 @@ impl ShaderKey {
             .any()
             .then(|| ShadowFeatures::uniform_pcf_radius(scene))
             .flatten();
-        let mut key = ShaderKey {
-            shading: scene.shading,
-            variants: scene
-                .meshes
-                .iter()
-                .map(|m| scene.materials[m.material].variant())
-                .collect(),
-            light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
-            counts: LoopCounts {
-                lights: scene.lights.len() as u32,
-                shadow_maps: if shadows.any() {
-                    plan.casters.len() as u32
-                } else {
-                    0
+        let mut key =
+            ShaderKey {
+                shading: scene.shading,
+                variants: scene
+                    .meshes
+                    .iter()
+                    .map(|m| scene.materials[m.material].variant())
+                    .collect(),
+                light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
+                counts: LoopCounts {
+                    lights: scene.lights.len() as u32,
+                    shadow_maps: if shadows.any() {
+                        plan.casters.len() as u32
+                    } else {
+                        0
+                    },
+                    pcf_radius,
                 },
-                pcf_radius,
-            },
-            shadows,
-            arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
-            vertex_shadow_coords: true,
-            texture_slots: crate::gpu::textures::slot_count(scene),
-        };
+                shadows,
+                arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
+                vertex_shadow_coords: true,
+                environment: scene.environment.map.is_some(),
+                environment_sampled: scene.environment.map.as_ref().is_some_and(|m| {
+                    m.settings.specular == crate::environment::map::Specular::Sampled
+                }),
+                texture_slots: crate::gpu::textures::slot_count(scene),
+            };
         key.arrays.measured = key.has_measured();
         key
     }
@@ -188,6 +198,12 @@ impl ShaderKey {
         if self.arrays.shadow_views {
             f.push(Feature::UniformShadowViews);
         }
+        if self.environment {
+            f.push(Feature::Environment);
+            if self.environment_sampled {
+                f.push(Feature::EnvironmentSampled);
+            }
+        }
         if self.texture_slots > 0 {
             f.push(Feature::Textures);
         }
@@ -199,11 +215,16 @@ impl ShaderKey {
         let variants: Vec<_> = self.variants.iter().map(|v| v.describe()).collect();
         let lights: Vec<_> = self.light_kinds.iter().map(|k| k.name()).collect();
         format!(
-            "shading {}, models [{}], lights [{}], {}",
+            "shading {}, models [{}], lights [{}], {}{}",
             self.shading,
             variants.join(", "),
             lights.join(", "),
-            self.shadows.describe()
+            self.shadows.describe(),
+            if self.environment {
+                ", environment map"
+            } else {
+                ""
+            }
         )
     }
 }

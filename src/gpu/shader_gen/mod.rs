@@ -22,7 +22,9 @@ mod preprocess;
 pub mod sources;
 pub mod specialization;
 
-pub use compose::{Output, common, compose, compose_brdf_library, compose_for, validate};
+pub use compose::{
+    Output, common, compose, compose_background, compose_brdf_library, compose_for, validate,
+};
 pub use features::Feature;
 pub use key::{LoopCounts, ShaderKey};
 pub use preprocess::preprocess;
@@ -95,6 +97,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(i % 2 == 0),
                 vertex_shadow_coords: false,
+                environment: i % 3 == 0,
+                environment_sampled: i % 6 == 0,
                 texture_slots: 0,
             });
         }
@@ -116,6 +120,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     arrays: arrays(pcf),
                     // Orthographic with PCF: the coordinates per vertex.
                     vertex_shadow_coords: pcf,
+                    environment: pcf,
+                    environment_sampled: false,
                     texture_slots: 0,
                 });
             }
@@ -136,6 +142,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(uniform),
                 vertex_shadow_coords: false,
+                environment: uniform,
+                environment_sampled: uniform,
                 // Textures with the uber shader: all slots, all models.
                 texture_slots: if uniform {
                     crate::gpu::textures::MAX_TEXTURE_SLOTS as u32
@@ -225,6 +233,13 @@ mod tests {
         assert!(ortho.contains("fn shadow_ortho") && ortho.contains("for (var i = -r"));
         assert!(!ortho.contains("fn shadow_cube") && !ortho.contains("fn shadow_perspective"));
         validate(&ortho).unwrap();
+    }
+
+    #[test]
+    fn the_background_validates() {
+        for output in [Output::Radiance, Output::Display] {
+            validate(&compose_background(output)).unwrap();
+        }
     }
 
     #[test]

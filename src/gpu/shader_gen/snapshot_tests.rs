@@ -77,6 +77,8 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         },
         arrays: UniformArrays::for_counts(1, 1),
         vertex_shadow_coords: true,
+        environment: false,
+        environment_sampled: false,
         texture_slots: 0,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
@@ -99,6 +101,8 @@ fn snapshot_everything() {
         },
         arrays: UniformArrays::for_counts(5, 8),
         vertex_shadow_coords: true,
+        environment: true,
+        environment_sampled: true,
         texture_slots: 0,
     };
     check_snapshot("everything", &compose(&key));

@@ -59,13 +59,14 @@ pub fn assemble(
     gltf_files
         .charge(0, 0, file.lights.len() as u64)
         .map_err(|p| bad(format!("lights: {p}")))?;
+    let (ambient, environment) = ambient_and_environment(&file, base_dir).map_err(bad)?;
     let light_setup = LightSetup {
         imported: objects.lights,
         shadows: file.shadows.clone(),
         entries: file.lights.clone(),
+        environment_map: environment.map.is_some(),
     };
     let lights = light_setup.assemble().map_err(bad)?;
-    let (ambient, environment) = ambient_and_environment(&file).map_err(bad)?;
 
     let meshes = objects.meshes;
     let scene_bounds =
@@ -229,9 +230,12 @@ fn objects(
     Ok(out)
 }
 
-/// `[ambient]` and `[environment]` (whose keys default to the ambient
-/// radiance).
-fn ambient_and_environment(file: &SceneFile) -> std::result::Result<(Rgb, Environment), String> {
+/// `[ambient]` and `[environment]` (whose gradient keys default to the
+/// ambient radiance; its map is read relative to `base_dir`).
+fn ambient_and_environment(
+    file: &SceneFile,
+    base_dir: &Path,
+) -> std::result::Result<(Rgb, Environment), String> {
     let ambient = match file.ambient.radiance {
         None => Rgb::ZERO,
         Some(c) => non_negative("ambient.radiance", c.rgb())?,
@@ -245,6 +249,7 @@ fn ambient_and_environment(file: &SceneFile) -> std::result::Result<(Rgb, Enviro
         zenith: get("zenith", e.zenith)?,
         horizon: get("horizon", e.horizon)?,
         ground: get("ground", e.ground)?,
+        map: super::environment_keys::environment_map(e, base_dir)?,
     };
     Ok((ambient, environment))
 }

@@ -24,6 +24,11 @@ pub struct LightSetup {
     pub shadows: ShadowsSection,
     /// `[[lights]]`.
     pub entries: Vec<LightEntry>,
+    /// The scene has an `[environment] map`: it lights the scene, so no
+    /// default light is added (the contract's `[environment]` section).
+    /// Kept here so that the viewer's re-assembly after an edit or a
+    /// reload keeps the rule too.
+    pub environment_map: bool,
 }
 
 /// The scene's lights, as [`Scene`] holds them.
@@ -46,7 +51,8 @@ impl SceneLights {
 impl LightSetup {
     /// Validates the entries and builds the light list: the imported
     /// lights first, then the entries in order (an area light as its
-    /// samples); a scene without any gets [`default_light`]. `[shadows]`
+    /// samples); a scene without any and without an environment map gets
+    /// [`default_light`]. `[shadows]`
     /// gives the shadow defaults (and decides for the imported lights),
     /// each entry's own keys override. Errors name the key.
     pub fn assemble(&self) -> std::result::Result<SceneLights, String> {
@@ -82,7 +88,7 @@ impl LightSetup {
                 }
             }
         }
-        if lights.is_empty() {
+        if self.gets_default_light() {
             lights.push(default_light());
             light_shadows.push(shadow_defaults);
         }
@@ -102,12 +108,21 @@ impl LightSetup {
             .unwrap_or(self.entries.is_empty())
     }
 
+    /// Whether [`LightSetup::assemble`] adds the [`default_light`]: only
+    /// to a scene without any light (imported or `[[lights]]`) and without
+    /// an environment map (the contract: "No default light or sky is added
+    /// to a scene that has any `[[lights]]` entry or an `[environment]
+    /// map`").
+    pub fn gets_default_light(&self) -> bool {
+        self.imported.is_empty() && self.entries.is_empty() && !self.environment_map
+    }
+
     /// What [`LightSetup::assemble`] decided without being asked, one
     /// sentence each, for `--verbose`: the default light of a scene
     /// without lights, and shadows of imported lights by default.
     pub fn notes(&self) -> Vec<String> {
         let mut notes = Vec::new();
-        if self.imported.is_empty() && self.entries.is_empty() {
+        if self.gets_default_light() {
             notes.push(
                 "the scene has no light: added the default light (directional, 3 W/m² from the upper front left)"
                     .to_string(),

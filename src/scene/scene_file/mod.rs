@@ -14,6 +14,7 @@
 
 pub mod assembly;
 pub mod diagnostics;
+pub mod environment_keys;
 pub mod lights;
 pub mod overrides;
 pub mod schema;
@@ -52,8 +53,6 @@ pub fn load(source: &SceneSource, overrides: &[String]) -> Result<Scene> {
     load_with_limits(source, overrides, Limits::default()).map(|(scene, _notes)| scene)
 }
 
-/// [`load`] with the glTF files of the scene held to `limits` (one budget
-/// for all of them); also returns the notes their import left, such as
 /// [`load`] with the glTF files of the scene held to `limits` (one budget
 /// for all of them); also returns the notes their import left, such as
 /// ignored optional extensions, for `--verbose`.
@@ -330,6 +329,22 @@ mod tests {
             notes.iter().any(|n| n.contains("default light")),
             "{notes:?}"
         );
+        // With an environment map it gets none (the contract), also when
+        // the lights are assembled again (the viewer after an edit or a
+        // reload), and the notes do not claim one.
+        let sky = ["environment.map=\"sky\"".to_string()];
+        let loaded = load_for_editing(&bare, &sky, Limits::default()).unwrap();
+        assert!(loaded.scene.environment.map.is_some());
+        assert!(loaded.scene.lights.is_empty(), "{:?}", loaded.scene.lights);
+        assert!(loaded.lights.assemble().unwrap().lights.is_empty());
+        assert!(
+            !loaded.notes.iter().any(|n| n.contains("default light")),
+            "{:?}",
+            loaded.notes
+        );
+        // A light of the scene's own is kept beside the map.
+        let sky_and_own = [sky[0].clone(), own[0].clone()];
+        assert_eq!(load(&bare, &sky_and_own).unwrap().lights.len(), 1);
         let scene = load(
             &source,
             &[

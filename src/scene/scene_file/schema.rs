@@ -296,14 +296,32 @@ impl LightEntry {
     }
 }
 
-/// `[environment]`: the sky a mirror reflects (gonio's extension); every
-/// key defaults to the ambient radiance.
+/// `[environment]`: the sky a mirror reflects (gonio's extension); the
+/// gradient's keys default to the ambient radiance. With `map` (a lat-long
+/// `.exr`/`.hdr` relative to the scene file, or `"sky"`, the built-in
+/// sky) the map lights every surface and is the background
+/// (src/environment).
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EnvironmentSection {
     pub zenith: Option<ColorValue>,
     pub horizon: Option<ColorValue>,
     pub ground: Option<ColorValue>,
+    pub map: Option<String>,
+    /// Multiplies the map (default 1).
+    pub scale: Option<f64>,
+    /// Highest SH band of the diffuse term, 0..=4 (default 2).
+    pub sh_order: Option<i64>,
+    /// What the CPU reference integrates: `"integrated"` (default) or
+    /// `"sh"` (the GPU's approximation in f64).
+    pub reference: Option<String>,
+    /// Turns the map about +Y (degrees, counter-clockwise from above).
+    pub rotation_deg: Option<f64>,
+    /// `"none"` (the diffuse term by SH, default) or `"sampled"` (the
+    /// whole BRDF integrated with `samples` directions).
+    pub specular: Option<String>,
+    /// Directions per shading point of `specular = "sampled"` (default 64).
+    pub samples: Option<i64>,
 }
 
 /// `[ambient]`: constant incoming radiance `L_a`.

@@ -315,7 +315,11 @@ fn light_incidence(light: Light, x: vec3<f32>) -> Incidence {
 
 // The reflection equation for punctual lights, summed (contract):
 // L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l
-// plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)).
+// plus, for the ideal mirror, ρ_s(θ_o) · L_env(R(V)),
+// plus, with an environment map (`#if environment`), the diffuse term of
+// every model lit by it, k_d/π · E(n), E by spherical harmonics
+// (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
+// BRDF integrated over the map with N directions.
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
@@ -351,6 +355,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     }
     return radiance;
 }
+
 
 // Phong shading (lecture: "Shading Model: Phong Shading"): the normal is
 // interpolated (perspective-correct barycentrics), renormalized, and the

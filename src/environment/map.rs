@@ -1,0 +1,312 @@
+//! An environment map: linear RGB radiance [W/(m²·sr)] by direction, a
+//! latitude-longitude image in the contract's convention ([`super::latlong`]),
+//! looked up with bilinear filtering (`u` wraps, `v` clamps), times
+//! `scale`.
+//!
+//! The GPU samples the same f32 texels with the same arithmetic
+//! (`environment_lookup` in `shaders/environment.wgsl`), so a mirror or
+//! the background differ between the renderers only by f32 rounding.
+
+use super::quadrature::Truth;
+use super::{latlong, sh};
+use crate::scene::Rgb;
+use glam::DVec3;
+use std::sync::Arc;
+
+/// Largest map side gonio accepts (a 16k × 8k map is 1.5 GiB of f32 RGB).
+pub const MAX_SIDE: u32 = 16384;
+
+/// How the CPU reference evaluates the environment's diffuse term
+/// (`environment.reference`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ReferenceDiffuse {
+    /// The integrated truth ([`Truth`]): what SH is measured against.
+    #[default]
+    Integrated,
+    /// The GPU's approximation in f64: SH irradiance of `sh_order`
+    /// (proves the GPU's arithmetic, to f32 rounding).
+    Sh,
+}
+
+impl ReferenceDiffuse {
+    /// The scene-file spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            ReferenceDiffuse::Integrated => "integrated",
+            ReferenceDiffuse::Sh => "sh",
+        }
+    }
+
+    /// Parses the scene-file spelling.
+    pub fn parse(s: &str) -> Option<Self> {
+        [ReferenceDiffuse::Integrated, ReferenceDiffuse::Sh]
+            .into_iter()
+            .find(|r| r.name() == s)
+    }
+}
+
+/// The `[environment]` keys that decide how a map is used.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapSettings {
+    /// Multiplies the map (`environment.scale`).
+    pub scale: f64,
+    /// Highest SH band of the diffuse term, 0..=4 (`environment.sh_order`,
+    /// default 2: 9 coefficients).
+    pub sh_order: u32,
+    /// What the CPU reference integrates (`environment.reference`).
+    pub reference: ReferenceDiffuse,
+    /// Turns the map about +Y by this many degrees
+    /// (`environment.rotation_deg`; counter-clockwise seen from above):
+    /// what the file holds towards `d₀` arrives from `R_y(θ) d₀`.
+    pub rotation_deg: f64,
+    /// How the environment lights surfaces (`environment.specular`).
+    pub specular: Specular,
+    /// Directions per shading point of [`Specular::Sampled`]
+    /// (`environment.samples`, default 64).
+    pub samples: u32,
+}
+
+/// How the environment lights surfaces (`environment.specular`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Specular {
+    /// The diffuse term only, by SH irradiance (`"none"`, the default).
+    #[default]
+    None,
+    /// The whole BRDF integrated with `samples` directions per shading
+    /// point (`"sampled"`, [`super::sampled`]).
+    Sampled,
+}
+
+impl Specular {
+    /// The scene-file spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Specular::None => "none",
+            Specular::Sampled => "sampled",
+        }
+    }
+
+    /// Parses the scene-file spelling.
+    pub fn parse(s: &str) -> Option<Self> {
+        [Specular::None, Specular::Sampled]
+            .into_iter()
+            .find(|m| m.name() == s)
+    }
+}
+
+impl Default for MapSettings {
+    fn default() -> Self {
+        MapSettings {
+            scale: 1.0,
+            sh_order: 2,
+            reference: ReferenceDiffuse::Integrated,
+            rotation_deg: 0.0,
+            specular: Specular::None,
+            samples: 64,
+        }
+    }
+}
+
+/// The pixels of a map and what is derived from them once.
+#[derive(Debug, PartialEq)]
+pub struct MapData {
+    /// Where it came from (a path, or `sky`), for messages.
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    /// Row-major, row 0 at +Y, linear radiance.
+    pub texels: Vec<[f32; 3]>,
+    /// The integrated truth and the radiance's SH coefficients.
+    pub truth: Truth,
+    /// The texel quadrature's nodes (the sampled mode's truth).
+    pub nodes: Vec<super::quadrature::Node>,
+}
+
+/// An environment map with its settings. The pixels are shared: changing
+/// a setting (an override, a viewer edit) does not copy them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvironmentMap {
+    pub data: Arc<MapData>,
+    pub settings: MapSettings,
+}
+
+impl MapData {
+    /// Checks and wraps `width × height` texels named `name`: the width
+    /// must be twice the height (lat-long), every value finite and ≥ 0.
+    /// The error is one sentence naming the problem (the caller names the
+    /// file).
+    pub fn new(
+        name: &str,
+        width: u32,
+        height: u32,
+        texels: Vec<[f32; 3]>,
+    ) -> Result<MapData, String> {
+        if height == 0 || width != 2 * height {
+            return Err(format!(
+                "a latitude-longitude map is twice as wide as high, and this one is {width} × {height}"
+            ));
+        }
+        if width > MAX_SIDE {
+            return Err(format!(
+                "the map is {width} × {height}; the largest side gonio accepts is {MAX_SIDE}"
+            ));
+        }
+        assert_eq!(texels.len(), (width * height) as usize);
+        if let Some(k) = texels
+            .iter()
+            .position(|t| t.iter().any(|v| !v.is_finite() || *v < 0.0))
+        {
+            let (row, col) = (k as u32 / width, k as u32 % width);
+            return Err(format!(
+                "texel (column {col}, row {row}) is {:?}: radiance must be finite and non-negative",
+                texels[k]
+            ));
+        }
+        let truth = Truth::new(width, height, &texels);
+        let nodes = super::quadrature::nodes(width, height, &texels);
+        Ok(MapData {
+            name: name.into(),
+            width,
+            height,
+            texels,
+            truth,
+            nodes,
+        })
+    }
+
+    /// The bilinear lookup of unit direction `d` (unscaled). Twin:
+    /// `environment_lookup` in `shaders/environment.wgsl`.
+    pub fn lookup(&self, d: DVec3) -> Rgb {
+        let (u, v) = latlong::uv(d);
+        let x = u * self.width as f64 - 0.5;
+        let y = v * self.height as f64 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let w = self.width as i64;
+        let h = self.height as i64;
+        let col = |c: i64| c.rem_euclid(w) as u32;
+        let row = |r: i64| r.clamp(0, h - 1) as u32;
+        let (c0, c1) = (col(x0 as i64), col(x0 as i64 + 1));
+        let (r0, r1) = (row(y0 as i64), row(y0 as i64 + 1));
+        let t =
+            |c: u32, r: u32| Rgb::from(self.texels[(r * self.width + c) as usize].map(f64::from));
+        let top = t(c0, r0) * (1.0 - fx) + t(c1, r0) * fx;
+        let bottom = t(c0, r1) * (1.0 - fx) + t(c1, r1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+}
+
+impl EnvironmentMap {
+    /// The direction in the file's frame of world direction `d`:
+    /// `R_y(−θ) d`. Twin: `environment_to_map` in shaders/environment.wgsl
+    /// (with the cosine and sine rounded to f32 on the CPU).
+    pub fn to_map(&self, d: DVec3) -> DVec3 {
+        let (sin, cos) = self.settings.rotation_deg.to_radians().sin_cos();
+        DVec3::new(cos * d.x - sin * d.z, d.y, sin * d.x + cos * d.z)
+    }
+
+    /// The world direction of direction `d` in the file's frame:
+    /// `R_y(θ) d`, the inverse of [`Self::to_map`].
+    pub fn from_map(&self, d: DVec3) -> DVec3 {
+        let (sin, cos) = self.settings.rotation_deg.to_radians().sin_cos();
+        DVec3::new(cos * d.x + sin * d.z, d.y, -sin * d.x + cos * d.z)
+    }
+
+    /// Radiance arriving from unit direction `d`: `scale · L_env(d)`.
+    pub fn radiance(&self, d: DVec3) -> Rgb {
+        self.data.lookup(self.to_map(d)) * self.settings.scale
+    }
+
+    /// `scale · Â_l · L_lm` up to `sh_order` (zero above): what the GPU's
+    /// `sh_irradiance` sums, `E(n) = Σ c_i Y_i(n)`.
+    pub fn irradiance_coefficients(&self) -> [Rgb; sh::COUNT] {
+        let mut c =
+            sh::irradiance_coefficients(&self.data.truth.radiance_sh, self.settings.sh_order);
+        c.iter_mut().for_each(|c| *c *= self.settings.scale);
+        c
+    }
+
+    /// Irradiance by SH of `sh_order` (the GPU's diffuse term).
+    pub fn irradiance_sh(&self, n: DVec3) -> Rgb {
+        sh::evaluate(&self.irradiance_coefficients(), self.to_map(n))
+    }
+
+    /// The integrated irradiance `scale · ∫ L max(0, n·ω) dω`.
+    pub fn irradiance_integrated(&self, n: DVec3) -> Rgb {
+        self.data.truth.irradiance(self.to_map(n)) * self.settings.scale
+    }
+
+    /// The irradiance the CPU reference uses (`settings.reference`).
+    pub fn irradiance_reference(&self, n: DVec3) -> Rgb {
+        match self.settings.reference {
+            ReferenceDiffuse::Integrated => self.irradiance_integrated(n),
+            ReferenceDiffuse::Sh => self.irradiance_sh(n),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ramp(w: u32, h: u32) -> MapData {
+        let texels = (0..w * h)
+            .map(|k| [(k % w) as f32, (k / w) as f32, 1.0])
+            .collect();
+        MapData::new("ramp", w, h, texels).unwrap()
+    }
+
+    #[test]
+    fn texel_centres_return_the_texel_and_u_wraps() {
+        let map = ramp(8, 4);
+        for (col, row) in [(0, 0), (3, 1), (7, 3)] {
+            let d = latlong::texel_direction(col, row, 8, 4);
+            let got = map.lookup(d);
+            assert!(
+                (got - Rgb::new(col as f64, row as f64, 1.0)).length() < 1e-9,
+                "{got}"
+            );
+        }
+        // Half-way between the last column and the first (the seam, u = 0):
+        // the mean of columns 7 and 0.
+        let seam = latlong::direction(0.0, 1.5 / 4.0);
+        assert!((map.lookup(seam).x - 3.5).abs() < 1e-9);
+        // Above the first row's centre: clamped to row 0.
+        assert!((map.lookup(DVec3::Y).y).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rotation_moves_what_arrives_from_where() {
+        let data = Arc::new(ramp(8, 4));
+        let map = |deg| EnvironmentMap {
+            data: data.clone(),
+            settings: MapSettings {
+                rotation_deg: deg,
+                ..Default::default()
+            },
+        };
+        let d0 = latlong::texel_direction(1, 1, 8, 4);
+        // A quarter turn counter-clockwise seen from above (+Y) takes
+        // −Z to −X: R_y(90°) d₀.
+        let (s, c) = 90f64.to_radians().sin_cos();
+        let turned = DVec3::new(c * d0.x + s * d0.z, d0.y, -s * d0.x + c * d0.z);
+        assert!((map(90.0).radiance(turned) - map(0.0).radiance(d0)).length() < 1e-9);
+        assert!((map(90.0).to_map(DVec3::NEG_X) - DVec3::NEG_Z).length() < 1e-12);
+        let n = DVec3::new(0.3, 0.5, -0.8).normalize();
+        let e0 = map(0.0).irradiance_integrated(n);
+        let e1 = map(90.0).irradiance_integrated(map(0.0).to_map(n));
+        assert!(e0.is_finite() && e1.is_finite());
+    }
+
+    #[test]
+    fn bad_maps_are_refused_with_the_reason() {
+        let e = MapData::new("m", 6, 4, vec![[0.0; 3]; 24]).unwrap_err();
+        assert!(e.contains("6 × 4"), "{e}");
+        let mut t = vec![[0.0; 3]; 8];
+        t[5] = [0.0, f32::NAN, 0.0];
+        let e = MapData::new("m", 4, 2, t).unwrap_err();
+        assert!(e.contains("column 1, row 1") && e.contains("finite"), "{e}");
+        let e = MapData::new("m", 4, 2, vec![[-1.0, 0.0, 0.0]; 8]).unwrap_err();
+        assert!(e.contains("non-negative"), "{e}");
+    }
+}

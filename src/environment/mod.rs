@@ -1,0 +1,31 @@
+//! Light from everywhere: an environment map (a latitude-longitude image
+//! of radiance arriving from infinitely far away), what the renderers
+//! derive from it, and the built-in sky.
+//!
+//! * [`latlong`]: the contract's direction convention (`[environment]` in
+//!   `shared/spec/conventions.md`), the one place it is written in Rust;
+//!   its WGSL twin is `shaders/environment.wgsl`.
+//! * [`map`]: the texels, their bilinear lookup, validation.
+//! * [`load`]: reading `.exr` and Radiance `.hdr` files.
+//! * [`sky`]: the procedural sky (`map = "sky"`), a generated map.
+//! * [`test_maps`]: maps gonio makes for its tests (the shipped
+//!   `assets/environment/blobs.hdr` among them).
+//! * [`sh`]: spherical harmonics: projection of a map, the irradiance
+//!   convolution of Ramamoorthi & Hanrahan (2001), evaluation.
+//! * [`sampled`]: the whole BRDF integrated with N directions
+//!   (`environment.specular = "sampled"`) and its quadrature truth.
+//! * [`sh_error`]: SH irradiance error vs order against the truth.
+//! * [`quadrature`]: the integrated truth `E(n) = ∫ L(ω) max(0, n·ω) dω`
+//!   the reference uses and SH is measured against.
+
+pub mod latlong;
+pub mod load;
+pub mod map;
+pub mod quadrature;
+pub mod sampled;
+pub mod sh;
+pub mod sh_error;
+pub mod sky;
+pub mod test_maps;
+
+pub use map::{EnvironmentMap, MapSettings};

@@ -1,0 +1,345 @@
+//! The environment map on the GPU (bind group 3, only for scenes with
+//! `[environment] map`; other scenes' pipelines and images are unchanged):
+//! the texels as an `Rgba32Float` texture, a uniform with the map's scale,
+//! size and SH irradiance coefficients and the camera's ray basis, and the
+//! background pass (shaders/environment_background.wgsl) that shows the
+//! map where no geometry is.
+
+use super::bind_groups::SceneLayouts;
+use super::pipelines::DEPTH_FORMAT;
+use super::shader_gen::{self, Output};
+use crate::environment::map::MapData;
+use crate::environment::{EnvironmentMap, sh};
+use crate::scene::Scene;
+use crate::{Error, Result};
+use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
+
+/// `EnvironmentUniform` in shaders/environment.wgsl (480 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuEnvironmentUniform {
+    pub forward: [f32; 3],
+    pub scale: f32,
+    pub right: [f32; 3],
+    pub width: u32,
+    pub up: [f32; 3],
+    pub height: u32,
+    /// `scale · Â_l · L_lm`, RGB and a zero.
+    pub sh: [[f32; 4]; sh::COUNT],
+    /// `(cos θ, sin θ)` of `rotation_deg` (`EnvironmentMap::to_map`).
+    pub rotation: [f32; 2],
+    /// Directions per shading point of the sampled mode.
+    pub samples: u32,
+    pub _pad: u32,
+}
+
+impl GpuEnvironmentUniform {
+    /// The values of `map` seen by `scene`'s camera: the ray basis of
+    /// `Camera::ray` (forward, right · tan(fov/2) · aspect, up · tan(fov/2)).
+    pub fn new(scene: &Scene, map: &EnvironmentMap) -> Self {
+        let camera = &scene.camera;
+        let tan_half = (0.5 * camera.fov_y_deg.to_radians()).tan();
+        let aspect = scene.width as f64 / scene.height as f64;
+        let f = |v: glam::DVec3| v.as_vec3().to_array();
+        let c = map.irradiance_coefficients();
+        GpuEnvironmentUniform {
+            forward: f(camera.forward()),
+            scale: map.settings.scale as f32,
+            right: f(camera.right() * (tan_half * aspect)),
+            width: map.data.width,
+            up: f(camera.true_up() * tan_half),
+            height: map.data.height,
+            sh: std::array::from_fn(|i| {
+                let v = c[i].as_vec3();
+                [v.x, v.y, v.z, 0.0]
+            }),
+            rotation: {
+                let (sin, cos) = map.settings.rotation_deg.to_radians().sin_cos();
+                [cos as f32, sin as f32]
+            },
+            samples: map.settings.samples.max(1),
+            _pad: 0,
+        }
+    }
+}
+
+/// Group 3's layout and the scene pipeline layouts that include it.
+pub struct EnvironmentLayouts {
+    pub group: wgpu::BindGroupLayout,
+    /// Groups 0 and 3.
+    pub plain: wgpu::PipelineLayout,
+    /// Groups 0, 1 and 3.
+    pub shadowed: wgpu::PipelineLayout,
+    /// Groups 0, 2 and 3.
+    pub textured: wgpu::PipelineLayout,
+    /// Groups 0, 1, 2 and 3.
+    pub shadowed_textured: wgpu::PipelineLayout,
+}
+
+impl EnvironmentLayouts {
+    /// The layouts over `scene`'s groups 0, 1 and 2 (material textures),
+    /// each with group 3.
+    pub fn new(device: &wgpu::Device, scene: &SceneLayouts) -> Self {
+        let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("gonio environment"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: stage,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(
+                            size_of::<GpuEnvironmentUniform>() as u64
+                        ),
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: stage,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let plain = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gonio scene with environment"),
+            bind_group_layouts: &[Some(&scene.scene_group), None, None, Some(&group)],
+            immediate_size: 0,
+        });
+        let shadowed = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gonio scene with shadows and environment"),
+            bind_group_layouts: &[
+                Some(&scene.scene_group),
+                Some(&scene.shadow_group),
+                None,
+                Some(&group),
+            ],
+            immediate_size: 0,
+        });
+        let textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gonio scene with textures and environment"),
+            bind_group_layouts: &[
+                Some(&scene.scene_group),
+                None,
+                Some(&scene.texture_group),
+                Some(&group),
+            ],
+            immediate_size: 0,
+        });
+        let shadowed_textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gonio scene with shadows, textures and environment"),
+            bind_group_layouts: &[
+                Some(&scene.scene_group),
+                Some(&scene.shadow_group),
+                Some(&scene.texture_group),
+                Some(&group),
+            ],
+            immediate_size: 0,
+        });
+        EnvironmentLayouts {
+            group,
+            plain,
+            shadowed,
+            textured,
+            shadowed_textured,
+        }
+    }
+
+    /// The pipeline layout of a scene with the environment, with or
+    /// without shadows and textures (as [`SceneLayouts::pipeline_layout`]).
+    pub fn pipeline_layout(&self, shadows: bool, textures: bool) -> &wgpu::PipelineLayout {
+        match (shadows, textures) {
+            (false, false) => &self.plain,
+            (true, false) => &self.shadowed,
+            (false, true) => &self.textured,
+            (true, true) => &self.shadowed_textured,
+        }
+    }
+}
+
+/// The background pass's pipeline drawing into `format` with `samples`:
+/// a full-screen triangle, no depth test or write (the scene is drawn
+/// over it).
+pub fn background_pipeline(
+    device: &wgpu::Device,
+    layouts: &EnvironmentLayouts,
+    format: wgpu::TextureFormat,
+    samples: u32,
+) -> Result<wgpu::RenderPipeline> {
+    let wgsl = shader_gen::compose_background(Output::for_format(format));
+    shader_gen::validate(&wgsl)
+        .map_err(|e| Error::Gpu(format!("the background shader is invalid: {e}")))?;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("gonio background"),
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    });
+    Ok(
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("gonio background"),
+            layout: Some(&layouts.plain),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_background"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: samples,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_background"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        }),
+    )
+}
+
+/// A scene's environment map on the GPU.
+pub struct GpuEnvironment {
+    /// The texels uploaded (to tell a new map from new settings).
+    data: Arc<MapData>,
+    uniform: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    background: wgpu::RenderPipeline,
+}
+
+impl GpuEnvironment {
+    /// Uploads `scene`'s map (`None` without one), drawn in the background
+    /// by `background` ([`background_pipeline`]).
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &EnvironmentLayouts,
+        background: wgpu::RenderPipeline,
+        scene: &Scene,
+    ) -> Result<Option<Self>> {
+        let Some(map) = &scene.environment.map else {
+            return Ok(None);
+        };
+        let data = &map.data;
+        let max = device.limits().max_texture_dimension_2d;
+        if data.width > max {
+            return Err(Error::Scene(format!(
+                "the environment map {} is {} × {} texels; this GPU takes textures of at most {max} a side",
+                data.name, data.width, data.height
+            )));
+        }
+        let size = wgpu::Extent3d {
+            width: data.width,
+            height: data.height,
+            depth_or_array_layers: 1,
+        };
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("gonio environment map"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        let rgba: Vec<[f32; 4]> = data
+            .texels
+            .iter()
+            .map(|t| [t[0], t[1], t[2], 0.0])
+            .collect();
+        queue.write_texture(
+            texture.as_image_copy(),
+            bytemuck::cast_slice(&rgba),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(16 * data.width),
+                rows_per_image: None,
+            },
+            size,
+        );
+        use wgpu::util::DeviceExt;
+        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("gonio environment"),
+            contents: bytemuck::bytes_of(&GpuEnvironmentUniform::new(scene, map)),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let view = texture.create_view(&Default::default());
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("gonio environment"),
+            layout: &layouts.group,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+            ],
+        });
+        Ok(Some(GpuEnvironment {
+            data: data.clone(),
+            uniform,
+            bind_group,
+            background,
+        }))
+    }
+
+    /// Whether `scene` has this map's texels (so [`Self::write`] suffices).
+    pub fn holds(&self, scene: &Scene) -> bool {
+        scene
+            .environment
+            .map
+            .as_ref()
+            .is_some_and(|m| Arc::ptr_eq(&m.data, &self.data))
+    }
+
+    /// Writes the settings and the camera of `scene` (which [`Self::holds`]).
+    pub fn write(&self, queue: &wgpu::Queue, scene: &Scene) {
+        if let Some(map) = &scene.environment.map {
+            let u = GpuEnvironmentUniform::new(scene, map);
+            queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&u));
+        }
+    }
+
+    /// Binds group 3 and draws the background (group 0 must be bound).
+    pub fn encode_background(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_bind_group(3, &self.bind_group, &[]);
+        pass.set_pipeline(&self.background);
+        pass.draw(0..3, 0..1);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_uniform_has_the_wgsl_layout() {
+        // 3 × 16 bytes of vectors and scalars, 25 vec4, the rotation.
+        assert_eq!(size_of::<GpuEnvironmentUniform>(), 48 + 25 * 16 + 16);
+    }
+}

@@ -1,0 +1,94 @@
+//! `[environment]`'s map keys: `map`, `scale`, `sh_order`, `reference`,
+//! `rotation_deg`, `specular`, `samples` (the contract's `[environment]`
+//! section; gonio's keys beyond `map` and `scale` extend it). Errors name
+//! the key.
+
+use super::schema::EnvironmentSection;
+use crate::environment::map::{ReferenceDiffuse, Specular};
+use crate::environment::{EnvironmentMap, MapSettings, load, sh};
+use std::path::Path;
+use std::sync::Arc;
+
+/// Most directions per shading point `environment.samples` takes.
+pub const MAX_SAMPLES: i64 = 4096;
+
+/// The map `e` names, loaded relative to `base_dir` with its settings;
+/// `None` without `map`. A setting given without a map is an error (it
+/// would be ignored).
+pub fn environment_map(
+    e: &EnvironmentSection,
+    base_dir: &Path,
+) -> Result<Option<EnvironmentMap>, String> {
+    let Some(value) = &e.map else {
+        let given = [
+            ("scale", e.scale.is_some()),
+            ("sh_order", e.sh_order.is_some()),
+            ("reference", e.reference.is_some()),
+            ("rotation_deg", e.rotation_deg.is_some()),
+            ("specular", e.specular.is_some()),
+            ("samples", e.samples.is_some()),
+        ];
+        if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
+            return Err(format!(
+                "environment.{key} applies to an environment map, and there is no environment.map (a .exr or .hdr file, or \"sky\")"
+            ));
+        }
+        return Ok(None);
+    };
+    let settings = settings(e)?;
+    let data = load::load(value, base_dir).map_err(|p| format!("environment.map: {p}"))?;
+    Ok(Some(EnvironmentMap {
+        data: Arc::new(data),
+        settings,
+    }))
+}
+
+/// The settings of `e`, range-checked.
+fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
+    let mut s = MapSettings::default();
+    if let Some(scale) = e.scale {
+        if !(scale.is_finite() && scale >= 0.0) {
+            return Err(format!(
+                "environment.scale = {scale} must be finite and non-negative"
+            ));
+        }
+        s.scale = scale;
+    }
+    if let Some(order) = e.sh_order {
+        if !(0..=sh::MAX_ORDER as i64).contains(&order) {
+            return Err(format!(
+                "environment.sh_order = {order} is outside 0..={} (the SH bands gonio projects to)",
+                sh::MAX_ORDER
+            ));
+        }
+        s.sh_order = order as u32;
+    }
+    if let Some(deg) = e.rotation_deg {
+        if !deg.is_finite() {
+            return Err(format!("environment.rotation_deg = {deg} must be finite"));
+        }
+        s.rotation_deg = deg;
+    }
+    if let Some(m) = &e.specular {
+        s.specular = Specular::parse(m).ok_or_else(|| {
+            format!("environment.specular = \"{m}\" is neither \"none\" nor \"sampled\"")
+        })?;
+    }
+    if let Some(n) = e.samples {
+        if !(1..=MAX_SAMPLES).contains(&n) {
+            return Err(format!(
+                "environment.samples = {n} is outside 1..={MAX_SAMPLES}"
+            ));
+        }
+        if s.specular != Specular::Sampled {
+            return Err("environment.samples applies to environment.specular = \"sampled\"".into());
+        }
+        s.samples = n as u32;
+    }
+    if let Some(r) = &e.reference {
+        s.reference = ReferenceDiffuse::parse(r).ok_or_else(|| {
+            format!("environment.reference = \"{r}\" is neither \"integrated\" nor \"sh\"")
+        })?;
+    }
+    Ok(s)
+}
