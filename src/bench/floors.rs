@@ -199,6 +199,9 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         arrays: ShaderKey::new(scene, &ShadowPlan::new(scene)).arrays,
         vertex_shadow_coords: false,
         texture_slots: 0,
+        normal_maps: false,
+        two_sided: false,
+        culling: false,
     }
 }
 

@@ -60,6 +60,15 @@ pub enum Feature {
     /// Some material has textures: UVs in the vertex stream, bind group 2
     /// and shaders/textures.wgsl (`textures`).
     Textures,
+    /// Some material has a normal map: tangents and their bitangent signs
+    /// in the vertex stream, the frame turned per pixel (`normal_map`).
+    NormalMap,
+    /// Some material is double-sided (glTF `doubleSided`): vertex shading
+    /// computes both sides (`two_sided`).
+    TwoSided,
+    /// Some material is single-sided (glTF `doubleSided: false`): back
+    /// faces are discarded (`culling`).
+    Culling,
 }
 
 impl Feature {
@@ -83,6 +92,9 @@ impl Feature {
             UniformShadowViews,
             Display,
             Textures,
+            NormalMap,
+            TwoSided,
+            Culling,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -119,6 +131,9 @@ impl Feature {
             Feature::UniformShadowViews => "uniform_shadow_views",
             Feature::Display => "display",
             Feature::Textures => "textures",
+            Feature::NormalMap => "normal_map",
+            Feature::TwoSided => "two_sided",
+            Feature::Culling => "culling",
         };
         flag.into()
     }

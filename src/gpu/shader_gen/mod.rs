@@ -96,6 +96,9 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 arrays: arrays(i % 2 == 0),
                 vertex_shadow_coords: false,
                 texture_slots: 0,
+                normal_maps: false,
+                two_sided: false,
+                culling: false,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -117,6 +120,9 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     // Orthographic with PCF: the coordinates per vertex.
                     vertex_shadow_coords: pcf,
                     texture_slots: 0,
+                    normal_maps: false,
+                    two_sided: false,
+                    culling: false,
                 });
             }
         }
@@ -142,6 +148,9 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 } else {
                     0
                 },
+                normal_maps: uniform,
+                two_sided: uniform,
+                culling: uniform,
             });
         }
     }

@@ -78,6 +78,9 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         arrays: UniformArrays::for_counts(1, 1),
         vertex_shadow_coords: true,
         texture_slots: 0,
+        normal_maps: false,
+        two_sided: false,
+        culling: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -100,6 +103,9 @@ fn snapshot_everything() {
         arrays: UniformArrays::for_counts(5, 8),
         vertex_shadow_coords: true,
         texture_slots: 0,
+        normal_maps: false,
+        two_sided: false,
+        culling: false,
     };
     check_snapshot("everything", &compose(&key));
 }
