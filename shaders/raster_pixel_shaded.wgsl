@@ -22,6 +22,9 @@ struct VertexIn {
     #if normal_map
     @location(8) bitangent_sign: f32,
     #endif
+    #if vertex_colors
+    @location(9) color: vec4<f32>,
+    #endif
 }
 
 struct VertexOut {
@@ -41,6 +44,9 @@ struct VertexOut {
     #if normal_map
     @location(7) bitangent_sign: f32,
     #endif
+    #if vertex_colors
+    @location(8) color: vec4<f32>,
+    #endif
 }
 
 @vertex
@@ -58,6 +64,9 @@ fn vs_main(in: VertexIn) -> VertexOut {
     #endif
     #if normal_map
     out.bitangent_sign = in.bitangent_sign;
+    #endif
+    #if vertex_colors
+    out.color = in.color;
     #endif
     // The one orthographic map's coordinates of this corner's lookup point
     // (ShaderKey::shadow_coords_per_vertex says why this is exact).
@@ -100,8 +109,15 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     // Textures: the material at this pixel (shadowing the module's
     // `material`), read with the UVs' screen derivatives (per 2×2 quad).
     let surface_uv = SurfaceUv(in.uv0, in.uv1, dpdx(in.uv0), dpdy(in.uv0), dpdx(in.uv1), dpdy(in.uv1));
+    // Vertex colours (interpolated) multiply the colours first.
+    #if vertex_colors
+    let textured = textured_surface(vertex_coloured(material, in.color.rgb), surface_uv);
+    #else
     let textured = textured_surface(material, surface_uv);
+    #endif
     let material = textured.material;
+    #elif vertex_colors
+    let material = vertex_coloured(material, in.color.rgb);
     #endif
     let n = flip * normalize_or_zero(in.normal);
     #if tangents

@@ -24,6 +24,9 @@ struct VertexIn {
     #if normal_map
     @location(8) bitangent_sign: f32,
     #endif
+    #if vertex_colors
+    @location(9) color: vec4<f32>,
+    #endif
 }
 
 struct VertexOut {
@@ -59,8 +62,15 @@ fn vertex_radiance(in: VertexIn, flip: f32) -> vec3<f32> {
     #if textures
     // Textures: the material at the shading point (flat: the centroid's
     // UVs), level 0, shadowing the module's `material`.
+    // Vertex colours (flat: the corners' mean) multiply the colours first.
+    #if vertex_colors
+    let textured = textured_surface_level0(vertex_coloured(material, in.color.rgb), in.uv0, in.uv1);
+    #else
     let textured = textured_surface_level0(material, in.uv0, in.uv1);
+    #endif
     let material = textured.material;
+    #elif vertex_colors
+    let material = vertex_coloured(material, in.color.rgb);
     #endif
     // A normal map (flat: the triangle's first corner's sign at every
     // corner, as the reference).

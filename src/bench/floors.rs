@@ -202,6 +202,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         normal_maps: false,
         two_sided: false,
         culling: false,
+        vertex_colors: false,
     }
 }
 

@@ -31,6 +31,9 @@ pub struct VertexLayout {
     /// sign of `B = sign · N × T`; flat shading: the triangle's first
     /// corner's).
     pub bitangent_signs: bool,
+    /// `@location(9) color` (a mesh has vertex colours, RGBA; white for
+    /// the others; flat shading: the corners' mean).
+    pub colors: bool,
 }
 
 impl VertexLayout {
@@ -64,6 +67,9 @@ impl VertexLayout {
         if self.bitangent_signs {
             push(8, wgpu::VertexFormat::Float32);
         }
+        if self.colors {
+            push(9, wgpu::VertexFormat::Float32x4);
+        }
         attributes
     }
 
@@ -74,7 +80,8 @@ impl VertexLayout {
             + 3 * self.shading_point as u64
             + 3 * self.face_normal as u64
             + 4 * self.tex_coords as u64
-            + self.bitangent_signs as u64)
+            + self.bitangent_signs as u64
+            + 4 * self.colors as u64)
     }
 }
 
@@ -142,6 +149,18 @@ fn push_sign(words: &mut Vec<u32>, layout: &VertexLayout, sign: f64) {
     }
 }
 
+/// A vertex colour, if the stream has them.
+fn push_color(words: &mut Vec<u32>, layout: &VertexLayout, c: glam::DVec4) {
+    if layout.colors {
+        words.extend(c.as_vec4().to_array().map(f32::to_bits));
+    }
+}
+
+/// Whether some mesh of `scene` has vertex colours.
+fn has_colors(scene: &Scene) -> bool {
+    scene.meshes.iter().any(|m| !m.colors.is_empty())
+}
+
 /// The UV sets of vertex `v` of `mesh`.
 fn vertex_uvs(mesh: &Mesh, v: usize) -> [glam::DVec2; 2] {
     [mesh.tex_coord(0, v), mesh.tex_coord(1, v)]
@@ -178,6 +197,7 @@ impl GeometryData {
             face_normal,
             tex_coords,
             bitangent_signs: crate::gpu::textures::has_normal_maps(scene),
+            colors: has_colors(scene),
         };
         match scene.shading {
             ShadingMode::Flat => (3 * triangles * layout(true, false).stride(), 0),
@@ -196,6 +216,7 @@ impl GeometryData {
             face_normal: false,
             tex_coords,
             bitangent_signs: signs,
+            colors: has_colors(scene),
         };
         let vertex_count: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
         let mut words = Vec::with_capacity(vertex_count * layout.stride() as usize / 4);
@@ -212,6 +233,7 @@ impl GeometryData {
                 }
                 push_uvs(&mut words, &layout, vertex_uvs(mesh, v));
                 push_sign(&mut words, &layout, mesh.bitangent_sign(v));
+                push_color(&mut words, &layout, mesh.color(v));
             }
             indices.extend(mesh.indices.iter().flatten().map(|i| base + i));
             base += mesh.positions.len() as u32;
@@ -234,12 +256,18 @@ impl GeometryData {
             face_normal: false,
             tex_coords,
             bitangent_signs: signs,
+            colors: has_colors(scene),
         };
         Self::de_indexed(scene, layout, |mesh, t, words| {
             let corners = mesh.triangle(t);
             let frame = mesh.flat_frame(t);
             let shading_point = centroid(corners);
             let sign = mesh.bitangent_sign(mesh.indices[t][0] as usize);
+            let color = mesh.indices[t]
+                .iter()
+                .map(|&v| mesh.color(v as usize))
+                .sum::<glam::DVec4>()
+                / 3.0;
             let uvs = [0, 1].map(|set| {
                 mesh.indices[t]
                     .iter()
@@ -256,6 +284,7 @@ impl GeometryData {
                 push3(words, shading_point);
                 push_uvs(words, &layout, uvs);
                 push_sign(words, &layout, sign);
+                push_color(words, &layout, color);
             }
         })
     }
@@ -272,6 +301,7 @@ impl GeometryData {
             face_normal: true,
             tex_coords,
             bitangent_signs: signs,
+            colors: has_colors(scene),
         };
         Self::de_indexed(scene, layout, |mesh, t, words| {
             let face = face_normal(mesh.triangle(t));
@@ -284,6 +314,7 @@ impl GeometryData {
                 push3(words, face);
                 push_uvs(words, &layout, vertex_uvs(mesh, v));
                 push_sign(words, &layout, mesh.bitangent_sign(v));
+                push_color(words, &layout, mesh.color(v));
             }
         })
     }

@@ -175,11 +175,19 @@ impl<'a> Shader<'a> {
                                         .sum::<DVec2>()
                                         / 3.0
                                 });
+                                // The corners' mean colour, as the GPU's
+                                // flat stream carries it.
+                                let color = m.indices[t]
+                                    .iter()
+                                    .map(|&v| m.color(v as usize))
+                                    .sum::<glam::DVec4>()
+                                    / 3.0;
                                 shader.both_sides(m, |flip| {
                                     let frame = flipped(&m.flat_frame(t), flip);
                                     let (material, frame) = shader.material_at(
                                         m,
                                         uv,
+                                        color,
                                         None,
                                         frame,
                                         flip * m.bitangent_sign(m.indices[t][0] as usize),
@@ -214,6 +222,7 @@ impl<'a> Shader<'a> {
                                     let (material, frame) = shader.material_at(
                                         m,
                                         uv,
+                                        m.color(v),
                                         None,
                                         frame,
                                         flip * m.bitangent_sign(v),
@@ -282,9 +291,12 @@ impl<'a> Shader<'a> {
                     .zip(w)
                     .map(|(&v, w)| w * object.bitangent_sign(v as usize))
                     .sum::<f64>();
+                let colors = idx.map(|v| object.color(v as usize));
+                let color = w[0] * colors[0] + w[1] * colors[1] + w[2] * colors[2];
                 let (material, frame) = self.material_at(
                     object,
                     uv,
+                    color,
                     Some((t_index(hit), pixel)),
                     SurfaceFrame::new(n, t),
                     flip * if sign < 0.0 { -1.0 } else { 1.0 },
@@ -294,8 +306,9 @@ impl<'a> Shader<'a> {
         }
     }
 
-    /// The material of mesh `m` at a point with UV sets `uv` and shading
-    /// frame `frame`: its textures applied, read with the footprint of
+    /// The material of mesh `m` at a point with UV sets `uv`, vertex
+    /// colour `color` (used if the mesh has colours) and shading frame
+    /// `frame`: its textures applied, read with the footprint of
     /// the pixel when one is given (`(triangle, (row, column))`,
     /// per-pixel shading), else at level 0 (per-vertex shading, as the
     /// GPU's vertex stage); the frame with the normal map applied
@@ -304,14 +317,21 @@ impl<'a> Shader<'a> {
         &self,
         m: &Mesh,
         uv: [DVec2; 2],
+        color: glam::DVec4,
         pixel: Option<(usize, (usize, usize))>,
         frame: SurfaceFrame,
         sign: f64,
     ) -> (std::borrow::Cow<'_, Material>, SurfaceFrame) {
-        let material = &self.materials[m.material];
-        if material.textures.is_empty() {
-            return (std::borrow::Cow::Borrowed(material), frame);
+        let base = &self.materials[m.material];
+        // Vertex colours multiply the colours first (GPU: vertex_coloured).
+        let coloured = (!m.colors.is_empty()).then(|| base.vertex_coloured(color.truncate()));
+        if base.textures.is_empty() {
+            return match coloured {
+                Some(c) => (std::borrow::Cow::Owned(c), frame),
+                None => (std::borrow::Cow::Borrowed(base), frame),
+            };
         }
+        let material = coloured.as_ref().unwrap_or(base);
         let footprint = match pixel {
             Some((t, pixel)) => [0, 1].map(|set| self.footprint(m, t, set, pixel)),
             None => [Footprint::default(); 2],

@@ -69,6 +69,8 @@ pub enum Feature {
     /// Some material is single-sided (glTF `doubleSided: false`): back
     /// faces are discarded (`culling`).
     Culling,
+    /// Some mesh has vertex colours (glTF `COLOR_0`; `vertex_colors`).
+    VertexColors,
 }
 
 impl Feature {
@@ -95,6 +97,7 @@ impl Feature {
             NormalMap,
             TwoSided,
             Culling,
+            VertexColors,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -134,6 +137,7 @@ impl Feature {
             Feature::NormalMap => "normal_map",
             Feature::TwoSided => "two_sided",
             Feature::Culling => "culling",
+            Feature::VertexColors => "vertex_colors",
         };
         flag.into()
     }

@@ -37,6 +37,8 @@ pub struct ShaderKey {
     pub two_sided: bool,
     /// Some material the scene draws is single-sided (feature `culling`).
     pub culling: bool,
+    /// Some mesh has vertex colours (feature `vertex_colors`; location 9).
+    pub vertex_colors: bool,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -105,6 +107,7 @@ impl ShaderKey {
                 .meshes
                 .iter()
                 .any(|m| scene.materials[m.material].sides == crate::material::Sides::Front),
+            vertex_colors: scene.meshes.iter().any(|m| !m.colors.is_empty()),
         };
         key.arrays.measured = key.has_measured();
         key
@@ -217,6 +220,9 @@ impl ShaderKey {
         }
         if self.culling {
             f.push(Feature::Culling);
+        }
+        if self.vertex_colors {
+            f.push(Feature::VertexColors);
         }
         f
     }

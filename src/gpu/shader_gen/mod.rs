@@ -99,6 +99,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 normal_maps: false,
                 two_sided: false,
                 culling: false,
+                vertex_colors: false,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -123,6 +124,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     normal_maps: false,
                     two_sided: false,
                     culling: false,
+                    vertex_colors: false,
                 });
             }
         }
@@ -151,6 +153,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 normal_maps: uniform,
                 two_sided: uniform,
                 culling: uniform,
+                vertex_colors: uniform,
             });
         }
     }

@@ -81,6 +81,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         normal_maps: false,
         two_sided: false,
         culling: false,
+        vertex_colors: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -106,6 +107,7 @@ fn snapshot_everything() {
         normal_maps: false,
         two_sided: false,
         culling: false,
+        vertex_colors: false,
     };
     check_snapshot("everything", &compose(&key));
 }

@@ -196,6 +196,7 @@ fn f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f
 }
 
 
+
 // Which BRDF a pipeline draws: a model and, for Cook-Torrance and the
 // mirror, its terms, as pipeline-overridable constants. Each is either a
 // code (MODEL_*, DISTRIBUTION_*, GEOMETRY_*, FRESNEL_*, DENOMINATOR_*,
