@@ -24,8 +24,8 @@ pub enum TextureTarget {
     /// (`sign · N × T`) and normal (glTF 2.0 §3.9.3, "normalTexture").
     Normal { scale: f64 },
     /// glTF's `occlusionTexture`: the ambient term `k_a·L_a` is multiplied
-    /// by `1 + strength·(R − 1)` (glTF 2.0: "occludedColor = lerp(color,
-    /// color · <sampled occlusion texture value>, <occlusion strength>)"),
+    /// by `1 + strength·(R − 1)` (glTF 2.0: `occludedColor = lerp(color,
+    /// color * <sampled occlusion texture value>, <occlusion strength>)`),
     /// and nothing else: direct light is not occluded.
     Occlusion { strength: f64 },
 }
