@@ -42,7 +42,7 @@ struct Material {
     base_color: vec3<f32>, // gltf-pbr: base colour b (textures and vertex colours multiply it per pixel)
     metallic: f32,         // gltf-pbr: metallic m (its perceptual roughness r is `roughness`)
     emission: vec3<f32>,   // emitted radiance W/(m²·sr), added to L_o (every model)
-    _pad_end: f32,
+    sides: u32,            // 0: both faces, lit as the front; 1: back faces culled; 2: back faces lit with the flipped normal (material::Sides)
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,

@@ -19,6 +19,12 @@ struct VertexIn {
     @location(6) uv0: vec2<f32>,
     @location(7) uv1: vec2<f32>,
     #endif
+    #if normal_map
+    @location(8) bitangent_sign: f32,
+    #endif
+    #if vertex_colors
+    @location(9) color: vec4<f32>,
+    #endif
 }
 
 struct VertexOut {
@@ -35,6 +41,12 @@ struct VertexOut {
     @location(5) uv0: vec2<f32>,
     @location(6) uv1: vec2<f32>,
     #endif
+    #if normal_map
+    @location(7) bitangent_sign: f32,
+    #endif
+    #if vertex_colors
+    @location(8) color: vec4<f32>,
+    #endif
 }
 
 @vertex
@@ -50,6 +62,12 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.uv0 = in.uv0;
     out.uv1 = in.uv1;
     #endif
+    #if normal_map
+    out.bitangent_sign = in.bitangent_sign;
+    #endif
+    #if vertex_colors
+    out.color = in.color;
+    #endif
     // The one orthographic map's coordinates of this corner's lookup point
     // (ShaderKey::shadow_coords_per_vertex says why this is exact).
     #if shadow_vertex
@@ -59,7 +77,26 @@ fn vs_main(in: VertexIn) -> VertexOut {
 }
 
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    // Sides (Material.sides, glTF doubleSided): a back face of a
+    // single-sided material is culled, one of a double-sided material is
+    // lit with its frame flipped (normal, tangent and bitangent). The
+    // condition varies per pixel (front_facing): UNIFORM_BRANCHES.
+    // Compiled only when some material is single-sided (`culling`) or
+    // double-sided (`two_sided`).
+    #if culling || two_sided
+    let back = select(0u, material.sides, !front_facing);
+    #endif
+    #if culling
+    if back == 1u {
+        discard;
+    }
+    #endif
+    #if two_sided
+    let flip = select(1.0, -1.0, back == 2u);
+    #else
+    let flip = 1.0;
+    #endif
     // Opposite normals can interpolate to zero: no direction, so only the
     // ambient term remains (the CPU reference does the same).
     // With shadows looked up here: the geometric normal (offset normal of
@@ -72,13 +109,27 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Textures: the material at this pixel (shadowing the module's
     // `material`), read with the UVs' screen derivatives (per 2×2 quad).
     let surface_uv = SurfaceUv(in.uv0, in.uv1, dpdx(in.uv0), dpdy(in.uv0), dpdx(in.uv1), dpdy(in.uv1));
-    let material = textured_material(material, surface_uv);
-    #endif
-    let n = normalize_or_zero(in.normal);
-    #if tangents
-    let frame = surface_frame(n, in.tangent);
+    // Vertex colours (interpolated) multiply the colours first.
+    #if vertex_colors
+    let textured = textured_surface(vertex_coloured(material, in.color.rgb), surface_uv);
     #else
-    let frame = surface_frame(n, any_tangent(n));
+    let textured = textured_surface(material, surface_uv);
+    #endif
+    let material = textured.material;
+    #elif vertex_colors
+    let material = vertex_coloured(material, in.color.rgb);
+    #endif
+    let n = flip * normalize_or_zero(in.normal);
+    #if tangents
+    var frame = surface_frame(n, flip * in.tangent);
+    #else
+    var frame = surface_frame(n, any_tangent(n));
+    #endif
+    // A normal map: the frame turned to its normal (the sign's
+    // interpolation is ±1 within a triangle: split vertices keep a
+    // triangle's corners on one side of a mirror seam).
+    #if normal_map
+    frame = normal_mapped_frame(frame, flip * select(1.0, -1.0, in.bitangent_sign < 0.0), textured.normal);
     #endif
     #if shadow_pixel
     return target_output(reflected_radiance(material, in.world, frame, n_g));

@@ -21,6 +21,12 @@ struct VertexIn {
     @location(6) uv0: vec2<f32>,
     @location(7) uv1: vec2<f32>,
     #endif
+    #if normal_map
+    @location(8) bitangent_sign: f32,
+    #endif
+    #if vertex_colors
+    @location(9) color: vec4<f32>,
+    #endif
 }
 
 struct VertexOut {
@@ -35,15 +41,23 @@ struct VertexOut {
     // vertices' (≥ 0). One sample per pixel: the centroid is the centre.
     @location(0) @interpolate(perspective, centroid) radiance: vec3<f32>,
     #endif
+    #if two_sided
+    #if flat
+    @location(1) @interpolate(flat) radiance_back: vec3<f32>,
+    #else
+    @location(1) radiance_back: vec3<f32>,
+    #endif
+    #endif
 }
 
-@vertex
-fn vs_main(in: VertexIn) -> VertexOut {
-    let n = normalize_or_zero(in.normal);
+// The radiance of a vertex's front (flip 1) or back (flip −1: the frame
+// turned over, for double-sided materials).
+fn vertex_radiance(in: VertexIn, flip: f32) -> vec3<f32> {
+    let n = flip * normalize_or_zero(in.normal);
     #if tangents
-    let frame = surface_frame(n, in.tangent);
+    var frame = surface_frame(n, flip * in.tangent);
     #else
-    let frame = surface_frame(n, any_tangent(n));
+    var frame = surface_frame(n, any_tangent(n));
     #endif
     #if flat
     let x = in.shading_point;
@@ -53,22 +67,63 @@ fn vs_main(in: VertexIn) -> VertexOut {
     #if textures
     // Textures: the material at the shading point (flat: the centroid's
     // UVs), level 0, shadowing the module's `material`.
-    let material = textured_material_level0(material, in.uv0, in.uv1);
+    // Vertex colours (flat: the corners' mean) multiply the colours first.
+    #if vertex_colors
+    let textured = textured_surface_level0(vertex_coloured(material, in.color.rgb), in.uv0, in.uv1);
+    #else
+    let textured = textured_surface_level0(material, in.uv0, in.uv1);
     #endif
-    var out: VertexOut;
-    out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
+    let material = textured.material;
+    #elif vertex_colors
+    let material = vertex_coloured(material, in.color.rgb);
+    #endif
+    // A normal map (flat: the triangle's first corner's sign at every
+    // corner, as the reference).
+    #if normal_map
+    frame = normal_mapped_frame(frame, flip * select(1.0, -1.0, in.bitangent_sign < 0.0), textured.normal);
+    #endif
     // Shadows: looked up here, at the same shading point, offset along the
     // face normal (flat) or the vertex normal (gouraud), as the reference.
     #if shadows
-    out.radiance = reflected_radiance(material, x, frame, n);
+    return reflected_radiance(material, x, frame, n);
     #else
-    out.radiance = reflected_radiance(material, x, frame);
+    return reflected_radiance(material, x, frame);
+    #endif
+}
+
+@vertex
+fn vs_main(in: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
+    out.radiance = vertex_radiance(in, 1.0);
+    // Double-sided materials in the scene: both sides shaded here, the
+    // fragment picks by its facing (OpenGL's two-sided lighting).
+    #if two_sided
+    out.radiance_back = vertex_radiance(in, -1.0);
     #endif
     return out;
 }
 
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    // Sides (Material.sides, glTF doubleSided): a back face of a
+    // single-sided material is culled; a double-sided one shows its back's
+    // radiance. The condition varies per pixel (front_facing):
+    // UNIFORM_BRANCHES.
+    // Compiled only when some material is single-sided (`culling`) or
+    // double-sided (`two_sided`).
+    #if culling || two_sided
+    let back = select(0u, material.sides, !front_facing);
+    #endif
+    #if culling
+    if back == 1u {
+        discard;
+    }
+    #endif
     // Alpha 1 marks coverage.
+    #if two_sided
+    return target_output(select(in.radiance, in.radiance_back, back == 2u));
+    #else
     return target_output(in.radiance);
+    #endif
 }

@@ -12,9 +12,9 @@ struct TextureSlot {
     row_u: vec4<f32>,  // u' = dot(row_u.xyz, (u, v, 1)): KHR_texture_transform, first row
     row_v: vec4<f32>,  // v' = dot(row_v.xyz, (u, v, 1))
     fields: u32,       // bit mask of the Material fields it scales (material::texture::gpu_field_values order); 0: unused
-    channel: u32,      // 4: RGB (a colour parameter); 0-3: the channel a scalar parameter reads
+    channel: u32,      // 4: RGB (a colour parameter); 0-3: the channel a scalar parameter reads; 5: a normal map
     tex_coord: u32,    // UV set (TEXCOORD_n)
-    _pad: u32,
+    strength: f32,     // 1; occlusion: glTF's strength; normal map: glTF's scale
 }
 
 struct TextureSlots {
@@ -77,35 +77,45 @@ fn slot_texel_level0(i: u32, uv: vec2<f32>) -> vec4<f32> {
 
 // The Material fields of mask `fields` multiplied by f (colour fields
 // channel by channel, scalar fields by f.x). Bits: the order of
-// material::texture::gpu_field_values.
+// material::texture::gpu_field_values. Selects, not branches: the mask
+// is a uniform (UNIFORM_BRANCHES in shaders/brdf/phong.wgsl).
 fn scale_fields(base: Material, fields: u32, f: vec3<f32>) -> Material {
     var m = base;
-    if (fields & 1u) != 0u { m.k_a *= f; }
-    if (fields & 2u) != 0u { m.k_d *= f; }
-    if (fields & 4u) != 0u { m.k_s *= f; }
-    if (fields & 8u) != 0u { m.k_e *= f.x; }
-    if (fields & 16u) != 0u { m.roughness *= f.x; }
-    if (fields & 32u) != 0u { m.sigma_x *= f.x; }
-    if (fields & 64u) != 0u { m.sigma_y *= f.x; }
-    if (fields & 128u) != 0u { m.eta *= f; }
-    if (fields & 256u) != 0u { m.kappa *= f; }
-    if (fields & 512u) != 0u { m.eta_i *= f.x; }
-    if (fields & 1024u) != 0u { m.eta_t *= f.x; }
-    if (fields & 2048u) != 0u { m.d_norm *= f.x; }
-    if (fields & 4096u) != 0u { m.blinn_e *= f.x; }
-    if (fields & 8192u) != 0u { m.lobe *= f.x; }
-    if (fields & 16384u) != 0u { m.base_color *= f; }
-    if (fields & 32768u) != 0u { m.metallic *= f.x; }
-    if (fields & 65536u) != 0u { m.emission *= f; }
+    let one = vec3<f32>(1.0);
+    m.k_a *= select(one, f, (fields & 1u) != 0u);
+    m.k_d *= select(one, f, (fields & 2u) != 0u);
+    m.k_s *= select(one, f, (fields & 4u) != 0u);
+    m.k_e *= select(1.0, f.x, (fields & 8u) != 0u);
+    m.roughness *= select(1.0, f.x, (fields & 16u) != 0u);
+    m.sigma_x *= select(1.0, f.x, (fields & 32u) != 0u);
+    m.sigma_y *= select(1.0, f.x, (fields & 64u) != 0u);
+    m.eta *= select(one, f, (fields & 128u) != 0u);
+    m.kappa *= select(one, f, (fields & 256u) != 0u);
+    m.eta_i *= select(1.0, f.x, (fields & 512u) != 0u);
+    m.eta_t *= select(1.0, f.x, (fields & 1024u) != 0u);
+    m.d_norm *= select(1.0, f.x, (fields & 2048u) != 0u);
+    m.blinn_e *= select(1.0, f.x, (fields & 4096u) != 0u);
+    m.lobe *= select(1.0, f.x, (fields & 8192u) != 0u);
+    m.base_color *= select(one, f, (fields & 16384u) != 0u);
+    m.metallic *= select(1.0, f.x, (fields & 32768u) != 0u);
+    m.emission *= select(one, f, (fields & 65536u) != 0u);
     return m;
 }
 
-// What a texel multiplies: RGB, or one channel for a scalar parameter.
+// What a texel multiplies: RGB, or one channel for a scalar parameter,
+// with the slot's strength: 1 + s·(v − 1), exactly v at s = 1. Twin:
+// TextureTarget::with_strength.
 fn slot_factor(slot: TextureSlot, texel: vec4<f32>) -> vec3<f32> {
-    if slot.channel < 4u {
-        return vec3<f32>(texel[slot.channel]);
-    }
-    return texel.rgb;
+    let v = select(vec3<f32>(texel[min(slot.channel, 3u)]), texel.rgb, slot.channel >= 4u);
+    return select(1.0 + slot.strength * (v - 1.0), v, slot.strength == 1.0);
+}
+
+// glTF's normal-texture decoding: normalize((2·rgb − 1) ⊙ (s, s, 1)),
+// (0, 0, 1) for a zero vector. Twin: material::texture::decode_normal.
+fn decoded_normal(texel: vec4<f32>, scale: f32) -> vec3<f32> {
+    let n = (2.0 * texel.rgb - 1.0) * vec3<f32>(scale, scale, 1.0);
+    let len2 = dot(n, n);
+    return select(vec3<f32>(0.0, 0.0, 1.0), n * inverseSqrt(len2), len2 > 0.0);
 }
 
 fn slot_uv(slot: TextureSlot, uv: vec2<f32>) -> vec2<f32> {
@@ -118,40 +128,58 @@ fn slot_duv(slot: TextureSlot, d: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(dot(slot.row_u.xy, d), dot(slot.row_v.xy, d));
 }
 
-// The material at a pixel: every slot's texel multiplies its fields.
+// The material at a point, and its normal map's tangent-space normal
+// ((0, 0, 1) without one). f64 twin: reference::texture::Textured.
+struct TexturedSurface {
+    material: Material,
+    normal: vec3<f32>,
+}
+
+// One slot's texel applied: its fields scaled (none for a normal map,
+// whose fields are 0), or its normal taken (channel 5). Unused slots
+// (fields 0, a white texel) change nothing.
+fn apply_slot(s: TexturedSurface, slot: TextureSlot, texel: vec4<f32>) -> TexturedSurface {
+    var out = s;
+    out.material = scale_fields(s.material, slot.fields, slot_factor(slot, texel));
+    out.normal = select(s.normal, decoded_normal(texel, slot.strength), slot.channel == 5u);
+    return out;
+}
+
+// The material at a pixel: every slot's texel applied.
 // f64 twin: reference::texture::textured.
-fn textured_material(base: Material, s: SurfaceUv) -> Material {
-    var m = base;
+fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
+    var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0));
     for (var i = 0u; i < TEXTURE_SLOTS; i++) {
         let slot = texture_slots.slots[i];
-        if slot.fields == 0u {
-            continue;
-        }
-        var uv = s.uv0;
-        var ddx = s.ddx0;
-        var ddy = s.ddy0;
-        if slot.tex_coord == 1u {
-            uv = s.uv1;
-            ddx = s.ddx1;
-            ddy = s.ddy1;
-        }
+        let second = slot.tex_coord == 1u;
+        let uv = select(s.uv0, s.uv1, second);
+        let ddx = select(s.ddx0, s.ddx1, second);
+        let ddy = select(s.ddy0, s.ddy1, second);
         let texel = slot_texel(i, slot_uv(slot, uv), slot_duv(slot, ddx), slot_duv(slot, ddy));
-        m = scale_fields(m, slot.fields, slot_factor(slot, texel));
+        out = apply_slot(out, slot, texel);
     }
-    return m;
+    return out;
 }
 
 // The material at a vertex (flat and Gouraud shading): level 0.
-fn textured_material_level0(base: Material, uv0: vec2<f32>, uv1: vec2<f32>) -> Material {
-    var m = base;
+fn textured_surface_level0(base: Material, uv0: vec2<f32>, uv1: vec2<f32>) -> TexturedSurface {
+    var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0));
     for (var i = 0u; i < TEXTURE_SLOTS; i++) {
         let slot = texture_slots.slots[i];
-        if slot.fields == 0u {
-            continue;
-        }
         let uv = select(uv0, uv1, slot.tex_coord == 1u);
-        let texel = slot_texel_level0(i, slot_uv(slot, uv));
-        m = scale_fields(m, slot.fields, slot_factor(slot, texel));
+        out = apply_slot(out, slot, slot_texel_level0(i, slot_uv(slot, uv)));
     }
-    return m;
+    return out;
 }
+
+#if normal_map
+// The shading frame with a tangent-space normal n_t applied:
+// n' = normalize(n_t.x·T + n_t.y·B + n_t.z·N), B = sign·N×T, then the
+// frame rebuilt around n' with the same tangent. Twin:
+// reference::texture::normal_mapped_frame.
+fn normal_mapped_frame(frame: SurfaceFrame, sign: f32, n_t: vec3<f32>) -> SurfaceFrame {
+    let b = sign * cross(frame.n, frame.t);
+    let n = normalize_or_zero(frame.t * n_t.x + b * n_t.y + frame.n * n_t.z);
+    return surface_frame(n, frame.t);
+}
+#endif

@@ -201,6 +201,10 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         environment: false,
         environment_sampled: false,
         texture_slots: 0,
+        normal_maps: false,
+        two_sided: false,
+        culling: false,
+        vertex_colors: false,
     }
 }
 

@@ -27,6 +27,13 @@ pub struct VertexLayout {
     /// `@location(6) uv0`, `@location(7) uv1` (a material has textures;
     /// flat shading: the centroid's UVs at every corner).
     pub tex_coords: bool,
+    /// `@location(8) bitangent_sign` (a material has a normal map: the
+    /// sign of `B = sign · N × T`; flat shading: the triangle's first
+    /// corner's).
+    pub bitangent_signs: bool,
+    /// `@location(9) color` (a mesh has vertex colours, RGBA; white for
+    /// the others; flat shading: the corners' mean).
+    pub colors: bool,
 }
 
 impl VertexLayout {
@@ -57,6 +64,12 @@ impl VertexLayout {
             push(6, wgpu::VertexFormat::Float32x2);
             push(7, wgpu::VertexFormat::Float32x2);
         }
+        if self.bitangent_signs {
+            push(8, wgpu::VertexFormat::Float32);
+        }
+        if self.colors {
+            push(9, wgpu::VertexFormat::Float32x4);
+        }
         attributes
     }
 
@@ -66,7 +79,9 @@ impl VertexLayout {
             + 3 * self.tangents as u64
             + 3 * self.shading_point as u64
             + 3 * self.face_normal as u64
-            + 4 * self.tex_coords as u64)
+            + 4 * self.tex_coords as u64
+            + self.bitangent_signs as u64
+            + 4 * self.colors as u64)
     }
 }
 
@@ -127,6 +142,25 @@ fn push_uvs(words: &mut Vec<u32>, layout: &VertexLayout, uvs: [glam::DVec2; 2]) 
     }
 }
 
+/// A bitangent sign, if the stream has them.
+fn push_sign(words: &mut Vec<u32>, layout: &VertexLayout, sign: f64) {
+    if layout.bitangent_signs {
+        words.push((sign as f32).to_bits());
+    }
+}
+
+/// A vertex colour, if the stream has them.
+fn push_color(words: &mut Vec<u32>, layout: &VertexLayout, c: glam::DVec4) {
+    if layout.colors {
+        words.extend(c.as_vec4().to_array().map(f32::to_bits));
+    }
+}
+
+/// Whether some mesh of `scene` has vertex colours.
+fn has_colors(scene: &Scene) -> bool {
+    scene.meshes.iter().any(|m| !m.colors.is_empty())
+}
+
 /// The UV sets of vertex `v` of `mesh`.
 fn vertex_uvs(mesh: &Mesh, v: usize) -> [glam::DVec2; 2] {
     [mesh.tex_coord(0, v), mesh.tex_coord(1, v)]
@@ -139,10 +173,15 @@ impl GeometryData {
     /// The UV sets are in the stream when a material has textures.
     pub fn new(scene: &Scene, tangents: bool, face_normals: bool) -> Self {
         let tex_coords = scene.has_textures();
+        let signs = crate::gpu::textures::has_normal_maps(scene);
         match scene.shading {
-            ShadingMode::Flat => Self::flat(scene, tangents, tex_coords),
-            ShadingMode::Phong if face_normals => Self::phong_faces(scene, tangents, tex_coords),
-            ShadingMode::Gouraud | ShadingMode::Phong => Self::indexed(scene, tangents, tex_coords),
+            ShadingMode::Flat => Self::flat(scene, tangents, tex_coords, signs),
+            ShadingMode::Phong if face_normals => {
+                Self::phong_faces(scene, tangents, tex_coords, signs)
+            }
+            ShadingMode::Gouraud | ShadingMode::Phong => {
+                Self::indexed(scene, tangents, tex_coords, signs)
+            }
         }
     }
 
@@ -157,6 +196,8 @@ impl GeometryData {
             shading_point,
             face_normal,
             tex_coords,
+            bitangent_signs: crate::gpu::textures::has_normal_maps(scene),
+            colors: has_colors(scene),
         };
         match scene.shading {
             ShadingMode::Flat => (3 * triangles * layout(true, false).stride(), 0),
@@ -168,12 +209,14 @@ impl GeometryData {
         }
     }
 
-    fn indexed(scene: &Scene, tangents: bool, tex_coords: bool) -> Self {
+    fn indexed(scene: &Scene, tangents: bool, tex_coords: bool, signs: bool) -> Self {
         let layout = VertexLayout {
             tangents,
             shading_point: false,
             face_normal: false,
             tex_coords,
+            bitangent_signs: signs,
+            colors: has_colors(scene),
         };
         let vertex_count: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
         let mut words = Vec::with_capacity(vertex_count * layout.stride() as usize / 4);
@@ -189,6 +232,8 @@ impl GeometryData {
                     push3(&mut words, mesh.tangent(v));
                 }
                 push_uvs(&mut words, &layout, vertex_uvs(mesh, v));
+                push_sign(&mut words, &layout, mesh.bitangent_sign(v));
+                push_color(&mut words, &layout, mesh.color(v));
             }
             indices.extend(mesh.indices.iter().flatten().map(|i| base + i));
             base += mesh.positions.len() as u32;
@@ -204,17 +249,25 @@ impl GeometryData {
 
     /// De-indexed: every corner carries the triangle's frame and centroid
     /// (computed in f64 exactly as the reference's flat shading does).
-    fn flat(scene: &Scene, tangents: bool, tex_coords: bool) -> Self {
+    fn flat(scene: &Scene, tangents: bool, tex_coords: bool, signs: bool) -> Self {
         let layout = VertexLayout {
             tangents,
             shading_point: true,
             face_normal: false,
             tex_coords,
+            bitangent_signs: signs,
+            colors: has_colors(scene),
         };
         Self::de_indexed(scene, layout, |mesh, t, words| {
             let corners = mesh.triangle(t);
             let frame = mesh.flat_frame(t);
             let shading_point = centroid(corners);
+            let sign = mesh.bitangent_sign(mesh.indices[t][0] as usize);
+            let color = mesh.indices[t]
+                .iter()
+                .map(|&v| mesh.color(v as usize))
+                .sum::<glam::DVec4>()
+                / 3.0;
             let uvs = [0, 1].map(|set| {
                 mesh.indices[t]
                     .iter()
@@ -230,6 +283,8 @@ impl GeometryData {
                 }
                 push3(words, shading_point);
                 push_uvs(words, &layout, uvs);
+                push_sign(words, &layout, sign);
+                push_color(words, &layout, color);
             }
         })
     }
@@ -239,12 +294,14 @@ impl GeometryData {
     /// geometric normal (`mesh::face_normal`, as the reference's offset
     /// normal), from which the vertex shader computes the shadow-map
     /// coordinates (shaders/shadows.wgsl `shadow_ortho_ndc`).
-    fn phong_faces(scene: &Scene, tangents: bool, tex_coords: bool) -> Self {
+    fn phong_faces(scene: &Scene, tangents: bool, tex_coords: bool, signs: bool) -> Self {
         let layout = VertexLayout {
             tangents,
             shading_point: false,
             face_normal: true,
             tex_coords,
+            bitangent_signs: signs,
+            colors: has_colors(scene),
         };
         Self::de_indexed(scene, layout, |mesh, t, words| {
             let face = face_normal(mesh.triangle(t));
@@ -256,6 +313,8 @@ impl GeometryData {
                 }
                 push3(words, face);
                 push_uvs(words, &layout, vertex_uvs(mesh, v));
+                push_sign(words, &layout, mesh.bitangent_sign(v));
+                push_color(words, &layout, mesh.color(v));
             }
         })
     }

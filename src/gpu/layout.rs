@@ -50,7 +50,8 @@ pub struct GpuMaterial {
     pub metallic: f32,
     /// Emitted radiance, added to `L_o` (`Material::emission`).
     pub emission: [f32; 3],
-    pub _pad_end: f32,
+    /// `Sides::code` of the material (glTF `doubleSided`).
+    pub sides: u32,
 }
 
 /// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
@@ -143,7 +144,7 @@ impl GpuMaterial {
             base_color: f32x3(p.base_color),
             metallic: p.metallic as f32,
             emission: f32x3(m.emission),
-            _pad_end: 0.0,
+            sides: m.sides.code(),
         }
     }
 }
@@ -327,7 +328,7 @@ mod tests {
                 base_color,
                 metallic,
                 emission,
-                _pad_end
+                sides
             }),
         );
         assert_mirrors(

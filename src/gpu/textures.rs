@@ -38,7 +38,22 @@ pub struct GpuTextureSlot {
     pub fields: u32,
     pub channel: u32,
     pub tex_coord: u32,
-    pub _pad: u32,
+    /// The factor's strength (`TextureTarget::with_strength`): 1 for a
+    /// parameter, glTF's `strength` for occlusion, `scale` for a normal
+    /// map.
+    pub strength: f32,
+}
+
+/// `channel` of a normal-map slot (0–3: a scalar's channel, 4: RGB).
+pub const NORMAL_MAP_CHANNEL: u32 = 5;
+
+/// Whether a material the scene draws has a normal map (feature
+/// `normal_map`: tangents and their signs in the vertex stream).
+pub fn has_normal_maps(scene: &Scene) -> bool {
+    scene
+        .meshes
+        .iter()
+        .any(|m| crate::scene::tangents::normal_map_set(&scene.materials[m.material]).is_some())
 }
 
 /// The most textures one material the scene draws has (the shader's
@@ -104,13 +119,6 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
     }
     let mut slots = vec![GpuTextureSlot::default(); MAX_TEXTURE_SLOTS];
     for (slot, t) in slots.iter_mut().zip(&m.textures) {
-        let TextureTarget::Param(key) = t.target;
-        let fields = mt::gpu_field_mask(m, key)
-            .map_err(|e| Error::Scene(format!("material `{}`: {e}", m.name)))?;
-        let colour = matches!(
-            crate::material::table::param_for(m.model, key).map(|p| p.kind),
-            Some(crate::material::param::Kind::Color)
-        );
         let matrix = t.transform.matrix();
         let row = |r: usize| {
             [
@@ -120,15 +128,29 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
                 0.0,
             ]
         };
+        // A texture on a zero constant changes nothing: 0 fields is
+        // an unused slot, which is the same.
+        let (fields, channel, strength) = match t.target {
+            TextureTarget::Param(key) => {
+                let fields = mt::gpu_field_mask(m, key)
+                    .map_err(|e| Error::Scene(format!("material `{}`: {e}", m.name)))?;
+                let colour = matches!(
+                    crate::material::table::param_for(m.model, key).map(|p| p.kind),
+                    Some(crate::material::param::Kind::Color)
+                );
+                (fields, if colour { 4 } else { t.channel as u32 }, 1.0)
+            }
+            // k_a: bit 0 of the field mask (gpu_field_values' order).
+            TextureTarget::Occlusion { strength } => (1, 0, strength as f32),
+            TextureTarget::Normal { scale } => (0, NORMAL_MAP_CHANNEL, scale as f32),
+        };
         *slot = GpuTextureSlot {
             row_u: row(0),
             row_v: row(1),
-            // A texture on a zero constant changes nothing: 0 fields is
-            // an unused slot, which is the same.
             fields,
-            channel: if colour { 4 } else { t.channel as u32 },
+            channel,
             tex_coord: t.tex_coord as u32,
-            _pad: 0,
+            strength,
         };
     }
     Ok(slots)

@@ -38,10 +38,19 @@ pub struct MaterialEntry {
 /// The suffix that turns a parameter's key into its texture's key.
 pub const TEXTURE_SUFFIX: &str = "_texture";
 
-/// Whether `key` is `PARAM_texture` for some parameter of the table.
+/// Texture keys that scale no parameter: `normal_texture` (the
+/// contract's tangent-space normal map, glTF's encoding, scale 1) and
+/// `occlusion_texture` (glTF's occlusion on the ambient term, R,
+/// strength 1).
+pub const MAP_TEXTURE_KEYS: [&str; 2] = ["normal_texture", "occlusion_texture"];
+
+/// Whether `key` is `PARAM_texture` for some parameter of the table, or
+/// one of [`MAP_TEXTURE_KEYS`].
 pub fn is_texture_key(key: &str) -> bool {
-    key.strip_suffix(TEXTURE_SUFFIX)
-        .is_some_and(|p| table::all_params().iter().any(|q| q.key == p))
+    MAP_TEXTURE_KEYS.contains(&key)
+        || key
+            .strip_suffix(TEXTURE_SUFFIX)
+            .is_some_and(|p| table::all_params().iter().any(|q| q.key == p))
 }
 
 /// Every key a `[materials.NAME]` table accepts, in the order errors list

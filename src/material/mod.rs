@@ -79,6 +79,36 @@ pub struct Material {
     /// Parameters that vary over the surface: each texture multiplies the
     /// constant above it names (empty: a uniform material).
     pub textures: Vec<texture::MaterialTexture>,
+    /// Which faces are drawn and how a back face is lit (glTF
+    /// `doubleSided`).
+    pub sides: Sides,
+}
+
+/// Which faces of a mesh with a material are drawn, and how a back face
+/// is lit. The GPU's `Material.sides` holds [`Sides::code`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Sides {
+    /// Both faces drawn, a back face lit with the front's normal (so the
+    /// one-sided `f_r` leaves it ambient and emission only): the lecture's
+    /// surfaces, every scene-file material.
+    #[default]
+    Unculled,
+    /// glTF `doubleSided: false` (its default): back faces are culled.
+    Front,
+    /// glTF `doubleSided: true`: a back face is lit with the flipped
+    /// normal (and tangent frame), as glTF asks.
+    Both,
+}
+
+impl Sides {
+    /// The GPU's code: 0 unculled, 1 front only, 2 both.
+    pub fn code(self) -> u32 {
+        match self {
+            Sides::Unculled => 0,
+            Sides::Front => 1,
+            Sides::Both => 2,
+        }
+    }
 }
 
 impl Material {
@@ -113,6 +143,7 @@ impl Material {
             metallic: 0.0,
             emission: Rgb::ZERO,
             textures: Vec::new(),
+            sides: Sides::Unculled,
         };
         (model.row().defaults)(&mut m);
         m
@@ -169,6 +200,19 @@ impl Material {
             roughness,
             sigma_x: widen(self.sigma_x),
             sigma_y: widen(self.sigma_y),
+            ..self.clone()
+        }
+    }
+
+    /// The material under a vertex colour `c` (glTF `COLOR_0`, RGB): the
+    /// colours a base colour drives, `k_a`, `k_d` and `base_color`,
+    /// multiplied by it (glTF: "COLOR_0 ... multiplies the base color").
+    /// GPU twin: `vertex_coloured` in shaders/surface.wgsl.
+    pub fn vertex_coloured(&self, c: Rgb) -> Material {
+        Material {
+            k_a: self.k_a * c,
+            k_d: self.k_d * c,
+            base_color: self.base_color * c,
             ..self.clone()
         }
     }

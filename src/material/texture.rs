@@ -17,6 +17,40 @@ pub enum TextureTarget {
     /// `roughness`, ...): a colour parameter by the texel's RGB, a scalar
     /// one by one channel ([`MaterialTexture::channel`]).
     Param(&'static str),
+    /// A tangent-space normal map (glTF's `normalTexture`, the scene
+    /// file's `normal_texture`): the texel's RGB encodes
+    /// `n_t = 2·rgb − 1`, scaled by `(scale, scale, 1)` and normalized,
+    /// in the frame (T, B, N) of the interpolated tangent, bitangent
+    /// (`sign · N × T`) and normal (glTF 2.0 §3.9.3, "normalTexture").
+    Normal { scale: f64 },
+    /// glTF's `occlusionTexture`: the ambient term `k_a·L_a` is multiplied
+    /// by `1 + strength·(R − 1)` (glTF 2.0: `occludedColor = lerp(color,
+    /// color * <sampled occlusion texture value>, <occlusion strength>)`),
+    /// and nothing else: direct light is not occluded.
+    Occlusion { strength: f64 },
+}
+
+impl TextureTarget {
+    /// The factor a texture's value `v` (its channel) applies with
+    /// `strength` (1 for a plain multiplier): `v` itself at strength 1
+    /// (exactly, not `1 + (v − 1)`), else `1 + strength·(v − 1)`. GPU
+    /// twin: `slot_factor` in shaders/textures.wgsl.
+    pub fn with_strength(v: f64, strength: f64) -> f64 {
+        if strength == 1.0 {
+            v
+        } else {
+            1.0 + strength * (v - 1.0)
+        }
+    }
+}
+
+/// glTF's normal-texture decoding: `normalize((2·rgb − 1) ⊙ (scale,
+/// scale, 1))`, the tangent-space normal; (0, 0, 1) for a texel that
+/// decodes to zero length. GPU twin: `decoded_normal` in
+/// shaders/textures.wgsl.
+pub fn decode_normal(rgb: glam::DVec3, scale: f64) -> glam::DVec3 {
+    let n = (2.0 * rgb - glam::DVec3::ONE) * glam::DVec3::new(scale, scale, 1.0);
+    n.try_normalize().unwrap_or(glam::DVec3::Z)
 }
 
 /// One texture of a material.

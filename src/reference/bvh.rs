@@ -150,13 +150,33 @@ impl Bvh {
 
     /// The closest hit with `t` in `[t_min, t_max]`.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        self.intersect_where(ray, t_min, t_max, |_| true)
+    }
+
+    /// The closest hit with `t` in `[t_min, t_max]` on a triangle that
+    /// `keeps_back(id)` keeps when the ray meets its back (clockwise seen
+    /// from the origin): back-face culling of single-sided materials
+    /// (glTF `doubleSided: false`), as the rasterizer culls by winding.
+    pub fn intersect_where(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        keeps_back: impl Fn(TriangleId) -> bool,
+    ) -> Option<Hit> {
         let inv = ray.direction.recip();
         let mut best: Option<Hit> = None;
         let mut t_far = t_max;
         self.traverse(ray, inv, t_min, &mut t_far, |tri, t_lo, t_hi| {
             if let Some(hit) = intersect_triangle(tri, ray, t_lo, *t_hi) {
-                best = Some(hit);
-                *t_hi = hit.t;
+                // Möller–Trumbore's determinant is −d·(e1 × e2): the back
+                // is met where the direction has a positive component
+                // along the counter-clockwise normal.
+                let back = ray.direction.dot(tri.e1.cross(tri.e2)) > 0.0;
+                if !back || keeps_back(tri.id) {
+                    best = Some(hit);
+                    *t_hi = hit.t;
+                }
             }
             false
         });

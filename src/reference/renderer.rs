@@ -18,8 +18,8 @@
 use super::bvh::{Bvh, Hit};
 use super::texture::{self, Footprint};
 use crate::frame::Frame;
-use crate::material::Material;
 use crate::material::brdf::SurfaceFrame;
+use crate::material::{Material, Sides};
 use crate::scene::camera::Ray;
 use crate::scene::{Light, Mesh, Rgb, Scene, ShadingMode, mesh};
 use crate::shading::reflected_radiance;
@@ -98,9 +98,21 @@ fn render_inner(
                 if cos <= 0.0 {
                     continue;
                 }
-                if let Some(hit) = bvh.intersect(&ray, camera.near / cos, camera.far / cos) {
+                // Single-sided materials' back faces are culled, as the
+                // GPU discards them.
+                let keeps_back = |id: super::bvh::TriangleId| {
+                    let m = &scene.meshes[id.mesh as usize];
+                    shader.materials[m.material].sides != Sides::Front
+                };
+                if let Some(hit) =
+                    bvh.intersect_where(&ray, camera.near / cos, camera.far / cos, keeps_back)
+                {
                     *covered = true;
-                    *out = shader.radiance(&hit, (i, j)).as_vec3().to_array();
+                    let face = mesh::face_normal(
+                        scene.meshes[hit.id.mesh as usize].triangle(hit.id.triangle as usize),
+                    );
+                    let back = ray.direction.dot(face) > 0.0;
+                    *out = shader.radiance(&hit, (i, j), back).as_vec3().to_array();
                 } else if let Some(map) = &scene.environment.map {
                     // Contract: a ray that misses sees scale · L_env(d)
                     // (coverage stays 0, as on the GPU).
@@ -129,10 +141,11 @@ struct Shader<'a> {
 }
 
 enum Precomputed {
-    /// Radiance per triangle, `[mesh][triangle]`.
-    Flat(Vec<Vec<Rgb>>),
-    /// Radiance per vertex, `[mesh][vertex]`.
-    Gouraud(Vec<Vec<Rgb>>),
+    /// Radiance per triangle, `[mesh][triangle]`, of its front and its
+    /// back (the back's differs for double-sided materials only).
+    Flat(Vec<Vec<[Rgb; 2]>>),
+    /// Radiance per vertex, `[mesh][vertex]`, front and back.
+    Gouraud(Vec<Vec<[Rgb; 2]>>),
     /// Nothing: shaded per hit.
     Phong,
 }
@@ -162,7 +175,6 @@ impl<'a> Shader<'a> {
                             .into_par_iter()
                             .map(|t| {
                                 let corners = m.triangle(t);
-                                let frame = m.flat_frame(t);
                                 let uv = [0, 1].map(|set| {
                                     m.indices[t]
                                         .iter()
@@ -170,8 +182,30 @@ impl<'a> Shader<'a> {
                                         .sum::<DVec2>()
                                         / 3.0
                                 });
-                                let material = shader.material_at(m, uv, None);
-                                shader.shade(&material, mesh::centroid(corners), &frame, frame.n)
+                                // The corners' mean colour, as the GPU's
+                                // flat stream carries it.
+                                let color = m.indices[t]
+                                    .iter()
+                                    .map(|&v| m.color(v as usize))
+                                    .sum::<glam::DVec4>()
+                                    / 3.0;
+                                shader.both_sides(m, |flip| {
+                                    let frame = flipped(&m.flat_frame(t), flip);
+                                    let (material, frame) = shader.material_at(
+                                        m,
+                                        uv,
+                                        color,
+                                        None,
+                                        frame,
+                                        flip * m.bitangent_sign(m.indices[t][0] as usize),
+                                    );
+                                    shader.shade(
+                                        &material,
+                                        mesh::centroid(corners),
+                                        &frame,
+                                        m_face(m, t),
+                                    )
+                                })
                             })
                             .collect()
                     })
@@ -188,10 +222,20 @@ impl<'a> Shader<'a> {
                         (0..m.positions.len())
                             .into_par_iter()
                             .map(|v| {
-                                let frame = SurfaceFrame::new(m.normals[v], m.tangent(v));
                                 let uv = [0, 1].map(|set| m.tex_coord(set, v));
-                                let material = shader.material_at(m, uv, None);
-                                shader.shade(&material, m.positions[v], &frame, m.normals[v])
+                                shader.both_sides(m, |flip| {
+                                    let frame =
+                                        SurfaceFrame::new(flip * m.normals[v], flip * m.tangent(v));
+                                    let (material, frame) = shader.material_at(
+                                        m,
+                                        uv,
+                                        m.color(v),
+                                        None,
+                                        frame,
+                                        flip * m.bitangent_sign(v),
+                                    );
+                                    shader.shade(&material, m.positions[v], &frame, m.normals[v])
+                                })
                             })
                             .collect()
                     })
@@ -202,15 +246,37 @@ impl<'a> Shader<'a> {
         shader
     }
 
-    /// Reflected radiance seen at `hit`, the hit of pixel `(row, column)`.
-    fn radiance(&self, hit: &Hit, pixel: (usize, usize)) -> Rgb {
+    /// `shade(1)` for the front and, for a double-sided material,
+    /// `shade(−1)` for the back (else the front's again).
+    fn both_sides(&self, m: &Mesh, shade: impl Fn(f64) -> Rgb) -> [Rgb; 2] {
+        let front = shade(1.0);
+        if self.materials[m.material].sides == Sides::Both {
+            [front, shade(-1.0)]
+        } else {
+            [front, front]
+        }
+    }
+
+    /// Reflected radiance seen at `hit`, the hit of pixel `(row, column)`,
+    /// on the triangle's back if `back` (lit with the flipped frame for a
+    /// double-sided material).
+    fn radiance(&self, hit: &Hit, pixel: (usize, usize), back: bool) -> Rgb {
         let (m, t) = (hit.id.mesh as usize, hit.id.triangle as usize);
         let object = &self.scene.meshes[m];
         let idx = object.indices[t];
         let w = [1.0 - hit.u - hit.v, hit.u, hit.v];
+        let side = usize::from(back);
+        let flip = if back && self.materials[object.material].sides == Sides::Both {
+            -1.0
+        } else {
+            1.0
+        };
         match &self.precomputed {
-            Precomputed::Flat(per_triangle) => per_triangle[m][t],
-            Precomputed::Gouraud(per_vertex) => interpolate(w, &per_vertex[m], idx),
+            Precomputed::Flat(per_triangle) => per_triangle[m][t][side],
+            Precomputed::Gouraud(per_vertex) => {
+                let corner = idx.map(|v| per_vertex[m][v as usize][side]);
+                w[0] * corner[0] + w[1] * corner[1] + w[2] * corner[2]
+            }
             Precomputed::Phong => {
                 // Lecture: Shading Model: Phong. Interpolate the vertex
                 // normals, renormalize, shade every pixel. The position is
@@ -219,41 +285,70 @@ impl<'a> Shader<'a> {
                 let x = interpolate(w, &object.positions, idx);
                 // Opposite normals can interpolate to zero: no direction,
                 // so only the ambient term remains (as on the GPU).
-                let n = interpolate(w, &object.normals, idx).normalize_or_zero();
+                let n = flip * interpolate(w, &object.normals, idx).normalize_or_zero();
                 let tangents = idx.map(|v| object.tangent(v as usize));
-                let t = w[0] * tangents[0] + w[1] * tangents[1] + w[2] * tangents[2];
+                let t = flip * (w[0] * tangents[0] + w[1] * tangents[1] + w[2] * tangents[2]);
                 let geometric = mesh::face_normal(object.triangle(hit.id.triangle as usize));
                 let uv = [0, 1].map(|set| interpolate_uv(w, object, set, idx));
-                let material = self.material_at(object, uv, Some((t_index(hit), pixel)));
-                self.shade(&material, x, &SurfaceFrame::new(n, t), geometric)
+                // The bitangent sign interpolated as the GPU interpolates
+                // its vertex attribute (±1 at the corners; only its sign
+                // is used).
+                let sign = idx
+                    .iter()
+                    .zip(w)
+                    .map(|(&v, w)| w * object.bitangent_sign(v as usize))
+                    .sum::<f64>();
+                let colors = idx.map(|v| object.color(v as usize));
+                let color = w[0] * colors[0] + w[1] * colors[1] + w[2] * colors[2];
+                let (material, frame) = self.material_at(
+                    object,
+                    uv,
+                    color,
+                    Some((t_index(hit), pixel)),
+                    SurfaceFrame::new(n, t),
+                    flip * if sign < 0.0 { -1.0 } else { 1.0 },
+                );
+                self.shade(&material, x, &frame, geometric)
             }
         }
     }
 
-    /// The material of mesh `m` at a point with UV sets `uv`: its textures
-    /// applied, read with the footprint of the pixel when one is given
-    /// (`(triangle, (row, column))`, per-pixel shading), else at level 0
-    /// (per-vertex shading, as the GPU's vertex stage).
+    /// The material of mesh `m` at a point with UV sets `uv`, vertex
+    /// colour `color` (used if the mesh has colours) and shading frame
+    /// `frame`: its textures applied, read with the footprint of
+    /// the pixel when one is given (`(triangle, (row, column))`,
+    /// per-pixel shading), else at level 0 (per-vertex shading, as the
+    /// GPU's vertex stage); the frame with the normal map applied
+    /// (bitangent sign `sign`), if the material has one.
     fn material_at(
         &self,
         m: &Mesh,
         uv: [DVec2; 2],
+        color: glam::DVec4,
         pixel: Option<(usize, (usize, usize))>,
-    ) -> std::borrow::Cow<'_, Material> {
-        let material = &self.materials[m.material];
-        if material.textures.is_empty() {
-            return std::borrow::Cow::Borrowed(material);
+        frame: SurfaceFrame,
+        sign: f64,
+    ) -> (std::borrow::Cow<'_, Material>, SurfaceFrame) {
+        let base = &self.materials[m.material];
+        // Vertex colours multiply the colours first (GPU: vertex_coloured).
+        let coloured = (!m.colors.is_empty()).then(|| base.vertex_coloured(color.truncate()));
+        if base.textures.is_empty() {
+            return match coloured {
+                Some(c) => (std::borrow::Cow::Owned(c), frame),
+                None => (std::borrow::Cow::Borrowed(base), frame),
+            };
         }
+        let material = coloured.as_ref().unwrap_or(base);
         let footprint = match pixel {
             Some((t, pixel)) => [0, 1].map(|set| self.footprint(m, t, set, pixel)),
             None => [Footprint::default(); 2],
         };
-        std::borrow::Cow::Owned(texture::textured(
-            material,
-            &self.scene.images,
-            uv,
-            footprint,
-        ))
+        let textured = texture::textured(material, &self.scene.images, uv, footprint);
+        let frame = match textured.normal {
+            Some(n_t) => texture::normal_mapped_frame(&frame, sign, n_t),
+            None => frame,
+        };
+        (std::borrow::Cow::Owned(textured.material), frame)
     }
 
     /// The UV derivatives of UV set `set` at pixel `(row, column)` on
@@ -379,6 +474,17 @@ pub fn visibility(bvh: &Bvh, light: &Light, x: DVec3, n_offset: DVec3, epsilon: 
     };
     let ray = Ray { origin, direction };
     if bvh.occluded(&ray, t_max) { 0.0 } else { 1.0 }
+}
+
+/// `frame` turned over (`flip` −1: normal, tangent and bitangent
+/// negated) or kept (`flip` 1).
+fn flipped(frame: &SurfaceFrame, flip: f64) -> SurfaceFrame {
+    SurfaceFrame::new(flip * frame.n, flip * frame.t)
+}
+
+/// The face normal of triangle `t` of `m` (flat shading's offset normal).
+fn m_face(m: &Mesh, t: usize) -> DVec3 {
+    mesh::face_normal(m.triangle(t))
 }
 
 /// The triangle index of a hit.

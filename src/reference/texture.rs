@@ -23,9 +23,10 @@
 //! business: see `reference::renderer` (the rasterizer's 2×2-quad
 //! differences, reproduced on the hit triangle's plane).
 
+use crate::material::brdf::SurfaceFrame;
 use crate::material::texture::{Filter, Sampler, Wrap};
 use crate::scene::texture::{Image, Level};
-use glam::{DVec2, DVec4};
+use glam::{DVec2, DVec3, DVec4};
 
 /// The UV derivatives of a pixel: how far UV moves per pixel step in x
 /// and in y (already through the texture's UV transform).
@@ -108,20 +109,30 @@ pub fn wrap(mode: Wrap, i: i64, size: i64) -> i64 {
     }
 }
 
+/// A material at a surface point: its textures applied, and the
+/// tangent-space normal of its normal map (`None` without one).
+pub struct Textured {
+    pub material: crate::material::Material,
+    pub normal: Option<DVec3>,
+}
+
 /// `material` with its textures applied at a surface point whose UV sets
 /// are `uv` (and their footprints `footprint`): each texture multiplies
 /// the parameter it names, a colour by the texel's RGB, a scalar by the
-/// texture's channel (GPU twin: `textured_material` in
+/// texture's channel; an occlusion texture scales `k_a` by
+/// `1 + strength·(R − 1)`; a normal texture gives the tangent-space
+/// normal (`decode_normal`) (GPU twin: `textured_surface` in
 /// shaders/textures.wgsl).
 pub fn textured(
     material: &crate::material::Material,
     images: &[std::sync::Arc<Image>],
     uv: [DVec2; 2],
     footprint: [Footprint; 2],
-) -> crate::material::Material {
+) -> Textured {
     use crate::material::param::Value;
-    use crate::material::texture::TextureTarget;
+    use crate::material::texture::{TextureTarget, decode_normal};
     let mut m = material.clone();
+    let mut normal = None;
     for t in &material.textures {
         let set = t.tex_coord.min(1);
         let fp = Footprint {
@@ -140,9 +151,31 @@ pub fn textured(
                 };
                 p.write(&mut m, v);
             }
+            TextureTarget::Occlusion { strength } => {
+                m.k_a *= TextureTarget::with_strength(texel.x, strength);
+            }
+            TextureTarget::Normal { scale } => {
+                normal = Some(decode_normal(texel.truncate(), scale));
+            }
         }
     }
-    m
+    Textured {
+        material: m,
+        normal,
+    }
+}
+
+/// The shading frame with a normal map's tangent-space normal `n_t`
+/// applied: `n' = normalize(n_t.x·T + n_t.y·B + n_t.z·N)` in the frame's
+/// orthonormal T and N with `B = sign · N × T` (glTF 2.0's normal
+/// texture; the tangent made orthogonal to the interpolated normal first,
+/// as both renderers build the frame), then the frame rebuilt around n'
+/// with the same tangent. GPU twin: `normal_mapped_frame` in
+/// shaders/textures.wgsl.
+pub fn normal_mapped_frame(frame: &SurfaceFrame, sign: f64, n_t: DVec3) -> SurfaceFrame {
+    let b = sign * frame.n.cross(frame.t);
+    let n = (frame.t * n_t.x + b * n_t.y + frame.n * n_t.z).normalize_or_zero();
+    SurfaceFrame::new(n, frame.t)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! modes need.
 
 use crate::base::SurfaceFrame;
-use glam::{DMat4, DVec2, DVec3};
+use glam::{DMat4, DVec2, DVec3, DVec4};
 
 /// An indexed triangle mesh, already in world space.
 #[derive(Clone, Debug, PartialEq)]
@@ -16,6 +16,11 @@ pub struct Mesh {
     /// position, or empty: then [`Mesh::tangent`] derives one from the
     /// normal (`brdf::any_tangent`).
     pub tangents: Vec<DVec3>,
+    /// The bitangent's sign per vertex (glTF `TANGENT.w`, ±1):
+    /// `B = sign · N × T`, the frame a tangent-space normal map is read in
+    /// (`material::texture::TextureTarget::Normal`); empty: +1 everywhere.
+    /// Anisotropic models do not need it (they depend on (H·b)² only).
+    pub bitangent_signs: Vec<f64>,
     /// Counter-clockwise triangles (glTF's front face).
     pub indices: Vec<[u32; 3]>,
     /// Index into [`crate::scene::Scene::materials`].
@@ -24,6 +29,10 @@ pub struct Mesh {
     /// per position each; glTF's convention, (0, 0) at the image's top-left
     /// corner. A set the mesh lacks reads as (0, 0).
     pub tex_coords: Vec<Vec<DVec2>>,
+    /// Vertex colours (glTF `COLOR_0`, linear RGBA), one per position, or
+    /// empty: white. Their RGB multiplies the material's colours
+    /// (`Material::vertex_coloured`).
+    pub colors: Vec<DVec4>,
 }
 
 impl Mesh {
@@ -41,9 +50,11 @@ impl Mesh {
             positions,
             normals,
             tangents: Vec::new(),
+            bitangent_signs: Vec::new(),
             indices,
             material,
             tex_coords: Vec::new(),
+            colors: Vec::new(),
         }
     }
 
@@ -63,6 +74,39 @@ impl Mesh {
             Some(t) => *t,
             None => crate::base::any_tangent(self.normals[v]),
         }
+    }
+
+    /// The colour of vertex `v` (white where the mesh has none).
+    pub fn color(&self, v: usize) -> DVec4 {
+        self.colors.get(v).copied().unwrap_or(DVec4::ONE)
+    }
+
+    /// The bitangent sign of vertex `v` (+1 where none is stored).
+    pub fn bitangent_sign(&self, v: usize) -> f64 {
+        self.bitangent_signs.get(v).copied().unwrap_or(1.0)
+    }
+
+    /// A copy of vertex `v` (every attribute) appended, its index
+    /// returned: for splitting a vertex whose corners need different
+    /// tangents (`scene::tangents`).
+    pub fn duplicate_vertex(&mut self, v: usize) -> u32 {
+        self.positions.push(self.positions[v]);
+        self.normals.push(self.normals[v]);
+        if let Some(&t) = self.tangents.get(v) {
+            self.tangents.push(t);
+        }
+        if let Some(&s) = self.bitangent_signs.get(v) {
+            self.bitangent_signs.push(s);
+        }
+        for set in &mut self.tex_coords {
+            if let Some(&uv) = set.get(v) {
+                set.push(uv);
+            }
+        }
+        if let Some(&c) = self.colors.get(v) {
+            self.colors.push(c);
+        }
+        (self.positions.len() - 1) as u32
     }
 
     /// Flat shading's frame of triangle `t`: the face normal and the
@@ -94,6 +138,10 @@ impl Mesh {
         if world_from_object.determinant() < 0.0 {
             for t in &mut self.indices {
                 t.swap(1, 2);
+            }
+            // A mirror turns N × T against the mirrored bitangent.
+            for s in &mut self.bitangent_signs {
+                *s = -*s;
             }
         }
     }

@@ -15,6 +15,7 @@ pub mod limits;
 pub mod mesh;
 pub mod primitives;
 pub mod scene_file;
+pub mod tangents;
 pub mod texture;
 
 pub use area_light::AreaLight;

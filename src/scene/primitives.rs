@@ -70,9 +70,11 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
         positions,
         normals,
         tangents,
+        bitangent_signs: Vec::new(),
         indices,
         material,
         tex_coords: vec![uvs],
+        colors: Vec::new(),
     }
 }
 
@@ -109,9 +111,11 @@ pub fn plane(center: DVec3, size: f64, divisions: u32, material: usize) -> Mesh 
         positions,
         normals,
         tangents,
+        bitangent_signs: Vec::new(),
         indices,
         material,
         tex_coords: vec![uvs],
+        colors: Vec::new(),
     }
 }
 

@@ -66,6 +66,17 @@ pub enum Feature {
     /// Some material has textures: UVs in the vertex stream, bind group 2
     /// and shaders/textures.wgsl (`textures`).
     Textures,
+    /// Some material has a normal map: tangents and their bitangent signs
+    /// in the vertex stream, the frame turned per pixel (`normal_map`).
+    NormalMap,
+    /// Some material is double-sided (glTF `doubleSided`): vertex shading
+    /// computes both sides (`two_sided`).
+    TwoSided,
+    /// Some material is single-sided (glTF `doubleSided: false`): back
+    /// faces are discarded (`culling`).
+    Culling,
+    /// Some mesh has vertex colours (glTF `COLOR_0`; `vertex_colors`).
+    VertexColors,
 }
 
 impl Feature {
@@ -91,6 +102,10 @@ impl Feature {
             Environment,
             EnvironmentSampled,
             Textures,
+            NormalMap,
+            TwoSided,
+            Culling,
+            VertexColors,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -129,6 +144,10 @@ impl Feature {
             Feature::Environment => "environment",
             Feature::EnvironmentSampled => "environment_sampled",
             Feature::Textures => "textures",
+            Feature::NormalMap => "normal_map",
+            Feature::TwoSided => "two_sided",
+            Feature::Culling => "culling",
+            Feature::VertexColors => "vertex_colors",
         };
         flag.into()
     }

@@ -34,6 +34,16 @@ pub struct ShaderKey {
     /// Texture slots read per pixel: the most textures of one material the
     /// scene draws (0: no texture code; `crate::gpu::textures`).
     pub texture_slots: u32,
+    /// Some material has a normal map (feature `normal_map`; tangents and
+    /// bitangent signs in the vertex stream).
+    pub normal_maps: bool,
+    /// Some material the scene draws is double-sided (feature
+    /// `two_sided`: vertex shading computes both sides).
+    pub two_sided: bool,
+    /// Some material the scene draws is single-sided (feature `culling`).
+    pub culling: bool,
+    /// Some mesh has vertex colours (feature `vertex_colors`; location 9).
+    pub vertex_colors: bool,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -98,6 +108,16 @@ impl ShaderKey {
                     m.settings.specular == crate::environment::map::Specular::Sampled
                 }),
                 texture_slots: crate::gpu::textures::slot_count(scene),
+                normal_maps: crate::gpu::textures::has_normal_maps(scene),
+                two_sided: scene
+                    .meshes
+                    .iter()
+                    .any(|m| scene.materials[m.material].sides == crate::material::Sides::Both),
+                culling: scene
+                    .meshes
+                    .iter()
+                    .any(|m| scene.materials[m.material].sides == crate::material::Sides::Front),
+                vertex_colors: scene.meshes.iter().any(|m| !m.colors.is_empty()),
             };
         key.arrays.measured = key.has_measured();
         key
@@ -124,9 +144,10 @@ impl ShaderKey {
         }
     }
 
-    /// Whether any variant needs a tangent frame in the vertex stream.
+    /// Whether any variant needs a tangent frame in the vertex stream
+    /// (an anisotropic model, or a normal map).
     pub fn needs_tangents(&self) -> bool {
-        self.variants.iter().any(|v| v.model.needs_tangents())
+        self.normal_maps || self.variants.iter().any(|v| v.model.needs_tangents())
     }
 
     /// Whether the vertex shader computes the shadow-map coordinates
@@ -206,6 +227,18 @@ impl ShaderKey {
         }
         if self.texture_slots > 0 {
             f.push(Feature::Textures);
+            if self.normal_maps {
+                f.push(Feature::NormalMap);
+            }
+        }
+        if self.two_sided {
+            f.push(Feature::TwoSided);
+        }
+        if self.culling {
+            f.push(Feature::Culling);
+        }
+        if self.vertex_colors {
+            f.push(Feature::VertexColors);
         }
         f
     }

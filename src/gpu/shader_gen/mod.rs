@@ -100,6 +100,10 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 environment: i % 3 == 0,
                 environment_sampled: i % 6 == 0,
                 texture_slots: 0,
+                normal_maps: false,
+                two_sided: false,
+                culling: false,
+                vertex_colors: false,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -123,6 +127,10 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     environment: pcf,
                     environment_sampled: false,
                     texture_slots: 0,
+                    normal_maps: false,
+                    two_sided: false,
+                    culling: false,
+                    vertex_colors: false,
                 });
             }
         }
@@ -150,6 +158,10 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 } else {
                     0
                 },
+                normal_maps: uniform,
+                two_sided: uniform,
+                culling: uniform,
+                vertex_colors: uniform,
             });
         }
     }

@@ -80,6 +80,10 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         environment: false,
         environment_sampled: false,
         texture_slots: 0,
+        normal_maps: false,
+        two_sided: false,
+        culling: false,
+        vertex_colors: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -104,6 +108,10 @@ fn snapshot_everything() {
         environment: true,
         environment_sampled: true,
         texture_slots: 0,
+        normal_maps: false,
+        two_sided: false,
+        culling: false,
+        vertex_colors: false,
     };
     check_snapshot("everything", &compose(&key));
 }

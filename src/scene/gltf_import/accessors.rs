@@ -10,7 +10,7 @@
 //! a normal or tangent a normalized one, decoded as the extension says
 //! (signed: `max(c / (2ⁿ⁻¹ − 1), −1)`, unsigned: `c / (2ⁿ − 1)`).
 
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, DVec4};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::{Mode, Semantic};
 use std::borrow::Cow;
@@ -25,6 +25,9 @@ pub(super) enum Usage {
     /// `TEXCOORD_n`: VEC2 of FLOAT, or of normalized UNSIGNED_BYTE /
     /// UNSIGNED_SHORT (glTF 2.0 §3.7.2.1).
     TexCoord,
+    /// `COLOR_0`: VEC3 or VEC4 of FLOAT, or of normalized UNSIGNED_BYTE /
+    /// UNSIGNED_SHORT (glTF 2.0 §3.7.2.1).
+    Color,
 }
 
 impl Usage {
@@ -35,6 +38,7 @@ impl Usage {
             Usage::Tangent => "TANGENT",
             Usage::Index => "indices",
             Usage::TexCoord => "TEXCOORD",
+            Usage::Color => "COLOR_0",
         }
     }
 
@@ -72,6 +76,11 @@ impl Usage {
                 matches!(data_type, DataType::U8 | DataType::U16 | DataType::U32)
                     && dimensions == Dimensions::Scalar
             }
+            Usage::Color => {
+                matches!(dimensions, Dimensions::Vec3 | Dimensions::Vec4)
+                    && (data_type == DataType::F32
+                        || (normalized && matches!(data_type, DataType::U8 | DataType::U16)))
+            }
             Usage::TexCoord => {
                 dimensions == Dimensions::Vec2
                     && (data_type == DataType::F32
@@ -97,6 +106,9 @@ impl Usage {
             }
             (Usage::Index, _) => "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
             (Usage::TexCoord, _) => "VEC2 of FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT",
+            (Usage::Color, _) => {
+                "VEC3 or VEC4 of FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT"
+            }
         }
     }
 }
@@ -278,10 +290,14 @@ pub(super) struct RawPrimitive {
     /// Unit normals, or zero where the file's normal had no length;
     /// `None` when the primitive has no `NORMAL`.
     pub normals: Option<Vec<DVec3>>,
-    /// Unit tangents (the xyz of `TANGENT`; its w, the bitangent's sign,
-    /// does not matter to gonio's anisotropic models, which depend on
-    /// (H·b)² only), `None` when the primitive has none.
+    /// Unit tangents (the xyz of `TANGENT`), `None` when the primitive
+    /// has none.
     pub tangents: Option<Vec<DVec3>>,
+    /// `TANGENT`'s w, the bitangent's sign (±1; a normal map's frame is
+    /// `B = w · N × T`), with `tangents`.
+    pub bitangent_signs: Option<Vec<f64>>,
+    /// `COLOR_0` as linear RGBA (VEC3: alpha 1), `None` without it.
+    pub colors: Option<Vec<DVec4>>,
     pub indices: Vec<[u32; 3]>,
     /// `TEXCOORD_0` and `TEXCOORD_1` where present (empty sets stop the
     /// list: a missing set 0 with a set 1 keeps an empty set 0).
@@ -362,6 +378,19 @@ pub(super) fn read_primitive(
         )?),
     };
 
+    // w after the xyz were checked and read: ±1 by glTF; its sign is all
+    // that is used (a zero counts as +1).
+    let bitangent_signs = match (&tangents, primitive.get(&Semantic::Tangents)) {
+        (Some(_), Some(accessor)) => Some(
+            read_attribute::<4>(&accessor, buffers)
+                .ok_or_else(|| unreadable(&accessor, Usage::Tangent))?
+                .into_iter()
+                .map(|[.., w]| if w < 0.0 { -1.0 } else { 1.0 })
+                .collect(),
+        ),
+        _ => None,
+    };
+
     let mut tex_coords = Vec::new();
     for set in 0..2u32 {
         let Some(accessor) = primitive.get(&Semantic::TexCoords(set)) else {
@@ -393,6 +422,28 @@ pub(super) fn read_primitive(
         tex_coords.push(uvs);
     }
 
+    let colors = match primitive.get(&Semantic::Colors(0)) {
+        None => None,
+        Some(accessor) => {
+            check_accessor(&accessor, Usage::Color, max_vertices, buffers, quantized)?;
+            let colors: Vec<DVec4> = reader
+                .read_colors(0)
+                .map(|c| {
+                    c.into_rgba_f32()
+                        .map(|c| DVec4::from(c.map(f64::from)))
+                        .collect()
+                })
+                .unwrap_or_default();
+            if colors.len() != vertex_count || colors.iter().any(|c| !c.is_finite()) {
+                return Err(format!(
+                    "accessor {} (COLOR_0): not {vertex_count} finite colours",
+                    accessor.index()
+                ));
+            }
+            Some(colors)
+        }
+    };
+
     let vertices: Vec<u32> = match primitive.indices() {
         None => (0..vertex_limit).collect(),
         Some(accessor) => read_indices(&reader, &accessor, vertex_limit, max_corners, buffers)?,
@@ -406,6 +457,8 @@ pub(super) fn read_primitive(
         positions,
         normals,
         tangents,
+        bitangent_signs,
+        colors,
         indices,
         tex_coords,
     }))

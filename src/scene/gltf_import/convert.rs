@@ -47,6 +47,11 @@ pub(super) fn material_from_pbr(
     );
     let strength = f64::from(material.emissive_strength().unwrap_or(1.0));
     out.emission = Rgb::from(material.emissive_factor().map(f64::from)) * strength;
+    out.sides = if material.double_sided() {
+        crate::material::Sides::Both
+    } else {
+        crate::material::Sides::Front
+    };
     // Clamping leaves only non-finite factors and a negative emission to
     // fail here.
     out.validate()?;

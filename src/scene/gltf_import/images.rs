@@ -31,9 +31,50 @@ impl<'a> ImageSource<'a> {
         encoding: Encoding,
         channel: usize,
     ) -> Result<MaterialTexture, String> {
-        let texture = info.texture();
+        let mut t = self.texture_of(
+            &info.texture(),
+            info.tex_coord(),
+            TextureTarget::Param(key),
+            encoding,
+        )?;
+        t.channel = channel;
+        if let Some(transform) = info.texture_transform() {
+            let at = format!("texture {}", info.texture().index());
+            let [ox, oy] = transform.offset();
+            let [sx, sy] = transform.scale();
+            t.transform = UvTransform {
+                offset: DVec2::new(ox.into(), oy.into()),
+                rotation: transform.rotation().into(),
+                scale: DVec2::new(sx.into(), sy.into()),
+            };
+            if let Some(set) = transform.tex_coord() {
+                t.tex_coord = set as usize;
+            }
+            let finite = t.transform.offset.is_finite()
+                && t.transform.scale.is_finite()
+                && t.transform.rotation.is_finite();
+            if !finite || t.tex_coord > 1 {
+                return Err(format!(
+                    "{at}: KHR_texture_transform is not finite or reads a set past TEXCOORD_1"
+                ));
+            }
+        }
+        Ok(t)
+    }
+
+    /// glTF texture `texture` read from `TEXCOORD_{tex_coord}` for
+    /// `target`, without a UV transform (the normal and occlusion
+    /// textures': the `gltf` crate exposes `KHR_texture_transform` on
+    /// `textureInfo` only, so gonio does not apply it to them).
+    pub fn texture_of(
+        &mut self,
+        texture: &gltf::Texture,
+        tex_coord: u32,
+        target: TextureTarget,
+        encoding: Encoding,
+    ) -> Result<MaterialTexture, String> {
         let at = format!("texture {}", texture.index());
-        let tex_coord = info.tex_coord() as usize;
+        let tex_coord = tex_coord as usize;
         if tex_coord > 1 {
             return Err(format!(
                 "{at} reads TEXCOORD_{tex_coord}; gonio reads TEXCOORD_0 and TEXCOORD_1"
@@ -50,34 +91,12 @@ impl<'a> ImageSource<'a> {
             s.wrap_t().as_gl_enum(),
         )
         .map_err(|e| format!("{at}: sampler: {e}"))?;
-        let mut transform = UvTransform::default();
-        let mut tex_coord = tex_coord;
-        if let Some(t) = info.texture_transform() {
-            let [ox, oy] = t.offset();
-            let [sx, sy] = t.scale();
-            transform = UvTransform {
-                offset: DVec2::new(ox.into(), oy.into()),
-                rotation: t.rotation().into(),
-                scale: DVec2::new(sx.into(), sy.into()),
-            };
-            if let Some(set) = t.tex_coord() {
-                tex_coord = set as usize;
-            }
-            let finite = transform.offset.is_finite()
-                && transform.scale.is_finite()
-                && transform.rotation.is_finite();
-            if !finite || tex_coord > 1 {
-                return Err(format!(
-                    "{at}: KHR_texture_transform is not finite or reads a set past TEXCOORD_1"
-                ));
-            }
-        }
         Ok(MaterialTexture {
-            target: TextureTarget::Param(key),
+            target,
             image,
-            channel,
+            channel: 0,
             tex_coord,
-            transform,
+            transform: UvTransform::default(),
             sampler,
         })
     }

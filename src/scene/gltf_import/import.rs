@@ -8,6 +8,7 @@ use super::convert::{
     convert_camera, convert_light, local_transform, material_from_metallic_roughness,
     material_from_pbr,
 };
+use crate::material::texture::TextureTarget;
 use crate::scene::limits::Limits;
 use crate::scene::mesh::area_weighted_normals;
 use crate::scene::texture::Encoding;
@@ -114,8 +115,9 @@ impl<'a> Importer<'a> {
     /// gltf-pbr material): base colour (sRGB) on `base_color` and on the
     /// ambient `k_a` (which the import sets to the base colour),
     /// metallic-roughness (linear) on `roughness` (G) and `metallic` (B),
-    /// emissive (sRGB) on `emission`. Normal and occlusion textures are not
-    /// read yet: a note says so.
+    /// emissive (sRGB) on `emission`, normal (linear, a tangent-space
+    /// normal map with its `scale`) and occlusion (linear, R, on the
+    /// ambient term with its `strength`).
     fn textures(
         &mut self,
         material: &gltf::Material,
@@ -144,16 +146,47 @@ impl<'a> Importer<'a> {
                 .textures
                 .push(t.map_err(|e| format!("emissiveTexture: {e}"))?);
         }
-        let index = material.index().unwrap_or_default();
-        for (present, what) in [
-            (material.normal_texture().is_some(), "normalTexture"),
-            (material.occlusion_texture().is_some(), "occlusionTexture"),
-        ] {
-            if present {
-                self.scene.notes.push(format!(
-                    "material {index}: its {what} is ignored (gonio does not read it yet)"
+        if let Some(normal) = material.normal_texture() {
+            let scale = f64::from(normal.scale());
+            if !scale.is_finite() {
+                return Err(format!("normalTexture: scale {scale} is not finite"));
+            }
+            let t = self
+                .images
+                .texture_of(
+                    &normal.texture(),
+                    normal.tex_coord(),
+                    TextureTarget::Normal { scale },
+                    Encoding::Linear,
+                )
+                .map_err(|e| format!("normalTexture: {e}"))?;
+            converted.textures.push(t);
+        }
+        if material.alpha_mode() != gltf::material::AlphaMode::Opaque {
+            self.scene.notes.push(format!(
+                "material {}: alphaMode {:?} is not read yet; it is drawn opaque",
+                material.index().unwrap_or_default(),
+                material.alpha_mode()
+            ));
+        }
+        if let Some(occlusion) = material.occlusion_texture() {
+            let strength = f64::from(occlusion.strength());
+            if !strength.is_finite() {
+                return Err(format!(
+                    "occlusionTexture: strength {strength} is not finite"
                 ));
             }
+            // glTF: the occlusion values are in R.
+            let t = self
+                .images
+                .texture_of(
+                    &occlusion.texture(),
+                    occlusion.tex_coord(),
+                    TextureTarget::Occlusion { strength },
+                    Encoding::Linear,
+                )
+                .map_err(|e| format!("occlusionTexture: {e}"))?;
+            converted.textures.push(t);
         }
         Ok(())
     }
@@ -221,9 +254,11 @@ impl<'a> Importer<'a> {
                     positions: raw.positions,
                     normals,
                     tangents: Vec::new(),
+                    bitangent_signs: Vec::new(),
                     indices: raw.indices,
                     material,
                     tex_coords: Vec::new(),
+                    colors: Vec::new(),
                 },
                 None => Mesh::with_generated_normals(name, raw.positions, raw.indices, material),
             };
@@ -231,8 +266,21 @@ impl<'a> Importer<'a> {
             // a tangent derived from the normal); otherwise derived ones.
             if let Some(tangents) = raw.tangents {
                 mesh.tangents = tangents;
+                mesh.bitangent_signs = raw.bitangent_signs.unwrap_or_default();
             }
             mesh.tex_coords = raw.tex_coords;
+            mesh.colors = raw.colors.unwrap_or_default();
+            // A normal map without TANGENT: MikkTSpace in object space,
+            // as glTF asks (`scene::tangents`).
+            if mesh.tangents.is_empty()
+                && let Some(set) = self
+                    .scene
+                    .materials
+                    .get(material)
+                    .and_then(crate::scene::tangents::normal_map_set)
+            {
+                crate::scene::tangents::generate(&mut mesh, set);
+            }
             mesh.transform(world);
             // The GPU draws in f32 and squares distances: a position
             // beyond ±1e18 overflows there even though it is finite here.
@@ -259,8 +307,10 @@ impl<'a> Importer<'a> {
 
     fn default_material(&mut self) -> usize {
         *self.default_material.get_or_insert_with(|| {
-            // glTF's default: base colour 1, metallic 1, roughness 1.
-            let material = material_from_metallic_roughness("gltf-default", Rgb::ONE, 1.0, 1.0);
+            // glTF's default: base colour 1, metallic 1, roughness 1,
+            // single-sided.
+            let mut material = material_from_metallic_roughness("gltf-default", Rgb::ONE, 1.0, 1.0);
+            material.sides = crate::material::Sides::Front;
             self.scene.materials.push(material);
             self.scene.materials.len() - 1
         })

@@ -51,9 +51,20 @@
 //! base colour, metallic-roughness and emissive textures with their
 //! samplers and `KHR_texture_transform` (`images`: a buffer view, a
 //! `data:` URI or a file inside the glTF's folder, decoded within the
-//! limits); normal and occlusion textures, vertex colours, skins, morph
-//! targets, alpha and `doubleSided` are ignored (the textures with a
-//! note); skinned meshes are drawn in their rest pose.
+//! limits); the normal texture (with `scale`) and the occlusion texture
+//! (R, with `strength`, on the ambient term only) with their samplers
+//! but without `KHR_texture_transform` (the `gltf` crate offers it on
+//! `textureInfo` only). `TANGENT` is read with its w (the bitangent's
+//! sign); a primitive with a normal texture and no `TANGENT` gets
+//! MikkTSpace tangents in object space (`scene::tangents`). `COLOR_0`
+//! (FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT; VEC3 or VEC4)
+//! multiplies the base colour (its RGB scales `k_a`, `k_d` and
+//! `base_color`; alpha is not used). `doubleSided` becomes
+//! [`crate::material::Sides`]: back faces culled when false (glTF's
+//! default, also the default material's), lit with the flipped normal
+//! when true. Skins, morph targets and `alphaMode` are ignored (every
+//! material is drawn opaque); skinned meshes are drawn in their rest
+//! pose.
 //!
 //! # Materials: metallic-roughness → `gltf-pbr`
 //!

@@ -85,7 +85,7 @@ pub fn assemble(
         },
     };
 
-    let scene = Scene {
+    let mut scene = Scene {
         width,
         height,
         msaa,
@@ -101,6 +101,9 @@ pub fn assemble(
         measured_table: measured_table(&file).map_err(bad)?,
         images: gltf_files.images.images.clone(),
     };
+    // A scene-file normal map on a mesh without tangents (a glTF mesh
+    // given a scene-file material): MikkTSpace, in world space.
+    crate::scene::tangents::generate_where_needed(&mut scene);
     Ok((scene, light_setup))
 }
 

@@ -4,7 +4,10 @@
 //! parameter (one the viewer edits with a colour picker: `k_a`, `k_d`,
 //! `k_s`, ...) reads an sRGB-encoded image's RGB decoded to linear, any
 //! other parameter (`roughness`, `k_e`, `eta`, ...) a linear image, a
-//! scalar one its first channel. Scene-file textures read UV set 0 with
+//! scalar one its first channel. `normal_texture` is a tangent-space
+//! normal map (glTF's encoding, scale 1; the contract) and
+//! `occlusion_texture` glTF's occlusion on the ambient term (R, strength
+//! 1), both linear. Scene-file textures read UV set 0 with
 //! glTF's default sampler (repeat, bilinear, trilinear mipmaps).
 
 use crate::material::param::Widget;
@@ -24,8 +27,28 @@ pub fn attach(
     images: &mut ImageStore,
 ) -> Result<(), String> {
     for (key, file) in &entry.textures {
-        let param_key = key.strip_suffix(TEXTURE_SUFFIX).unwrap_or(key);
         let at = format!("materials.{name}.{key}");
+        let map = match key.as_str() {
+            "normal_texture" => Some(TextureTarget::Normal { scale: 1.0 }),
+            "occlusion_texture" => Some(TextureTarget::Occlusion { strength: 1.0 }),
+            _ => None,
+        };
+        if let Some(target) = map {
+            let path = base_dir.join(file);
+            let image = images
+                .load_file(&path, Encoding::Linear)
+                .map_err(|e| format!("{at}: the image {}: {e}", path.display()))?;
+            m.textures.push(MaterialTexture {
+                target,
+                image,
+                channel: 0,
+                tex_coord: 0,
+                transform: UvTransform::default(),
+                sampler: Sampler::default(),
+            });
+            continue;
+        }
+        let param_key = key.strip_suffix(TEXTURE_SUFFIX).unwrap_or(key);
         let param = table::param_for(m.model, param_key).ok_or_else(|| {
             format!(
                 "{at}: the model {} has no parameter `{param_key}` to texture",

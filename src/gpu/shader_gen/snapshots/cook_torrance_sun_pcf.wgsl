@@ -51,7 +51,7 @@ struct Material {
     base_color: vec3<f32>, // gltf-pbr: base colour b (textures and vertex colours multiply it per pixel)
     metallic: f32,         // gltf-pbr: metallic m (its perceptual roughness r is `roughness`)
     emission: vec3<f32>,   // emitted radiance W/(m²·sr), added to L_o (every model)
-    _pad_end: f32,
+    sides: u32,            // 0: both faces, lit as the front; 1: back faces culled; 2: back faces lit with the flipped normal (material::Sides)
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -196,6 +196,7 @@ fn f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f
     }
     return eval_brdf(m, wi, wo, frame);
 }
+
 
 
 // Which BRDF a pipeline draws: a model and, for Cook-Torrance and the
@@ -967,13 +968,23 @@ fn vs_main(in: VertexIn) -> VertexOut {
 }
 
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    // Sides (Material.sides, glTF doubleSided): a back face of a
+    // single-sided material is culled, one of a double-sided material is
+    // lit with its frame flipped (normal, tangent and bitangent). The
+    // condition varies per pixel (front_facing): UNIFORM_BRANCHES.
+    // Compiled only when some material is single-sided (`culling`) or
+    // double-sided (`two_sided`).
+    let flip = 1.0;
     // Opposite normals can interpolate to zero: no direction, so only the
     // ambient term remains (the CPU reference does the same).
     // With shadows looked up here: the geometric normal (offset normal of
     // the lookup) from the derivatives of the interpolated position, which
     // lie in the triangle's plane.
-    let n = normalize_or_zero(in.normal);
-    let frame = surface_frame(n, any_tangent(n));
+    let n = flip * normalize_or_zero(in.normal);
+    var frame = surface_frame(n, any_tangent(n));
+    // A normal map: the frame turned to its normal (the sign's
+    // interpolation is ±1 within a triangle: split vertices keep a
+    // triangle's corners on one side of a mirror seam).
     return target_output(reflected_radiance(material, in.world, frame, in.shadow_ndc));
 }
