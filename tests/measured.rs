@@ -480,3 +480,38 @@ fn resolution_trade() {
         }
     }
 }
+
+/// `measured = "file.binary"` in a scene file is relative to the scene
+/// file (not the working directory); a bad one stops `gonio render` with
+/// exit 2 and no output file.
+#[test]
+fn a_scene_files_table_path_is_relative_to_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let sub = dir.path().join("scenes");
+    std::fs::create_dir(&sub).unwrap();
+    analytic_file(&sub, [8, 8, 16]);
+    std::fs::write(
+        sub.join("s.toml"),
+        "[image]\nwidth = 32\nheight = 24\n[[objects]]\nshape = \"sphere\"\nmaterial = \"m\"\n\
+         [materials.m]\nmodel = \"measured\"\nmeasured = \"ct.binary\"\n\
+         [[lights]]\nkind = \"point\"\nposition = [2.0, 3.0, 4.0]\nintensity = [20.0, 20.0, 20.0]\n",
+    )
+    .unwrap();
+    let render = |out: &str| {
+        common::gonio()
+            .current_dir(dir.path())
+            .args(["render", "scenes/s.toml", "--reference", "-o", out])
+            .output()
+            .unwrap()
+    };
+    let out = render("ok.png");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.path().join("ok.png").is_file());
+    let bytes = std::fs::read(sub.join("ct.binary")).unwrap();
+    std::fs::write(sub.join("ct.binary"), &bytes[..bytes.len() / 2]).unwrap();
+    let out = render("bad.png");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("ct.binary") && err.contains("truncated"), "{err}");
+    assert!(!dir.path().join("bad.png").exists());
+}
