@@ -11,6 +11,7 @@ pub mod bench;
 pub mod cli;
 pub mod error;
 pub mod explore;
+pub mod fit;
 pub mod frame;
 pub mod gpu;
 pub mod material;
