@@ -32,7 +32,7 @@ pub struct FitArgs {
     pub material: Option<String>,
     /// The model: lambert, phong, phong-normalized, blinn-phong,
     /// blinn-phong-normalized, ward, gltf-pbr, or
-    /// cook-torrance[,distribution=D][,fresnel=F][,geometry=G]
+    /// `cook-torrance[,distribution=D][,fresnel=F][,geometry=G]`
     /// (default beckmann, conductor, smith). With --all: the models to
     /// rank (repeat; default: all of them).
     #[arg(long = "model", value_name = "MODEL")]

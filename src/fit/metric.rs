@@ -33,7 +33,7 @@ impl Metric {
     }
 
     /// The per-sample error of `model` against `s.measured`, summed over
-    /// the channels (what [`Metric::error`] averages).
+    /// the channels (what [`Metric::mean`] averages).
     fn sample_error(self, s: &Sample, model: Rgb) -> f64 {
         let c = s.wi.z;
         match self {
