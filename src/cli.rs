@@ -32,6 +32,8 @@ pub enum Command {
     Brdf(crate::explore::cli::BrdfArgs),
     /// Measure the speed/accuracy trade: time and error of every knob, Pareto front, floors.
     Bench(crate::bench::cli::BenchArgs),
+    /// Fit reflectance models to a measured BRDF; --all ranks them on the 100 MERL materials.
+    Fit(crate::fit::cli::FitArgs),
 }
 
 /// `gonio render [SCENE] -o OUT.(png|exr) ...`
@@ -144,6 +146,7 @@ pub fn main() -> ExitCode {
             .and_then(|chosen| crate::ui::run(view, chosen)),
         Command::Brdf(args) => crate::explore::cli::run(&args),
         Command::Bench(args) => crate::bench::run::run(&args),
+        Command::Fit(args) => crate::fit::cli::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

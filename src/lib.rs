@@ -12,6 +12,7 @@ pub mod cli;
 pub mod environment;
 pub mod error;
 pub mod explore;
+pub mod fit;
 pub mod frame;
 pub mod gpu;
 pub mod material;

@@ -1,0 +1,292 @@
+//! `gonio fit`: the command-line face of [`crate::fit`]. `src/cli.rs`
+//! only holds the subcommand variant.
+
+use super::models::{ALL, FitModel};
+use super::report::{self, Row};
+use super::samples::samples;
+use super::{Metric, fit};
+use crate::material::material_table;
+use crate::material::measured::{self, MeasuredBrdf, library};
+use crate::scene::default_scene::DEFAULT_SCENE_TOML;
+use crate::{Error, Result};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// `gonio fit MATERIAL --model MODEL [--metric M] [-o FILE]`, or
+/// `gonio fit --all [--shard I/N] [--out-dir DIR]`, or `gonio fit --merge`.
+#[derive(Debug, clap::Args)]
+#[command(
+    about = "Fit reflectance models to a measured BRDF; --all ranks every model on the 100 MERL materials",
+    long_about = "Fit a model's parameters to a measured material (a built-in MERL name or a MERL \
+.binary file) on a fixed grid of MERL half/difference directions, by Nelder-Mead from several \
+starts within the parameters' ranges. Prints the error and the fitted material as a scene file \
+that `gonio render` renders (or writes it with -o). --all fits every model to every built-in \
+material and writes the ranking (docs/measured.md)."
+)]
+pub struct FitArgs {
+    /// A built-in measured material (a MERL name, e.g. gold-metallic-paint)
+    /// or a MERL `.binary` file.
+    #[arg(required_unless_present_any = ["all", "merge"])]
+    pub material: Option<String>,
+    /// The model: lambert, phong, phong-normalized, blinn-phong,
+    /// blinn-phong-normalized, ward, gltf-pbr, or
+    /// `cook-torrance[,distribution=D][,fresnel=F][,geometry=G]`
+    /// (default beckmann, conductor, smith). With --all: the models to
+    /// rank (repeat; default: all of them).
+    #[arg(long = "model", value_name = "MODEL")]
+    pub models: Vec<String>,
+    /// The error metric minimized and reported.
+    #[arg(long, value_enum, default_value = "ngan")]
+    pub metric: Metric,
+    /// Write the fitted material (in a scene file) here instead of printing it.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Fit every model to every built-in material and write the ranking.
+    #[arg(long, conflicts_with_all = ["material", "output", "merge"])]
+    pub all: bool,
+    /// With --all: only these built-in materials (comma-separated).
+    #[arg(long, value_name = "NAMES", value_delimiter = ',', requires = "all")]
+    pub materials: Vec<String>,
+    /// With --all: run shard I of N (1-based; materials I, I+N, ...) and
+    /// write only its files; `--merge` joins the shards.
+    #[arg(long, value_name = "I/N", requires = "all")]
+    pub shard: Option<String>,
+    /// Merge the shards in --out-dir into the ranking.
+    #[arg(long, conflicts_with_all = ["material", "output"])]
+    pub merge: bool,
+    /// Where --all and --merge write (shards in DIR/shards).
+    #[arg(long, value_name = "DIR", default_value = "docs/fit")]
+    pub out_dir: PathBuf,
+}
+
+/// Runs `gonio fit`.
+pub fn run(args: &FitArgs) -> Result<()> {
+    if args.merge {
+        let summary = report::merge(&args.out_dir, None)?;
+        println!("{summary}");
+        return Ok(());
+    }
+    if args.all {
+        return run_all(args);
+    }
+    let text = args.material.as_deref().unwrap_or_default();
+    let brdf = resolve_material(text)?;
+    let spec = match args.models.as_slice() {
+        [one] => one.as_str(),
+        [] => {
+            return Err(Error::argument(
+                "--model",
+                "give the model to fit, e.g. --model ward",
+            ));
+        }
+        _ => {
+            return Err(Error::argument(
+                "--model",
+                "one fit takes one model (--all ranks several)",
+            ));
+        }
+    };
+    let model = FitModel::parse(spec).map_err(|p| Error::argument(format!("--model {spec}"), p))?;
+    let start = Instant::now();
+    let result = fit(&model, &samples(brdf), args.metric);
+    let name = material_name(brdf);
+    let mut m = result.material.clone();
+    m.name = name.clone();
+    let summary = format!(
+        "{name}, {}, metric {}: error {:.6e}{} (relative {:.4}), {} evaluations, {:.1} s",
+        model.spec,
+        args.metric.name(),
+        result.error,
+        if args.metric == Metric::Ngan {
+            " 1/sr"
+        } else {
+            ""
+        },
+        result.relative,
+        result.evaluations,
+        start.elapsed().as_secs_f64()
+    );
+    let scene = scene_text(&m, &summary);
+    match &args.output {
+        Some(path) => {
+            report::write_atomic(path, &scene)?;
+            println!("{summary}");
+        }
+        None => {
+            eprintln!("{summary}");
+            print!("{scene}");
+        }
+    }
+    Ok(())
+}
+
+/// The measured BRDF `text` names (a built-in name or a MERL file).
+fn resolve_material(text: &str) -> Result<&'static MeasuredBrdf> {
+    measured::resolve(text, Path::new(".")).map_err(|p| {
+        let looks_like_file = text.contains('/') || text.ends_with(".binary");
+        if looks_like_file {
+            Error::input(text, p)
+        } else {
+            Error::argument(format!("material `{text}`"), p)
+        }
+    })
+}
+
+/// A TOML-friendly name: the built-in name, or the file's stem.
+fn material_name(brdf: &MeasuredBrdf) -> String {
+    let stem = Path::new(&brdf.name)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| brdf.name.clone());
+    stem.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect()
+}
+
+/// The built-in scene with its sphere in the fitted material `m` (a
+/// `[materials.NAME]` table), headed by `summary` as a comment.
+pub fn scene_text(m: &crate::material::Material, summary: &str) -> String {
+    let mut scene: toml::Table = DEFAULT_SCENE_TOML
+        .parse()
+        .expect("the built-in scene parses");
+    if let Some(toml::Value::Array(objects)) = scene.get_mut("objects")
+        && let Some(toml::Value::Table(sphere)) = objects.first_mut()
+    {
+        sphere.insert("material".into(), toml::Value::String(m.name.clone()));
+    }
+    if let Some(toml::Value::Table(materials)) = scene.get_mut("materials") {
+        materials.remove("ball");
+        materials.insert(m.name.clone(), toml::Value::Table(material_table(m)));
+    }
+    format!(
+        "# gonio fit: {summary}\n# The built-in scene with its sphere in the fitted material [materials.{}].\n\n{}",
+        m.name,
+        toml::to_string(&scene).expect("a TOML table serializes")
+    )
+}
+
+/// `--shard I/N` as (I, N), 1 ≤ I ≤ N.
+fn parse_shard(text: &str) -> Result<(usize, usize)> {
+    let bad = || {
+        Error::argument(
+            format!("--shard {text}"),
+            "expected I/N with 1 ≤ I ≤ N, e.g. --shard 2/8",
+        )
+    };
+    let (i, n) = text.split_once('/').ok_or_else(bad)?;
+    let (i, n): (usize, usize) = (
+        i.trim().parse().map_err(|_| bad())?,
+        n.trim().parse().map_err(|_| bad())?,
+    );
+    if i == 0 || i > n {
+        return Err(bad());
+    }
+    Ok((i, n))
+}
+
+/// `gonio fit --all`.
+fn run_all(args: &FitArgs) -> Result<()> {
+    let start = Instant::now();
+    let specs: Vec<&str> = if args.models.is_empty() {
+        ALL.to_vec()
+    } else {
+        args.models.iter().map(String::as_str).collect()
+    };
+    let models: Vec<FitModel> = specs
+        .iter()
+        .map(|s| FitModel::parse(s).map_err(|p| Error::argument(format!("--model {s}"), p)))
+        .collect::<Result<_>>()?;
+    let mut materials: Vec<&'static MeasuredBrdf> = if args.materials.is_empty() {
+        library::all().iter().collect()
+    } else {
+        args.materials
+            .iter()
+            .map(|n| {
+                library::builtin(n).map_err(|p| Error::argument(format!("--materials {n}"), p))
+            })
+            .collect::<Result<_>>()?
+    };
+    let (shard, of) = match &args.shard {
+        Some(s) => parse_shard(s)?,
+        None => (1, 1),
+    };
+    materials = materials
+        .into_iter()
+        .enumerate()
+        .filter(|(k, _)| k % of == shard - 1)
+        .map(|(_, m)| m)
+        .collect();
+    let bar = ProgressBar::with_draw_target(
+        Some((materials.len() * models.len()) as u64),
+        ProgressDrawTarget::stderr(),
+    );
+    bar.set_style(
+        ProgressStyle::with_template("fit {bar:40} {pos}/{len} fits, {elapsed} (eta {eta}) {msg}")
+            .expect("a valid template"),
+    );
+    let per_material: Vec<(Vec<Row>, String)> = materials
+        .par_iter()
+        .map(|brdf| {
+            let s = samples(brdf);
+            let mut rows = Vec::new();
+            let mut tables = String::new();
+            for model in &models {
+                let t0 = Instant::now();
+                let r = fit(model, &s, args.metric);
+                let label = model.label();
+                let mut m = r.material.clone();
+                m.name = format!("{}--{label}", brdf.name);
+                let mut t = toml::Table::new();
+                t.insert(m.name.clone(), toml::Value::Table(material_table(&m)));
+                let mut outer = toml::Table::new();
+                outer.insert("materials".into(), toml::Value::Table(t));
+                tables.push_str(&format!(
+                    "# {} {label}: {} error {:.6e} (relative {:.4})\n{}\n",
+                    brdf.name,
+                    args.metric.name(),
+                    r.error,
+                    r.relative,
+                    toml::to_string(&outer).expect("serializes")
+                ));
+                rows.push(Row {
+                    material: brdf.name.clone(),
+                    model: label,
+                    metric: args.metric.name().into(),
+                    error: r.error,
+                    relative: r.relative,
+                    evaluations: r.evaluations,
+                    seconds: t0.elapsed().as_secs_f64(),
+                });
+                bar.set_message(brdf.name.clone());
+                bar.inc(1);
+            }
+            (rows, tables)
+        })
+        .collect();
+    bar.finish();
+    let rows: Vec<Row> = per_material.iter().flat_map(|(r, _)| r.clone()).collect();
+    let tables: String = per_material.iter().map(|(_, t)| t.as_str()).collect();
+    let (csv_path, toml_path) = report::shard_paths(&args.out_dir, shard, of);
+    report::write_atomic(&csv_path, &report::csv(&rows))?;
+    report::write_atomic(&toml_path, &tables)?;
+    let wall = start.elapsed().as_secs_f64();
+    eprintln!(
+        "wrote {} ({} fits in {wall:.0} s on {} threads)",
+        csv_path.display(),
+        rows.len(),
+        rayon::current_num_threads()
+    );
+    if args.shard.is_none() {
+        let summary = report::merge(&args.out_dir, Some((wall, rayon::current_num_threads())))?;
+        println!("{summary}");
+    }
+    Ok(())
+}

@@ -1,0 +1,211 @@
+//! One fit: a model's free numbers searched to minimize a metric against
+//! the samples of a measured material, by Nelder-Mead (argmin) from
+//! several starts.
+//!
+//! Bounds are a change of variables (MINUIT's, F. James, "MINUIT
+//! Tutorial", CERN 2004, §1.3.1): the searched `x` is unbounded and the
+//! number is `lo + (hi − lo)(1 + sin x)/2` (in `ln` for a log-scaled one),
+//! so every point the simplex visits is a valid material.
+//!
+//! The stopping rule is argmin's: the standard deviation of the cost at
+//! the simplex's vertices below [`SD_TOLERANCE`] (costs are relative:
+//! `E²/E₀²` for `ngan`, see `metric.rs`), or [`MAX_ITERS`] iterations.
+//! Multi-start: a scan over the lobe's width (exponent, slope or
+//! roughness: the number whose wrong value leaves a highlight between the
+//! samples, a plateau a simplex cannot leave) picks the starts; the other
+//! shape numbers start mid-interval, colours at 0.3. The best run is
+//! then restarted from its end with a fresh simplex until a restart no
+//! longer improves by more than the tolerance (a simplex can collapse
+//! before the minimum: Lagarias et al. 1998; restarting is the usual cure).
+
+use super::metric::Metric;
+use super::models::FitModel;
+use super::samples::Sample;
+use crate::base::Rgb;
+use crate::base::frame::SurfaceFrame;
+use crate::material::Material;
+use crate::material::brdf;
+use argmin::core::{CostFunction, Executor};
+use argmin::solver::neldermead::NelderMead;
+use glam::DVec3;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The stopping tolerance on the simplex's cost spread (relative cost).
+pub const SD_TOLERANCE: f64 = 1e-9;
+/// Iterations per Nelder-Mead run.
+pub const MAX_ITERS: u64 = 4000;
+/// Starts: the lobe's width is scanned at [`SCAN`] + 1 fractions of its
+/// (log-)interval, the others held at their start; the [`STARTS`] best
+/// local minima of the scan start a search each.
+pub const SCAN: usize = 24;
+pub const STARTS: usize = 3;
+/// Where the other shape numbers (indices, metallic) start (fraction).
+const SHAPE_START: f64 = 0.5;
+/// Where colours start (fraction of [0, 1]).
+const COLOUR_START: f64 = 0.3;
+/// The initial simplex's edge in `x` (radians of the sine map).
+const STEP: f64 = 0.4;
+/// Restarts of the best run at most.
+const MAX_RESTARTS: usize = 4;
+
+/// What a fit found.
+#[derive(Clone, Debug)]
+pub struct FitResult {
+    pub material: Material,
+    /// The free numbers, as [`FitModel::free`] lists them.
+    pub values: Vec<f64>,
+    /// The metric's reported error (`E` in 1/sr for `ngan`).
+    pub error: f64,
+    /// The error relative to that of `f = 0` (`E/E₀`; for `log` its ratio
+    /// to the log error of `f = 0`).
+    pub relative: f64,
+    /// Cost evaluations used.
+    pub evaluations: usize,
+}
+
+/// The cost of a point `x` of the search.
+struct Problem<'a> {
+    model: &'a FitModel,
+    samples: &'a [Sample],
+    metric: Metric,
+    /// [`Metric::mean`] of `f = 0`: costs are relative to it.
+    norm: f64,
+    evaluations: AtomicUsize,
+}
+
+impl Problem<'_> {
+    /// The free numbers at `x`.
+    fn values(&self, x: &[f64]) -> Vec<f64> {
+        self.model
+            .free
+            .iter()
+            .zip(x)
+            .map(|(f, &x)| f.at((1.0 + x.sin()) / 2.0))
+            .collect()
+    }
+
+    fn mean(&self, values: &[f64]) -> f64 {
+        mean_of(&self.model.material(values), self.samples, self.metric)
+    }
+}
+
+/// `metric`'s mean of `m` against `samples`.
+pub fn mean_of(m: &Material, samples: &[Sample], metric: Metric) -> f64 {
+    let b = m.brdf();
+    let frame = SurfaceFrame::new(DVec3::Z, DVec3::X);
+    metric.mean(samples, |i| {
+        let s = &samples[i];
+        brdf::eval(&b, s.wi, s.wo, &frame)
+    })
+}
+
+impl CostFunction for &Problem<'_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, x: &Self::Param) -> Result<f64, argmin::core::Error> {
+        self.evaluations.fetch_add(1, Ordering::Relaxed);
+        let c = self.mean(&self.values(x)) / self.norm;
+        // A model that overflows somewhere is a bad point, not an error.
+        Ok(if c.is_finite() { c } else { f64::MAX })
+    }
+}
+
+/// Fits `model` to `samples` under `metric`.
+pub fn fit(model: &FitModel, samples: &[Sample], metric: Metric) -> FitResult {
+    let norm = metric.mean(samples, |_| Rgb::ZERO).max(f64::MIN_POSITIVE);
+    let problem = Problem {
+        model,
+        samples,
+        metric,
+        norm,
+        evaluations: AtomicUsize::new(0),
+    };
+    let x_of = |t: f64| (2.0 * t - 1.0).clamp(-1.0, 1.0).asin();
+    let start_at = |width: f64| -> Vec<f64> {
+        model
+            .free
+            .iter()
+            .enumerate()
+            .map(|(k, f)| {
+                x_of(match (Some(k) == model.width, f.shape) {
+                    (true, _) => width,
+                    (false, true) => SHAPE_START,
+                    (false, false) => COLOUR_START,
+                })
+            })
+            .collect()
+    };
+    let mut best: Option<(Vec<f64>, f64)> = None;
+    for t in starts(model, |t| (&problem).cost(&start_at(t)).unwrap_or(f64::MAX)) {
+        let run = run(&problem, start_at(t));
+        if best.as_ref().is_none_or(|b| run.1 < b.1) {
+            best = Some(run);
+        }
+    }
+    let (mut x, mut cost) = best.expect("at least one start");
+    for _ in 0..MAX_RESTARTS {
+        let (x2, c2) = run(&problem, x.clone());
+        let improved = c2 < cost - SD_TOLERANCE;
+        if c2 < cost {
+            (x, cost) = (x2, c2);
+        }
+        if !improved {
+            break;
+        }
+    }
+    let values = problem.values(&x);
+    let mean = problem.mean(&values);
+    FitResult {
+        material: model.material(&values),
+        values,
+        error: metric.reported(mean),
+        relative: metric.reported(mean) / metric.reported(norm),
+        evaluations: problem.evaluations.load(Ordering::Relaxed),
+    }
+}
+
+/// The width fractions to start from: the best local minima of `cost`
+/// over the scan (one start at ½ for a model without a width).
+fn starts(model: &FitModel, cost: impl Fn(f64) -> f64) -> Vec<f64> {
+    if model.width.is_none() {
+        return vec![0.5];
+    }
+    let t: Vec<f64> = (0..=SCAN).map(|k| k as f64 / SCAN as f64).collect();
+    let c: Vec<f64> = t.iter().map(|&t| cost(t)).collect();
+    let mut minima: Vec<usize> = (0..t.len())
+        .filter(|&k| (k == 0 || c[k] <= c[k - 1]) && (k + 1 == t.len() || c[k] <= c[k + 1]))
+        .collect();
+    minima.sort_by(|&a, &b| c[a].total_cmp(&c[b]));
+    minima.into_iter().take(STARTS).map(|k| t[k]).collect()
+}
+
+/// One Nelder-Mead run from `x0`: its best point and cost.
+fn run(problem: &Problem, x0: Vec<f64>) -> (Vec<f64>, f64) {
+    let mut simplex = vec![x0.clone()];
+    for i in 0..x0.len() {
+        let mut v = x0.clone();
+        // Step towards the interval's interior (x ∈ [−π/2, π/2] covers it).
+        v[i] += if v[i] > 0.0 { -STEP } else { STEP };
+        simplex.push(v);
+    }
+    let solver = NelderMead::new(simplex)
+        .with_sd_tolerance(SD_TOLERANCE)
+        .expect("a positive tolerance");
+    let result = Executor::new(problem, solver)
+        .configure(|s| s.max_iters(MAX_ITERS))
+        .timer(false)
+        .run();
+    match result {
+        Ok(r) => {
+            let s = r.state();
+            let x = s.best_param.clone().unwrap_or(x0);
+            (x, s.best_cost)
+        }
+        // Only argmin's "unreachable" branch errs (NaN-free costs).
+        Err(_) => {
+            let c = problem.cost(&x0).unwrap_or(f64::MAX);
+            (x0, c)
+        }
+    }
+}

@@ -1,0 +1,304 @@
+//! `gonio fit --all`'s files: one CSV (errors) and one TOML (the fitted
+//! materials) per shard, and the merge of all shards into the ranking
+//! (`ranking.csv`, `ranking.md`) and `fits.toml`.
+//!
+//! A shard is self-contained (its rows name material and model), so shards
+//! can run anywhere (a job array) and be merged in any order; the merge
+//! checks that every (material, model) pair is there exactly once.
+
+use crate::{Error, Result};
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// One fit's row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    pub material: String,
+    /// The model's label (`ct-ggx-conductor`).
+    pub model: String,
+    pub metric: String,
+    pub error: f64,
+    pub relative: f64,
+    pub evaluations: usize,
+    /// Time of this fit on one core.
+    pub seconds: f64,
+}
+
+/// The shard file names of shard `i` of `n` (1-based).
+pub fn shard_paths(dir: &Path, i: usize, n: usize) -> (PathBuf, PathBuf) {
+    let shards = dir.join("shards");
+    (
+        shards.join(format!("shard-{i}-of-{n}.csv")),
+        shards.join(format!("shard-{i}-of-{n}.toml")),
+    )
+}
+
+const HEADER: &str = "material,model,metric,error,relative,evaluations,seconds";
+
+/// The CSV text of `rows`.
+pub fn csv(rows: &[Row]) -> String {
+    let mut s = format!("{HEADER}\n");
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{},{},{},{:.6e},{:.6e},{},{:.3}",
+            r.material, r.model, r.metric, r.error, r.relative, r.evaluations, r.seconds
+        );
+    }
+    s
+}
+
+/// Rows from a shard CSV (`path` names it in errors).
+pub fn parse_csv(path: &Path, text: &str) -> Result<Vec<Row>> {
+    let mut lines = text.lines();
+    if lines.next() != Some(HEADER) {
+        return Err(Error::input(
+            path,
+            format!("not a gonio fit shard: the first line is not `{HEADER}`"),
+        ));
+    }
+    lines
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(i, line)| {
+            let bad = |what: &str| Error::input(path, format!("line {}: {what}: `{line}`", i + 2));
+            let f: Vec<&str> = line.split(',').collect();
+            if f.len() != 7 {
+                return Err(bad("expected 7 fields"));
+            }
+            let num = |s: &str| s.parse::<f64>().map_err(|_| bad("not a number"));
+            Ok(Row {
+                material: f[0].into(),
+                model: f[1].into(),
+                metric: f[2].into(),
+                error: num(f[3])?,
+                relative: num(f[4])?,
+                evaluations: f[5].parse().map_err(|_| bad("not a count"))?,
+                seconds: num(f[6])?,
+            })
+        })
+        .collect()
+}
+
+/// Writes `text` to `path` whole or not at all (a temporary file beside
+/// it, renamed).
+pub fn write_atomic(path: &Path, text: &str) -> Result<()> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| Error::output(path, e.to_string()))?;
+    let mut tmp =
+        tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::output(path, e.to_string()))?;
+    std::io::Write::write_all(&mut tmp, text.as_bytes())
+        .map_err(|e| Error::output(path, e.to_string()))?;
+    tmp.persist(path)
+        .map_err(|e| Error::output(path, e.error.to_string()))?;
+    // A temporary file is private (0600); the result is an ordinary file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let _ = std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o644));
+    }
+    Ok(())
+}
+
+/// Every row of every shard in `dir/shards`, and the fitted tables.
+fn read_shards(dir: &Path) -> Result<(Vec<Row>, String)> {
+    let shards = dir.join("shards");
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(&shards)
+        .map_err(|e| Error::input(&shards, format!("cannot read the shards' folder: {e}")))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "csv"))
+        .collect();
+    entries.sort();
+    if entries.is_empty() {
+        return Err(Error::input(
+            &shards,
+            "no shard-*.csv: run `gonio fit --all [--shard I/N]` first",
+        ));
+    }
+    let (mut rows, mut fits) = (Vec::new(), String::new());
+    for p in entries {
+        let text = std::fs::read_to_string(&p).map_err(|e| Error::input(&p, e.to_string()))?;
+        rows.extend(parse_csv(&p, &text)?);
+        if let Ok(t) = std::fs::read_to_string(p.with_extension("toml")) {
+            fits.push_str(&t);
+        }
+    }
+    Ok((rows, fits))
+}
+
+/// The ranks of `errors` (1 = smallest; ties share their mean rank).
+pub fn ranks(errors: &[f64]) -> Vec<f64> {
+    errors
+        .iter()
+        .map(|&e| {
+            let below = errors.iter().filter(|&&o| o < e).count() as f64;
+            let equal = errors.iter().filter(|&&o| o == e).count() as f64;
+            below + (equal + 1.0) / 2.0
+        })
+        .collect()
+}
+
+/// Merges the shards in `dir` into `ranking.csv`, `ranking.md` and
+/// `fits.toml`; `wall` is the whole run's time when one process ran it.
+pub fn merge(dir: &Path, wall: Option<(f64, usize)>) -> Result<String> {
+    let (rows, fits) = read_shards(dir)?;
+    let mut by_material: BTreeMap<&str, Vec<&Row>> = BTreeMap::new();
+    let mut models: Vec<&str> = Vec::new();
+    for r in &rows {
+        by_material.entry(&r.material).or_default().push(r);
+        if !models.contains(&r.model.as_str()) {
+            models.push(&r.model);
+        }
+    }
+    let metric = rows.first().map(|r| r.metric.clone()).unwrap_or_default();
+    if rows.iter().any(|r| r.metric != metric) {
+        return Err(Error::input(
+            dir,
+            "the shards mix metrics: merge the shards of one run",
+        ));
+    }
+    for (m, rs) in &by_material {
+        let mut names: Vec<&str> = rs.iter().map(|r| r.model.as_str()).collect();
+        names.sort();
+        let n = names.len();
+        names.dedup();
+        if n != models.len() || names.len() != models.len() {
+            return Err(Error::input(
+                dir,
+                format!(
+                    "material `{m}` has {n} fits of {} models (a shard missing or run twice?)",
+                    models.len()
+                ),
+            ));
+        }
+    }
+    // Ranks per material, in the models' order.
+    let mut csv_out = String::from("material,model,metric,error,relative,rank\n");
+    let mut rank_sum = vec![0.0; models.len()];
+    let mut wins = vec![0usize; models.len()];
+    let mut relative: Vec<Vec<f64>> = vec![Vec::new(); models.len()];
+    let mut table = String::new();
+    for (m, rs) in &by_material {
+        let errs: Vec<f64> = models
+            .iter()
+            .map(|name| rs.iter().find(|r| r.model == *name).expect("checked").error)
+            .collect();
+        let rk = ranks(&errs);
+        let _ = write!(table, "| {m} |");
+        for (k, name) in models.iter().enumerate() {
+            let r = rs.iter().find(|r| r.model == *name).expect("checked");
+            let _ = writeln!(
+                csv_out,
+                "{m},{name},{metric},{:.6e},{:.6e},{}",
+                r.error, r.relative, rk[k]
+            );
+            rank_sum[k] += rk[k];
+            if rk[k] < 1.5 {
+                wins[k] += 1;
+            }
+            relative[k].push(r.relative);
+            let cell = format!("{:.3}", r.relative);
+            let _ = write!(
+                table,
+                " {} |",
+                if rk[k] < 1.5 {
+                    format!("**{cell}**")
+                } else {
+                    cell
+                }
+            );
+        }
+        table.push('\n');
+    }
+    let n_mat = by_material.len() as f64;
+    let mut order: Vec<usize> = (0..models.len()).collect();
+    order.sort_by(|&a, &b| rank_sum[a].total_cmp(&rank_sum[b]));
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "# Model ranking on the MERL materials (`gonio fit --all`)\n"
+    );
+    let _ = writeln!(
+        md,
+        "Generated by `gonio fit --all --metric {metric}` (merge of the shards in `shards/`); \
+see docs/measured.md for the method (samples, metric, optimizer, bounds) and how the ranking \
+compares with Ngan et al. 2005. {} materials × {} models.\n",
+        by_material.len(),
+        models.len()
+    );
+    let total: f64 = rows.iter().map(|r| r.seconds).sum();
+    let _ = write!(
+        md,
+        "Run time: the fits took {total:.0} s of one core in total"
+    );
+    if let Some((w, threads)) = wall {
+        let _ = write!(md, "; the run took {w:.0} s wall time on {threads} threads");
+    }
+    let _ = writeln!(md, ".\n");
+    let _ = writeln!(md, "## Mean rank\n");
+    let _ = writeln!(
+        md,
+        "Rank 1 is the smallest error on a material; ties share their mean rank. Relative error is `E/E₀` (`E₀`: the error of `f_r = 0`).\n"
+    );
+    let _ = writeln!(
+        md,
+        "| model | mean rank | best on | median relative error | mean relative error |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|");
+    for &k in &order {
+        let mut v = relative[k].clone();
+        v.sort_by(f64::total_cmp);
+        let median = v[v.len() / 2];
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        let _ = writeln!(
+            md,
+            "| {} | {:.2} | {} | {median:.3} | {mean:.3} |",
+            models[k],
+            rank_sum[k] / n_mat,
+            wins[k]
+        );
+    }
+    let _ = writeln!(md, "\n## Relative error per material (best in bold)\n");
+    let _ = writeln!(md, "| material | {} |", models.join(" | "));
+    let _ = writeln!(md, "|---|{}", "---|".repeat(models.len()));
+    md.push_str(&table);
+    write_atomic(&dir.join("ranking.csv"), &csv_out)?;
+    write_atomic(&dir.join("ranking.md"), &md)?;
+    write_atomic(&dir.join("fits.toml"), &fits)?;
+    let summary: Vec<String> = order
+        .iter()
+        .take(5)
+        .map(|&k| format!("{} ({:.2})", models[k], rank_sum[k] / n_mat))
+        .collect();
+    Ok(format!("mean rank: {}", summary.join(", ")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ties_share_their_mean_rank() {
+        assert_eq!(ranks(&[0.3, 0.1, 0.3, 0.2]), vec![3.5, 1.0, 3.5, 2.0]);
+    }
+
+    #[test]
+    fn rows_read_back() {
+        let r = Row {
+            material: "chrome".into(),
+            model: "ct-ggx-conductor".into(),
+            metric: "ngan".into(),
+            error: 1.5,
+            relative: 0.25,
+            evaluations: 10,
+            seconds: 0.5,
+        };
+        let text = csv(std::slice::from_ref(&r));
+        assert_eq!(parse_csv(Path::new("x.csv"), &text).unwrap(), vec![r]);
+        assert!(parse_csv(Path::new("x.csv"), "a,b\n").is_err());
+    }
+}

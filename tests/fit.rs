@@ -1,0 +1,227 @@
+//! `gonio fit`: the fitter recovers the parameters of synthetic
+//! "measurements" made from a model, within a tolerance derived from the
+//! optimizer's stopping rule; bad input exits 2 with one paragraph and no
+//! output file; the fitted scene file loads.
+//!
+//! # The tolerance
+//!
+//! The search stops when the standard deviation of the (relative) cost at
+//! the simplex's `n + 1` vertices is below τ = `SD_TOLERANCE`, and stops
+//! restarting when a restart gains less than τ. On exact synthetic data the
+//! minimum cost is 0; a simplex collapsed onto it has vertex costs ≥ 0
+//! whose population standard deviation is < τ, so each lies within
+//! `sqrt(n) τ` of their mean and all are below `C = 2 sqrt(n + 1) τ` when
+//! the best is at the minimum. The test asserts the fit's cost is below
+//! `C` (else the search stalled), and then each parameter within the
+//! largest deviation a cost of `C` allows near the minimum, where the cost
+//! is the quadratic `½ δᵀ H δ`: `|δ_j| ≤ sqrt(2 C (H⁻¹)_jj)` (the maximum of
+//! `δ_j` on the ellipsoid `½ δᵀ H δ = C`), with `H` the Hessian of the cost
+//! at the truth by central differences.
+
+mod common;
+
+use common::gonio;
+use glam::DVec3;
+use gonio::base::Rgb;
+use gonio::base::frame::SurfaceFrame;
+use gonio::fit::problem::{SD_TOLERANCE, mean_of};
+use gonio::fit::samples::{Sample, samples_of};
+use gonio::fit::{FitModel, Metric, fit};
+
+/// The relative cost of `values` (what the search minimizes).
+fn cost(model: &FitModel, values: &[f64], samples: &[Sample], metric: Metric) -> f64 {
+    mean_of(&model.material(values), samples, metric) / metric.mean(samples, |_| Rgb::ZERO)
+}
+
+/// `H⁻¹` of a symmetric positive definite `h` (Gauss-Jordan).
+fn inverse(h: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let n = h.len();
+    let mut a: Vec<Vec<f64>> = h
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let mut r = r.clone();
+            r.extend((0..n).map(|j| if i == j { 1.0 } else { 0.0 }));
+            r
+        })
+        .collect();
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))
+            .unwrap();
+        a.swap(c, p);
+        let d = a[c][c];
+        assert!(
+            d.abs() > 0.0,
+            "singular Hessian: the parameters are not identifiable"
+        );
+        for v in a[c].iter_mut() {
+            *v /= d;
+        }
+        for r in 0..n {
+            if r != c {
+                let f = a[r][c];
+                let row = a[c].clone();
+                for (v, w) in a[r].iter_mut().zip(row) {
+                    *v -= f * w;
+                }
+            }
+        }
+    }
+    a.into_iter().map(|r| r[n..].to_vec()).collect()
+}
+
+fn recovers(spec: &str, truth: &[f64]) {
+    let metric = Metric::Ngan;
+    let model = FitModel::parse(spec).unwrap();
+    assert_eq!(model.free.len(), truth.len(), "{spec}");
+    let m = model.material(truth);
+    let frame = SurfaceFrame::new(DVec3::Z, DVec3::X);
+    let samples = samples_of(|_, _, _, wi, wo| m.f_r(wi, wo, &frame));
+    let r = fit(&model, &samples, metric);
+    let n = truth.len();
+    let c_max = 2.0 * ((n + 1) as f64).sqrt() * SD_TOLERANCE;
+    let c = cost(&model, &r.values, &samples, metric);
+    assert!(
+        c <= c_max,
+        "{spec}: cost {c:e} > {c_max:e}: the search stalled ({:?})",
+        r.values
+    );
+    // The Hessian at the truth, central differences with steps 1e-4 of
+    // each value (cost is smooth there; the steps' error is O(h²)).
+    let h: Vec<f64> = truth.iter().map(|v| 1e-4 * v.abs().max(1e-2)).collect();
+    let at = |di: (usize, f64), dj: (usize, f64)| {
+        let mut v = truth.to_vec();
+        v[di.0] += di.1;
+        v[dj.0] += dj.1;
+        cost(&model, &v, &samples, metric)
+    };
+    let hess: Vec<Vec<f64>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    (at((i, h[i]), (j, h[j]))
+                        - at((i, h[i]), (j, -h[j]))
+                        - at((i, -h[i]), (j, h[j]))
+                        + at((i, -h[i]), (j, -h[j])))
+                        / (4.0 * h[i] * h[j])
+                })
+                .collect()
+        })
+        .collect();
+    let inv = inverse(&hess);
+    for j in 0..n {
+        let tol = (2.0 * c_max * inv[j][j]).sqrt();
+        let key = model.free[j].param.key;
+        assert!(
+            (r.values[j] - truth[j]).abs() <= tol,
+            "{spec}: {key}[{j}] = {} vs truth {} (tolerance {tol:e})",
+            r.values[j],
+            truth[j]
+        );
+    }
+}
+
+#[test]
+fn ward_is_recovered() {
+    recovers("ward", &[0.3, 0.2, 0.1, 0.2, 0.25, 0.3, 0.15]);
+}
+
+#[test]
+fn normalized_blinn_phong_is_recovered() {
+    recovers(
+        "blinn-phong-normalized",
+        &[0.5, 0.4, 0.3, 0.1, 0.2, 0.3, 50.0],
+    );
+}
+
+#[test]
+fn cook_torrance_ggx_dielectric_is_recovered() {
+    recovers(
+        "cook-torrance,distribution=ggx,fresnel=dielectric",
+        &[0.2, 0.3, 0.4, 0.2, 0.6, 0.7, 0.8, 1.6],
+    );
+}
+
+#[test]
+fn gltf_pbr_is_recovered() {
+    recovers("gltf-pbr", &[0.7, 0.4, 0.2, 0.3, 0.4]);
+}
+
+/// Runs `gonio fit ARGS` and checks the one-paragraph exit-2 error.
+fn fails_with_2(args: &[&str], names: &str) {
+    let out = gonio().arg("fit").args(args).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(
+        err.starts_with("gonio: error: ") && err.trim_end().lines().count() == 1,
+        "{err}"
+    );
+    assert!(err.contains(names), "{args:?}: `{names}` not in {err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn bad_input_exits_2_with_one_paragraph_and_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fit.toml");
+    let o = out.to_str().unwrap();
+    fails_with_2(
+        &["no-such-paint", "--model", "ward", "-o", o],
+        "no-such-paint",
+    );
+    fails_with_2(&["chrome", "--model", "mirror", "-o", o], "mirror");
+    fails_with_2(
+        &["chrome", "--model", "ward,distribution=ggx", "-o", o],
+        "ward",
+    );
+    fails_with_2(
+        &[
+            "chrome",
+            "--model",
+            "cook-torrance,distribution=gauss",
+            "-o",
+            o,
+        ],
+        "gauss",
+    );
+    fails_with_2(
+        &["missing/file.binary", "--model", "ward", "-o", o],
+        "missing/file.binary",
+    );
+    fails_with_2(&["chrome", "-o", o], "--model");
+    fails_with_2(&["--all", "--shard", "0/3", "--out-dir", o], "--shard 0/3");
+    assert!(!out.exists(), "no output file after an error");
+}
+
+#[test]
+fn the_fitted_scene_file_loads_with_the_fitted_material() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fit.toml");
+    let run = gonio()
+        .args(["fit", "blue-fabric", "--model", "lambert", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        stdout.contains("blue-fabric, lambert, metric ngan: error "),
+        "{stdout}"
+    );
+    let scene =
+        gonio::scene::scene_file::load(&gonio::scene::scene_file::SceneSource::File(out), &[])
+            .unwrap();
+    let m = scene
+        .materials
+        .iter()
+        .find(|m| m.name == "blue-fabric")
+        .expect("the fitted material is in the scene");
+    assert_eq!(m.model, gonio::material::ReflectanceModel::Lambert);
+    // Blue fabric is blue.
+    assert!(m.k_d.z > m.k_d.x && m.k_d.z > m.k_d.y, "{:?}", m.k_d);
+}
