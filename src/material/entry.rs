@@ -199,7 +199,7 @@ pub fn material_from_entry_in(
 /// `ward`, `roughness` on `blinn-phong`, `k_e` on `lambert`): accepted, so
 /// a material can switch models in the viewer and back, but worth a
 /// warning (issue 17: they were ignored without a word). `measured`
-/// refuses them instead ([`measured_keys_apply`]).
+/// refuses them instead (`measured_keys_apply`).
 pub fn keys_not_applying(e: &MaterialEntry) -> Vec<&str> {
     let Ok(model) = e.model.parse::<ReflectanceModel>() else {
         return Vec::new();
