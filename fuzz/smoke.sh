@@ -14,10 +14,11 @@ if ! rustup toolchain list 2>/dev/null | grep -q '^nightly' || ! cargo fuzz --ve
 fi
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
-for target in gltf_load scene_toml; do
-    dict=fuzz/gltf.dict
-    [ "$target" = scene_toml ] && dict=fuzz/scene.dict
+for target in gltf_load scene_toml texture_decode merl_parse; do
+    dict=()
+    [ "$target" = gltf_load ] && dict=(-dict=fuzz/gltf.dict)
+    [ "$target" = scene_toml ] && dict=(-dict=fuzz/scene.dict)
     mkdir -p "$scratch/$target"
     cargo +nightly fuzz run -a "$target" "$scratch/$target" "fuzz/corpus/$target" -- \
-        -dict="$dict" -max_total_time="$seconds" -timeout=10 -print_final_stats=1
+        "${dict[@]}" -max_total_time="$seconds" -timeout=10 -print_final_stats=1
 done
