@@ -155,7 +155,15 @@ impl GpuContext {
                 })
                 .await
                 .map_err(|e| {
-                    Error::NoAdapter(format!("no GPU adapter found ({e}). {LAVAPIPE_HINT}."))
+                    // A backend chosen by WGPU_BACKEND is named: the
+                    // lavapipe advice alone misled when it was `gl` and
+                    // no GL library was installed (issue 19).
+                    let chosen = std::env::var("WGPU_BACKEND")
+                        .map(|b| format!(" for WGPU_BACKEND={b} (unset it to use Vulkan)"))
+                        .unwrap_or_default();
+                    Error::NoAdapter(format!(
+                        "no GPU adapter found{chosen} ({e}). {LAVAPIPE_HINT}."
+                    ))
                 })?,
         };
         let adapter_info = adapter.get_info();
