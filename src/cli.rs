@@ -77,7 +77,8 @@ pub struct RenderArgs {
     /// Raise (or lower) a cap on what input files may hold, e.g.
     /// `--limit triangles=200M` or `--limit bytes=4Gi`. Keys: bytes (1Gi),
     /// vertices (50M), triangles (50M), nodes (1M), textures (4096),
-    /// lights (1024).
+    /// lights (1024), memory (8Gi: what the renderer allocates beyond the
+    /// scene, checked before it starts).
     #[arg(long = "limit", value_name = "KEY=VALUE")]
     pub limits: Vec<String>,
     /// `--max-error E` and the results file it reads.
@@ -214,6 +215,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         eprintln!("{}", describe_scene(&scene));
     }
 
+    check_memory(&scene, args.reference, &limits)?;
     let frame: Frame = if args.reference {
         if args.verbose {
             eprintln!(
@@ -256,6 +258,44 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         eprintln!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// Refuses a render whose renderer would allocate more than
+/// `--limit memory` (estimated from the scene before anything is built),
+/// naming what makes it large and what would fit.
+fn check_memory(scene: &Scene, reference: bool, limits: &Limits) -> Result<()> {
+    let (bytes, what) = if reference {
+        (
+            reference::memory_estimate(scene),
+            "the CPU reference's ray-casting hierarchy",
+        )
+    } else {
+        (
+            crate::gpu::prepared::host_memory_estimate(scene),
+            "the GPU path's vertex stream and its upload copy",
+        )
+    };
+    if bytes <= limits.memory {
+        return Ok(());
+    }
+    let triangles = scene.triangle_count() as u64;
+    let per_triangle = bytes.div_ceil(triangles.max(1));
+    let size = |b: u64| {
+        if b >= 1 << 30 {
+            format!("{:.1} GiB", b as f64 / f64::from(1u32 << 30))
+        } else {
+            format!("{:.0} MiB", b as f64 / f64::from(1u32 << 20))
+        }
+    };
+    Err(Error::argument(
+        "--limit memory",
+        format!(
+            "{what} for {triangles} triangles would take about {}, over the limit of {}: at most about {} triangles fit; use fewer `segments` (a sphere of n segments has about n²/2 triangles, a plane 2n²) or a smaller model, or raise the limit with `--limit memory=16Gi` if the machine has the memory",
+            size(bytes),
+            size(limits.memory),
+            limits.memory / per_triangle.max(1),
+        ),
+    ))
 }
 
 /// Tells the user about requested features this build does not draw yet

@@ -274,6 +274,36 @@ fn buffers_over_the_gpus_limits_are_refused_before_creation() {
             ]),
             names: "segments",
         },
+        // The renderers' own allocations count against `--limit memory`
+        // (the reference on a 4096-segment plane peaked at 10.5 GB within
+        // the default limits): a 512-segment plane (528,256 triangles with the sphere)
+        // needs about 100 MiB in the reference and 40 MiB on the GPU path,
+        // both over a 16 MiB limit.
+        Case {
+            name: "reference hierarchy over --limit memory",
+            args: s(&[
+                "-o",
+                &out,
+                "--reference",
+                "--set",
+                "objects.1.segments=512",
+                "--limit",
+                "memory=16Mi",
+            ]),
+            names: "the CPU reference's ray-casting hierarchy for 528256 triangles",
+        },
+        Case {
+            name: "vertex stream over --limit memory",
+            args: s(&[
+                "-o",
+                &out,
+                "--set",
+                "objects.1.segments=512",
+                "--limit",
+                "memory=16Mi",
+            ]),
+            names: "--limit memory",
+        },
     ];
     for case in &cases {
         run_case(d, case);

@@ -22,6 +22,7 @@ pub fn limits() -> Limits {
         nodes: 100_000,
         textures: 1024,
         lights: 256,
+        memory: 1 << 30,
     }
 }
 

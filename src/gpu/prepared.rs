@@ -297,6 +297,23 @@ fn prepare_environment(
     GpuEnvironment::new(&ctx.device, &ctx.queue, layouts, background, scene)
 }
 
+/// Host bytes the GPU path allocates for `scene`'s geometry beyond the
+/// scene itself, an upper bound checked against `--limit memory` before a
+/// device is opened: the f32 vertex stream and index buffer, and the
+/// upload copy of each (wgpu's staging). The larger layout is assumed
+/// where the device decides later (per-vertex shadow coordinates, which
+/// store three vertices per triangle).
+pub fn host_memory_estimate(scene: &Scene) -> u64 {
+    let mut key = ShaderKey::new(scene, &ShadowPlan::new(scene));
+    key.vertex_shadow_coords = true;
+    let (vertex_bytes, index_bytes) = GeometryData::byte_sizes(
+        scene,
+        key.needs_tangents(),
+        key.shadow_coords_per_vertex(),
+    );
+    2 * (vertex_bytes + index_bytes)
+}
+
 /// Refuses a vertex stream or index buffer larger than the device's
 /// `max_buffer_size` before building it (a flat-shaded 3200-segment plane
 /// is a 2.2 GB stream: issue 19), naming the settings that make it

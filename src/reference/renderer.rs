@@ -59,6 +59,17 @@ pub fn render_with_lod_bias(scene: &Scene, bias: f64) -> Frame {
     render_inner(scene, 0.0, 0.0, AreaLights::Samples, bias)
 }
 
+/// Bytes [`render`] allocates for `scene` beyond the scene itself, an
+/// upper bound checked against `--limit memory` before it starts: the
+/// hierarchy at the peak of its build and the frame.
+pub fn memory_estimate(scene: &Scene) -> u64 {
+    let pixels = u64::from(scene.width) * u64::from(scene.height);
+    let per_pixel = (size_of::<[f32; 3]>() + size_of::<bool>()) as u64;
+    (scene.triangle_count() as u64)
+        .saturating_mul(super::bvh::BUILD_BYTES_PER_TRIANGLE)
+        .saturating_add(pixels.saturating_mul(per_pixel))
+}
+
 /// [`render_offset`] with a choice of how area lights are evaluated.
 pub fn render_with(scene: &Scene, offset_x: f64, offset_y: f64, area: AreaLights) -> Frame {
     render_inner(scene, offset_x, offset_y, area, 0.0)

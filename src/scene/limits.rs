@@ -31,6 +31,10 @@ pub struct Limits {
     /// Lights (each is evaluated at every pixel, so they bound render
     /// time). Default 1024.
     pub lights: u64,
+    /// Bytes the renderer may allocate beyond the loaded scene, estimated
+    /// before it starts: the CPU reference's ray-casting hierarchy, the
+    /// GPU path's vertex stream with its upload copy. Default 8 GiB.
+    pub memory: u64,
 }
 
 impl Default for Limits {
@@ -42,18 +46,20 @@ impl Default for Limits {
             nodes: 1_000_000,
             textures: 4096,
             lights: 1024,
+            memory: 8 << 30,
         }
     }
 }
 
 /// The keys [`Limits::set`] accepts, in the order the docs list them.
-pub const LIMIT_KEYS: [&str; 6] = [
+pub const LIMIT_KEYS: [&str; 7] = [
     "bytes",
     "vertices",
     "triangles",
     "nodes",
     "textures",
     "lights",
+    "memory",
 ];
 
 impl Limits {
@@ -72,6 +78,7 @@ impl Limits {
             "nodes" => &mut self.nodes,
             "textures" => &mut self.textures,
             "lights" => &mut self.lights,
+            "memory" => &mut self.memory,
             other => {
                 return Err(format!(
                     "unknown limit `{other}`; the limits are {}",
