@@ -90,6 +90,11 @@ fn merl_corpus_replays_without_panic_or_hang() {
     replay_target("merl_parse", harness::merl_parse, 4);
 }
 
+#[test]
+fn environment_map_corpus_replays_without_panic_or_hang() {
+    replay_target("environment_map", harness::environment_map, 6);
+}
+
 /// The generated seeds are valid and must load through the fuzz harness's
 /// path (`load_from_bytes`): a seed that fails early would fuzz only the
 /// first checks.
@@ -309,6 +314,51 @@ fn merl_seeds() -> Vec<(&'static str, Vec<u8>)> {
     ]
 }
 
+/// Environment-map seeds (first byte: even `.hdr`, odd `.exr`): a small
+/// map in each format, and hostile variants (truncated, a header declaring
+/// a huge map, a square image, a NaN texel, a negative one, a wrong magic).
+fn environment_map_seeds() -> Vec<(&'static str, Vec<u8>)> {
+    let map = |w: u32, h: u32, texel: fn(u32, u32) -> [f32; 3]| {
+        image::Rgb32FImage::from_fn(w, h, |x, y| image::Rgb(texel(x, y)))
+    };
+    let smooth = |x: u32, y: u32| [x as f32 * 0.25, y as f32 * 0.5, 1.0];
+    let encode = |image: image::Rgb32FImage, format: image::ImageFormat, selector: u8| {
+        let mut bytes = std::io::Cursor::new(vec![selector]);
+        bytes.set_position(1);
+        image::DynamicImage::from(image)
+            .write_to(&mut bytes, format)
+            .unwrap();
+        bytes.into_inner()
+    };
+    let hdr = encode(map(16, 8, smooth), image::ImageFormat::Hdr, 0);
+    let exr = encode(map(16, 8, smooth), image::ImageFormat::OpenExr, 1);
+    let square = encode(map(8, 8, smooth), image::ImageFormat::OpenExr, 1);
+    let nan = encode(
+        map(8, 4, |x, _| [if x == 3 { f32::NAN } else { 1.0 }, 0.5, 0.5]),
+        image::ImageFormat::OpenExr,
+        1,
+    );
+    let negative = encode(
+        map(8, 4, |x, _| [1.0, if x == 5 { -2.0 } else { 0.5 }, 0.5]),
+        image::ImageFormat::OpenExr,
+        1,
+    );
+    let bomb = b"\0#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n".to_vec();
+    let mut magic = exr.clone();
+    magic[1] ^= 0xff;
+    vec![
+        ("small.hdr", hdr.clone()),
+        ("small.exr", exr.clone()),
+        ("truncated.hdr", hdr[..hdr.len() / 2].to_vec()),
+        ("truncated.exr", exr[..exr.len() / 2].to_vec()),
+        ("square.exr", square),
+        ("nan-texel.exr", nan),
+        ("negative-texel.exr", negative),
+        ("dimension-bomb.hdr", bomb),
+        ("wrong-magic.exr", magic),
+    ]
+}
+
 #[test]
 #[ignore = "writes the seed corpus; run by hand after changing it"]
 fn regenerate_seed_corpus() {
@@ -343,6 +393,7 @@ fn regenerate_seed_corpus() {
     for (target, seeds) in [
         ("texture_decode", texture_seeds()),
         ("merl_parse", merl_seeds()),
+        ("environment_map", environment_map_seeds()),
     ] {
         let dir = corpus_dir(target);
         std::fs::create_dir_all(&dir).unwrap();

@@ -1360,6 +1360,90 @@ fn fuzz_findings(c: &mut Corpus) {
     }
 }
 
+/// Environment maps a scene file points at: truncated, a header declaring
+/// a huge map (refused before decoding), not 2 : 1, NaN and negative
+/// texels, a wrong magic number, an image of another kind.
+fn environment_maps(c: &mut Corpus) {
+    const CLASS: &str = "environment-map";
+    let map = |w: u32, h: u32, texel: fn(u32, u32) -> [f32; 3]| {
+        image::Rgb32FImage::from_fn(w, h, |x, y| image::Rgb(texel(x, y)))
+    };
+    let encode = |image: image::Rgb32FImage, format: image::ImageFormat| {
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image::DynamicImage::from(image)
+            .write_to(&mut bytes, format)
+            .unwrap();
+        bytes.into_inner()
+    };
+    let smooth = |x: u32, y: u32| [x as f32 * 0.25, y as f32 * 0.5, 1.0];
+    let hdr = encode(map(16, 8, smooth), image::ImageFormat::Hdr);
+    let exr = encode(map(16, 8, smooth), image::ImageFormat::OpenExr);
+    let mut magic = exr.clone();
+    magic[0] ^= 0xff;
+    let cases: [(&str, Vec<u8>, &[&str]); 8] = [
+        (
+            "truncated.hdr",
+            hdr[..hdr.len() / 2].to_vec(),
+            &["truncated.hdr", "not a readable hdr image"],
+        ),
+        (
+            "truncated.exr",
+            exr[..exr.len() / 2].to_vec(),
+            &["truncated.exr", "not a readable exr image"],
+        ),
+        (
+            "bomb.hdr",
+            b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 200000\n".to_vec(),
+            &["bomb.hdr", "200000 × 100000", "largest side"],
+        ),
+        (
+            "square.exr",
+            encode(map(8, 8, smooth), image::ImageFormat::OpenExr),
+            &["square.exr", "twice as wide as high", "8 × 8"],
+        ),
+        (
+            "nan.exr",
+            encode(
+                map(8, 4, |x, _| [if x == 3 { f32::NAN } else { 1.0 }, 0.5, 0.5]),
+                image::ImageFormat::OpenExr,
+            ),
+            &["nan.exr", "column 3, row 0", "finite and non-negative"],
+        ),
+        (
+            "negative.exr",
+            encode(
+                map(8, 4, |x, _| [1.0, if x == 5 { -2.0 } else { 0.5 }, 0.5]),
+                image::ImageFormat::OpenExr,
+            ),
+            &["negative.exr", "column 5, row 0", "finite and non-negative"],
+        ),
+        (
+            "magic.exr",
+            magic,
+            &["magic.exr", "not a readable exr image"],
+        ),
+        (
+            "png-named.hdr",
+            std::fs::read(
+                Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/textured/checker.png"),
+            )
+            .unwrap(),
+            &["png-named.hdr", "not a readable hdr image"],
+        ),
+    ];
+    for (name, bytes, needles) in cases {
+        c.write(&format!("{CLASS}/{name}"), bytes);
+        let mut needles = needles.to_vec();
+        needles.push("environment.map");
+        c.scene(
+            CLASS,
+            &format!("{name}.toml"),
+            format!("[environment]\nmap = \"{name}\"\n"),
+            &needles,
+        );
+    }
+}
+
 fn corpus(dir: &Path) -> Vec<Case> {
     let mut c = Corpus::new(dir);
     glb_container(&mut c);
@@ -1373,6 +1457,7 @@ fn corpus(dir: &Path) -> Vec<Case> {
     non_finite(&mut c);
     extensions(&mut c);
     scene_files(&mut c);
+    environment_maps(&mut c);
     fuzz_findings(&mut c);
     c.cases
 }

@@ -54,6 +54,31 @@ pub fn merl_parse(data: &[u8]) {
     }
 }
 
+/// Texels a fuzzed environment map may declare: a 256 × 128 map fits, and
+/// the header check before decoding is reached often.
+pub const MAP_TEXELS: u64 = 1 << 15;
+
+/// Decodes `data[1..]` as an environment map, a Radiance `.hdr` when
+/// `data[0]` is even and an OpenEXR file when odd, within [`MAP_TEXELS`];
+/// a map that loads must look up finite, non-negative radiance.
+pub fn environment_map(data: &[u8]) {
+    use gonio::environment::load::{decode, format_of};
+    let Some((&selector, bytes)) = data.split_first() else {
+        return;
+    };
+    let extension = if selector % 2 == 0 { "hdr" } else { "exr" };
+    let format = format_of(extension).expect("a map format");
+    if let Ok(map) = decode(bytes, format, "fuzz", MAP_TEXELS) {
+        for d in [[0.0, 1.0, 0.0], [0.6, 0.0, -0.8], [0.0, -1.0, 0.0]] {
+            let l = map.lookup(glam::DVec3::from(d));
+            assert!(
+                l.is_finite() && l.min_element() >= 0.0,
+                "L_env({d:?}) = {l:?}"
+            );
+        }
+    }
+}
+
 /// The line that separates a scene file from `--set` overrides in a
 /// `scene_toml` input.
 pub const OVERRIDES_SEPARATOR: &str = "\n--- set\n";

@@ -3,7 +3,7 @@
 //! (`map = "sky"`). Every failure is one sentence the caller prefixes
 //! with the scene file and key.
 
-use super::map::MapData;
+use super::map::{MAX_SIDE, MapData};
 use super::sky;
 use std::path::Path;
 
@@ -21,28 +21,63 @@ pub fn load(value: &str, base_dir: &Path) -> Result<MapData, String> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    let format = match extension.as_str() {
-        "exr" => image::ImageFormat::OpenExr,
-        "hdr" | "pic" => image::ImageFormat::Hdr,
-        _ => {
-            return Err(format!(
-                "`{value}` is neither an .exr nor an .hdr file (nor \"{SKY}\", the built-in sky)"
-            ));
-        }
+    let Some(format) = format_of(&extension) else {
+        return Err(format!(
+            "`{value}` is neither an .exr nor an .hdr file (nor \"{SKY}\", the built-in sky)"
+        ));
     };
     let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let image = image::load_from_memory_with_format(&bytes, format)
-        .map_err(|e| {
-            format!(
-                "{} is not a readable {extension} image: {e}",
-                path.display()
-            )
-        })?
-        .into_rgb32f();
-    let (width, height) = image.dimensions();
+    let name = path.display().to_string();
+    decode(&bytes, format, &name, MAX_TEXELS).map_err(|e| format!("{name}: {e}"))
+}
+
+/// Texels a map file may declare: the largest map side gonio accepts
+/// ([`MAX_SIDE`] × [`MAX_SIDE`]/2, 1.5 GiB of f32 RGB).
+pub const MAX_TEXELS: u64 = MAX_SIDE as u64 * (MAX_SIDE as u64 / 2);
+
+/// The decoder for a file extension (lower case): `exr`, or `hdr`/`pic`.
+pub fn format_of(extension: &str) -> Option<image::ImageFormat> {
+    match extension {
+        "exr" => Some(image::ImageFormat::OpenExr),
+        "hdr" | "pic" => Some(image::ImageFormat::Hdr),
+        _ => None,
+    }
+}
+
+/// Decodes a map file's `bytes`. The header's dimensions are checked (a
+/// 2 : 1 lat-long map, at most `max_texels`) before any texel is
+/// decoded, so a few bytes declaring a huge image allocate nothing; the
+/// decoder's own allocations are capped just above the texels' size.
+/// `name` is for [`MapData`]; errors are one sentence without it.
+pub fn decode(
+    bytes: &[u8],
+    format: image::ImageFormat,
+    name: &str,
+    max_texels: u64,
+) -> Result<MapData, String> {
+    let kind = format.extensions_str()[0];
+    let unreadable = |e: image::ImageError| format!("it is not a readable {kind} image: {e}");
+    let reader = |limits: image::Limits| {
+        let mut reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
+        reader.limits(limits);
+        reader
+    };
+    let (width, height) = reader(image::Limits::default())
+        .into_dimensions()
+        .map_err(unreadable)?;
+    MapData::check_dimensions(width, height)?;
+    let texels = u64::from(width) * u64::from(height);
+    if texels > max_texels {
+        return Err(format!(
+            "it declares {width} × {height} texels, over the {max_texels} this load allows"
+        ));
+    }
+    let mut limits = image::Limits::default();
+    // RGB or RGBA f32 and one converted copy, plus slack for the decoder.
+    limits.max_alloc = Some(2 * 16 * texels + (1 << 20));
+    let image = reader(limits).decode().map_err(unreadable)?.into_rgb32f();
     let texels = image.pixels().map(|p| p.0).collect::<Vec<[f32; 3]>>();
-    MapData::new(&path.display().to_string(), width, height, texels)
-        .map_err(|e| format!("{}: {e}", path.display()))
+    MapData::new(name, width, height, texels)
 }
 
 /// Writes `map` as a Radiance `.hdr` file (RGBE: 8-bit mantissas, a
@@ -70,6 +105,14 @@ mod tests {
         std::fs::write(dir.path().join("bad.hdr"), b"#?RADIANCE\ngarbage").unwrap();
         let e = load("bad.hdr", dir.path()).unwrap_err();
         assert!(e.contains("not a readable hdr image"), "{e}");
+        // A header declaring a huge map is refused before decoding.
+        std::fs::write(
+            dir.path().join("bomb.hdr"),
+            b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 200000\n",
+        )
+        .unwrap();
+        let e = load("bomb.hdr", dir.path()).unwrap_err();
+        assert!(e.contains("200000 × 100000"), "{e}");
     }
 
     #[test]

@@ -141,16 +141,7 @@ impl MapData {
         height: u32,
         texels: Vec<[f32; 3]>,
     ) -> Result<MapData, String> {
-        if height == 0 || width != 2 * height {
-            return Err(format!(
-                "a latitude-longitude map is twice as wide as high, and this one is {width} × {height}"
-            ));
-        }
-        if width > MAX_SIDE {
-            return Err(format!(
-                "the map is {width} × {height}; the largest side gonio accepts is {MAX_SIDE}"
-            ));
-        }
+        Self::check_dimensions(width, height)?;
         assert_eq!(texels.len(), (width * height) as usize);
         if let Some(k) = texels
             .iter()
@@ -172,6 +163,22 @@ impl MapData {
             truth,
             nodes,
         })
+    }
+
+    /// Refuses dimensions that are not a 2 : 1 lat-long map or exceed
+    /// [`MAX_SIDE`] (checked from a file's header before decoding).
+    pub fn check_dimensions(width: u32, height: u32) -> Result<(), String> {
+        if height == 0 || width != 2 * height {
+            return Err(format!(
+                "a latitude-longitude map is twice as wide as high, and this one is {width} × {height}"
+            ));
+        }
+        if width > MAX_SIDE {
+            return Err(format!(
+                "the map is {width} × {height}; the largest side gonio accepts is {MAX_SIDE}"
+            ));
+        }
+        Ok(())
     }
 
     /// The bilinear lookup of unit direction `d` (unscaled). Twin:

@@ -306,11 +306,8 @@ fn prepare_environment(
 pub fn host_memory_estimate(scene: &Scene) -> u64 {
     let mut key = ShaderKey::new(scene, &ShadowPlan::new(scene));
     key.vertex_shadow_coords = true;
-    let (vertex_bytes, index_bytes) = GeometryData::byte_sizes(
-        scene,
-        key.needs_tangents(),
-        key.shadow_coords_per_vertex(),
-    );
+    let (vertex_bytes, index_bytes) =
+        GeometryData::byte_sizes(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
     2 * (vertex_bytes + index_bytes)
 }
 
