@@ -11,6 +11,7 @@ set -euo pipefail
 
 packages=(
   mesa-vulkan-drivers libvulkan1
+  libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri
   fonts-dejavu-core
   xvfb xauth libxkbcommon-x11-0 libx11-xcb1 libxcursor1 libxi6 libxrandr2
 )

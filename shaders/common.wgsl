@@ -102,7 +102,9 @@ fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
 }
 
 // What the fragment writes. Offscreen targets (Rgba32Float) hold linear
-// radiance and coverage 1, read back exactly. Display targets (8-bit
+// radiance and coverage 1, read back exactly; where the adapter cannot
+// render into Rgba32Float (`#if radiance_bits`), an Rgba32Uint target holds
+// the same f32 values as bits, read back as the same bytes. Display targets (8-bit
 // window surfaces, `#if display`) get what `gonio render` writes to a PNG:
 // radiance · 2^exposure clamped to [0, 1], sRGB-encoded (IEC 61966-2-1,
 // as src/output/write.rs `srgb_encode`), rounded by the unorm store.
@@ -112,10 +114,25 @@ fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
     return select(high, low, linear <= vec3<f32>(0.0031308));
 }
 
-fn target_output(radiance: vec3<f32>) -> vec4<f32> {
+#if radiance_bits
+alias TargetTexel = vec4<u32>;
+#else
+alias TargetTexel = vec4<f32>;
+#endif
+
+// `value` as the target stores it.
+fn target_texel(value: vec4<f32>) -> TargetTexel {
+    #if radiance_bits
+    return bitcast<vec4<u32>>(value);
+    #else
+    return value;
+    #endif
+}
+
+fn target_output(radiance: vec3<f32>) -> TargetTexel {
     #if display
     return vec4<f32>(srgb_encode(clamp(radiance * globals.display_scale, vec3<f32>(0.0), vec3<f32>(1.0))), 1.0);
     #else
-    return vec4<f32>(radiance, 1.0);
+    return target_texel(vec4<f32>(radiance, 1.0));
     #endif
 }

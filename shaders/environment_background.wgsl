@@ -20,12 +20,12 @@ fn vs_background(@builtin(vertex_index) i: u32) -> BackgroundOut {
 }
 
 @fragment
-fn fs_background(in: BackgroundOut) -> @location(0) vec4<f32> {
+fn fs_background(in: BackgroundOut) -> @location(0) TargetTexel {
     let d = normalize(environment.forward + environment.right * in.ndc.x + environment.up * in.ndc.y);
     let radiance = environment_map_radiance(d);
     #if display
     return target_output(radiance);
     #else
-    return vec4<f32>(radiance, 0.0);
+    return target_texel(vec4<f32>(radiance, 0.0));
     #endif
 }

@@ -77,7 +77,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
 }
 
 @fragment
-fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) TargetTexel {
     // Sides (Material.sides, glTF doubleSided): a back face of a
     // single-sided material is culled, one of a double-sided material is
     // lit with its frame flipped (normal, tangent and bitangent). The

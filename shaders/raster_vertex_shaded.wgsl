@@ -105,7 +105,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
 }
 
 @fragment
-fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) TargetTexel {
     // Sides (Material.sides, glTF doubleSided): a back face of a
     // single-sided material is culled; a double-sided one shows its back's
     // radiance. The condition varies per pixel (front_facing):

@@ -225,6 +225,7 @@ pub fn specialized_key(scene: &Scene) -> ShaderKey {
 pub fn triangle_to_png(out: &Path, adapter: Option<&str>) -> Result<()> {
     let output = OutputFile::prepare(out)?;
     let ctx = GpuContext::new(&AdapterChoice::from_flag_or_env(adapter))?;
+    ctx.require_float_radiance("gonio bench")?;
     let (width, height) = (640u32, 480u32);
     let device = &ctx.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -214,6 +214,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
 
     let context = GpuContext::new(&AdapterChoice::from_flag_or_env(args.adapter.as_deref()))?;
+    context.require_float_radiance("gonio bench")?;
     let adapter = context.describe();
     let mut renderer = GpuRenderer::new(context);
 

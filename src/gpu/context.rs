@@ -82,25 +82,48 @@ impl GpuContext {
         Ok(ctx)
     }
 
-    /// Refuses an adapter that cannot render into the offscreen radiance
-    /// targets ([`super::readback::COLOR_FORMAT`]) that every headless use
-    /// (render, bench) draws into: wgpu's GL backend on Mesa's llvmpipe
-    /// (`WGPU_BACKEND=gl`) lacks `EXT_color_buffer_float` and panicked in
-    /// pipeline creation (issue 19). A clear error until a fallback format
-    /// exists (`Rgba32Uint` holding the f32 bits would read back the same
-    /// bytes; the bench's hand-written shaders would need it too). The
-    /// viewer draws into the window's 8-bit format and works there.
-    fn check_radiance_format(&self) -> Result<()> {
-        let format = super::readback::COLOR_FORMAT;
-        let usages = self
-            .adapter
-            .get_texture_format_features(format)
-            .allowed_usages;
-        if usages.contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+    /// The offscreen radiance format of this adapter: `Rgba32Float`
+    /// ([`super::readback::COLOR_FORMAT`]) where it can render into it,
+    /// else `Rgba32Uint` holding the same f32 bits (wgpu's GL backend on
+    /// Mesa's llvmpipe, `WGPU_BACKEND=gl`, lacks `EXT_color_buffer_float`
+    /// and panicked in pipeline creation: issue 19). Both read back the
+    /// same bytes; the integer target cannot be multisampled and resolved,
+    /// which `image.msaa` then says. `None` if neither is renderable.
+    pub fn radiance_format(&self) -> Option<wgpu::TextureFormat> {
+        [
+            super::readback::COLOR_FORMAT,
+            super::readback::COLOR_BITS_FORMAT,
+        ]
+        .into_iter()
+        .find(|&format| {
+            self.adapter
+                .get_texture_format_features(format)
+                .allowed_usages
+                .contains(wgpu::TextureUsages::RENDER_ATTACHMENT)
+        })
+    }
+
+    /// Refuses an adapter without `Rgba32Float` targets for `gonio bench`,
+    /// whose hand-written floor shaders (the unlit pass, the minimal
+    /// shader) write f32 radiance and have no bits fallback.
+    pub fn require_float_radiance(&self, who: &str) -> Result<()> {
+        if self.radiance_format() == Some(super::readback::COLOR_FORMAT) {
             return Ok(());
         }
         Err(Error::Gpu(format!(
-            "the GPU adapter `{}` ({:?} backend) cannot render into {format:?} targets, which hold gonio's linear radiance; use another backend (unset WGPU_BACKEND for Vulkan; `gonio view` works on this one)",
+            "{who} needs Rgba32Float render targets, which the GPU adapter `{}` ({:?} backend) lacks; use another backend (unset WGPU_BACKEND for Vulkan; `gonio render` works on this one)",
+            self.adapter_info.name, self.adapter_info.backend
+        )))
+    }
+
+    /// Refuses an adapter with no [`Self::radiance_format`] before
+    /// anything is drawn.
+    fn check_radiance_format(&self) -> Result<()> {
+        if self.radiance_format().is_some() {
+            return Ok(());
+        }
+        Err(Error::Gpu(format!(
+            "the GPU adapter `{}` ({:?} backend) can render into neither Rgba32Float nor Rgba32Uint targets, one of which holds gonio's linear radiance; use another backend (unset WGPU_BACKEND for Vulkan; `gonio view` may still work on this one)",
             self.adapter_info.name, self.adapter_info.backend
         )))
     }

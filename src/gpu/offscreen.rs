@@ -2,7 +2,9 @@
 //! radiance out (`gonio render`, the image tests).
 //!
 //! The colour target is `Rgba32Float`: linear radiance in RGB and coverage
-//! in alpha (cleared to 0, written as 1), read back exactly. Without
+//! in alpha (cleared to 0, written as 1), read back exactly (or, where the
+//! adapter cannot render into it, `Rgba32Uint` holding the same bits:
+//! [`GpuContext::radiance_format`]). Without
 //! multisampling each pixel is the surface seen at its centre, as in the
 //! CPU reference; with `image.msaa` the pass resolves the samples' mean.
 //!
@@ -15,7 +17,7 @@ use super::context::GpuContext;
 use super::draw::FrameTarget;
 use super::pipelines::{DEPTH_FORMAT, PipelineCache};
 use super::prepared::PreparedScene;
-use super::readback::{COLOR_FORMAT, PassTimestamps, Readback};
+use super::readback::{PassTimestamps, Readback};
 use super::timing::{Clock, Timings};
 use crate::frame::Frame;
 use crate::scene::Scene;
@@ -34,19 +36,16 @@ pub fn render(
     let mut timings = Timings::default();
     let (width, height) = (scene.width, scene.height);
     check_target_size(ctx, width, height)?;
+    let format = ctx
+        .radiance_format()
+        .ok_or_else(|| Error::Gpu("the adapter has no renderable radiance format".into()))?;
     let samples = scene.msaa.max(1);
     if samples > 1 {
-        check_msaa(ctx, samples)?;
+        check_msaa(ctx, format, samples)?;
     }
     let start = Instant::now();
-    let mut prepared = PreparedScene::new(
-        ctx,
-        cache,
-        vertex_shadow_coords,
-        scene,
-        COLOR_FORMAT,
-        samples,
-    )?;
+    let mut prepared =
+        PreparedScene::new(ctx, cache, vertex_shadow_coords, scene, format, samples)?;
     timings.push(
         "build vertex data + pipeline + upload",
         start.elapsed(),
@@ -60,7 +59,7 @@ pub fn render(
     };
     let color = target(
         "radiance",
-        COLOR_FORMAT,
+        format,
         wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         1,
     );
@@ -76,7 +75,7 @@ pub fn render(
     let multisampled = (samples > 1).then(|| {
         target(
             "radiance (multisampled)",
-            COLOR_FORMAT,
+            format,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
             samples,
         )
@@ -127,12 +126,12 @@ pub fn render(
 
 /// Refuses a sample count the device cannot draw offscreen radiance
 /// with, naming `image.msaa`.
-fn check_msaa(ctx: &GpuContext, samples: u32) -> Result<()> {
+fn check_msaa(ctx: &GpuContext, format: wgpu::TextureFormat, samples: u32) -> Result<()> {
     let specific = ctx
         .device
         .features()
         .contains(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES);
-    let flags = ctx.adapter.get_texture_format_features(COLOR_FORMAT).flags;
+    let flags = ctx.adapter.get_texture_format_features(format).flags;
     if specific
         && flags.sample_count_supported(samples)
         && flags.contains(wgpu::TextureFormatFeatureFlags::MULTISAMPLE_RESOLVE)
@@ -142,7 +141,7 @@ fn check_msaa(ctx: &GpuContext, samples: u32) -> Result<()> {
         Err(Error::argument(
             format!("image.msaa = {samples}"),
             format!(
-                "the GPU adapter `{}` cannot multisample and resolve {COLOR_FORMAT:?} targets; use image.msaa = 1",
+                "the GPU adapter `{}` cannot multisample and resolve {format:?} targets; use image.msaa = 1",
                 ctx.adapter_info.name
             ),
         ))

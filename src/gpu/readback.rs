@@ -13,7 +13,10 @@ use std::time::Duration;
 
 /// The offscreen colour target: linear radiance and coverage, exact.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-/// Bytes of one [`COLOR_FORMAT`] texel.
+/// The fallback target holding the same f32 values as bits (see
+/// [`GpuContext::radiance_format`]); read back as the same bytes.
+pub const COLOR_BITS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+/// Bytes of one [`COLOR_FORMAT`] (or [`COLOR_BITS_FORMAT`]) texel.
 const BYTES_PER_PIXEL: u32 = 16;
 
 /// Maps `buffer` for reading, waits, and copies its bytes out.

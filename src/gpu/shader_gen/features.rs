@@ -57,6 +57,9 @@ pub enum Feature {
     /// The target is a display surface: exposure and sRGB in the shader
     /// (`display`).
     Display,
+    /// The target is `Rgba32Uint` holding the radiance's f32 bits, for
+    /// adapters that cannot render into `Rgba32Float` (`radiance_bits`).
+    RadianceBits,
     /// The scene has an environment map: group 3, the map lights every
     /// surface and is the background (`environment`).
     Environment,
@@ -99,6 +102,7 @@ impl Feature {
             UniformLights,
             UniformShadowViews,
             Display,
+            RadianceBits,
             Environment,
             EnvironmentSampled,
             Textures,
@@ -141,6 +145,7 @@ impl Feature {
             Feature::UniformLights => "uniform_lights",
             Feature::UniformShadowViews => "uniform_shadow_views",
             Feature::Display => "display",
+            Feature::RadianceBits => "radiance_bits",
             Feature::Environment => "environment",
             Feature::EnvironmentSampled => "environment_sampled",
             Feature::Textures => "textures",
