@@ -6,6 +6,8 @@
 #   - for the interactive viewer and its tests under a virtual display:
 #     xvfb, xauth and the X11 client libraries winit loads at run time
 #   - the font plots are labelled with: fonts-dejavu-core
+#   - Mesa's GL through EGL, for WGPU_BACKEND=gl and tests/gl_backend.rs:
+#     libegl1, libegl-mesa0, libgles2, libgl1-mesa-dri
 # Rust itself is not installed here: gonio needs rustc/cargo >= 1.95 (rustup.rs).
 set -euo pipefail
 

@@ -249,7 +249,7 @@ mod tests {
 
     #[test]
     fn the_background_validates() {
-        for output in [Output::Radiance, Output::Display] {
+        for output in [Output::Radiance, Output::RadianceBits, Output::Display] {
             validate(&compose_background(output)).unwrap();
         }
     }
@@ -261,6 +261,9 @@ mod tests {
         for key in keys {
             if let Err(e) = validate(&compose_for(&key, Output::Display)) {
                 panic!("display output of {}: {e}", key.describe());
+            }
+            if let Err(e) = validate(&compose_for(&key, Output::RadianceBits)) {
+                panic!("radiance-bits output of {}: {e}", key.describe());
             }
             if let Err(e) = validate(&compose(&key)) {
                 panic!("{}:\n{e}", key.describe());

@@ -107,7 +107,9 @@ fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
 }
 
 // What the fragment writes. Offscreen targets (Rgba32Float) hold linear
-// radiance and coverage 1, read back exactly. Display targets (8-bit
+// radiance and coverage 1, read back exactly; where the adapter cannot
+// render into Rgba32Float (`#if radiance_bits`), an Rgba32Uint target holds
+// the same f32 values as bits, read back as the same bytes. Display targets (8-bit
 // window surfaces, `#if display`) get what `gonio render` writes to a PNG:
 // radiance · 2^exposure clamped to [0, 1], sRGB-encoded (IEC 61966-2-1,
 // as src/output/write.rs `srgb_encode`), rounded by the unorm store.
@@ -117,8 +119,15 @@ fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
     return select(high, low, linear <= vec3<f32>(0.0031308));
 }
 
-fn target_output(radiance: vec3<f32>) -> vec4<f32> {
-    return vec4<f32>(radiance, 1.0);
+alias TargetTexel = vec4<f32>;
+
+// `value` as the target stores it.
+fn target_texel(value: vec4<f32>) -> TargetTexel {
+    return value;
+}
+
+fn target_output(radiance: vec3<f32>) -> TargetTexel {
+    return target_texel(vec4<f32>(radiance, 1.0));
 }
 
 // Codes of the models and terms (their order in the Rust enums; src/gpu/shader_gen/specialization.rs).
@@ -968,7 +977,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
 }
 
 @fragment
-fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) TargetTexel {
     // Sides (Material.sides, glTF doubleSided): a back face of a
     // single-sided material is culled, one of a double-sided material is
     // lit with its frame flipped (normal, tangent and bitangent). The
