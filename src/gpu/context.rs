@@ -110,7 +110,7 @@ impl GpuContext {
         if self.radiance_format() == Some(super::readback::COLOR_FORMAT) {
             return Ok(());
         }
-        Err(Error::Gpu(format!(
+        Err(Error::NoAdapter(format!(
             "{who} needs Rgba32Float render targets, which the GPU adapter `{}` ({:?} backend) lacks; use another backend (unset WGPU_BACKEND for Vulkan; `gonio render` works on this one)",
             self.adapter_info.name, self.adapter_info.backend
         )))
@@ -122,7 +122,7 @@ impl GpuContext {
         if self.radiance_format().is_some() {
             return Ok(());
         }
-        Err(Error::Gpu(format!(
+        Err(Error::NoAdapter(format!(
             "the GPU adapter `{}` ({:?} backend) can render into neither Rgba32Float nor Rgba32Uint targets, one of which holds gonio's linear radiance; use another backend (unset WGPU_BACKEND for Vulkan; `gonio view` may still work on this one)",
             self.adapter_info.name, self.adapter_info.backend
         )))
