@@ -117,8 +117,8 @@ impl PlotFile {
     }
 }
 
-/// Registers the plot font once per process.
-fn load_font() -> Result<()> {
+/// Registers the plot font (as `"sans-serif"`) once per process.
+pub fn load_font() -> Result<()> {
     static LOADED: OnceLock<std::result::Result<(), (PathBuf, String)>> = OnceLock::new();
     let loaded = LOADED.get_or_init(|| {
         let path = std::env::var_os("GONIO_FONT")
