@@ -347,8 +347,12 @@ fn check_geometry_size(device: &wgpu::Device, scene: &Scene, key: &ShaderKey) ->
 
 /// Refuses shadow maps on wgpu's GL backend: there (Mesa 22.3's llvmpipe,
 /// `WGPU_BACKEND=gl`) every receiver comes out in shadow, for every
-/// projection (found by tests/gl_backend.rs; the cause is not found yet),
-/// and a wrong image with exit 0 is worse than a clear refusal.
+/// projection (found by tests/gl_backend.rs), and a wrong image with exit
+/// 0 is worse than a clear refusal. What is known: the shadow pass is not
+/// at fault; `textureSampleCompareLevel` there returns 0 even with a
+/// reference depth of 1 (which every stored depth passes under
+/// `GreaterEqual`), so the comparison sampling itself fails on that
+/// backend.
 fn check_shadows_on_backend(ctx: &GpuContext, plan: &ShadowPlan) -> Result<()> {
     if plan.casters.is_empty() || ctx.adapter_info.backend != wgpu::Backend::Gl {
         return Ok(());
