@@ -210,6 +210,55 @@ fn the_viewer_screenshot_matches_render() {
                 "--no-overlay",
             ],
         ),
+        // Issue 17 item 6: each tone map in the window as in a PNG, with
+        // a light bright enough that the clamp would clip the ball and
+        // the floor (the operators' f32 twin in common.wgsl against the
+        // f64 one in src/output/tone_map.rs: a few ULP, as the encoding).
+        (
+            "reinhard",
+            vec![
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+                "--set",
+                "image.tone_map=\"reinhard\"",
+                "--set",
+                "lights.0.intensity=[400,400,400]",
+            ],
+        ),
+        (
+            "aces",
+            vec![
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+                "--set",
+                "image.tone_map=\"aces\"",
+                "--set",
+                "lights.0.intensity=[400,400,400]",
+            ],
+        ),
+        (
+            "pbr-neutral",
+            vec![
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+                "--set",
+                "image.tone_map=\"pbr-neutral\"",
+                "--set",
+                "lights.0.intensity=[400,400,400]",
+            ],
+        ),
     ] {
         let shot = dir.path().join(format!("{name}.png"));
         let (x, y, w, h) = view(&args, &shot);
