@@ -28,7 +28,9 @@ pub struct ViewArgs {
     /// Hide the overlay (frame time, triangles, adapter) over the 3D area.
     #[arg(long)]
     pub no_overlay: bool,
-    /// Scripted mode: render this many frames, then exit (tests, benchmarks).
+    /// Scripted mode: render this many frames, then exit (tests,
+    /// benchmarks). Scripted runs draw continuously; the interactive
+    /// viewer draws only when something changes (src/ui/pacing.rs).
     #[arg(long, value_name = "N")]
     pub frames: Option<u32>,
     /// Exit once this many seconds pass with no frame drawn and the
