@@ -12,7 +12,7 @@ struct Globals {
     ambient: vec3<f32>,   // L_a: constant incoming ambient radiance
     display_scale: f32,   // 2^exposure, read only by display targets (target_output)
     env_zenith: vec3<f32>, // the environment a mirror reflects (scene::Environment)
-    _pad1: f32,
+    tone_map: u32,        // image.tone_map (ToneMap::code), read only by display targets
     env_horizon: vec3<f32>,
     _pad2: f32,
     env_ground: vec3<f32>,
@@ -106,8 +106,9 @@ fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
 // render into Rgba32Float (`#if radiance_bits`), an Rgba32Uint target holds
 // the same f32 values as bits, read back as the same bytes. Display targets (8-bit
 // window surfaces, `#if display`) get what `gonio render` writes to a PNG:
-// radiance · 2^exposure clamped to [0, 1], sRGB-encoded (IEC 61966-2-1,
-// as src/output/write.rs `srgb_encode`), rounded by the unorm store.
+// radiance · 2^exposure tone-mapped to [0, 1] (`tone_map`, default the
+// clamp), sRGB-encoded (IEC 61966-2-1, as src/output/write.rs
+// `srgb_encode`), rounded by the unorm store.
 fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
     let low = 12.92 * linear;
     let high = 1.055 * pow(linear, vec3<f32>(1.0 / 2.4)) - 0.055;
@@ -129,9 +130,35 @@ fn target_texel(value: vec4<f32>) -> TargetTexel {
     #endif
 }
 
+#if display
+// Twin of src/output/tone_map.rs `ToneMap::apply` (its doc cites the
+// formulas): 0 clamp, 1 Reinhard, 2 ACES (Narkowicz 2016), 3 Khronos PBR
+// Neutral. All four are computed and `select`ed: `code` is a uniform
+// (UNIFORM_BRANCHES); the branches inside PBR Neutral are `select`s too.
+fn tone_map(scaled: vec3<f32>, code: u32) -> vec3<f32> {
+    let c = max(scaled, vec3<f32>(0.0));
+    let reinhard = c / (1.0 + c);
+    let aces = c * (2.51 * c + 0.03) / (c * (2.43 * c + 0.59) + 0.14);
+    let x = min(c.r, min(c.g, c.b));
+    let f = select(0.04, x - x * x / 0.16, x <= 0.08);
+    let shifted = c - f;
+    let p = max(shifted.r, max(shifted.g, shifted.b));
+    let ks = 0.76;
+    let pn = 1.0 - (1.0 - ks) * (1.0 - ks) / (p + 1.0 - 2.0 * ks);
+    let g = 1.0 / (0.15 * (p - pn) + 1.0);
+    let compressed = shifted * (pn / max(p, 1e-30)) * g + pn * (1.0 - g);
+    let neutral = select(compressed, shifted, p <= ks);
+    var out = c;
+    out = select(out, reinhard, code == 1u);
+    out = select(out, aces, code == 2u);
+    out = select(out, neutral, code == 3u);
+    return clamp(out, vec3<f32>(0.0), vec3<f32>(1.0));
+}
+#endif
+
 fn target_output(radiance: vec3<f32>) -> TargetTexel {
     #if display
-    return vec4<f32>(srgb_encode(clamp(radiance * globals.display_scale, vec3<f32>(0.0), vec3<f32>(1.0))), 1.0);
+    return vec4<f32>(srgb_encode(tone_map(radiance * globals.display_scale, globals.tone_map)), 1.0);
     #else
     return target_texel(vec4<f32>(radiance, 1.0));
     #endif

@@ -248,7 +248,19 @@ pub fn render(args: &RenderArgs) -> Result<()> {
 
     let start = Instant::now();
     let path = output.path().to_path_buf();
-    output.write(&frame, args.exposure)?;
+    // A scene's tone map is for PNGs and the window; an EXR holds linear
+    // radiance by contract, so it is not applied, with a word (a scene
+    // file key describes the scene for every output, so this is a
+    // warning, where --exposure, given for this output, is an error).
+    if scene.tone_map != Default::default() && OutputFormat::from_path(&path)? == OutputFormat::Exr
+    {
+        eprintln!(
+            "gonio: warning: image.tone_map = \"{}\" does not apply to {}: an EXR holds linear radiance; write a .png to see it tone-mapped",
+            scene.tone_map,
+            path.display()
+        );
+    }
+    output.write_tone_mapped(&frame, args.exposure, scene.tone_map)?;
     timings.push("encode + write", start.elapsed(), Clock::Wall);
     timings.push("total", total.elapsed(), Clock::Wall);
     if args.timings {

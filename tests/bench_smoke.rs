@@ -32,6 +32,24 @@ fn smoke_bench_writes_a_well_formed_report() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "gonio bench --smoke failed: {stderr}");
+    // Without a terminal (a pipe here, as in CI) progress is plain lines
+    // (issue 17: a CI run printed nothing): what, n of m, elapsed, ETA.
+    let progress: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("bench: step "))
+        .collect();
+    assert!(progress.len() >= 3, "{stderr}");
+    assert!(
+        progress
+            .iter()
+            .all(|l| l.contains(", elapsed ") && l.contains("ETA")),
+        "{stderr}"
+    );
+    assert!(
+        progress.iter().any(|l| l.contains("truth image")),
+        "{stderr}"
+    );
+    assert!(stderr.contains("bench: done, "), "{stderr}");
     assert!(
         !stderr.contains("GPU tests need") && !stderr.contains("no GPU adapter"),
         "{stderr}"

@@ -210,6 +210,55 @@ fn the_viewer_screenshot_matches_render() {
                 "--no-overlay",
             ],
         ),
+        // Issue 17 item 6: each tone map in the window as in a PNG, with
+        // a light bright enough that the clamp would clip the ball and
+        // the floor (the operators' f32 twin in common.wgsl against the
+        // f64 one in src/output/tone_map.rs: a few ULP, as the encoding).
+        (
+            "reinhard",
+            vec![
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+                "--set",
+                "image.tone_map=\"reinhard\"",
+                "--set",
+                "lights.0.intensity=[400,400,400]",
+            ],
+        ),
+        (
+            "aces",
+            vec![
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+                "--set",
+                "image.tone_map=\"aces\"",
+                "--set",
+                "lights.0.intensity=[400,400,400]",
+            ],
+        ),
+        (
+            "pbr-neutral",
+            vec![
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--frames",
+                "3",
+                "--no-overlay",
+                "--set",
+                "image.tone_map=\"pbr-neutral\"",
+                "--set",
+                "lights.0.intensity=[400,400,400]",
+            ],
+        ),
     ] {
         let shot = dir.path().join(format!("{name}.png"));
         let (x, y, w, h) = view(&args, &shot);
@@ -351,6 +400,13 @@ fn the_viewer_refuses_bad_input_with_exit_2() {
             "--edit".into(),
             "1:materials.nope.k_d=1".into(),
         ],
+        vec!["--exit-when-idle".into(), "0".into()],
+        vec![
+            "--exit-when-idle".into(),
+            "1".into(),
+            "--frames".into(),
+            "5".into(),
+        ],
     ] {
         let out = xvfb()
             .arg(common::gonio().get_program())
@@ -395,4 +451,63 @@ fn the_viewer_says_what_it_does_not_apply() {
         stderr.contains("materials.floor: `k_e` not read by model `lambert`"),
         "{stderr}"
     );
+}
+
+/// Issue 17 item 4: the viewer draws only when something changes. With no
+/// input, `--exit-when-idle 1` ends the run once a full second passed
+/// without a frame and the panel's background plots are done and shown
+/// (so the worker's result must have woken the window); a viewer that
+/// kept drawing (60 frames a second before this change) never gets there
+/// and fails after 60 s. The frames before the idle spell are the start:
+/// egui's first passes, the first plots, the worker's result; far fewer
+/// than one second of continuous drawing.
+#[test]
+fn the_idle_viewer_draws_no_frames() {
+    let gonio = common::gonio();
+    for extra in [
+        vec![],
+        vec!["--no-panel"],
+        // A narrow anisotropic lobe: the albedo worker takes longest.
+        vec![
+            "--set",
+            "materials.ball.model=\"ward-anisotropic\"",
+            "--set",
+            "materials.ball.sigma_x=0.02",
+            "--set",
+            "materials.ball.sigma_y=0.4",
+        ],
+    ] {
+        let out = xvfb()
+            .arg(gonio.get_program())
+            .args(["view", "--size", "800x500", "--exit-when-idle", "1"])
+            .args(&extra)
+            .output()
+            .expect("xvfb-run runs");
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            out.status.success(),
+            "{extra:?}: {stdout}{stderr}{}",
+            common::LAVAPIPE_TEST_HINT
+        );
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with("idle: "))
+            .unwrap_or_else(|| panic!("{extra:?}: no idle report: {stdout}"));
+        let frames: u64 = line
+            .split_whitespace()
+            .nth(1)
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("{line}"));
+        assert!(
+            (1..=30).contains(&frames),
+            "{extra:?}: {frames} frames before the idle spell: {line}"
+        );
+        let quiet: f64 = line
+            .rsplit("none for ")
+            .next()
+            .and_then(|t| t.trim_end_matches(" s").parse().ok())
+            .unwrap_or_else(|| panic!("{line}"));
+        assert!(quiet >= 1.0, "{line}");
+    }
 }

@@ -7,6 +7,7 @@ use super::harness::Harness;
 use super::measure::{self, Stats};
 use super::pareto::{self, Point};
 use super::plot::ParetoPlot;
+use super::progress::Progress;
 use super::ratios::{self, Effort};
 use super::scale::{self, Plan};
 use super::{AutoCheck, BenchReport, Row, floors, report};
@@ -17,7 +18,6 @@ use crate::output::plot::PlotFile;
 use crate::scene::Scene;
 use crate::scene::scene_file::{self, SceneSource};
 use crate::{Error, Result};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::Path;
 use std::time::Instant;
 
@@ -219,12 +219,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut renderer = GpuRenderer::new(context);
 
     let scale_points = budget.scale.as_ref().map_or(0, Plan::len);
-    let steps = 1 + budget.warmup + 2 * budget.per_pass + 1 + 5 + scale_points;
-    let bar = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
-    bar.set_style(
-        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    // One step per configuration per round (the bulk of the run), one
+    // per ratio and per scale point.
+    let steps = 1 + (budget.warmup + 2 * budget.per_pass) * measured.len() + 1 + 5 + scale_points;
+    let mut bar = Progress::new(steps as u64);
 
     bar.set_message("truth image (CPU reference)");
     let start = Instant::now();
@@ -248,7 +246,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let rounds = budget.warmup + 2 * budget.per_pass;
     for round in 0..rounds {
         for (k, (config, scene)) in measured.iter().enumerate() {
-            bar.set_message(format!("round {}/{rounds}: {}", round + 1, config.label()));
+            bar.set_message(format!(
+                "round {}/{rounds} ({}): {}",
+                round + 1,
+                if round < budget.warmup {
+                    "warm-up"
+                } else {
+                    "timed"
+                },
+                config.label()
+            ));
             let (frame, timings) = renderer.render(scene)?;
             let (ms, c) = measure::frame_ms(&timings);
             clock = c;
@@ -258,8 +265,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             if round >= budget.warmup {
                 times[(round - budget.warmup) % 2][k].push(ms);
             }
+            bar.inc(1);
         }
-        bar.inc(1);
     }
     let [times_a, times_b] = times;
     let mut rows: Vec<Row> = measured
@@ -354,7 +361,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         }
         None => None,
     };
-    bar.finish_and_clear();
+    bar.finish();
 
     let result = BenchReport {
         scene: scene_label(args.scene.as_deref()),

@@ -17,7 +17,8 @@ pub struct GpuGlobals {
     /// `2^exposure` for display targets (`target_output` in common.wgsl).
     pub display_scale: f32,
     pub env_zenith: [f32; 3],
-    pub _pad1: f32,
+    /// `ToneMap::code` of `image.tone_map`, read by display targets only.
+    pub tone_map: u32,
     pub env_horizon: [f32; 3],
     pub _pad2: f32,
     pub env_ground: [f32; 3],
@@ -107,7 +108,7 @@ impl GpuGlobals {
             ambient: f32x3(scene.ambient),
             display_scale: 1.0,
             env_zenith: f32x3(scene.environment.zenith),
-            _pad1: 0.0,
+            tone_map: scene.tone_map.code(),
             env_horizon: f32x3(scene.environment.horizon),
             _pad2: 0.0,
             env_ground: f32x3(scene.environment.ground),
@@ -298,7 +299,7 @@ mod tests {
                 ambient,
                 display_scale,
                 env_zenith,
-                _pad1,
+                tone_map,
                 env_horizon,
                 _pad2,
                 env_ground,

@@ -5,6 +5,7 @@ pub mod compare;
 pub mod failure;
 pub mod interrupt;
 pub mod plot;
+pub mod tone_map;
 pub mod write;
 
 pub use compare::{Comparison, Tolerance, compare_with_jitter};

@@ -2,12 +2,14 @@
 //!
 //! The contract: `.exr` holds linear `L_o` as 32-bit float RGB, no tone
 //! mapping; `.png` holds `clamp(L_o · 2^exposure)` with the sRGB transfer
-//! function. The file appears complete or not at all: bytes go to a
+//! function (or, with `image.tone_map`, another operator in place of the
+//! clamp: [`super::tone_map`]). The file appears complete or not at all: bytes go to a
 //! temporary file in the target folder, which is renamed over the target
 //! only after everything succeeded. The temporary file is created before
 //! rendering, so an unwritable destination fails before any work is done.
 
 use super::interrupt;
+use super::tone_map::ToneMap;
 use crate::frame::Frame;
 use crate::{Error, Result};
 use std::io::{Cursor, Write};
@@ -130,8 +132,14 @@ impl OutputFile {
     /// Encodes `frame` and moves it into place. `exposure` (stops) applies
     /// to PNG only.
     pub fn write(self, frame: &Frame, exposure: f64) -> Result<()> {
+        self.write_tone_mapped(frame, exposure, ToneMap::Clamp)
+    }
+
+    /// As [`Self::write`], a PNG tone-mapped by `tone_map` after the
+    /// exposure (an EXR stays linear).
+    pub fn write_tone_mapped(self, frame: &Frame, exposure: f64, tone_map: ToneMap) -> Result<()> {
         let bytes = match self.format {
-            OutputFormat::Png => encode_png(frame, exposure),
+            OutputFormat::Png => encode_png(frame, exposure, tone_map),
             OutputFormat::Exr => encode_exr(frame),
         }
         .map_err(|e| Error::output(self.file.path(), e))?;
@@ -158,11 +166,21 @@ pub fn to_srgb8(radiance: f32, exposure: f64) -> u8 {
     (srgb_encode(v) * 255.0 + 0.5) as u8
 }
 
-fn encode_png(frame: &Frame, exposure: f64) -> Result<Vec<u8>, String> {
+/// One pixel's linear radiance to 8-bit sRGB: scale by `2^exposure`,
+/// tone-map (`ToneMap::Clamp`: exactly [`to_srgb8`] per channel), encode,
+/// round.
+pub fn pixel_to_srgb8(radiance: [f32; 3], exposure: f64, tone_map: ToneMap) -> [u8; 3] {
+    let scale = exposure.exp2();
+    tone_map
+        .apply(radiance.map(|c| c as f64 * scale))
+        .map(|v| (srgb_encode(v) * 255.0 + 0.5) as u8)
+}
+
+fn encode_png(frame: &Frame, exposure: f64, tone_map: ToneMap) -> Result<Vec<u8>, String> {
     let pixels: Vec<u8> = frame
         .radiance
         .iter()
-        .flat_map(|p| p.map(|c| to_srgb8(c, exposure)))
+        .flat_map(|p| pixel_to_srgb8([p[0], p[1], p[2]], exposure, tone_map))
         .collect();
     let image = image::RgbImage::from_raw(frame.width, frame.height, pixels)
         .ok_or("frame size does not match its pixels")?;
@@ -195,6 +213,40 @@ mod tests {
         assert_eq!(to_srgb8(0.5, 1.0), 255);
         assert_eq!(to_srgb8(0.214_041_14, 0.0), 128); // sRGB 0.5 ≈ linear 0.2140
         assert_eq!(to_srgb8(f32::NAN, 0.0), 0);
+    }
+
+    /// The default tone map leaves every PNG byte as it was: the pixel
+    /// path with `ToneMap::Clamp` equals the per-channel clamp on a sweep
+    /// of values around every 8-bit boundary, special values and
+    /// exposures.
+    #[test]
+    fn the_clamp_tone_map_is_byte_identical() {
+        let mut values: Vec<f32> =
+            vec![f32::NAN, f32::INFINITY, -f32::INFINITY, -1.0, 0.0, 1.0, 3.5];
+        for k in 0..=255u32 {
+            let v = k as f64 / 255.0;
+            let lin = if v <= 0.04045 {
+                v / 12.92
+            } else {
+                ((v + 0.055) / 1.055).powf(2.4)
+            } as f32;
+            values.extend([
+                lin,
+                f32::from_bits(lin.to_bits() + 1),
+                f32::from_bits(lin.to_bits().saturating_sub(1)),
+            ]);
+        }
+        for exposure in [0.0, -1.5, 2.0] {
+            for w in values.windows(3) {
+                let px = [w[0], w[1], w[2]];
+                let want = px.map(|c| to_srgb8(c, exposure));
+                assert_eq!(
+                    pixel_to_srgb8(px, exposure, ToneMap::Clamp),
+                    want,
+                    "{px:?} at {exposure}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -560,6 +560,7 @@ mod tests {
             width: 63,
             height: 63,
             msaa: 1,
+            tone_map: Default::default(),
             camera: Camera {
                 position: DVec3::new(0.0, 0.0, 3.0),
                 target: DVec3::ZERO,

@@ -63,6 +63,9 @@ pub struct Scene {
     pub height: u32,
     /// GPU samples per pixel (1 or 4, `image.msaa`); the reference takes 1.
     pub msaa: u32,
+    /// How PNG output and the viewer map radiance to [0, 1]
+    /// (`image.tone_map`); EXR output ignores it.
+    pub tone_map: crate::output::tone_map::ToneMap,
     pub camera: Camera,
     pub shading: ShadingMode,
     /// World-space meshes; each names its material by index.

@@ -9,10 +9,14 @@
 //! drawing: the scene into the swapchain image through the same renderer
 //! as `gonio render` (`draw_scene`), egui over it (`draw_panel`),
 //! `present`, and afterwards `read_gpu_times` and `save_screenshot`.
+//!
+//! Frames are drawn only when something changed ([`super::pacing`]);
+//! between them the loop sleeps in `ControlFlow::WaitUntil`.
 
 use super::cli::ViewArgs;
 use super::document::Document;
 use super::orbit::Orbit;
+use super::pacing::{Pacing, Wake};
 use super::state::ViewerState;
 use super::surface::{PendingScreenshot, WindowSurface};
 use crate::gpu::{AdapterChoice, FrameTarget, GpuContext, GpuRenderer, PreparedScene};
@@ -22,7 +26,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
-use winit::event_loop::ActiveEventLoop;
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
@@ -30,6 +34,8 @@ use winit::window::{Window, WindowId};
 const PANEL_WIDTH: f32 = 380.0;
 /// How often the scene file is checked for changes.
 const RELOAD_CHECK: Duration = Duration::from_millis(500);
+/// When a frame could not be drawn (surface not ready), the next try.
+const SURFACE_RETRY: Duration = Duration::from_millis(16);
 
 /// The GPU side of the window.
 struct Gfx {
@@ -144,11 +150,19 @@ pub struct App {
     last_message: Option<String>,
     /// The 3D area in physical pixels: x, y, width, height.
     view_rect: [u32; 4],
+    /// When to draw (only on a change, unless scripted or animated).
+    pacing: Pacing,
+    /// Wakes the loop from egui's repaint callback (any thread).
+    proxy: EventLoopProxy<Wake>,
 }
 
 impl App {
-    pub fn new(args: ViewArgs, doc: Document) -> App {
+    pub fn new(args: ViewArgs, doc: Document, proxy: EventLoopProxy<Wake>) -> App {
+        let continuous = args.frames.is_some() || args.spin != 0.0;
+        let idle_exit = args.exit_when_idle.map(Duration::from_secs_f64);
         App {
+            pacing: Pacing::new(continuous, idle_exit),
+            proxy,
             state: ViewerState::new(doc, &args),
             args,
             window: None,
@@ -268,6 +282,16 @@ impl App {
             );
         }
         let egui_ctx = egui::Context::default();
+        // egui's repaint requests from outside a pass (a finished
+        // background plot) wake the loop; those made during a pass are in
+        // that pass's `repaint_delay` (Self::frame).
+        let proxy = self.proxy.clone();
+        egui_ctx.set_request_repaint_callback(move |info| {
+            let _ = proxy.send_event(Wake::Repaint {
+                delay: info.delay,
+                pass: info.current_cumulative_pass_nr,
+            });
+        });
         let egui_state = egui_winit::State::new(
             egui_ctx,
             egui::ViewportId::ROOT,
@@ -324,14 +348,25 @@ impl App {
             }
             return Ok(());
         }
-        self.record_frame_time();
+        let start = Instant::now();
+        if self.pacing.continuous() {
+            self.record_frame_time();
+        }
         self.apply_scripted_edits()?;
         let panel = self.run_panel(&window);
+        let repaint_delay = panel
+            .output
+            .viewport_output
+            .get(&egui::ViewportId::ROOT)
+            .map_or(Duration::MAX, |v| v.repaint_delay);
         self.report_message();
         self.take_new_document(&window);
         self.fit_view(panel.central, panel.output.pixels_per_point);
         self.update_gpu_scene()?;
         let Some(frame) = self.acquire_surface_texture()? else {
+            // Not drawn: try again shortly (an occluded window keeps
+            // failing; do not spin on it).
+            self.pacing.request(Instant::now(), SURFACE_RETRY);
             return Ok(());
         };
         let gfx = self.gfx.as_mut().expect("checked above");
@@ -347,6 +382,14 @@ impl App {
         self.frames += 1;
         let scripted_last = self.args.frames == Some(self.frames);
         let screenshot = self.present(&window, frame, encoder, extra, scripted_last);
+        let now = Instant::now();
+        self.pacing.drawn(now);
+        self.pacing.request(now, repaint_delay);
+        if !self.pacing.continuous() {
+            // The time between frames means nothing when idle: the
+            // overlay shows the frame's own CPU time.
+            self.state.frame_ms = (now - start).as_secs_f64() * 1e3;
+        }
         self.read_gpu_times(measure_gpu)?;
         if let Some(pending) = screenshot {
             self.save_screenshot(pending, scripted_last)?;
@@ -725,6 +768,8 @@ impl App {
         Ok(())
     }
 
+    /// Every [`RELOAD_CHECK`]: a changed scene file is reloaded (and a
+    /// frame requested to show it).
     fn check_reload(&mut self) {
         if self.last_reload_check.elapsed() < RELOAD_CHECK {
             return;
@@ -746,7 +791,9 @@ impl App {
         }
     }
 
-    fn on_view_input(&mut self, event: &WindowEvent) {
+    /// The 3D view's mouse and keys; returns whether the event may have
+    /// changed what is drawn.
+    fn on_view_input(&mut self, event: &WindowEvent) -> bool {
         let [x, y, w, h] = self.view_rect;
         let inside = |(cx, cy): (f64, f64)| {
             cx >= x as f64 && cy >= y as f64 && cx < (x + w) as f64 && cy < (y + h) as f64
@@ -771,7 +818,9 @@ impl App {
                         _ => {}
                     }
                     self.drag = Some((button, position.x, position.y));
+                    return true;
                 }
+                return false;
             }
             WindowEvent::MouseWheel { delta, .. } if inside(self.cursor) => {
                 let steps = match delta {
@@ -797,12 +846,13 @@ impl App {
                     _ => {}
                 }
             }
-            _ => {}
+            _ => return false,
         }
+        true
     }
 }
 
-impl ApplicationHandler for App {
+impl ApplicationHandler<Wake> for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.window.is_none()
             && let Err(e) = self.init(event_loop)
@@ -825,6 +875,8 @@ impl ApplicationHandler for App {
             }
             WindowEvent::DroppedFile(path) => self.state.open(path.clone()),
             WindowEvent::RedrawRequested => {
+                // Drawn now whatever asked (the schedule, or the system:
+                // an exposed window).
                 if let Some(gfx) = self.gfx.as_mut() {
                     let ctx = gfx.renderer.context();
                     let vsync = matches!(
@@ -835,21 +887,64 @@ impl ApplicationHandler for App {
                         gfx.surface.set_vsync(ctx, self.state.vsync);
                     }
                 }
-                self.check_reload();
                 if let Err(e) = self.frame(event_loop) {
                     self.fail(event_loop, e);
                 }
+                return;
             }
             _ => {}
         }
-        if !response.consumed {
-            self.on_view_input(&event);
+        let acted = !response.consumed && self.on_view_input(&event);
+        let changed = matches!(
+            event,
+            WindowEvent::Resized(_)
+                | WindowEvent::DroppedFile(_)
+                | WindowEvent::ScaleFactorChanged { .. }
+        );
+        if response.repaint || acted || changed {
+            self.pacing.request(Instant::now(), Duration::ZERO);
         }
     }
 
-    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
-        if let Some(window) = &self.window {
+    fn user_event(&mut self, _event_loop: &ActiveEventLoop, wake: Wake) {
+        let Wake::Repaint { delay, pass } = wake;
+        let Some(gfx) = &self.gfx else {
+            return;
+        };
+        // A request made during a pass that has ended was in that pass's
+        // `repaint_delay` already.
+        if pass >= gfx.egui_state.egui_ctx().cumulative_pass_nr() {
+            self.pacing.request(Instant::now(), delay);
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(window) = self.window.clone() else {
+            return;
+        };
+        let now = Instant::now();
+        if !self.pacing.continuous()
+            && let Some(outcome) = self.pacing.idle_exit(now, self.state.plots.busy())
+        {
+            match outcome {
+                Ok(report) => {
+                    println!("{report}");
+                    event_loop.exit();
+                }
+                Err(problem) => self.fail(event_loop, Error::Gpu(problem)),
+            }
+            return;
+        }
+        self.check_reload();
+        if self.state.replace.is_some() {
+            self.pacing.request(now, Duration::ZERO);
+        }
+        if self.pacing.due(now) {
             window.request_redraw();
+            event_loop.set_control_flow(ControlFlow::Wait);
+        } else {
+            let check_at = self.last_reload_check + RELOAD_CHECK;
+            event_loop.set_control_flow(ControlFlow::WaitUntil(self.pacing.wake_at(check_at)));
         }
     }
 }

@@ -28,9 +28,18 @@ pub struct ViewArgs {
     /// Hide the overlay (frame time, triangles, adapter) over the 3D area.
     #[arg(long)]
     pub no_overlay: bool,
-    /// Scripted mode: render this many frames, then exit (tests, benchmarks).
+    /// Scripted mode: render this many frames, then exit (tests,
+    /// benchmarks). Scripted runs draw continuously; the interactive
+    /// viewer draws only when something changes (src/ui/pacing.rs).
     #[arg(long, value_name = "N")]
     pub frames: Option<u32>,
+    /// Exit once this many seconds pass with no frame drawn and the
+    /// panel's background plots done and shown, printing the frames drawn
+    /// (tests and measurements of the idle viewer; not with `--frames` or
+    /// `--spin`, which draw continuously). A viewer that never idles
+    /// gives up after 60 s with an error.
+    #[arg(long, value_name = "SECONDS")]
+    pub exit_when_idle: Option<f64>,
     /// Write a screenshot of the window to this PNG after the last scripted
     /// frame (with `--frames`; the F12 key and the panel's button save one
     /// any time). Prints the 3D area's rectangle in the window.

@@ -181,6 +181,11 @@ impl Document {
                 self.scene.shading = mode.parse().map_err(bad)?;
                 Ok(())
             }
+            ["image", "tone_map"] => {
+                let name: String = toml_value(value).map_err(bad)?;
+                self.scene.tone_map = name.parse().map_err(bad)?;
+                Ok(())
+            }
             ["ambient", "radiance"] => {
                 let v: [f64; 3] = toml_value(value).map_err(bad)?;
                 if v.iter().any(|c| !c.is_finite() || *c < 0.0) {
@@ -197,7 +202,7 @@ impl Document {
                 self.set_light(index, entry).map_err(bad)
             }
             _ => Err(bad(
-                "the viewer edits materials.NAME.KEY, lights.N.KEY, shading.mode and ambient.radiance"
+                "the viewer edits materials.NAME.KEY, lights.N.KEY, shading.mode, image.tone_map and ambient.radiance"
                     .into(),
             )),
         }

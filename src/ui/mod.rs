@@ -13,6 +13,7 @@ pub mod cli;
 pub mod document;
 pub mod memory;
 pub mod orbit;
+pub mod pacing;
 pub mod panel_cache;
 pub mod panels;
 pub mod plots;
@@ -45,6 +46,20 @@ pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
             "needs --frames N (the scripted mode); in the window press F12 or use the panel's button",
         ));
     }
+    if let Some(s) = args.exit_when_idle
+        && !(s.is_finite() && s > 0.0)
+    {
+        return Err(Error::argument(
+            format!("--exit-when-idle {s}"),
+            "give a positive number of seconds",
+        ));
+    }
+    if args.exit_when_idle.is_some() && (args.frames.is_some() || args.spin != 0.0) {
+        return Err(Error::argument(
+            "--exit-when-idle",
+            "the scripted mode (--frames) and --spin draw continuously and are never idle; use it without them",
+        ));
+    }
     if args.frames == Some(0) {
         return Err(Error::argument("--frames 0", "render at least one frame"));
     }
@@ -61,13 +76,16 @@ pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
         // Fail on an unwritable destination before opening the window.
         crate::output::write::AtomicFile::create(path)?;
     }
-    let event_loop = winit::event_loop::EventLoop::new().map_err(|e| {
+    let event_loop = winit::event_loop::EventLoop::<pacing::Wake>::with_user_event()
+        .build()
+        .map_err(|e| {
         Error::NoDisplay(format!(
             "gonio view needs a display and none could be opened ({e}); on a desktop run it in the graphical session, on a headless machine run it under Xvfb: `xvfb-run -a gonio view` (./setup.sh installs xvfb)"
         ))
     })?;
     let report = args.frame_times;
-    let mut app = app::App::new(args, doc);
+    let proxy = event_loop.create_proxy();
+    let mut app = app::App::new(args, doc, proxy);
     event_loop
         .run_app(&mut app)
         .map_err(|e| Error::NoDisplay(format!("the window loop failed: {e}")))?;

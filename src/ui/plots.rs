@@ -53,7 +53,7 @@ impl Default for Plots {
 impl Plots {
     /// Draws the three plots of `material` into `ui`.
     pub fn show(&mut self, ui: &mut egui::Ui, material: &Material) {
-        self.refresh(material);
+        self.refresh(material, ui.ctx());
         ui.add(
             egui::Slider::new(&mut self.theta_i_deg, 0.0..=89.0)
                 .text("θ_i (°)")
@@ -65,8 +65,9 @@ impl Plots {
     }
 
     /// Starts the integrals for `material` unless they are done or under
-    /// way; collects a finished result.
-    fn refresh(&mut self, material: &Material) {
+    /// way; collects a finished result. The worker wakes the (otherwise
+    /// idle) window when it is done, through egui's repaint request.
+    fn refresh(&mut self, material: &Material, ctx: &egui::Context) {
         if let Some((_, rx)) = &self.pending
             && let Ok(done) = rx.try_recv()
         {
@@ -84,6 +85,7 @@ impl Plots {
         }
         let (tx, rx) = channel();
         let m = material.clone();
+        let ctx = ctx.clone();
         std::thread::spawn(move || {
             let thetas: Vec<f64> = (0..ALBEDO_ANGLES)
                 .map(|k| (k as f64 * 89.0 / (ALBEDO_ANGLES - 1) as f64).to_radians())
@@ -95,8 +97,15 @@ impl Plots {
                 gloss,
                 material: m,
             });
+            ctx.request_repaint();
         });
         self.pending = Some((material.clone(), rx));
+    }
+
+    /// Whether background integrals are under way or finished but not yet
+    /// shown.
+    pub fn busy(&self) -> bool {
+        self.pending.is_some()
     }
 
     fn stale(&self, material: &Material) -> bool {

@@ -18,6 +18,12 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
     let mut image = toml::Table::new();
     image.insert("width".into(), Value::Integer(scene.width as i64));
     image.insert("height".into(), Value::Integer(scene.height as i64));
+    if scene.tone_map != Default::default() {
+        image.insert(
+            "tone_map".into(),
+            Value::String(scene.tone_map.name().into()),
+        );
+    }
     table.insert("image".into(), Value::Table(image));
 
     let c = &scene.camera;

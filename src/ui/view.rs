@@ -117,6 +117,20 @@ fn view_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         ui.label("exposure (stops)");
         ui.add(egui::Slider::new(&mut state.exposure, -10.0..=10.0));
         ui.end_row();
+        ui.label("tone map");
+        let tone_map = &mut state.doc.scene.tone_map;
+        let before = *tone_map;
+        egui::ComboBox::from_id_salt("tone_map")
+            .selected_text(tone_map.name())
+            .show_ui(ui, |ui| {
+                for t in crate::output::tone_map::ToneMap::ALL {
+                    ui.selectable_value(tone_map, t, t.name());
+                }
+            });
+        if *tone_map != before {
+            state.view_dirty = true;
+        }
+        ui.end_row();
         ui.label("ambient L_a");
         if panels::radiance(ui, &mut state.doc.scene.ambient) {
             state.dirty = true;

@@ -85,10 +85,17 @@ pub fn assemble(
         },
     };
 
+    let tone_map = match &file.image.tone_map {
+        None => Default::default(),
+        Some(name) => name
+            .parse()
+            .map_err(|e| bad(format!("image.tone_map: {e}")))?,
+    };
     let mut scene = Scene {
         width,
         height,
         msaa,
+        tone_map,
         camera,
         shading,
         meshes,

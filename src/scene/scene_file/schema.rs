@@ -49,6 +49,11 @@ pub struct ImageSection {
     /// the pixel centre.
     #[serde(default)]
     pub msaa: Option<u32>,
+    /// How a PNG and the viewer map radiance to [0, 1]: `clamp` (the
+    /// default), `reinhard`, `aces`, `pbr-neutral`
+    /// (src/output/tone_map.rs). EXR output stays linear.
+    #[serde(default)]
+    pub tone_map: Option<String>,
 }
 
 fn default_width() -> u32 {
@@ -64,6 +69,7 @@ impl Default for ImageSection {
             width: default_width(),
             height: default_height(),
             msaa: None,
+            tone_map: None,
         }
     }
 }

@@ -20,7 +20,7 @@ struct Globals {
     ambient: vec3<f32>,   // L_a: constant incoming ambient radiance
     display_scale: f32,   // 2^exposure, read only by display targets (target_output)
     env_zenith: vec3<f32>, // the environment a mirror reflects (scene::Environment)
-    _pad1: f32,
+    tone_map: u32,        // image.tone_map (ToneMap::code), read only by display targets
     env_horizon: vec3<f32>,
     _pad2: f32,
     env_ground: vec3<f32>,
@@ -110,8 +110,9 @@ fn normalize_or_zero(v: vec3<f32>) -> vec3<f32> {
 // render into Rgba32Float (`#if radiance_bits`), an Rgba32Uint target holds
 // the same f32 values as bits, read back as the same bytes. Display targets (8-bit
 // window surfaces, `#if display`) get what `gonio render` writes to a PNG:
-// radiance · 2^exposure clamped to [0, 1], sRGB-encoded (IEC 61966-2-1,
-// as src/output/write.rs `srgb_encode`), rounded by the unorm store.
+// radiance · 2^exposure tone-mapped to [0, 1] (`tone_map`, default the
+// clamp), sRGB-encoded (IEC 61966-2-1, as src/output/write.rs
+// `srgb_encode`), rounded by the unorm store.
 fn srgb_encode(linear: vec3<f32>) -> vec3<f32> {
     let low = 12.92 * linear;
     let high = 1.055 * pow(linear, vec3<f32>(1.0 / 2.4)) - 0.055;
@@ -124,6 +125,7 @@ alias TargetTexel = vec4<f32>;
 fn target_texel(value: vec4<f32>) -> TargetTexel {
     return value;
 }
+
 
 fn target_output(radiance: vec3<f32>) -> TargetTexel {
     return target_texel(vec4<f32>(radiance, 1.0));
