@@ -110,3 +110,51 @@ fn keys_a_model_does_not_read_are_named() {
     let quiet = run(&["materials.ball.k_e=20"]);
     assert!(!quiet.contains("warning"), "{quiet}");
 }
+
+/// A glTF file's own material is addressable by its name in `--set`
+/// (issue 17: `--set materials.Suzanne.k_d` failed): the edit changes the
+/// render, a key its model does not read is named, a misspelt name gets
+/// the nearest one.
+#[test]
+fn gltf_materials_are_edited_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let suzanne = common::gltf_asset("Suzanne/Suzanne.gltf");
+    let render = |name: &str, sets: &[&str]| {
+        let out_path = dir.path().join(name);
+        let mut cmd = common::gonio();
+        cmd.arg("render")
+            .arg(&suzanne)
+            .args(["--width", "64", "--height", "48", "-o"])
+            .arg(&out_path);
+        for s in sets {
+            cmd.args(["--set", s]);
+        }
+        let out = cmd.output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        (out.status.code(), stderr, std::fs::read(&out_path).ok())
+    };
+    let (code, stderr, plain) = render("plain.exr", &[]);
+    assert_eq!(code, Some(0), "{stderr}{}", common::LAVAPIPE_TEST_HINT);
+    let (code, stderr, edited) = render(
+        "edited.exr",
+        &[
+            "materials.Suzanne.metallic=0",
+            "materials.Suzanne.roughness=0.3",
+        ],
+    );
+    assert_eq!(code, Some(0), "{stderr}");
+    assert_ne!(plain, edited, "the edit did not change the render");
+    let (code, stderr, _) = render("w.exr", &["materials.Suzanne.sigma_x=0.3"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        stderr.contains("`sigma_x` not read by model `gltf-pbr`"),
+        "{stderr}"
+    );
+    let (code, stderr, out) = render("typo.exr", &["materials.Suzane.metallic=0"]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("no material `Suzane` (it has Suzanne); did you mean `Suzanne`?"),
+        "{stderr}"
+    );
+    assert!(out.is_none());
+}

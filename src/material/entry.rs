@@ -326,8 +326,16 @@ pub fn material_table(m: &Material) -> toml::Table {
         t.insert("measured".into(), Toml::String(brdf.key_text().into()));
         return t;
     }
+    // The model's own parameters first, each through its own accessor
+    // (gltf-pbr's `roughness` is the perceptual r, not a stored field of
+    // its own: Save scene dropped it), then every other stored field.
+    for p in table::COMMON.iter().chain(m.model.row().params.iter()) {
+        t.insert(p.key.into(), text_value(p, m));
+    }
     for p in table::stored_params() {
-        if table::param_for(m.model, p.key).is_some_and(|q| std::ptr::eq(p, q)) {
+        if !t.contains_key(p.key)
+            && table::param_for(m.model, p.key).is_some_and(|q| std::ptr::eq(p, q))
+        {
             t.insert(p.key.into(), text_value(p, m));
         }
     }

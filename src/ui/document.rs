@@ -270,14 +270,13 @@ impl Document {
             .map(|(entry, _)| entry)
     }
 
-    /// Materials changed since loading, by index.
-    pub fn edited_materials(&self) -> impl Iterator<Item = &Material> {
+    /// Materials changed since loading, each with its state as loaded.
+    pub fn edited_materials(&self) -> impl Iterator<Item = (&Material, &Material)> {
         self.scene
             .materials
             .iter()
             .zip(&self.loaded_materials)
             .filter(|(m, loaded)| m != loaded)
-            .map(|(m, _)| m)
     }
 
     /// The folder relative paths of the source resolve in.

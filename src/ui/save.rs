@@ -10,8 +10,8 @@ use crate::Result;
 use crate::base::rgb_to_toml;
 use toml::Value;
 
-/// The text of the saved file and notes on edits it cannot hold.
-pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
+/// The text of the saved file.
+pub fn scene_file_text(doc: &Document) -> Result<String> {
     let mut table = doc.table.clone();
     let base_dir = &doc.source_dir;
     let scene = &doc.scene;
@@ -64,30 +64,45 @@ pub fn scene_file_text(doc: &Document) -> Result<(String, Vec<String>)> {
         }
     }
 
-    let mut unsaved = Vec::new();
-    for m in doc.edited_materials() {
-        if doc.file_materials.contains(&m.name) {
-            let materials = table
-                .entry("materials")
-                .or_insert_with(|| Value::Table(toml::Table::new()));
-            if let Value::Table(t) = materials {
-                t.insert(
-                    m.name.clone(),
-                    Value::Table(crate::material::material_table(m)),
-                );
-            }
+    // Scene-file materials are written in full; a glTF file's own
+    // material as its edit by name (`[gltf_materials.NAME]`): the keys
+    // whose values changed since loading (the model whenever another key
+    // is written, so each reads back under the right model), its textures
+    // staying the file's.
+    for (m, loaded) in doc.edited_materials() {
+        let (section, entry) = if doc.file_materials.contains(&m.name) {
+            ("materials", crate::material::material_table(m))
         } else {
-            unsaved.push(format!(
-                "material `{}` comes from a glTF file; a scene file cannot address it, so its edits are not saved (define a [materials] entry and name it in the object's `material` instead)",
-                m.name
-            ));
+            let before = crate::material::material_table(loaded);
+            let mut changed: toml::Table = crate::material::material_table(m)
+                .into_iter()
+                .filter(|(k, v)| before.get(k) != Some(v))
+                .collect();
+            changed.insert("model".into(), Value::String(m.model.name().into()));
+            (
+                crate::scene::scene_file::gltf_material_edits::SECTION,
+                changed,
+            )
+        };
+        let entries = table
+            .entry(section)
+            .or_insert_with(|| Value::Table(toml::Table::new()));
+        if let Value::Table(t) = entries {
+            // Merged into an edit the table already has (from the file or
+            // a `--set`), which the loaded state includes.
+            match t.get_mut(&m.name) {
+                Some(Value::Table(existing)) if section != "materials" => existing.extend(entry),
+                _ => {
+                    t.insert(m.name.clone(), Value::Table(entry));
+                }
+            }
         }
     }
     let text = toml::to_string(&table)
         .map_err(|e| crate::Error::Gpu(format!("cannot write the scene as TOML: {e}")))?;
-    Ok((
-        format!("# Saved by `gonio view` from {}.\n{text}", doc.title()),
-        unsaved,
+    Ok(format!(
+        "# Saved by `gonio view` from {}.\n{text}",
+        doc.title()
     ))
 }
 
@@ -107,8 +122,7 @@ mod tests {
         doc.edit("lights.0.intensity=[1.0, 2.0, 3.0]").unwrap();
         let relit = doc;
         assert_eq!(relit.scene.materials, materials);
-        let (text, unsaved) = scene_file_text(&relit).unwrap();
-        assert!(unsaved.is_empty());
+        let text = scene_file_text(&relit).unwrap();
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("saved.toml");
         std::fs::write(&path, text).unwrap();
@@ -117,5 +131,32 @@ mod tests {
         assert_eq!(saved.scene.lights, relit.scene.lights);
         assert_eq!(saved.scene.shading, relit.scene.shading);
         assert_eq!(saved.scene.camera, relit.scene.camera);
+    }
+
+    /// A glTF file's own material, edited by name, is saved as its edit
+    /// and reads back the same, textures kept (issue 17: Save dropped it).
+    #[test]
+    fn edits_of_gltf_materials_are_saved_by_name() {
+        let suzanne = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("assets/gltf/Suzanne/Suzanne.gltf");
+        let mut doc = Document::load(
+            SceneSource::File(suzanne),
+            vec!["materials.Suzanne.metallic=0.25".into()],
+            Limits::default(),
+        )
+        .unwrap();
+        let m = |d: &Document| d.scene.materials[0].clone();
+        assert_eq!(m(&doc).name, "Suzanne");
+        assert_eq!(m(&doc).metallic, 0.25);
+        assert!(!m(&doc).textures.is_empty());
+        doc.edit("materials.Suzanne.roughness=0.7").unwrap();
+        let text = scene_file_text(&doc).unwrap();
+        assert!(text.contains("[gltf_materials.Suzanne]"), "{text}");
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("saved.toml");
+        std::fs::write(&path, text).unwrap();
+        let saved = Document::load(SceneSource::File(path), vec![], Limits::default()).unwrap();
+        assert_eq!(m(&saved), m(&doc));
+        assert_eq!(m(&saved).roughness, 0.7);
     }
 }

@@ -92,17 +92,14 @@ fn file_section(ui: &mut egui::Ui, state: &mut ViewerState) {
 
 fn save_scene(state: &mut ViewerState) {
     let path = PathBuf::from(&state.save_path);
-    let result = super::save::scene_file_text(&state.doc).and_then(|(text, unsaved)| {
-        crate::output::write::AtomicFile::create(&path)?.commit(text.as_bytes())?;
-        Ok(unsaved)
-    });
+    let result = super::save::scene_file_text(&state.doc)
+        .and_then(|text| crate::output::write::AtomicFile::create(&path)?.commit(text.as_bytes()));
     state.message = Some(match result {
-        Ok(unsaved) if unsaved.is_empty() => format!(
+        Ok(()) => format!(
             "saved {}; `gonio render {} -o out.png` draws this view",
             path.display(),
             path.display()
         ),
-        Ok(unsaved) => format!("saved {}, but: {}", path.display(), unsaved.join("; ")),
         Err(e) => e.to_string(),
     });
 }

@@ -15,6 +15,7 @@
 pub mod assembly;
 pub mod diagnostics;
 pub mod environment_keys;
+pub mod gltf_material_edits;
 pub mod lights;
 pub mod overrides;
 pub mod schema;
@@ -86,14 +87,37 @@ pub fn load_for_editing(
     let (origin, base_dir, mut table) = scene_table(source)?;
     // Parse once without overrides: errors here are the file's, with spans.
     let mut file = parse_table(&origin, &table)?;
+    // Which `--set` made each `[gltf_materials.NAME]` edit, for messages.
+    let mut edit_origins = std::collections::BTreeMap::new();
     for kv in overrides {
-        apply_override(&mut table, kv)?;
+        let redirected = gltf_material_edits::redirect(&table, kv);
+        if let Some(r) = &redirected
+            && let Some(name) = r.split('.').nth(1)
+        {
+            edit_origins
+                .entry(name.to_string())
+                .or_insert_with(|| format!("--set {kv}"));
+        }
+        apply_override(&mut table, redirected.as_deref().unwrap_or(kv))?;
         file = SceneFile::deserialize(toml::Value::Table(table.clone()))
             .map_err(|e| Error::argument(format!("--set {kv}"), clean_toml_error(&e)))?;
     }
     let mut notes = inapplicable_keys(&file);
     let mut gltf_files = gltf_import::GltfLoader::new(limits);
-    let (scene, lights) = assembly::assemble(&origin, &base_dir, file, &mut gltf_files)?;
+    let gltf_edits = std::mem::take(&mut file.gltf_materials);
+    let file_materials: Vec<String> = file.materials.keys().cloned().collect();
+    let (mut scene, lights) = assembly::assemble(&origin, &base_dir, file, &mut gltf_files)?;
+    let file_names: Vec<&str> = file_materials.iter().map(String::as_str).collect();
+    let edit_warnings = gltf_material_edits::apply(&mut scene, &file_names, &gltf_edits, |name| {
+        edit_origins.get(name).cloned().unwrap_or_else(|| {
+            format!(
+                "{}: [{}.{name}]",
+                origin.display(),
+                gltf_material_edits::SECTION
+            )
+        })
+    })?;
+    notes.extend(edit_warnings);
     notes.extend(gltf_files.notes().iter().cloned());
     notes.extend(lights.notes());
     Ok(Loaded {

@@ -72,7 +72,7 @@ fn must_exist(table: &toml::Table, parts: &[&str]) -> std::result::Result<(), St
                 .map(|n| format!("; did you mean `{n}`?"))
                 .unwrap_or_else(|| ".".into());
             return Err(format!(
-                "the scene has no material `{name}` ({listed}){hint} A new material starts with its model (`--set materials.{name}.model=lambert`); a glTF's own materials are not scene-file entries: put a scene material on a glTF object with `--set objects.N.material=NAME`"
+                "the scene has no material `{name}` ({listed}){hint} A new material starts with its model (`--set materials.{name}.model=lambert`); in a scene with glTF objects, `materials.NAME.KEY` also edits a glTF file's own material of that name"
             ));
         }
     }

@@ -26,6 +26,10 @@ pub struct SceneFile {
     pub objects: Vec<ObjectEntry>,
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialEntry>,
+    /// Edits of a glTF file's own materials by name
+    /// ([`super::gltf_material_edits`]).
+    #[serde(default)]
+    pub gltf_materials: BTreeMap<String, toml::Table>,
     #[serde(default)]
     pub lights: Vec<LightEntry>,
     #[serde(default)]
