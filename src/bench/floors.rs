@@ -205,6 +205,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         two_sided: false,
         culling: false,
         vertex_colors: false,
+        measured_network: false,
     }
 }
 
