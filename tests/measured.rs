@@ -602,3 +602,45 @@ fn a_scene_files_table_path_is_relative_to_it() {
     );
     assert!(!dir.path().join("bad.png").exists());
 }
+
+/// `shading.measured_mode`: a MERL file has no network, so network mode
+/// refuses it naming the material; an unknown mode names both choices.
+#[test]
+fn network_mode_refuses_a_merl_file_and_unknown_modes() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = analytic_file(dir.path(), [8, 8, 16]);
+    let scene = dir.path().join("s.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            "[shading]\nmeasured_mode = \"network\"\n[[objects]]\nshape = \"sphere\"\nmaterial = \"m\"\n[materials.m]\nmodel = \"measured\"\nmeasured = {:?}\n",
+            file.display().to_string()
+        ),
+    )
+    .unwrap();
+    let out = common::gonio()
+        .args(["render"])
+        .arg(&scene)
+        .args(["-o"])
+        .arg(dir.path().join("x.png"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("measured_mode") && err.contains("`m`"),
+        "{err}"
+    );
+    assert!(!dir.path().join("x.png").exists());
+    let out = common::gonio()
+        .args(["render", "--set", "shading.measured_mode=\"tabel\"", "-o"])
+        .arg(dir.path().join("y.png"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("\"table\"") && err.contains("\"network\""),
+        "{err}"
+    );
+}

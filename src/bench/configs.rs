@@ -319,6 +319,51 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         })
         .collect();
     knob("resolution", resolution, "");
+
+    // Measured materials: the table's resolution and the network in WGSL
+    // (docs/measured.md), against the reference's network in f64.
+    let has_measured = base
+        .materials
+        .iter()
+        .any(|m| m.model == ReflectanceModel::Measured);
+    let modes = if has_measured {
+        [("table", false), ("network", true)]
+            .iter()
+            .map(|&(name, network)| {
+                (
+                    name.to_string(),
+                    vec![format!("shading.measured_mode=\"{name}\"")],
+                    network == base.measured_network,
+                )
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    knob(
+        "measured_mode",
+        modes,
+        "no measured material in the base scene",
+    );
+    let tables = if has_measured && !base.measured_network {
+        [[16, 16, 32], [32, 32, 64], [45, 45, 90], [90, 90, 180]]
+            .iter()
+            .map(|&[h, d, p]| {
+                (
+                    format!("{h}x{d}x{p}"),
+                    vec![format!("shading.measured_table=[{h}, {d}, {p}]")],
+                    [h, d, p] == base.measured_table,
+                )
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    knob(
+        "measured_table",
+        tables,
+        "no measured material looked up in a table in the base scene",
+    );
     (out, skipped)
 }
 
