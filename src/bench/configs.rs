@@ -390,6 +390,8 @@ pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
         && used(a) == used(b)
         && a.environment.map.as_ref().map(|m| m.settings)
             == b.environment.map.as_ref().map(|m| m.settings)
+        && a.measured_network == b.measured_network
+        && a.measured_table == b.measured_table
 }
 
 /// `(width, height)` scaled by `s`, at least 1 pixel.
@@ -436,9 +438,12 @@ mod tests {
         let base = builtin_base();
         let (configs, skipped) = configs(&base, false);
         // The built-in base has no environment map (its truth would
-        // integrate the map per pixel): environment_specular_is_a_knob.
-        assert!(
-            skipped.len() == 1 && skipped[0].knob == "environment_specular",
+        // integrate the map per pixel): environment_specular_is_a_knob;
+        // and no measured material: measured_knobs_with_a_measured_base.
+        let names: Vec<&str> = skipped.iter().map(|s| s.knob.as_str()).collect();
+        assert_eq!(
+            names,
+            ["environment_specular", "measured_mode", "measured_table"],
             "{skipped:?}"
         );
         let knobs: std::collections::BTreeSet<_> =
@@ -487,7 +492,10 @@ mod tests {
             .collect();
         let base = load(&SceneSource::BuiltIn, &overrides).unwrap();
         let (configs, skipped) = configs(&base, false);
-        assert!(skipped.is_empty(), "{skipped:?}");
+        assert!(
+            skipped.iter().all(|s| s.knob.starts_with("measured_")),
+            "{skipped:?}"
+        );
         let settings: Vec<_> = configs
             .iter()
             .filter(|c| c.knob == "environment_specular")
@@ -519,6 +527,27 @@ mod tests {
         ));
         // A material no mesh uses changes nothing drawn.
         assert!(draws_the_same(&base, &with("materials.unused.model=ward")));
+    }
+
+    /// With a measured material the table's resolution and the network
+    /// mode are knobs, and each setting draws something else.
+    #[test]
+    fn measured_knobs_with_a_measured_base() {
+        let overrides =
+            vec!["materials.ball={model=\"measured\", measured=\"chrome\"}".to_string()];
+        let base = load(&SceneSource::BuiltIn, &overrides).unwrap();
+        let (configs, _) = configs(&base, false);
+        let settings: Vec<_> = configs
+            .iter()
+            .filter(|c| c.knob.starts_with("measured_"))
+            .collect();
+        // network, and three tables besides the base's 90×90×180.
+        assert_eq!(settings.len(), 4, "{settings:?}");
+        for c in settings {
+            let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
+            let scene = load(&SceneSource::BuiltIn, &all).unwrap();
+            assert!(!draws_the_same(&base, &scene), "{}", c.label());
+        }
     }
 
     #[test]
