@@ -203,3 +203,35 @@ fn print_albedo_table() {
         assert!(!r.contains("**"), "normalized Phong above 1: {r}");
     }
 }
+
+/// A measured material and a fit of it on one slice plot (issue 15: the
+/// measured and fitted slices together), and a bare `measured` plots the
+/// viewer's default material, saying so (the same values as naming it).
+#[test]
+fn measured_and_fitted_slices_together_and_the_default_measured() {
+    let dir = tempfile::tempdir().unwrap();
+    let slice = dir.path().join("slice.svg");
+    let out = common::gonio()
+        .args(["brdf", "--compare", "measured,measured=chrome"])
+        .args([
+            "--compare",
+            "cook-torrance,distribution=ggx,fresnel=conductor,roughness=0.01,k_s=1,k_d=0",
+        ])
+        .arg("--plot-slice")
+        .arg(&slice)
+        .output()
+        .unwrap();
+    let text = stdout(&out);
+    assert!(f_r(&text, "measured measured=chrome")[0] > 100.0, "{text}");
+    let svg = std::fs::read_to_string(&slice).unwrap();
+    assert!(svg.contains("measured=chrome") && svg.contains("cook-torrance"));
+
+    let bare = brdf(&["--compare", "measured"]);
+    let named = brdf(&["--compare", "measured,measured=gold-metallic-paint"]);
+    let note = String::from_utf8_lossy(&bare.stderr).into_owned();
+    assert!(note.contains("measured=gold-metallic-paint"), "{note}");
+    assert_eq!(
+        f_r(&stdout(&bare), "measured"),
+        f_r(&stdout(&named), "measured measured=gold-metallic-paint")
+    );
+}

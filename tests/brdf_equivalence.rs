@@ -197,6 +197,12 @@ fn perturbation_error(s: &Sample, base: (Rgb, Rgb)) -> (Rgb, Rgb) {
     perturbations.push(Box::new(|s: &mut Sample, d: f64| {
         s.material.metallic *= 1.0 + d
     }));
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| {
+        s.material.abc_b *= 1.0 + d
+    }));
+    perturbations.push(Box::new(|s: &mut Sample, d: f64| {
+        s.material.abc_c *= 1.0 + d
+    }));
     for axis in 0..3 {
         perturbations.push(Box::new(move |s: &mut Sample, d: f64| {
             s.material.base_color[axis] *= 1.0 + d

@@ -225,3 +225,10 @@ fn the_fitted_scene_file_loads_with_the_fitted_material() {
     // Blue fabric is blue.
     assert!(m.k_d.z > m.k_d.x && m.k_d.z > m.k_d.y, "{:?}", m.k_d);
 }
+
+/// abc (Löw et al. 2012) from a synthetic measurement of a moderate lobe
+/// (A ≈ 4, B = 500, C = 1.2, η_t = 1.6, as the published glossy paints).
+#[test]
+fn abc_is_recovered() {
+    recovers("abc", &[0.2, 0.1, 0.05, 5.0, 4.0, 3.0, 500.0, 1.2, 1.6]);
+}

@@ -370,6 +370,86 @@ fn gpu_tables_match_their_reference_twin() {
     }
 }
 
+/// The relative error bound of the WGSL network (`shading.measured_mode =
+/// "network"`) against `Network::f_r` in `f64`, derived from the weights by
+/// running-error analysis: every input is a unit vector's component
+/// (|x| ≤ 1) computed in `f32` within 64 roundings (64u absolute, as the
+/// equivalence test's K); a dot product of n terms plus a bias errs by at
+/// most γ(n+1) = (n+1)u/(1 − (n+1)u) times the sum of the magnitudes of
+/// its terms, and passes its inputs' errors on through |W|; ReLU adds
+/// none. With `A` the magnitudes (the network run on |W|, |b| and |x| = 1)
+/// and `e` the errors, the output `z` errs by `e3`, so `e^z` by a relative
+/// `e3 + (3 + 2|z|)u` (Vulkan's `exp`), and `f_r = e^z − 1` by that times
+/// `f_r + 1`, plus one rounding of the subtraction.
+fn network_rel_bound(n: &measured::network::Network) -> f64 {
+    const U: f64 = 1.0 / 16_777_216.0;
+    let gamma = |k: f64| k * U / (1.0 - k * U);
+    let dx = 64.0 * U;
+    let (mut a1, mut e1) = ([0.0; 21], [0.0; 21]);
+    for j in 0..21 {
+        let sum_w: f64 = (0..6).map(|i| n.w1[i][j].abs()).sum();
+        a1[j] = n.b1[j].abs() + sum_w;
+        e1[j] = sum_w * dx + gamma(7.0) * a1[j];
+    }
+    let (mut a2, mut e2) = ([0.0; 21], [0.0; 21]);
+    for j in 0..21 {
+        a2[j] = n.b2[j].abs() + (0..21).map(|k| n.w2[k][j].abs() * a1[k]).sum::<f64>();
+        e2[j] = (0..21).map(|k| n.w2[k][j].abs() * e1[k]).sum::<f64>() + gamma(22.0) * a2[j];
+    }
+    (0..3)
+        .map(|c| {
+            let z = n.b3[c].abs() + (0..21).map(|k| n.w3[k][c].abs() * a2[k]).sum::<f64>();
+            let e3 = (0..21).map(|k| n.w3[k][c].abs() * e2[k]).sum::<f64>() + gamma(22.0) * z;
+            e3 + (3.0 + 2.0 * z) * U + U
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The Neural-BRDF network evaluated in WGSL (`shading.measured_mode =
+/// "network"`) against the reference, which evaluates the same network in
+/// `f64`: per pixel within the light loop's tolerance plus the network's
+/// derived bound [`network_rel_bound`] `r`: `|ΔL| ≤ Σ_l |Δf_l| E_l cos θ_l
+/// ≤ r (L + Σ_l E_l)`, the `(f_r + 1)` of the bound split into a relative
+/// part and an absolute one, `Σ_l E_l` ≤ 2.04 W/m² on the sphere
+/// (the point light of 20 W/sr at ≥ 4.385 m, 1.04; the directional 1).
+#[test]
+fn gpu_network_matches_the_f64_network() {
+    use gonio::output::compare::{Tolerance, compare_with_jitter};
+    use gonio::scene::scene_file::{self, SceneSource};
+    let dir = tempfile::tempdir().unwrap();
+    let mut gpu = common::gpu_renderer();
+    for name in ["gold-metallic-paint", "chrome", "blue-fabric"] {
+        sphere_scene(dir.path(), name, [16, 16, 32]);
+        let path = dir.path().join(format!("{name}.toml"));
+        let scene = scene_file::load(
+            &SceneSource::File(path),
+            &["shading.measured_mode=\"network\"".to_string()],
+        )
+        .expect("scene loads");
+        assert!(scene.measured_network);
+        let brdf = measured::library::builtin(name).unwrap();
+        let measured::Source::Network(net) = &brdf.source else {
+            panic!("a built-in material is a network");
+        };
+        let r = network_rel_bound(net);
+        let (frame, _) = gpu.render(&scene).unwrap();
+        let (center, jittered) = common::reference_with_jitter(&scene);
+        let tolerance = Tolerance {
+            rel: 64.0 * common::EPS + r,
+            abs: 64.0 * common::EPS * center.max_radiance() as f64 + r * 2.04,
+        };
+        let c = compare_with_jitter(&frame, &center, &jittered, tolerance);
+        eprintln!("network {name}: bound r = {r:.3e}; {}", c.summary());
+        common::assert_agrees(
+            &format!("measured-network-{name}"),
+            "GPU network vs the f64 network",
+            &c,
+            &frame,
+            &center,
+        );
+    }
+}
+
 /// The trilinear filter's error against the network. Linear
 /// interpolation over a step `Δ` errs by at most `Δ²/8 · max|f''|` per
 /// axis, and the three axes add: in index units (`Δ = 1`)
@@ -521,4 +601,46 @@ fn a_scene_files_table_path_is_relative_to_it() {
         "{err}"
     );
     assert!(!dir.path().join("bad.png").exists());
+}
+
+/// `shading.measured_mode`: a MERL file has no network, so network mode
+/// refuses it naming the material; an unknown mode names both choices.
+#[test]
+fn network_mode_refuses_a_merl_file_and_unknown_modes() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = analytic_file(dir.path(), [8, 8, 16]);
+    let scene = dir.path().join("s.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            "[shading]\nmeasured_mode = \"network\"\n[[objects]]\nshape = \"sphere\"\nmaterial = \"m\"\n[materials.m]\nmodel = \"measured\"\nmeasured = {:?}\n",
+            file.display().to_string()
+        ),
+    )
+    .unwrap();
+    let out = common::gonio()
+        .args(["render"])
+        .arg(&scene)
+        .args(["-o"])
+        .arg(dir.path().join("x.png"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("measured_mode") && err.contains("`m`"),
+        "{err}"
+    );
+    assert!(!dir.path().join("x.png").exists());
+    let out = common::gonio()
+        .args(["render", "--set", "shading.measured_mode=\"tabel\"", "-o"])
+        .arg(dir.path().join("y.png"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("\"table\"") && err.contains("\"network\""),
+        "{err}"
+    );
 }

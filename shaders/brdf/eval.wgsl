@@ -49,6 +49,9 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         #if gltf-pbr
         case MODEL_GLTF_PBR: { return gltf_pbr(m.base_color, m.metallic, m.roughness, n, wi, wo); }
         #endif
+        #if abc
+        case MODEL_ABC: { return lambert(m.k_d) + m.k_s * abc_specular(m.lobe.x, m.lobe.y, m.eta_i, m.eta_t, n, wi, wo); }
+        #endif
         default: { return vec3<f32>(0.0); }
     }
 }

@@ -39,6 +39,60 @@ fn measured_sample(base: u32, dims: vec3<u32>, ih: u32, id: u32, ip: u32) -> vec
     return vec3<f32>(measured_tables[k], measured_tables[k + 1u], measured_tables[k + 2u]);
 }
 
+#if measured_network
+// The Neural-BRDF network (Sztrajman et al. 2021) evaluated per pixel
+// (shading.measured_mode = "network"; f64 twin: Network::forward and
+// Network::f_r in src/material/measured/network.rs, same order): the
+// material's 675 weights from its first index, in Network::flat's order
+// W1 (6×21, row by row), b1, W2 (21×21), b2, W3 (21×3), b3;
+// a1 = relu(x·W1 + b1), a2 = relu(a1·W2 + b2), f_r = max(0, exp(a2·W3 + b3) − 1),
+// x = (h, d) of coords::half_diff (h = (sin θ_h, 0, cos θ_h)).
+const NBRDF_B1: u32 = 126u;
+const NBRDF_W2: u32 = 147u;
+const NBRDF_B2: u32 = 588u;
+const NBRDF_W3: u32 = 609u;
+const NBRDF_B3: u32 = 672u;
+
+fn measured_f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    let base = bitcast<u32>(m.lobe.x);
+    let i = vec3<f32>(dot(wi, frame.t), dot(wi, frame.b), dot(wi, frame.n));
+    let o = vec3<f32>(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
+    let h = normalize(i + o);
+    let sin_h = sqrt(h.x * h.x + h.y * h.y);
+    let cos_h = h.z;
+    var cos_phi_h = 1.0;
+    var sin_phi_h = 0.0;
+    if sin_h >= MEASURED_SIN_THETA_H_FLOOR {
+        cos_phi_h = h.x / sin_h;
+        sin_phi_h = h.y / sin_h;
+    }
+    let x = i.x * cos_phi_h + i.y * sin_phi_h;
+    let y = -i.x * sin_phi_h + i.y * cos_phi_h;
+    var input = array<f32, 6>(sin_h, 0.0, cos_h, x * cos_h - i.z * sin_h, y, x * sin_h + i.z * cos_h);
+    var a1: array<f32, 21>;
+    for (var j = 0u; j < 21u; j = j + 1u) {
+        var z = measured_tables[base + NBRDF_B1 + j];
+        for (var k = 0u; k < 6u; k = k + 1u) {
+            z = z + input[k] * measured_tables[base + k * 21u + j];
+        }
+        a1[j] = max(z, 0.0);
+    }
+    var a2: array<f32, 21>;
+    for (var j = 0u; j < 21u; j = j + 1u) {
+        var z = measured_tables[base + NBRDF_B2 + j];
+        for (var k = 0u; k < 21u; k = k + 1u) {
+            z = z + a1[k] * measured_tables[base + NBRDF_W2 + k * 21u + j];
+        }
+        a2[j] = max(z, 0.0);
+    }
+    var out = vec3<f32>(measured_tables[base + NBRDF_B3], measured_tables[base + NBRDF_B3 + 1u], measured_tables[base + NBRDF_B3 + 2u]);
+    for (var k = 0u; k < 21u; k = k + 1u) {
+        let w = base + NBRDF_W3 + 3u * k;
+        out = out + a2[k] * vec3<f32>(measured_tables[w], measured_tables[w + 1u], measured_tables[w + 2u]);
+    }
+    return max(exp(out) - vec3<f32>(1.0), vec3<f32>(0.0));
+}
+#else
 // f_r [1/sr]: the table's trilinear interpolation (MerlTable::f_r).
 fn measured_f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let base = bitcast<u32>(m.lobe.x);
@@ -75,4 +129,5 @@ fn measured_f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) 
     );
     return mix(a0, a1, th);
 }
+#endif
 #endif

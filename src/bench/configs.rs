@@ -319,6 +319,51 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         })
         .collect();
     knob("resolution", resolution, "");
+
+    // Measured materials: the table's resolution and the network in WGSL
+    // (docs/measured.md), against the reference's network in f64.
+    let has_measured = base
+        .materials
+        .iter()
+        .any(|m| m.model == ReflectanceModel::Measured);
+    let modes = if has_measured {
+        [("table", false), ("network", true)]
+            .iter()
+            .map(|&(name, network)| {
+                (
+                    name.to_string(),
+                    vec![format!("shading.measured_mode=\"{name}\"")],
+                    network == base.measured_network,
+                )
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    knob(
+        "measured_mode",
+        modes,
+        "no measured material in the base scene",
+    );
+    let tables = if has_measured && !base.measured_network {
+        [[16, 16, 32], [32, 32, 64], [45, 45, 90], [90, 90, 180]]
+            .iter()
+            .map(|&[h, d, p]| {
+                (
+                    format!("{h}x{d}x{p}"),
+                    vec![format!("shading.measured_table=[{h}, {d}, {p}]")],
+                    [h, d, p] == base.measured_table,
+                )
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    knob(
+        "measured_table",
+        tables,
+        "no measured material looked up in a table in the base scene",
+    );
     (out, skipped)
 }
 
@@ -345,6 +390,8 @@ pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
         && used(a) == used(b)
         && a.environment.map.as_ref().map(|m| m.settings)
             == b.environment.map.as_ref().map(|m| m.settings)
+        && a.measured_network == b.measured_network
+        && a.measured_table == b.measured_table
 }
 
 /// `(width, height)` scaled by `s`, at least 1 pixel.
@@ -391,9 +438,12 @@ mod tests {
         let base = builtin_base();
         let (configs, skipped) = configs(&base, false);
         // The built-in base has no environment map (its truth would
-        // integrate the map per pixel): environment_specular_is_a_knob.
-        assert!(
-            skipped.len() == 1 && skipped[0].knob == "environment_specular",
+        // integrate the map per pixel): environment_specular_is_a_knob;
+        // and no measured material: measured_knobs_with_a_measured_base.
+        let names: Vec<&str> = skipped.iter().map(|s| s.knob.as_str()).collect();
+        assert_eq!(
+            names,
+            ["environment_specular", "measured_mode", "measured_table"],
             "{skipped:?}"
         );
         let knobs: std::collections::BTreeSet<_> =
@@ -442,7 +492,10 @@ mod tests {
             .collect();
         let base = load(&SceneSource::BuiltIn, &overrides).unwrap();
         let (configs, skipped) = configs(&base, false);
-        assert!(skipped.is_empty(), "{skipped:?}");
+        assert!(
+            skipped.iter().all(|s| s.knob.starts_with("measured_")),
+            "{skipped:?}"
+        );
         let settings: Vec<_> = configs
             .iter()
             .filter(|c| c.knob == "environment_specular")
@@ -474,6 +527,27 @@ mod tests {
         ));
         // A material no mesh uses changes nothing drawn.
         assert!(draws_the_same(&base, &with("materials.unused.model=ward")));
+    }
+
+    /// With a measured material the table's resolution and the network
+    /// mode are knobs, and each setting draws something else.
+    #[test]
+    fn measured_knobs_with_a_measured_base() {
+        let overrides =
+            vec!["materials.ball={model=\"measured\", measured=\"chrome\"}".to_string()];
+        let base = load(&SceneSource::BuiltIn, &overrides).unwrap();
+        let (configs, _) = configs(&base, false);
+        let settings: Vec<_> = configs
+            .iter()
+            .filter(|c| c.knob.starts_with("measured_"))
+            .collect();
+        // network, and three tables besides the base's 90×90×180.
+        assert_eq!(settings.len(), 4, "{settings:?}");
+        for c in settings {
+            let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
+            let scene = load(&SceneSource::BuiltIn, &all).unwrap();
+            assert!(!draws_the_same(&base, &scene), "{}", c.label());
+        }
     }
 
     #[test]

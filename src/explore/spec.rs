@@ -57,6 +57,21 @@ pub fn material(
         MaterialEntry::deserialize(toml::Value::Table(table.clone()))
             .map_err(|e| Error::argument(arg, one_line(&e.to_string())))?;
     }
+    // A bare `measured` plots the material the viewer starts a measured
+    // material as (measured::DEFAULT_NAME), and says so; a scene file
+    // still names its table (its error says how).
+    if model == ReflectanceModel::Measured.name() && !table.contains_key("measured") {
+        let default = crate::material::measured::DEFAULT_NAME;
+        let hint = if argument.starts_with("--compare") {
+            format!("`{argument},measured=chrome`")
+        } else {
+            "`--set measured=chrome`".to_string()
+        };
+        eprintln!(
+            "gonio: note: {argument}: no `measured=NAME` given; plotting measured={default} (the default, as in the viewer); name another with e.g. {hint}"
+        );
+        table.insert("measured".into(), toml::Value::String(default.into()));
+    }
     let entry = MaterialEntry::deserialize(toml::Value::Table(table))
         .map_err(|e| bad(one_line(&e.to_string())))?;
     let given: Material = material_from_entry(&label, &entry).map_err(bad)?;

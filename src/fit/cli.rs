@@ -2,9 +2,10 @@
 //! only holds the subcommand variant.
 
 use super::models::{ALL, FitModel};
+use super::problem::{fit_from, score};
 use super::report::{self, Row};
 use super::samples::samples;
-use super::{Metric, fit};
+use super::{Metric, fit, published};
 use crate::material::material_table;
 use crate::material::measured::{self, MeasuredBrdf, library};
 use crate::scene::default_scene::DEFAULT_SCENE_TOML;
@@ -31,7 +32,9 @@ pub struct FitArgs {
     #[arg(required_unless_present_any = ["all", "merge"])]
     pub material: Option<String>,
     /// The model: lambert, phong, phong-normalized, blinn-phong,
-    /// blinn-phong-normalized, ward, gltf-pbr, or
+    /// blinn-phong-normalized, ward, gltf-pbr, abc (Löw et al. 2012),
+    /// `abc,start=published` (also started from the published parameters),
+    /// abc-published (the published ABC parameters, scored, not fitted), or
     /// `cook-torrance[,distribution=D][,fresnel=F][,geometry=G]`
     /// (default beckmann, conductor, smith). With --all: the models to
     /// rank (repeat; default: all of them).
@@ -90,8 +93,28 @@ pub fn run(args: &FitArgs) -> Result<()> {
     };
     let model = FitModel::parse(spec).map_err(|p| Error::argument(format!("--model {spec}"), p))?;
     let start = Instant::now();
-    let result = fit(&model, &samples(brdf), args.metric);
     let name = material_name(brdf);
+    let result = if model.is_published() {
+        let m = published::abc(&name).ok_or_else(|| {
+            Error::argument(
+                format!("--model {spec}"),
+                format!(
+                    "`{name}` has no published ABC fit: the table (data/measured/merl100_abc_fits.csv) has the 100 MERL materials by name"
+                ),
+            )
+        })?;
+        score(&m, &samples(brdf), args.metric)
+    } else if model.starts_from_published() {
+        let m = published::abc(&name).ok_or_else(|| {
+            Error::argument(
+                format!("--model {spec}"),
+                format!("`{name}` has no published ABC fit to start from"),
+            )
+        })?;
+        fit_from(&model, &samples(brdf), args.metric, Some(&m))
+    } else {
+        fit(&model, &samples(brdf), args.metric)
+    };
     let mut m = result.material.clone();
     m.name = name.clone();
     let summary = format!(
@@ -240,7 +263,19 @@ fn run_all(args: &FitArgs) -> Result<()> {
             let mut tables = String::new();
             for model in &models {
                 let t0 = Instant::now();
-                let r = fit(model, &s, args.metric);
+                let r = if model.is_published() {
+                    let m = published::abc(&brdf.name).expect(
+                        "every built-in material has a published ABC row (test in published.rs)",
+                    );
+                    score(&m, &s, args.metric)
+                } else if model.starts_from_published() {
+                    let m = published::abc(&brdf.name).expect(
+                        "every built-in material has a published ABC row (test in published.rs)",
+                    );
+                    fit_from(model, &s, args.metric, Some(&m))
+                } else {
+                    fit(model, &s, args.metric)
+                };
                 let label = model.label();
                 let mut m = r.material.clone();
                 m.name = format!("{}--{label}", brdf.name);

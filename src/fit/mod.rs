@@ -13,6 +13,7 @@ pub mod cli;
 pub mod metric;
 pub mod models;
 pub mod problem;
+pub mod published;
 pub mod report;
 pub mod samples;
 

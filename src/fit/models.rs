@@ -11,11 +11,14 @@
 //! highlight stay below the Fresnel's rise to 1 at grazing, which the
 //! MERL data show: chrome with GGX, 0.78 → 0.32 relative error); the dielectric has `η_i = 1` (air) and a free
 //! grey `η_t` with a free `k_s` per channel; the geometry is Smith matched
-//! to the distribution.
+//! to the distribution. `abc` (Löw et al. 2012) is fitted in the form of
+//! its published fits: `k_s = 1`, `A` per channel, `B`, `C`, and `η_i = 1`
+//! with a free `η_t` (the published `ior`); `abc-published` is no fit but
+//! those published parameters (`published.rs`), scored alike.
 
 use crate::material::param::{
-    BASE_COLOR, ETA, ETA_T, K_D, K_E, K_S, KAPPA, METALLIC, PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS,
-    Value, WARD_SIGMA,
+    ABC_A, ABC_B, ABC_C, BASE_COLOR, ETA, ETA_T, K_D, K_E, K_S, KAPPA, METALLIC,
+    PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, Value, WARD_SIGMA,
 };
 use crate::material::{
     Distribution, Fresnel, Geometry, Material, ROUGHNESS_FLOOR, ReflectanceModel,
@@ -47,6 +50,26 @@ impl Free {
         .clamp(self.lo, self.hi)
     }
 
+    /// The fraction of the (log-)interval at which `v` lies, clamped to
+    /// [0, 1] (the inverse of [`Self::at`]).
+    pub fn fraction(&self, v: f64) -> f64 {
+        let v = v.clamp(self.lo, self.hi);
+        if self.log {
+            (v.ln() - self.lo.ln()) / (self.hi.ln() - self.lo.ln())
+        } else {
+            (v - self.lo) / (self.hi - self.lo)
+        }
+    }
+
+    /// The value in `m`.
+    pub fn read(&self, m: &Material) -> f64 {
+        let v = self.param.read(m);
+        match self.channel {
+            None => v.scalar(),
+            Some(c) => v.color()[c],
+        }
+    }
+
     /// Writes `v` into `m`.
     pub fn write(&self, m: &mut Material, v: f64) {
         let value = match self.channel {
@@ -72,6 +95,10 @@ pub struct FitModel {
     /// Which of [`Self::free`] is the lobe's width (`k_e`, σ, roughness):
     /// the multi-start scans it (`problem.rs`).
     pub width: Option<usize>,
+    /// Further numbers the multi-start scans with the width: (indices into
+    /// [`Self::free`] set together, the fractions of their interval tried).
+    /// abc scans its `A` (three channels together) and `C`.
+    pub scans: Vec<(Vec<usize>, Vec<f64>)>,
 }
 
 /// The models `gonio fit --all` fits (the lecture's, normalized and as
@@ -92,7 +119,14 @@ pub const ALL: &[&str] = &[
     "cook-torrance,distribution=gaussian-normalized,fresnel=dielectric",
     "cook-torrance,distribution=ggx,fresnel=dielectric",
     "gltf-pbr",
+    "abc",
+    "abc,start=published",
+    ABC_PUBLISHED,
 ];
+
+/// The spec of the published ABC parameters (no free numbers: the
+/// material comes from `published::abc`).
+pub const ABC_PUBLISHED: &str = "abc-published";
 
 /// The models a fit can take (what an unknown `--model` lists).
 const FITTABLE: &[ReflectanceModel] = &[
@@ -104,6 +138,7 @@ const FITTABLE: &[ReflectanceModel] = &[
     ReflectanceModel::Ward,
     ReflectanceModel::CookTorrance,
     ReflectanceModel::GltfPbr,
+    ReflectanceModel::Abc,
 ];
 
 fn colour(param: &'static Param, lo: f64, hi: f64) -> impl Iterator<Item = Free> {
@@ -150,10 +185,27 @@ const PERCEPTUAL_BOUNDS: (f64, f64) = (0.01, 1.0);
 const ETA_BOUNDS: (f64, f64) = (0.02, 10.0);
 const KAPPA_BOUNDS: (f64, f64) = (1e-3, 10.0);
 const ETA_T_BOUNDS: (f64, f64) = (1.0, 3.0);
+/// abc's bounds: `A` in [1e-3, 1e6] (the published fits: 0.08 to 5710),
+/// `B` in [1, 1e8] (11 to 8.1e6), `C` in [0.01, 10] (0.024 to 2.7), `η_t`
+/// in [1, 100] (1.04 to 99.99: an `ior` of 100 is a Fresnel of ≈ 1, a
+/// metal's flat F).
+const ABC_A_BOUNDS: (f64, f64) = (1e-3, 1e6);
+const ABC_B_BOUNDS: (f64, f64) = (1.0, 1e8);
+const ABC_C_BOUNDS: (f64, f64) = (0.01, 10.0);
+const ABC_ETA_T_BOUNDS: (f64, f64) = (1.0, 100.0);
 
 impl FitModel {
     /// The model `spec` names, or a message saying what is accepted.
     pub fn parse(spec: &str) -> Result<FitModel, String> {
+        if spec.trim() == ABC_PUBLISHED {
+            return Ok(FitModel {
+                spec: ABC_PUBLISHED.into(),
+                base: Material::new("fit", ReflectanceModel::Abc),
+                free: Vec::new(),
+                width: None,
+                scans: Vec::new(),
+            });
+        }
         let mut parts = spec.split(',').map(str::trim);
         let name = parts.next().unwrap_or_default();
         let model: ReflectanceModel = name.parse().map_err(|_| unknown(name))?;
@@ -161,11 +213,16 @@ impl FitModel {
             return Err(unknown(name));
         }
         let mut base = Material::new("fit", model);
+        let mut from_published = false;
         (base.geometry, base.fresnel) = (Geometry::Smith, Fresnel::Conductor);
         for part in parts {
             let Some((key, value)) = part.split_once('=') else {
                 return Err(format!("`{part}` is not KEY=VALUE"));
             };
+            if model == ReflectanceModel::Abc && part == "start=published" {
+                from_published = true;
+                continue;
+            }
             if model != ReflectanceModel::CookTorrance {
                 return Err(format!(
                     "`{key}` is a Cook-Torrance term; `{name}` takes none"
@@ -194,24 +251,47 @@ impl FitModel {
                     format!(",geometry={}", base.geometry)
                 }
             )
+        } else if from_published {
+            format!("{name},start=published")
         } else {
             name.to_string()
         };
         let width = free.iter().position(|f| {
-            [&K_E, &WARD_SIGMA, &ROUGHNESS, &PERCEPTUAL_ROUGHNESS]
+            [&K_E, &WARD_SIGMA, &ROUGHNESS, &PERCEPTUAL_ROUGHNESS, &ABC_B]
                 .iter()
                 .any(|p| std::ptr::eq(*p, f.param))
         });
+        let of = |p: &'static Param| -> Vec<usize> {
+            (0..free.len())
+                .filter(|&k| std::ptr::eq(free[k].param, p))
+                .collect()
+        };
+        let scans = if model == ReflectanceModel::Abc {
+            // A = 0.06, 4, 250, 1.6e4; C = 0.01 … 10 at 7 points (log).
+            vec![
+                (of(&ABC_A), vec![0.2, 0.4, 0.6, 0.8]),
+                (of(&ABC_C), (0..=6).map(|k| k as f64 / 6.0).collect()),
+            ]
+        } else {
+            Vec::new()
+        };
         Ok(FitModel {
             spec,
             base,
             free,
             width,
+            scans,
         })
     }
 
     /// A short label for tables: `ct-ggx-conductor`, `ward`, ...
     pub fn label(&self) -> String {
+        if self.is_published() {
+            return ABC_PUBLISHED.into();
+        }
+        if self.starts_from_published() {
+            return "abc-from-published".into();
+        }
         let m = &self.base;
         if m.model != ReflectanceModel::CookTorrance {
             return m.model.name().to_string();
@@ -230,6 +310,17 @@ impl FitModel {
         label
     }
 
+    /// Whether this is the published ABC parameters, not a fit.
+    pub fn is_published(&self) -> bool {
+        self.spec == ABC_PUBLISHED
+    }
+
+    /// Whether the fit also starts from the published ABC parameters
+    /// (`abc,start=published`).
+    pub fn starts_from_published(&self) -> bool {
+        self.spec.ends_with(",start=published")
+    }
+
     /// The material at the free numbers `values` (one per [`Self::free`]).
     pub fn material(&self, values: &[f64]) -> Material {
         let mut m = self.base.clone();
@@ -243,7 +334,7 @@ impl FitModel {
 fn unknown(name: &str) -> String {
     let names: Vec<&str> = FITTABLE.iter().map(|m| m.name()).collect();
     format!(
-        "`{name}` is not a model gonio fits; it fits {} (Cook-Torrance with `,distribution=D,fresnel=F`)",
+        "`{name}` is not a model gonio fits; it fits {} (Cook-Torrance with `,distribution=D,fresnel=F`), and scores {ABC_PUBLISHED} (the published ABC parameters of a MERL material)",
         names.join(", ")
     )
 }
@@ -293,6 +384,15 @@ fn free_numbers(base: &mut Material) -> Vec<Free> {
                 PERCEPTUAL_BOUNDS.1,
                 true,
             ));
+        }
+        M::Abc => {
+            base.k_s = crate::base::Rgb::ONE;
+            base.eta_i = 1.0;
+            free.extend(colour(&K_D, 0.0, 1.0));
+            free.extend(log_colour(&ABC_A, ABC_A_BOUNDS.0, ABC_A_BOUNDS.1));
+            free.push(shape(&ABC_B, ABC_B_BOUNDS.0, ABC_B_BOUNDS.1, true));
+            free.push(shape(&ABC_C, ABC_C_BOUNDS.0, ABC_C_BOUNDS.1, true));
+            free.push(shape(&ETA_T, ABC_ETA_T_BOUNDS.0, ABC_ETA_T_BOUNDS.1, true));
         }
         _ => unreachable!("FITTABLE lists the models above"),
     }

@@ -99,6 +99,20 @@ pub fn mean_of(m: &Material, samples: &[Sample], metric: Metric) -> f64 {
     })
 }
 
+/// The error of a given material `m` (no search): how the published ABC
+/// parameters are scored, on the same samples and metric as a fit.
+pub fn score(m: &Material, samples: &[Sample], metric: Metric) -> FitResult {
+    let norm = metric.mean(samples, |_| Rgb::ZERO).max(f64::MIN_POSITIVE);
+    let mean = mean_of(m, samples, metric);
+    FitResult {
+        material: m.clone(),
+        values: Vec::new(),
+        error: metric.reported(mean),
+        relative: metric.reported(mean) / metric.reported(norm),
+        evaluations: 1,
+    }
+}
+
 impl CostFunction for &Problem<'_> {
     type Param = Vec<f64>;
     type Output = f64;
@@ -113,6 +127,18 @@ impl CostFunction for &Problem<'_> {
 
 /// Fits `model` to `samples` under `metric`.
 pub fn fit(model: &FitModel, samples: &[Sample], metric: Metric) -> FitResult {
+    fit_from(model, samples, metric, None)
+}
+
+/// [`fit`] with one more start: the free numbers of `also` (clamped into
+/// their bounds). `abc,start=published` starts from the published ABC
+/// parameters besides gonio's own starts.
+pub fn fit_from(
+    model: &FitModel,
+    samples: &[Sample],
+    metric: Metric,
+    also: Option<&Material>,
+) -> FitResult {
     let norm = metric.mean(samples, |_| Rgb::ZERO).max(f64::MIN_POSITIVE);
     let problem = Problem {
         model,
@@ -122,23 +148,45 @@ pub fn fit(model: &FitModel, samples: &[Sample], metric: Metric) -> FitResult {
         evaluations: AtomicUsize::new(0),
     };
     let x_of = |t: f64| (2.0 * t - 1.0).clamp(-1.0, 1.0).asin();
-    let start_at = |width: f64| -> Vec<f64> {
+    let start_at = |(width, extra): (f64, &[f64])| -> Vec<f64> {
         model
             .free
             .iter()
             .enumerate()
             .map(|(k, f)| {
-                x_of(match (Some(k) == model.width, f.shape) {
-                    (true, _) => width,
-                    (false, true) => SHAPE_START,
-                    (false, false) => COLOUR_START,
+                let scanned = model
+                    .scans
+                    .iter()
+                    .zip(extra)
+                    .find(|((ks, _), _)| ks.contains(&k));
+                x_of(if Some(k) == model.width {
+                    width
+                } else if let Some((_, &t)) = scanned {
+                    t
+                } else if f.shape {
+                    SHAPE_START
+                } else {
+                    COLOUR_START
                 })
             })
             .collect()
     };
     let mut best: Option<(Vec<f64>, f64)> = None;
-    for t in starts(model, |t| (&problem).cost(&start_at(t)).unwrap_or(f64::MAX)) {
-        let run = run(&problem, start_at(t));
+    for (w, extra) in starts(model, |w, e| {
+        (&problem).cost(&start_at((w, e))).unwrap_or(f64::MAX)
+    }) {
+        let run = run(&problem, start_at((w, &extra)));
+        if best.as_ref().is_none_or(|b| run.1 < b.1) {
+            best = Some(run);
+        }
+    }
+    if let Some(m) = also {
+        let x0: Vec<f64> = model
+            .free
+            .iter()
+            .map(|f| x_of(f.fraction(f.read(m))))
+            .collect();
+        let run = run(&problem, x0);
         if best.as_ref().is_none_or(|b| run.1 < b.1) {
             best = Some(run);
         }
@@ -165,19 +213,41 @@ pub fn fit(model: &FitModel, samples: &[Sample], metric: Metric) -> FitResult {
     }
 }
 
-/// The width fractions to start from: the best local minima of `cost`
-/// over the scan (one start at ½ for a model without a width).
-fn starts(model: &FitModel, cost: impl Fn(f64) -> f64) -> Vec<f64> {
+/// The starts: the width's fraction and the fractions of the
+/// [`FitModel::scans`], at the best local minima of `cost` over the
+/// width's scan, repeated at every combination of the other scans' fractions
+/// (abc: `A` and `C`, whose trades with `B` make valleys the width scan
+/// alone misses: a bright needle between the samples costs as little as
+/// no lobe); one start at ½ for a model without a width.
+fn starts(model: &FitModel, cost: impl Fn(f64, &[f64]) -> f64) -> Vec<(f64, Vec<f64>)> {
+    let mut combos: Vec<Vec<f64>> = vec![Vec::new()];
+    for (_, fractions) in &model.scans {
+        combos = combos
+            .into_iter()
+            .flat_map(|c| {
+                fractions.iter().map(move |&t| {
+                    let mut c = c.clone();
+                    c.push(t);
+                    c
+                })
+            })
+            .collect();
+    }
     if model.width.is_none() {
-        return vec![0.5];
+        return combos.into_iter().map(|c| (0.5, c)).collect();
     }
     let t: Vec<f64> = (0..=SCAN).map(|k| k as f64 / SCAN as f64).collect();
-    let c: Vec<f64> = t.iter().map(|&t| cost(t)).collect();
-    let mut minima: Vec<usize> = (0..t.len())
-        .filter(|&k| (k == 0 || c[k] <= c[k - 1]) && (k + 1 == t.len() || c[k] <= c[k + 1]))
-        .collect();
-    minima.sort_by(|&a, &b| c[a].total_cmp(&c[b]));
-    minima.into_iter().take(STARTS).map(|k| t[k]).collect()
+    let mut minima: Vec<((f64, Vec<f64>), f64)> = Vec::new();
+    for extra in &combos {
+        let c: Vec<f64> = t.iter().map(|&t| cost(t, extra)).collect();
+        minima.extend(
+            (0..t.len())
+                .filter(|&k| (k == 0 || c[k] <= c[k - 1]) && (k + 1 == t.len() || c[k] <= c[k + 1]))
+                .map(|k| ((t[k], extra.clone()), c[k])),
+        );
+    }
+    minima.sort_by(|a, b| a.1.total_cmp(&b.1));
+    minima.into_iter().take(STARTS).map(|(t, _)| t).collect()
 }
 
 /// One Nelder-Mead run from `x0`: its best point and cost.

@@ -100,9 +100,14 @@ pub struct MaterialData<'a> {
 }
 
 /// The measured tables of `scene` (built once per material and
-/// resolution, then cached: src/gpu/measured_tables.rs).
+/// resolution, then cached: src/gpu/measured_tables.rs), or its networks'
+/// weights (`shading.measured_mode = "network"`).
 pub fn measured_tables(scene: &Scene) -> MeasuredTables {
-    MeasuredTables::new(&scene.materials, scene.measured_table)
+    if scene.measured_network {
+        MeasuredTables::networks(&scene.materials)
+    } else {
+        MeasuredTables::new(&scene.materials, scene.measured_table)
+    }
 }
 
 /// A vertex stream, its material batches, and the scene bind group

@@ -34,6 +34,9 @@ pub struct MeasuredTables {
     /// (the BRDF, its first index in `data`).
     placements: Vec<(&'static MeasuredBrdf, u32)>,
     pub resolution: [u32; 3],
+    /// Each BRDF is its network's 675 weights (`Network::flat`), not a
+    /// table (`shading.measured_mode = "network"`).
+    pub network: bool,
 }
 
 impl MeasuredTables {
@@ -56,8 +59,35 @@ impl MeasuredTables {
         out
     }
 
+    /// The networks' weights of the measured materials among `materials`
+    /// (`shading.measured_mode = "network"`): per BRDF its 675 weights in
+    /// `Network::flat`'s order, rounded to `f32`, read by the network arm
+    /// of `shaders/brdf/measured.wgsl`. A MERL file has no network: the
+    /// scene loader refuses one in this mode; here it gets zeros.
+    pub fn networks(materials: &[Material]) -> Self {
+        use crate::material::measured::network::WEIGHT_COUNT;
+        let mut out = MeasuredTables {
+            network: true,
+            ..Default::default()
+        };
+        for m in materials {
+            let Some(brdf) = m.measured_brdf() else {
+                continue;
+            };
+            if out.placements.iter().any(|(b, _)| std::ptr::eq(*b, brdf)) {
+                continue;
+            }
+            out.placements.push((brdf, out.data.len() as u32));
+            match &brdf.source {
+                Source::Network(n) => out.data.extend(n.flat().iter().map(|&w| w as f32)),
+                Source::Table(_) => out.data.extend(std::iter::repeat_n(0.0, WEIGHT_COUNT)),
+            }
+        }
+        out
+    }
+
     /// `GpuMaterial.lobe` of a material of `brdf`: its first index (bits)
-    /// and the sample counts, `n_φ` negative for a φ_d axis over 2π (a
+    /// and the sample counts (zero for a network), `n_φ` negative for a φ_d axis over 2π (a
     /// network's table, [`phi_period`]).
     pub fn lobe(&self, brdf: &MeasuredBrdf) -> [f32; 4] {
         let first = self
@@ -65,6 +95,9 @@ impl MeasuredTables {
             .iter()
             .find(|(b, _)| std::ptr::eq(*b, brdf))
             .map_or(0, |(_, first)| *first);
+        if self.network {
+            return [f32::from_bits(first), 0.0, 0.0, 0.0];
+        }
         let [nh, nd, np] = self.resolution;
         let np = if phi_period(brdf) > PI {
             -(np as f32)

@@ -72,6 +72,12 @@ pub struct Material {
     pub base_color: Rgb,
     /// gltf-pbr's metallic `m` (glTF's `metallicFactor`), in [0, 1].
     pub metallic: f64,
+    /// abc's distribution `D = A / (1 + B(1 − cos θ_h))^C`: `A` per
+    /// channel (≥ 0, in 1/sr: the lobe's peak), `B` (> 0, the inverse
+    /// width in `1 − cos θ_h`) and `C` (> 0, the tail's power).
+    pub abc_a: Rgb,
+    pub abc_b: f64,
+    pub abc_c: f64,
     /// Emitted radiance [W/(m²·sr)], added to `L_o` (every model; glTF's
     /// `emissiveFactor` × `KHR_materials_emissive_strength`). It lights
     /// nothing else: gonio's lights are the scene's lights.
@@ -141,6 +147,9 @@ impl Material {
             measured: None,
             base_color: Rgb::splat(0.8),
             metallic: 0.0,
+            abc_a: Rgb::splat(10.0),
+            abc_b: 1000.0,
+            abc_c: 1.0,
             emission: Rgb::ZERO,
             textures: Vec::new(),
             sides: Sides::Unculled,

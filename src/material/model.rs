@@ -46,6 +46,11 @@ named_enum!(
         /// and glTF's *perceptual* roughness r (GGX α = r², unlike
         /// Cook-Torrance's `roughness`, which is α itself).
         GltfPbr = "gltf-pbr",
+        /// The ABC microfacet model of Löw, Kronander, Ynnerman, Unger 2012:
+        /// `k_d/π + k_s · F·D·G / (π (N·V)(N·I))` with the ABC distribution
+        /// `D = A / (1 + B(1 − cos θ_h))^C`, the V-groove G and the exact
+        /// dielectric F, the form of the published fits of the MERL materials.
+        Abc = "abc",
     }
 );
 

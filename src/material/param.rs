@@ -427,6 +427,58 @@ pub static PERCEPTUAL_ROUGHNESS: Param = Param {
     get: |m| Value::Scalar(m.roughness),
     set: |m, v| m.roughness = v.scalar(),
 };
+/// abc's `A`, per channel: the distribution's peak `D(0)` in 1/sr (Löw
+/// et al. 2012 fold the microfacet density's scale and the specular
+/// albedo into it; the published MERL fits span 0.08 to 5710).
+pub static ABC_A: Param = Param {
+    key: "abc_a",
+    label: "A (R G B)",
+    kind: Kind::Color,
+    range: Range::NonNegative,
+    widget: Widget::Drag {
+        speed: 0.1,
+        min: 0.0,
+        max: 1e6,
+    },
+    stored: true,
+    samples: &[0.0, 0.1, 1.0, 100.0, 5000.0],
+    get: |m| Value::Color(m.abc_a),
+    set: |m, v| m.abc_a = v.color(),
+};
+/// abc's `B`: the inverse width of the lobe in `1 − cos θ_h` (the
+/// published MERL fits span 11 to 8.1e6).
+pub static ABC_B: Param = Param {
+    key: "abc_b",
+    label: "B",
+    kind: Kind::Scalar,
+    range: Range::Positive,
+    widget: Widget::Slider {
+        min: 1.0,
+        max: 1e8,
+        scale: Scale::Log,
+    },
+    stored: true,
+    samples: &[1.0, 10.0, 1e3, 1e5, 1e7],
+    get: |m| Value::Scalar(m.abc_b),
+    set: |m, v| m.abc_b = v.scalar(),
+};
+/// abc's `C`: the power of the tail, `D ∝ (1 − cos θ_h)^−C` far from the
+/// peak (the published MERL fits span 0.024 to 2.7).
+pub static ABC_C: Param = Param {
+    key: "abc_c",
+    label: "C",
+    kind: Kind::Scalar,
+    range: Range::Positive,
+    widget: Widget::Slider {
+        min: 0.01,
+        max: 10.0,
+        scale: Scale::Log,
+    },
+    stored: true,
+    samples: &[0.02, 0.1, 0.5, 1.0, 2.0, 3.0],
+    get: |m| Value::Scalar(m.abc_c),
+    set: |m, v| m.abc_c = v.scalar(),
+};
 /// Emitted radiance [W/(m²·sr)], every model's: it adds to `L_o`.
 pub static EMISSION: Param = Param {
     key: "emission",

@@ -578,6 +578,7 @@ mod tests {
             ambient: Rgb::ZERO,
             environment: crate::scene::Environment::uniform(Rgb::ZERO),
             measured_table: crate::material::measured::DEFAULT_TABLE_RESOLUTION,
+            measured_network: false,
             images: Vec::new(),
         }
     }

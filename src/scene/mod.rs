@@ -88,6 +88,11 @@ pub struct Scene {
     /// measured materials from (`shading.measured_table`;
     /// src/gpu/measured_tables.rs). The reference evaluates the source.
     pub measured_table: [u32; 3],
+    /// `shading.measured_mode = "network"`: the GPU evaluates each
+    /// measured material's Neural-BRDF network per pixel (its 675 weights
+    /// in the measured buffer) instead of a table; `false` ("table", the
+    /// default): the table of `measured_table`.
+    pub measured_network: bool,
     /// The images materials' textures read (`MaterialTexture::image`
     /// indexes this); shared, so cloning a scene does not copy texels.
     pub images: Vec<std::sync::Arc<texture::Image>>,

@@ -80,6 +80,10 @@ pub enum Feature {
     Culling,
     /// Some mesh has vertex colours (glTF `COLOR_0`; `vertex_colors`).
     VertexColors,
+    /// Measured materials evaluate their Neural-BRDF network per pixel
+    /// instead of looking up a table (`shading.measured_mode = "network"`;
+    /// `measured_network`).
+    MeasuredNetwork,
 }
 
 impl Feature {
@@ -110,6 +114,7 @@ impl Feature {
             TwoSided,
             Culling,
             VertexColors,
+            MeasuredNetwork,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -153,6 +158,7 @@ impl Feature {
             Feature::TwoSided => "two_sided",
             Feature::Culling => "culling",
             Feature::VertexColors => "vertex_colors",
+            Feature::MeasuredNetwork => "measured_network",
         };
         flag.into()
     }

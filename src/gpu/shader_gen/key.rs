@@ -44,6 +44,10 @@ pub struct ShaderKey {
     pub culling: bool,
     /// Some mesh has vertex colours (feature `vertex_colors`; location 9).
     pub vertex_colors: bool,
+    /// Measured materials evaluate their network in WGSL (feature
+    /// `measured_network`, `shading.measured_mode = "network"`; only with
+    /// a measured variant).
+    pub measured_network: bool,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -118,8 +122,10 @@ impl ShaderKey {
                     .iter()
                     .any(|m| scene.materials[m.material].sides == crate::material::Sides::Front),
                 vertex_colors: scene.meshes.iter().any(|m| !m.colors.is_empty()),
+                measured_network: scene.measured_network,
             };
         key.arrays.measured = key.has_measured();
+        key.measured_network &= key.has_measured();
         key
     }
 
@@ -239,6 +245,9 @@ impl ShaderKey {
         }
         if self.vertex_colors {
             f.push(Feature::VertexColors);
+        }
+        if self.measured_network {
+            f.push(Feature::MeasuredNetwork);
         }
         f
     }

@@ -104,6 +104,10 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 two_sided: false,
                 culling: false,
                 vertex_colors: false,
+                // The network arm of measured.wgsl in Phong keys, the
+                // table's in the others.
+                measured_network: shading == ShadingMode::Phong
+                    && v.model == crate::material::ReflectanceModel::Measured,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -131,6 +135,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     two_sided: false,
                     culling: false,
                     vertex_colors: false,
+                    measured_network: false,
                 });
             }
         }
@@ -162,6 +167,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 two_sided: uniform,
                 culling: uniform,
                 vertex_colors: uniform,
+                measured_network: uniform,
             });
         }
     }

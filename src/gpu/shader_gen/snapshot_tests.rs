@@ -84,6 +84,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         two_sided: false,
         culling: false,
         vertex_colors: false,
+        measured_network: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -112,6 +113,7 @@ fn snapshot_everything() {
         two_sided: false,
         culling: false,
         vertex_colors: false,
+        measured_network: false,
     };
     check_snapshot("everything", &compose(&key));
 }

@@ -5,6 +5,7 @@
 //! [`eval`] is the CPU twin of the per-variant `brdf_*` functions that
 //! `gpu::shader_gen` generates: the same terms, called in the same order.
 
+pub mod abc;
 pub mod fresnel;
 pub mod gltf_pbr;
 pub mod lambert;
@@ -71,6 +72,13 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
             metallic,
             roughness,
         } => return gltf_pbr::gltf_pbr(base_color, metallic, roughness, n, wi, wo),
+        Specular::Abc {
+            a,
+            b,
+            c,
+            eta_i,
+            eta_t,
+        } => a * abc::abc_specular(b, c, eta_i, eta_t, n, wi, wo),
     };
     diffuse + brdf.k_s * specular
 }

@@ -65,6 +65,16 @@ pub enum Specular {
         metallic: f64,
         roughness: f64,
     },
+    /// The ABC model (`abc::abc_specular`, Löw et al. 2012): `a` is the
+    /// distribution's peak `A` per channel, `b`, `c` its shape, the
+    /// dielectric Fresnel `η_i → η_t`.
+    Abc {
+        a: Rgb,
+        b: f64,
+        c: f64,
+        eta_i: f64,
+        eta_t: f64,
+    },
 }
 
 /// Cook-Torrance's `D·G·F / (denominator (N·V)(N·I))` (lecture:
@@ -365,6 +375,20 @@ impl Brdf {
                 metallic,
                 roughness,
             } => (p.base_color, p.metallic, p.roughness) = (base_color, metallic, roughness),
+            // The GPU's k_s is the lobe's whole weight k_s·A (a k_s texture
+            // multiplies it per pixel as it multiplies k_s on the CPU);
+            // lobe = (B, C, 0, 0).
+            Specular::Abc {
+                a,
+                b,
+                c,
+                eta_i,
+                eta_t,
+            } => {
+                p.k_s = self.k_s * a;
+                p.lobe = [b, c, 0.0, 0.0];
+                (p.eta_i, p.eta_t) = (eta_i, eta_t);
+            }
         }
         p
     }

@@ -91,6 +91,7 @@ pub fn assemble(
             .parse()
             .map_err(|e| bad(format!("image.tone_map: {e}")))?,
     };
+    let measured_network = measured_network(&file, &materials).map_err(bad)?;
     let mut scene = Scene {
         width,
         height,
@@ -106,12 +107,42 @@ pub fn assemble(
         ambient,
         environment,
         measured_table: measured_table(&file).map_err(bad)?,
+        measured_network,
         images: gltf_files.images.images.clone(),
     };
     // A scene-file normal map on a mesh without tangents (a glTF mesh
     // given a scene-file material): MikkTSpace, in world space.
     crate::scene::tangents::generate_where_needed(&mut scene);
     Ok((scene, light_setup))
+}
+
+/// `shading.measured_mode`: "table" (the default) or "network" (the GPU
+/// evaluates each measured material's Neural-BRDF network; a MERL file
+/// has no network, so a scene with one is refused in that mode).
+fn measured_network(
+    file: &SceneFile,
+    materials: &[crate::material::Material],
+) -> std::result::Result<bool, String> {
+    match file.shading.measured_mode.as_deref() {
+        None | Some("table") => Ok(false),
+        Some("network") => {
+            if let Some(m) = materials.iter().find(|m| {
+                m.measured_brdf().is_some_and(|b| {
+                    !matches!(b.source, crate::material::measured::Source::Network(_))
+                })
+            }) {
+                return Err(format!(
+                    "shading.measured_mode = \"network\": material `{}` is a MERL table ({}), which has no network to evaluate; use measured_mode = \"table\" or a built-in material",
+                    m.name,
+                    m.measured_brdf().map_or("", |b| b.name.as_str())
+                ));
+            }
+            Ok(true)
+        }
+        Some(other) => Err(format!(
+            "shading.measured_mode = \"{other}\": expected \"table\" (look-up in a table of shading.measured_table samples) or \"network\" (the Neural-BRDF network evaluated per pixel)"
+        )),
+    }
 }
 
 /// `shading.measured_table`: the GPU's measured-table resolution, each

@@ -107,6 +107,10 @@ pub struct ShadingSection {
     /// (default `[90, 90, 180]`, MERL's own).
     #[serde(default)]
     pub measured_table: Option<[u32; 3]>,
+    /// How the GPU evaluates measured materials: "table" (default) or
+    /// "network".
+    #[serde(default)]
+    pub measured_mode: Option<String>,
 }
 
 /// One `[[objects]]` entry: a glTF file or a generated shape.
