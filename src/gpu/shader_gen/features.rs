@@ -63,6 +63,9 @@ pub enum Feature {
     /// The environment lights through the whole BRDF with N sampled
     /// directions (`environment_sampled`).
     EnvironmentSampled,
+    /// The environment's glossy part by the split-sum approximation
+    /// (`environment_prefiltered`).
+    EnvironmentPrefiltered,
     /// Some material has textures: UVs in the vertex stream, bind group 2
     /// and shaders/textures.wgsl (`textures`).
     Textures,
@@ -101,6 +104,7 @@ impl Feature {
             Display,
             Environment,
             EnvironmentSampled,
+            EnvironmentPrefiltered,
             Textures,
             NormalMap,
             TwoSided,
@@ -143,6 +147,7 @@ impl Feature {
             Feature::Display => "display",
             Feature::Environment => "environment",
             Feature::EnvironmentSampled => "environment_sampled",
+            Feature::EnvironmentPrefiltered => "environment_prefiltered",
             Feature::Textures => "textures",
             Feature::NormalMap => "normal_map",
             Feature::TwoSided => "two_sided",
