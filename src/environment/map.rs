@@ -66,7 +66,7 @@ pub struct MapSettings {
     /// (`environment.samples`, default 64).
     pub samples: u32,
     /// Width of each level of [`Specular::Prefiltered`]'s stack
-    /// (`environment.prefilter_size`, default 128; height half of it).
+    /// (`environment.prefilter_size`, default 64; height half of it).
     pub prefilter_size: u32,
 }
 

@@ -45,10 +45,10 @@ use std::f64::consts::{FRAC_1_PI, PI, TAU};
 pub const LEVELS: u32 = 6;
 
 /// Half vectors per prefiltered texel.
-pub const PREFILTER_SAMPLES: u32 = 256;
+pub const PREFILTER_SAMPLES: u32 = 128;
 
 /// Default `environment.prefilter_size` (level width in texels).
-pub const DEFAULT_SIZE: u32 = 128;
+pub const DEFAULT_SIZE: u32 = 64;
 
 /// The prefiltered stack: level `k` is rows `k·height .. (k+1)·height`.
 #[derive(Debug, PartialEq)]

@@ -323,7 +323,7 @@ pub struct EnvironmentSection {
     pub specular: Option<String>,
     /// Directions per shading point of `specular = "sampled"` (default 64).
     pub samples: Option<i64>,
-    /// Level width of `specular = "prefiltered"`'s stack (default 128).
+    /// Level width of `specular = "prefiltered"`'s stack (default 64).
     pub prefilter_size: Option<i64>,
 }
 
