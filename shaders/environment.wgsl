@@ -20,7 +20,7 @@ struct EnvironmentUniform {
     // (cos θ, sin θ) of environment.rotation_deg.
     rotation: vec2<f32>,
     samples: u32,          // environment.samples (sampled mode)
-    _pad: u32,
+    prefilter_width: u32,  // a level's width (prefiltered mode; height half)
 }
 
 @group(3) @binding(0) var<uniform> environment: EnvironmentUniform;
@@ -144,5 +144,117 @@ fn environment_sampled(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<
         sum += f_r(m, wi, wo, frame) * environment_map_radiance(wi);
     }
     return sum * (PI / f32(n));
+}
+#endif
+
+#if environment_prefiltered
+// Glossy reflection by the split-sum approximation (Karis 2013):
+// L̃(R, α) · (F0·A(μ, α) + B(μ, α)), the map prefiltered by GGX lobes
+// (LEVELS lat-long levels stacked in one texture, level k at √α = k/5)
+// and the environment BRDF table. Twins: src/environment/prefiltered.rs
+// and src/environment/dfg.rs (tables made there, on the CPU).
+
+// prefiltered::LEVELS
+const PREFILTER_LEVELS: i32 = 6;
+// dfg::SIZE
+const DFG_SIZE: i32 = 32;
+
+// Levels stacked by rows, Rgba32Float (filtered here, as on the CPU).
+@group(3) @binding(2) var environment_prefiltered_texels: texture_2d<f32>;
+// [A, B] at nodes (√μ, √α) = (i, j)/(DFG_SIZE − 1), in .xy.
+@group(3) @binding(3) var environment_dfg_table: texture_2d<f32>;
+
+// Bilinear lookup of d (the file's frame) in level k. Twin:
+// Prefiltered::level_lookup.
+fn prefiltered_level_lookup(d: vec3<f32>, k: i32) -> vec3<f32> {
+    let uv = latlong_uv(d);
+    let w = i32(environment.prefilter_width);
+    let h = w / 2;
+    let x = uv.x * f32(w) - 0.5;
+    let y = uv.y * f32(h) - 0.5;
+    let x0 = floor(x);
+    let y0 = floor(y);
+    let fx = x - x0;
+    let fy = y - y0;
+    let c0 = ((i32(x0) % w) + w) % w;
+    let c1 = ((i32(x0) + 1) % w + w) % w;
+    let r0 = clamp(i32(y0), 0, h - 1) + k * h;
+    let r1 = clamp(i32(y0) + 1, 0, h - 1) + k * h;
+    let t = environment_prefiltered_texels;
+    let top = textureLoad(t, vec2<i32>(c0, r0), 0).rgb * (1.0 - fx) + textureLoad(t, vec2<i32>(c1, r0), 0).rgb * fx;
+    let bottom = textureLoad(t, vec2<i32>(c0, r1), 0).rgb * (1.0 - fx) + textureLoad(t, vec2<i32>(c1, r1), 0).rgb * fx;
+    return top * (1.0 - fy) + bottom * fy;
+}
+
+// L̃(d, α), linear between the levels around √α. Twin:
+// Prefiltered::lookup.
+fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
+    let f = sqrt(clamp(alpha, 0.0, 1.0)) * f32(PREFILTER_LEVELS - 1);
+    let k = min(floor(f), f32(PREFILTER_LEVELS - 2));
+    let t = f - k;
+    return prefiltered_level_lookup(d, i32(k)) * (1.0 - t) + prefiltered_level_lookup(d, i32(k) + 1) * t;
+}
+
+// [A, B] at (μ, α), bilinear in (√μ, √α) between the nodes. Twin:
+// DfgTable::lookup.
+fn environment_dfg(mu: f32, alpha: f32) -> vec2<f32> {
+    let last = f32(DFG_SIZE - 1);
+    let x = sqrt(clamp(mu, 0.0, 1.0)) * last;
+    let y = sqrt(clamp(alpha, 0.0, 1.0)) * last;
+    let x0 = min(floor(x), last - 1.0);
+    let y0 = min(floor(y), last - 1.0);
+    let fx = x - x0;
+    let fy = y - y0;
+    let i = i32(x0);
+    let j = i32(y0);
+    let t = environment_dfg_table;
+    let lo = textureLoad(t, vec2<i32>(i, j), 0).xy * (1.0 - fx) + textureLoad(t, vec2<i32>(i + 1, j), 0).xy * fx;
+    let hi = textureLoad(t, vec2<i32>(i, j + 1), 0).xy * (1.0 - fx) + textureLoad(t, vec2<i32>(i + 1, j + 1), 0).xy * fx;
+    return lo * (1.0 - fy) + hi * fy;
+}
+
+struct PrefilteredTerms {
+    alpha: f32,
+    f0: vec3<f32>,
+    weight: vec3<f32>,
+}
+
+// (α, F0, weight) of the split for m: gltf-pbr (α = r², F0 = mix(0.04,
+// b, m)); Cook-Torrance as GGX of a matched α (prefiltered::ggx_alpha),
+// F0 = F(1), weight
+// k_s·4/c; 0 for the other models. Selects (UNIFORM_BRANCHES in
+// brdf/phong.wgsl). Twin: prefiltered::specular_terms.
+fn prefiltered_terms(m: Material) -> PrefilteredTerms {
+    let model = brdf_model(m);
+    var t = PrefilteredTerms(0.0, vec3<f32>(0.0), vec3<f32>(0.0));
+    #if cook-torrance
+    let ct = model == MODEL_COOK_TORRANCE;
+    // Blinn's exponent as a Beckmann slope √(2/(e + 2)) (blinn_e is 0
+    // for the other distributions, whose roughness is their m or α).
+    let ct_alpha = select(m.roughness, sqrt(2.0 / (m.blinn_e + 2.0)), m.blinn_e > 0.0);
+    t.alpha = select(t.alpha, ct_alpha, ct);
+    t.f0 = select(t.f0, fresnel(m, 1.0), ct);
+    t.weight = select(t.weight, m.k_s * (4.0 / denominator(m)), ct);
+    #endif
+    #if gltf-pbr
+    let pbr = model == MODEL_GLTF_PBR;
+    t.alpha = select(t.alpha, m.roughness * m.roughness, pbr);
+    t.f0 = select(t.f0, vec3<f32>(0.04) * (1.0 - m.metallic) + m.base_color * m.metallic, pbr);
+    t.weight = select(t.weight, vec3<f32>(1.0), pbr);
+    #endif
+    return t;
+}
+
+// Diffuse by SH plus the prefiltered specular. Twin: prefiltered::estimate.
+fn environment_prefiltered(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    let n = frame.n;
+    let diffuse = environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
+    let cos_o = dot(n, wo);
+    let t = prefiltered_terms(m);
+    let ab = environment_dfg(cos_o, t.alpha);
+    let r = mirror_direction(wo, n);
+    let l = environment.scale * prefiltered_lookup(environment_to_map(r), t.alpha);
+    let specular = t.weight * (t.f0 * ab.x + ab.y) * l;
+    return diffuse + select(vec3<f32>(0.0), specular, cos_o > 0.0);
 }
 #endif

@@ -80,6 +80,9 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     }
     #if environment_sampled
     radiance += environment_sampled(m, wo, frame);
+    #elif environment_prefiltered
+    // The diffuse term plus the split-sum glossy term (Karis 2013).
+    radiance += environment_prefiltered(m, wo, frame);
     #elif environment
     radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
     #endif

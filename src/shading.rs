@@ -52,7 +52,16 @@ pub fn reflected_radiance(
             (Specular::Sampled, ReferenceDiffuse::Sh) => {
                 sampled::estimate(map, material, frame, wo)
             }
-            (Specular::Sampled, ReferenceDiffuse::Integrated) => {
+            (Specular::Prefiltered, ReferenceDiffuse::Sh) => {
+                crate::environment::prefiltered::estimate(
+                    map,
+                    &map.prefiltered(),
+                    material,
+                    frame,
+                    wo,
+                )
+            }
+            (Specular::Sampled | Specular::Prefiltered, ReferenceDiffuse::Integrated) => {
                 sampled::integrated(map, &map.data.nodes, material, frame, wo)
             }
         };

@@ -268,7 +268,8 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
     knob("area_samples", samples, "no area light in the scene file");
 
     // How the environment lights the surfaces: the diffuse term by SH
-    // alone, or the whole BRDF with N directions (the truth integrates
+    // alone, the whole BRDF with N directions, or the split-sum glossy
+    // term at three stack sizes (the truth integrates
     // the whole BRDF: measure::truth).
     let specular = match &base.environment.map {
         Some(map) => {
@@ -287,6 +288,16 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
                         format!("environment.samples={n}"),
                     ],
                     s.specular == Specular::Sampled && s.samples == n,
+                ));
+            }
+            for size in [64u32, 128, 256] {
+                v.push((
+                    format!("prefiltered {size}"),
+                    vec![
+                        "environment.specular=prefiltered".into(),
+                        format!("environment.prefilter_size={size}"),
+                    ],
+                    s.specular == Specular::Prefiltered && s.prefilter_size == size,
                 ));
             }
             v
@@ -500,8 +511,9 @@ mod tests {
             .iter()
             .filter(|c| c.knob == "environment_specular")
             .collect();
-        // The base (SH diffuse) is not repeated: the three sampled ones.
-        assert_eq!(settings.len(), 3, "{settings:?}");
+        // The base (SH diffuse) is not repeated: the three sampled and the
+        // three prefiltered ones.
+        assert_eq!(settings.len(), 6, "{settings:?}");
         for c in settings {
             let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
             let scene =

@@ -200,6 +200,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         vertex_shadow_coords: false,
         environment: false,
         environment_sampled: false,
+        environment_prefiltered: false,
         texture_slots: 0,
         normal_maps: false,
         two_sided: false,
@@ -218,6 +219,7 @@ pub fn specialized_key(scene: &Scene) -> ShaderKey {
     key.shadows = Default::default();
     key.environment = false;
     key.environment_sampled = false;
+    key.environment_prefiltered = false;
     key.texture_slots = 0;
     key
 }

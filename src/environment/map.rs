@@ -7,6 +7,7 @@
 //! (`environment_lookup` in `shaders/environment.wgsl`), so a mirror or
 //! the background differ between the renderers only by f32 rounding.
 
+use super::prefiltered::Prefiltered;
 use super::quadrature::Truth;
 use super::{latlong, sh};
 use crate::scene::Rgb;
@@ -64,6 +65,9 @@ pub struct MapSettings {
     /// Directions per shading point of [`Specular::Sampled`]
     /// (`environment.samples`, default 64).
     pub samples: u32,
+    /// Width of each level of [`Specular::Prefiltered`]'s stack
+    /// (`environment.prefilter_size`, default 64; height half of it).
+    pub prefilter_size: u32,
 }
 
 /// How the environment lights surfaces (`environment.specular`).
@@ -75,6 +79,10 @@ pub enum Specular {
     /// The whole BRDF integrated with `samples` directions per shading
     /// point (`"sampled"`, [`super::sampled`]).
     Sampled,
+    /// Diffuse by SH, glossy by the split-sum approximation: a prefiltered
+    /// map times the environment BRDF (`"prefiltered"`,
+    /// [`super::prefiltered`]).
+    Prefiltered,
 }
 
 impl Specular {
@@ -83,12 +91,13 @@ impl Specular {
         match self {
             Specular::None => "none",
             Specular::Sampled => "sampled",
+            Specular::Prefiltered => "prefiltered",
         }
     }
 
     /// Parses the scene-file spelling.
     pub fn parse(s: &str) -> Option<Self> {
-        [Specular::None, Specular::Sampled]
+        [Specular::None, Specular::Sampled, Specular::Prefiltered]
             .into_iter()
             .find(|m| m.name() == s)
     }
@@ -103,6 +112,7 @@ impl Default for MapSettings {
             rotation_deg: 0.0,
             specular: Specular::None,
             samples: 64,
+            prefilter_size: super::prefiltered::DEFAULT_SIZE,
         }
     }
 }
@@ -120,6 +130,20 @@ pub struct MapData {
     pub truth: Truth,
     /// The texel quadrature's nodes (the sampled mode's truth).
     pub nodes: Vec<super::quadrature::Node>,
+    /// Prefiltered stacks made so far, by size (made on first use).
+    pub prefiltered: PrefilteredCache,
+}
+
+/// The prefiltered stacks of a map, made when a scene first asks for a
+/// size (loading a map costs nothing extra in the other modes). Equal
+/// whatever it holds: it is derived from the texels.
+#[derive(Debug, Default)]
+pub struct PrefilteredCache(std::sync::Mutex<Vec<Arc<Prefiltered>>>);
+
+impl PartialEq for PrefilteredCache {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 /// An environment map with its settings. The pixels are shared: changing
@@ -162,6 +186,7 @@ impl MapData {
             texels,
             truth,
             nodes,
+            prefiltered: PrefilteredCache::default(),
         })
     }
 
@@ -241,6 +266,25 @@ impl EnvironmentMap {
     /// The integrated irradiance `scale · ∫ L max(0, n·ω) dω`.
     pub fn irradiance_integrated(&self, n: DVec3) -> Rgb {
         self.data.truth.irradiance(self.to_map(n)) * self.settings.scale
+    }
+
+    /// The prefiltered stack of `settings.prefilter_size` (made on the
+    /// first call for that size, then shared).
+    pub fn prefiltered(&self) -> Arc<Prefiltered> {
+        let size = self.settings.prefilter_size;
+        let mut cache = self
+            .data
+            .prefiltered
+            .0
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        if let Some(p) = cache.iter().find(|p| p.width == size) {
+            return p.clone();
+        }
+        let d = &self.data;
+        let p = Arc::new(Prefiltered::new(d.width, d.height, &d.texels, size));
+        cache.push(p.clone());
+        p
     }
 
     /// The irradiance the CPU reference uses (`settings.reference`).

@@ -14,13 +14,18 @@
 //!   convolution of Ramamoorthi & Hanrahan (2001), evaluation.
 //! * [`sampled`]: the whole BRDF integrated with N directions
 //!   (`environment.specular = "sampled"`) and its quadrature truth.
+//! * [`prefiltered`]: glossy reflection by the split-sum approximation
+//!   (`environment.specular = "prefiltered"`), with the environment BRDF
+//!   table of [`dfg`].
 //! * [`sh_error`]: SH irradiance error vs order against the truth.
 //! * [`quadrature`]: the integrated truth `E(n) = ∫ L(ω) max(0, n·ω) dω`
 //!   the reference uses and SH is measured against.
 
+pub mod dfg;
 pub mod latlong;
 pub mod load;
 pub mod map;
+pub mod prefiltered;
 pub mod quadrature;
 pub mod sampled;
 pub mod sh;

@@ -8,7 +8,9 @@
 use super::bind_groups::SceneLayouts;
 use super::pipelines::DEPTH_FORMAT;
 use super::shader_gen::{self, Output};
-use crate::environment::map::MapData;
+use crate::environment::dfg;
+use crate::environment::map::{MapData, Specular};
+use crate::environment::prefiltered::{self, Prefiltered};
 use crate::environment::{EnvironmentMap, sh};
 use crate::scene::Scene;
 use crate::{Error, Result};
@@ -31,7 +33,8 @@ pub struct GpuEnvironmentUniform {
     pub rotation: [f32; 2],
     /// Directions per shading point of the sampled mode.
     pub samples: u32,
-    pub _pad: u32,
+    /// A level's width of the prefiltered stack (prefiltered mode).
+    pub prefilter_width: u32,
 }
 
 impl GpuEnvironmentUniform {
@@ -59,9 +62,101 @@ impl GpuEnvironmentUniform {
                 [cos as f32, sin as f32]
             },
             samples: map.settings.samples.max(1),
-            _pad: 0,
+            prefilter_width: map.settings.prefilter_size,
         }
     }
+}
+
+/// A non-filterable float 2D texture at `binding` (the prefiltered stack,
+/// 2, and the environment BRDF table, 3: both bound in every mode, 1 × 1
+/// where the mode does not read them).
+fn texture_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// An `Rgba32Float` texture of `width × height` texels `rgba`, uploaded.
+fn float_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    width: u32,
+    height: u32,
+    rgba: &[[f32; 4]],
+) -> wgpu::TextureView {
+    let size = wgpu::Extent3d {
+        width,
+        height,
+        depth_or_array_layers: 1,
+    };
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba32Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    queue.write_texture(
+        texture.as_image_copy(),
+        bytemuck::cast_slice(rgba),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(16 * width),
+            rows_per_image: None,
+        },
+        size,
+    );
+    texture.create_view(&Default::default())
+}
+
+/// The prefiltered stack and the environment BRDF table of `map` when its
+/// mode reads them, else 1 × 1 stand-ins.
+fn split_sum_textures(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    map: &EnvironmentMap,
+) -> (
+    Option<Arc<Prefiltered>>,
+    wgpu::TextureView,
+    wgpu::TextureView,
+) {
+    if map.settings.specular != Specular::Prefiltered {
+        let zero = [[0.0f32; 4]];
+        return (
+            None,
+            float_texture(device, queue, "gonio no prefiltered map", 1, 1, &zero),
+            float_texture(device, queue, "gonio no DFG table", 1, 1, &zero),
+        );
+    }
+    let p = map.prefiltered();
+    let rgba: Vec<[f32; 4]> = p.texels.iter().map(|t| [t[0], t[1], t[2], 0.0]).collect();
+    let stack = float_texture(
+        device,
+        queue,
+        "gonio prefiltered map",
+        p.width,
+        p.height * prefiltered::LEVELS,
+        &rgba,
+    );
+    let table: Vec<[f32; 4]> = dfg::table()
+        .entries
+        .iter()
+        .map(|e| [e[0], e[1], 0.0, 0.0])
+        .collect();
+    let size = dfg::SIZE as u32;
+    let dfg = float_texture(device, queue, "gonio DFG table", size, size, &table);
+    (Some(p), stack, dfg)
 }
 
 /// Group 3's layout and the scene pipeline layouts that include it.
@@ -107,6 +202,8 @@ impl EnvironmentLayouts {
                     },
                     count: None,
                 },
+                texture_entry(2, stage),
+                texture_entry(3, stage),
             ],
         });
         let plain = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -223,6 +320,8 @@ pub fn background_pipeline(
 pub struct GpuEnvironment {
     /// The texels uploaded (to tell a new map from new settings).
     data: Arc<MapData>,
+    /// The prefiltered stack uploaded, if the mode reads one.
+    prefiltered: Option<Arc<Prefiltered>>,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     background: wgpu::RenderPipeline,
@@ -286,6 +385,7 @@ impl GpuEnvironment {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let view = texture.create_view(&Default::default());
+        let (prefiltered, stack, table) = split_sum_textures(device, queue, map);
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("gonio environment"),
             layout: &layouts.group,
@@ -298,23 +398,36 @@ impl GpuEnvironment {
                     binding: 1,
                     resource: wgpu::BindingResource::TextureView(&view),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&stack),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&table),
+                },
             ],
         });
         Ok(Some(GpuEnvironment {
             data: data.clone(),
+            prefiltered,
             uniform,
             bind_group,
             background,
         }))
     }
 
-    /// Whether `scene` has this map's texels (so [`Self::write`] suffices).
+    /// Whether `scene` has this map's texels and, in the prefiltered
+    /// mode, this stack (so [`Self::write`] suffices).
     pub fn holds(&self, scene: &Scene) -> bool {
-        scene
-            .environment
-            .map
-            .as_ref()
-            .is_some_and(|m| Arc::ptr_eq(&m.data, &self.data))
+        scene.environment.map.as_ref().is_some_and(|m| {
+            Arc::ptr_eq(&m.data, &self.data)
+                && match (&self.prefiltered, m.settings.specular) {
+                    (Some(p), Specular::Prefiltered) => Arc::ptr_eq(p, &m.prefiltered()),
+                    (None, Specular::Prefiltered) => false,
+                    (_, _) => true,
+                }
+        })
     }
 
     /// Writes the settings and the camera of `scene` (which [`Self::holds`]).

@@ -66,6 +66,9 @@ pub enum Feature {
     /// The environment lights through the whole BRDF with N sampled
     /// directions (`environment_sampled`).
     EnvironmentSampled,
+    /// The environment's glossy part by the split-sum approximation
+    /// (`environment_prefiltered`).
+    EnvironmentPrefiltered,
     /// Some material has textures: UVs in the vertex stream, bind group 2
     /// and shaders/textures.wgsl (`textures`).
     Textures,
@@ -109,6 +112,7 @@ impl Feature {
             RadianceBits,
             Environment,
             EnvironmentSampled,
+            EnvironmentPrefiltered,
             Textures,
             NormalMap,
             TwoSided,
@@ -153,6 +157,7 @@ impl Feature {
             Feature::RadianceBits => "radiance_bits",
             Feature::Environment => "environment",
             Feature::EnvironmentSampled => "environment_sampled",
+            Feature::EnvironmentPrefiltered => "environment_prefiltered",
             Feature::Textures => "textures",
             Feature::NormalMap => "normal_map",
             Feature::TwoSided => "two_sided",

@@ -31,6 +31,9 @@ pub struct ShaderKey {
     /// It lights through the whole BRDF, sampled
     /// (`Feature::EnvironmentSampled`).
     pub environment_sampled: bool,
+    /// Its glossy part by the split-sum approximation
+    /// (`Feature::EnvironmentPrefiltered`).
+    pub environment_prefiltered: bool,
     /// Texture slots read per pixel: the most textures of one material the
     /// scene draws (0: no texture code; `crate::gpu::textures`).
     pub texture_slots: u32,
@@ -110,6 +113,9 @@ impl ShaderKey {
                 environment: scene.environment.map.is_some(),
                 environment_sampled: scene.environment.map.as_ref().is_some_and(|m| {
                     m.settings.specular == crate::environment::map::Specular::Sampled
+                }),
+                environment_prefiltered: scene.environment.map.as_ref().is_some_and(|m| {
+                    m.settings.specular == crate::environment::map::Specular::Prefiltered
                 }),
                 texture_slots: crate::gpu::textures::slot_count(scene),
                 normal_maps: crate::gpu::textures::has_normal_maps(scene),
@@ -229,6 +235,9 @@ impl ShaderKey {
             f.push(Feature::Environment);
             if self.environment_sampled {
                 f.push(Feature::EnvironmentSampled);
+            }
+            if self.environment_prefiltered {
+                f.push(Feature::EnvironmentPrefiltered);
             }
         }
         if self.texture_slots > 0 {

@@ -99,6 +99,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 vertex_shadow_coords: false,
                 environment: i % 3 == 0,
                 environment_sampled: i % 6 == 0,
+                environment_prefiltered: i % 6 == 3,
                 texture_slots: 0,
                 normal_maps: false,
                 two_sided: false,
@@ -130,6 +131,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     vertex_shadow_coords: pcf,
                     environment: pcf,
                     environment_sampled: false,
+                    environment_prefiltered: false,
                     texture_slots: 0,
                     normal_maps: false,
                     two_sided: false,
@@ -157,6 +159,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 vertex_shadow_coords: false,
                 environment: uniform,
                 environment_sampled: uniform,
+                environment_prefiltered: false,
                 // Textures with the uber shader: all slots, all models.
                 texture_slots: if uniform {
                     crate::gpu::textures::MAX_TEXTURE_SLOTS as u32

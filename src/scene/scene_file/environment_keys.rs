@@ -1,5 +1,5 @@
 //! `[environment]`'s map keys: `map`, `scale`, `sh_order`, `reference`,
-//! `rotation_deg`, `specular`, `samples` (the contract's `[environment]`
+//! `rotation_deg`, `specular`, `samples`, `prefilter_size` (the contract's `[environment]`
 //! section; gonio's keys beyond `map` and `scale` extend it). Errors name
 //! the key.
 
@@ -11,6 +11,10 @@ use std::sync::Arc;
 
 /// Most directions per shading point `environment.samples` takes.
 pub const MAX_SAMPLES: i64 = 4096;
+
+/// The range of `environment.prefilter_size` (a level's width in texels).
+pub const MIN_PREFILTER_SIZE: i64 = 8;
+pub const MAX_PREFILTER_SIZE: i64 = 2048;
 
 /// The map `e` names, loaded relative to `base_dir` with its settings;
 /// `None` without `map`. A setting given without a map is an error (it
@@ -27,6 +31,7 @@ pub fn environment_map(
             ("rotation_deg", e.rotation_deg.is_some()),
             ("specular", e.specular.is_some()),
             ("samples", e.samples.is_some()),
+            ("prefilter_size", e.prefilter_size.is_some()),
         ];
         if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
             return Err(format!(
@@ -71,7 +76,9 @@ fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
     }
     if let Some(m) = &e.specular {
         s.specular = Specular::parse(m).ok_or_else(|| {
-            format!("environment.specular = \"{m}\" is neither \"none\" nor \"sampled\"")
+            format!(
+                "environment.specular = \"{m}\" is none of \"none\", \"sampled\", \"prefiltered\""
+            )
         })?;
     }
     if let Some(n) = e.samples {
@@ -84,6 +91,20 @@ fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
             return Err("environment.samples applies to environment.specular = \"sampled\"".into());
         }
         s.samples = n as u32;
+    }
+    if let Some(size) = e.prefilter_size {
+        if !(MIN_PREFILTER_SIZE..=MAX_PREFILTER_SIZE).contains(&size) || size % 2 != 0 {
+            return Err(format!(
+                "environment.prefilter_size = {size} is not an even width in {MIN_PREFILTER_SIZE}..={MAX_PREFILTER_SIZE}"
+            ));
+        }
+        if s.specular != Specular::Prefiltered {
+            return Err(
+                "environment.prefilter_size applies to environment.specular = \"prefiltered\""
+                    .into(),
+            );
+        }
+        s.prefilter_size = size as u32;
     }
     if let Some(r) = &e.reference {
         s.reference = ReferenceDiffuse::parse(r).ok_or_else(|| {

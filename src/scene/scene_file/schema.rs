@@ -331,11 +331,14 @@ pub struct EnvironmentSection {
     pub reference: Option<String>,
     /// Turns the map about +Y (degrees, counter-clockwise from above).
     pub rotation_deg: Option<f64>,
-    /// `"none"` (the diffuse term by SH, default) or `"sampled"` (the
-    /// whole BRDF integrated with `samples` directions).
+    /// `"none"` (the diffuse term by SH, default), `"sampled"` (the
+    /// whole BRDF integrated with `samples` directions) or `"prefiltered"`
+    /// (the split-sum approximation).
     pub specular: Option<String>,
     /// Directions per shading point of `specular = "sampled"` (default 64).
     pub samples: Option<i64>,
+    /// Level width of `specular = "prefiltered"`'s stack (default 64).
+    pub prefilter_size: Option<i64>,
 }
 
 /// `[ambient]`: constant incoming radiance `L_a`.
