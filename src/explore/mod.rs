@@ -19,6 +19,7 @@
 pub mod albedo;
 pub mod cli;
 pub mod gloss;
+pub mod halfdiff;
 pub mod plot;
 pub mod quadrature;
 pub mod slice;
