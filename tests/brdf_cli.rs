@@ -235,3 +235,61 @@ fn measured_and_fitted_slices_together_and_the_default_measured() {
         f_r(&stdout(&named), "measured measured=gold-metallic-paint")
     );
 }
+
+/// `--plot-halfdiff` (issue 17 item 1): the θ_h × θ_d image of each
+/// material, written where asked; the glossy panel's first column (θ_h
+/// near 0, the specular peak) is brighter on the colour scale than a cell
+/// at θ_h = 60° of the same row, and the PNG holds the colours the plot's
+/// layout puts there. A bad extension is the usual one-paragraph exit 2.
+#[test]
+fn halfdiff_image_shows_the_specular_peak_at_theta_h_zero() {
+    use gonio::explore::halfdiff::half_diff_image;
+    use gonio::explore::halfdiff_plot::{colour, layout};
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("hd.png");
+    let glossy = "cook-torrance,k_d=0.1,k_s=1,roughness=0.15";
+    stdout(&brdf(&[
+        "--compare",
+        glossy,
+        "--compare",
+        "lambert,k_d=0.5",
+        "--plot-halfdiff",
+        png.to_str().unwrap(),
+    ]));
+    let image = image::open(&png).unwrap().into_rgb8();
+    let (w, h) = image.dimensions();
+    let panels = layout(w, h, 2);
+    let m = gonio::explore::spec::compare_spec(glossy, &[]).unwrap();
+    let values = half_diff_image(&m.material, gonio::explore::Channel::Mean).values;
+    let peak = values[45][0];
+    assert!(peak > 10.0 * values[45][60], "{peak} vs {}", values[45][60]);
+    // The scale's top is the glossy image's largest value (Lambert's 0.16
+    // is far below it); its bottom at most 6 decades lower.
+    let hi = values
+        .iter()
+        .flatten()
+        .fold(0.0f64, |a, v| a.max(*v))
+        .log10();
+    let lo = values
+        .iter()
+        .flatten()
+        .chain(std::iter::once(&(0.5 / std::f64::consts::PI)))
+        .fold(f64::INFINITY, |a, v| a.min(v.log10()))
+        .max(hi - 6.0);
+    for (i, j) in [(0, 45), (60, 45)] {
+        let (x, y) = panels[0].cell_centre(i, j);
+        let p = image.get_pixel(x as u32, y as u32).0;
+        let want = colour(values[j][i], lo, hi);
+        assert_eq!(p, [want.0, want.1, want.2], "cell θ_h {i}, θ_d {j}");
+    }
+    let bad = dir.path().join("hd.jpg");
+    let out = brdf(&[
+        "--model",
+        "lambert",
+        "--plot-halfdiff",
+        bad.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains(".png or .svg"));
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}

@@ -166,6 +166,15 @@ fn every_reflectance_model_renders_like_the_reference() {
                 "materials.ball.roughness=0.2",
             ],
         ),
+        // Per-channel η, κ (issue 17 item 2): copper's red differs from its blue.
+        (
+            "cook-torrance",
+            &[
+                "materials.ball.preset=copper-rgb",
+                "materials.ball.k_d=0",
+                "materials.ball.roughness=0.3",
+            ],
+        ),
         (
             "cook-torrance",
             &[

@@ -73,6 +73,10 @@ pub struct BrdfArgs {
     /// Write directional albedo against θ_i = 0…89° (.png or .svg).
     #[arg(long, value_name = "OUT")]
     pub plot_albedo: Option<PathBuf>,
+    /// Write the θ_h × θ_d image slice (Rusinkiewicz 1998; φ_d = 90°, log
+    /// colour of f_r), one panel per material (.png or .svg).
+    #[arg(long, value_name = "OUT")]
+    pub plot_halfdiff: Option<PathBuf>,
     /// What the plots draw of RGB: mean (default), luminance, r, g, b.
     #[arg(long, value_name = "C", default_value = "mean")]
     pub channel: Channel,
@@ -137,6 +141,11 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         .as_deref()
         .map(PlotFile::prepare)
         .transpose()?;
+    let halfdiff_file = args
+        .plot_halfdiff
+        .as_deref()
+        .map(PlotFile::prepare)
+        .transpose()?;
     if let Some(max) = args.slice_max
         && !(max.is_finite() && max > 0.0)
     {
@@ -181,6 +190,9 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         let path = file.path().to_path_buf();
         file.write(&plot)?;
         println!("wrote {}", path.display());
+    }
+    if let Some(file) = halfdiff_file {
+        super::halfdiff_plot::write(file, &materials, args.channel, note.clone())?;
     }
     if let Some(file) = albedo_file {
         let phi_i = angles.phi_i.to_radians();

@@ -19,6 +19,8 @@
 pub mod albedo;
 pub mod cli;
 pub mod gloss;
+pub mod halfdiff;
+pub mod halfdiff_plot;
 pub mod plot;
 pub mod quadrature;
 pub mod slice;

@@ -16,8 +16,9 @@ use toml::Value as Toml;
 /// The keys of the selectable terms (`material/terms.rs`).
 const TERM_KEYS: [&str; 4] = ["distribution", "geometry", "fresnel", "denominator"];
 
-/// `[materials.NAME]`: the model, an optional preset from the lecture's
-/// tables, then any parameter or term (given keys override the preset).
+/// `[materials.NAME]`: the model, an optional preset (the lecture's tables
+/// or a coloured conductor, [`super::presets`]), then any parameter or term
+/// (given keys override the preset).
 /// Keys of another model than the given one are accepted (and kept for
 /// when the material switches models).
 #[derive(Clone, Debug, Default)]

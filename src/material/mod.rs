@@ -5,6 +5,7 @@
 //! file per family, mirrored function by function in `shaders/brdf/*.wgsl`.
 
 pub mod brdf;
+pub mod conductors;
 pub mod entry;
 pub mod measured;
 mod model;
