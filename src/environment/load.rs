@@ -113,6 +113,18 @@ mod tests {
         .unwrap();
         let e = load("bomb.hdr", dir.path()).unwrap_err();
         assert!(e.contains("200000 × 100000"), "{e}");
+        // A height whose double overflows u32 (a fuzz finding): 2³¹ + 8
+        // doubled wrapped to 16, and a 16-wide map passed as 2 : 1.
+        std::fs::write(
+            dir.path().join("tall.hdr"),
+            b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2147483656 +X 16\n",
+        )
+        .unwrap();
+        let e = load("tall.hdr", dir.path()).unwrap_err();
+        assert!(
+            e.contains("twice as wide as high") && e.contains("16 × 2147483656"),
+            "{e}"
+        );
     }
 
     #[test]

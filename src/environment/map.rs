@@ -193,7 +193,9 @@ impl MapData {
     /// Refuses dimensions that are not a 2 : 1 lat-long map or exceed
     /// [`MAX_SIDE`] (checked from a file's header before decoding).
     pub fn check_dimensions(width: u32, height: u32) -> Result<(), String> {
-        if height == 0 || width != 2 * height {
+        // In u64: a header's height near 2³² overflowed `2 * height`
+        // (found by the environment_map fuzz target).
+        if height == 0 || u64::from(width) != 2 * u64::from(height) {
             return Err(format!(
                 "a latitude-longitude map is twice as wide as high, and this one is {width} × {height}"
             ));
