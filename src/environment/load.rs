@@ -35,6 +35,11 @@ pub fn load(value: &str, base_dir: &Path) -> Result<MapData, String> {
 /// ([`MAX_SIDE`] × [`MAX_SIDE`]/2, 1.5 GiB of f32 RGB).
 pub const MAX_TEXELS: u64 = MAX_SIDE as u64 * (MAX_SIDE as u64 / 2);
 
+/// Most decoded bytes (f32 RGB) one byte of a map file may stand for:
+/// twice deflate's largest ratio (about 1032 : 1), the most any codec of
+/// Radiance RGBE or OpenEXR reaches.
+const MAX_EXPANSION: u64 = 2048;
+
 /// The decoder for a file extension (lower case): `exr`, or `hdr`/`pic`.
 pub fn format_of(extension: &str) -> Option<image::ImageFormat> {
     match extension {
@@ -72,10 +77,39 @@ pub fn decode(
             "it declares {width} × {height} texels, over the {max_texels} this load allows"
         ));
     }
+    // A few hundred bytes declaring a map of gigabytes (a 719-byte EXR
+    // made the decoder allocate 1.7 GB before it found the data missing:
+    // the environment_map fuzz target) cannot be a real file: no codec of
+    // these formats expands more than deflate's about 1032 : 1 (RGBE's
+    // run-length coding, EXR's RLE, PIZ and B44 far less).
+    let declared = 12 * texels;
+    if declared > MAX_EXPANSION * bytes.len() as u64 + (1 << 20) {
+        return Err(format!(
+            "it declares {width} × {height} texels ({declared} bytes) in a file of {} bytes, more than any of its codecs expands ({MAX_EXPANSION} : 1): the file is truncated or corrupt",
+            bytes.len()
+        ));
+    }
     let mut limits = image::Limits::default();
     // RGB or RGBA f32 and one converted copy, plus slack for the decoder.
-    limits.max_alloc = Some(2 * 16 * texels + (1 << 20));
-    let image = reader(limits).decode().map_err(unreadable)?.into_rgb32f();
+    let budget = 2 * 16 * texels + (1 << 20);
+    limits.max_alloc = Some(budget);
+    let decoder = reader(limits).into_decoder().map_err(unreadable)?;
+    // The decoder's own buffer is sized from what it will decode, which an
+    // OpenEXR file may declare apart from the size its header reports (a
+    // data window beyond the display window): a 719-byte file asked for
+    // 1.7 GB (found by the environment_map fuzz target). Checked here,
+    // before the decoder allocates it.
+    let decoded = image::ImageDecoder::dimensions(&decoder);
+    let bytes = image::ImageDecoder::total_bytes(&decoder);
+    if decoded != (width, height) || bytes > budget {
+        return Err(format!(
+            "its header says {width} × {height} texels but it decodes {} × {} ({bytes} bytes)",
+            decoded.0, decoded.1
+        ));
+    }
+    let image = image::DynamicImage::from_decoder(decoder)
+        .map_err(unreadable)?
+        .into_rgb32f();
     let texels = image.pixels().map(|p| p.0).collect::<Vec<[f32; 3]>>();
     MapData::new(name, width, height, texels)
 }
@@ -113,6 +147,14 @@ mod tests {
         .unwrap();
         let e = load("bomb.hdr", dir.path()).unwrap_err();
         assert!(e.contains("200000 × 100000"), "{e}");
+        // 4096 × 2048 texels (100 MB decoded) declared in 50 bytes.
+        std::fs::write(
+            dir.path().join("small-bomb.hdr"),
+            b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2048 +X 4096\n",
+        )
+        .unwrap();
+        let e = load("small-bomb.hdr", dir.path()).unwrap_err();
+        assert!(e.contains("more than any of its codecs expands"), "{e}");
         // A height whose double overflows u32 (a fuzz finding): 2³¹ + 8
         // doubled wrapped to 16, and a 16-wide map passed as 2 : 1.
         std::fs::write(
