@@ -14,8 +14,16 @@
 
 const MEASURED_SIN_THETA_H_FLOOR: f32 = 1e-9;
 
-// (θ_h, θ_d, φ_d) of ω_i = wi, ω_o = wo in the frame (t, b, n).
-fn measured_half_diff(wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+// The half vector's polar angle (sin θ_h, cos θ_h) and ω_i in the
+// half/difference frame (Rusinkiewicz 1998), for ω_i = wi, ω_o = wo in the
+// frame (t, b, n): what the table look-up and the network both start from.
+struct MeasuredHalfDiff {
+    sin_h: f32,
+    cos_h: f32,
+    d: vec3<f32>,
+}
+
+fn measured_half_diff_frame(wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> MeasuredHalfDiff {
     let i = vec3<f32>(dot(wi, frame.t), dot(wi, frame.b), dot(wi, frame.n));
     let o = vec3<f32>(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
     let h = normalize(i + o);
@@ -29,8 +37,14 @@ fn measured_half_diff(wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3
     }
     let x = i.x * cos_phi_h + i.y * sin_phi_h;
     let y = -i.x * sin_phi_h + i.y * cos_phi_h;
-    let d = vec3<f32>(x * cos_h - i.z * sin_h, y, x * sin_h + i.z * cos_h);
-    return vec3<f32>(atan2(sin_h, cos_h), atan2(sqrt(d.x * d.x + d.y * d.y), d.z), atan2(d.y, d.x));
+    return MeasuredHalfDiff(sin_h, cos_h, vec3<f32>(x * cos_h - i.z * sin_h, y, x * sin_h + i.z * cos_h));
+}
+
+// (θ_h, θ_d, φ_d) of ω_i = wi, ω_o = wo in the frame (t, b, n).
+fn measured_half_diff(wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    let hd = measured_half_diff_frame(wi, wo, frame);
+    let d = hd.d;
+    return vec3<f32>(atan2(hd.sin_h, hd.cos_h), atan2(sqrt(d.x * d.x + d.y * d.y), d.z), atan2(d.y, d.x));
 }
 
 // The sample at (i_h, i_d, i_φ) of the table starting at `base`.
@@ -55,20 +69,8 @@ const NBRDF_B3: u32 = 672u;
 
 fn measured_f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let base = bitcast<u32>(m.lobe.x);
-    let i = vec3<f32>(dot(wi, frame.t), dot(wi, frame.b), dot(wi, frame.n));
-    let o = vec3<f32>(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
-    let h = normalize(i + o);
-    let sin_h = sqrt(h.x * h.x + h.y * h.y);
-    let cos_h = h.z;
-    var cos_phi_h = 1.0;
-    var sin_phi_h = 0.0;
-    if sin_h >= MEASURED_SIN_THETA_H_FLOOR {
-        cos_phi_h = h.x / sin_h;
-        sin_phi_h = h.y / sin_h;
-    }
-    let x = i.x * cos_phi_h + i.y * sin_phi_h;
-    let y = -i.x * sin_phi_h + i.y * cos_phi_h;
-    var input = array<f32, 6>(sin_h, 0.0, cos_h, x * cos_h - i.z * sin_h, y, x * sin_h + i.z * cos_h);
+    let hd = measured_half_diff_frame(wi, wo, frame);
+    var input = array<f32, 6>(hd.sin_h, 0.0, hd.cos_h, hd.d.x, hd.d.y, hd.d.z);
     var a1: array<f32, 21>;
     for (var j = 0u; j < 21u; j = j + 1u) {
         var z = measured_tables[base + NBRDF_B1 + j];

@@ -285,8 +285,16 @@ fn brdf_denominator(m: Material) -> u32 {
 
 const MEASURED_SIN_THETA_H_FLOOR: f32 = 1e-9;
 
-// (θ_h, θ_d, φ_d) of ω_i = wi, ω_o = wo in the frame (t, b, n).
-fn measured_half_diff(wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+// The half vector's polar angle (sin θ_h, cos θ_h) and ω_i in the
+// half/difference frame (Rusinkiewicz 1998), for ω_i = wi, ω_o = wo in the
+// frame (t, b, n): what the table look-up and the network both start from.
+struct MeasuredHalfDiff {
+    sin_h: f32,
+    cos_h: f32,
+    d: vec3<f32>,
+}
+
+fn measured_half_diff_frame(wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> MeasuredHalfDiff {
     let i = vec3<f32>(dot(wi, frame.t), dot(wi, frame.b), dot(wi, frame.n));
     let o = vec3<f32>(dot(wo, frame.t), dot(wo, frame.b), dot(wo, frame.n));
     let h = normalize(i + o);
@@ -300,8 +308,14 @@ fn measured_half_diff(wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3
     }
     let x = i.x * cos_phi_h + i.y * sin_phi_h;
     let y = -i.x * sin_phi_h + i.y * cos_phi_h;
-    let d = vec3<f32>(x * cos_h - i.z * sin_h, y, x * sin_h + i.z * cos_h);
-    return vec3<f32>(atan2(sin_h, cos_h), atan2(sqrt(d.x * d.x + d.y * d.y), d.z), atan2(d.y, d.x));
+    return MeasuredHalfDiff(sin_h, cos_h, vec3<f32>(x * cos_h - i.z * sin_h, y, x * sin_h + i.z * cos_h));
+}
+
+// (θ_h, θ_d, φ_d) of ω_i = wi, ω_o = wo in the frame (t, b, n).
+fn measured_half_diff(wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    let hd = measured_half_diff_frame(wi, wo, frame);
+    let d = hd.d;
+    return vec3<f32>(atan2(hd.sin_h, hd.cos_h), atan2(sqrt(d.x * d.x + d.y * d.y), d.z), atan2(d.y, d.x));
 }
 
 // The sample at (i_h, i_d, i_φ) of the table starting at `base`.
