@@ -322,13 +322,15 @@ fn environment_map_seeds() -> Vec<(&'static str, Vec<u8>)> {
         image::Rgb32FImage::from_fn(w, h, |x, y| image::Rgb(texel(x, y)))
     };
     let smooth = |x: u32, y: u32| [x as f32 * 0.25, y as f32 * 0.5, 1.0];
+    // Encoded on their own, then prefixed: the OpenEXR writer places its
+    // chunk table by absolute position, so writing after the selector
+    // byte made every .exr seed unreadable.
     let encode = |image: image::Rgb32FImage, format: image::ImageFormat, selector: u8| {
-        let mut bytes = std::io::Cursor::new(vec![selector]);
-        bytes.set_position(1);
+        let mut bytes = std::io::Cursor::new(Vec::new());
         image::DynamicImage::from(image)
             .write_to(&mut bytes, format)
             .unwrap();
-        bytes.into_inner()
+        [vec![selector], bytes.into_inner()].concat()
     };
     let hdr = encode(map(16, 8, smooth), image::ImageFormat::Hdr, 0);
     let exr = encode(map(16, 8, smooth), image::ImageFormat::OpenExr, 1);

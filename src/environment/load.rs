@@ -3,6 +3,7 @@
 //! (`map = "sky"`). Every failure is one sentence the caller prefixes
 //! with the scene file and key.
 
+use super::exr_header;
 use super::map::{MAX_SIDE, MapData};
 use super::sky;
 use std::path::Path;
@@ -67,6 +68,12 @@ pub fn decode(
         reader.limits(limits);
         reader
     };
+    // The `exr` crate sizes its block buffers from the header's tile and
+    // chunk table, beyond `image`'s allocation limit, already while it
+    // reads the header: checked before it sees the file.
+    if format == image::ImageFormat::OpenExr {
+        exr_header::check(bytes, max_texels)?;
+    }
     let (width, height) = reader(image::Limits::default())
         .into_dimensions()
         .map_err(unreadable)?;
@@ -79,11 +86,7 @@ pub fn decode(
     }
     // A few bytes declaring a map of gigabytes cannot be a real file: no
     // codec of these formats expands more than deflate's about 1032 : 1
-    // (RGBE's run-length coding, EXR's RLE, PIZ and B44 far less). Not
-    // caught here (found by the environment_map fuzz target, left open):
-    // a 719-byte EXR declaring 8 × 4 texels whose chunk table makes the
-    // `exr` crate allocate 1.7 GB inside the decoder before it finds the
-    // data missing; `image`'s allocation limit does not reach there.
+    // (RGBE's run-length coding, EXR's RLE, PIZ and B44 far less).
     let declared = 12 * texels;
     if declared > MAX_EXPANSION * bytes.len() as u64 + (1 << 20) {
         return Err(format!(
@@ -91,9 +94,9 @@ pub fn decode(
             bytes.len()
         ));
     }
-    let mut limits = image::Limits::default();
     // RGB or RGBA f32 and one converted copy, plus slack for the decoder.
     let budget = 2 * 16 * texels + (1 << 20);
+    let mut limits = image::Limits::default();
     limits.max_alloc = Some(budget);
     let decoder = reader(limits).into_decoder().map_err(unreadable)?;
     // The decoder's own buffer is sized from what it will decode, which an

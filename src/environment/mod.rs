@@ -22,6 +22,7 @@
 //!   the reference uses and SH is measured against.
 
 pub mod dfg;
+mod exr_header;
 pub mod latlong;
 pub mod load;
 pub mod map;
