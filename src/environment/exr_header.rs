@@ -232,7 +232,7 @@ mod tests {
         let window = ("dataWindow", "box2i", words(&[0, 0, 7, 3]));
         let tiled = |w, h| {
             file(
-                2 | TILED,
+                2 | 0x200, // the version field's single-part tiled flag
                 &[
                     ("channels", "chlist", rgb_float()),
                     window.clone(),
