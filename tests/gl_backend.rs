@@ -2,8 +2,13 @@
 //! EGL): it renders, and what it renders agrees with the CPU reference
 //! under the same derived tolerance as on Vulkan (tests/gpu_vs_cpu.rs).
 //!
-//! Shadow maps come out wrong there (every receiver in shadow), so the GL
-//! backend refuses them with a message, which is tested too.
+//! Shadowed scenes are compared with the same scenes rendered on Vulkan
+//! (the outer test renders those): the same shader on the same
+//! rasterizer, so the frames must agree within the f32 tolerance at every
+//! pixel. Before the fix in `gpu::shadow_maps::texture_layers`, GL drew
+//! every receiver in shadow (wgpu's GL backend made a one-layer map a
+//! `TEXTURE_2D` and a six-layer one a cube map, which the scene pass then
+//! sampled as a 2D array).
 //!
 //! llvmpipe's GLES lacks `EXT_color_buffer_float`, so the radiance target
 //! there is `Rgba32Uint` holding the f32 bits
@@ -71,8 +76,8 @@ fn scenes() -> Vec<(&'static str, Scene)> {
 }
 
 /// Shadowed scenes of each projection (the point light's cube, a spot's
-/// perspective map, the sun's orthographic one), which the GL backend
-/// refuses until its shadow maps are right (`gpu::prepared`).
+/// perspective map, the sun's orthographic one), and two point lights
+/// (twelve layers: a cube-map array to wgpu's GL guess).
 fn shadowed_scenes() -> Vec<(&'static str, Scene)> {
     let spot = "lights=[{kind=\"spot\", position=[2.0,4.0,2.0], direction=[-0.4,-1.0,-0.4], intensity=[60.0,60.0,60.0], inner_cone_deg=20.0, outer_cone_deg=35.0, shadows=true}]";
     vec![
@@ -81,6 +86,15 @@ fn shadowed_scenes() -> Vec<(&'static str, Scene)> {
             load(SceneSource::BuiltIn, &["lights.0.shadows=true"]),
         ),
         ("spot light", load(SceneSource::BuiltIn, &[spot])),
+        (
+            "two point lights",
+            load(
+                SceneSource::BuiltIn,
+                &[
+                    "lights=[{kind=\"point\", position=[2.0,4.0,2.0], intensity=[30.0,30.0,30.0], shadows=true}, {kind=\"point\", position=[-3.0,3.0,1.0], intensity=[20.0,20.0,20.0], shadows=true}]",
+                ],
+            ),
+        ),
         (
             "shadows-directional.gltf",
             load(
@@ -91,8 +105,26 @@ fn shadowed_scenes() -> Vec<(&'static str, Scene)> {
     ]
 }
 
+/// Where the outer test leaves the Vulkan frames of [`shadowed_scenes`]
+/// for the inner one: `frame-N.f32`, RGB little-endian.
+const VULKAN_FRAMES: &str = "GONIO_TEST_VULKAN_FRAMES";
+
 #[test]
 fn the_gl_backend_renders_what_the_reference_renders() {
+    let frames = tempfile::tempdir().unwrap();
+    let mut vulkan = GpuRenderer::new(GpuContext::new(&AdapterChoice::Auto).expect("adapter"));
+    for (i, (label, scene)) in shadowed_scenes().into_iter().enumerate() {
+        let (frame, _) = vulkan
+            .render(&scene)
+            .unwrap_or_else(|e| panic!("{label}: Vulkan render failed: {e}"));
+        let bytes: Vec<u8> = frame
+            .radiance
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        std::fs::write(frames.path().join(format!("frame-{i}.f32")), bytes).unwrap();
+    }
     let output = std::process::Command::new(std::env::current_exe().unwrap())
         .args([
             "--ignored",
@@ -101,6 +133,7 @@ fn the_gl_backend_renders_what_the_reference_renders() {
             "--nocapture",
         ])
         .env("WGPU_BACKEND", "gl")
+        .env(VULKAN_FRAMES, frames.path())
         .output()
         .expect("the test binary runs again");
     let stderr = String::from_utf8_lossy(&output.stderr);
@@ -109,6 +142,10 @@ fn the_gl_backend_renders_what_the_reference_renders() {
         output.status.success(),
         "the GL run failed (./setup.sh installs libegl1, libgles2 and Mesa's GL driver; on Debian 12: `sudo apt-get install libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri`):\n{stdout}\n{stderr}"
     );
+    // The inner test's table (`--nocapture` shows it).
+    for line in stderr.lines().filter(|l| l.starts_with("GL ")) {
+        eprintln!("{line}");
+    }
     assert!(
         stdout.contains("1 passed"),
         "the inner test did not run:\n{stdout}\n{stderr}"
@@ -147,15 +184,37 @@ fn on_gl_as_set_by_the_outer_test() {
             &center,
         );
     }
-    for (label, scene) in shadowed_scenes() {
-        let e = renderer
+    let frames = PathBuf::from(std::env::var(VULKAN_FRAMES).expect("set by the outer test"));
+    for (i, (label, scene)) in shadowed_scenes().into_iter().enumerate() {
+        let (gl, _) = renderer
             .render(&scene)
-            .err()
-            .unwrap_or_else(|| panic!("{label}: shadows on GL must be refused"))
-            .to_string();
-        assert!(
-            e.contains("lights.N.shadows") && e.contains("GL backend"),
-            "{label}: {e}"
+            .unwrap_or_else(|e| panic!("{label}: GL render failed: {e}"));
+        let bytes = std::fs::read(frames.join(format!("frame-{i}.f32"))).unwrap();
+        let mut vulkan = gl.clone();
+        for (pixel, rgb) in vulkan.radiance.iter_mut().zip(bytes.chunks_exact(12)) {
+            for (v, b) in pixel.iter_mut().zip(rgb.chunks_exact(4)) {
+                *v = f32::from_le_bytes(b.try_into().unwrap());
+            }
+        }
+        let jitter = [
+            vulkan.clone(),
+            vulkan.clone(),
+            vulkan.clone(),
+            vulkan.clone(),
+        ];
+        let c = gonio::output::compare::compare_with_jitter(
+            &gl,
+            &vulkan,
+            &jitter,
+            common::tolerance(&scene, &vulkan),
+        );
+        eprintln!("GL vs Vulkan {label:<30} | {}", c.summary());
+        common::assert_agrees(
+            &format!("gl shadows {label}"),
+            "GL and Vulkan shadows disagree",
+            &c,
+            &gl,
+            &vulkan,
         );
     }
 }

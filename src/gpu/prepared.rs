@@ -79,7 +79,6 @@ impl PreparedScene {
     ) -> Result<Self> {
         check_drawable(scene)?;
         let (key, plan) = plan(&ctx.device, vertex_shadow_coords, scene)?;
-        check_shadows_on_backend(ctx, &plan)?;
         check_geometry_size(&ctx.device, scene, &key)?;
         let geometry =
             GeometryData::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
@@ -100,7 +99,14 @@ impl PreparedScene {
             },
             &lights,
         );
-        let shadows = ShadowMaps::new(&ctx.device, cache, &plan, arrays, draw.layout.stride());
+        let shadows = ShadowMaps::new(
+            &ctx.device,
+            ctx.adapter_info.backend,
+            cache,
+            &plan,
+            arrays,
+            draw.layout.stride(),
+        );
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
         let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
         let textures = if key.texture_slots > 0 {
@@ -191,7 +197,14 @@ impl PreparedScene {
             || key.shadows != self.key.shadows
             || arrays != self.key.arrays
         {
-            self.shadows = ShadowMaps::new(&ctx.device, cache, &plan, arrays, layout.stride());
+            self.shadows = ShadowMaps::new(
+                &ctx.device,
+                ctx.adapter_info.backend,
+                cache,
+                &plan,
+                arrays,
+                layout.stride(),
+            );
             self.shadows_stale = self.shadows.is_some();
             self.plan = plan;
         }
@@ -342,24 +355,6 @@ fn check_geometry_size(device: &wgpu::Device, scene: &Scene, key: &ShaderKey) ->
                 ""
             }
         ),
-    ))
-}
-
-/// Refuses shadow maps on wgpu's GL backend: there (Mesa 22.3's llvmpipe,
-/// `WGPU_BACKEND=gl`) every receiver comes out in shadow, for every
-/// projection (found by tests/gl_backend.rs), and a wrong image with exit
-/// 0 is worse than a clear refusal. What is known: the shadow pass is not
-/// at fault; `textureSampleCompareLevel` there returns 0 even with a
-/// reference depth of 1 (which every stored depth passes under
-/// `GreaterEqual`), so the comparison sampling itself fails on that
-/// backend.
-fn check_shadows_on_backend(ctx: &GpuContext, plan: &ShadowPlan) -> Result<()> {
-    if plan.casters.is_empty() || ctx.adapter_info.backend != wgpu::Backend::Gl {
-        return Ok(());
-    }
-    Err(Error::argument(
-        "lights.N.shadows / [shadows]",
-        "shadow maps are not drawn correctly on the GL backend (WGPU_BACKEND=gl: every receiver comes out in shadow); unset WGPU_BACKEND to render on Vulkan, or turn the lights' shadows off",
     ))
 }
 

@@ -20,13 +20,33 @@ pub struct ShadowMaps {
     pass_pipeline: wgpu::RenderPipeline,
 }
 
+/// Layers of the shadow-map texture for `plan`'s maps: one per map, and
+/// on the GL backend one more where the count would make wgpu's GL
+/// backend create another kind of texture than the 2D array the scene
+/// pass binds. GL fixes a texture's target when it is created, and
+/// wgpu-hal guesses it from the size alone (`Texture::get_info_from_desc`):
+/// one layer makes a `TEXTURE_2D`, six square layers a `TEXTURE_CUBE_MAP`
+/// (a multiple of six a cube array). Sampling a 2D-array view of those
+/// compared every texel as in shadow: a sun's or spot's single map, or one
+/// point light's cube, were the GL backend's wrong shadows of issue 19.
+/// The extra layer is never drawn or read.
+pub fn texture_layers(plan: &ShadowPlan, backend: wgpu::Backend) -> u32 {
+    let maps = plan.layers.len() as u32;
+    if backend == wgpu::Backend::Gl && (maps == 1 || maps.is_multiple_of(6)) {
+        maps + 1
+    } else {
+        maps
+    }
+}
+
 impl ShadowMaps {
     /// The shadow-map array of `plan` with one view per layer to render
     /// into, the bind groups that read and fill it and the depth-only
     /// pipeline for a stream of `stride` bytes; `None` without shadowed
-    /// lights.
+    /// lights. `backend`: the adapter's (see [`texture_layers`]).
     pub fn new(
         device: &wgpu::Device,
+        backend: wgpu::Backend,
         cache: &mut PipelineCache,
         plan: &ShadowPlan,
         arrays: UniformArrays,
@@ -41,7 +61,7 @@ impl ShadowMaps {
             size: wgpu::Extent3d {
                 width: plan.side,
                 height: plan.side,
-                depth_or_array_layers: plan.layers.len() as u32,
+                depth_or_array_layers: texture_layers(plan, backend),
             },
             mip_level_count: 1,
             sample_count: 1,
