@@ -274,6 +274,18 @@ fn buffers_over_the_gpus_limits_are_refused_before_creation() {
             ]),
             names: "segments",
         },
+        Case {
+            name: "vertex buffer over max_buffer_size, 4096 segments (the limits allow it)",
+            args: s(&[
+                "-o",
+                &out,
+                "--shading",
+                "flat",
+                "--set",
+                "objects.1.segments=4096",
+            ]),
+            names: "segments",
+        },
         // The renderers' own allocations count against `--limit memory`
         // (the reference on a 4096-segment plane peaked at 10.5 GB within
         // the default limits): a 512-segment plane (528,256 triangles with the sphere)

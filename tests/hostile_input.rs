@@ -1715,6 +1715,7 @@ fn the_binary_refuses_hostile_files_with_exit_2() {
     hierarchies(&mut c);
     path_escapes(&mut c);
     scene_files(&mut c);
+    non_finite(&mut c);
     let path_of = |name: &str| -> String {
         let case = c
             .cases
@@ -1741,6 +1742,8 @@ fn the_binary_refuses_hostile_files_with_exit_2() {
         "did you mean `fov_y_deg`?",
     );
     assert_refused(d, &[&path_of("deep-arrays.toml")], "deep-arrays.toml");
+    // Issue 19 item 4: ±3e38 coordinates exited 0 with a blank image.
+    assert_refused(d, &[&path_of("scale-beyond-framing.gltf")], "scale it down");
     #[cfg(unix)]
     {
         assert_refused(d, &[&path_of("fifo-buffer.gltf")], "not a regular file");

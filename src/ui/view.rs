@@ -4,6 +4,7 @@
 
 use super::panels;
 use super::state::ViewerState;
+use crate::material::ROUGHNESS_FLOOR;
 use crate::scene::scene_file::SceneSource;
 use std::path::{Path, PathBuf};
 
@@ -173,7 +174,17 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         }
     }
     ui.separator();
-    let material = materials[state.selected_material].clone();
+    // The plots show the material as the renderers evaluate it, as
+    // `gonio brdf` does (explore::spec): roughness no smaller than the
+    // floor. Unfloored, a roughness of 1e-6 kept the albedo worker busy
+    // for minutes (issue 19).
+    let given = &materials[state.selected_material];
+    let material = given.with_roughness_floor(0.0);
+    if material != *given {
+        ui.label(format!(
+            "Roughness below the floor {ROUGHNESS_FLOOR:e}: plotted at the floor, as rendered."
+        ));
+    }
     state.plots.show(ui, &material);
 }
 
