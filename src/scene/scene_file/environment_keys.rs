@@ -77,7 +77,7 @@ fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
     if let Some(m) = &e.specular {
         s.specular = Specular::parse(m).ok_or_else(|| {
             format!(
-                "environment.specular = \"{m}\" is none of \"none\", \"sampled\", \"prefiltered\""
+                "environment.specular = \"{m}\" is none of \"none\", \"sampled\", \"prefiltered\", \"sh\""
             )
         })?;
     }
