@@ -48,8 +48,9 @@ pub fn environment_map(
     }))
 }
 
-/// The settings of `e`, range-checked.
-fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
+/// The settings of `e`, range-checked (also the viewer's, which keeps a
+/// map's texels when only a setting changes).
+pub fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
     let mut s = MapSettings::default();
     if let Some(scale) = e.scale {
         if !(scale.is_finite() && scale >= 0.0) {
