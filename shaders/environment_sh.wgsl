@@ -43,7 +43,7 @@ fn sh_convolved_derivative(w: array<f32, 5>, d: vec3<f32>, t: vec3<f32>) -> vec3
 }
 #endif
 
-#if phong || phong-normalized
+#if phong || phong-normalized || blinn-phong
 // The glossy term without k_s at the mirror direction r (world frame):
 // the lecture's lobe F_n(R), or normalized Phong's
 // (n+2)/(2π) [μ F_{n+1}(R) + t·∇F_{n+1}(R)/(n+1)], μ = N·R, t = N − μR.
@@ -67,22 +67,30 @@ fn environment_sh_glossy(k_e: f32, normalized: bool, r: vec3<f32>, n: vec3<f32>)
 #endif
 
 // The SH diffuse term plus, for the Phong models, k_s times the convolved
-// lobe at the mirror direction of wo. Twin: estimate.
+// lobe at the mirror direction of wo (the lecture's Blinn-Phong as the
+// mirror lobe of exponent n/4: an approximation). Twin: estimate (and
+// lobe).
 fn environment_sh(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let n = frame.n;
     let diffuse = environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
-    #if phong || phong-normalized
+    #if phong || phong-normalized || blinn-phong
     let model = brdf_model(m);
     var lecture = false;
     var normalized = false;
+    var k_e = m.k_e;
     #if phong
     lecture = model == MODEL_PHONG;
+    #endif
+    #if blinn-phong
+    let blinn = model == MODEL_BLINN_PHONG;
+    lecture = lecture || blinn;
+    k_e = select(k_e, 0.25 * k_e, blinn);
     #endif
     #if phong-normalized
     normalized = model == MODEL_PHONG_NORMALIZED;
     #endif
     let r = mirror_direction(wo, n);
-    let glossy = m.k_s * environment_sh_glossy(m.k_e, normalized, r, n);
+    let glossy = m.k_s * environment_sh_glossy(k_e, normalized, r, n);
     return diffuse + select(vec3<f32>(0.0), glossy, (lecture || normalized) && dot(n, wo) > 0.0);
     #else
     return diffuse;

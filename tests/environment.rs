@@ -742,9 +742,16 @@ fn column_error(f: &Frame, truth: &Frame, cols: (u32, u32)) -> (f64, f64) {
 
 /// The `"sh"` scene: the lecture's Phong (left, `k_s` 0.5) and normalized
 /// Phong (middle, `k_s` 0.8), both of exponent `k_e` and diffuse `k_d`,
-/// beside the mirror, under `map`, Phong lobes by SH convolution.
+/// and the lecture's Blinn-Phong of exponent `4 k_e` (right, `k_s` 0.5:
+/// the SH mode takes it as the mirror lobe of exponent `k_e`; at most
+/// 10⁶, the material's range), under
+/// `map`, Phong lobes by SH convolution.
 fn sh_scene(map: &str, k_e: f64, k_d: f64, extra: &[&str]) -> Scene {
     let map = format!("environment.map={map}");
+    let blinn = format!(
+        "materials.mirror={{model=\"blinn-phong\", k_d={k_d}, k_s=0.5, k_e={}}}",
+        (4.0 * k_e).min(1e6)
+    );
     let lecture = format!("materials.lambert={{model=\"phong\", k_d={k_d}, k_s=0.5, k_e={k_e}}}");
     let normalized =
         format!("materials.gold={{model=\"phong-normalized\", k_d={k_d}, k_s=0.8, k_e={k_e}}}");
@@ -753,6 +760,7 @@ fn sh_scene(map: &str, k_e: f64, k_d: f64, extra: &[&str]) -> Scene {
         "environment.specular=sh",
         lecture.as_str(),
         normalized.as_str(),
+        blinn.as_str(),
     ];
     sets.extend_from_slice(extra);
     scene(&sets)
@@ -785,20 +793,19 @@ fn sh_glossy_tolerance(map: &EnvironmentMap, k_e: f64) -> f64 {
 /// The `"sh"` mode on the GPU against its f64 twin (`reference = "sh"`)
 /// under the blobs and the sky, orders 2 and 4, exponents 3 and 30.
 /// Tolerance: the shared arithmetic one, the SH diffuse sum's and the
-/// glossy sums' ([`sh_glossy_tolerance`]).
+/// glossy sums' ([`sh_glossy_tolerance`]; the Blinn-Phong sphere's
+/// lobe has the Phong sphere's exponent and `k_s`).
 #[test]
 fn the_sh_mode_matches_its_twin() {
     for (label, map) in [("blobs", "../environment/blobs.hdr"), ("sky", "sky")] {
         for (order, k_e) in [(2, 3.0), (4, 30.0)] {
             let o = format!("environment.sh_order={order}");
-            // The mirror as a Lambert sphere: no map lookup to allow for.
-            let lambert = "materials.mirror={model=\"lambert\", k_d=0.5}";
-            let s = sh_scene(map, k_e, 0.2, &["environment.reference=sh", &o, lambert]);
+            let s = sh_scene(map, k_e, 0.2, &["environment.reference=sh", &o]);
             let env = s.environment.map.clone().unwrap();
             let frame = gpu(&s);
             let (center, jittered) = common::reference_with_jitter(&s);
             let mut tol = common::tolerance(&s, &center);
-            tol.abs += sh_tolerance(&env, 0.5) + sh_glossy_tolerance(&env, k_e);
+            tol.abs += sh_tolerance(&env, 0.2) + sh_glossy_tolerance(&env, k_e);
             let c = gonio::output::compare::compare_with_jitter(&frame, &center, &jittered, tol);
             eprintln!(
                 "sh mode under the {label}, order {order}, k_e {k_e}: {}",
@@ -932,15 +939,19 @@ fn the_sh_mode_error_vs_order_is_measured() {
             let s = sh_scene(map, k_e, 0.0, &[scale]);
             let truth = reference::render(&s);
             let w = truth.width;
-            let mut row = [[0.0; 5]; 2];
+            let mut row = [[0.0; 5]; 3];
             for order in 0..=sh::MAX_ORDER {
                 let mut t = s.clone();
                 t.environment.map.as_mut().unwrap().settings.sh_order = order;
                 let f = gpu(&t);
                 row[0][order as usize] = column_error(&f, &truth, (w / 8, 3 * w / 8)).0;
                 row[1][order as usize] = column_error(&f, &truth, (3 * w / 8, 5 * w / 8)).0;
+                row[2][order as usize] = column_error(&f, &truth, (5 * w / 8, 7 * w / 8)).0;
             }
-            for (lobe, errors) in ["phong", "phong-normalized"].iter().zip(&row) {
+            for (lobe, errors) in ["phong", "phong-normalized", "blinn-phong ×4"]
+                .iter()
+                .zip(&row)
+            {
                 eprintln!(
                     "SH_TABLE | {label} | {lobe} | {k_e} | {}",
                     errors.map(|x| format!("{:.2} %", 100.0 * x)).join(" | ")
@@ -968,9 +979,10 @@ fn the_sh_mode_error_vs_order_is_measured() {
 }
 
 /// Mean relative error measured, `[map][lobe][exponent][order]`: maps
-/// blobs, sky; lobes the lecture's Phong, normalized Phong; exponents 1,
-/// 4, 16, 64; orders 0 to 4.
-const SH_MEASURED: [[[[f64; 5]; 4]; 2]; 2] = [
+/// blobs, sky; lobes the lecture's Phong, normalized Phong, the lecture's
+/// Blinn-Phong of 4n (as the mirror lobe of n); exponents 1, 4, 16, 64;
+/// orders 0 to 4.
+const SH_MEASURED: [[[[f64; 5]; 4]; 3]; 2] = [
     // blobs
     [
         [
@@ -984,6 +996,12 @@ const SH_MEASURED: [[[[f64; 5]; 4]; 2]; 2] = [
             [0.1114, 0.0831, 0.0546, 0.0255, 0.0110],
             [0.0644, 0.0581, 0.0488, 0.0348, 0.0245],
             [0.0393, 0.0386, 0.0359, 0.0307, 0.0256],
+        ],
+        [
+            [0.2034, 0.1279, 0.1178, 0.1178, 0.1178],
+            [0.1579, 0.1270, 0.0990, 0.0796, 0.0765],
+            [0.0923, 0.0851, 0.0749, 0.0589, 0.0497],
+            [0.0594, 0.0576, 0.0540, 0.0472, 0.0423],
         ],
     ],
     // sky
@@ -999,6 +1017,12 @@ const SH_MEASURED: [[[[f64; 5]; 4]; 2]; 2] = [
             [0.1244, 0.1045, 0.0729, 0.0393, 0.0164],
             [0.0493, 0.0540, 0.0507, 0.0438, 0.0355],
             [0.0160, 0.0201, 0.0218, 0.0223, 0.0220],
+        ],
+        [
+            [0.2479, 0.0866, 0.0535, 0.0535, 0.0533],
+            [0.1469, 0.1186, 0.0788, 0.0424, 0.0263],
+            [0.0547, 0.0611, 0.0583, 0.0507, 0.0420],
+            [0.0164, 0.0209, 0.0228, 0.0235, 0.0235],
         ],
     ],
 ];

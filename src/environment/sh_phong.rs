@@ -44,9 +44,15 @@
 //! both are exact where `R = N` at every order (band 0 carries it all):
 //! the lecture's form gives `k_s 2π/(n+1)`, the normalized one `k_s μ`.
 //!
-//! Blinn-Phong (lecture and normalized) is not done here: its lobe about
-//! the half vector is not symmetric about `R`; those models get the SH
-//! diffuse term alone, as every other model.
+//! **The lecture's Blinn-Phong** (`blinn-phong`), `f_r cos θ_i = k_s
+//! (N·H)^n`, is approximated, not exact: its lobe about the half vector is
+//! not symmetric about `R`. It is taken as the mirror lobe `(R·ω)^{n/4}`,
+//! the usual match (at normal incidence the angle between `ω` and `R` is
+//! twice that between `H` and `N`, and `cos^n(θ/2) ≈ e^{−nθ²/8} ≈
+//! cos^{n/4} θ` near the peak); it is wrong in shape away from normal
+//! incidence, where the true lobe stretches. Normalized Blinn-Phong (a
+//! microfacet lobe) is not done: it gets the SH diffuse term alone, as
+//! every other model.
 //!
 //! WGSL twin: shaders/environment_sh.wgsl (same functions, same order).
 
@@ -108,10 +114,13 @@ pub enum Lobe {
     Normalized { k_e: f64 },
 }
 
-/// The lobe of `material` (`None`: the SH diffuse term alone).
+/// The lobe of `material` (`None`: the SH diffuse term alone); the
+/// lecture's Blinn-Phong as the mirror lobe of exponent `n/4` (module
+/// docs).
 pub fn lobe(material: &Material) -> Option<Lobe> {
     match material.brdf().specular {
         BrdfSpecular::Phong { k_e } => Some(Lobe::Lecture { k_e }),
+        BrdfSpecular::BlinnPhong { k_e } => Some(Lobe::Lecture { k_e: 0.25 * k_e }),
         BrdfSpecular::PhongNormalized { k_e } => Some(Lobe::Normalized { k_e }),
         _ => None,
     }

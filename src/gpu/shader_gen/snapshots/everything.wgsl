@@ -1539,17 +1539,23 @@ fn environment_sh_glossy(k_e: f32, normalized: bool, r: vec3<f32>, n: vec3<f32>)
 }
 
 // The SH diffuse term plus, for the Phong models, k_s times the convolved
-// lobe at the mirror direction of wo. Twin: estimate.
+// lobe at the mirror direction of wo (the lecture's Blinn-Phong as the
+// mirror lobe of exponent n/4: an approximation). Twin: estimate (and
+// lobe).
 fn environment_sh(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let n = frame.n;
     let diffuse = environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
     let model = brdf_model(m);
     var lecture = false;
     var normalized = false;
+    var k_e = m.k_e;
     lecture = model == MODEL_PHONG;
+    let blinn = model == MODEL_BLINN_PHONG;
+    lecture = lecture || blinn;
+    k_e = select(k_e, 0.25 * k_e, blinn);
     normalized = model == MODEL_PHONG_NORMALIZED;
     let r = mirror_direction(wo, n);
-    let glossy = m.k_s * environment_sh_glossy(m.k_e, normalized, r, n);
+    let glossy = m.k_s * environment_sh_glossy(k_e, normalized, r, n);
     return diffuse + select(vec3<f32>(0.0), glossy, (lecture || normalized) && dot(n, wo) > 0.0);
 }
 
