@@ -21,6 +21,9 @@ struct EnvironmentUniform {
     rotation: vec2<f32>,
     samples: u32,          // environment.samples (sampled mode)
     prefilter_width: u32,  // a level's width (prefiltered mode; height half)
+    // scale · L_lm (rgb), zero above environment.sh_order: the "sh" mode's
+    // Phong convolution (shaders/environment_sh.wgsl).
+    sh_radiance: array<vec4<f32>, 25>,
 }
 
 @group(3) @binding(0) var<uniform> environment: EnvironmentUniform;
@@ -79,14 +82,13 @@ fn environment_map_radiance(d: vec3<f32>) -> vec3<f32> {
     return environment.scale * environment_lookup(environment_to_map(d));
 }
 
-// E(n) = Σ_i sh[i] · Y_i(n), the 25 real SH of bands 0-4 in the order and
-// form of sh::basis (Sloan 2008), at the normal in the file's frame.
-// Twin: EnvironmentMap::irradiance_sh.
-fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
-    let n = environment_to_map(world_n);
-    let x = n.x;
-    let y = n.y;
-    let z = n.z;
+// The 25 real SH of bands 0-4 at d in the order and form of sh::basis
+// (Sloan 2008): polynomials in (x, y, z), also off the unit sphere
+// (environment_sh.wgsl differentiates them). Twin: sh::basis.
+fn sh_basis(d: vec3<f32>) -> array<f32, 25> {
+    let x = d.x;
+    let y = d.y;
+    let z = d.z;
     let x2 = x * x;
     let y2 = y * y;
     let z2 = z * z;
@@ -116,6 +118,13 @@ fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
     b[22] = 0.473087347878780 * (x2 - y2) * (7.0 * z2 - 1.0);
     b[23] = 1.770130769779931 * x * z * (x2 - 3.0 * y2);
     b[24] = 0.625835735449176 * (x2 * x2 - 6.0 * x2 * y2 + y2 * y2);
+    return b;
+}
+
+// E(n) = Σ_i sh[i] · Y_i(n) at the normal in the file's frame.
+// Twin: EnvironmentMap::irradiance_sh.
+fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
+    let b = sh_basis(environment_to_map(world_n));
     var e = vec3<f32>(0.0);
     for (var i = 0u; i < 25u; i++) {
         e += environment.sh[i].rgb * b[i];

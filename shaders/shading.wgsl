@@ -83,6 +83,9 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     #elif environment_prefiltered
     // The diffuse term plus the split-sum glossy term (Karis 2013).
     radiance += environment_prefiltered(m, wo, frame);
+    #elif environment_sh
+    // The diffuse term plus the Phong lobes by SH convolution.
+    radiance += environment_sh(m, wo, frame);
     #elif environment
     radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
     #endif

@@ -61,9 +61,13 @@ pub fn reflected_radiance(
                     wo,
                 )
             }
-            (Specular::Sampled | Specular::Prefiltered, ReferenceDiffuse::Integrated) => {
-                sampled::integrated(map, &map.data.nodes, material, frame, wo)
+            (Specular::Sh, ReferenceDiffuse::Sh) => {
+                crate::environment::sh_phong::estimate(map, material, frame, wo)
             }
+            (
+                Specular::Sampled | Specular::Prefiltered | Specular::Sh,
+                ReferenceDiffuse::Integrated,
+            ) => sampled::integrated(map, &map.data.nodes, material, frame, wo),
         };
     }
     if material.model == ReflectanceModel::Mirror {

@@ -268,8 +268,9 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
     knob("area_samples", samples, "no area light in the scene file");
 
     // How the environment lights the surfaces: the diffuse term by SH
-    // alone, the whole BRDF with N directions, or the split-sum glossy
-    // term at three stack sizes (the truth integrates
+    // alone, the whole BRDF with N directions, the split-sum glossy
+    // term at three stack sizes, or the Phong lobes by SH convolution
+    // (the SH order is the base's; the truth integrates
     // the whole BRDF: measure::truth).
     let specular = match &base.environment.map {
         Some(map) => {
@@ -300,6 +301,11 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
                     s.specular == Specular::Prefiltered && s.prefilter_size == size,
                 ));
             }
+            v.push((
+                "sh phong".to_string(),
+                vec!["environment.specular=sh".to_string()],
+                s.specular == Specular::Sh,
+            ));
             v
         }
         None => Vec::new(),
@@ -511,9 +517,9 @@ mod tests {
             .iter()
             .filter(|c| c.knob == "environment_specular")
             .collect();
-        // The base (SH diffuse) is not repeated: the three sampled and the
-        // three prefiltered ones.
-        assert_eq!(settings.len(), 6, "{settings:?}");
+        // The base (SH diffuse) is not repeated: the three sampled, the
+        // three prefiltered ones and the SH Phong convolution.
+        assert_eq!(settings.len(), 7, "{settings:?}");
         for c in settings {
             let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
             let scene =

@@ -201,6 +201,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         environment: false,
         environment_sampled: false,
         environment_prefiltered: false,
+        environment_sh: false,
         texture_slots: 0,
         normal_maps: false,
         two_sided: false,
@@ -220,6 +221,7 @@ pub fn specialized_key(scene: &Scene) -> ShaderKey {
     key.environment = false;
     key.environment_sampled = false;
     key.environment_prefiltered = false;
+    key.environment_sh = false;
     key.texture_slots = 0;
     key
 }

@@ -83,6 +83,9 @@ pub enum Specular {
     /// map times the environment BRDF (`"prefiltered"`,
     /// [`super::prefiltered`]).
     Prefiltered,
+    /// Diffuse by SH, the Phong lobes by SH convolution, a zonal product
+    /// (`"sh"`, [`super::sh_phong`]).
+    Sh,
 }
 
 impl Specular {
@@ -92,14 +95,20 @@ impl Specular {
             Specular::None => "none",
             Specular::Sampled => "sampled",
             Specular::Prefiltered => "prefiltered",
+            Specular::Sh => "sh",
         }
     }
 
     /// Parses the scene-file spelling.
     pub fn parse(s: &str) -> Option<Self> {
-        [Specular::None, Specular::Sampled, Specular::Prefiltered]
-            .into_iter()
-            .find(|m| m.name() == s)
+        [
+            Specular::None,
+            Specular::Sampled,
+            Specular::Prefiltered,
+            Specular::Sh,
+        ]
+        .into_iter()
+        .find(|m| m.name() == s)
     }
 }
 
@@ -257,6 +266,17 @@ impl EnvironmentMap {
         let mut c =
             sh::irradiance_coefficients(&self.data.truth.radiance_sh, self.settings.sh_order);
         c.iter_mut().for_each(|c| *c *= self.settings.scale);
+        c
+    }
+
+    /// `scale · L_lm` up to `sh_order` (zero above): the radiance the
+    /// `"sh"` mode convolves with the Phong lobes ([`super::sh_phong`]).
+    pub fn radiance_coefficients(&self) -> [Rgb; sh::COUNT] {
+        let mut c = [Rgb::ZERO; sh::COUNT];
+        let order = self.settings.sh_order;
+        for (i, c) in c.iter_mut().enumerate().take(sh::count(order)) {
+            *c = self.data.truth.radiance_sh[i] * self.settings.scale;
+        }
         c
     }
 

@@ -17,6 +17,8 @@
 //! * [`prefiltered`]: glossy reflection by the split-sum approximation
 //!   (`environment.specular = "prefiltered"`), with the environment BRDF
 //!   table of [`dfg`].
+//! * [`sh_phong`]: the lecture's Phong lobes by SH convolution, a zonal
+//!   product (`environment.specular = "sh"`, Ramamoorthi & Hanrahan 2002).
 //! * [`sh_error`]: SH irradiance error vs order against the truth.
 //! * [`quadrature`]: the integrated truth `E(n) = ∫ L(ω) max(0, n·ω) dω`
 //!   the reference uses and SH is measured against.
@@ -31,6 +33,7 @@ pub mod quadrature;
 pub mod sampled;
 pub mod sh;
 pub mod sh_error;
+pub mod sh_phong;
 pub mod sky;
 pub mod test_maps;
 

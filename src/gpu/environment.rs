@@ -17,7 +17,7 @@ use crate::{Error, Result};
 use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
 
-/// `EnvironmentUniform` in shaders/environment.wgsl (480 bytes).
+/// `EnvironmentUniform` in shaders/environment.wgsl (864 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuEnvironmentUniform {
@@ -35,6 +35,9 @@ pub struct GpuEnvironmentUniform {
     pub samples: u32,
     /// A level's width of the prefiltered stack (prefiltered mode).
     pub prefilter_width: u32,
+    /// `scale · L_lm` up to `sh_order`, RGB and a zero (the `"sh"`
+    /// mode's Phong convolution, `EnvironmentMap::radiance_coefficients`).
+    pub sh_radiance: [[f32; 4]; sh::COUNT],
 }
 
 impl GpuEnvironmentUniform {
@@ -63,6 +66,13 @@ impl GpuEnvironmentUniform {
             },
             samples: map.settings.samples.max(1),
             prefilter_width: map.settings.prefilter_size,
+            sh_radiance: {
+                let c = map.radiance_coefficients();
+                std::array::from_fn(|i| {
+                    let v = c[i].as_vec3();
+                    [v.x, v.y, v.z, 0.0]
+                })
+            },
         }
     }
 }
@@ -452,7 +462,11 @@ mod tests {
 
     #[test]
     fn the_uniform_has_the_wgsl_layout() {
-        // 3 × 16 bytes of vectors and scalars, 25 vec4, the rotation.
-        assert_eq!(size_of::<GpuEnvironmentUniform>(), 48 + 25 * 16 + 16);
+        // 3 × 16 bytes of vectors and scalars, 25 vec4, the rotation,
+        // 25 vec4 (the radiance coefficients).
+        assert_eq!(
+            size_of::<GpuEnvironmentUniform>(),
+            48 + 25 * 16 + 16 + 25 * 16
+        );
     }
 }

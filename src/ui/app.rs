@@ -445,7 +445,7 @@ impl App {
             .map(|(_, p)| p.clone())
             .collect();
         for path in drops {
-            self.state.open(path);
+            self.state.drop_file(path);
         }
         Ok(())
     }
@@ -873,7 +873,7 @@ impl ApplicationHandler<Wake> for App {
                 gfx.surface.resize(ctx, size.width, size.height);
                 self.state.dirty = true;
             }
-            WindowEvent::DroppedFile(path) => self.state.open(path.clone()),
+            WindowEvent::DroppedFile(path) => self.state.drop_file(path.clone()),
             WindowEvent::RedrawRequested => {
                 // Drawn now whatever asked (the schedule, or the system:
                 // an exposed window).

@@ -55,11 +55,14 @@ pub struct ViewArgs {
     pub warmup: u32,
     /// Scripted edit: at frame FRAME, change KEY to VALUE as the panel
     /// does (materials in place, lights by reloading), e.g.
-    /// `--edit 3:materials.ball.k_d=[0,0,1]`. Repeatable.
+    /// `--edit 3:materials.ball.k_d=[0,0,1]`; the environment map's keys
+    /// too (`--edit 3:environment.sh_order=4`, `environment.enabled=false`
+    /// switches the map off). Repeatable.
     #[arg(long = "edit", value_name = "FRAME:KEY=VALUE", value_parser = parse_edit)]
     pub edits: Vec<(u32, String)>,
     /// Scripted file drop: at frame FRAME, open PATH as if it were dropped
-    /// on the window (a bad file shows its error and keeps the scene).
+    /// on the window (a bad file shows its error and keeps the scene; a
+    /// `.hdr` or `.exr` becomes the environment map).
     #[arg(long = "drop", value_name = "FRAME:PATH", value_parser = parse_drop)]
     pub drops: Vec<(u32, PathBuf)>,
     /// Scripted resize: at frame FRAME, ask for a window of WxH pixels

@@ -49,6 +49,9 @@ pub struct Document {
     loaded_lights: Vec<toml::Table>,
     /// Modification time of the scene file when loaded (reload on change).
     modified: Option<SystemTime>,
+    /// The `[environment]` map keys while the map is switched off in the
+    /// viewer (`super::environment`); `None` while it is on.
+    pub parked_environment: Option<toml::Table>,
 }
 
 impl Document {
@@ -96,6 +99,7 @@ impl Document {
             table: loaded.table,
             source_dir: loaded.base_dir,
             lights: loaded.lights,
+            parked_environment: None,
         })
     }
 
@@ -157,8 +161,10 @@ impl Document {
     }
 
     /// Applies one `KEY=VALUE` edit as the panel would: materials, the
-    /// shading mode, the ambient radiance and `[[lights]]` entries
-    /// (`lights.N.KEY`), each validated like the scene file.
+    /// shading mode, the ambient radiance, `[[lights]]` entries
+    /// (`lights.N.KEY`) and the environment map's keys
+    /// (`environment.KEY`, [`super::environment`]), each validated like
+    /// the scene file.
     pub fn edit(&mut self, assignment: &str) -> Result<()> {
         let bad = |problem: String| Error::argument(format!("edit {assignment}"), problem);
         let (key, value) = assignment
@@ -194,6 +200,7 @@ impl Document {
                 self.scene.ambient = crate::scene::Rgb::from_array(v);
                 Ok(())
             }
+            ["environment", key] => super::environment::edit(self, key, assignment),
             ["lights", index, _field] => {
                 let index: usize = index
                     .parse()
@@ -202,7 +209,7 @@ impl Document {
                 self.set_light(index, entry).map_err(bad)
             }
             _ => Err(bad(
-                "the viewer edits materials.NAME.KEY, lights.N.KEY, shading.mode, image.tone_map and ambient.radiance"
+                "the viewer edits materials.NAME.KEY, lights.N.KEY, environment.KEY, shading.mode, image.tone_map and ambient.radiance"
                     .into(),
             )),
         }

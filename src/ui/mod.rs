@@ -5,12 +5,13 @@
 //! [`app`] runs the window loop, [`view`] lays out the panel whose
 //! sections are in [`panels`] and [`plots`], [`state`] is what the panel
 //! edits, [`document`] holds the scene and its edits ([`save`] writes them
-//! as a scene file), [`orbit`] moves the camera, [`surface`] owns the
+//! as a scene file; [`environment`] edits its map), [`orbit`] moves the camera, [`surface`] owns the
 //! swapchain and screenshots.
 
 pub mod app;
 pub mod cli;
 pub mod document;
+pub mod environment;
 pub mod memory;
 pub mod orbit;
 pub mod pacing;

@@ -2,8 +2,9 @@
 //!
 //! The saved file is the source's table with the overrides applied, the
 //! current camera, shading, ambient and image size, and every edited
-//! material and `[[lights]]` entry of the file written out in full. glTF
-//! paths become absolute, so the saved file may live anywhere.
+//! material and `[[lights]]` entry of the file written out in full, and
+//! the `[environment]` as edited (no map while it is switched off). glTF
+//! and map paths become absolute, so the saved file may live anywhere.
 
 use super::document::Document;
 use crate::Result;
@@ -54,6 +55,16 @@ pub fn scene_file_text(doc: &Document) -> Result<String> {
                 *path = absolute.display().to_string();
             }
         }
+    }
+
+    // The environment map's path likewise (`sky` is no file).
+    if let Some(Value::Table(e)) = table.get_mut("environment")
+        && let Some(Value::String(path)) = e.get_mut("map")
+        && path != "sky"
+    {
+        let absolute =
+            std::path::absolute(base_dir.join(&*path)).unwrap_or_else(|_| base_dir.join(&*path));
+        *path = absolute.display().to_string();
     }
 
     if let Some(Value::Array(lights)) = table.get_mut("lights") {

@@ -33,6 +33,8 @@ pub struct ViewerState {
     pub save_path: String,
     pub open_path: String,
     pub open_dialog: bool,
+    /// The environment map path field of the panel.
+    pub environment_path: String,
     /// Frame-time statistics shown in the overlay.
     pub frame_ms: f64,
     pub gpu_ms: Option<f64>,
@@ -62,9 +64,30 @@ impl ViewerState {
             save_path: "gonio-view.toml".into(),
             open_path: String::new(),
             open_dialog: false,
+            environment_path: String::new(),
             frame_ms: 0.0,
             gpu_ms: None,
             adapter: String::new(),
+        }
+    }
+
+    /// A file dropped on the window: a `.hdr` or `.exr` becomes the
+    /// environment map, anything else is opened as a scene.
+    pub fn drop_file(&mut self, path: PathBuf) {
+        if super::environment::is_map_file(&path) {
+            self.environment_path = path.display().to_string();
+            self.edit(&super::environment::map_assignment(&path));
+        } else {
+            self.open(path);
+        }
+    }
+
+    /// Applies one panel edit to the document (`Document::edit`): redrawn
+    /// if it applies, else the reason is shown and nothing changes.
+    pub fn edit(&mut self, assignment: &str) {
+        match self.doc.edit(assignment) {
+            Ok(()) => self.dirty = true,
+            Err(e) => self.message = Some(format!("not applied: {e}")),
         }
     }
 

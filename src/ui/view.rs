@@ -55,12 +55,30 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
     egui::CollapsingHeader::new("View")
         .default_open(true)
         .show(ui, |ui| view_section(ui, state));
+    egui::CollapsingHeader::new("Environment")
+        .default_open(true)
+        .show(ui, |ui| environment_section(ui, state));
     egui::CollapsingHeader::new("Material")
         .default_open(true)
         .show(ui, |ui| material_section(ui, state));
     egui::CollapsingHeader::new("Lights")
         .default_open(true)
         .show(ui, |ui| lights_section(ui, state));
+}
+
+fn environment_section(ui: &mut egui::Ui, state: &mut ViewerState) {
+    let doc = &state.doc;
+    let off = super::environment::is_off(doc);
+    let settings = doc.scene.environment.map.as_ref().map(|m| m.settings);
+    if let Some(m) = &doc.scene.environment.map
+        && state.environment_path.is_empty()
+    {
+        state.environment_path = m.data.name.clone();
+    }
+    let edits = panels::environment_editor(ui, settings, off, &mut state.environment_path);
+    for edit in edits {
+        state.edit(&edit);
+    }
 }
 
 fn file_section(ui: &mut egui::Ui, state: &mut ViewerState) {
@@ -88,7 +106,9 @@ fn file_section(ui: &mut egui::Ui, state: &mut ViewerState) {
             save_scene(state);
         }
     });
-    ui.small("Drop a .gltf, .glb or .toml on the window to open it.");
+    ui.small(
+        "Drop a .gltf, .glb or .toml on the window to open it (a .hdr or .exr: the environment).",
+    );
 }
 
 fn save_scene(state: &mut ViewerState) {

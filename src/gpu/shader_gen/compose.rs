@@ -229,6 +229,10 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
     if key.environment {
         out.push_str(&file("environment.wgsl", &features));
         out.push('\n');
+        if key.environment_sh {
+            out.push_str(&file("environment_sh.wgsl", &features));
+            out.push('\n');
+        }
     }
     // Shadow-map lookups, only when a light casts shadows.
     if key.shadows.any() {

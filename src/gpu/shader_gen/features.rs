@@ -69,6 +69,8 @@ pub enum Feature {
     /// The environment's glossy part by the split-sum approximation
     /// (`environment_prefiltered`).
     EnvironmentPrefiltered,
+    /// The Phong lobes by SH convolution (`environment_sh`).
+    EnvironmentSh,
     /// Some material has textures: UVs in the vertex stream, bind group 2
     /// and shaders/textures.wgsl (`textures`).
     Textures,
@@ -113,6 +115,7 @@ impl Feature {
             Environment,
             EnvironmentSampled,
             EnvironmentPrefiltered,
+            EnvironmentSh,
             Textures,
             NormalMap,
             TwoSided,
@@ -158,6 +161,7 @@ impl Feature {
             Feature::Environment => "environment",
             Feature::EnvironmentSampled => "environment_sampled",
             Feature::EnvironmentPrefiltered => "environment_prefiltered",
+            Feature::EnvironmentSh => "environment_sh",
             Feature::Textures => "textures",
             Feature::NormalMap => "normal_map",
             Feature::TwoSided => "two_sided",

@@ -34,6 +34,8 @@ pub struct ShaderKey {
     /// Its glossy part by the split-sum approximation
     /// (`Feature::EnvironmentPrefiltered`).
     pub environment_prefiltered: bool,
+    /// Its Phong lobes by SH convolution (`Feature::EnvironmentSh`).
+    pub environment_sh: bool,
     /// Texture slots read per pixel: the most textures of one material the
     /// scene draws (0: no texture code; `crate::gpu::textures`).
     pub texture_slots: u32,
@@ -117,6 +119,11 @@ impl ShaderKey {
                 environment_prefiltered: scene.environment.map.as_ref().is_some_and(|m| {
                     m.settings.specular == crate::environment::map::Specular::Prefiltered
                 }),
+                environment_sh: scene
+                    .environment
+                    .map
+                    .as_ref()
+                    .is_some_and(|m| m.settings.specular == crate::environment::map::Specular::Sh),
                 texture_slots: crate::gpu::textures::slot_count(scene),
                 normal_maps: crate::gpu::textures::has_normal_maps(scene),
                 two_sided: scene
@@ -238,6 +245,9 @@ impl ShaderKey {
             }
             if self.environment_prefiltered {
                 f.push(Feature::EnvironmentPrefiltered);
+            }
+            if self.environment_sh {
+                f.push(Feature::EnvironmentSh);
             }
         }
         if self.texture_slots > 0 {

@@ -97,9 +97,10 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 },
                 arrays: arrays(i % 2 == 0),
                 vertex_shadow_coords: false,
-                environment: i % 3 == 0,
+                environment: i % 3 == 0 || i % 6 == 5,
                 environment_sampled: i % 6 == 0,
                 environment_prefiltered: i % 6 == 3,
+                environment_sh: i % 6 == 5,
                 texture_slots: 0,
                 normal_maps: false,
                 two_sided: false,
@@ -132,6 +133,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     environment: pcf,
                     environment_sampled: false,
                     environment_prefiltered: false,
+                    environment_sh: false,
                     texture_slots: 0,
                     normal_maps: false,
                     two_sided: false,
@@ -160,6 +162,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 environment: uniform,
                 environment_sampled: uniform,
                 environment_prefiltered: false,
+                environment_sh: false,
                 // Textures with the uber shader: all slots, all models.
                 texture_slots: if uniform {
                     crate::gpu::textures::MAX_TEXTURE_SLOTS as u32

@@ -48,8 +48,9 @@ pub fn environment_map(
     }))
 }
 
-/// The settings of `e`, range-checked.
-fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
+/// The settings of `e`, range-checked (also the viewer's, which keeps a
+/// map's texels when only a setting changes).
+pub fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
     let mut s = MapSettings::default();
     if let Some(scale) = e.scale {
         if !(scale.is_finite() && scale >= 0.0) {
@@ -77,7 +78,7 @@ fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
     if let Some(m) = &e.specular {
         s.specular = Specular::parse(m).ok_or_else(|| {
             format!(
-                "environment.specular = \"{m}\" is none of \"none\", \"sampled\", \"prefiltered\""
+                "environment.specular = \"{m}\" is none of \"none\", \"sampled\", \"prefiltered\", \"sh\""
             )
         })?;
     }

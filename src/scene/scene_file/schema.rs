@@ -332,8 +332,9 @@ pub struct EnvironmentSection {
     /// Turns the map about +Y (degrees, counter-clockwise from above).
     pub rotation_deg: Option<f64>,
     /// `"none"` (the diffuse term by SH, default), `"sampled"` (the
-    /// whole BRDF integrated with `samples` directions) or `"prefiltered"`
-    /// (the split-sum approximation).
+    /// whole BRDF integrated with `samples` directions), `"prefiltered"`
+    /// (the split-sum approximation) or `"sh"` (the Phong lobes by SH
+    /// convolution).
     pub specular: Option<String>,
     /// Directions per shading point of `specular = "sampled"` (default 64).
     pub samples: Option<i64>,

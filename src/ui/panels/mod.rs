@@ -1,10 +1,12 @@
-//! The side panel's sections: material, lights, view. Each edits a copy
+//! The side panel's sections: material, lights, environment, view. Each edits a copy
 //! and hands back what changed; the caller validates and applies it, so a
 //! value the renderer rejects becomes a message, never a crash.
 
+mod environment;
 mod light;
 mod material;
 
+pub use environment::environment_editor;
 pub use light::light_editor;
 pub use material::material_editor;
 

@@ -1,0 +1,267 @@
+//! The viewer's environment-map edits (issue 16 items 1 and 6): the keys
+//! of `[environment]` that choose and use a map (`map`, `scale`,
+//! `sh_order`, `rotation_deg`, `specular`, `samples`, `prefilter_size`,
+//! `reference`), from the panel, a `.hdr`/`.exr` dropped on the window or
+//! `--edit FRAME:environment.KEY=VALUE`, and switching the map off and on
+//! (`environment.enabled`, a viewer-only key).
+//!
+//! An edit sets the key in the document's scene table (what "Save scene"
+//! writes) and reads the section back with the loader's own rules
+//! ([`environment_keys`]), so a value the scene file refuses is refused
+//! with the file's message. When the `map` value is unchanged the texels
+//! (and their SH projection, quadrature and prefiltered stacks) are kept
+//! and only the settings change: a rotation or SH-order slider redraws at
+//! frame rate.
+
+use super::document::Document;
+use crate::environment::EnvironmentMap;
+use crate::scene::scene_file::diagnostics::clean_toml_error;
+use crate::scene::scene_file::schema::EnvironmentSection;
+use crate::scene::scene_file::{apply_override, environment_keys};
+use crate::{Error, Result};
+use serde::Deserialize;
+use std::path::Path;
+
+/// The `[environment]` keys of a map (the gradient's `zenith`, `horizon`
+/// and `ground` are not edited here).
+pub const MAP_KEYS: [&str; 8] = [
+    "map",
+    "scale",
+    "sh_order",
+    "reference",
+    "rotation_deg",
+    "specular",
+    "samples",
+    "prefilter_size",
+];
+
+/// Whether `path` names a map file the viewer takes as the environment
+/// when dropped (`.hdr`, `.exr`, any case).
+pub fn is_map_file(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("hdr") || e.eq_ignore_ascii_case("exr"))
+}
+
+/// The edit that makes the file at `path` the map (absolute, so a saved
+/// scene finds it from anywhere).
+pub fn map_assignment(path: &Path) -> String {
+    let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let value = toml::Value::String(path.display().to_string());
+    format!("environment.map={value}")
+}
+
+/// Applies `environment.KEY=VALUE` (`assignment`) to `doc`. Editing a key
+/// of a switched-off map switches it on first; choosing another
+/// `specular` mode drops the other modes' `samples` and `prefilter_size`
+/// (which the loader refuses beside it).
+pub fn edit(doc: &mut Document, key: &str, assignment: &str) -> Result<()> {
+    let bad = |problem: String| Error::argument(format!("edit {assignment}"), problem);
+    if key == "enabled" {
+        let (_, value) = assignment.split_once('=').unwrap_or_default();
+        let on: bool = value
+            .trim()
+            .parse()
+            .map_err(|_| bad("environment.enabled is true or false".into()))?;
+        return set_enabled(doc, on).map_err(bad);
+    }
+    if !MAP_KEYS.contains(&key) {
+        return Err(bad(format!(
+            "the viewer edits environment.{} and environment.enabled",
+            MAP_KEYS.join(", environment.")
+        )));
+    }
+    let mut table = with_parked(doc);
+    if key == "specular"
+        && let Some(toml::Value::Table(e)) = table.get_mut("environment")
+    {
+        e.remove("samples");
+        e.remove("prefilter_size");
+    }
+    apply_override(&mut table, assignment)?;
+    install(doc, table).map_err(bad)?;
+    doc.parked_environment = None;
+    Ok(())
+}
+
+/// Switches the map off (its keys are kept aside; the scene has no map,
+/// a saved file none) or back on.
+pub fn set_enabled(doc: &mut Document, on: bool) -> std::result::Result<(), String> {
+    if on {
+        if doc.parked_environment.is_some() {
+            let table = with_parked(doc);
+            install(doc, table)?;
+            doc.parked_environment = None;
+        }
+        return Ok(());
+    }
+    if doc.parked_environment.is_some() || doc.scene.environment.map.is_none() {
+        return Ok(());
+    }
+    let mut parked = toml::Table::new();
+    if let Some(toml::Value::Table(e)) = doc.table.get_mut("environment") {
+        for key in MAP_KEYS {
+            if let Some(v) = e.remove(key) {
+                parked.insert(key.into(), v);
+            }
+        }
+    }
+    set_map(doc, None)?;
+    doc.parked_environment = Some(parked);
+    Ok(())
+}
+
+/// Gives the scene `map` and assembles its lights again: a scene without
+/// lights gets the default light exactly when it has no map (the
+/// contract's rule, as the loader applies it), so the viewer shows what
+/// the saved file renders.
+fn set_map(doc: &mut Document, map: Option<EnvironmentMap>) -> std::result::Result<(), String> {
+    let mut lights = doc.lights.clone();
+    lights.environment_map = map.is_some();
+    lights.assemble()?.install(&mut doc.scene);
+    doc.lights = lights;
+    doc.scene.environment.map = map;
+    Ok(())
+}
+
+/// Whether the map is switched off (it has keys to switch back on).
+pub fn is_off(doc: &Document) -> bool {
+    doc.parked_environment.is_some()
+}
+
+/// The document's table with the parked keys (if any) back in place.
+fn with_parked(doc: &Document) -> toml::Table {
+    let mut table = doc.table.clone();
+    if let Some(parked) = &doc.parked_environment {
+        let e = table
+            .entry("environment")
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        if let toml::Value::Table(e) = e {
+            e.extend(parked.clone());
+        }
+    }
+    table
+}
+
+/// The `[environment]` section of `table`, read by the schema.
+fn section(table: &toml::Table) -> std::result::Result<EnvironmentSection, String> {
+    match table.get("environment") {
+        None => Ok(EnvironmentSection::default()),
+        Some(v) => EnvironmentSection::deserialize(v.clone())
+            .map_err(|e| format!("environment: {}", clean_toml_error(&e))),
+    }
+}
+
+/// Makes `table`'s environment the document's (its table and its scene's
+/// map); on error nothing changes.
+fn install(doc: &mut Document, table: toml::Table) -> std::result::Result<(), String> {
+    let new = section(&table)?;
+    let old = section(&doc.table).ok().and_then(|s| s.map);
+    let map = match &doc.scene.environment.map {
+        // The same file: keep its texels and what is derived from them.
+        Some(current) if new.map.is_some() && new.map == old => Some(EnvironmentMap {
+            data: current.data.clone(),
+            settings: environment_keys::settings(&new)?,
+        }),
+        _ => environment_keys::environment_map(&new, &doc.source_dir)?,
+    };
+    set_map(doc, map)?;
+    doc.table = table;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::environment::map::Specular;
+    use crate::scene::limits::Limits;
+    use crate::scene::scene_file::SceneSource;
+    use std::sync::Arc;
+
+    fn doc() -> Document {
+        Document::load(SceneSource::BuiltIn, vec![], Limits::default()).unwrap()
+    }
+
+    #[test]
+    fn edits_set_the_map_and_its_settings_keeping_the_texels() {
+        let mut d = doc();
+        assert!(d.scene.environment.map.is_none());
+        // A setting without a map: the loader's message.
+        let e = d.edit("environment.sh_order=3").unwrap_err().to_string();
+        assert!(e.contains("no environment.map"), "{e}");
+        d.edit("environment.map=sky").unwrap();
+        let texels = d.scene.environment.map.as_ref().unwrap().data.clone();
+        d.edit("environment.sh_order=4").unwrap();
+        d.edit("environment.rotation_deg=90").unwrap();
+        d.edit("environment.specular=sampled").unwrap();
+        d.edit("environment.samples=16").unwrap();
+        let m = d.scene.environment.map.as_ref().unwrap();
+        assert!(Arc::ptr_eq(&m.data, &texels));
+        assert_eq!(
+            (
+                m.settings.sh_order,
+                m.settings.rotation_deg,
+                m.settings.samples
+            ),
+            (4, 90.0, 16)
+        );
+        // Another mode drops `samples` (refused beside it).
+        d.edit("environment.specular=sh").unwrap();
+        let m = d.scene.environment.map.as_ref().unwrap();
+        assert_eq!(m.settings.specular, Specular::Sh);
+        assert!(d.table["environment"].get("samples").is_none());
+        // Bad values are refused and change nothing.
+        for bad in [
+            "environment.sh_order=9",
+            "environment.specular=\"glossy\"",
+            "environment.samples=16",
+            "environment.zenith=[1, 1, 1]",
+            "environment.map=\"missing.hdr\"",
+        ] {
+            assert!(d.edit(bad).is_err(), "{bad}");
+        }
+        assert_eq!(
+            d.scene.environment.map.as_ref().unwrap().settings.sh_order,
+            4
+        );
+    }
+
+    #[test]
+    fn the_map_switches_off_and_on_and_saves_as_shown() {
+        let mut d = doc();
+        d.edit("environment.map=sky").unwrap();
+        d.edit("environment.scale=0.5").unwrap();
+        d.edit("environment.enabled=false").unwrap();
+        assert!(d.scene.environment.map.is_none() && is_off(&d));
+        let saved = crate::ui::save::scene_file_text(&d).unwrap();
+        assert!(!saved.contains("sky"), "{saved}");
+        d.edit("environment.enabled=true").unwrap();
+        let m = d.scene.environment.map.as_ref().unwrap();
+        assert_eq!(m.settings.scale, 0.5);
+        let saved = crate::ui::save::scene_file_text(&d).unwrap();
+        assert!(
+            saved.contains("map = \"sky\"") && saved.contains("scale = 0.5"),
+            "{saved}"
+        );
+        // Editing a key of a switched-off map switches it on.
+        d.edit("environment.enabled=false").unwrap();
+        d.edit("environment.sh_order=1").unwrap();
+        assert!(!is_off(&d));
+        assert_eq!(
+            d.scene.environment.map.as_ref().unwrap().settings.sh_order,
+            1
+        );
+        assert!(d.edit("environment.enabled=maybe").is_err());
+    }
+
+    #[test]
+    fn dropped_map_files_are_recognized() {
+        assert!(is_map_file(Path::new("/a/sky.HDR")) && is_map_file(Path::new("b.exr")));
+        assert!(!is_map_file(Path::new("scene.toml")) && !is_map_file(Path::new("hdr")));
+        // Quotes in a path survive the assignment's TOML.
+        let path = "/maps/a \"b\" 'c'.hdr";
+        let mut table = toml::Table::new();
+        apply_override(&mut table, &map_assignment(Path::new(path))).unwrap();
+        assert_eq!(table["environment"]["map"].as_str(), Some(path));
+    }
+}
