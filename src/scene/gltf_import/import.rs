@@ -162,13 +162,6 @@ impl<'a> Importer<'a> {
                 .map_err(|e| format!("normalTexture: {e}"))?;
             converted.textures.push(t);
         }
-        if material.alpha_mode() != gltf::material::AlphaMode::Opaque {
-            self.scene.notes.push(format!(
-                "material {}: alphaMode {:?} is not read yet; it is drawn opaque",
-                material.index().unwrap_or_default(),
-                material.alpha_mode()
-            ));
-        }
         if let Some(occlusion) = material.occlusion_texture() {
             let strength = f64::from(occlusion.strength());
             if !strength.is_finite() {
