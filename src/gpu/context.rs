@@ -113,7 +113,11 @@ impl GpuContext {
                 | wgpu::TextureFormat::Rg32Float
                 | wgpu::TextureFormat::R32Float
         );
-        (!float32 || self.device.features().contains(wgpu::Features::FLOAT32_BLENDABLE))
+        (!float32
+            || self
+                .device
+                .features()
+                .contains(wgpu::Features::FLOAT32_BLENDABLE))
             && self
                 .adapter
                 .get_texture_format_features(format)

@@ -192,20 +192,6 @@ impl Bvh {
         t_max: f64,
         keeps_back: impl Fn(TriangleId) -> bool,
     ) -> Option<Hit> {
-        self.intersect_accepted(ray, t_min, t_max, |id, back| !back || keeps_back(id))
-    }
-
-    /// The closest hit with `t` in `[t_min, t_max]` on a triangle that
-    /// `accepts(id, back)` (`back`: the ray meets its clockwise side):
-    /// [`Self::intersect_where`], and the alpha walk of the reference,
-    /// which passes on through triangles it has already met.
-    pub fn intersect_accepted(
-        &self,
-        ray: &Ray,
-        t_min: f64,
-        t_max: f64,
-        accepts: impl Fn(TriangleId, bool) -> bool,
-    ) -> Option<Hit> {
         let inv = ray.direction.recip();
         let mut best: Option<Hit> = None;
         let mut t_far = t_max;
@@ -215,7 +201,7 @@ impl Bvh {
                 // is met where the direction has a positive component
                 // along the counter-clockwise normal.
                 let back = ray.direction.dot(tri.e1.cross(tri.e2)) > 0.0;
-                if accepts(tri.id, back) {
+                if !back || keeps_back(tri.id) {
                     best = Some(hit);
                     *t_hi = hit.t;
                 }

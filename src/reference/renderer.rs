@@ -161,22 +161,24 @@ impl<'a> Shader<'a> {
     /// the order here is the exact depth order; the GPU draws an
     /// object's triangles in index order (sorted per object only), so
     /// the two differ where a ray meets one BLEND object twice.
+    ///
+    /// The walk goes on from `t + ε` (ε = [`shadow_epsilon`]): a ray
+    /// through the shared edge of two triangles meets both at the same
+    /// `t`, and the rasterizer draws one of them (its fill rule), so hits
+    /// closer than ε count as one surface.
     fn trace(&self, ray: &Ray, t_near: f64, t_far: f64, pixel: (usize, usize)) -> (Rgb, f64) {
         let scene = self.scene;
-        let mut passed: Vec<super::bvh::TriangleId> = Vec::new();
         let mut sum = Rgb::ZERO;
         let mut transmittance = 1.0;
         let mut t_from = t_near;
         // Single-sided materials' back faces are culled, as the GPU
-        // discards them; triangles already met are passed through.
-        let accepts = |id: super::bvh::TriangleId, back: bool, passed: &[super::bvh::TriangleId]| {
+        // discards them.
+        let keeps_back = |id: super::bvh::TriangleId| {
             let m = &scene.meshes[id.mesh as usize];
-            (!back || self.materials[m.material].sides != Sides::Front) && !passed.contains(&id)
+            self.materials[m.material].sides != Sides::Front
         };
         loop {
-            let Some(hit) = self.bvh.intersect_accepted(ray, t_from, t_far, |id, back| {
-                accepts(id, back, &passed)
-            }) else {
+            let Some(hit) = self.bvh.intersect_where(ray, t_from, t_far, keeps_back) else {
                 if let Some(map) = &scene.environment.map {
                     // Contract: a ray that misses sees scale · L_env(d)
                     // (coverage stays 0, as on the GPU).
@@ -190,8 +192,7 @@ impl<'a> Shader<'a> {
                 crate::material::AlphaMode::Opaque => 1.0,
                 _ => self.alpha(&hit, pixel),
             };
-            passed.push(hit.id);
-            t_from = hit.t;
+            t_from = hit.t + self.epsilon;
             if mode.discards(a) {
                 continue;
             }

@@ -62,9 +62,7 @@ pub(super) fn material_from_pbr(
             // glTF: "alphaCutoff ... minimum: 0.0", default 0.5.
             let cutoff = f64::from(material.alpha_cutoff().unwrap_or(0.5));
             if !(cutoff.is_finite() && cutoff >= 0.0) {
-                return Err(format!(
-                    "alphaCutoff {cutoff} is not a finite number ≥ 0"
-                ));
+                return Err(format!("alphaCutoff {cutoff} is not a finite number ≥ 0"));
             }
             crate::material::AlphaMode::Mask { cutoff }
         }
