@@ -114,3 +114,178 @@ fn texture_transform_gpu_matches_reference() {
         &center,
     );
 }
+
+/// TextureEncodingTest: each row's spheres (base colour, emission,
+/// metallic-roughness) take the same value from a factor and from 8-bit
+/// PNG textures, plain, with a gAMA chunk and with an ICC profile (which
+/// glTF requires to be ignored), so a row's spheres look the same: each
+/// seen from straight in front (the same geometry), its centre pixel.
+/// Tolerance: the texel is stored as f16 (half an ulp, 2⁻¹², relative),
+/// and the roughness reaches the radiance at most through GGX's peak
+/// ∝ r⁻⁴ (×4); 4 · 2⁻¹¹ bounds both, f32 shading adds ~10⁻⁶. A gamma
+/// chunk honoured would move 136/255 by tens of per cent. Both renderers.
+#[test]
+fn texture_encoding_factors_equal_textures() {
+    let tolerance = 4.0 * 2f64.powi(-11);
+    let centre = |x: f64, y: f64, reference: bool| {
+        let view = Frontal {
+            x,
+            y,
+            distance: 20.0,
+            fov: 4.0,
+            size: 9,
+        };
+        let scene = load("TextureEncodingTest/TextureEncodingTest.glb", &view.sets());
+        let f = if reference {
+            gonio::reference::render(&scene)
+        } else {
+            common::gpu_renderer().render(&scene).unwrap().0
+        };
+        f.radiance[f.index(4, 4)].map(f64::from)
+    };
+    for (name, reference) in [("GPU", false), ("reference", true)] {
+        for (row, y) in [
+            ("base colour", 2.0),
+            ("emissive", -1.0),
+            ("metallic-roughness", -4.0),
+        ] {
+            let factor = centre(-2.75, y, reference);
+            assert!(
+                factor.iter().any(|&v| v > 1e-3),
+                "{name} {row}: dark {factor:?}"
+            );
+            for (column, x) in [("texture", 0.25), ("gamma", 3.25), ("ICC", 6.25)] {
+                let got = centre(x, y, reference);
+                for c in 0..3 {
+                    let err = (got[c] - factor[c]).abs();
+                    assert!(
+                        err <= tolerance * factor[c].abs() + 1e-6,
+                        "{name} {row}, {column}: channel {c} {} vs factor {}",
+                        got[c],
+                        factor[c]
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The first row from the top, in `column` between `rows`, whose pixel
+/// is saturated (AlphaBlendModeTest's blue and yellow stripes; its
+/// marble is grey-beige): (max − min) / max of RGB above ½.
+fn first_striped_row(f: &Frame, column: u32, rows: std::ops::Range<u32>) -> Option<u32> {
+    rows.into_iter().find(|&r| {
+        let [a, b, c] = f.radiance[f.index(r, column)].map(f64::from);
+        let (hi, lo) = (a.max(b).max(c), a.min(b).min(c));
+        hi > 0.0 && (hi - lo) / hi > 0.5
+    })
+}
+
+/// AlphaBlendModeTest's MASK panels (cutoff 0.25 at x = 0, the default
+/// 0.5 at 1.5, 0.75 at 3; a linear alpha ramp from the top, opaque at the
+/// bottom): each is cut where its ramp crosses its cutoff, so the first
+/// striped row moves down the panel in equal steps (the default is 0.5
+/// exactly when the middle step equals the outer one: ±2 px), by at
+/// least a tenth of the panel's height each; above it the marble behind
+/// shows. Both renderers.
+#[test]
+fn alpha_blend_mode_test_cutoffs() {
+    let view = Frontal {
+        x: 1.5,
+        y: 1.035,
+        distance: 8.0,
+        fov: 30.0,
+        size: 200,
+    };
+    let scene = load("AlphaBlendModeTest/AlphaBlendModeTest.glb", &view.sets());
+    // The panels span y 0.1 to 1.97 (their quads), a little inside.
+    let (_, top) = view.pixel(0.0, 1.9 - view.y);
+    let (_, bottom) = view.pixel(0.0, 0.2 - view.y);
+    let height = f64::from(bottom - top);
+    for (name, f) in [
+        ("GPU", common::gpu_renderer().render(&scene).unwrap().0),
+        ("reference", gonio::reference::render(&scene)),
+    ] {
+        let cut = [0.0, 1.5, 3.0].map(|x| {
+            let (column, _) = view.pixel(x + 0.2 - view.x, 0.0);
+            first_striped_row(&f, column, top..bottom)
+                .unwrap_or_else(|| panic!("{name}: no stripes in the panel at x = {x}"))
+        });
+        eprintln!("{name}: first striped rows {cut:?} in rows {top}..{bottom}");
+        let steps = [cut[1] as f64 - cut[0] as f64, cut[2] as f64 - cut[1] as f64];
+        assert!(
+            steps.iter().all(|&s| s > 0.1 * height),
+            "{name}: cuts {cut:?} do not step down the panel"
+        );
+        assert!(
+            (steps[0] - steps[1]).abs() <= 2.0,
+            "{name}: the default cutoff is not halfway: steps {steps:?}"
+        );
+    }
+}
+
+/// The reference's spread over the levels of detail the GPU may use
+/// (λ ± ½, Vulkan's bound; tests/textures.rs): for each pixel, the
+/// frames at biases ±⅛ … ±½ whose values lie farthest above and below
+/// the centre's, as one pair for `compare_with_spreads`. With alpha the
+/// picture is not monotonic in λ (BLEND composites a texel's alpha with
+/// its colour: a product of two functions of λ), so the two ends of the
+/// interval alone do not bound it; ⅛ steps sample it. Where a bias
+/// changes the coverage (a MASK edge moves), the pair marks the pixel a
+/// silhouette.
+fn lod_envelope(scene: &Scene, center: &Frame) -> (Frame, Frame) {
+    let (mut up, mut down) = (center.clone(), center.clone());
+    for bias in [-0.5, -0.375, -0.25, -0.125, 0.125, 0.25, 0.375, 0.5] {
+        let f = gonio::reference::render_with_lod_bias(scene, bias);
+        for k in 0..center.len() {
+            if f.coverage[k] != center.coverage[k] {
+                up.coverage[k] = f.coverage[k];
+            }
+            for c in 0..3 {
+                up.radiance[k][c] = up.radiance[k][c].max(f.radiance[k][c]);
+                down.radiance[k][c] = down.radiance[k][c].min(f.radiance[k][c]);
+            }
+        }
+    }
+    (up, down)
+}
+
+/// AlphaBlendModeTest whole (OPAQUE, BLEND over the marble, MASK with
+/// mipmapped textures), GPU against reference: the derived render
+/// tolerance with the jitter and the level-of-detail envelope
+/// ([`lod_envelope`]).
+#[test]
+fn alpha_blend_mode_test_gpu_matches_reference() {
+    let view = Frontal {
+        x: 0.0,
+        y: 1.1,
+        distance: 9.0,
+        fov: 18.0,
+        size: 90,
+    };
+    let mut sets = view.sets();
+    sets[0] = "image.width=240".into();
+    let scene = load("AlphaBlendModeTest/AlphaBlendModeTest.glb", &sets);
+    let frame = common::gpu_renderer().render(&scene).unwrap().0;
+    let (center, jittered) = common::reference_with_jitter(&scene);
+    let (up, down) = lod_envelope(&scene, &center);
+    let c = gonio::output::compare::compare_with_spreads(
+        &frame,
+        &center,
+        &[
+            (&jittered[0], &jittered[1]),
+            (&jittered[2], &jittered[3]),
+            (&up, &down),
+        ],
+        common::tolerance(&scene, &center),
+    );
+    eprintln!("AlphaBlendModeTest: {}", c.summary());
+    assert!(c.compared > 10_000);
+    common::assert_agrees(
+        "AlphaBlendModeTest",
+        "GPU and reference disagree",
+        &c,
+        &frame,
+        &center,
+    );
+}
