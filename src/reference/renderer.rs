@@ -563,7 +563,9 @@ pub fn shadow_epsilon(scene: &Scene) -> f64 {
 /// starts on; it ends ε before a point, spot or area-sample light, and goes
 /// to infinity for a directional light. The offset normal is the
 /// geometric (face) normal for Phong and flat shading and the vertex
-/// normal for Gouraud (a vertex has no single face).
+/// normal for Gouraud (a vertex has no single face). Alpha is ignored:
+/// MASK and BLEND surfaces occlude as opaque ones do, as the GPU's
+/// depth-only shadow pass draws them (README, "alphaMode").
 pub fn visibility(bvh: &Bvh, light: &Light, x: DVec3, n_offset: DVec3, epsilon: f64) -> f64 {
     if !light.casts_shadows() {
         return 1.0;
