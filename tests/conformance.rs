@@ -289,3 +289,122 @@ fn alpha_blend_mode_test_gpu_matches_reference() {
         &center,
     );
 }
+
+/// The darkest luminance along the segment from world (x0, y) to (x1, y)
+/// (in the plane z = 0), one sample per pixel.
+fn darkest(f: &Frame, view: &Frontal, y: f64, (x0, x1): (f64, f64)) -> f64 {
+    (0..=24)
+        .map(|i| {
+            let x = x0 + (x1 - x0) * f64::from(i) / 24.0;
+            luminance(f, view.pixel(x - view.x, y - view.y))
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// TextureCoordinateTest: UV (0, 0) is the image's top-left corner
+/// (glTF), so each quad's black-and-white checker runs along its outer
+/// edges from its outer corner: along the outer edge near that corner
+/// there is black; at the places a flipped v (the other horizontal edge)
+/// or a flipped u (the other end of the same edge) would put it, only
+/// the quad's colour. Both renderers.
+#[test]
+fn texture_coordinates_start_at_the_top_left() {
+    let view = Frontal {
+        x: 0.0,
+        y: 0.0,
+        distance: 4.0,
+        fov: 40.0,
+        size: 200,
+    };
+    let scene = load(
+        "TextureCoordinateTest/TextureCoordinateTest.glb",
+        &view.sets(),
+    );
+    for (name, f) in [
+        ("GPU", common::gpu_renderer().render(&scene).unwrap().0),
+        ("reference", gonio::reference::render(&scene)),
+    ] {
+        for (quad, sx, sy) in [
+            ("top left", -1.0, 1.0),
+            ("top right", 1.0, 1.0),
+            ("bottom left", -1.0, -1.0),
+            ("bottom right", 1.0, -1.0),
+        ] {
+            let outer = darkest(&f, &view, sy * 1.15, (sx * 1.15, sx * 0.85));
+            let v_flipped = darkest(&f, &view, sy * 0.25, (sx * 1.15, sx * 0.85));
+            let u_flipped = darkest(&f, &view, sy * 1.15, (sx * 0.55, sx * 0.25));
+            assert!(
+                outer < 0.3 * v_flipped.min(u_flipped),
+                "{name} {quad}: checker not at the outer corner: {outer} vs {v_flipped} (v flipped), {u_flipped} (u flipped)"
+            );
+        }
+    }
+}
+
+/// Pixels of a square cell (centre (x, y), half-size `half`, world) that
+/// are green (a check mark or a green square) and that are red (an X).
+fn green_and_red(f: &Frame, view: &Frontal, (x, y): (f64, f64), half: f64) -> (usize, usize) {
+    let (c0, r0) = view.pixel(x - half - view.x, y + half - view.y);
+    let (c1, r1) = view.pixel(x + half - view.x, y - half - view.y);
+    let (mut green, mut red) = (0, 0);
+    for r in r0..=r1 {
+        for c in c0..=c1 {
+            let [red_, g, b] = f.radiance[f.index(r, c)].map(f64::from);
+            green += usize::from(g > 1.5 * red_ && g > 1.5 * b);
+            red += usize::from(red_ > 1.5 * g && red_ > 1.5 * b);
+        }
+    }
+    (green, red)
+}
+
+/// TextureSettingsTest: in each row (single- and double-sided, clamp,
+/// repeat and mirror in s and in t) the "Test" cell shows what the
+/// "Sample pass" cell shows, a green check mark or a green square, when
+/// the sampler's wrap mode and `doubleSided` are honoured; a wrong one
+/// shows a red X or nothing. The test cell's green area is within 25 %
+/// of the sample's (the two cells sit at different sub-pixel offsets),
+/// and neither has red. Both renderers.
+#[test]
+fn texture_settings_match_the_sample_column() {
+    let view = Frontal {
+        x: 1.5,
+        y: -1.1,
+        distance: 12.0,
+        fov: 40.0,
+        size: 400,
+    };
+    let scene = load("TextureSettingsTest/TextureSettingsTest.glb", &view.sets());
+    // Row centres: the meshes' z extents, turned to y by the root node's
+    // −90° rotation about x.
+    let rows = [
+        ("single-sided", 2.545),
+        ("double-sided", 1.52),
+        ("clamp s", 0.467),
+        ("clamp t", -0.57),
+        ("repeat s", -1.604),
+        ("repeat t", -2.641),
+        ("mirror s", -3.678),
+        ("mirror t", -4.715),
+    ];
+    for (name, f) in [
+        ("GPU", common::gpu_renderer().render(&scene).unwrap().0),
+        ("reference", gonio::reference::render(&scene)),
+    ] {
+        for (row, y) in rows {
+            let (test_green, test_red) = green_and_red(&f, &view, (0.455, y), 0.4);
+            let (sample_green, sample_red) = green_and_red(&f, &view, (2.6, y), 0.4);
+            eprintln!(
+                "{name} {row}: green {test_green} vs {sample_green}, red {test_red} / {sample_red}"
+            );
+            assert!(
+                sample_green > 100,
+                "{name} {row}: the sample cell is not green"
+            );
+            assert!(
+                (test_green as f64 - sample_green as f64).abs() <= 0.25 * sample_green as f64,
+                "{name} {row}: test cell green {test_green} vs sample {sample_green}"
+            );
+            assert!(test_red + sample_red == 0, "{name} {row}: red (an X) shows");
+        }
+    }
+}
