@@ -153,11 +153,12 @@ impl<'a> Importer<'a> {
             }
             let t = self
                 .images
-                .texture_of(
+                .texture_with_raw_transform(
                     &normal.texture(),
                     normal.tex_coord(),
                     TextureTarget::Normal { scale },
                     Encoding::Linear,
+                    normal.extension_value("KHR_texture_transform"),
                 )
                 .map_err(|e| format!("normalTexture: {e}"))?;
             converted.textures.push(t);
@@ -172,11 +173,12 @@ impl<'a> Importer<'a> {
             // glTF: the occlusion values are in R.
             let t = self
                 .images
-                .texture_of(
+                .texture_with_raw_transform(
                     &occlusion.texture(),
                     occlusion.tex_coord(),
                     TextureTarget::Occlusion { strength },
                     Encoding::Linear,
+                    occlusion.extension_value("KHR_texture_transform"),
                 )
                 .map_err(|e| format!("occlusionTexture: {e}"))?;
             converted.textures.push(t);
