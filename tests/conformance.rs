@@ -408,3 +408,51 @@ fn texture_settings_match_the_sample_column() {
         }
     }
 }
+
+/// VertexColorTest: the "Test" row's check marks are coloured by
+/// `COLOR_0` only, the "Sample pass" row's by a texture; each red, green
+/// and blue check covers about as many pixels of its colour in both rows
+/// (within 25 %: the rows sit at different sub-pixel offsets). Ignoring
+/// `COLOR_0` leaves the test row's checks uncoloured. Both renderers.
+#[test]
+fn vertex_colors_match_the_sample_row() {
+    let view = Frontal {
+        x: 0.0,
+        y: 0.0,
+        distance: 4.0,
+        fov: 30.0,
+        size: 200,
+    };
+    let scene = load("VertexColorTest/VertexColorTest.glb", &view.sets());
+    let count = |f: &Frame, (x, y): (f64, f64), channel: usize| {
+        let half = 0.22;
+        let (c0, r0) = view.pixel(x - half, y + half);
+        let (c1, r1) = view.pixel(x + half, y - half);
+        let mut n = 0;
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                let v = f.radiance[f.index(r, c)].map(f64::from);
+                n += usize::from((0..3).all(|o| o == channel || v[channel] > 2.0 * v[o]));
+            }
+        }
+        n
+    };
+    for (name, f) in [
+        ("GPU", common::gpu_renderer().render(&scene).unwrap().0),
+        ("reference", gonio::reference::render(&scene)),
+    ] {
+        for (colour, x, channel) in [("red", -0.59, 0), ("green", 0.0, 1), ("blue", 0.59, 2)] {
+            let test = count(&f, (x, 0.27), channel);
+            let sample = count(&f, (x, -0.51), channel);
+            eprintln!("{name} {colour}: test {test}, sample {sample} pixels");
+            assert!(
+                sample > 100,
+                "{name} {colour}: the sample check is not {colour}"
+            );
+            assert!(
+                (test as f64 - sample as f64).abs() <= 0.25 * sample as f64,
+                "{name} {colour}: test check {test} vs sample {sample} pixels"
+            );
+        }
+    }
+}
