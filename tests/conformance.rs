@@ -456,3 +456,26 @@ fn vertex_colors_match_the_sample_row() {
         }
     }
 }
+
+/// The other conformance models whole, at their default camera and
+/// light, GPU against reference (derived tolerance with the jitter and
+/// level-of-detail spreads of `common`).
+#[test]
+fn conformance_models_gpu_match_reference() {
+    for model in [
+        "TextureSettingsTest/TextureSettingsTest.glb",
+        "TextureCoordinateTest/TextureCoordinateTest.glb",
+        "VertexColorTest/VertexColorTest.glb",
+        "TextureEncodingTest/TextureEncodingTest.glb",
+        "TextureLinearInterpolationTest/TextureLinearInterpolationTest.glb",
+        "MetalRoughSpheresNoTextures/MetalRoughSpheresNoTextures.glb",
+    ] {
+        let scene = load(model, &["image.width=80".into(), "image.height=60".into()]);
+        let frame = common::gpu_renderer().render(&scene).unwrap().0;
+        let (center, jittered) = common::reference_with_jitter(&scene);
+        let c = common::compare_to_reference(&scene, &frame, &center, &jittered);
+        eprintln!("{model}: {}", c.summary());
+        assert!(c.compared > 300, "{model}: {} compared", c.compared);
+        common::assert_agrees(model, "GPU and reference disagree", &c, &frame, &center);
+    }
+}
