@@ -416,3 +416,43 @@ fn alpha_gpu_matches_reference() {
         );
     }
 }
+
+/// The import: MASK without `alphaCutoff` takes glTF's default 0.5, BLEND
+/// and OPAQUE read as such with the factor's alpha; a negative cutoff is
+/// an error naming it.
+#[test]
+fn alpha_modes_import_with_gltf_defaults() {
+    use gonio::material::AlphaMode;
+    let dir = tempfile::tempdir().unwrap();
+    let path = gltf(
+        dir.path(),
+        "modes",
+        &[
+            Quad::new(0.0, 0.5, "MASK", [1.0, 1.0, 1.0, 0.3]),
+            Quad::new(-0.2, 0.5, "BLEND", [1.0, 1.0, 1.0, 0.6]),
+            Quad::new(-0.4, 0.5, "OPAQUE", [1.0, 1.0, 1.0, 0.1]),
+        ],
+    );
+    let scene = load(&path, ShadingMode::Phong);
+    let modes: Vec<_> = scene
+        .materials
+        .iter()
+        .map(|m| (m.alpha_mode, m.alpha))
+        .collect();
+    assert_eq!(
+        modes,
+        [
+            (AlphaMode::Mask { cutoff: 0.5 }, 0.30000001192092896),
+            (AlphaMode::Blend, 0.6000000238418579),
+            (AlphaMode::Opaque, 0.10000000149011612),
+        ]
+    );
+    let mut bad = Quad::new(0.0, 0.5, "MASK", [1.0; 4]);
+    bad.cutoff = Some(-0.5);
+    let path = gltf(dir.path(), "bad", &[bad]);
+    let err = scene_file::load(&SceneSource::File(path), &[]).unwrap_err();
+    assert!(
+        err.to_string().contains("alphaCutoff"),
+        "the error names alphaCutoff: {err}"
+    );
+}
