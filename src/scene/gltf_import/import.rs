@@ -80,6 +80,16 @@ impl<'a> Importer<'a> {
             let mut converted = material_from_pbr(name, &material)?;
             self.textures(&material, &pbr, &mut converted)
                 .map_err(|e| format!("material {index}: {e}"))?;
+            // What alpha does and does not do here (README, "alphaMode").
+            match converted.alpha_mode {
+                crate::material::AlphaMode::Opaque => {}
+                crate::material::AlphaMode::Mask { cutoff } => self.scene.notes.push(format!(
+                    "material {index}: alphaMode MASK (cutoff {cutoff}); its shadows ignore alpha"
+                )),
+                crate::material::AlphaMode::Blend => self.scene.notes.push(format!(
+                    "material {index}: alphaMode BLEND, sorted back to front per object (not per triangle); its shadows ignore alpha"
+                )),
+            }
             self.scene.materials.push(converted);
         }
 
