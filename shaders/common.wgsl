@@ -43,6 +43,10 @@ struct Material {
     metallic: f32,         // gltf-pbr: metallic m (its perceptual roughness r is `roughness`)
     emission: vec3<f32>,   // emitted radiance W/(m²·sr), added to L_o (every model)
     sides: u32,            // 0: both faces, lit as the front; 1: back faces culled; 2: back faces lit with the flipped normal (material::Sides)
+    alpha: f32,            // base colour alpha (textures and vertex colours multiply it per pixel)
+    alpha_cutoff: f32,     // AlphaMode::cutoff: fragments of lower alpha are discarded (0: none)
+    alpha_mode: u32,       // AlphaMode::code: 0 opaque, 1 mask, 2 blend (its alpha is the output's)
+    _pad_alpha: u32,
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -153,6 +157,21 @@ fn tone_map(scaled: vec3<f32>, code: u32) -> vec3<f32> {
     out = select(out, aces, code == 2u);
     out = select(out, neutral, code == 3u);
     return clamp(out, vec3<f32>(0.0), vec3<f32>(1.0));
+}
+#endif
+
+#if alpha
+// A fragment of opacity `alpha` (alpha BLEND; the pipeline blends
+// SRC_ALPHA, ONE_MINUS_SRC_ALPHA over what is drawn, so the alpha channel
+// becomes the coverage 1 − Π(1 − a)). Display targets blend their encoded
+// values (as the Khronos sample viewer blends its sRGB output); offscreen
+// targets blend linear radiance, as the reference composites.
+fn target_output_alpha(radiance: vec3<f32>, alpha: f32) -> TargetTexel {
+    #if display
+    return vec4<f32>(srgb_encode(tone_map(radiance * globals.display_scale, globals.tone_map)), alpha);
+    #else
+    return target_texel(vec4<f32>(radiance, alpha));
+    #endif
 }
 #endif
 

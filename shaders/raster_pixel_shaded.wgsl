@@ -111,13 +111,25 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     let surface_uv = SurfaceUv(in.uv0, in.uv1, dpdx(in.uv0), dpdy(in.uv0), dpdx(in.uv1), dpdy(in.uv1));
     // Vertex colours (interpolated) multiply the colours first.
     #if vertex_colors
-    let textured = textured_surface(vertex_coloured(material, in.color.rgb), surface_uv);
+    let textured = textured_surface(vertex_coloured(material, in.color), surface_uv);
     #else
     let textured = textured_surface(material, surface_uv);
     #endif
     let material = textured.material;
     #elif vertex_colors
-    let material = vertex_coloured(material, in.color.rgb);
+    let material = vertex_coloured(material, in.color);
+    #endif
+    #if alpha
+    // Alpha (glTF alphaMode; Material.alpha_mode): the base colour's
+    // alpha, textures and vertex colours applied above. MASK: a fragment
+    // below the cutoff is discarded (the reference's ray goes on); the
+    // condition varies per pixel (UNIFORM_BRANCHES), and the cutoff is 0
+    // (never) for the other modes. BLEND: the alpha is the output's.
+    let alpha = material.alpha;
+    if alpha < material.alpha_cutoff {
+        discard;
+    }
+    let opacity = select(1.0, alpha, material.alpha_mode == 2u);
     #endif
     let n = flip * normalize_or_zero(in.normal);
     #if tangents
@@ -132,10 +144,15 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     frame = normal_mapped_frame(frame, flip * select(1.0, -1.0, in.bitangent_sign < 0.0), textured.normal);
     #endif
     #if shadow_pixel
-    return target_output(reflected_radiance(material, in.world, frame, n_g));
+    let radiance = reflected_radiance(material, in.world, frame, n_g);
     #elif shadow_vertex
-    return target_output(reflected_radiance(material, in.world, frame, in.shadow_ndc));
+    let radiance = reflected_radiance(material, in.world, frame, in.shadow_ndc);
     #else
-    return target_output(reflected_radiance(material, in.world, frame));
+    let radiance = reflected_radiance(material, in.world, frame);
+    #endif
+    #if alpha
+    return target_output_alpha(radiance, opacity);
+    #else
+    return target_output(radiance);
     #endif
 }

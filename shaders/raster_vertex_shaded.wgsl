@@ -48,7 +48,33 @@ struct VertexOut {
     @location(1) radiance_back: vec3<f32>,
     #endif
     #endif
+    // The alpha (glTF alphaMode), per vertex as the colour.
+    #if alpha
+    #if flat
+    @location(2) @interpolate(flat) alpha: f32,
+    #else
+    @location(2) @interpolate(perspective, centroid) alpha: f32,
+    #endif
+    #endif
 }
+
+#if alpha
+// The base colour's alpha at a vertex (flat: the centroid's UVs and the
+// corners' mean colour), textures at level 0, as its radiance reads
+// them. Twin: reference::renderer's `alpha`.
+fn vertex_alpha(in: VertexIn) -> f32 {
+    #if vertex_colors
+    let coloured = vertex_coloured(material, in.color);
+    #else
+    let coloured = material;
+    #endif
+    #if textures
+    return textured_surface_level0(coloured, in.uv0, in.uv1).material.alpha;
+    #else
+    return coloured.alpha;
+    #endif
+}
+#endif
 
 // The radiance of a vertex's front (flip 1) or back (flip −1: the frame
 // turned over, for double-sided materials).
@@ -69,13 +95,13 @@ fn vertex_radiance(in: VertexIn, flip: f32) -> vec3<f32> {
     // UVs), level 0, shadowing the module's `material`.
     // Vertex colours (flat: the corners' mean) multiply the colours first.
     #if vertex_colors
-    let textured = textured_surface_level0(vertex_coloured(material, in.color.rgb), in.uv0, in.uv1);
+    let textured = textured_surface_level0(vertex_coloured(material, in.color), in.uv0, in.uv1);
     #else
     let textured = textured_surface_level0(material, in.uv0, in.uv1);
     #endif
     let material = textured.material;
     #elif vertex_colors
-    let material = vertex_coloured(material, in.color.rgb);
+    let material = vertex_coloured(material, in.color);
     #endif
     // A normal map (flat: the triangle's first corner's sign at every
     // corner, as the reference).
@@ -101,6 +127,9 @@ fn vs_main(in: VertexIn) -> VertexOut {
     #if two_sided
     out.radiance_back = vertex_radiance(in, -1.0);
     #endif
+    #if alpha
+    out.alpha = vertex_alpha(in);
+    #endif
     return out;
 }
 
@@ -120,10 +149,20 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
         discard;
     }
     #endif
-    // Alpha 1 marks coverage.
     #if two_sided
-    return target_output(select(in.radiance, in.radiance_back, back == 2u));
+    let radiance = select(in.radiance, in.radiance_back, back == 2u);
     #else
-    return target_output(in.radiance);
+    let radiance = in.radiance;
+    #endif
+    // Alpha (as in raster_pixel_shaded.wgsl): MASK discards below the
+    // cutoff (a per-pixel condition), BLEND outputs it; else alpha 1
+    // marks coverage.
+    #if alpha
+    if in.alpha < material.alpha_cutoff {
+        discard;
+    }
+    return target_output_alpha(radiance, select(1.0, in.alpha, material.alpha_mode == 2u));
+    #else
+    return target_output(radiance);
     #endif
 }

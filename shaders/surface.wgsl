@@ -38,13 +38,15 @@ fn f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f
 
 
 #if vertex_colors
-// The material under a vertex colour (glTF COLOR_0's RGB): k_a, k_d and
-// base_color multiplied by it. Twin: Material::vertex_coloured.
-fn vertex_coloured(m: Material, c: vec3<f32>) -> Material {
+// The material under a vertex colour (glTF COLOR_0): k_a, k_d and
+// base_color multiplied by its RGB, alpha by its A. Twin:
+// Material::vertex_coloured.
+fn vertex_coloured(m: Material, c: vec4<f32>) -> Material {
     var out = m;
-    out.k_a *= c;
-    out.k_d *= c;
-    out.base_color *= c;
+    out.k_a *= c.rgb;
+    out.k_d *= c.rgb;
+    out.base_color *= c.rgb;
+    out.alpha *= c.a;
     return out;
 }
 #endif

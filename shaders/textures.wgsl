@@ -15,6 +15,10 @@ struct TextureSlot {
     channel: u32,      // 4: RGB (a colour parameter); 0-3: the channel a scalar parameter reads; 5: a normal map
     tex_coord: u32,    // UV set (TEXCOORD_n)
     strength: f32,     // 1; occlusion: glTF's strength; normal map: glTF's scale
+    alpha: u32,        // 1: the texel's A multiplies Material.alpha (the base colour's texture)
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 struct TextureSlots {
@@ -136,11 +140,13 @@ struct TexturedSurface {
 }
 
 // One slot's texel applied: its fields scaled (none for a normal map,
-// whose fields are 0), or its normal taken (channel 5). Unused slots
+// whose fields are 0), or its normal taken (channel 5); the base colour's
+// A on the alpha (twin: reference::texture::alpha). Unused slots
 // (fields 0, a white texel) change nothing.
 fn apply_slot(s: TexturedSurface, slot: TextureSlot, texel: vec4<f32>) -> TexturedSurface {
     var out = s;
     out.material = scale_fields(s.material, slot.fields, slot_factor(slot, texel));
+    out.material.alpha *= select(1.0, texel.a, slot.alpha != 0u);
     out.normal = select(s.normal, decoded_normal(texel, slot.strength), slot.channel == 5u);
     return out;
 }

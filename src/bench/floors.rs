@@ -207,6 +207,8 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         two_sided: false,
         culling: false,
         vertex_colors: false,
+        alpha: false,
+        alpha_blend: false,
         // The buffer holds networks or tables as the scene says: the same
         // measured code as the specialized shader.
         measured_network: ShaderKey::new(scene, &ShadowPlan::new(scene)).measured_network,

@@ -103,6 +103,28 @@ impl GpuContext {
         })
     }
 
+    /// Whether scene pipelines can blend into `format` (alpha BLEND):
+    /// 32-bit float targets need the device's `FLOAT32_BLENDABLE`, every
+    /// format the adapter's blendable flag.
+    pub fn blendable(&self, format: wgpu::TextureFormat) -> bool {
+        let float32 = matches!(
+            format,
+            wgpu::TextureFormat::Rgba32Float
+                | wgpu::TextureFormat::Rg32Float
+                | wgpu::TextureFormat::R32Float
+        );
+        (!float32
+            || self
+                .device
+                .features()
+                .contains(wgpu::Features::FLOAT32_BLENDABLE))
+            && self
+                .adapter
+                .get_texture_format_features(format)
+                .flags
+                .contains(wgpu::TextureFormatFeatureFlags::BLENDABLE)
+    }
+
     /// Refuses an adapter without `Rgba32Float` targets for `gonio bench`,
     /// whose hand-written floor shaders (the unlit pass, the minimal
     /// shader) write f32 radiance and have no bits fallback.
@@ -202,6 +224,13 @@ impl GpuContext {
             .contains(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
         {
             required_features |= wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
+        }
+        // Alpha BLEND into the Rgba32Float radiance target.
+        if adapter
+            .features()
+            .contains(wgpu::Features::FLOAT32_BLENDABLE)
+        {
+            required_features |= wgpu::Features::FLOAT32_BLENDABLE;
         }
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {

@@ -104,27 +104,47 @@ pub struct GeometryData {
 pub struct Batch {
     pub material: u32,
     pub range: std::ops::Range<u32>,
+    /// Alpha BLEND: the one mesh (index in `Scene::meshes`) this batch
+    /// draws, so that the renderer can draw such batches back to front
+    /// per object; `None` for the others.
+    pub object: Option<u32>,
 }
 
-/// The scene's meshes in material order (stable), so each material's
-/// triangles are contiguous.
-fn meshes_by_material(scene: &Scene) -> Vec<&Mesh> {
-    let mut meshes: Vec<_> = scene.meshes.iter().collect();
-    meshes.sort_by_key(|m| m.material);
+/// Whether `mesh` is drawn with alpha BLEND.
+fn blends(scene: &Scene, mesh: &Mesh) -> bool {
+    scene.materials[mesh.material].alpha_mode == crate::material::AlphaMode::Blend
+}
+
+/// The scene's meshes (with their indices) in material order (stable),
+/// so each material's triangles are contiguous, alpha BLEND meshes last
+/// (drawn over everything else).
+fn meshes_by_material(scene: &Scene) -> Vec<(usize, &Mesh)> {
+    let mut meshes: Vec<_> = scene.meshes.iter().enumerate().collect();
+    meshes.sort_by_key(|(_, m)| (blends(scene, m), m.material));
     meshes
 }
 
-/// Appends `count` elements of `material` to `batches`, merging with the
-/// last run of the same material.
-fn extend_batches(batches: &mut Vec<Batch>, material: usize, count: usize) {
-    let material = material as u32;
+/// Appends `count` elements of mesh `index` to `batches`, merging with
+/// the last run of the same material unless it blends (a batch per
+/// BLEND mesh).
+fn extend_batches(
+    batches: &mut Vec<Batch>,
+    scene: &Scene,
+    (index, mesh): (usize, &Mesh),
+    count: usize,
+) {
+    let material = mesh.material as u32;
+    let object = blends(scene, mesh).then_some(index as u32);
     let start = batches.last().map_or(0, |b| b.range.end);
     let end = start + count as u32;
     match batches.last_mut() {
-        Some(last) if last.material == material => last.range.end = end,
+        Some(last) if last.material == material && object.is_none() && last.object.is_none() => {
+            last.range.end = end
+        }
         _ => batches.push(Batch {
             material,
             range: start..end,
+            object,
         }),
     }
 }
@@ -223,8 +243,8 @@ impl GeometryData {
         let mut indices = Vec::with_capacity(3 * scene.triangle_count());
         let mut base = 0u32;
         let mut batches = Vec::new();
-        for mesh in meshes_by_material(scene) {
-            extend_batches(&mut batches, mesh.material, 3 * mesh.indices.len());
+        for (index, mesh) in meshes_by_material(scene) {
+            extend_batches(&mut batches, scene, (index, mesh), 3 * mesh.indices.len());
             for v in 0..mesh.positions.len() {
                 push3(&mut words, mesh.positions[v]);
                 push3(&mut words, mesh.normals[v]);
@@ -329,8 +349,8 @@ impl GeometryData {
         let mut words =
             Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
         let mut batches = Vec::new();
-        for mesh in meshes_by_material(scene) {
-            extend_batches(&mut batches, mesh.material, 3 * mesh.indices.len());
+        for (index, mesh) in meshes_by_material(scene) {
+            extend_batches(&mut batches, scene, (index, mesh), 3 * mesh.indices.len());
             for t in 0..mesh.indices.len() {
                 triangle(mesh, t, &mut words);
             }
@@ -396,7 +416,7 @@ mod tests {
         assert!(g.indices.is_none() && g.layout.face_normal);
         let words = (g.layout.stride() / 4) as usize;
         assert_eq!(g.words.len(), words * 3 * scene.triangle_count());
-        let mesh = meshes_by_material(&scene)[0];
+        let mesh = meshes_by_material(&scene)[0].1;
         let read = |corner: usize, at: usize| {
             let w = &g.words[corner * words + at..corner * words + at + 3];
             glam::DVec3::new(

@@ -53,6 +53,13 @@ pub struct GpuMaterial {
     pub emission: [f32; 3],
     /// `Sides::code` of the material (glTF `doubleSided`).
     pub sides: u32,
+    /// The base colour's alpha (`Material::alpha`).
+    pub alpha: f32,
+    /// `AlphaMode::cutoff`: a fragment of lower alpha is discarded.
+    pub alpha_cutoff: f32,
+    /// `AlphaMode::code` (0 opaque, 1 mask, 2 blend).
+    pub alpha_mode: u32,
+    pub _pad_alpha: u32,
 }
 
 /// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
@@ -146,6 +153,10 @@ impl GpuMaterial {
             metallic: p.metallic as f32,
             emission: f32x3(m.emission),
             sides: m.sides.code(),
+            alpha: m.alpha as f32,
+            alpha_cutoff: m.alpha_mode.cutoff() as f32,
+            alpha_mode: m.alpha_mode.code(),
+            _pad_alpha: 0,
         }
     }
 }
@@ -329,7 +340,11 @@ mod tests {
                 base_color,
                 metallic,
                 emission,
-                sides
+                sides,
+                alpha,
+                alpha_cutoff,
+                alpha_mode,
+                _pad_alpha
             }),
         );
         assert_mirrors(

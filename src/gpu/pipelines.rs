@@ -37,9 +37,10 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub const DUMP_WGSL_ENV: &str = "GONIO_DUMP_WGSL";
 
 /// What tells scene pipelines apart: features, colour format, samples
-/// per pixel, and the BRDF variant a pipeline draws (`None`: any of the
-/// key's, chosen per material at run time).
-pub type PipelineKey = (ShaderKey, wgpu::TextureFormat, u32, Option<u32>);
+/// per pixel, the BRDF variant a pipeline draws (`None`: any of the
+/// key's, chosen per material at run time), and whether it blends (alpha
+/// BLEND materials: "over" blending, depth tested but not written).
+pub type PipelineKey = (ShaderKey, wgpu::TextureFormat, u32, Option<u32>, bool);
 
 /// Shader modules, pipelines and layouts of one device, made on first
 /// use. The only owner of compiled GPU code.
@@ -132,7 +133,10 @@ impl PipelineCache {
         samples: u32,
     ) -> Result<()> {
         for variant in Self::specializations(key) {
-            self.compile_scene_pipeline(key, layout, format, samples, variant)?;
+            self.compile_scene_pipeline(key, layout, format, samples, (variant, false))?;
+            if key.alpha_blend {
+                self.compile_scene_pipeline(key, layout, format, samples, (variant, true))?;
+            }
         }
         Ok(())
     }
@@ -230,9 +234,9 @@ impl PipelineCache {
         layout: VertexLayout,
         format: wgpu::TextureFormat,
         samples: u32,
-        variant: Option<u32>,
+        (variant, blend): (Option<u32>, bool),
     ) -> Result<()> {
-        let cache_key = (key.clone(), format, samples, variant);
+        let cache_key = (key.clone(), format, samples, variant, blend);
         if self.scene_pipelines.contains_key(&cache_key) {
             return Ok(());
         }
@@ -260,6 +264,7 @@ impl PipelineCache {
                 constants: &constants,
                 format,
                 samples,
+                blend,
             },
         );
         self.scene_pipelines.insert(cache_key, pipeline);
@@ -306,6 +311,7 @@ impl PipelineCache {
                 constants: &[],
                 format,
                 samples: 1,
+                blend: false,
             },
         )
     }
@@ -362,10 +368,16 @@ struct ScenePipeline<'a> {
     constants: &'a [(&'a str, f64)],
     format: wgpu::TextureFormat,
     samples: u32,
+    /// Alpha BLEND: `L = a·L_s + (1 − a)·L_dst` (straight alpha, glTF's
+    /// "over", as the Khronos sample viewer: SRC_ALPHA,
+    /// ONE_MINUS_SRC_ALPHA), coverage `a + (1 − a)·a_dst`; the depth is
+    /// tested, not written, so what lies behind stays drawable.
+    blend: bool,
 }
 
 /// The scene pass's pipeline: `vs_main` / `fs_main`, both faces, depth
-/// test, no blending.
+/// test; depth writes and no blending, or blending without depth writes
+/// (`blend`).
 fn scene_pipeline(device: &wgpu::Device, p: &ScenePipeline) -> wgpu::RenderPipeline {
     let compilation_options = wgpu::PipelineCompilationOptions {
         constants: p.constants,
@@ -394,7 +406,7 @@ fn scene_pipeline(device: &wgpu::Device, p: &ScenePipeline) -> wgpu::RenderPipel
         },
         depth_stencil: Some(wgpu::DepthStencilState {
             format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
+            depth_write_enabled: Some(!p.blend),
             depth_compare: Some(wgpu::CompareFunction::Less),
             stencil: Default::default(),
             bias: Default::default(),
@@ -409,7 +421,18 @@ fn scene_pipeline(device: &wgpu::Device, p: &ScenePipeline) -> wgpu::RenderPipel
             compilation_options,
             targets: &[Some(wgpu::ColorTargetState {
                 format: p.format,
-                blend: None,
+                blend: p.blend.then_some(wgpu::BlendState {
+                    color: wgpu::BlendComponent {
+                        src_factor: wgpu::BlendFactor::SrcAlpha,
+                        dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                        operation: wgpu::BlendOperation::Add,
+                    },
+                    alpha: wgpu::BlendComponent {
+                        src_factor: wgpu::BlendFactor::One,
+                        dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                        operation: wgpu::BlendOperation::Add,
+                    },
+                }),
                 write_mask: wgpu::ColorWrites::ALL,
             })],
         }),

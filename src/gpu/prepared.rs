@@ -45,6 +45,12 @@ pub struct PreparedScene {
     /// For each batch, the variant it is drawn with and that pipeline
     /// (resolved when the scene changes, so a frame looks nothing up).
     batch_pipelines: Vec<(Option<u32>, wgpu::RenderPipeline)>,
+    /// Alpha BLEND batches (index into the batches) with the centre of
+    /// their mesh's bounding box, which orders them.
+    blend_centers: Vec<(usize, glam::DVec3)>,
+    /// The order batches are drawn in: the others in stream order, then
+    /// the BLEND ones back to front from the camera ([`draw_order`]).
+    order: Vec<usize>,
     /// The light data last uploaded, to tell whether the maps are stale.
     lights: Vec<GpuLight>,
     plan: ShadowPlan,
@@ -80,6 +86,12 @@ impl PreparedScene {
         check_drawable(scene)?;
         let (key, plan) = plan(&ctx.device, vertex_shadow_coords, scene)?;
         check_geometry_size(&ctx.device, scene, &key)?;
+        if key.alpha_blend && !ctx.blendable(format) {
+            return Err(Error::Gpu(format!(
+                "the scene has alpha BLEND materials, and the GPU adapter `{}` cannot blend into {format:?} targets; use another backend (unset WGPU_BACKEND for Vulkan)",
+                ctx.adapter_info.name
+            )));
+        }
         let geometry =
             GeometryData::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
         cache.compile_scene(&key, geometry.layout, format, samples)?;
@@ -108,6 +120,8 @@ impl PreparedScene {
             draw.layout.stride(),
         );
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
+        let blend_centers = blend_centers(&draw, scene);
+        let order = draw_order(draw.batches().len(), &blend_centers, scene);
         let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
         let textures = if key.texture_slots > 0 {
             let layout = &cache.scene_layouts(arrays).texture_group;
@@ -124,6 +138,8 @@ impl PreparedScene {
             geometry_bytes: draw.geometry_bytes,
             draw,
             batch_pipelines,
+            blend_centers,
+            order,
             lights,
             shadows_stale: shadows.is_some(),
             plan,
@@ -155,6 +171,8 @@ impl PreparedScene {
             || key.shadow_coords_per_vertex() != layout.face_normal
             || key.texture_slots > 0
             || self.key.texture_slots > 0
+            || key.alpha_blend
+            || self.key.alpha_blend
         {
             let display_scale = self.display_scale;
             *self = Self::new(
@@ -224,7 +242,8 @@ impl PreparedScene {
     /// Writes only the per-view values of `scene` (camera, image size,
     /// ambient, environment, exposure): what a camera move changes. The
     /// shadow maps do not depend on the camera, so they stay.
-    pub fn update_view(&self, ctx: &GpuContext, scene: &Scene) {
+    pub fn update_view(&mut self, ctx: &GpuContext, scene: &Scene) {
+        self.order = draw_order(self.draw.batches().len(), &self.blend_centers, scene);
         let mut globals = GpuGlobals::new(scene);
         globals.display_scale = self.display_scale;
         self.draw.write_globals(&ctx.queue, &globals);
@@ -256,11 +275,15 @@ impl PreparedScene {
         // Each material's batch with its material bound (src/gpu/bindings.rs)
         // and the pipeline of its BRDF variant (consecutive batches of one
         // variant share the bind).
+        // Alpha BLEND batches last, back to front (`order`), each with its
+        // blending pipeline.
         let mut bound = None;
-        for (batch, (variant, pipeline)) in self.draw.batches().iter().zip(&self.batch_pipelines) {
-            if bound != Some(*variant) {
+        for &b in &self.order {
+            let (batch, (variant, pipeline)) = (&self.draw.batches()[b], &self.batch_pipelines[b]);
+            let which = (*variant, batch.object.is_some());
+            if bound != Some(which) {
                 pass.set_pipeline(pipeline);
-                bound = Some(*variant);
+                bound = Some(which);
             }
             if let Some(textures) = &self.textures {
                 pass.set_bind_group(2, textures.group(batch.material), &[]);
@@ -389,7 +412,8 @@ fn batch_pipelines(
         .iter()
         .map(|b| {
             let variant = specialized.then(|| materials[b.material as usize].variant);
-            let pipeline = cache.scene_pipeline(&(key.clone(), format, samples, variant));
+            let blend = b.object.is_some();
+            let pipeline = cache.scene_pipeline(&(key.clone(), format, samples, variant, blend));
             (variant, pipeline.clone())
         })
         .collect()
@@ -407,4 +431,37 @@ fn gpu_lights(scene: &Scene, plan: &ShadowPlan) -> Vec<GpuLight> {
             g
         })
         .collect()
+}
+
+/// The alpha BLEND batches of `draw` (index, the centre of the bounding
+/// box of the mesh each draws, in world space).
+fn blend_centers(draw: &SceneDraw, scene: &Scene) -> Vec<(usize, glam::DVec3)> {
+    draw.batches()
+        .iter()
+        .enumerate()
+        .filter_map(|(i, b)| {
+            let mesh = &scene.meshes[b.object? as usize];
+            let (lo, hi) = mesh.positions.iter().fold(
+                (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY),
+                |(lo, hi), &p| (lo.min(p), hi.max(p)),
+            );
+            Some((i, 0.5 * (lo + hi)))
+        })
+        .collect()
+}
+
+/// The drawing order of `batches` batches: every batch that does not
+/// blend, in stream order, then the BLEND ones (`blend`) back to front,
+/// farthest centre from `scene`'s camera first ("sorted per object": the
+/// triangles within one are drawn in index order; the reference
+/// composites in exact depth order, see `reference::renderer`).
+fn draw_order(batches: usize, blend: &[(usize, glam::DVec3)], scene: &Scene) -> Vec<usize> {
+    let eye = scene.camera.position;
+    let mut order: Vec<usize> = (0..batches)
+        .filter(|i| !blend.iter().any(|(b, _)| b == i))
+        .collect();
+    let mut sorted = blend.to_vec();
+    sorted.sort_by(|(_, a), (_, b)| b.distance_squared(eye).total_cmp(&a.distance_squared(eye)));
+    order.extend(sorted.into_iter().map(|(i, _)| i));
+    order
 }

@@ -96,7 +96,7 @@ impl GpuRenderer {
 
     /// Writes only the per-view values of `scene`
     /// ([`PreparedScene::update_view`]).
-    pub fn update_view(&self, prepared: &PreparedScene, scene: &Scene) {
+    pub fn update_view(&self, prepared: &mut PreparedScene, scene: &Scene) {
         prepared.update_view(&self.ctx, scene);
     }
 

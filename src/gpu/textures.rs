@@ -29,7 +29,7 @@ pub const MAX_TEXTURE_SLOTS: usize = 6;
 /// The format of every texture.
 pub const TEXTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// `TextureSlot` of `shaders/textures.wgsl` (48 bytes).
+/// `TextureSlot` of `shaders/textures.wgsl` (64 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct GpuTextureSlot {
@@ -42,6 +42,10 @@ pub struct GpuTextureSlot {
     /// parameter, glTF's `strength` for occlusion, `scale` for a normal
     /// map.
     pub strength: f32,
+    /// 1: the texel's A multiplies the material's alpha
+    /// (`MaterialTexture::carries_alpha`).
+    pub alpha: u32,
+    pub _pad: [u32; 3],
 }
 
 /// `channel` of a normal-map slot (0–3: a scalar's channel, 4: RGB).
@@ -151,6 +155,8 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
             channel,
             tex_coord: t.tex_coord as u32,
             strength,
+            alpha: u32::from(t.carries_alpha()),
+            _pad: [0; 3],
         };
     }
     Ok(slots)
@@ -320,7 +326,7 @@ mod tests {
 
     #[test]
     fn slot_mirrors_the_wgsl_size() {
-        assert_eq!(size_of::<GpuTextureSlot>(), 48);
+        assert_eq!(size_of::<GpuTextureSlot>(), 64);
         let key = crate::gpu::shader_gen::ShaderKey {
             variants: [crate::material::Material::new(
                 "m",
@@ -339,6 +345,6 @@ mod tests {
             .find(|(_, t)| t.name.as_deref() == Some("TextureSlot"))
             .unwrap()
             .1;
-        assert_eq!(ty.inner.size(module.to_ctx()), 48);
+        assert_eq!(ty.inner.size(module.to_ctx()), 64);
     }
 }

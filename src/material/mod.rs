@@ -89,6 +89,69 @@ pub struct Material {
     /// Which faces are drawn and how a back face is lit (glTF
     /// `doubleSided`).
     pub sides: Sides,
+    /// The base colour's alpha `a` (glTF `baseColorFactor[3]`), in
+    /// [0, 1]; the base-colour texture's A and `COLOR_0`'s A multiply it
+    /// per point. Read only as [`Self::alpha_mode`] says.
+    pub alpha: f64,
+    /// How alpha is read (glTF `alphaMode`; see [`AlphaMode`]).
+    pub alpha_mode: AlphaMode,
+}
+
+/// glTF 2.0 `alphaMode` (§3.9.4 "Alpha Coverage"): what the base colour's
+/// alpha `a = baseColorFactor.a × baseColorTexture.a × COLOR_0.a` does.
+/// Both renderers read it the same way (GPU: `surface_alpha` and
+/// `fs_main` in shaders/raster_pixel_shaded.wgsl; reference:
+/// `reference::renderer`, which continues a ray through what the GPU
+/// discards or blends).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum AlphaMode {
+    /// `a` is ignored: fully opaque (glTF's default, every scene-file
+    /// material).
+    #[default]
+    Opaque,
+    /// Opaque where `a ≥ cutoff`, absent (the ray goes on) where
+    /// `a < cutoff` (glTF `alphaCutoff`, default 0.5).
+    Mask { cutoff: f64 },
+    /// Composited over what lies behind: `L = a·L_surface + (1 − a)·L_behind`
+    /// (straight, not premultiplied alpha: glTF's "over" operator, as the
+    /// Khronos sample viewer blends with SRC_ALPHA, ONE_MINUS_SRC_ALPHA).
+    Blend,
+}
+
+impl AlphaMode {
+    /// The GPU's `Material.alpha_mode`: 0 opaque, 1 mask, 2 blend.
+    pub fn code(self) -> u32 {
+        match self {
+            AlphaMode::Opaque => 0,
+            AlphaMode::Mask { .. } => 1,
+            AlphaMode::Blend => 2,
+        }
+    }
+
+    /// The alpha below which a point is absent: the cutoff for MASK, 0
+    /// (nothing) otherwise (`a < 0` never holds). The GPU's
+    /// `Material.alpha_cutoff`.
+    pub fn cutoff(self) -> f64 {
+        match self {
+            AlphaMode::Mask { cutoff } => cutoff,
+            _ => 0.0,
+        }
+    }
+
+    /// Whether a point of alpha `a` is absent (the GPU discards it, the
+    /// reference's ray goes on): MASK below its cutoff.
+    pub fn discards(self, a: f64) -> bool {
+        a < self.cutoff()
+    }
+
+    /// The opacity a present point of alpha `a` composites with: `a` for
+    /// BLEND, 1 otherwise.
+    pub fn opacity(self, a: f64) -> f64 {
+        match self {
+            AlphaMode::Blend => a,
+            _ => 1.0,
+        }
+    }
 }
 
 /// Which faces of a mesh with a material are drawn, and how a back face
@@ -154,6 +217,8 @@ impl Material {
             emission: Rgb::ZERO,
             textures: Vec::new(),
             sides: Sides::Unculled,
+            alpha: 1.0,
+            alpha_mode: AlphaMode::Opaque,
         };
         (model.row().defaults)(&mut m);
         m
@@ -214,15 +279,17 @@ impl Material {
         }
     }
 
-    /// The material under a vertex colour `c` (glTF `COLOR_0`, RGB): the
-    /// colours a base colour drives, `k_a`, `k_d` and `base_color`,
-    /// multiplied by it (glTF: "COLOR_0 ... multiplies the base color").
+    /// The material under a vertex colour `c` (glTF `COLOR_0`, RGB) of
+    /// alpha `a`: the colours a base colour drives, `k_a`, `k_d` and
+    /// `base_color`, multiplied by `c`, and its alpha by `a` (glTF:
+    /// "COLOR_0 ... multiplies the base color").
     /// GPU twin: `vertex_coloured` in shaders/surface.wgsl.
-    pub fn vertex_coloured(&self, c: Rgb) -> Material {
+    pub fn vertex_coloured(&self, c: Rgb, a: f64) -> Material {
         Material {
             k_a: self.k_a * c,
             k_d: self.k_d * c,
             base_color: self.base_color * c,
+            alpha: self.alpha * a,
             ..self.clone()
         }
     }

@@ -68,6 +68,15 @@ pub struct MaterialTexture {
     pub sampler: Sampler,
 }
 
+impl MaterialTexture {
+    /// Whether the texel's A multiplies the material's alpha: the base
+    /// colour's texture (glTF `baseColorTexture`: "the fourth component
+    /// (A) is the linear alpha coverage").
+    pub fn carries_alpha(&self) -> bool {
+        self.target == TextureTarget::Param("base_color")
+    }
+}
+
 /// How texel indices outside `0..size` wrap (glTF `wrapS` / `wrapT`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Wrap {

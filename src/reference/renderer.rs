@@ -109,26 +109,12 @@ fn render_inner(
                 if cos <= 0.0 {
                     continue;
                 }
-                // Single-sided materials' back faces are culled, as the
-                // GPU discards them.
-                let keeps_back = |id: super::bvh::TriangleId| {
-                    let m = &scene.meshes[id.mesh as usize];
-                    shader.materials[m.material].sides != Sides::Front
-                };
-                if let Some(hit) =
-                    bvh.intersect_where(&ray, camera.near / cos, camera.far / cos, keeps_back)
-                {
-                    *covered = true;
-                    let face = mesh::face_normal(
-                        scene.meshes[hit.id.mesh as usize].triangle(hit.id.triangle as usize),
-                    );
-                    let back = ray.direction.dot(face) > 0.0;
-                    *out = shader.radiance(&hit, (i, j), back).as_vec3().to_array();
-                } else if let Some(map) = &scene.environment.map {
-                    // Contract: a ray that misses sees scale · L_env(d)
-                    // (coverage stays 0, as on the GPU).
-                    *out = map.radiance(ray.direction).as_vec3().to_array();
-                }
+                let (t_near, t_far) = (camera.near / cos, camera.far / cos);
+                let (radiance, opacity) = shader.trace(&ray, t_near, t_far, (i, j));
+                *out = radiance.as_vec3().to_array();
+                // The GPU's coverage: the blended alpha over a clear of 0,
+                // read as covered above ½ (gpu::readback).
+                *covered = opacity > 0.5;
             }
         });
     frame
@@ -162,6 +148,126 @@ enum Precomputed {
 }
 
 impl<'a> Shader<'a> {
+    /// What the pixel `(row, column)` of primary ray `ray` sees within
+    /// `[t_near, t_far]`, and its opacity (0: nothing, or only what is
+    /// fully transparent; 1: an opaque surface): the ray walks from hit to
+    /// hit, front to back. A point that alpha MASK removes is passed
+    /// through (the GPU discards its fragment); a BLEND point adds
+    /// `T·a·L` and leaves `T·(1 − a)` for what lies behind (`T` the
+    /// transmittance so far), the same sum as the GPU's back-to-front
+    /// "over" blending (`L = a·L_s + (1 − a)·L_behind`); an opaque point
+    /// ends the walk, and a ray that leaves the scene sees the
+    /// environment map (if any) through `T`. Within one BLEND object
+    /// the order here is the exact depth order; the GPU draws an
+    /// object's triangles in index order (sorted per object only), so
+    /// the two differ where a ray meets one BLEND object twice.
+    ///
+    /// The walk goes on from `t + ε` (ε = [`shadow_epsilon`]): a ray
+    /// through the shared edge of two triangles meets both at the same
+    /// `t`, and the rasterizer draws one of them (its fill rule), so hits
+    /// closer than ε count as one surface.
+    fn trace(&self, ray: &Ray, t_near: f64, t_far: f64, pixel: (usize, usize)) -> (Rgb, f64) {
+        let scene = self.scene;
+        let mut sum = Rgb::ZERO;
+        let mut transmittance = 1.0;
+        let mut t_from = t_near;
+        // Single-sided materials' back faces are culled, as the GPU
+        // discards them.
+        let keeps_back = |id: super::bvh::TriangleId| {
+            let m = &scene.meshes[id.mesh as usize];
+            self.materials[m.material].sides != Sides::Front
+        };
+        loop {
+            let Some(hit) = self.bvh.intersect_where(ray, t_from, t_far, keeps_back) else {
+                if let Some(map) = &scene.environment.map {
+                    // Contract: a ray that misses sees scale · L_env(d)
+                    // (coverage stays 0, as on the GPU).
+                    sum += transmittance * map.radiance(ray.direction);
+                }
+                break;
+            };
+            let object = &scene.meshes[hit.id.mesh as usize];
+            let mode = self.materials[object.material].alpha_mode;
+            let a = match mode {
+                crate::material::AlphaMode::Opaque => 1.0,
+                _ => self.alpha(&hit, pixel),
+            };
+            t_from = hit.t + self.epsilon;
+            if mode.discards(a) {
+                continue;
+            }
+            let opacity = mode.opacity(a);
+            let face = mesh::face_normal(object.triangle(hit.id.triangle as usize));
+            let back = ray.direction.dot(face) > 0.0;
+            sum += transmittance * opacity * self.radiance(&hit, pixel, back);
+            transmittance *= 1.0 - opacity;
+            if transmittance <= 0.0 {
+                break;
+            }
+        }
+        (sum, 1.0 - transmittance)
+    }
+
+    /// The alpha at `hit` (of pixel `pixel`), where the GPU evaluates it:
+    /// per pixel (Phong: interpolated UVs and colour, the pixel's texture
+    /// footprint), or per vertex at texture level 0 and interpolated
+    /// (Gouraud), or once per triangle at its centroid's UVs with the
+    /// corners' mean colour (flat), as its vertex stage does.
+    fn alpha(&self, hit: &Hit, pixel: (usize, usize)) -> f64 {
+        let (m, t) = (hit.id.mesh as usize, hit.id.triangle as usize);
+        let object = &self.scene.meshes[m];
+        let idx = object.indices[t];
+        let w = [1.0 - hit.u - hit.v, hit.u, hit.v];
+        let at = |uv: [DVec2; 2], color: glam::DVec4, footprint: [Footprint; 2]| {
+            let base = &self.materials[object.material];
+            let a = if object.colors.is_empty() {
+                base.alpha
+            } else {
+                base.alpha * color.w
+            };
+            texture::alpha(a, &base.textures, &self.scene.images, uv, footprint)
+        };
+        let vertex = |v: u32| {
+            let v = v as usize;
+            at(
+                [0, 1].map(|set| object.tex_coord(set, v)),
+                object.color(v),
+                [Footprint::default(); 2],
+            )
+        };
+        match self.scene.shading {
+            ShadingMode::Phong => {
+                let uv = [0, 1].map(|set| interpolate_uv(w, object, set, idx));
+                let colors = idx.map(|v| object.color(v as usize));
+                let color = w[0] * colors[0] + w[1] * colors[1] + w[2] * colors[2];
+                let footprint = if self.materials[object.material].textures.is_empty() {
+                    [Footprint::default(); 2]
+                } else {
+                    [0, 1].map(|set| self.footprint(object, t, set, pixel))
+                };
+                at(uv, color, footprint)
+            }
+            ShadingMode::Gouraud => {
+                let corner = idx.map(vertex);
+                w[0] * corner[0] + w[1] * corner[1] + w[2] * corner[2]
+            }
+            ShadingMode::Flat => {
+                let uv = [0, 1].map(|set| {
+                    idx.iter()
+                        .map(|&v| object.tex_coord(set, v as usize))
+                        .sum::<DVec2>()
+                        / 3.0
+                });
+                let color = idx
+                    .iter()
+                    .map(|&v| object.color(v as usize))
+                    .sum::<glam::DVec4>()
+                    / 3.0;
+                at(uv, color, [Footprint::default(); 2])
+            }
+        }
+    }
+
     fn new(scene: &'a Scene, bvh: &'a Bvh, area: AreaLights) -> Self {
         let mut shader = Shader {
             scene,
@@ -342,7 +448,8 @@ impl<'a> Shader<'a> {
     ) -> (std::borrow::Cow<'_, Material>, SurfaceFrame) {
         let base = &self.materials[m.material];
         // Vertex colours multiply the colours first (GPU: vertex_coloured).
-        let coloured = (!m.colors.is_empty()).then(|| base.vertex_coloured(color.truncate()));
+        let coloured =
+            (!m.colors.is_empty()).then(|| base.vertex_coloured(color.truncate(), color.w));
         if base.textures.is_empty() {
             return match coloured {
                 Some(c) => (std::borrow::Cow::Owned(c), frame),
@@ -456,7 +563,9 @@ pub fn shadow_epsilon(scene: &Scene) -> f64 {
 /// starts on; it ends ε before a point, spot or area-sample light, and goes
 /// to infinity for a directional light. The offset normal is the
 /// geometric (face) normal for Phong and flat shading and the vertex
-/// normal for Gouraud (a vertex has no single face).
+/// normal for Gouraud (a vertex has no single face). Alpha is ignored:
+/// MASK and BLEND surfaces occlude as opaque ones do, as the GPU's
+/// depth-only shadow pass draws them (README, "alphaMode").
 pub fn visibility(bvh: &Bvh, light: &Light, x: DVec3, n_offset: DVec3, epsilon: f64) -> f64 {
     if !light.casts_shadows() {
         return 1.0;

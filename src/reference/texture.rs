@@ -119,7 +119,7 @@ pub struct Textured {
 /// `material` with its textures applied at a surface point whose UV sets
 /// are `uv` (and their footprints `footprint`): each texture multiplies
 /// the parameter it names, a colour by the texel's RGB, a scalar by the
-/// texture's channel; an occlusion texture scales `k_a` by
+/// texture's channel (the base colour's also the alpha by its A); an occlusion texture scales `k_a` by
 /// `1 + strength·(R − 1)`; a normal texture gives the tangent-space
 /// normal (`decode_normal`) (GPU twin: `textured_surface` in
 /// shaders/textures.wgsl).
@@ -134,12 +134,10 @@ pub fn textured(
     let mut m = material.clone();
     let mut normal = None;
     for t in &material.textures {
-        let set = t.tex_coord.min(1);
-        let fp = Footprint {
-            duv_dx: t.transform.apply_vector(footprint[set].duv_dx),
-            duv_dy: t.transform.apply_vector(footprint[set].duv_dy),
-        };
-        let texel = sample(&images[t.image], &t.sampler, t.transform.apply(uv[set]), fp);
+        let texel = texel_of(t, images, uv, footprint);
+        if t.carries_alpha() {
+            m.alpha *= texel.w;
+        }
         match t.target {
             TextureTarget::Param(key) => {
                 let Some(p) = crate::material::table::param_for(m.model, key) else {
@@ -163,6 +161,40 @@ pub fn textured(
         material: m,
         normal,
     }
+}
+
+/// Texture `t`'s texel at a point whose UV sets are `uv` (footprints
+/// `footprint`), through its UV transform.
+fn texel_of(
+    t: &crate::material::texture::MaterialTexture,
+    images: &[std::sync::Arc<Image>],
+    uv: [DVec2; 2],
+    footprint: [Footprint; 2],
+) -> DVec4 {
+    let set = t.tex_coord.min(1);
+    let fp = Footprint {
+        duv_dx: t.transform.apply_vector(footprint[set].duv_dx),
+        duv_dy: t.transform.apply_vector(footprint[set].duv_dy),
+    };
+    sample(&images[t.image], &t.sampler, t.transform.apply(uv[set]), fp)
+}
+
+/// The alpha at a point (UV sets `uv`, footprints `footprint`) of a
+/// material with alpha `alpha` (vertex colour's A already applied) and
+/// textures `textures`: `alpha` times the A of its base colour texture,
+/// read exactly as [`textured`] reads it (GPU twin: the `alpha` of
+/// `textured_surface` in shaders/textures.wgsl).
+pub fn alpha(
+    alpha: f64,
+    textures: &[crate::material::texture::MaterialTexture],
+    images: &[std::sync::Arc<Image>],
+    uv: [DVec2; 2],
+    footprint: [Footprint; 2],
+) -> f64 {
+    textures
+        .iter()
+        .filter(|t| t.carries_alpha())
+        .fold(alpha, |a, t| a * texel_of(t, images, uv, footprint).w)
 }
 
 /// The shading frame with a normal map's tangent-space normal `n_t`

@@ -85,6 +85,9 @@ pub enum Feature {
     Culling,
     /// Some mesh has vertex colours (glTF `COLOR_0`; `vertex_colors`).
     VertexColors,
+    /// Some material reads its alpha (glTF `alphaMode` MASK or BLEND):
+    /// discard below the cutoff, the alpha as the output's (`alpha`).
+    Alpha,
     /// Measured materials evaluate their Neural-BRDF network per pixel
     /// instead of looking up a table (`shading.measured_mode = "network"`;
     /// `measured_network`).
@@ -121,6 +124,7 @@ impl Feature {
             TwoSided,
             Culling,
             VertexColors,
+            Alpha,
             MeasuredNetwork,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
@@ -167,6 +171,7 @@ impl Feature {
             Feature::TwoSided => "two_sided",
             Feature::Culling => "culling",
             Feature::VertexColors => "vertex_colors",
+            Feature::Alpha => "alpha",
             Feature::MeasuredNetwork => "measured_network",
         };
         flag.into()

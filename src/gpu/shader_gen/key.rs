@@ -49,6 +49,13 @@ pub struct ShaderKey {
     pub culling: bool,
     /// Some mesh has vertex colours (feature `vertex_colors`; location 9).
     pub vertex_colors: bool,
+    /// Some material the scene draws reads its alpha (glTF `alphaMode`
+    /// MASK or BLEND; feature `alpha`).
+    pub alpha: bool,
+    /// Some material the scene draws is alpha BLEND: its batches are drawn
+    /// last, back to front, by pipelines that blend and keep the depth
+    /// (`PipelineCache::compile_scene`); no shader feature of its own.
+    pub alpha_blend: bool,
     /// Measured materials evaluate their network in WGSL (feature
     /// `measured_network`, `shading.measured_mode = "network"`; only with
     /// a measured variant).
@@ -135,6 +142,12 @@ impl ShaderKey {
                     .iter()
                     .any(|m| scene.materials[m.material].sides == crate::material::Sides::Front),
                 vertex_colors: scene.meshes.iter().any(|m| !m.colors.is_empty()),
+                alpha: scene.meshes.iter().any(|m| {
+                    scene.materials[m.material].alpha_mode != crate::material::AlphaMode::Opaque
+                }),
+                alpha_blend: scene.meshes.iter().any(|m| {
+                    scene.materials[m.material].alpha_mode == crate::material::AlphaMode::Blend
+                }),
                 measured_network: scene.measured_network,
             };
         key.arrays.measured = key.has_measured();
@@ -264,6 +277,9 @@ impl ShaderKey {
         }
         if self.vertex_colors {
             f.push(Feature::VertexColors);
+        }
+        if self.alpha {
+            f.push(Feature::Alpha);
         }
         if self.measured_network {
             f.push(Feature::MeasuredNetwork);

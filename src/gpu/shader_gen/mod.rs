@@ -106,6 +106,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 two_sided: false,
                 culling: false,
                 vertex_colors: false,
+                alpha: false,
+                alpha_blend: false,
                 // The network arm of measured.wgsl in Phong keys, the
                 // table's in the others.
                 measured_network: shading == ShadingMode::Phong
@@ -139,6 +141,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     two_sided: false,
                     culling: false,
                     vertex_colors: false,
+                    alpha: false,
+                    alpha_blend: false,
                     measured_network: false,
                 });
             }
@@ -173,6 +177,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 two_sided: uniform,
                 culling: uniform,
                 vertex_colors: uniform,
+                alpha: uniform,
+                alpha_blend: uniform,
                 measured_network: uniform,
             });
         }

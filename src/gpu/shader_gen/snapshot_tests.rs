@@ -86,6 +86,8 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         two_sided: false,
         culling: false,
         vertex_colors: false,
+        alpha: false,
+        alpha_blend: false,
         measured_network: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
@@ -117,6 +119,8 @@ fn snapshot_everything() {
         two_sided: false,
         culling: false,
         vertex_colors: false,
+        alpha: true,
+        alpha_blend: false,
         measured_network: false,
     };
     check_snapshot("everything", &compose(&key));

@@ -30,15 +30,17 @@ pub fn material_from_metallic_roughness(
     material
 }
 
-/// A glTF material's factors: base colour (alpha dropped), metallic,
-/// roughness, and emission = `emissiveFactor` × `emissive_strength`
-/// (`KHR_materials_emissive_strength`, 1 without it).
+/// A glTF material's factors: base colour, metallic, roughness, emission
+/// = `emissiveFactor` × `emissive_strength`
+/// (`KHR_materials_emissive_strength`, 1 without it), and the base
+/// colour's alpha with `alphaMode` / `alphaCutoff` (alpha clamped to
+/// [0, 1]; a cutoff must be a finite number ≥ 0).
 pub(super) fn material_from_pbr(
     name: String,
     material: &gltf::Material,
 ) -> Result<Material, String> {
     let pbr = material.pbr_metallic_roughness();
-    let [r, g, b, _alpha] = pbr.base_color_factor().map(f64::from);
+    let [r, g, b, alpha] = pbr.base_color_factor().map(f64::from);
     let mut out = material_from_metallic_roughness(
         name,
         Rgb::new(r, g, b),
@@ -52,6 +54,22 @@ pub(super) fn material_from_pbr(
     } else {
         crate::material::Sides::Front
     };
+    out.alpha = alpha.clamp(0.0, 1.0);
+    out.alpha_mode = match material.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => crate::material::AlphaMode::Opaque,
+        gltf::material::AlphaMode::Blend => crate::material::AlphaMode::Blend,
+        gltf::material::AlphaMode::Mask => {
+            // glTF: "alphaCutoff ... minimum: 0.0", default 0.5.
+            let cutoff = f64::from(material.alpha_cutoff().unwrap_or(0.5));
+            if !(cutoff.is_finite() && cutoff >= 0.0) {
+                return Err(format!("alphaCutoff {cutoff} is not a finite number ≥ 0"));
+            }
+            crate::material::AlphaMode::Mask { cutoff }
+        }
+    };
+    if !alpha.is_finite() {
+        return Err(format!("baseColorFactor's alpha {alpha} is not finite"));
+    }
     // Clamping leaves only non-finite factors and a negative emission to
     // fail here.
     out.validate()?;

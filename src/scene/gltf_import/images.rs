@@ -62,10 +62,64 @@ impl<'a> ImageSource<'a> {
         Ok(t)
     }
 
+    /// [`Self::texture_of`] with the `KHR_texture_transform` found in the
+    /// texture reference's raw `extensions` (`extension`: the normal and
+    /// occlusion textures', which the `gltf` crate does not parse; the
+    /// same fields and checks as [`Self::texture`]'s).
+    pub fn texture_with_raw_transform(
+        &mut self,
+        texture: &gltf::Texture,
+        tex_coord: u32,
+        target: TextureTarget,
+        encoding: Encoding,
+        extension: Option<&serde_json::Value>,
+    ) -> Result<MaterialTexture, String> {
+        let mut t = self.texture_of(texture, tex_coord, target, encoding)?;
+        let Some(value) = extension else {
+            return Ok(t);
+        };
+        let at = format!("texture {}: KHR_texture_transform", texture.index());
+        let pair = |key: &str, default: [f64; 2]| -> Result<DVec2, String> {
+            match value.get(key) {
+                None => Ok(DVec2::from(default)),
+                Some(v) => {
+                    let a = v
+                        .as_array()
+                        .filter(|a| a.len() == 2)
+                        .and_then(|a| Some([a[0].as_f64()?, a[1].as_f64()?]))
+                        .ok_or_else(|| format!("{at}: `{key}` is not two numbers"))?;
+                    Ok(DVec2::from(a))
+                }
+            }
+        };
+        let rotation = match value.get("rotation") {
+            None => 0.0,
+            Some(v) => v
+                .as_f64()
+                .ok_or_else(|| format!("{at}: `rotation` is not a number"))?,
+        };
+        t.transform = UvTransform {
+            offset: pair("offset", [0.0, 0.0])?,
+            rotation,
+            scale: pair("scale", [1.0, 1.0])?,
+        };
+        if let Some(set) = value.get("texCoord") {
+            t.tex_coord = set
+                .as_u64()
+                .ok_or_else(|| format!("{at}: `texCoord` is not an index"))?
+                as usize;
+        }
+        let finite = t.transform.offset.is_finite()
+            && t.transform.scale.is_finite()
+            && t.transform.rotation.is_finite();
+        if !finite || t.tex_coord > 1 {
+            return Err(format!("{at} is not finite or reads a set past TEXCOORD_1"));
+        }
+        Ok(t)
+    }
+
     /// glTF texture `texture` read from `TEXCOORD_{tex_coord}` for
-    /// `target`, without a UV transform (the normal and occlusion
-    /// textures': the `gltf` crate exposes `KHR_texture_transform` on
-    /// `textureInfo` only, so gonio does not apply it to them).
+    /// `target`, without a UV transform.
     pub fn texture_of(
         &mut self,
         texture: &gltf::Texture,

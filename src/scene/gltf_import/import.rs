@@ -80,6 +80,16 @@ impl<'a> Importer<'a> {
             let mut converted = material_from_pbr(name, &material)?;
             self.textures(&material, &pbr, &mut converted)
                 .map_err(|e| format!("material {index}: {e}"))?;
+            // What alpha does and does not do here (README, "alphaMode").
+            match converted.alpha_mode {
+                crate::material::AlphaMode::Opaque => {}
+                crate::material::AlphaMode::Mask { cutoff } => self.scene.notes.push(format!(
+                    "material {index}: alphaMode MASK (cutoff {cutoff}); its shadows ignore alpha"
+                )),
+                crate::material::AlphaMode::Blend => self.scene.notes.push(format!(
+                    "material {index}: alphaMode BLEND, sorted back to front per object (not per triangle); its shadows ignore alpha"
+                )),
+            }
             self.scene.materials.push(converted);
         }
 
@@ -153,21 +163,15 @@ impl<'a> Importer<'a> {
             }
             let t = self
                 .images
-                .texture_of(
+                .texture_with_raw_transform(
                     &normal.texture(),
                     normal.tex_coord(),
                     TextureTarget::Normal { scale },
                     Encoding::Linear,
+                    normal.extension_value("KHR_texture_transform"),
                 )
                 .map_err(|e| format!("normalTexture: {e}"))?;
             converted.textures.push(t);
-        }
-        if material.alpha_mode() != gltf::material::AlphaMode::Opaque {
-            self.scene.notes.push(format!(
-                "material {}: alphaMode {:?} is not read yet; it is drawn opaque",
-                material.index().unwrap_or_default(),
-                material.alpha_mode()
-            ));
         }
         if let Some(occlusion) = material.occlusion_texture() {
             let strength = f64::from(occlusion.strength());
@@ -179,11 +183,12 @@ impl<'a> Importer<'a> {
             // glTF: the occlusion values are in R.
             let t = self
                 .images
-                .texture_of(
+                .texture_with_raw_transform(
                     &occlusion.texture(),
                     occlusion.tex_coord(),
                     TextureTarget::Occlusion { strength },
                     Encoding::Linear,
+                    occlusion.extension_value("KHR_texture_transform"),
                 )
                 .map_err(|e| format!("occlusionTexture: {e}"))?;
             converted.textures.push(t);

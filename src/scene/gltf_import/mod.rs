@@ -53,24 +53,29 @@
 //! `data:` URI or a file inside the glTF's folder, decoded within the
 //! limits); the normal texture (with `scale`) and the occlusion texture
 //! (R, with `strength`, on the ambient term only) with their samplers
-//! but without `KHR_texture_transform` (the `gltf` crate offers it on
-//! `textureInfo` only). `TANGENT` is read with its w (the bitangent's
+//! and `KHR_texture_transform` too (read from the raw extension object:
+//! the `gltf` crate parses it on `textureInfo` only); the transform moves
+//! where the normal map is read, not the tangent frame (a rotated normal
+//! map's tangent-space normal is not rotated with it, as in the Khronos
+//! sample viewer). `TANGENT` is read with its w (the bitangent's
 //! sign); a primitive with a normal texture and no `TANGENT` gets
 //! MikkTSpace tangents in object space (`scene::tangents`). `COLOR_0`
 //! (FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT; VEC3 or VEC4)
 //! multiplies the base colour (its RGB scales `k_a`, `k_d` and
-//! `base_color`; alpha is not used). `doubleSided` becomes
+//! `base_color`, its A the alpha). `alphaMode` (OPAQUE, MASK with
+//! `alphaCutoff`, BLEND) with the alpha `baseColorFactor.a ×
+//! baseColorTexture.a × COLOR_0.a` becomes [`crate::material::AlphaMode`].
+//! `doubleSided` becomes
 //! [`crate::material::Sides`]: back faces culled when false (glTF's
 //! default, also the default material's), lit with the flipped normal
-//! when true. Skins, morph targets and `alphaMode` are ignored (every
-//! material is drawn opaque); skinned meshes are drawn in their rest
-//! pose.
+//! when true. Skins and morph targets are ignored; skinned meshes are
+//! drawn in their rest pose.
 //!
 //! # Materials: metallic-roughness → `gltf-pbr`
 //!
 //! Each material becomes a `gltf-pbr` material, glTF 2.0's own BRDF
 //! (Appendix B, `material::brdf::gltf_pbr`), from its factors: base colour
-//! `b` (linear RGB, alpha dropped), metallic `m` and roughness `r`, each
+//! `b` (linear RGB; its alpha is the material's `alpha`), metallic `m` and roughness `r`, each
 //! clamped to [0, 1] (`r` kept ≥ 10⁻⁴, the contract's (0, 1]); `roughness`
 //! keeps glTF's perceptual meaning (α = r²). `k_a = b` (an ambient light
 //! lights the base colour) and `k_d = b·(1 − m)` (where a lecture model

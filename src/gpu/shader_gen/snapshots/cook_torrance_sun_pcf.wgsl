@@ -52,6 +52,10 @@ struct Material {
     metallic: f32,         // gltf-pbr: metallic m (its perceptual roughness r is `roughness`)
     emission: vec3<f32>,   // emitted radiance W/(m²·sr), added to L_o (every model)
     sides: u32,            // 0: both faces, lit as the front; 1: back faces culled; 2: back faces lit with the flipped normal (material::Sides)
+    alpha: f32,            // base colour alpha (textures and vertex colours multiply it per pixel)
+    alpha_cutoff: f32,     // AlphaMode::cutoff: fragments of lower alpha are discarded (0: none)
+    alpha_mode: u32,       // AlphaMode::code: 0 opaque, 1 mask, 2 blend (its alpha is the output's)
+    _pad_alpha: u32,
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -126,6 +130,7 @@ alias TargetTexel = vec4<f32>;
 fn target_texel(value: vec4<f32>) -> TargetTexel {
     return value;
 }
+
 
 
 fn target_output(radiance: vec3<f32>) -> TargetTexel {
@@ -998,5 +1003,6 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     // A normal map: the frame turned to its normal (the sign's
     // interpolation is ±1 within a triangle: split vertices keep a
     // triangle's corners on one side of a mirror seam).
-    return target_output(reflected_radiance(material, in.world, frame, in.shadow_ndc));
+    let radiance = reflected_radiance(material, in.world, frame, in.shadow_ndc);
+    return target_output(radiance);
 }
