@@ -89,6 +89,10 @@ pub struct Material {
     /// Which faces are drawn and how a back face is lit (glTF
     /// `doubleSided`).
     pub sides: Sides,
+    /// Energy compensation (multiple scattering, `brdf::energy`; scene key
+    /// `energy_compensation`, off by default), for the models whose row
+    /// offers it (`ModelRow::energy_compensation`).
+    pub energy_compensation: bool,
 }
 
 /// Which faces of a mesh with a material are drawn, and how a back face
@@ -154,6 +158,7 @@ impl Material {
             emission: Rgb::ZERO,
             textures: Vec::new(),
             sides: Sides::Unculled,
+            energy_compensation: false,
         };
         (model.row().defaults)(&mut m);
         m
@@ -165,7 +170,21 @@ impl Material {
     pub fn validate(&self) -> Result<(), String> {
         table::stored_params()
             .into_iter()
-            .try_for_each(|p| p.check(self))
+            .try_for_each(|p| p.check(self))?;
+        if self.energy_compensation && !self.model.row().energy_compensation {
+            return Err(format!(
+                "material `{}`: energy_compensation = true, but model `{}` has no energy compensation (it applies to the microfacet models {}); remove the key or set it to false",
+                self.name,
+                self.model.name(),
+                table::ROWS
+                    .iter()
+                    .filter(|r| r.energy_compensation)
+                    .map(|r| format!("`{}`", r.model.name()))
+                    .collect::<Vec<_>>()
+                    .join(" and ")
+            ));
+        }
+        Ok(())
     }
 
     /// The BRDF of this material: its model's typed value, with the
@@ -175,6 +194,7 @@ impl Material {
             k_d: self.k_d,
             k_s: self.k_s,
             specular: (self.model.row().specular)(self),
+            energy_compensation: self.energy_compensation,
         }
     }
 

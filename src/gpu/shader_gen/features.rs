@@ -83,6 +83,10 @@ pub enum Feature {
     Culling,
     /// Some mesh has vertex colours (glTF `COLOR_0`; `vertex_colors`).
     VertexColors,
+    /// Some material the scene draws has energy compensation: the
+    /// microfacet lobes read the albedo table of the globals
+    /// (`energy_compensation`; shaders/brdf/energy.wgsl).
+    EnergyCompensation,
     /// Measured materials evaluate their Neural-BRDF network per pixel
     /// instead of looking up a table (`shading.measured_mode = "network"`;
     /// `measured_network`).
@@ -119,6 +123,7 @@ impl Feature {
             Culling,
             VertexColors,
             MeasuredNetwork,
+            EnergyCompensation,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -164,6 +169,7 @@ impl Feature {
             Feature::Culling => "culling",
             Feature::VertexColors => "vertex_colors",
             Feature::MeasuredNetwork => "measured_network",
+            Feature::EnergyCompensation => "energy_compensation",
         };
         flag.into()
     }

@@ -109,6 +109,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 // table's in the others.
                 measured_network: shading == ShadingMode::Phong
                     && v.model == crate::material::ReflectanceModel::Measured,
+                energy_compensation: i % 2 == 1,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -138,6 +139,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     culling: false,
                     vertex_colors: false,
                     measured_network: false,
+                    energy_compensation: false,
                 });
             }
         }
@@ -171,6 +173,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 culling: uniform,
                 vertex_colors: uniform,
                 measured_network: uniform,
+                energy_compensation: uniform,
             });
         }
     }

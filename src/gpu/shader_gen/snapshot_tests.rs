@@ -86,6 +86,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         culling: false,
         vertex_colors: false,
         measured_network: false,
+        energy_compensation: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -116,6 +117,7 @@ fn snapshot_everything() {
         culling: false,
         vertex_colors: false,
         measured_network: false,
+        energy_compensation: true,
     };
     check_snapshot("everything", &compose(&key));
 }
