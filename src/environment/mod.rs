@@ -18,6 +18,8 @@
 //!   (`environment.specular = "prefiltered"`), with the environment BRDF
 //!   table of [`dfg`].
 //! * [`sh_error`]: SH irradiance error vs order against the truth.
+//! * [`visibility`]: the reference's environment term with ray-traced
+//!   occlusion (`environment.visibility`).
 //! * [`quadrature`]: the integrated truth `E(n) = ∫ L(ω) max(0, n·ω) dω`
 //!   the reference uses and SH is measured against.
 
@@ -32,5 +34,6 @@ pub mod sh;
 pub mod sh_error;
 pub mod sky;
 pub mod test_maps;
+pub mod visibility;
 
 pub use map::{EnvironmentMap, MapSettings};
