@@ -22,6 +22,9 @@
 //! 5.9e-3 at its worst (grazing, α = 0.05), 5e-5 at α = 1.
 //!
 //! WGSL twin of the lookup: `environment_dfg` in shaders/environment.wgsl.
+//! `E = A + B` is also kept per node ([`DfgTable::albedo_nodes`]) for
+//! energy compensation (`material::brdf::energy`), whose GPU twin reads
+//! the same nodes from the globals (`ms_albedo` in shaders/brdf/energy.wgsl).
 
 use crate::material::brdf::gltf_pbr::{schlick_weight, vis_smith_ggx_correlated};
 use std::f64::consts::TAU;

@@ -399,6 +399,38 @@ mod tests {
         assert_eq!(material_from_entry("m", &entry).unwrap(), m);
     }
 
+    /// `energy_compensation`: a boolean, saved and read back, refused
+    /// with the reason on a model without it, dropped when the viewer
+    /// switches a compensated material to such a model.
+    #[test]
+    fn energy_compensation_is_a_validated_boolean() {
+        let entry = |text: &str| MaterialEntry::deserialize(text.parse::<toml::Table>().unwrap());
+        let m = material_from_entry(
+            "m",
+            &entry("model = \"gltf-pbr\"\nenergy_compensation = true").unwrap(),
+        )
+        .unwrap();
+        assert!(m.energy_compensation);
+        let back = MaterialEntry::deserialize(Toml::Table(material_table(&m))).unwrap();
+        assert_eq!(material_from_entry("m", &back).unwrap(), m);
+        let off = material_from_entry("m", &entry("model = \"cook-torrance\"").unwrap()).unwrap();
+        assert!(!off.energy_compensation);
+        let e = material_from_entry(
+            "m",
+            &entry("model = \"phong\"\nenergy_compensation = true").unwrap(),
+        )
+        .unwrap_err();
+        assert!(
+            e.contains("energy_compensation") && e.contains("`phong` has no energy compensation"),
+            "{e}"
+        );
+        assert!(entry("model = \"gltf-pbr\"\nenergy_compensation = 1").is_err());
+        let switched = with_key(&m, "model", Toml::String("phong".into())).unwrap();
+        assert!(!switched.energy_compensation);
+        let on = with_key(&off, ENERGY_COMPENSATION_KEY, Toml::Boolean(true)).unwrap();
+        assert!(on.energy_compensation);
+    }
+
     #[test]
     fn every_key_has_one_type() {
         for k in KEYS.iter() {
