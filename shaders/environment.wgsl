@@ -263,7 +263,13 @@ fn environment_prefiltered(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> v
     let ab = environment_dfg(cos_o, t.alpha);
     let r = mirror_direction(wo, n);
     let l = environment.scale * prefiltered_lookup(environment_to_map(r), t.alpha);
-    let specular = t.weight * (t.f0 * ab.x + ab.y) * l;
+    var specular = t.weight * (t.f0 * ab.x + ab.y) * l;
+    // Energy compensation (issue 16 item 5): the lobe times the factor of
+    // brdf/energy.wgsl, with the split's F0 (lobe.x is the material's
+    // weight: 0 for the models without it).
+    #if cook-torrance || gltf-pbr
+    specular *= ms_factor(t.f0, ms_ratio(m.lobe.x, t.alpha, cos_o));
+    #endif
     return diffuse + select(vec3<f32>(0.0), specular, cos_o > 0.0);
 }
 #endif

@@ -17,7 +17,10 @@ use std::f64::consts::FRAC_1_PI;
 
 /// Reflected radiance at `x` with shading frame `frame`, seen from `eye`.
 /// `material` is an effective material (`Scene::effective_materials`).
-/// `visibility(l, x)` is `V_l` in [0, 1] for light index `l`.
+/// `visibility(l, x)` is `V_l` in [0, 1] for light index `l`;
+/// `environment_visible(ω)` whether the map is seen from `x` towards `ω`
+/// (used only with `environment.visibility` and the integrated reference:
+/// [`crate::environment::visibility`]).
 pub fn reflected_radiance(
     scene: &Scene,
     material: &Material,
@@ -25,6 +28,7 @@ pub fn reflected_radiance(
     frame: &SurfaceFrame,
     eye: DVec3,
     visibility: impl Fn(usize, DVec3) -> f64,
+    environment_visible: impl Fn(DVec3) -> bool,
 ) -> Rgb {
     let n = frame.n;
     let wo = (eye - x).normalize_or_zero();
@@ -69,6 +73,26 @@ pub fn reflected_radiance(
                 ReferenceDiffuse::Integrated,
             ) => sampled::integrated(map, &map.data.nodes, material, frame, wo),
         };
+        // The truth's visibility switch: what the geometry blocks, off the
+        // same quadrature (the SH-diffuse mode's diffuse term, the other
+        // modes' whole BRDF).
+        if map.settings.visibility && map.settings.reference == ReferenceDiffuse::Integrated {
+            let diffuse = environment_diffuse_albedo(material) * FRAC_1_PI;
+            let whole = map.settings.specular != Specular::None;
+            radiance -= crate::environment::visibility::occluded(
+                map,
+                &map.data.nodes,
+                frame,
+                |wi| {
+                    if whole {
+                        material.f_r(wi, wo, frame)
+                    } else {
+                        diffuse
+                    }
+                },
+                &environment_visible,
+            );
+        }
     }
     if material.model == ReflectanceModel::Mirror {
         let reflected = mirror_direction(wo, n);

@@ -600,16 +600,33 @@ fn prefiltered_scene(map: &str, extra: &[&str]) -> Scene {
 /// tables, `reference = "sh"`), under the blobs and the sky. Tolerance:
 /// the shared arithmetic one, plus the SH sum's, plus a lookup in the
 /// stack times the split's weight (≤ 1 here: `k_s·F0·A + B ≤ 1`), plus
-/// the mirror's lookup.
+/// the mirror's lookup. With energy compensation (issue 16 item 5) the
+/// split's lobe is multiplied by `1 + F0(1 − E)/E ≤ 1/0.3069` (the
+/// table's smallest `E`), and so is the stack's part of the tolerance.
 #[test]
 fn the_prefiltered_mode_matches_its_twin() {
-    for (label, map) in [("blobs", "../environment/blobs.hdr"), ("sky", "sky")] {
-        let s = prefiltered_scene(map, &["environment.reference=sh"]);
+    let compensated = [
+        "environment.reference=sh",
+        "materials.lambert.energy_compensation=true",
+        "materials.gold.energy_compensation=true",
+    ];
+    for (label, map, extra, factor) in [
+        (
+            "blobs",
+            "../environment/blobs.hdr",
+            &["environment.reference=sh"][..],
+            1.0,
+        ),
+        ("sky", "sky", &["environment.reference=sh"][..], 1.0),
+        ("sky, compensated", "sky", &compensated[..], 1.0 / 0.3069),
+    ] {
+        let s = prefiltered_scene(map, extra);
         let env = s.environment.map.clone().unwrap();
         let frame = gpu(&s);
         let (center, jittered) = common::reference_with_jitter(&s);
         let mut tol = common::tolerance(&s, &center);
-        tol.abs += sh_tolerance(&env, 1.0) + stack_tolerance(&env) + lookup_tolerance(&env, None);
+        tol.abs +=
+            sh_tolerance(&env, 1.0) + factor * stack_tolerance(&env) + lookup_tolerance(&env, None);
         let c = gonio::output::compare::compare_with_jitter(&frame, &center, &jittered, tol);
         eprintln!("prefiltered under the {label}: {}", c.summary());
         common::assert_agrees(
@@ -1026,3 +1043,231 @@ const SH_MEASURED: [[[[f64; 5]; 4]; 3]; 2] = [
         ],
     ],
 ];
+/// The sphere-on-a-plane scene of the visibility switch, small.
+fn occlusion_scene(sets: &[&str]) -> Scene {
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/environment_occlusion.toml");
+    let mut overrides: Vec<String> = vec!["image.width=80".into(), "image.height=60".into()];
+    overrides.extend(sets.iter().map(|s| s.to_string()));
+    scene_file::load(&SceneSource::File(path), &overrides).expect("scene loads")
+}
+
+/// The reference's environment visibility (issue 16 item 4) against a
+/// closed form: under a uniform white map (radiance 1), a Lambert floor
+/// point at distance `D` from the centre of a sphere of radius `r` that
+/// rests on the floor sees the sphere as a form factor `cos θ (r/D)² =
+/// r³/D³` (the sphere is above the point's horizon), so its radiance is
+/// `k_d (1 − r³/D³)`, against `k_d` with visibility off. Measured: the
+/// quadrature's error with the visibility's discontinuity (64 × 32 map,
+/// 6144 nodes; printed), asserted at the bound the docs state; off is the
+/// furnace `k_d` exactly.
+#[test]
+fn visibility_matches_the_sphere_form_factor() {
+    let settings = MapSettings {
+        visibility: true,
+        ..Default::default()
+    };
+    let base = occlusion_scene(&[]);
+    let (r, k_d) = (1.0, 0.7);
+    let mut errors = Vec::new();
+    for (width, visibility) in [(64, true), (128, true), (64, false)] {
+        let s = with_map(
+            base.clone(),
+            test_maps::uniform(width, Rgb::ONE),
+            MapSettings {
+                visibility,
+                ..settings
+            },
+        );
+        let frame = reference::render(&s);
+        let (mut worst, mut sum, mut count) = (0.0f64, 0.0, 0);
+        for i in 0..s.height {
+            for j in 0..s.width {
+                let k = (i * s.width + j) as usize;
+                let ray = s
+                    .camera
+                    .ray(j as f64 + 0.5, i as f64 + 0.5, s.width, s.height);
+                // Floor pixels: the ray meets y = 0 before the sphere.
+                let t = -ray.origin.y / ray.direction.y;
+                if t.is_nan() || t <= 0.0 || !frame.coverage[k] {
+                    continue;
+                }
+                let x = ray.origin + ray.direction * t;
+                let c = glam::DVec3::new(0.0, r, 0.0);
+                let oc = ray.origin - c;
+                let b = oc.dot(ray.direction);
+                let disc = b * b - (oc.length_squared() - r * r);
+                if disc > 0.0 && -b - disc.sqrt() < t {
+                    continue; // the sphere is in front
+                }
+                let d = (x - c).length();
+                let exact = if visibility {
+                    k_d * (1.0 - (r / d).powi(3))
+                } else {
+                    k_d
+                };
+                let e = (frame.radiance[k][0] as f64 - exact).abs() / k_d;
+                worst = worst.max(e);
+                sum += e;
+                count += 1;
+            }
+        }
+        eprintln!(
+            "uniform sky, map {width} × {}, visibility {visibility}: {count} floor pixels, |error| / k_d mean {:.2e}, max {:.2e}",
+            width / 2,
+            sum / count as f64,
+            worst
+        );
+        assert!(count > 1000, "{count}");
+        errors.push((sum / count as f64, worst));
+    }
+    // Off: the furnace (f32 output rounding). On: the quadrature of the
+    // blocked nodes, whose error is the texels the sphere's silhouette
+    // crosses: at most 1 % of k_d at 64 × 32, and it shrinks with the
+    // texel size (the 128 × 64 mean at most ¾ of the 64 × 32 one).
+    assert!(errors[2].1 < 1e-6, "{:?}", errors[2]);
+    assert!(errors[0].1 < 1e-2, "{:?}", errors[0]);
+    assert!(errors[1].0 < 0.75 * errors[0].0, "{errors:?}");
+}
+
+/// What ignoring occlusion costs, and what tracing it costs: the sphere
+/// on the plane under the built-in sky, the reference with visibility off
+/// (the GPU's like-for-like) and on; their difference relative to the
+/// image's peak (printed: mean and max over the covered pixels) and the
+/// reference's time both ways. On never adds light (≤ off everywhere)
+/// and darkens the floor next to the ball by more than a tenth of the
+/// peak. (Hardly a pixel is unchanged: the floor sees the ball from
+/// anywhere, and the tessellated ball shadows itself near the horizon of
+/// its interpolated normals, which are not its facets' planes.)
+#[test]
+fn ignoring_occlusion_is_measured() {
+    let off = occlusion_scene(&[]);
+    let on = occlusion_scene(&["environment.visibility=true"]);
+    let t0 = std::time::Instant::now();
+    let f_off = reference::render(&off);
+    let t_off = t0.elapsed().as_secs_f64();
+    let t0 = std::time::Instant::now();
+    let f_on = reference::render(&on);
+    let t_on = t0.elapsed().as_secs_f64();
+    let peak = f_off.max_radiance() as f64;
+    let (mut sum, mut worst, mut count, mut same) = (0.0, 0.0f64, 0, 0usize);
+    for k in 0..f_off.len() {
+        if !f_off.coverage[k] {
+            continue;
+        }
+        count += 1;
+        for c in 0..3 {
+            let (a, b) = (f_off.radiance[k][c] as f64, f_on.radiance[k][c] as f64);
+            assert!(b <= a + 1e-6 * peak, "pixel {k}: on {b} > off {a}");
+            sum += (a - b) / peak / 3.0;
+            worst = worst.max((a - b) / peak);
+        }
+        same += (f_off.radiance[k] == f_on.radiance[k]) as usize;
+    }
+    eprintln!(
+        "sphere on a plane under the sky ({} × {}): on − off, relative to the peak {peak:.3}: mean {:.2} %, max {:.1} %; {same} of {count} pixels unchanged; reference {t_off:.2} s off, {t_on:.2} s on",
+        off.width,
+        off.height,
+        100.0 * sum / count as f64,
+        100.0 * worst
+    );
+    assert!(worst > 0.1 && sum > 0.0, "{worst}");
+}
+
+/// The white furnace on the GPU (issue 16 item 5): rough white metal
+/// spheres (gltf-pbr, b = 1, m = 1, r = 1) under a uniform white map in
+/// the sampled mode (N = 256), energy compensation on. The GPU agrees with
+/// its f64 twin (the same N directions, `reference = "sh"`) within the
+/// shared tolerance (which adds `energy::F32_ERROR`); the integrated truth
+/// (texel quadrature) shows albedo 1 within the table's error
+/// `(2.3e-3 + 5.9e-3)/E` plus the quadrature's 5e-3 (the furnace tests'
+/// allowance) at pixels with `N·V ≥ 0.1`, where without compensation it
+/// is well below 1 (printed: the mean over the same pixels).
+#[test]
+fn the_compensated_white_metal_is_a_furnace_on_the_gpu() {
+    let mut sets: Vec<String> = Vec::new();
+    for m in ["lambert", "gold", "mirror"] {
+        sets.extend([
+            format!("materials.{m}.model=gltf-pbr"),
+            format!("materials.{m}.base_color=1"),
+            format!("materials.{m}.metallic=1"),
+            format!("materials.{m}.roughness=1"),
+            format!("materials.{m}.energy_compensation=true"),
+        ]);
+    }
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let settings = MapSettings {
+        specular: gonio::environment::map::Specular::Sampled,
+        samples: 256,
+        ..Default::default()
+    };
+    let on = with_map(scene(&sets), test_maps::uniform(32, Rgb::ONE), settings);
+    let frame = gpu(&on);
+    let twin_scene = {
+        let mut t = on.clone();
+        t.environment.map.as_mut().unwrap().settings.reference = ReferenceDiffuse::Sh;
+        t
+    };
+    let (center, jittered) = common::reference_with_jitter(&twin_scene);
+    let tol = common::tolerance(&twin_scene, &center);
+    let c = gonio::output::compare::compare_with_jitter(&frame, &center, &jittered, tol);
+    eprintln!(
+        "compensated furnace, GPU vs twin (N = 256): {}",
+        c.summary()
+    );
+    common::assert_agrees(
+        "compensated furnace",
+        "GPU and its twin disagree",
+        &c,
+        &frame,
+        &center,
+    );
+    let mut off = on.clone();
+    for m in &mut off.materials {
+        m.energy_compensation = false;
+    }
+    let (truth_on, truth_off) = (reference::render(&on), reference::render(&off));
+    let table = gonio::environment::dfg::table();
+    let eye = on.camera.position;
+    let (mut n, mut sum_on, mut sum_off, mut worst) = (0, 0.0, 0.0, 0.0f64);
+    for i in 0..on.height {
+        for j in 0..on.width {
+            let k = (i * on.width + j) as usize;
+            if !truth_on.coverage[k] {
+                continue;
+            }
+            // N·V of the sphere hit by this pixel's ray (centres on the
+            // scene file's spheres, radius 1).
+            let ray = on
+                .camera
+                .ray(j as f64 + 0.5, i as f64 + 0.5, on.width, on.height);
+            let hit = [-2.2, 0.0, 2.2].iter().find_map(|&cx| {
+                let c = glam::DVec3::new(cx, 0.3, 0.0);
+                let oc = ray.origin - c;
+                let b = oc.dot(ray.direction);
+                let disc = b * b - (oc.length_squared() - 1.0);
+                (disc > 0.0).then(|| {
+                    let x = ray.origin + ray.direction * (-b - disc.sqrt());
+                    (x - c).normalize().dot((eye - x).normalize())
+                })
+            });
+            let Some(mu) = hit.filter(|&mu| mu >= 0.1) else {
+                continue;
+            };
+            let e = table.albedo(mu, 1.0);
+            let got = truth_on.radiance[k][0] as f64;
+            let tol = (2.3e-3 + 5.9e-3) / e + 5e-3;
+            worst = worst.max((got - 1.0).abs() / tol);
+            n += 1;
+            sum_on += got;
+            sum_off += truth_off.radiance[k][0] as f64;
+        }
+    }
+    eprintln!(
+        "white metal r = 1 under a white sky, {n} pixels with N·V ≥ 0.1: mean albedo {:.4} without compensation, {:.4} with; worst |1 − albedo| / tolerance {worst:.2}",
+        sum_off / n as f64,
+        sum_on / n as f64
+    );
+    assert!(n > 1000 && worst <= 1.0, "{n} {worst}");
+    assert!(sum_off / (n as f64) < 0.6, "{}", sum_off / n as f64);
+}

@@ -35,7 +35,15 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         case MODEL_WARD_ANISOTROPIC: { return lambert(m.k_d) + m.k_s * ward_anisotropic(m.sigma_x, m.sigma_y, n, frame.t, frame.b, wi, wo); }
         #endif
         #if cook-torrance
-        case MODEL_COOK_TORRANCE: { return lambert(m.k_d) + m.k_s * cook_torrance(m, wi, wo, n); }
+        case MODEL_COOK_TORRANCE: {
+            var specular = cook_torrance(m, wi, wo, n);
+            // Energy compensation (brdf/energy.wgsl): F(1) is computed
+            // only in scenes that use it.
+            #if energy_compensation
+            specular *= ms_factor(fresnel(m, 1.0), ms_ratio(m.lobe.x, ms_ggx_alpha(m), dot(n, wo)));
+            #endif
+            return lambert(m.k_d) + m.k_s * specular;
+        }
         #endif
         #if oren-nayar
         case MODEL_OREN_NAYAR: { return oren_nayar_qualitative(m.k_d, oren_nayar_terms(m.lobe), oren_nayar_angles(n, wi, wo)); }
@@ -47,7 +55,10 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         case MODEL_MEASURED: { return measured_f_r(m, wi, wo, frame); }
         #endif
         #if gltf-pbr
-        case MODEL_GLTF_PBR: { return gltf_pbr(m.base_color, m.metallic, m.roughness, n, wi, wo); }
+        case MODEL_GLTF_PBR: {
+            let ms = ms_ratio(m.lobe.x, m.roughness * m.roughness, dot(n, wo));
+            return gltf_pbr(m.base_color, m.metallic, m.roughness, ms, n, wi, wo);
+        }
         #endif
         #if abc
         case MODEL_ABC: { return lambert(m.k_d) + m.k_s * abc_specular(m.lobe.x, m.lobe.y, m.eta_i, m.eta_t, n, wi, wo); }

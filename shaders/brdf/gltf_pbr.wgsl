@@ -4,7 +4,8 @@
 // w = (1 − |V·H|)⁵, F_d = 0.04 + 0.96·w, GGX D of α = r² (r: glTF's
 // perceptual roughness), height-correlated Smith-GGX Vis.
 // f64 twin: src/material/brdf/gltf_pbr.rs (same names, same order).
-// Uses phong.wgsl (COS_FLOOR, sin2_between), microfacet.wgsl (half_vector, d_ggx).
+// Uses phong.wgsl (COS_FLOOR, sin2_between), microfacet.wgsl (half_vector, d_ggx),
+// energy.wgsl (ms_factor).
 
 const DIELECTRIC_F0: f32 = 0.04;
 
@@ -31,7 +32,9 @@ fn schlick_weight(cos_oh: f32) -> f32 {
 }
 
 // f_r for N·I > 0, N·V > 0 (the caller's one-sided test); α = roughness².
-fn gltf_pbr(base_color: vec3<f32>, metallic: f32, roughness: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
+// ms: energy compensation's (1 − E)/E (energy.wgsl; 0 without it): the
+// dielectric's lobe times 1 + 0.04·ms, the metal's times 1 + b·ms.
+fn gltf_pbr(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let alpha = roughness * roughness;
     let h = half_vector(wi, wo);
     let cos_i = dot(n, wi);
@@ -43,7 +46,8 @@ fn gltf_pbr(base_color: vec3<f32>, metallic: f32, roughness: f32, n: vec3<f32>, 
     let specular = d_ggx(alpha, cos_h, sin2_h) * vis_smith_ggx_correlated(alpha, cos_i, cos_o, cos_ih, cos_oh);
     let w = schlick_weight(cos_oh);
     let f_dielectric = DIELECTRIC_F0 + (1.0 - DIELECTRIC_F0) * w;
-    let dielectric = base_color * ((1.0 - f_dielectric) * FRAC_1_PI) + vec3<f32>(f_dielectric * specular);
-    let metal = (base_color + (vec3<f32>(1.0) - base_color) * w) * specular;
+    let dielectric = base_color * ((1.0 - f_dielectric) * FRAC_1_PI)
+        + vec3<f32>(f_dielectric * specular) * ms_factor(vec3<f32>(DIELECTRIC_F0), ms);
+    let metal = (base_color + (vec3<f32>(1.0) - base_color) * w) * specular * ms_factor(base_color, ms);
     return dielectric * (1.0 - metallic) + metal * metallic;
 }

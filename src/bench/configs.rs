@@ -202,6 +202,36 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         "no Cook-Torrance material in the base scene",
     );
 
+    // Energy compensation (issue 16 item 5) on the targets that offer it:
+    // its cost is the albedo-table lookup per light and pixel; its
+    // "error" against the truth (the base's, uncompensated unless the
+    // base has it) is the energy it adds back.
+    let compensable: Vec<&&crate::material::Material> = targets
+        .iter()
+        .filter(|m| m.model.row().energy_compensation)
+        .collect();
+    let compensation = match compensable.first() {
+        Some(m) => [false, true]
+            .iter()
+            .map(|&on| {
+                (
+                    if on { "on" } else { "off" }.to_string(),
+                    compensable
+                        .iter()
+                        .map(|m| format!("materials.{}.energy_compensation={on}", m.name))
+                        .collect(),
+                    on == m.energy_compensation,
+                )
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    knob(
+        "energy_compensation",
+        compensation,
+        "no gltf-pbr or Cook-Torrance material in the base scene",
+    );
+
     // Shadow knobs go through `[shadows]`, the defaults of every light
     // that does not set its own.
     let shadowed = (0..base.lights.len()).find(|&l| base.lights[l].casts_shadows());
@@ -476,6 +506,7 @@ mod tests {
             "area_samples",
             "msaa",
             "resolution",
+            "energy_compensation",
         ] {
             assert!(knobs.contains(k), "knob {k} missing");
         }
@@ -483,6 +514,11 @@ mod tests {
         assert!(!configs.iter().any(|c| c.label() == "shading=phong"));
         assert!(!configs.iter().any(|c| c.label() == "fresnel=conductor"));
         assert!(!configs.iter().any(|c| c.label() == "area_samples=16"));
+        assert!(
+            !configs
+                .iter()
+                .any(|c| c.label() == "energy_compensation=off")
+        );
         // Every knob setting loads (MSAA may still be refused at render
         // time by an adapter without multisampled float targets).
         for c in &configs {

@@ -212,6 +212,9 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         // The buffer holds networks or tables as the scene says: the same
         // measured code as the specialized shader.
         measured_network: ShaderKey::new(scene, &ShadowPlan::new(scene)).measured_network,
+        // The globals hold the albedo table as the scene says: the same
+        // compensation code as the specialized shader.
+        energy_compensation: ShaderKey::new(scene, &ShadowPlan::new(scene)).energy_compensation,
     }
 }
 

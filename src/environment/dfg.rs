@@ -22,6 +22,9 @@
 //! 5.9e-3 at its worst (grazing, α = 0.05), 5e-5 at α = 1.
 //!
 //! WGSL twin of the lookup: `environment_dfg` in shaders/environment.wgsl.
+//! `E = A + B` is also kept per node ([`DfgTable::albedo_nodes`]) for
+//! energy compensation (`material::brdf::energy`), whose GPU twin reads
+//! the same nodes from the globals (`ms_albedo` in shaders/brdf/energy.wgsl).
 
 use crate::material::brdf::gltf_pbr::{schlick_weight, vis_smith_ggx_correlated};
 use std::f64::consts::TAU;
@@ -43,6 +46,11 @@ const MU_MIN: f64 = 1e-4;
 /// nodes below 1/16).
 pub struct DfgTable {
     pub entries: Vec<[f32; 2]>,
+    /// `E = A + B` at the same nodes (the sum in f64, rounded once): the
+    /// albedo energy compensation divides by, the same f32 values on the
+    /// CPU ([`DfgTable::albedo`]) and the GPU (`Globals::albedo`,
+    /// [`DfgTable::albedo_uniform`]).
+    pub albedo_nodes: Vec<f32>,
 }
 
 /// The table (computed once per process, about 4 M BRDF evaluations).
@@ -51,16 +59,18 @@ pub fn table() -> &'static DfgTable {
     TABLE.get_or_init(|| {
         use rayon::prelude::*;
         let node = |k: usize| k as f64 / (SIZE - 1) as f64;
-        let entries = (0..SIZE * SIZE)
+        let sums: Vec<[f64; 2]> = (0..SIZE * SIZE)
             .into_par_iter()
             .map(|k| {
                 let (i, j) = (k % SIZE, k / SIZE);
                 let mu = (node(i) * node(i)).max(MU_MIN);
-                let [a, b] = integrate(mu, node(j) * node(j), QUADRATURE_SAMPLES);
-                [a as f32, b as f32]
+                integrate(mu, node(j) * node(j), QUADRATURE_SAMPLES)
             })
             .collect();
-        DfgTable { entries }
+        DfgTable {
+            entries: sums.iter().map(|[a, b]| [*a as f32, *b as f32]).collect(),
+            albedo_nodes: sums.iter().map(|[a, b]| (a + b) as f32).collect(),
+        }
     })
 }
 
@@ -113,10 +123,30 @@ impl DfgTable {
         out
     }
 
-    /// `E(μ, α) = A + B`: the directional albedo of GGX with `F = 1`.
+    /// `E(μ, α) = A + B`: the directional albedo of GGX with `F = 1`,
+    /// bilinear between the nodes of [`DfgTable::albedo_nodes`] as
+    /// [`DfgTable::lookup`]. Twin: `ms_albedo` in shaders/brdf/energy.wgsl.
     pub fn albedo(&self, mu: f64, alpha: f64) -> f64 {
-        let [a, b] = self.lookup(mu, alpha);
-        a + b
+        let last = (SIZE - 1) as f64;
+        let x = mu.clamp(0.0, 1.0).sqrt() * last;
+        let y = alpha.clamp(0.0, 1.0).sqrt() * last;
+        let (x0, y0) = (x.floor().min(last - 1.0), y.floor().min(last - 1.0));
+        let (fx, fy) = (x - x0, y - y0);
+        let (i, j) = (x0 as usize, y0 as usize);
+        let e = |i: usize, j: usize| self.albedo_nodes[j * SIZE + i] as f64;
+        let lo = e(i, j) * (1.0 - fx) + e(i + 1, j) * fx;
+        let hi = e(i, j + 1) * (1.0 - fx) + e(i + 1, j + 1) * fx;
+        lo * (1.0 - fy) + hi * fy
+    }
+
+    /// [`DfgTable::albedo_nodes`] four to a row, as `Globals::albedo`
+    /// (shaders/common.wgsl) holds them: node `k` at `[k / 4][k % 4]`.
+    pub fn albedo_uniform(&self) -> [[f32; 4]; SIZE * SIZE / 4] {
+        let mut out = [[0.0; 4]; SIZE * SIZE / 4];
+        for (k, e) in self.albedo_nodes.iter().enumerate() {
+            out[k / 4][k % 4] = *e;
+        }
+        out
     }
 }
 

@@ -68,6 +68,10 @@ pub struct MapSettings {
     /// Width of each level of [`Specular::Prefiltered`]'s stack
     /// (`environment.prefilter_size`, default 64; height half of it).
     pub prefilter_size: u32,
+    /// The CPU reference's environment term with ray-traced visibility
+    /// (`environment.visibility`, default false: unshadowed, as the GPU's
+    /// raster path; [`super::visibility`]). The GPU ignores it.
+    pub visibility: bool,
 }
 
 /// How the environment lights surfaces (`environment.specular`).
@@ -122,6 +126,7 @@ impl Default for MapSettings {
             specular: Specular::None,
             samples: 64,
             prefilter_size: super::prefiltered::DEFAULT_SIZE,
+            visibility: false,
         }
     }
 }

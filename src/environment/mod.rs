@@ -20,6 +20,8 @@
 //! * [`sh_phong`]: the lecture's Phong lobes by SH convolution, a zonal
 //!   product (`environment.specular = "sh"`, Ramamoorthi & Hanrahan 2002).
 //! * [`sh_error`]: SH irradiance error vs order against the truth.
+//! * [`visibility`]: the reference's environment term with ray-traced
+//!   occlusion (`environment.visibility`).
 //! * [`quadrature`]: the integrated truth `E(n) = ∫ L(ω) max(0, n·ω) dω`
 //!   the reference uses and SH is measured against.
 
@@ -36,5 +38,6 @@ pub mod sh_error;
 pub mod sh_phong;
 pub mod sky;
 pub mod test_maps;
+pub mod visibility;
 
 pub use map::{EnvironmentMap, MapSettings};

@@ -295,7 +295,15 @@ pub fn estimate(
     let [a, b] = dfg::table().lookup(cos_o, alpha);
     let r = mirror_direction(wo, n);
     let l = prefiltered.lookup(map.to_map(r), alpha) * map.settings.scale;
-    diffuse + weight * (f0 * a + Rgb::splat(b)) * l
+    // Energy compensation (issue 16 item 5, `brdf::energy`): the split's
+    // lobe times the same factor, with the split's F0.
+    let ms = if material.energy_compensation {
+        crate::material::brdf::energy::ms_ratio(alpha, cos_o)
+    } else {
+        0.0
+    };
+    let compensation = crate::material::brdf::energy::ms_factor(f0, ms);
+    diffuse + weight * (f0 * a + Rgb::splat(b)) * l * compensation
 }
 
 #[cfg(test)]

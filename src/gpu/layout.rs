@@ -6,7 +6,7 @@ use crate::material::Material;
 use crate::scene::{Light, Scene};
 use bytemuck::{Pod, Zeroable};
 
-/// `Globals` (uniform buffer, 144 bytes).
+/// `Globals` (uniform buffer, 4240 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuGlobals {
@@ -23,6 +23,14 @@ pub struct GpuGlobals {
     pub _pad2: f32,
     pub env_ground: [f32; 3],
     pub _pad3: f32,
+    /// Energy compensation's albedo table (`DfgTable::albedo_uniform`),
+    /// read by shaders/brdf/energy.wgsl: filled only when some material
+    /// of the scene has `energy_compensation` (the table is computed on
+    /// first use, about 0.1 s; a scene without it never pays for it), else
+    /// zeros. In the globals rather than a binding of its own: they are
+    /// bound in every scene pipeline (with or without an environment map)
+    /// and 4 KiB is well inside a uniform buffer's 64 KiB.
+    pub albedo: [[f32; 4]; 256],
 }
 
 /// `Material` (storage buffer element, 144 bytes).
@@ -120,6 +128,11 @@ impl GpuGlobals {
             _pad2: 0.0,
             env_ground: f32x3(scene.environment.ground),
             _pad3: 0.0,
+            albedo: if scene.materials.iter().any(|m| m.energy_compensation) {
+                crate::environment::dfg::table().albedo_uniform()
+            } else {
+                [[0.0; 4]; 256]
+            },
         }
     }
 }
@@ -314,7 +327,8 @@ mod tests {
                 env_horizon,
                 _pad2,
                 env_ground,
-                _pad3
+                _pad3,
+                albedo
             }),
         );
         assert_mirrors(

@@ -34,7 +34,14 @@ pub struct MaterialEntry {
     /// Textures as given: (`PARAM_texture` key, image path as written).
     /// The scene file resolves the paths (`scene_file::textures`).
     pub textures: Vec<(String, String)>,
+    /// `energy_compensation = true|false` as given (the microfacet
+    /// models' multiple-scattering compensation, `brdf::energy`).
+    pub energy_compensation: Option<bool>,
 }
+
+/// The key of energy compensation (a boolean, default false; validated
+/// against the model by `Material::validate`).
+pub const ENERGY_COMPENSATION_KEY: &str = "energy_compensation";
 
 /// The suffix that turns a parameter's key into its texture's key.
 pub const TEXTURE_SUFFIX: &str = "_texture";
@@ -65,6 +72,7 @@ static KEYS: LazyLock<Vec<&'static str>> = LazyLock::new(|| {
     }
     keys.extend(TERM_KEYS);
     keys.push("measured");
+    keys.push(ENERGY_COMPENSATION_KEY);
     keys
 });
 
@@ -112,6 +120,10 @@ impl<'de> Visitor<'de> for EntryVisitor {
                 "measured" => {
                     duplicate(entry.measured.is_some())?;
                     entry.measured = Some(map.next_value::<String>()?);
+                }
+                ENERGY_COMPENSATION_KEY => {
+                    duplicate(entry.energy_compensation.is_some())?;
+                    entry.energy_compensation = Some(map.next_value::<bool>()?);
                 }
                 k if TERM_KEYS.contains(&k) => {
                     let k = TERM_KEYS.into_iter().find(|t| *t == k).unwrap_or_default();
@@ -192,6 +204,9 @@ pub fn material_from_entry_in(
     for (k, text) in &e.terms {
         set_term(&mut m, k, text).map_err(|p| format!("{}: {p}", key(k)))?;
     }
+    if let Some(on) = e.energy_compensation {
+        m.energy_compensation = on;
+    }
     m.validate()?;
     Ok(m)
 }
@@ -266,6 +281,9 @@ pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String
         "model" => {
             let text: String = value.try_into().map_err(typed)?;
             out.model = text.parse().map_err(bad)?;
+            // A model without energy compensation drops it (switching a
+            // compensated gltf-pbr material to phong in the viewer).
+            out.energy_compensation &= out.model.row().energy_compensation;
         }
         "preset" => {
             let text: String = value.try_into().map_err(typed)?;
@@ -278,6 +296,9 @@ pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String
         k if TERM_KEYS.contains(&k) => {
             let text: String = value.try_into().map_err(typed)?;
             set_term(&mut out, k, &text).map_err(bad)?;
+        }
+        ENERGY_COMPENSATION_KEY => {
+            out.energy_compensation = value.try_into().map_err(typed)?;
         }
         k => {
             let p = table::param_for(m.model, k).ok_or_else(|| {
@@ -348,6 +369,12 @@ pub fn material_table(m: &Material) -> toml::Table {
     ] {
         t.insert(key.into(), Toml::String(name.into()));
     }
+    if m.model.row().energy_compensation {
+        t.insert(
+            ENERGY_COMPENSATION_KEY.into(),
+            Toml::Boolean(m.energy_compensation),
+        );
+    }
     t
 }
 
@@ -370,6 +397,38 @@ mod tests {
         m.distribution = super::super::Distribution::Ggx;
         let entry = MaterialEntry::deserialize(Toml::Table(material_table(&m))).unwrap();
         assert_eq!(material_from_entry("m", &entry).unwrap(), m);
+    }
+
+    /// `energy_compensation`: a boolean, saved and read back, refused
+    /// with the reason on a model without it, dropped when the viewer
+    /// switches a compensated material to such a model.
+    #[test]
+    fn energy_compensation_is_a_validated_boolean() {
+        let entry = |text: &str| MaterialEntry::deserialize(text.parse::<toml::Table>().unwrap());
+        let m = material_from_entry(
+            "m",
+            &entry("model = \"gltf-pbr\"\nenergy_compensation = true").unwrap(),
+        )
+        .unwrap();
+        assert!(m.energy_compensation);
+        let back = MaterialEntry::deserialize(Toml::Table(material_table(&m))).unwrap();
+        assert_eq!(material_from_entry("m", &back).unwrap(), m);
+        let off = material_from_entry("m", &entry("model = \"cook-torrance\"").unwrap()).unwrap();
+        assert!(!off.energy_compensation);
+        let e = material_from_entry(
+            "m",
+            &entry("model = \"phong\"\nenergy_compensation = true").unwrap(),
+        )
+        .unwrap_err();
+        assert!(
+            e.contains("energy_compensation") && e.contains("`phong` has no energy compensation"),
+            "{e}"
+        );
+        assert!(entry("model = \"gltf-pbr\"\nenergy_compensation = 1").is_err());
+        let switched = with_key(&m, "model", Toml::String("phong".into())).unwrap();
+        assert!(!switched.energy_compensation);
+        let on = with_key(&off, ENERGY_COMPENSATION_KEY, Toml::Boolean(true)).unwrap();
+        assert!(on.energy_compensation);
     }
 
     #[test]

@@ -95,6 +95,10 @@ pub struct Material {
     pub alpha: f64,
     /// How alpha is read (glTF `alphaMode`; see [`AlphaMode`]).
     pub alpha_mode: AlphaMode,
+    /// Energy compensation (multiple scattering, `brdf::energy`; scene key
+    /// `energy_compensation`, off by default), for the models whose row
+    /// offers it (`ModelRow::energy_compensation`).
+    pub energy_compensation: bool,
 }
 
 /// glTF 2.0 `alphaMode` (§3.9.4 "Alpha Coverage"): what the base colour's
@@ -219,6 +223,7 @@ impl Material {
             sides: Sides::Unculled,
             alpha: 1.0,
             alpha_mode: AlphaMode::Opaque,
+            energy_compensation: false,
         };
         (model.row().defaults)(&mut m);
         m
@@ -230,7 +235,21 @@ impl Material {
     pub fn validate(&self) -> Result<(), String> {
         table::stored_params()
             .into_iter()
-            .try_for_each(|p| p.check(self))
+            .try_for_each(|p| p.check(self))?;
+        if self.energy_compensation && !self.model.row().energy_compensation {
+            return Err(format!(
+                "material `{}`: energy_compensation = true, but model `{}` has no energy compensation (it applies to the microfacet models {}); remove the key or set it to false",
+                self.name,
+                self.model.name(),
+                table::ROWS
+                    .iter()
+                    .filter(|r| r.energy_compensation)
+                    .map(|r| format!("`{}`", r.model.name()))
+                    .collect::<Vec<_>>()
+                    .join(" and ")
+            ));
+        }
+        Ok(())
     }
 
     /// The BRDF of this material: its model's typed value, with the
@@ -240,6 +259,7 @@ impl Material {
             k_d: self.k_d,
             k_s: self.k_s,
             specular: (self.model.row().specular)(self),
+            energy_compensation: self.energy_compensation,
         }
     }
 

@@ -99,6 +99,10 @@ pub struct ModelRow {
     pub reciprocal: bool,
     /// Whether the bench's `model` knob measures it.
     pub benched: bool,
+    /// Whether it offers energy compensation (the material key
+    /// `energy_compensation`, `brdf::energy`): its lobe is GGX-like
+    /// microfacet scattering whose lost energy the albedo table measures.
+    pub energy_compensation: bool,
     /// Its own defaults, applied by `Material::new` over the common ones.
     pub defaults: fn(&mut Material),
     /// The specular term of a material of this model, its derived
@@ -253,6 +257,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D],
         reciprocal: true,
         benched: true,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |_| Specular::None,
         f32_error: no_error,
@@ -269,6 +274,7 @@ pub static ROWS: &[ModelRow] = &[
         params: LOBE,
         reciprocal: false,
         benched: false,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |m| Specular::Phong { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
@@ -289,6 +295,7 @@ pub static ROWS: &[ModelRow] = &[
         params: LOBE,
         reciprocal: true,
         benched: true,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |m| Specular::PhongNormalized { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
@@ -310,6 +317,7 @@ pub static ROWS: &[ModelRow] = &[
         params: LOBE,
         reciprocal: false,
         benched: false,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |m| Specular::BlinnPhong { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
@@ -330,6 +338,7 @@ pub static ROWS: &[ModelRow] = &[
         params: LOBE,
         reciprocal: true,
         benched: true,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |m| Specular::BlinnPhongNormalized { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
@@ -351,6 +360,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &K_S, &WARD_SIGMA],
         reciprocal: true,
         benched: true,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |m| Specular::Ward { sigma: m.sigma_x },
         f32_error: |m| slope_error(m.sigma_x),
@@ -371,6 +381,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &K_S, &SIGMA_X, &SIGMA_Y],
         reciprocal: true,
         benched: false,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |m| Specular::WardAnisotropic {
             sigma_x: m.sigma_x,
@@ -389,6 +400,7 @@ pub static ROWS: &[ModelRow] = &[
             "brdf/phong.wgsl",
             "brdf/fresnel.wgsl",
             "brdf/microfacet.wgsl",
+            "brdf/energy.wgsl",
         ],
         needs_tangents: false,
         terms: Terms {
@@ -400,6 +412,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &K_S, &ROUGHNESS, &ETA, &KAPPA, &ETA_I, &ETA_T],
         reciprocal: true,
         benched: true,
+        energy_compensation: true,
         defaults: |_| {},
         specular: |m| {
             Specular::CookTorrance(CookTorrance::new(
@@ -447,6 +460,7 @@ pub static ROWS: &[ModelRow] = &[
         params: FRESNEL_PARAMS,
         reciprocal: true,
         benched: false,
+        energy_compensation: false,
         defaults: |m| {
             (m.k_d, m.k_s, m.fresnel) = (Rgb::ZERO, Rgb::ONE, super::Fresnel::None);
         },
@@ -468,6 +482,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &FACET_SIGMA],
         reciprocal: true,
         benched: true,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |m| Specular::OrenNayar(oren_nayar_terms(m.facet_sigma)),
         f32_error: |_| ON_ERROR,
@@ -484,6 +499,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &FACET_SIGMA],
         reciprocal: true,
         benched: false,
+        energy_compensation: false,
         defaults: |_| {},
         specular: |m| Specular::OrenNayarFull(oren_nayar_terms(m.facet_sigma)),
         f32_error: |_| ON_ERROR + ATAN2_TERMS_ERROR,
@@ -500,6 +516,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[],
         reciprocal: false,
         benched: false,
+        energy_compensation: false,
         defaults: |m| {
             (m.k_d, m.k_s) = (Rgb::ZERO, Rgb::ZERO);
             m.measured = Some(super::measured::default_brdf());
@@ -522,6 +539,7 @@ pub static ROWS: &[ModelRow] = &[
             "brdf/lambert.wgsl",
             "brdf/phong.wgsl",
             "brdf/microfacet.wgsl",
+            "brdf/energy.wgsl",
             "brdf/gltf_pbr.wgsl",
         ],
         needs_tangents: false,
@@ -529,6 +547,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&BASE_COLOR, &METALLIC, &PERCEPTUAL_ROUGHNESS],
         reciprocal: true,
         benched: false,
+        energy_compensation: true,
         defaults: |_| {},
         specular: |m| Specular::GltfPbr {
             base_color: m.base_color,
@@ -558,6 +577,7 @@ pub static ROWS: &[ModelRow] = &[
         params: &[&K_D, &K_S, &ABC_A, &ABC_B, &ABC_C, &ETA_I, &ETA_T],
         reciprocal: true,
         benched: false,
+        energy_compensation: false,
         // The published fit of MERL's gold-metallic-paint (Löw et al.
         // 2012; shared/measured/merl100_abc_fits.csv).
         defaults: |m| {

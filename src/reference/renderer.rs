@@ -534,6 +534,7 @@ impl<'a> Shader<'a> {
                 }
                 visibility(self.bvh, &lights[l], x, n_offset, self.epsilon)
             },
+            |wi| environment_visible(self.bvh, x, n_offset, wi, self.epsilon),
         );
         if exact {
             // f_r of a Lambertian receiver is the same for every direction
@@ -594,6 +595,19 @@ pub fn visibility(bvh: &Bvh, light: &Light, x: DVec3, n_offset: DVec3, epsilon: 
     };
     let ray = Ray { origin, direction };
     if bvh.occluded(&ray, t_max) { 0.0 } else { 1.0 }
+}
+
+/// Whether the environment is seen from `x` towards `wi` (the
+/// environment's ray-traced visibility, `environment.visibility`): a ray
+/// from `x + ε·n` (the offset normal turned towards `wi`, as [`visibility`]
+/// leaves) to infinity hits nothing.
+pub fn environment_visible(bvh: &Bvh, x: DVec3, n_offset: DVec3, wi: DVec3, epsilon: f64) -> bool {
+    let side = if n_offset.dot(wi) < 0.0 { -1.0 } else { 1.0 };
+    let ray = Ray {
+        origin: x + n_offset * (side * epsilon),
+        direction: wi,
+    };
+    !bvh.occluded(&ray, f64::INFINITY)
 }
 
 /// `frame` turned over (`flip` −1: normal, tangent and bitangent

@@ -88,6 +88,10 @@ pub enum Feature {
     /// Some material reads its alpha (glTF `alphaMode` MASK or BLEND):
     /// discard below the cutoff, the alpha as the output's (`alpha`).
     Alpha,
+    /// Some material the scene draws has energy compensation: the
+    /// microfacet lobes read the albedo table of the globals
+    /// (`energy_compensation`; shaders/brdf/energy.wgsl).
+    EnergyCompensation,
     /// Measured materials evaluate their Neural-BRDF network per pixel
     /// instead of looking up a table (`shading.measured_mode = "network"`;
     /// `measured_network`).
@@ -126,6 +130,7 @@ impl Feature {
             VertexColors,
             Alpha,
             MeasuredNetwork,
+            EnergyCompensation,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -173,6 +178,7 @@ impl Feature {
             Feature::VertexColors => "vertex_colors",
             Feature::Alpha => "alpha",
             Feature::MeasuredNetwork => "measured_network",
+            Feature::EnergyCompensation => "energy_compensation",
         };
         flag.into()
     }

@@ -60,6 +60,9 @@ pub struct ShaderKey {
     /// `measured_network`, `shading.measured_mode = "network"`; only with
     /// a measured variant).
     pub measured_network: bool,
+    /// Some material the scene draws has energy compensation (feature
+    /// `energy_compensation`).
+    pub energy_compensation: bool,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -149,6 +152,10 @@ impl ShaderKey {
                     scene.materials[m.material].alpha_mode == crate::material::AlphaMode::Blend
                 }),
                 measured_network: scene.measured_network,
+                energy_compensation: scene
+                    .meshes
+                    .iter()
+                    .any(|m| scene.materials[m.material].energy_compensation),
             };
         key.arrays.measured = key.has_measured();
         key.measured_network &= key.has_measured();
@@ -283,6 +290,9 @@ impl ShaderKey {
         }
         if self.measured_network {
             f.push(Feature::MeasuredNetwork);
+        }
+        if self.energy_compensation {
+            f.push(Feature::EnergyCompensation);
         }
         f
     }

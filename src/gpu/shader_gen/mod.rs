@@ -112,6 +112,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 // table's in the others.
                 measured_network: shading == ShadingMode::Phong
                     && v.model == crate::material::ReflectanceModel::Measured,
+                energy_compensation: i % 2 == 1,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -144,6 +145,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     alpha: false,
                     alpha_blend: false,
                     measured_network: false,
+                    energy_compensation: false,
                 });
             }
         }
@@ -180,6 +182,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 alpha: uniform,
                 alpha_blend: uniform,
                 measured_network: uniform,
+                energy_compensation: uniform,
             });
         }
     }

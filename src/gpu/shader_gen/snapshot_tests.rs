@@ -89,6 +89,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         alpha: false,
         alpha_blend: false,
         measured_network: false,
+        energy_compensation: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -122,6 +123,7 @@ fn snapshot_everything() {
         alpha: true,
         alpha_blend: false,
         measured_network: false,
+        energy_compensation: true,
     };
     check_snapshot("everything", &compose(&key));
 }

@@ -67,11 +67,15 @@ pub fn schlick_weight(cos_oh: f64) -> f64 {
 
 /// `f_r` of glTF's metallic-roughness material (see the module doc), for
 /// `N·I > 0`, `N·V > 0` (the caller's one-sided test). `roughness` is the
-/// perceptual r; α = r².
+/// perceptual r; α = r². `ms` is energy compensation's `(1 − E)/E`
+/// (`super::energy`; 0 without it, and the lobes are then exactly the
+/// specification's): the dielectric's lobe is scaled by `1 + 0.04·ms`, the
+/// metal's by `1 + b·ms`, each by its own `F0`.
 pub fn gltf_pbr(
     base_color: Rgb,
     metallic: f64,
     roughness: f64,
+    ms: f64,
     n: DVec3,
     wi: DVec3,
     wo: DVec3,
@@ -88,9 +92,12 @@ pub fn gltf_pbr(
         d_ggx(alpha, cos_h, sin2_h) * vis_smith_ggx_correlated(alpha, cos_i, cos_o, cos_ih, cos_oh);
     let w = schlick_weight(cos_oh);
     let f_dielectric = DIELECTRIC_F0 + (1.0 - DIELECTRIC_F0) * w;
-    let dielectric =
-        base_color * ((1.0 - f_dielectric) * FRAC_1_PI) + Rgb::splat(f_dielectric * specular);
-    let metal = (base_color + (Rgb::ONE - base_color) * w) * specular;
+    let dielectric = base_color * ((1.0 - f_dielectric) * FRAC_1_PI)
+        + Rgb::splat(f_dielectric * specular)
+            * super::energy::ms_factor(Rgb::splat(DIELECTRIC_F0), ms);
+    let metal = (base_color + (Rgb::ONE - base_color) * w)
+        * specular
+        * super::energy::ms_factor(base_color, ms);
     dielectric * (1.0 - metallic) + metal * metallic
 }
 
@@ -140,7 +147,7 @@ mod tests {
         let b = Rgb::new(0.8, 0.5, 0.2);
         let (wi, wo) = (dir(30.0, 0.0), dir(50.0, 160.0));
         for (m, expected) in [(0.0, GOLDEN_M0), (0.5, GOLDEN_M05), (1.0, GOLDEN_M1)] {
-            let f = gltf_pbr(b, m, 0.5, DVec3::Z, wi, wo);
+            let f = gltf_pbr(b, m, 0.5, 0.0, DVec3::Z, wi, wo);
             for c in 0..3 {
                 assert!(
                     (f[c] - expected[c]).abs() < 1e-12 * expected[c],
@@ -175,10 +182,10 @@ mod tests {
             (Rgb::ONE - f) * c_diff * FRAC_1_PI + f * spec
         };
         for m in [0.0, 1.0] {
-            let a = gltf_pbr(b, m, 0.5, DVec3::Z, wi, wo);
+            let a = gltf_pbr(b, m, 0.5, 0.0, DVec3::Z, wi, wo);
             assert!((a - lerp(m)).abs().max_element() < 1e-14, "m {m}");
         }
-        let (mix, lerped) = (gltf_pbr(b, 0.5, 0.5, DVec3::Z, wi, wo), lerp(0.5));
+        let (mix, lerped) = (gltf_pbr(b, 0.5, 0.5, 0.0, DVec3::Z, wi, wo), lerp(0.5));
         let off = (mix.x - lerped.x).abs() / lerped.x;
         assert!(off > 0.05, "mix {mix} lerp {lerped}: {off}");
     }
@@ -189,7 +196,7 @@ mod tests {
     #[test]
     fn white_metal_is_the_bare_microfacet_lobe() {
         for r in [0.1, 0.5, 1.0] {
-            let f = gltf_pbr(Rgb::ONE, 1.0, r, DVec3::Z, DVec3::Z, DVec3::Z);
+            let f = gltf_pbr(Rgb::ONE, 1.0, r, 0.0, DVec3::Z, DVec3::Z, DVec3::Z);
             let alpha: f64 = r * r;
             let expected = 1.0 / (PI * alpha * alpha) / 4.0;
             assert!((f.x - expected).abs() < 1e-12 * expected, "r {r}: {f}");

@@ -6,6 +6,7 @@
 //! `gpu::shader_gen` generates: the same terms, called in the same order.
 
 pub mod abc;
+pub mod energy;
 pub mod fresnel;
 pub mod gltf_pbr;
 pub mod lambert;
@@ -51,7 +52,14 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
         Specular::WardAnisotropic { sigma_x, sigma_y } => Rgb::splat(ward::ward_anisotropic(
             sigma_x, sigma_y, n, frame.t, frame.b, wi, wo,
         )),
-        Specular::CookTorrance(ct) => cook_torrance(&ct, wi, wo, n),
+        Specular::CookTorrance(ct) => {
+            let ms = compensation_ratio(
+                brdf,
+                crate::environment::prefiltered::ggx_alpha(ct.d),
+                n.dot(wo),
+            );
+            cook_torrance(&ct, wi, wo, n) * energy::ms_factor(ct.f.eval(1.0), ms)
+        }
         Specular::OrenNayar(t) => {
             return oren_nayar::oren_nayar_qualitative(
                 brdf.k_d,
@@ -71,7 +79,10 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
             base_color,
             metallic,
             roughness,
-        } => return gltf_pbr::gltf_pbr(base_color, metallic, roughness, n, wi, wo),
+        } => {
+            let ms = compensation_ratio(brdf, roughness * roughness, n.dot(wo));
+            return gltf_pbr::gltf_pbr(base_color, metallic, roughness, ms, n, wi, wo);
+        }
         Specular::Abc {
             a,
             b,
@@ -81,6 +92,17 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
         } => a * abc::abc_specular(b, c, eta_i, eta_t, n, wi, wo),
     };
     diffuse + brdf.k_s * specular
+}
+
+/// `(1 − E)/E` of energy compensation at the lobe's GGX α and `N·V`
+/// ([`energy::ms_ratio`]), 0 without it (the lobe is then exactly the
+/// contract's). Twin: `ms_ratio` times the material's `lobe.x` in WGSL.
+fn compensation_ratio(brdf: &Brdf, alpha: f64, cos_o: f64) -> f64 {
+    if brdf.energy_compensation {
+        energy::ms_ratio(alpha, cos_o)
+    } else {
+        0.0
+    }
 }
 
 /// The Cook-Torrance specular lobe `D·G·F / (c (N·V)(N·I))` (lecture:

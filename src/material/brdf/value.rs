@@ -23,6 +23,10 @@ pub struct Brdf {
     /// Weight of the specular term (the mirror's reflectance).
     pub k_s: Rgb,
     pub specular: Specular,
+    /// Energy compensation of the microfacet lobes (`super::energy`; the
+    /// material key `energy_compensation`): read by the gltf-pbr and
+    /// Cook-Torrance arms only.
+    pub energy_compensation: bool,
 }
 
 /// The specular term of each model, with what it reads.
@@ -333,6 +337,14 @@ impl Brdf {
         matches!(self.specular, Specular::Mirror(_))
     }
 
+    /// `lobe.x` of gltf-pbr and Cook-Torrance (which have no other lobe
+    /// constants): 1 with energy compensation, 0 without; the WGSL
+    /// multiplies `ms_ratio` by it (a select, not a branch: UNIFORM_BRANCHES
+    /// in shaders/brdf/phong.wgsl).
+    fn compensation_weight(&self) -> f64 {
+        if self.energy_compensation { 1.0 } else { 0.0 }
+    }
+
     /// The values the GPU twin of this BRDF reads.
     pub fn shader_params(&self) -> ShaderParams {
         let mut p = ShaderParams {
@@ -364,6 +376,7 @@ impl Brdf {
                     }
                 }
                 ct.f.write_params(&mut p);
+                p.lobe[0] = self.compensation_weight();
             }
             Specular::Mirror(f) => f.write_params(&mut p),
             Specular::OrenNayar(t) | Specular::OrenNayarFull(t) => p.lobe = [t.a, t.b, t.c3, t.l2],
@@ -374,7 +387,10 @@ impl Brdf {
                 base_color,
                 metallic,
                 roughness,
-            } => (p.base_color, p.metallic, p.roughness) = (base_color, metallic, roughness),
+            } => {
+                (p.base_color, p.metallic, p.roughness) = (base_color, metallic, roughness);
+                p.lobe[0] = self.compensation_weight();
+            }
             // The GPU's k_s is the lobe's whole weight k_s·A (a k_s texture
             // multiplies it per pixel as it multiplies k_s on the CPU);
             // lobe = (B, C, 0, 0).

@@ -1,5 +1,5 @@
 //! `[environment]`'s map keys: `map`, `scale`, `sh_order`, `reference`,
-//! `rotation_deg`, `specular`, `samples`, `prefilter_size` (the contract's `[environment]`
+//! `rotation_deg`, `specular`, `samples`, `prefilter_size`, `visibility` (the contract's `[environment]`
 //! section; gonio's keys beyond `map` and `scale` extend it). Errors name
 //! the key.
 
@@ -32,6 +32,7 @@ pub fn environment_map(
             ("specular", e.specular.is_some()),
             ("samples", e.samples.is_some()),
             ("prefilter_size", e.prefilter_size.is_some()),
+            ("visibility", e.visibility.is_some()),
         ];
         if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
             return Err(format!(
@@ -111,6 +112,12 @@ pub fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
         s.reference = ReferenceDiffuse::parse(r).ok_or_else(|| {
             format!("environment.reference = \"{r}\" is neither \"integrated\" nor \"sh\"")
         })?;
+    }
+    if let Some(v) = e.visibility {
+        if v && s.reference != ReferenceDiffuse::Integrated {
+            return Err("environment.visibility = true applies to environment.reference = \"integrated\" (the truth integrates the map; \"sh\" is the GPU's unshadowed approximation in f64)".into());
+        }
+        s.visibility = v;
     }
     Ok(s)
 }

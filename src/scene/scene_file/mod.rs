@@ -465,6 +465,46 @@ mod tests {
         assert_eq!(err.exit_code(), 2);
     }
 
+    /// `--set` reaches both new keys of issue 16: a material's
+    /// `energy_compensation` (refused, exit 2, on a model without it) and
+    /// `environment.visibility` (refused with the SH reference).
+    #[test]
+    fn energy_compensation_and_visibility_keys() {
+        let ok = load(
+            &SceneSource::BuiltIn,
+            &[
+                "materials.ball.model=gltf-pbr".into(),
+                "materials.ball.energy_compensation=true".into(),
+                "environment.map=sky".into(),
+                "environment.visibility=true".into(),
+            ],
+        )
+        .unwrap();
+        assert!(ok.materials.iter().any(|m| m.energy_compensation));
+        assert!(ok.environment.map.as_ref().unwrap().settings.visibility);
+        for sets in [
+            vec![
+                "materials.ball.model=phong",
+                "materials.ball.energy_compensation=true",
+            ],
+            vec![
+                "environment.map=sky",
+                "environment.reference=sh",
+                "environment.visibility=true",
+            ],
+            vec!["environment.visibility=true"],
+        ] {
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            let err = load(&SceneSource::BuiltIn, &sets).unwrap_err();
+            let msg = err.to_string();
+            assert!(
+                msg.contains("energy_compensation") || msg.contains("visibility"),
+                "{msg}"
+            );
+            assert_eq!(err.exit_code(), 2, "{msg}");
+        }
+    }
+
     #[test]
     fn bad_values_are_rejected() {
         for kv in [

@@ -340,6 +340,9 @@ pub struct EnvironmentSection {
     pub samples: Option<i64>,
     /// Level width of `specular = "prefiltered"`'s stack (default 64).
     pub prefilter_size: Option<i64>,
+    /// The reference's environment term with ray-traced visibility
+    /// (default false).
+    pub visibility: Option<bool>,
 }
 
 /// `[ambient]`: constant incoming radiance `L_a`.

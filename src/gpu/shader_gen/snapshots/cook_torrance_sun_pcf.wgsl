@@ -26,6 +26,10 @@ struct Globals {
     _pad2: f32,
     env_ground: vec3<f32>,
     _pad3: f32,
+    // E(μ, α) of energy compensation at the 32 × 32 nodes of dfg::table,
+    // four to a row (node k at [k / 4][k % 4]); zeros when no material
+    // of the scene has energy_compensation (read only then: brdf/energy.wgsl).
+    albedo: array<vec4<f32>, 256>,
 }
 
 // One material, roughness floor already applied (Material::with_roughness_floor).
@@ -704,6 +708,39 @@ fn cook_torrance_specular(d: f32, g: f32, f: vec3<f32>, cos_i: f32, cos_o: f32, 
     return f * (d * g / (denominator * max(cos_o, COS_FLOOR) * max(cos_i, COS_FLOOR)));
 }
 
+// Energy compensation of the microfacet lobes (Turquin 2019): a lobe of
+// normal-incidence Fresnel F0 is scaled by 1 + F0·(1 − E(μ_o, α))/E(μ_o, α),
+// E the directional albedo of GGX with height-correlated Smith (the table
+// of src/environment/dfg.rs, the same f32 nodes in globals.albedo, filled
+// when some material has energy_compensation = true).
+// f64 twin: src/material/brdf/energy.rs (same names, same order).
+// Without the feature `energy_compensation` (no material of the scene has
+// it) ms_ratio is 0 and every factor exactly 1: the table is not read.
+
+// dfg::SIZE
+const MS_TABLE_SIZE: i32 = 32;
+// energy::E_FLOOR
+const MS_E_FLOOR: f32 = 1e-4;
+
+
+// (1 − E)/E at (μ_o, α) times the material's weight (lobe.x: 1 with
+// compensation, 0 without; a product, not a branch: UNIFORM_BRANCHES).
+fn ms_ratio(weight: f32, alpha: f32, cos_o: f32) -> f32 {
+    return 0.0;
+}
+
+// 1 + F0·ratio: exactly 1 with ratio 0.
+fn ms_factor(f0: vec3<f32>, ratio: f32) -> vec3<f32> {
+    return vec3<f32>(1.0) + f0 * ratio;
+}
+
+// The GGX α standing in for a Cook-Torrance distribution: its roughness
+// (Beckmann's and the Gaussians' m, GGX's α), for Blinn's exponent e
+// √(2/(e + 2)) (blinn_e is 0 for the others). Twin: prefiltered::ggx_alpha.
+fn ms_ggx_alpha(m: Material) -> f32 {
+    return select(m.roughness, sqrt(2.0 / (m.blinn_e + 2.0)), m.blinn_e > 0.0);
+}
+
 // A material's BRDF: its model's lobe over the Lambert base, the
 // Cook-Torrance terms it chose, the mirror's reflectance.
 // f64 twin: src/material/brdf/mod.rs (same functions, same arms, same order).
@@ -716,7 +753,12 @@ fn cook_torrance_specular(d: f32, g: f32, f: vec3<f32>, cos_i: f32, cos_o: f32, 
 fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let n = frame.n;
     switch brdf_model(m) {
-        case MODEL_COOK_TORRANCE: { return lambert(m.k_d) + m.k_s * cook_torrance(m, wi, wo, n); }
+        case MODEL_COOK_TORRANCE: {
+            var specular = cook_torrance(m, wi, wo, n);
+            // Energy compensation (brdf/energy.wgsl): F(1) is computed
+            // only in scenes that use it.
+            return lambert(m.k_d) + m.k_s * specular;
+        }
         default: { return vec3<f32>(0.0); }
     }
 }

@@ -24,6 +24,10 @@ struct Globals {
     _pad2: f32,
     env_ground: vec3<f32>,
     _pad3: f32,
+    // E(μ, α) of energy compensation at the 32 × 32 nodes of dfg::table,
+    // four to a row (node k at [k / 4][k % 4]); zeros when no material
+    // of the scene has energy_compensation (read only then: brdf/energy.wgsl).
+    albedo: array<vec4<f32>, 256>,
 }
 
 // One material, roughness floor already applied (Material::with_roughness_floor).
