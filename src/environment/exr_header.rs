@@ -28,7 +28,9 @@ const MULTI_PART: u32 = 0x1000;
 pub fn check(bytes: &[u8], max_texels: u64) -> Result<(), String> {
     let mut at = Cursor { bytes, at: 0 };
     if at.take(4)? != MAGIC {
-        return Err("it does not start with OpenEXR's magic number".into());
+        return Err(
+            "it is not a readable exr image: it does not start with OpenEXR's magic number".into(),
+        );
     }
     let version = at.u32()?;
     if version & NON_IMAGE != 0 {
