@@ -98,6 +98,7 @@ impl PreparedScene {
         let arrays = key.arrays;
         let materials = draw::gpu_materials(scene, &key);
         let measured = draw::measured_tables(scene);
+        check_measured_size(&ctx.device, &measured.data)?;
         let lights = gpu_lights(scene, &plan);
         let draw = SceneDraw::new(
             &ctx.device,
@@ -377,6 +378,27 @@ fn check_geometry_size(device: &wgpu::Device, scene: &Scene, key: &ShaderKey) ->
             } else {
                 ""
             }
+        ),
+    ))
+}
+
+/// Refuses measured tables whose storage buffer (every measured material
+/// of the scene, one table each at `shading.measured_table` samples) is
+/// over the device's binding limit: each table alone is checked at load
+/// against the guaranteed 128 MiB, their sum only here.
+fn check_measured_size(device: &wgpu::Device, data: &[f32]) -> Result<()> {
+    let bytes = 4 * data.len() as u64;
+    let limits = device.limits();
+    let max = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+    if bytes <= max {
+        return Ok(());
+    }
+    Err(Error::argument(
+        "shading.measured_table",
+        format!(
+            "the scene's measured tables take {} MiB together, over the {} MiB the GPU binds in one storage buffer; lower shading.measured_table, use fewer measured materials, or set shading.measured_mode = \"network\"",
+            bytes >> 20,
+            max >> 20
         ),
     ))
 }

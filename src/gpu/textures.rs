@@ -231,6 +231,20 @@ impl SceneTextures {
     /// with `layout` ([`group_layout`]).
     pub fn new(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, scene: &Scene) -> Result<Self> {
         let device = &ctx.device;
+        // Decoding caps a side at MAX_TEXTURE_SIDE (8192); an adapter may
+        // allow less (WebGPU's guaranteed minimum is 8192, downlevel GL
+        // adapters 2048): checked before creating any texture.
+        let max = device.limits().max_texture_dimension_2d;
+        if let Some(image) = scene.images.iter().find(|i| {
+            let base = &i.levels[0];
+            base.width > max || base.height > max
+        }) {
+            let base = &image.levels[0];
+            return Err(crate::Error::Scene(format!(
+                "the texture {} is {}×{} texels; the GPU adapter `{}` allows at most {max} per side: scale the image down",
+                image.name, base.width, base.height, ctx.adapter_info.name
+            )));
+        }
         let textures: Vec<wgpu::Texture> = scene.images.iter().map(|i| upload(ctx, i)).collect();
         let full: Vec<wgpu::TextureView> = textures
             .iter()
