@@ -346,6 +346,26 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         "the scene has no environment map",
     );
 
+    // The SH bands of the diffuse term (and of the "sh" mode's lobes):
+    // issue 16's error-vs-order trade on the Pareto front.
+    let orders = match &base.environment.map {
+        Some(map) => (0..=crate::environment::sh::MAX_ORDER)
+            .map(|k| {
+                (
+                    format!("order {k}"),
+                    vec![format!("environment.sh_order={k}")],
+                    map.settings.sh_order == k,
+                )
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    knob(
+        "environment_sh_order",
+        orders,
+        "the scene has no environment map",
+    );
+
     // Not in the renderer yet: the loader refuses the key and the knob is
     // reported as not measured (see the module docs).
     knob(
@@ -490,7 +510,12 @@ mod tests {
         let names: Vec<&str> = skipped.iter().map(|s| s.knob.as_str()).collect();
         assert_eq!(
             names,
-            ["environment_specular", "measured_mode", "measured_table"],
+            [
+                "environment_specular",
+                "environment_sh_order",
+                "measured_mode",
+                "measured_table"
+            ],
             "{skipped:?}"
         );
         let knobs: std::collections::BTreeSet<_> =
@@ -557,6 +582,18 @@ mod tests {
         // three prefiltered ones and the SH Phong convolution.
         assert_eq!(settings.len(), 7, "{settings:?}");
         for c in settings {
+            let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
+            let scene =
+                load(&SceneSource::BuiltIn, &all).unwrap_or_else(|e| panic!("{}: {e}", c.label()));
+            assert!(!draws_the_same(&base, &scene), "{}", c.label());
+        }
+        // The SH order: the four orders other than the base's (2).
+        let orders: Vec<_> = configs
+            .iter()
+            .filter(|c| c.knob == "environment_sh_order")
+            .collect();
+        assert_eq!(orders.len(), 4, "{orders:?}");
+        for c in orders {
             let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
             let scene =
                 load(&SceneSource::BuiltIn, &all).unwrap_or_else(|e| panic!("{}: {e}", c.label()));

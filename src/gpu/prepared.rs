@@ -389,7 +389,9 @@ fn check_geometry_size(device: &wgpu::Device, scene: &Scene, key: &ShaderKey) ->
 fn check_measured_size(device: &wgpu::Device, data: &[f32]) -> Result<()> {
     let bytes = 4 * data.len() as u64;
     let limits = device.limits();
-    let max = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+    let max = limits
+        .max_storage_buffer_binding_size
+        .min(limits.max_buffer_size);
     if bytes <= max {
         return Ok(());
     }

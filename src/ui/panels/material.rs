@@ -25,6 +25,13 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             changed |= param(ui, p, m);
             ui.end_row();
         }
+        if row.energy_compensation {
+            // Multiple scattering (issue 16 item 5), the scene key
+            // `energy_compensation`; off by default.
+            ui.label("energy compensation");
+            changed |= ui.checkbox(&mut m.energy_compensation, "").changed();
+            ui.end_row();
+        }
         if m.model == ReflectanceModel::Measured {
             ui.label("measured");
             changed |= measured_choice(ui, m);
