@@ -103,40 +103,34 @@ pub fn integrate(mu: f64, alpha: f64, n: u32) -> [f64; 2] {
     [a / n as f64, b / n as f64]
 }
 
+/// The bilinear interpolation at `(μ, α)` of the grid `node(i, j)`
+/// (column `i` of `√μ`, row `j` of `√α`, both clamped to [0, 1]) that
+/// both of the tables share; the WGSL twins (`environment_dfg`,
+/// `ms_albedo`) write it out for their own storage.
+fn bilinear(mu: f64, alpha: f64, node: impl Fn(usize, usize) -> f64) -> f64 {
+    let last = (SIZE - 1) as f64;
+    let x = mu.clamp(0.0, 1.0).sqrt() * last;
+    let y = alpha.clamp(0.0, 1.0).sqrt() * last;
+    let (x0, y0) = (x.floor().min(last - 1.0), y.floor().min(last - 1.0));
+    let (fx, fy) = (x - x0, y - y0);
+    let (i, j) = (x0 as usize, y0 as usize);
+    let lo = node(i, j) * (1.0 - fx) + node(i + 1, j) * fx;
+    let hi = node(i, j + 1) * (1.0 - fx) + node(i + 1, j + 1) * fx;
+    lo * (1.0 - fy) + hi * fy
+}
+
 impl DfgTable {
     /// `[A, B]` at `(μ, α)`, bilinear between the nodes, both clamped to
     /// [0, 1]. Twin: `environment_dfg` in shaders/environment.wgsl.
     pub fn lookup(&self, mu: f64, alpha: f64) -> [f64; 2] {
-        let last = (SIZE - 1) as f64;
-        let x = mu.clamp(0.0, 1.0).sqrt() * last;
-        let y = alpha.clamp(0.0, 1.0).sqrt() * last;
-        let (x0, y0) = (x.floor().min(last - 1.0), y.floor().min(last - 1.0));
-        let (fx, fy) = (x - x0, y - y0);
-        let (i, j) = (x0 as usize, y0 as usize);
-        let e = |i: usize, j: usize, c: usize| self.entries[j * SIZE + i][c] as f64;
-        let mut out = [0.0; 2];
-        for (c, o) in out.iter_mut().enumerate() {
-            let lo = e(i, j, c) * (1.0 - fx) + e(i + 1, j, c) * fx;
-            let hi = e(i, j + 1, c) * (1.0 - fx) + e(i + 1, j + 1, c) * fx;
-            *o = lo * (1.0 - fy) + hi * fy;
-        }
-        out
+        [0, 1].map(|c| bilinear(mu, alpha, |i, j| self.entries[j * SIZE + i][c] as f64))
     }
 
     /// `E(μ, α) = A + B`: the directional albedo of GGX with `F = 1`,
     /// bilinear between the nodes of [`DfgTable::albedo_nodes`] as
     /// [`DfgTable::lookup`]. Twin: `ms_albedo` in shaders/brdf/energy.wgsl.
     pub fn albedo(&self, mu: f64, alpha: f64) -> f64 {
-        let last = (SIZE - 1) as f64;
-        let x = mu.clamp(0.0, 1.0).sqrt() * last;
-        let y = alpha.clamp(0.0, 1.0).sqrt() * last;
-        let (x0, y0) = (x.floor().min(last - 1.0), y.floor().min(last - 1.0));
-        let (fx, fy) = (x - x0, y - y0);
-        let (i, j) = (x0 as usize, y0 as usize);
-        let e = |i: usize, j: usize| self.albedo_nodes[j * SIZE + i] as f64;
-        let lo = e(i, j) * (1.0 - fx) + e(i + 1, j) * fx;
-        let hi = e(i, j + 1) * (1.0 - fx) + e(i + 1, j + 1) * fx;
-        lo * (1.0 - fy) + hi * fy
+        bilinear(mu, alpha, |i, j| self.albedo_nodes[j * SIZE + i] as f64)
     }
 
     /// [`DfgTable::albedo_nodes`] four to a row, as `Globals::albedo`
