@@ -10,6 +10,7 @@
 //! ranking). The command line is [`cli`].
 
 pub mod cli;
+pub mod linear;
 pub mod metric;
 pub mod models;
 pub mod problem;

@@ -267,10 +267,14 @@ impl FitModel {
                 .collect()
         };
         let scans = if model == ReflectanceModel::Abc {
-            // A = 0.06, 4, 250, 1.6e4; C = 0.01 … 10 at 7 points (log).
+            // A = 0.06, 4, 250, 1.6e4; C = 0.01 … 10 at 7 points (log);
+            // η_t = 1.58, 3.98, 15.8 (log): a start on the wrong side of
+            // the Fresnel's rise stalls at η_t's bound once A is solved
+            // (`linear.rs`), where the A scan no longer moves the start.
             vec![
                 (of(&ABC_A), vec![0.2, 0.4, 0.6, 0.8]),
                 (of(&ABC_C), (0..=6).map(|k| k as f64 / 6.0).collect()),
+                (of(&ETA_T), vec![0.1, 0.3, 0.6]),
             ]
         } else {
             Vec::new()

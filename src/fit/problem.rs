@@ -17,7 +17,12 @@
 //! then restarted from its end with a fresh simplex until a restart no
 //! longer improves by more than the tolerance (a simplex can collapse
 //! before the minimum: Lagarias et al. 1998; restarting is the usual cure).
+//!
+//! Under the `ngan` metric the numbers `f_r` is linear in (`k_d`, `k_s`,
+//! abc's `A`) are not searched but solved at every point (`linear.rs`,
+//! variable projection): the simplex moves the lobe's shape alone.
 
+use super::linear::Linear;
 use super::metric::Metric;
 use super::models::FitModel;
 use super::samples::Sample;
@@ -70,23 +75,48 @@ struct Problem<'a> {
     metric: Metric,
     /// [`Metric::mean`] of `f = 0`: costs are relative to it.
     norm: f64,
+    /// The numbers solved, not searched (`ngan` only).
+    linear: Option<Linear>,
+    /// The numbers the simplex searches (indices into the model's free
+    /// numbers): `x` has one entry per index here.
+    search: Vec<usize>,
+    /// The model's scans over searched numbers only.
+    scans: Vec<(Vec<usize>, Vec<f64>)>,
     evaluations: AtomicUsize,
 }
 
 impl Problem<'_> {
-    /// The free numbers at `x`.
+    /// The free numbers at `x` (the searched ones from `x`, the linear
+    /// ones solved) and, when solved, the metric's mean there.
+    fn point(&self, x: &[f64]) -> (Vec<f64>, Option<f64>) {
+        let free = &self.model.free;
+        let mut v: Vec<f64> = free.iter().map(|f| f.at(0.5)).collect();
+        for (&k, &x) in self.search.iter().zip(x) {
+            v[k] = free[k].at((1.0 + x.sin()) / 2.0);
+        }
+        let mean = self
+            .linear
+            .as_ref()
+            .map(|l| l.solve(self.model, &mut v, self.samples));
+        (v, mean)
+    }
+
     fn values(&self, x: &[f64]) -> Vec<f64> {
-        self.model
-            .free
-            .iter()
-            .zip(x)
-            .map(|(f, &x)| f.at((1.0 + x.sin()) / 2.0))
-            .collect()
+        self.point(x).0
     }
 
     fn mean(&self, values: &[f64]) -> f64 {
         mean_of(&self.model.material(values), self.samples, self.metric)
     }
+}
+
+/// How many numbers the simplex searches for `model` under `metric` (the
+/// `n` of the stopping rule; the others are solved, `linear.rs`).
+pub fn searched(model: &FitModel, metric: Metric) -> usize {
+    let linear = Linear::of(model, metric);
+    (0..model.free.len())
+        .filter(|&k| !linear.as_ref().is_some_and(|l| l.contains(k)))
+        .count()
 }
 
 /// `metric`'s mean of `m` against `samples`.
@@ -119,7 +149,8 @@ impl CostFunction for &Problem<'_> {
 
     fn cost(&self, x: &Self::Param) -> Result<f64, argmin::core::Error> {
         self.evaluations.fetch_add(1, Ordering::Relaxed);
-        let c = self.mean(&self.values(x)) / self.norm;
+        let (values, mean) = self.point(x);
+        let c = mean.unwrap_or_else(|| self.mean(&values)) / self.norm;
         // A model that overflows somewhere is a bad point, not an error.
         Ok(if c.is_finite() { c } else { f64::MAX })
     }
@@ -140,21 +171,31 @@ pub fn fit_from(
     also: Option<&Material>,
 ) -> FitResult {
     let norm = metric.mean(samples, |_| Rgb::ZERO).max(f64::MIN_POSITIVE);
+    let linear = Linear::of(model, metric);
+    let solved = |k: usize| linear.as_ref().is_some_and(|l| l.contains(k));
     let problem = Problem {
         model,
         samples,
         metric,
         norm,
+        search: (0..model.free.len()).filter(|&k| !solved(k)).collect(),
+        scans: model
+            .scans
+            .iter()
+            .filter(|(idx, _)| !idx.iter().any(|&k| solved(k)))
+            .cloned()
+            .collect(),
+        linear,
         evaluations: AtomicUsize::new(0),
     };
     let x_of = |t: f64| (2.0 * t - 1.0).clamp(-1.0, 1.0).asin();
     let start_at = |(width, extra): (f64, &[f64])| -> Vec<f64> {
-        model
-            .free
+        problem
+            .search
             .iter()
-            .enumerate()
-            .map(|(k, f)| {
-                let scanned = model
+            .map(|&k| {
+                let f = &model.free[k];
+                let scanned = problem
                     .scans
                     .iter()
                     .zip(extra)
@@ -172,7 +213,7 @@ pub fn fit_from(
             .collect()
     };
     let mut best: Option<(Vec<f64>, f64)> = None;
-    for (w, extra) in starts(model, |w, e| {
+    for (w, extra) in starts(model.width, &problem.scans, |w, e| {
         (&problem).cost(&start_at((w, e))).unwrap_or(f64::MAX)
     }) {
         let run = run(&problem, start_at((w, &extra)));
@@ -181,10 +222,10 @@ pub fn fit_from(
         }
     }
     if let Some(m) = also {
-        let x0: Vec<f64> = model
-            .free
+        let x0: Vec<f64> = problem
+            .search
             .iter()
-            .map(|f| x_of(f.fraction(f.read(m))))
+            .map(|&k| x_of(model.free[k].fraction(model.free[k].read(m))))
             .collect();
         let run = run(&problem, x0);
         if best.as_ref().is_none_or(|b| run.1 < b.1) {
@@ -219,9 +260,13 @@ pub fn fit_from(
 /// (abc: `A` and `C`, whose trades with `B` make valleys the width scan
 /// alone misses: a bright needle between the samples costs as little as
 /// no lobe); one start at ½ for a model without a width.
-fn starts(model: &FitModel, cost: impl Fn(f64, &[f64]) -> f64) -> Vec<(f64, Vec<f64>)> {
+fn starts(
+    width: Option<usize>,
+    scans: &[(Vec<usize>, Vec<f64>)],
+    cost: impl Fn(f64, &[f64]) -> f64,
+) -> Vec<(f64, Vec<f64>)> {
     let mut combos: Vec<Vec<f64>> = vec![Vec::new()];
-    for (_, fractions) in &model.scans {
+    for (_, fractions) in scans {
         combos = combos
             .into_iter()
             .flat_map(|c| {
@@ -233,7 +278,7 @@ fn starts(model: &FitModel, cost: impl Fn(f64, &[f64]) -> f64) -> Vec<(f64, Vec<
             })
             .collect();
     }
-    if model.width.is_none() {
+    if width.is_none() {
         return combos.into_iter().map(|c| (0.5, c)).collect();
     }
     let t: Vec<f64> = (0..=SCAN).map(|k| k as f64 / SCAN as f64).collect();
@@ -252,6 +297,11 @@ fn starts(model: &FitModel, cost: impl Fn(f64, &[f64]) -> f64) -> Vec<(f64, Vec<
 
 /// One Nelder-Mead run from `x0`: its best point and cost.
 fn run(problem: &Problem, x0: Vec<f64>) -> (Vec<f64>, f64) {
+    if x0.is_empty() {
+        // Everything solved (Lambert under `ngan`): nothing to search.
+        let c = problem.cost(&x0).unwrap_or(f64::MAX);
+        return (x0, c);
+    }
     let mut simplex = vec![x0.clone()];
     for i in 0..x0.len() {
         let mut v = x0.clone();
