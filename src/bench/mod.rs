@@ -21,7 +21,6 @@ pub mod harness;
 pub mod measure;
 pub mod pareto;
 pub mod plot;
-pub mod progress;
 pub mod ratios;
 pub mod report;
 pub mod run;

@@ -7,7 +7,7 @@ use super::harness::Harness;
 use super::measure::{self, Stats};
 use super::pareto::{self, Point};
 use super::plot::ParetoPlot;
-use super::progress::Progress;
+use crate::output::progress::Progress;
 use super::ratios::{self, Effort};
 use super::scale::{self, Plan};
 use super::{AutoCheck, BenchReport, Row, floors, report};
@@ -222,7 +222,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     // One step per configuration per round (the bulk of the run), one
     // per ratio and per scale point.
     let steps = 1 + (budget.warmup + 2 * budget.per_pass) * measured.len() + 1 + 5 + scale_points;
-    let mut bar = Progress::new(steps as u64);
+    let mut bar = Progress::new("bench", steps as u64);
 
     bar.set_message("truth image (CPU reference)");
     let start = Instant::now();

@@ -3,6 +3,7 @@
 
 use super::models::{ALL, FitModel};
 use super::problem::{fit_from, score};
+use crate::output::progress::Progress;
 use super::report::{self, Row};
 use super::samples::samples;
 use super::{Metric, fit, published};
@@ -10,7 +11,6 @@ use crate::material::material_table;
 use crate::material::measured::{self, MeasuredBrdf, library};
 use crate::scene::default_scene::DEFAULT_SCENE_TOML;
 use crate::{Error, Result};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -247,14 +247,12 @@ fn run_all(args: &FitArgs) -> Result<()> {
         .filter(|(k, _)| k % of == shard - 1)
         .map(|(_, m)| m)
         .collect();
-    let bar = ProgressBar::with_draw_target(
-        Some((materials.len() * models.len()) as u64),
-        ProgressDrawTarget::stderr(),
-    );
-    bar.set_style(
-        ProgressStyle::with_template("fit {bar:40} {pos}/{len} fits, {elapsed} (eta {eta}) {msg}")
-            .expect("a valid template"),
-    );
+    // A bar on a terminal, a line every few seconds in a log (the subject
+    // `fits` stays, so two materials in parallel do not print per fit).
+    let bar = std::sync::Mutex::new(Progress::new(
+        "fit",
+        (materials.len() * models.len()) as u64,
+    ));
     let per_material: Vec<(Vec<Row>, String)> = materials
         .par_iter()
         .map(|brdf| {
@@ -300,13 +298,17 @@ fn run_all(args: &FitArgs) -> Result<()> {
                     evaluations: r.evaluations,
                     seconds: t0.elapsed().as_secs_f64(),
                 });
-                bar.set_message(brdf.name.clone());
-                bar.inc(1);
+                if let Ok(mut bar) = bar.lock() {
+                    bar.set_message(format!("fits: {} {}", brdf.name, model.label()));
+                    bar.inc(1);
+                }
             }
             (rows, tables)
         })
         .collect();
-    bar.finish();
+    if let Ok(mut bar) = bar.into_inner() {
+        bar.finish();
+    }
     let rows: Vec<Row> = per_material.iter().flat_map(|(r, _)| r.clone()).collect();
     let tables: String = per_material.iter().map(|(_, t)| t.as_str()).collect();
     let (csv_path, toml_path) = report::shard_paths(&args.out_dir, shard, of);

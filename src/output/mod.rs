@@ -5,6 +5,7 @@ pub mod compare;
 pub mod failure;
 pub mod interrupt;
 pub mod plot;
+pub mod progress;
 pub mod tone_map;
 pub mod write;
 

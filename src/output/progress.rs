@@ -1,5 +1,6 @@
-//! The bench's progress: a bar with an ETA on a terminal, plain lines
-//! without one (CI logs, `2>log`), so a long run is never silent.
+//! A long job's progress (`gonio bench`, `gonio fit --all`): a bar with an
+//! ETA on a terminal, plain lines without one (CI logs, `2>log`), so a
+//! long run is never silent.
 //!
 //! indicatif draws nothing when stderr is not a terminal (issue 17: a
 //! 111 s run printed nothing in CI). Without a terminal each line says
@@ -24,7 +25,8 @@ pub enum Progress {
 }
 
 impl Progress {
-    pub fn new(len: u64) -> Progress {
+    /// Progress of the job named `job` (the plain lines' prefix).
+    pub fn new(job: &'static str, len: u64) -> Progress {
         if std::io::stderr().is_terminal() {
             let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
             bar.set_style(
@@ -35,7 +37,7 @@ impl Progress {
             );
             Progress::Bar(bar)
         } else {
-            Progress::Plain(PlainProgress::new(len, Box::new(std::io::stderr())))
+            Progress::Plain(PlainProgress::new(job, len, Box::new(std::io::stderr())))
         }
     }
 
@@ -63,6 +65,7 @@ impl Progress {
 
 /// Plain progress lines to a writer.
 pub struct PlainProgress {
+    job: &'static str,
     len: u64,
     pos: u64,
     message: String,
@@ -72,8 +75,9 @@ pub struct PlainProgress {
 }
 
 impl PlainProgress {
-    pub fn new(len: u64, out: Box<dyn Write + Send>) -> PlainProgress {
+    pub fn new(job: &'static str, len: u64, out: Box<dyn Write + Send>) -> PlainProgress {
         PlainProgress {
+            job,
             len,
             pos: 0,
             message: String::new(),
@@ -113,7 +117,7 @@ impl PlainProgress {
         }
     }
 
-    /// `bench: step n/m, elapsed, ETA: what`.
+    /// `JOB: step n/m, elapsed, ETA: what`.
     pub fn line(&self, elapsed: Duration) -> String {
         let eta = if self.pos == 0 {
             "ETA unknown".to_string()
@@ -122,7 +126,8 @@ impl PlainProgress {
             format!("ETA {}", clock(left))
         };
         format!(
-            "bench: step {}/{} ({:.0} %), elapsed {}, {eta}: {}",
+            "{}: step {}/{} ({:.0} %), elapsed {}, {eta}: {}",
+            self.job,
             self.pos,
             self.len,
             100.0 * self.pos as f64 / self.len.max(1) as f64,
@@ -134,7 +139,8 @@ impl PlainProgress {
     pub fn finish(&mut self) {
         let _ = writeln!(
             self.out,
-            "bench: done, {} steps in {}",
+            "{}: done, {} steps in {}",
+            self.job,
             self.pos,
             clock(self.start.elapsed().as_secs_f64())
         );
@@ -171,7 +177,7 @@ mod tests {
     #[test]
     fn plain_lines_name_the_step_the_time_and_the_eta() {
         let sink = Sink::default();
-        let mut p = PlainProgress::new(10, Box::new(sink.clone()));
+        let mut p = PlainProgress::new("bench", 10, Box::new(sink.clone()));
         p.set_message("truth image".into());
         p.pos = 4;
         let line = p.line(Duration::from_secs(20));
@@ -186,7 +192,7 @@ mod tests {
     #[test]
     fn plain_lines_come_per_subject_not_per_step() {
         let sink = Sink::default();
-        let mut p = PlainProgress::new(100, Box::new(sink.clone()));
+        let mut p = PlainProgress::new("bench", 100, Box::new(sink.clone()));
         for round in 1..=3 {
             for config in ["a", "b", "c"] {
                 p.set_message(format!("round {round}/3: {config}"));
