@@ -47,13 +47,7 @@ fn quad(dir: &Path, name: &str, slot: &str, texels: [[u8; 3]; 2], transformed: b
 
 /// [`quad`] with the `KHR_texture_transform` object `transform` (JSON;
 /// empty: none).
-fn quad_with(
-    dir: &Path,
-    name: &str,
-    slot: &str,
-    texels: [[u8; 3]; 2],
-    transform: &str,
-) -> PathBuf {
+fn quad_with(dir: &Path, name: &str, slot: &str, texels: [[u8; 3]; 2], transform: &str) -> PathBuf {
     let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
     let mut bin = floats(&[
         -1.0, -1.0, 0.0, 1.0, -1.0, 0.0, 1.0, 1.0, 0.0, -1.0, 1.0, 0.0,
@@ -174,7 +168,11 @@ fn a_rotated_normal_map_turns_its_normals_with_it() {
     let (got, want, ignored) = (renders(&rotated), renders(&by_hand), renders(&unrotated));
     for i in 0..2 {
         let name = got[i].0;
-        assert_same(&format!("rotated normal map, {name}"), &got[i].1, &want[i].1);
+        assert_same(
+            &format!("rotated normal map, {name}"),
+            &got[i].1,
+            &want[i].1,
+        );
         assert!(
             got[i].1.radiance != ignored[i].1.radiance,
             "{name}: the rotation turns nothing"

@@ -295,14 +295,13 @@ impl PreparedScene {
     pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, target: &FrameTarget) -> Drawn {
         let mut drawn = Drawn::default();
         if let (Some(shadows), true) = (&self.shadows, self.shadows_stale) {
-            drawn.shadow_layers =
-                shadows.encode(
-                    encoder,
-                    &self.plan,
-                    &self.draw,
-                    self.shadow_masks.as_ref(),
-                    target.timestamps,
-                );
+            drawn.shadow_layers = shadows.encode(
+                encoder,
+                &self.plan,
+                &self.draw,
+                self.shadow_masks.as_ref(),
+                target.timestamps,
+            );
             self.shadows_stale = false;
         }
         let mut pass = draw::begin_scene_pass(encoder, target);

@@ -85,7 +85,11 @@ impl ShadowMasks {
         let materials = scene.effective_materials();
         let records = records(&materials);
         let drawn = |m: usize| scene.meshes.iter().any(|mesh| mesh.material == m);
-        if !records.iter().enumerate().any(|(m, r)| r.is_some() && drawn(m)) {
+        if !records
+            .iter()
+            .enumerate()
+            .any(|(m, r)| r.is_some() && drawn(m))
+        {
             return None;
         }
         let group_layout = group_layout(device);
@@ -151,13 +155,13 @@ impl ShadowMasks {
 
 /// Group 1: the mask record, the texture, its sampler.
 fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let fragment = wgpu::ShaderStages::VERTEX_FRAGMENT;
+    let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio shadow mask"),
         entries: &[
             wgpu::BindGroupLayoutEntry {
                 binding: 0,
-                visibility: fragment,
+                visibility: stages,
                 ty: wgpu::BindingType::Buffer {
                     ty: wgpu::BufferBindingType::Uniform,
                     has_dynamic_offset: false,
@@ -167,7 +171,7 @@ fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             },
             wgpu::BindGroupLayoutEntry {
                 binding: 1,
-                visibility: fragment,
+                visibility: stages,
                 ty: wgpu::BindingType::Texture {
                     sample_type: wgpu::TextureSampleType::Float { filterable: true },
                     view_dimension: wgpu::TextureViewDimension::D2,
@@ -177,7 +181,7 @@ fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             },
             wgpu::BindGroupLayoutEntry {
                 binding: 2,
-                visibility: fragment,
+                visibility: stages,
                 ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                 count: None,
             },

@@ -344,9 +344,15 @@ mod tests {
     fn a_quarter_turn_of_the_map_turns_its_normal() {
         let r = std::f64::consts::FRAC_PI_2;
         let n = rotated_normal(glam::DVec3::new(1.0, 0.0, 0.0), r);
-        assert!((n - glam::DVec3::new(0.0, -1.0, 0.0)).length() < 1e-15, "{n}");
+        assert!(
+            (n - glam::DVec3::new(0.0, -1.0, 0.0)).length() < 1e-15,
+            "{n}"
+        );
         let n = rotated_normal(glam::DVec3::new(0.0, 1.0, 0.5), r);
-        assert!((n - glam::DVec3::new(1.0, 0.0, 0.5)).length() < 1e-15, "{n}");
+        assert!(
+            (n - glam::DVec3::new(1.0, 0.0, 0.5)).length() < 1e-15,
+            "{n}"
+        );
         assert_eq!(rotated_normal(glam::DVec3::ONE, 0.0), glam::DVec3::ONE);
     }
 

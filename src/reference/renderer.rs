@@ -568,7 +568,11 @@ impl<'a> Shader<'a> {
                     self.blocks(hit)
                 })
             },
-            |wi| environment_visible(self.bvh, x, n_offset, wi, self.epsilon, |hit| self.blocks(hit)),
+            |wi| {
+                environment_visible(self.bvh, x, n_offset, wi, self.epsilon, |hit| {
+                    self.blocks(hit)
+                })
+            },
         );
         if exact {
             // f_r of a Lambertian receiver is the same for every direction
