@@ -1,4 +1,4 @@
-//! Ambient occlusion under an environment map (issue 14 item 2: glTF's
+//! Ambient occlusion under an environment map (issue 14: glTF's
 //! `occlusionTexture` "on the ambient and environment terms only"), on a
 //! quad written here: its occlusion map is `R = 0 | R = 255` (NEAREST,
 //! CLAMP), read with `strength = s`, so the left half has
@@ -6,9 +6,8 @@
 //! f16 and f32. The quad is lit by a directional light, an ambient
 //! radiance and the smooth `assets/environment/blobs.hdr` (the sky's sun
 //! would make the derived lookup bounds loose), in the environment's
-//! modes that light a
-//! gltf-pbr surface (`none`: SH diffuse; `sampled` and `prefiltered`: the
-//! whole BRDF, its specular part included).
+//! modes that light a gltf-pbr surface (`none`: SH diffuse; `sampled`
+//! and `prefiltered`: the whole BRDF, its specular part included).
 //!
 //! With `L = D + o·N` (`D` the direct light and emission, `N` the ambient
 //! and environment light), per pixel and in each renderer:
