@@ -50,7 +50,7 @@ struct Material {
     alpha: f32,            // base colour alpha (textures and vertex colours multiply it per pixel)
     alpha_cutoff: f32,     // AlphaMode::cutoff: fragments of lower alpha are discarded (0: none)
     alpha_mode: u32,       // AlphaMode::code: 0 opaque, 1 mask, 2 blend (its alpha is the output's)
-    _pad_alpha: u32,
+    occlusion: f32,        // ambient occlusion o: multiplies the ambient and environment terms, never direct light (an occlusion texture's slot scales it per pixel)
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,

@@ -5,6 +5,8 @@
 // every model lit by it, k_d/π · E(n), E by spherical harmonics
 // (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
 // BRDF integrated over the map with N directions.
+// The ambient occlusion m.occlusion multiplies the ambient term and every
+// environment term (diffuse, specular, the mirror's), never direct light.
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
@@ -42,7 +44,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
 #endif
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
-    var radiance = m.emission + m.k_a * globals.ambient;
+    var radiance = m.emission + m.k_a * globals.ambient * m.occlusion;
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the
@@ -79,19 +81,19 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
         #endif
     }
     #if environment_sampled
-    radiance += environment_sampled(m, wo, frame);
+    radiance += environment_sampled(m, wo, frame) * m.occlusion;
     #elif environment_prefiltered
     // The diffuse term plus the split-sum glossy term (Karis 2013).
-    radiance += environment_prefiltered(m, wo, frame);
+    radiance += environment_prefiltered(m, wo, frame) * m.occlusion;
     #elif environment_sh
     // The diffuse term plus the Phong lobes by SH convolution.
-    radiance += environment_sh(m, wo, frame);
+    radiance += environment_sh(m, wo, frame) * m.occlusion;
     #elif environment
-    radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
+    radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n) * m.occlusion;
     #endif
     #if mirror
     let reflected = mirror_direction(wo, n);
-    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected);
+    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected) * m.occlusion;
     #endif
     return radiance;
 }

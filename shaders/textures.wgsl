@@ -16,9 +16,8 @@ struct TextureSlot {
     tex_coord: u32,    // UV set (TEXCOORD_n)
     strength: f32,     // 1; occlusion: glTF's strength; normal map: glTF's scale
     alpha: u32,        // 1: the texel's A multiplies Material.alpha (the base colour's texture)
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    _pad: u32,
+    rotation: vec2<f32>, // (cos r, sin r) of KHR_texture_transform's rotation: turns a normal map's normal
 }
 
 struct TextureSlots {
@@ -103,6 +102,7 @@ fn scale_fields(base: Material, fields: u32, f: vec3<f32>) -> Material {
     m.base_color *= select(one, f, (fields & 16384u) != 0u);
     m.metallic *= select(1.0, f.x, (fields & 32768u) != 0u);
     m.emission *= select(one, f, (fields & 65536u) != 0u);
+    m.occlusion *= select(1.0, f.x, (fields & 131072u) != 0u);
     return m;
 }
 
@@ -120,6 +120,14 @@ fn decoded_normal(texel: vec4<f32>, scale: f32) -> vec3<f32> {
     let n = (2.0 * texel.rgb - 1.0) * vec3<f32>(scale, scale, 1.0);
     let len2 = dot(n, n);
     return select(vec3<f32>(0.0, 0.0, 1.0), n * inverseSqrt(len2), len2 > 0.0);
+}
+
+// A normal map's normal in the mesh's tangent frame when the map is read
+// through a rotation (cos r, sin r) = cs: (n_x, n_y) turned by the
+// contract's R = [[cos r, sin r], [−sin r, cos r]]. Exact at r = 0
+// (cs = (1, 0)). Twin: material::texture::rotated_normal.
+fn rotated_normal(n: vec3<f32>, cs: vec2<f32>) -> vec3<f32> {
+    return vec3<f32>(cs.x * n.x + cs.y * n.y, -cs.y * n.x + cs.x * n.y, n.z);
 }
 
 fn slot_uv(slot: TextureSlot, uv: vec2<f32>) -> vec2<f32> {
@@ -147,7 +155,8 @@ fn apply_slot(s: TexturedSurface, slot: TextureSlot, texel: vec4<f32>) -> Textur
     var out = s;
     out.material = scale_fields(s.material, slot.fields, slot_factor(slot, texel));
     out.material.alpha *= select(1.0, texel.a, slot.alpha != 0u);
-    out.normal = select(s.normal, decoded_normal(texel, slot.strength), slot.channel == 5u);
+    let n = rotated_normal(decoded_normal(texel, slot.strength), slot.rotation);
+    out.normal = select(s.normal, n, slot.channel == 5u);
     return out;
 }
 

@@ -7,6 +7,14 @@
 //! it, `k_d/π · E(n)` (Ramamoorthi & Hanrahan 2001): `E` by SH on the GPU,
 //! integrated (or by the same SH, `environment.reference = "sh"`) here.
 //!
+//! The material's ambient occlusion `o` (`Material::occlusion`, glTF's
+//! `occlusionTexture`) multiplies the ambient term and every term of the
+//! environment (its diffuse and specular parts, the mirror's reflection),
+//! never a direct light: glTF 2.0 leaves where it applies to the
+//! implementation, and the Khronos sample viewer applies it "to all
+//! lighting that is not punctual" (its image-based diffuse and specular
+//! terms, `1 + strength·(ao − 1)`), as here.
+//!
 //! This is the CPU twin of `reflected_radiance` in `shaders/shading.wgsl`.
 
 use crate::material::brdf::{self, SurfaceFrame, phong::mirror_direction};
@@ -32,7 +40,8 @@ pub fn reflected_radiance(
 ) -> Rgb {
     let n = frame.n;
     let wo = (eye - x).normalize_or_zero();
-    let mut radiance = material.emission + material.k_a * scene.ambient;
+    let occlusion = material.occlusion;
+    let mut radiance = material.emission + material.k_a * scene.ambient * occlusion;
     for (l, light) in scene.lights.iter().enumerate() {
         let incidence = light.incidence(x);
         let cos_theta_i = n.dot(incidence.wi);
@@ -49,7 +58,7 @@ pub fn reflected_radiance(
     if let Some(map) = &scene.environment.map {
         use crate::environment::map::{ReferenceDiffuse, Specular};
         use crate::environment::sampled;
-        radiance += match (map.settings.specular, map.settings.reference) {
+        let mut environment = match (map.settings.specular, map.settings.reference) {
             (Specular::None, _) => {
                 environment_diffuse_albedo(material) * FRAC_1_PI * map.irradiance_reference(n)
             }
@@ -79,7 +88,7 @@ pub fn reflected_radiance(
         if map.settings.visibility && map.settings.reference == ReferenceDiffuse::Integrated {
             let diffuse = environment_diffuse_albedo(material) * FRAC_1_PI;
             let whole = map.settings.specular != Specular::None;
-            radiance -= crate::environment::visibility::occluded(
+            environment -= crate::environment::visibility::occluded(
                 map,
                 &map.data.nodes,
                 frame,
@@ -93,11 +102,13 @@ pub fn reflected_radiance(
                 &environment_visible,
             );
         }
+        radiance += environment * occlusion;
     }
     if material.model == ReflectanceModel::Mirror {
         let reflected = mirror_direction(wo, n);
-        radiance +=
-            brdf::mirror_reflectance(material, n.dot(wo)) * scene.environment.radiance(reflected);
+        radiance += brdf::mirror_reflectance(material, n.dot(wo))
+            * scene.environment.radiance(reflected)
+            * occlusion;
     }
     radiance
 }

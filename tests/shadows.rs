@@ -927,3 +927,132 @@ fn e_vertex_shadow_coordinates_match_per_pixel_ones() {
         );
     }
 }
+
+// ---------------------------------------------------------------------
+// (f) Alpha MASK cuts shadows (issue 14).
+
+/// A glTF (written to `dir`) of a 6 m floor (y = 0, gltf-pbr grey) and a
+/// 2 m square 2.5 m above it, facing up, whose base colour texture is
+/// 2×1 texels (NEAREST, CLAMP) of alpha 0 (x < 0) | 1 (x > 0), with
+/// `alpha_mode` ("MASK": the left half is cut out; "OPAQUE": all of it
+/// casts).
+fn masked_caster(dir: &std::path::Path, alpha_mode: &str) -> std::path::PathBuf {
+    use base64::Engine;
+    let b64 = |bytes: &[u8]| base64::engine::general_purpose::STANDARD.encode(bytes);
+    let mut png = Vec::new();
+    image::RgbaImage::from_raw(2, 1, vec![255, 255, 255, 0, 255, 255, 255, 255])
+        .unwrap()
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    // Per mesh: 4 positions, 4 normals, 4 UVs, 6 indices (u16) = 140 bytes.
+    let square = |half: f32, y: f32| {
+        let mut b = floats(&[
+            -half, y, half, half, y, half, half, y, -half, -half, y, -half,
+        ]);
+        b.extend(floats(&[0.0, 1.0, 0.0].repeat(4)));
+        b.extend(floats(&[0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0]));
+        b.extend([0u16, 1, 2, 0, 2, 3].iter().flat_map(|i| i.to_le_bytes()));
+        b
+    };
+    let mut bin = square(3.0, 0.0);
+    bin.extend(square(1.0, 2.5));
+    let views: Vec<String> = (0..2)
+        .flat_map(|m| {
+            let o = 140 * m;
+            [(o, 48), (o + 48, 48), (o + 96, 32), (o + 128, 12)]
+        })
+        .map(|(o, l)| format!(r#"{{"buffer":0,"byteOffset":{o},"byteLength":{l}}}"#))
+        .collect();
+    let accessors: Vec<String> = [(3.0, 0.0), (1.0, 2.5)]
+        .iter()
+        .enumerate()
+        .flat_map(|(m, (h, y))| {
+            let v = 4 * m;
+            [
+                format!(r#"{{"bufferView":{v},"componentType":5126,"count":4,"type":"VEC3","min":[-{h},{y},-{h}],"max":[{h},{y},{h}]}}"#),
+                format!(r#"{{"bufferView":{},"componentType":5126,"count":4,"type":"VEC3"}}"#, v + 1),
+                format!(r#"{{"bufferView":{},"componentType":5126,"count":4,"type":"VEC2"}}"#, v + 2),
+                format!(r#"{{"bufferView":{},"componentType":5123,"count":6,"type":"SCALAR"}}"#, v + 3),
+            ]
+        })
+        .collect();
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0,1]}}],"nodes":[{{"mesh":0}},{{"mesh":1}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2}},"indices":3,"material":0}}]}},{{"primitives":[{{"attributes":{{"POSITION":4,"NORMAL":5,"TEXCOORD_0":6}},"indices":7,"material":1}}]}}],
+"materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[0.8,0.8,0.8,1.0],"metallicFactor":0.0,"roughnessFactor":1.0}}}},
+{{"alphaMode":"{alpha_mode}","pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}},"metallicFactor":0.0,"roughnessFactor":1.0}}}}],
+"images":[{{"uri":"data:image/png;base64,{}"}}],"samplers":[{{"magFilter":9728,"minFilter":9728,"wrapS":33071,"wrapT":33071}}],"textures":[{{"source":0,"sampler":0}}],
+"accessors":[{}],"bufferViews":[{}],
+"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}]}}"#,
+        b64(&png),
+        accessors.join(","),
+        views.join(","),
+        bin.len(),
+        b64(&bin)
+    );
+    let path = dir.join(format!("caster-{alpha_mode}.gltf"));
+    std::fs::write(&path, json).unwrap();
+    path
+}
+
+/// A MASK caster lets the light through its cut-out, in both renderers:
+/// the floor under the cut-out half is lit where the same caster made
+/// OPAQUE shadows it, the other half still shadows, and the GPU's mask
+/// matches the ray-traced one outside the derived band (as (b)). The
+/// caster is above the picture, so every pixel shows the floor.
+#[test]
+fn f_alpha_mask_cuts_shadows() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut renderer = common::gpu_renderer();
+    let sets = [
+        "image.width=192".to_string(),
+        "image.height=144".into(),
+        "camera={position = [0.0, 1.5, 5.5], target = [0.0, 0.0, -0.5], up = [0.0, 1.0, 0.0], fov_y_deg = 40.0}".into(),
+        "lights=[{kind = \"directional\", direction = [0.3, -1.0, 0.2], irradiance = [3.0, 3.0, 3.0], shadows = true}]".into(),
+        "ambient.radiance=0.0".into(),
+    ];
+    let load = |mode: &str| {
+        scene_file::load(&SceneSource::File(masked_caster(dir.path(), mode)), &sets)
+            .expect("caster loads")
+    };
+    let (masked, opaque) = (load("MASK"), load("OPAQUE"));
+    let view = View::new(&masked);
+    assert!(
+        view.center.iter().flatten().all(|s| s.mesh == 0),
+        "the floor alone is in the picture"
+    );
+    let off = without_shadows(&masked);
+    let ref_off = reference::render(&off);
+    let gpu_off = gpu(&mut renderer, &off);
+    let ref_v = visibility(&reference::render(&masked), &ref_off);
+    let gpu_v = visibility(&gpu(&mut renderer, &masked), &gpu_off);
+    let ref_opaque = visibility(&reference::render(&opaque), &ref_off);
+    let gpu_opaque = visibility(&gpu(&mut renderer, &opaque), &gpu_off);
+    for (name, v, v_opaque) in [
+        ("reference", &ref_v, &ref_opaque),
+        ("GPU", &gpu_v, &gpu_opaque),
+    ] {
+        let count = |f: &dyn Fn(f64, f64) -> bool| {
+            (0..v.len())
+                .filter(|&k| matches!((v[k], v_opaque[k]), (Some(a), Some(b)) if f(a, b)))
+                .count()
+        };
+        let through = count(&|a, b| a >= 0.5 && b < 0.5);
+        let shadowed = count(&|a, _| a < 0.5);
+        let wrong = count(&|a, b| a < 0.5 && b >= 0.5);
+        eprintln!(
+            "(f) {name}: {through} px lit through the cut-out, {shadowed} px in the kept half's shadow, {wrong} px shadowed only when masked"
+        );
+        assert!(through > 500, "{name}: the cut-out lets no light through");
+        assert!(shadowed > 500, "{name}: the kept half casts no shadow");
+        assert_eq!(wrong, 0, "{name}: masking added shadow");
+    }
+    let r = mask_report(&masked, 0, &view, &gpu_v, &ref_v);
+    eprintln!("(f) GPU vs reference mask: {r:?}");
+    assert!(r.defined > 10_000, "too few pixels: {r:?}");
+    assert_eq!(
+        r.outside_band, 0,
+        "mismatches outside the derived band: {r:?}"
+    );
+}

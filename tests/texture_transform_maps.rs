@@ -6,7 +6,8 @@
 //! the right one and no transform. Ignoring the transform would show the
 //! left texel on the left half. Both renderers; the two scenes differ only
 //! in where the same texel comes from, so the frames agree to the
-//! renderer's rounding (10⁻⁵ relative allowed).
+//! renderer's rounding (10⁻⁵ relative allowed). A rotation also turns a
+//! normal map's normals (`a_rotated_normal_map_turns_its_normals_with_it`).
 
 mod common;
 
@@ -36,6 +37,17 @@ fn png_uri(left: [u8; 3], right: [u8; 3]) -> String {
 /// (`normalTexture` or `occlusionTexture`) on the map `left | right`,
 /// read through `offset = [0.5, 0]` if `transformed`.
 fn quad(dir: &Path, name: &str, slot: &str, texels: [[u8; 3]; 2], transformed: bool) -> PathBuf {
+    let transform = if transformed {
+        r#"{"offset":[0.5,0.0]}"#
+    } else {
+        ""
+    };
+    quad_with(dir, name, slot, texels, transform)
+}
+
+/// [`quad`] with the `KHR_texture_transform` object `transform` (JSON;
+/// empty: none).
+fn quad_with(dir: &Path, name: &str, slot: &str, texels: [[u8; 3]; 2], transform: &str) -> PathBuf {
     let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
     let mut bin = floats(&[
         -1.0, -1.0, 0.0, 1.0, -1.0, 0.0, 1.0, 1.0, 0.0, -1.0, 1.0, 0.0,
@@ -43,10 +55,10 @@ fn quad(dir: &Path, name: &str, slot: &str, texels: [[u8; 3]; 2], transformed: b
     bin.extend(floats(&[0.0, 0.0, 1.0].repeat(4)));
     bin.extend(floats(&[0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0]));
     bin.extend([0u16, 1, 2, 0, 2, 3].iter().flat_map(|i| i.to_le_bytes()));
-    let extension = if transformed {
-        r#","extensions":{"KHR_texture_transform":{"offset":[0.5,0.0]}}"#
+    let extension = if transform.is_empty() {
+        String::new()
     } else {
-        ""
+        format!(r#","extensions":{{"KHR_texture_transform":{transform}}}"#)
     };
     let json = format!(
         r#"{{"asset":{{"version":"2.0"}},"extensionsUsed":["KHR_texture_transform"],"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
@@ -65,7 +77,7 @@ fn quad(dir: &Path, name: &str, slot: &str, texels: [[u8; 3]; 2], transformed: b
     path
 }
 
-fn renders(path: &Path) -> [(&'static str, Frame); 2] {
+fn scene(path: &Path) -> gonio::scene::Scene {
     let sets = [
         "image.width=40".to_string(),
         "image.height=30".into(),
@@ -73,8 +85,11 @@ fn renders(path: &Path) -> [(&'static str, Frame); 2] {
         "lights=[{kind = \"point\", position = [-1.5, 1.0, 1.5], intensity = [5.0, 5.0, 5.0]}]".into(),
         "ambient.radiance=[0.3, 0.3, 0.3]".into(),
     ];
-    let scene =
-        scene_file::load(&SceneSource::File(path.to_path_buf()), &sets).expect("quad loads");
+    scene_file::load(&SceneSource::File(path.to_path_buf()), &sets).expect("quad loads")
+}
+
+fn renders(path: &Path) -> [(&'static str, Frame); 2] {
+    let scene = scene(path);
     [
         ("GPU", common::gpu_renderer().render(&scene).unwrap().0),
         ("reference", gonio::reference::render(&scene)),
@@ -126,4 +141,61 @@ fn normal_and_occlusion_maps_follow_their_texture_transform() {
             );
         }
     }
+}
+
+/// A normal map read through a rotation r turns its normals with it
+/// (`material::texture::rotated_normal`): at r = 90° a constant map of
+/// texel (255, 0, 255), n = (1, −1, 1)/√3, must render exactly as the
+/// unrotated map of its normal turned by hand, R·(1, −1) = (−1, −1):
+/// texel (0, 0, 255). Both texels decode exactly, so the two differ only
+/// by f32 rounding of cos and sin (10⁻⁵ relative allowed). Ignoring the
+/// rotation renders the first map unrotated, which must differ. Then a
+/// two-texel map at r = 30° (the transform moves the texels and turns
+/// the frame): GPU = reference within the render tolerance.
+#[test]
+fn a_rotated_normal_map_turns_its_normals_with_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let quarter = format!(r#"{{"rotation":{}}}"#, std::f64::consts::FRAC_PI_2);
+    let rotated = quad_with(
+        dir.path(),
+        "rot90",
+        "normalTexture",
+        [[255, 0, 255]; 2],
+        &quarter,
+    );
+    let by_hand = quad_with(dir.path(), "hand", "normalTexture", [[0, 0, 255]; 2], "");
+    let unrotated = quad_with(dir.path(), "plain", "normalTexture", [[255, 0, 255]; 2], "");
+    let (got, want, ignored) = (renders(&rotated), renders(&by_hand), renders(&unrotated));
+    for i in 0..2 {
+        let name = got[i].0;
+        assert_same(
+            &format!("rotated normal map, {name}"),
+            &got[i].1,
+            &want[i].1,
+        );
+        assert!(
+            got[i].1.radiance != ignored[i].1.radiance,
+            "{name}: the rotation turns nothing"
+        );
+    }
+    let thirty = format!(r#"{{"rotation":{}}}"#, 30f64.to_radians());
+    let path = quad_with(
+        dir.path(),
+        "rot30",
+        "normalTexture",
+        [[220, 128, 180], [128, 150, 240]],
+        &thirty,
+    );
+    let s = scene(&path);
+    let frame = common::gpu_renderer().render(&s).unwrap().0;
+    let (center, jittered) = common::reference_with_jitter(&s);
+    let c = common::compare_to_reference(&s, &frame, &center, &jittered);
+    eprintln!("normal map rotated 30°: {}", c.summary());
+    common::assert_agrees(
+        "normal map rotated 30",
+        "GPU and reference disagree",
+        &c,
+        &frame,
+        &center,
+    );
 }

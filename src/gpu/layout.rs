@@ -67,7 +67,9 @@ pub struct GpuMaterial {
     pub alpha_cutoff: f32,
     /// `AlphaMode::code` (0 opaque, 1 mask, 2 blend).
     pub alpha_mode: u32,
-    pub _pad_alpha: u32,
+    /// The ambient occlusion (`Material::occlusion`; an occlusion
+    /// texture's slot multiplies it per pixel).
+    pub occlusion: f32,
 }
 
 /// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
@@ -169,7 +171,7 @@ impl GpuMaterial {
             alpha: m.alpha as f32,
             alpha_cutoff: m.alpha_mode.cutoff() as f32,
             alpha_mode: m.alpha_mode.code(),
-            _pad_alpha: 0,
+            occlusion: m.occlusion as f32,
         }
     }
 }
@@ -358,7 +360,7 @@ mod tests {
                 alpha,
                 alpha_cutoff,
                 alpha_mode,
-                _pad_alpha
+                occlusion
             }),
         );
         assert_mirrors(

@@ -13,7 +13,8 @@
 //!   pipeline and layout (and `GONIO_DUMP_WGSL`);
 //! * [`draw`] holds a vertex stream and its bind group and records the
 //!   scene pass; [`shadow_maps`] holds a shadow plan's maps and records
-//!   their passes; [`prepared`] is a scene uploaded once and drawn many
+//!   their passes, [`shadow_masks`] the pass of alpha MASK casters;
+//!   [`prepared`] is a scene uploaded once and drawn many
 //!   times (update by what changed, encode a frame);
 //! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
 //!   and reads the timestamp queries; [`timing`] names the durations;
@@ -29,9 +30,10 @@
 //! renderer    -> offscreen prepared pipelines draw readback timing
 //!                geometry layout shader_gen context
 //! offscreen   -> prepared pipelines draw readback timing context
-//! prepared    -> shadow_maps pipelines draw geometry layout shader_gen
-//!                shadows context
-//! shadow_maps -> pipelines draw bind_groups bindings shadows
+//! prepared    -> shadow_maps shadow_masks pipelines draw geometry layout
+//!                shader_gen shadows context
+//! shadow_maps -> shadow_masks pipelines draw bind_groups bindings shadows
+//! shadow_masks -> textures pipelines geometry shader_gen
 //! draw        -> bind_groups bindings geometry layout shader_gen
 //! pipelines   -> bind_groups bindings geometry shader_gen shadows
 //! bind_groups -> bindings layout shadows
@@ -60,6 +62,7 @@ pub mod readback;
 pub mod renderer;
 pub mod shader_gen;
 pub mod shadow_maps;
+pub mod shadow_masks;
 pub mod shadows;
 pub mod textures;
 pub mod timing;

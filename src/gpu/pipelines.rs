@@ -478,18 +478,24 @@ fn shadow_pass_pipeline(
             cull_mode: None,
             ..Default::default()
         },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: shadows::SHADOW_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Greater),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
+        depth_stencil: Some(shadow_depth_state()),
         multisample: Default::default(),
         fragment: None,
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// The depth state of every shadow pass: reversed depth (the nearest
+/// occluder, the largest value, wins), written.
+pub fn shadow_depth_state() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: shadows::SHADOW_FORMAT,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(wgpu::CompareFunction::Greater),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
 }
 
 #[cfg(test)]

@@ -20,6 +20,7 @@ use super::layout::{GpuGlobals, GpuLight};
 use super::pipelines::PipelineCache;
 use super::shader_gen::ShaderKey;
 use super::shadow_maps::{self, ShadowMaps};
+use super::shadow_masks::ShadowMasks;
 use super::shadows::ShadowPlan;
 use crate::scene::Scene;
 use crate::{Error, Result};
@@ -55,6 +56,8 @@ pub struct PreparedScene {
     lights: Vec<GpuLight>,
     plan: ShadowPlan,
     shadows: Option<ShadowMaps>,
+    /// The masked shadow pass of alpha MASK casters (none without them).
+    shadow_masks: Option<ShadowMasks>,
     /// The shadow maps must be drawn before the next scene pass.
     shadows_stale: bool,
     /// The environment map, its uniform and the background pipeline.
@@ -130,6 +133,16 @@ impl PreparedScene {
         } else {
             None
         };
+        let shadow_masks = shadows.as_ref().and_then(|_| {
+            ShadowMasks::new(
+                &ctx.device,
+                &ctx.queue,
+                cache.shadow_pass_group_layout(),
+                draw.layout,
+                scene,
+                textures.as_ref(),
+            )
+        });
         Ok(PreparedScene {
             key,
             format,
@@ -145,6 +158,7 @@ impl PreparedScene {
             shadows_stale: shadows.is_some(),
             plan,
             shadows,
+            shadow_masks,
             environment,
             textures,
         })
@@ -211,10 +225,21 @@ impl PreparedScene {
         );
         let lights_changed = bytemuck::cast_slice::<GpuLight, u8>(&self.lights)
             != bytemuck::cast_slice::<GpuLight, u8>(&lights);
+        let masks_changed = self.shadow_masks.as_ref().is_some_and(|m| {
+            m.records() != super::shadow_masks::records(&scene.effective_materials())
+        }) || (self.shadows.is_some()
+            && self.shadow_masks.is_none()
+            && scene.meshes.iter().any(|mesh| {
+                matches!(
+                    scene.materials[mesh.material].alpha_mode,
+                    crate::material::AlphaMode::Mask { .. }
+                )
+            }));
         if lights_changed
             || plan != self.plan
             || key.shadows != self.key.shadows
             || arrays != self.key.arrays
+            || masks_changed
         {
             self.shadows = ShadowMaps::new(
                 &ctx.device,
@@ -224,6 +249,17 @@ impl PreparedScene {
                 arrays,
                 layout.stride(),
             );
+            // Textured scenes are prepared anew above: no textures here.
+            self.shadow_masks = self.shadows.as_ref().and_then(|_| {
+                ShadowMasks::new(
+                    &ctx.device,
+                    &ctx.queue,
+                    cache.shadow_pass_group_layout(),
+                    layout,
+                    scene,
+                    None,
+                )
+            });
             self.shadows_stale = self.shadows.is_some();
             self.plan = plan;
         }
@@ -259,8 +295,13 @@ impl PreparedScene {
     pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, target: &FrameTarget) -> Drawn {
         let mut drawn = Drawn::default();
         if let (Some(shadows), true) = (&self.shadows, self.shadows_stale) {
-            drawn.shadow_layers =
-                shadows.encode(encoder, &self.plan, &self.draw, target.timestamps);
+            drawn.shadow_layers = shadows.encode(
+                encoder,
+                &self.plan,
+                &self.draw,
+                self.shadow_masks.as_ref(),
+                target.timestamps,
+            );
             self.shadows_stale = false;
         }
         let mut pass = draw::begin_scene_pass(encoder, target);

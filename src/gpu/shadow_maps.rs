@@ -7,6 +7,7 @@ use super::bind_groups;
 use super::bindings::{self, UniformArrays};
 use super::draw::SceneDraw;
 use super::pipelines::PipelineCache;
+use super::shadow_masks::ShadowMasks;
 use super::shadows::{self, ShadowPlan};
 use crate::{Error, Result};
 use wgpu::util::DeviceExt;
@@ -152,12 +153,15 @@ impl ShadowMaps {
 
     /// Records one depth-only pass per layer of `plan` (the stream of
     /// `draw`, every face), with timestamps 2 and 3 around them all when
-    /// `timestamps` is given; returns the layers drawn.
+    /// `timestamps` is given; returns the layers drawn. With `masks`, the
+    /// batches of alpha MASK materials are drawn by its pipeline, which
+    /// discards what MASK cuts out (src/gpu/shadow_masks.rs).
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         plan: &ShadowPlan,
         draw: &SceneDraw,
+        masks: Option<&ShadowMasks>,
         timestamps: Option<&wgpu::QuerySet>,
     ) -> usize {
         let last = self.layer_views.len() - 1;
@@ -189,7 +193,33 @@ impl ShadowMaps {
             pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
             pass.set_pipeline(&self.pass_pipeline);
             pass.set_bind_group(0, &self.pass_group, &[]);
-            draw.draw_all(&mut pass, i as u32..i as u32 + 1);
+            let layer = i as u32..i as u32 + 1;
+            let Some(masks) = masks else {
+                draw.draw_all(&mut pass, layer);
+                continue;
+            };
+            // Batch by batch: MASK ones with the masked pipeline and
+            // their group 1, the others depth-only (both layouts share
+            // group 0).
+            draw.bind_geometry(&mut pass);
+            let mut masked = false;
+            for batch in draw.batches() {
+                match masks.group(batch.material) {
+                    Some(group) => {
+                        if !masked {
+                            pass.set_pipeline(masks.pipeline());
+                            masked = true;
+                        }
+                        pass.set_bind_group(1, group, &[]);
+                    }
+                    None if masked => {
+                        pass.set_pipeline(&self.pass_pipeline);
+                        masked = false;
+                    }
+                    None => {}
+                }
+                draw.draw_range(&mut pass, batch.range.clone(), layer.clone());
+            }
         }
         self.layer_views.len()
     }

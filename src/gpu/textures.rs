@@ -45,7 +45,10 @@ pub struct GpuTextureSlot {
     /// 1: the texel's A multiplies the material's alpha
     /// (`MaterialTexture::carries_alpha`).
     pub alpha: u32,
-    pub _pad: [u32; 3],
+    pub _pad: u32,
+    /// `(cos r, sin r)` of the transform's rotation (a normal map's
+    /// normal turns with it: `material::texture::rotated_normal`).
+    pub rotation: [f32; 2],
 }
 
 /// `channel` of a normal-map slot (0–3: a scalar's channel, 4: RGB).
@@ -144,8 +147,8 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
                 );
                 (fields, if colour { 4 } else { t.channel as u32 }, 1.0)
             }
-            // k_a: bit 0 of the field mask (gpu_field_values' order).
-            TextureTarget::Occlusion { strength } => (1, 0, strength as f32),
+            // Material.occlusion (gpu_field_values' order), from R.
+            TextureTarget::Occlusion { strength } => (mt::OCCLUSION_FIELD, 0, strength as f32),
             TextureTarget::Normal { scale } => (0, NORMAL_MAP_CHANNEL, scale as f32),
         };
         *slot = GpuTextureSlot {
@@ -156,7 +159,13 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
             tex_coord: t.tex_coord as u32,
             strength,
             alpha: u32::from(t.carries_alpha()),
-            _pad: [0; 3],
+            _pad: 0,
+            rotation: if t.transform.rotation == 0.0 {
+                [1.0, 0.0]
+            } else {
+                let (s, c) = t.transform.rotation.sin_cos();
+                [c as f32, s as f32]
+            },
         };
     }
     Ok(slots)
@@ -222,6 +231,10 @@ fn upload(ctx: &GpuContext, image: &Image) -> wgpu::Texture {
 pub struct SceneTextures {
     /// One bind group per scene material (index for index).
     groups: Vec<wgpu::BindGroup>,
+    /// Per scene material, the view and sampler of its texture that
+    /// carries alpha (the base colour's), for the masked shadow pass
+    /// (src/gpu/shadow_masks.rs).
+    alpha_textures: Vec<Option<(wgpu::TextureView, wgpu::Sampler)>>,
     /// Bytes of texels on the GPU (all levels).
     pub bytes: u64,
 }
@@ -279,6 +292,7 @@ impl SceneTextures {
         let default_sampler = device.create_sampler(&sampler_descriptor(&Sampler::default()));
         let materials = scene.effective_materials();
         let mut groups = Vec::with_capacity(materials.len());
+        let mut alpha_textures = Vec::with_capacity(materials.len());
         for m in &materials {
             let slots = material_slots(m)?;
             for t in &m.textures {
@@ -286,6 +300,12 @@ impl SceneTextures {
                     .entry(t.sampler)
                     .or_insert_with(|| device.create_sampler(&sampler_descriptor(&t.sampler)));
             }
+            alpha_textures.push(
+                m.textures
+                    .iter()
+                    .find(|t| t.carries_alpha())
+                    .map(|t| (full[t.image].clone(), samplers[&t.sampler].clone())),
+            );
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("gonio texture slots"),
                 contents: bytemuck::cast_slice(&slots),
@@ -324,6 +344,7 @@ impl SceneTextures {
         }
         Ok(SceneTextures {
             groups,
+            alpha_textures,
             bytes: scene.images.iter().map(|i| i.gpu_bytes()).sum(),
         })
     }
@@ -331,6 +352,15 @@ impl SceneTextures {
     /// Group 2 of material `m`.
     pub fn group(&self, m: u32) -> &wgpu::BindGroup {
         &self.groups[m as usize]
+    }
+
+    /// The view (all levels) and sampler of material `m`'s texture that
+    /// carries alpha, if it has one.
+    pub fn alpha_texture(&self, m: usize) -> Option<(&wgpu::TextureView, &wgpu::Sampler)> {
+        self.alpha_textures
+            .get(m)
+            .and_then(Option::as_ref)
+            .map(|(v, s)| (v, s))
     }
 }
 

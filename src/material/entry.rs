@@ -48,8 +48,8 @@ pub const TEXTURE_SUFFIX: &str = "_texture";
 
 /// Texture keys that scale no parameter: `normal_texture` (the
 /// contract's tangent-space normal map, glTF's encoding, scale 1) and
-/// `occlusion_texture` (glTF's occlusion on the ambient term, R,
-/// strength 1).
+/// `occlusion_texture` (glTF's occlusion on the ambient and environment
+/// terms, R, strength 1).
 pub const MAP_TEXTURE_KEYS: [&str; 2] = ["normal_texture", "occlusion_texture"];
 
 /// Whether `key` is `PARAM_texture` for some parameter of the table, or

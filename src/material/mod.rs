@@ -95,6 +95,12 @@ pub struct Material {
     pub alpha: f64,
     /// How alpha is read (glTF `alphaMode`; see [`AlphaMode`]).
     pub alpha_mode: AlphaMode,
+    /// The ambient occlusion `o` at a point, in [0, 1]: 1 for the
+    /// material, an occlusion texture sets it per point (glTF
+    /// `occlusionTexture`, `1 + strength·(R − 1)`). It multiplies the
+    /// ambient term and every environment term (diffuse and specular),
+    /// never a direct light (`crate::shading::reflected_radiance`).
+    pub occlusion: f64,
     /// Energy compensation (multiple scattering, `brdf::energy`; scene key
     /// `energy_compensation`, off by default), for the models whose row
     /// offers it (`ModelRow::energy_compensation`).
@@ -223,6 +229,7 @@ impl Material {
             sides: Sides::Unculled,
             alpha: 1.0,
             alpha_mode: AlphaMode::Opaque,
+            occlusion: 1.0,
             energy_compensation: false,
         };
         (model.row().defaults)(&mut m);

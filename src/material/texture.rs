@@ -23,10 +23,11 @@ pub enum TextureTarget {
     /// in the frame (T, B, N) of the interpolated tangent, bitangent
     /// (`sign · N × T`) and normal (glTF 2.0 §3.9.3, "normalTexture").
     Normal { scale: f64 },
-    /// glTF's `occlusionTexture`: the ambient term `k_a·L_a` is multiplied
-    /// by `1 + strength·(R − 1)` (glTF 2.0: `occludedColor = lerp(color,
-    /// color * <sampled occlusion texture value>, <occlusion strength>)`),
-    /// and nothing else: direct light is not occluded.
+    /// glTF's `occlusionTexture`: the material's occlusion `o` (see
+    /// `Material::occlusion`) is multiplied by `1 + strength·(R − 1)`
+    /// (glTF 2.0: `occludedColor = lerp(color, color * <sampled occlusion
+    /// texture value>, <occlusion strength>)`); `o` scales the ambient
+    /// term and the environment's light, not direct light.
     Occlusion { strength: f64 },
 }
 
@@ -51,6 +52,26 @@ impl TextureTarget {
 pub fn decode_normal(rgb: glam::DVec3, scale: f64) -> glam::DVec3 {
     let n = (2.0 * rgb - glam::DVec3::ONE) * glam::DVec3::new(scale, scale, 1.0);
     n.try_normalize().unwrap_or(glam::DVec3::Z)
+}
+
+/// A normal map's tangent-space normal `n` in the mesh's tangent frame
+/// when the map is read through a `KHR_texture_transform` rotation `r`
+/// (radians): `(n'_x, n'_y) = R·(n_x, n_y)`, `n'_z = n_z`, with the
+/// contract's `R = [[cos r, sin r], [−sin r, cos r]]`. Why: the map's +X
+/// points along its own u' and +Y up its image (−v'); with
+/// `uv' = R·uv`, `∂P/∂u' = cos r·T − sin r·B` and `−∂P/∂v' = sin r·T +
+/// cos r·B` (T = ∂P/∂u, B = −∂P/∂v, glTF's bitangent), so
+/// `n_x·T' + n_y·B' = (R·n_xy)·(T, B)`: the frame turns with the map, as
+/// a tangent computed from the transformed UVs would (the Khronos sample
+/// viewer's derivative frame). Only the rotation: a non-uniform scale
+/// would also shear the frame, which is not followed. GPU twin:
+/// `rotated_normal` in shaders/textures.wgsl.
+pub fn rotated_normal(n: glam::DVec3, rotation: f64) -> glam::DVec3 {
+    if rotation == 0.0 {
+        return n;
+    }
+    let (s, c) = rotation.sin_cos();
+    glam::DVec3::new(c * n.x + s * n.y, -s * n.x + c * n.y, n.z)
 }
 
 /// One texture of a material.
@@ -238,8 +259,13 @@ pub fn gpu_field_values(m: &super::Material) -> Vec<(&'static str, Vec<f64>)> {
         ("base_color", rgb(p.base_color)),
         ("metallic", vec![p.metallic]),
         ("emission", rgb(m.emission)),
+        ("occlusion", vec![m.occlusion]),
     ]
 }
+
+/// The bit of the `occlusion` field in a texture slot's field mask (the
+/// occlusion texture's slot sets it; no parameter maps to it).
+pub const OCCLUSION_FIELD: u32 = 1 << 17;
 
 /// Which GPU material fields a texture on parameter `key` scales, as a
 /// bit mask over [`gpu_field_values`]: found by scaling the parameter in a
@@ -310,6 +336,34 @@ mod tests {
         };
         assert!((t.apply(DVec2::ONE) - DVec2::new(2.5, 3.25)).length() < 1e-12);
         assert!((t.apply_vector(DVec2::ONE) - DVec2::new(2.0, 3.0)).length() < 1e-12);
+    }
+
+    /// r = 90°: the map's +X is the mesh's −B and its +Y is +T, so the
+    /// map's (1, 0) is (0, −1) in the mesh's frame and its (0, 1) is (1, 0).
+    #[test]
+    fn a_quarter_turn_of_the_map_turns_its_normal() {
+        let r = std::f64::consts::FRAC_PI_2;
+        let n = rotated_normal(glam::DVec3::new(1.0, 0.0, 0.0), r);
+        assert!(
+            (n - glam::DVec3::new(0.0, -1.0, 0.0)).length() < 1e-15,
+            "{n}"
+        );
+        let n = rotated_normal(glam::DVec3::new(0.0, 1.0, 0.5), r);
+        assert!(
+            (n - glam::DVec3::new(1.0, 0.0, 0.5)).length() < 1e-15,
+            "{n}"
+        );
+        assert_eq!(rotated_normal(glam::DVec3::ONE, 0.0), glam::DVec3::ONE);
+    }
+
+    #[test]
+    fn occlusion_field_bit_is_its_place_in_the_field_order() {
+        let m = crate::material::Material::new("m", crate::material::ReflectanceModel::Lambert);
+        let at = gpu_field_values(&m)
+            .iter()
+            .position(|(name, _)| *name == "occlusion")
+            .unwrap();
+        assert_eq!(OCCLUSION_FIELD, 1 << at);
     }
 
     #[test]

@@ -215,12 +215,18 @@ impl Bvh {
     /// `(0, t_max)`: the any-hit query of shadow rays. Callers offset the
     /// origin off the surface themselves.
     pub fn occluded(&self, ray: &Ray, t_max: f64) -> bool {
+        self.occluded_where(ray, t_max, |_| true)
+    }
+
+    /// [`Self::occluded`] counting only the hits `blocks(hit)` keeps: a
+    /// shadow ray passes through what alpha MASK cuts out.
+    pub fn occluded_where(&self, ray: &Ray, t_max: f64, blocks: impl Fn(&Hit) -> bool) -> bool {
         let inv = ray.direction.recip();
         let mut blocked = false;
         let mut t_far = t_max;
         self.traverse(ray, inv, 0.0, &mut t_far, |tri, _, t_hi| {
-            blocked =
-                intersect_triangle(tri, ray, 0.0, *t_hi).is_some_and(|h| h.t > 0.0 && h.t < *t_hi);
+            blocked = intersect_triangle(tri, ray, 0.0, *t_hi)
+                .is_some_and(|h| h.t > 0.0 && h.t < *t_hi && blocks(&h));
             blocked
         });
         blocked

@@ -268,6 +268,38 @@ impl<'a> Shader<'a> {
         }
     }
 
+    /// Whether a shadow ray's `hit` occludes: everywhere but where alpha
+    /// MASK cuts the surface out. The alpha there is what the GPU's
+    /// masked shadow pass reads (shaders/shadow_pass.wgsl): the factor
+    /// times `COLOR_0`'s A and the base colour texture's A at the hit's
+    /// interpolated UVs, at level 0 with the magnification filter (a
+    /// zero footprint: the pass samples with `textureSampleLevel(…, 0)`).
+    /// BLEND surfaces occlude as opaque ones (docs/gltf-surfaces.md).
+    fn blocks(&self, hit: &Hit) -> bool {
+        let object = &self.scene.meshes[hit.id.mesh as usize];
+        let base = &self.materials[object.material];
+        if !matches!(base.alpha_mode, crate::material::AlphaMode::Mask { .. }) {
+            return true;
+        }
+        let idx = object.indices[hit.id.triangle as usize];
+        let w = [1.0 - hit.u - hit.v, hit.u, hit.v];
+        let uv = [0, 1].map(|set| interpolate_uv(w, object, set, idx));
+        let a = if object.colors.is_empty() {
+            base.alpha
+        } else {
+            let c = idx.map(|v| object.color(v as usize));
+            base.alpha * (w[0] * c[0] + w[1] * c[1] + w[2] * c[2]).w
+        };
+        let a = texture::alpha(
+            a,
+            &base.textures,
+            &self.scene.images,
+            uv,
+            [Footprint::default(); 2],
+        );
+        !base.alpha_mode.discards(a)
+    }
+
     fn new(scene: &'a Scene, bvh: &'a Bvh, area: AreaLights) -> Self {
         let mut shader = Shader {
             scene,
@@ -532,9 +564,15 @@ impl<'a> Shader<'a> {
                 if exact && matches!(lights[l], Light::AreaSample { .. }) {
                     return 0.0;
                 }
-                visibility(self.bvh, &lights[l], x, n_offset, self.epsilon)
+                visibility_where(self.bvh, &lights[l], x, n_offset, self.epsilon, |hit| {
+                    self.blocks(hit)
+                })
             },
-            |wi| environment_visible(self.bvh, x, n_offset, wi, self.epsilon),
+            |wi| {
+                environment_visible(self.bvh, x, n_offset, wi, self.epsilon, |hit| {
+                    self.blocks(hit)
+                })
+            },
         );
         if exact {
             // f_r of a Lambertian receiver is the same for every direction
@@ -564,10 +602,23 @@ pub fn shadow_epsilon(scene: &Scene) -> f64 {
 /// starts on; it ends ε before a point, spot or area-sample light, and goes
 /// to infinity for a directional light. The offset normal is the
 /// geometric (face) normal for Phong and flat shading and the vertex
-/// normal for Gouraud (a vertex has no single face). Alpha is ignored:
-/// MASK and BLEND surfaces occlude as opaque ones do, as the GPU's
-/// depth-only shadow pass draws them (README, "alphaMode").
+/// normal for Gouraud (a vertex has no single face). Every surface
+/// occludes (see [`visibility_where`] for alpha MASK).
 pub fn visibility(bvh: &Bvh, light: &Light, x: DVec3, n_offset: DVec3, epsilon: f64) -> f64 {
+    visibility_where(bvh, light, x, n_offset, epsilon, |_| true)
+}
+
+/// [`visibility`] where only the hits `blocks(hit)` keeps occlude: the
+/// renderer passes through what alpha MASK cuts out
+/// (`Shader::blocks`), as the GPU's shadow pass discards it.
+pub fn visibility_where(
+    bvh: &Bvh,
+    light: &Light,
+    x: DVec3,
+    n_offset: DVec3,
+    epsilon: f64,
+    blocks: impl Fn(&Hit) -> bool,
+) -> f64 {
     if !light.casts_shadows() {
         return 1.0;
     }
@@ -594,20 +645,32 @@ pub fn visibility(bvh: &Bvh, light: &Light, x: DVec3, n_offset: DVec3, epsilon: 
         None => (to_light.normalize(), f64::INFINITY),
     };
     let ray = Ray { origin, direction };
-    if bvh.occluded(&ray, t_max) { 0.0 } else { 1.0 }
+    if bvh.occluded_where(&ray, t_max, blocks) {
+        0.0
+    } else {
+        1.0
+    }
 }
 
 /// Whether the environment is seen from `x` towards `wi` (the
 /// environment's ray-traced visibility, `environment.visibility`): a ray
 /// from `x + ε·n` (the offset normal turned towards `wi`, as [`visibility`]
-/// leaves) to infinity hits nothing.
-pub fn environment_visible(bvh: &Bvh, x: DVec3, n_offset: DVec3, wi: DVec3, epsilon: f64) -> bool {
+/// leaves) to infinity hits nothing that `blocks` keeps (what alpha
+/// MASK cuts out lets the map through, as it lets a light through).
+pub fn environment_visible(
+    bvh: &Bvh,
+    x: DVec3,
+    n_offset: DVec3,
+    wi: DVec3,
+    epsilon: f64,
+    blocks: impl Fn(&Hit) -> bool,
+) -> bool {
     let side = if n_offset.dot(wi) < 0.0 { -1.0 } else { 1.0 };
     let ray = Ray {
         origin: x + n_offset * (side * epsilon),
         direction: wi,
     };
-    !bvh.occluded(&ray, f64::INFINITY)
+    !bvh.occluded_where(&ray, f64::INFINITY, blocks)
 }
 
 /// `frame` turned over (`flip` −1: normal, tangent and bitangent

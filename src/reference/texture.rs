@@ -119,9 +119,11 @@ pub struct Textured {
 /// `material` with its textures applied at a surface point whose UV sets
 /// are `uv` (and their footprints `footprint`): each texture multiplies
 /// the parameter it names, a colour by the texel's RGB, a scalar by the
-/// texture's channel (the base colour's also the alpha by its A); an occlusion texture scales `k_a` by
-/// `1 + strength·(R − 1)`; a normal texture gives the tangent-space
-/// normal (`decode_normal`) (GPU twin: `textured_surface` in
+/// texture's channel (the base colour's also the alpha by its A); an
+/// occlusion texture scales the occlusion `o` by `1 + strength·(R − 1)`
+/// (`Material::occlusion`); a normal texture gives the tangent-space
+/// normal (`decode_normal`, turned by its transform's rotation:
+/// `rotated_normal`) (GPU twin: `textured_surface` in
 /// shaders/textures.wgsl).
 pub fn textured(
     material: &crate::material::Material,
@@ -130,7 +132,7 @@ pub fn textured(
     footprint: [Footprint; 2],
 ) -> Textured {
     use crate::material::param::Value;
-    use crate::material::texture::{TextureTarget, decode_normal};
+    use crate::material::texture::{TextureTarget, decode_normal, rotated_normal};
     let mut m = material.clone();
     let mut normal = None;
     for t in &material.textures {
@@ -150,10 +152,11 @@ pub fn textured(
                 p.write(&mut m, v);
             }
             TextureTarget::Occlusion { strength } => {
-                m.k_a *= TextureTarget::with_strength(texel.x, strength);
+                m.occlusion *= TextureTarget::with_strength(texel.x, strength);
             }
             TextureTarget::Normal { scale } => {
-                normal = Some(decode_normal(texel.truncate(), scale));
+                let n = decode_normal(texel.truncate(), scale);
+                normal = Some(rotated_normal(n, t.transform.rotation));
             }
         }
     }

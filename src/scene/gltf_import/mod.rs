@@ -52,12 +52,11 @@
 //! samplers and `KHR_texture_transform` (`images`: a buffer view, a
 //! `data:` URI or a file inside the glTF's folder, decoded within the
 //! limits); the normal texture (with `scale`) and the occlusion texture
-//! (R, with `strength`, on the ambient term only) with their samplers
+//! (R, with `strength`, on the ambient and environment terms) with their samplers
 //! and `KHR_texture_transform` too (read from the raw extension object:
-//! the `gltf` crate parses it on `textureInfo` only); the transform moves
-//! where the normal map is read, not the tangent frame (a rotated normal
-//! map's tangent-space normal is not rotated with it, as in the Khronos
-//! sample viewer). `TANGENT` is read with its w (the bitangent's
+//! the `gltf` crate parses it on `textureInfo` only); a rotation also
+//! turns the normal map's tangent-space normals with the map
+//! (`material::texture::rotated_normal`). `TANGENT` is read with its w (the bitangent's
 //! sign); a primitive with a normal texture and no `TANGENT` gets
 //! MikkTSpace tangents in object space (`scene::tangents`). `COLOR_0`
 //! (FLOAT, or normalized UNSIGNED_BYTE / UNSIGNED_SHORT; VEC3 or VEC4)

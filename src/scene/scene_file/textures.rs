@@ -6,8 +6,8 @@
 //! other parameter (`roughness`, `k_e`, `eta`, ...) a linear image, a
 //! scalar one its first channel. `normal_texture` is a tangent-space
 //! normal map (glTF's encoding, scale 1; the contract) and
-//! `occlusion_texture` glTF's occlusion on the ambient term (R, strength
-//! 1), both linear. Scene-file textures read UV set 0 with
+//! `occlusion_texture` glTF's occlusion on the ambient and environment
+//! terms (R, strength 1), both linear. Scene-file textures read UV set 0 with
 //! glTF's default sampler (repeat, bilinear, trilinear mipmaps).
 
 use crate::material::param::Widget;

@@ -58,7 +58,7 @@ struct Material {
     alpha: f32,            // base colour alpha (textures and vertex colours multiply it per pixel)
     alpha_cutoff: f32,     // AlphaMode::cutoff: fragments of lower alpha are discarded (0: none)
     alpha_mode: u32,       // AlphaMode::code: 0 opaque, 1 mask, 2 blend (its alpha is the output's)
-    _pad_alpha: u32,
+    occlusion: f32,        // ambient occlusion o: multiplies the ambient and environment terms, never direct light (an occlusion texture's slot scales it per pixel)
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -1790,6 +1790,8 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 // every model lit by it, k_d/π · E(n), E by spherical harmonics
 // (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
 // BRDF integrated over the map with N directions.
+// The ambient occlusion m.occlusion multiplies the ambient term and every
+// environment term (diffuse, specular, the mirror's), never direct light.
 // f64 twin: reflected_radiance in src/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
@@ -1811,7 +1813,7 @@ fn environment_radiance(d: vec3<f32>) -> vec3<f32> {
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> {
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
-    var radiance = m.emission + m.k_a * globals.ambient;
+    var radiance = m.emission + m.k_a * globals.ambient * m.occlusion;
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the
@@ -1833,9 +1835,9 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
         let v = select(1.0, visibility[map], light.shadow_map < SHADOW_MAP_COUNT);
         radiance += f_r(m, incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
     }
-    radiance += environment_sampled(m, wo, frame);
+    radiance += environment_sampled(m, wo, frame) * m.occlusion;
     let reflected = mirror_direction(wo, n);
-    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected);
+    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected) * m.occlusion;
     return radiance;
 }
 
