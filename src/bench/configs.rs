@@ -692,7 +692,8 @@ mod tests {
                 .into_iter()
                 .filter(|c| c.knob == "environment_specular")
                 .collect();
-            assert_eq!(settings.len(), 7, "{mode:?}: {settings:?}");
+            // None is the base (32 is not a setting of the knob).
+            assert_eq!(settings.len(), 8, "{mode:?}: {settings:?}");
             for c in settings {
                 let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
                 let scene =
