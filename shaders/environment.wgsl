@@ -132,30 +132,6 @@ fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
     return e;
 }
 
-#if environment_sampled
-// L_o = ∫ f_r L_env cos θ dω by N cosine-weighted Hammersley directions:
-// (π/N) Σ_k f_r(ω_k, ω_o) L_env(ω_k). Twin: sampled::estimate.
-fn environment_sampled(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
-    // The loop bound is a uniform, but group 3's, which every draw of a
-    // frame shares (unlike the material's: UNIFORM_BRANCHES in
-    // brdf/phong.wgsl), so lavapipe inlines it once per setting.
-    let n = environment.samples;
-    // The directions' frame from the normal alone (as sampled::estimate).
-    let t = any_tangent(frame.n);
-    let b = cross(frame.n, t);
-    var sum = vec3<f32>(0.0);
-    for (var k = 0u; k < n; k++) {
-        let u1 = (f32(k) + 0.5) / f32(n);
-        let u2 = f32(reverseBits(k)) * 2.3283064365386963e-10;
-        let r = sqrt(u1);
-        let phi = 2.0 * PI * u2;
-        let wi = t * (r * cos(phi)) + b * (r * sin(phi)) + frame.n * sqrt(1.0 - u1);
-        sum += f_r(m, wi, wo, frame) * environment_map_radiance(wi);
-    }
-    return sum * (PI / f32(n));
-}
-#endif
-
 #if environment_prefiltered
 // Glossy reflection by the split-sum approximation (Karis 2013):
 // L̃(R, α) · (F0·A(μ, α) + B(μ, α)), the map prefiltered by GGX lobes

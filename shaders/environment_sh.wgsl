@@ -32,7 +32,7 @@ fn sh_convolved(weights: array<f32, 5>, d: vec3<f32>) -> vec3<f32> {
     return f;
 }
 
-#if phong-normalized
+#if phong-normalized || blinn-phong-normalized
 // t·∇F(d) for t ⊥ d: the five-point central difference, exact for the
 // degree-4 polynomials of the basis (h = ½). Twin: tangent_derivative.
 fn sh_convolved_derivative(w: array<f32, 5>, d: vec3<f32>, t: vec3<f32>) -> vec3<f32> {
@@ -43,7 +43,7 @@ fn sh_convolved_derivative(w: array<f32, 5>, d: vec3<f32>, t: vec3<f32>) -> vec3
 }
 #endif
 
-#if phong || phong-normalized || blinn-phong
+#if phong || phong-normalized || blinn-phong || blinn-phong-normalized
 // The glossy term without k_s at the mirror direction r (world frame):
 // the lecture's lobe F_n(R), or normalized Phong's
 // (n+2)/(2π) [μ F_{n+1}(R) + t·∇F_{n+1}(R)/(n+1)], μ = N·R, t = N − μR.
@@ -55,7 +55,7 @@ fn environment_sh_glossy(k_e: f32, normalized: bool, r: vec3<f32>, n: vec3<f32>)
     let rm = environment_to_map(r);
     let f = sh_convolved(w, rm);
     var g = f;
-    #if phong-normalized
+    #if phong-normalized || blinn-phong-normalized
     let mu = dot(n, r);
     let t = environment_to_map(n - r * mu);
     let along_r = f * mu;
@@ -68,12 +68,12 @@ fn environment_sh_glossy(k_e: f32, normalized: bool, r: vec3<f32>, n: vec3<f32>)
 
 // The SH diffuse term plus, for the Phong models, k_s times the convolved
 // lobe at the mirror direction of wo (the lecture's Blinn-Phong as the
-// mirror lobe of exponent n/4: an approximation). Twin: estimate (and
-// lobe).
+// mirror lobe of exponent n/4, the normalized one as normalized Phong of
+// exponent n/4: approximations). Twin: estimate (and lobe).
 fn environment_sh(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let n = frame.n;
     let diffuse = environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
-    #if phong || phong-normalized || blinn-phong
+    #if phong || phong-normalized || blinn-phong || blinn-phong-normalized
     let model = brdf_model(m);
     var lecture = false;
     var normalized = false;
@@ -88,6 +88,11 @@ fn environment_sh(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> 
     #endif
     #if phong-normalized
     normalized = model == MODEL_PHONG_NORMALIZED;
+    #endif
+    #if blinn-phong-normalized
+    let blinn_normalized = model == MODEL_BLINN_PHONG_NORMALIZED;
+    normalized = normalized || blinn_normalized;
+    k_e = select(k_e, 0.25 * k_e, blinn_normalized);
     #endif
     let r = mirror_direction(wo, n);
     let glossy = m.k_s * environment_sh_glossy(k_e, normalized, r, n);

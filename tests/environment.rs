@@ -381,6 +381,55 @@ fn bad_maps_are_refused() {
     );
 }
 
+/// The `"sh"` and `"prefiltered"` modes say which of the scene's
+/// materials they leave their glossy lobe out for (it was silent: the
+/// environment scene's Cook-Torrance gold in the `"sh"` mode shows the
+/// SH diffuse term alone), and nothing for the materials they handle
+/// (Lambert, the mirror) or in the modes that handle every model.
+#[test]
+fn the_glossy_modes_say_what_they_leave_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |sets: &[&str]| {
+        let mut c = common::gonio();
+        c.arg("render")
+            .arg(scene_path())
+            .arg("-o")
+            .arg(dir.path().join("out.png"));
+        for s in ["image.width=32", "image.height=16"].iter().chain(sets) {
+            c.arg("--set").arg(s);
+        }
+        let o = c.output().unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{sets:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let sh = run(&["environment.specular=sh"]);
+    assert!(
+        sh.contains(
+            "warning: material `gold` (model `cook-torrance`) under environment.specular = \"sh\""
+        ) && sh.contains("glossy lobe is left out"),
+        "{sh}"
+    );
+    assert_eq!(sh.matches("warning:").count(), 1, "{sh}");
+    let prefiltered = run(&[
+        "environment.specular=prefiltered",
+        "materials.lambert={model=\"phong\", k_s=0.5, k_e=20}",
+    ]);
+    assert!(
+        prefiltered.contains("material `lambert` (model `phong`)"),
+        "{prefiltered}"
+    );
+    assert_eq!(prefiltered.matches("warning:").count(), 1, "{prefiltered}");
+    for quiet in ["environment.specular=sampled", "environment.specular=none"] {
+        let e = run(&[quiet]);
+        assert!(!e.contains("warning:"), "{quiet}: {e}");
+    }
+}
+
 /// `specular = "sampled"` under a white environment: a Lambertian surface
 /// shows exactly `k_d` for any N (every direction sees the same
 /// radiance), on the GPU (N terms summed in f32: (N + 8)ε) and in the f64
@@ -439,11 +488,17 @@ fn the_sampled_mode_is_a_furnace_too() {
 }
 
 /// The sampled mode on the GPU against its f64 twin (the same N
-/// directions) under the blobs, every material's whole BRDF; and the
-/// estimate's error against the texel quadrature as N grows (printed).
-/// Tolerance: the shared one for the BRDF's arithmetic, plus the lookup
-/// tolerance times the albedo bound π/N Σ f_r ≤ 1.2 (k_d 0.8 Lambert;
-/// gold's Cook-Torrance ≤ 1 plus k_d 0.1; the mirror's k_d).
+/// directions, the same MIS weights) under the blobs, every material's
+/// whole BRDF, for every lobe kind (`gonio::environment::lobe`): the
+/// scene's Lambert (no lobe), Beckmann gold and mirror; then normalized
+/// Phong (mirror lobe), normalized Blinn-Phong (half-vector power) and a
+/// gltf-pbr metal (GGX); then Ward anisotropic (Beckmann of the larger σ),
+/// Cook-Torrance GGX and the lecture's Blinn-Phong. Tolerance: the shared
+/// one for the BRDF's arithmetic, plus the lookup tolerance times the sum
+/// of the samples' weights `Σ f_r cos θ / (n_c p_c + n_b p_b)`, which is
+/// the twin's own value under a white map of scale 1 (its largest pixel;
+/// rendered here, so the bound is the estimator's, not a guess).
+/// And the estimate's error against the texel quadrature as N grows.
 #[test]
 fn the_sampled_mode_matches_its_twin_and_converges() {
     let sets = |n: u32| {
@@ -458,21 +513,49 @@ fn the_sampled_mode_matches_its_twin_and_converges() {
         let s = sets(n);
         scene(&s.iter().map(String::as_str).collect::<Vec<_>>())
     };
+    let materials: [&[&str]; 3] = [
+        &[],
+        &[
+            "materials.lambert={model=\"phong-normalized\", k_d=0.2, k_s=0.6, k_e=30}",
+            "materials.gold={model=\"blinn-phong-normalized\", k_d=0.1, k_s=0.8, k_e=200}",
+            "materials.mirror={model=\"gltf-pbr\", base_color=[0.95, 0.8, 0.5], metallic=1.0, roughness=0.4}",
+        ],
+        &[
+            "materials.lambert={model=\"ward-anisotropic\", k_d=0.2, k_s=0.5, sigma_x=0.1, sigma_y=0.3}",
+            "materials.gold={model=\"cook-torrance\", preset=\"gold\", distribution=\"ggx\", k_d=0.1, roughness=0.2}",
+            "materials.mirror={model=\"blinn-phong\", k_d=0.2, k_s=0.3, k_e=50}",
+        ],
+    ];
+    for (i, extra) in materials.iter().enumerate() {
+        let mut sets = sets(32);
+        sets.extend(extra.iter().map(|e| e.to_string()));
+        let s = scene(&sets.iter().map(String::as_str).collect::<Vec<_>>());
+        let env = s.environment.map.clone().unwrap();
+        let frame = gpu(&s);
+        let (center, jittered) = common::reference_with_jitter(&s);
+        let weights = {
+            let mut t = s.clone();
+            let m = t.environment.map.as_mut().unwrap();
+            m.data = Arc::new(test_maps::uniform(32, Rgb::ONE));
+            m.settings.scale = 1.0;
+            reference::render(&t).max_radiance() as f64
+        };
+        let mut tol = common::tolerance(&s, &center);
+        tol.abs += weights * lookup_tolerance(&env, None);
+        let c = gonio::output::compare::compare_with_jitter(&frame, &center, &jittered, tol);
+        eprintln!(
+            "sampled N = 32, materials {i}: {} (weights ≤ {weights:.3})",
+            c.summary()
+        );
+        common::assert_agrees(
+            &format!("sampled N 32 materials {i}"),
+            "GPU and its twin disagree",
+            &c,
+            &frame,
+            &center,
+        );
+    }
     let s = load(32);
-    let env = s.environment.map.clone().unwrap();
-    let frame = gpu(&s);
-    let (center, jittered) = common::reference_with_jitter(&s);
-    let mut tol = common::tolerance(&s, &center);
-    tol.abs += 1.2 * lookup_tolerance(&env, None);
-    let c = gonio::output::compare::compare_with_jitter(&frame, &center, &jittered, tol);
-    eprintln!("sampled N = 32: {}", c.summary());
-    common::assert_agrees(
-        "sampled N 32",
-        "GPU and its twin disagree",
-        &c,
-        &frame,
-        &center,
-    );
     // Error vs N against the quadrature, on the gold sphere (middle third).
     let mut truth_scene = s.clone();
     truth_scene
@@ -504,6 +587,51 @@ fn the_sampled_mode_matches_its_twin_and_converges() {
         );
     }
     assert!(errors[3] < errors[1] && errors[1] < errors[0], "{errors:?}");
+}
+
+/// No NaN, no infinity and nothing negative in the sampled mode at the
+/// mirror limit (the smallest roughness and σ the scene file takes, 1e-4,
+/// gltf-pbr's α = r² = 1e-8; exponents of 10⁶) or at grazing angles (every
+/// sphere's silhouette, where `N·V → 0` and the lobes' samples fall below
+/// the horizon), on the GPU and in the twin, under the sky's sun.
+#[test]
+fn the_sampled_mode_has_no_nan_at_the_limits() {
+    for extra in [
+        [
+            "materials.lambert={model=\"gltf-pbr\", base_color=[0.9, 0.9, 0.9], metallic=1.0, roughness=1e-4}",
+            "materials.gold={model=\"cook-torrance\", preset=\"gold\", distribution=\"ggx\", roughness=1e-4}",
+            "materials.mirror={model=\"phong-normalized\", k_s=0.5, k_e=1e6}",
+        ],
+        [
+            "materials.lambert={model=\"blinn-phong-normalized\", k_s=0.5, k_e=1e6}",
+            "materials.gold={model=\"cook-torrance\", preset=\"gold\", roughness=1e-4}",
+            "materials.mirror={model=\"ward\", k_s=0.5, sigma=1e-4}",
+        ],
+    ] {
+        let mut sets = vec![
+            "environment.map=sky",
+            "environment.specular=sampled",
+            "environment.samples=16",
+            "environment.reference=sh",
+        ];
+        sets.extend(extra);
+        let s = scene(&sets);
+        for (label, f) in [("GPU", gpu(&s)), ("twin", reference::render(&s))] {
+            let lit = (0..f.len())
+                .filter(|&k| f.coverage[k] && f.radiance[k][0] > 0.0)
+                .count();
+            for k in 0..f.len() {
+                for c in 0..3 {
+                    let v = f.radiance[k][c];
+                    assert!(
+                        v.is_finite() && v >= 0.0,
+                        "{label}, {extra:?}: pixel {k} channel {c} = {v}"
+                    );
+                }
+            }
+            assert!(lit > 1000, "{label}, {extra:?}: only {lit} lit pixels");
+        }
+    }
 }
 
 /// The SH diffuse term lights gltf-pbr's Lambert part `(1 − m)·b` (a
@@ -690,6 +818,97 @@ fn the_split_sum_error_is_measured() {
         }
     }
 }
+
+/// The sampled mode's error against the integrated truth as N grows, on
+/// the GPU, on the split-sum test's spheres (gltf-pbr metal α = 0.25,
+/// Cook-Torrance gold α = 0.25) under the blobs and the sky: mean and
+/// 99th percentile of |error| over each sphere's interior pixels,
+/// relative to its peak (`sphere_error`). The estimate is deterministic
+/// (the same directions every run), so its error at each N is a number,
+/// not a draw: asserted as measured (`SAMPLED_MEASURED`,
+/// docs/environment.md) with 20 % to spare, and it must shrink from N = 4
+/// to N = 256.
+#[test]
+fn the_sampled_error_vs_n_is_measured() {
+    let ns = [4u32, 16, 64, 256];
+    let mut rows = Vec::new();
+    for (label, map) in [("blobs", "../environment/blobs.hdr"), ("sky", "sky")] {
+        let s = prefiltered_scene(map, &[]);
+        let truth = reference::render(&s);
+        let frames: Vec<Frame> = ns
+            .iter()
+            .map(|&n| {
+                let mut t = s.clone();
+                let m = t.environment.map.as_mut().unwrap();
+                m.settings.specular = gonio::environment::map::Specular::Sampled;
+                m.settings.samples = n;
+                gpu(&t)
+            })
+            .collect();
+        for (sphere, cols) in [("gltf-pbr", (0, 1)), ("gold", (1, 2))] {
+            let errors: Vec<(f64, f64)> = frames
+                .iter()
+                .map(|f| sphere_error(f, &truth, cols))
+                .collect();
+            eprintln!(
+                "sampled, {label}, {sphere}: {}",
+                ns.iter()
+                    .zip(&errors)
+                    .map(|(n, e)| format!("N = {n}: {:.2} % / {:.1} %", 100.0 * e.0, 100.0 * e.1))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            );
+            rows.push((label, sphere, errors));
+        }
+    }
+    for ((label, sphere, errors), bounds) in rows.iter().zip(SAMPLED_MEASURED) {
+        assert!(
+            errors[3].0 < errors[0].0,
+            "{label}, {sphere}: no convergence: {errors:?}"
+        );
+        for ((n, (mean, p99)), (bound_mean, bound_p99)) in ns.iter().zip(errors).zip(bounds) {
+            assert!(
+                // + the rounding of the printed values the bounds are.
+                *mean <= 1.2 * bound_mean + 1e-4 && *p99 <= 1.2 * bound_p99 + 1e-3,
+                "{label}, {sphere}, N = {n}: the sampled error grew: mean {mean}, p99 {p99}"
+            );
+        }
+    }
+}
+
+/// (mean, 99th percentile) of the sampled mode's error at N = 4, 16, 64,
+/// 256, measured: blobs gltf-pbr, blobs gold, sky gltf-pbr, sky gold.
+/// Before BRDF sampling (cosine only) they were: blobs gltf-pbr 10.65 /
+/// 3.40 / 0.81 / 0.14 % mean, 106 / 35.7 / 12.5 / 1.8 % p99; blobs gold
+/// 1.50 / 0.49 / 0.11 / 0.02 %, 10.1 / 5.6 / 2.1 / 0.4 %; sky gltf-pbr
+/// 7.88 / 12.05 / 9.47 / 4.60 %, 75.7 / 174 / 119 / 52.9 %; sky gold
+/// 27.26 / 27.98 / 23.13 / 13.26 %, 47.3 / 616 / 198 / 44.6 %.
+const SAMPLED_MEASURED: [[(f64, f64); 4]; 4] = [
+    [
+        (0.0798, 0.614),
+        (0.0204, 0.185),
+        (0.0042, 0.028),
+        (0.0010, 0.005),
+    ],
+    [
+        (0.0097, 0.065),
+        (0.0037, 0.020),
+        (0.0007, 0.006),
+        (0.0001, 0.001),
+    ],
+    [
+        (0.0830, 0.766),
+        (0.1164, 1.942),
+        (0.0870, 1.076),
+        (0.0479, 0.401),
+    ],
+    [
+        (0.2251, 0.297),
+        (0.2819, 6.162),
+        (0.2222, 1.967),
+        (0.1357, 0.463),
+    ],
+];
 
 /// (mean, 99th percentile) of the split's error measured: blobs gltf-pbr, blobs gold,
 /// sky gltf-pbr, sky gold.
@@ -994,6 +1213,72 @@ fn the_sh_mode_error_vs_order_is_measured() {
         }
     }
 }
+
+/// Normalized Blinn-Phong in the `"sh"` mode (issue 16: approximated as
+/// normalized Phong of exponent `n/4`, `gonio::environment::sh_phong`):
+/// its error against the integrated truth, glossy term alone (`k_d` 0,
+/// `k_s` 0.8), all three spheres, per exponent `n` = 4, 16, 64, 256 and
+/// SH order (printed: the table of docs/environment.md). Asserted as
+/// measured ([`SH_BLINN_MEASURED`]) with 20 % to spare.
+#[test]
+fn the_sh_mode_blinn_phong_normalized_error_is_measured() {
+    for (m, (label, map, scale)) in [
+        ("blobs", "../environment/blobs.hdr", "environment.scale=1.0"),
+        ("sky", "sky", "environment.scale=0.3"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        for (e, k_e) in [4.0, 16.0, 64.0, 256.0].into_iter().enumerate() {
+            let material =
+                format!("{{model=\"blinn-phong-normalized\", k_d=0.0, k_s=0.8, k_e={k_e}}}");
+            let sets: Vec<String> = [
+                format!("environment.map={map}"),
+                "environment.specular=sh".into(),
+                scale.into(),
+            ]
+            .into_iter()
+            .chain(["lambert", "gold", "mirror"].map(|n| format!("materials.{n}={material}")))
+            .collect();
+            let s = scene(&sets.iter().map(String::as_str).collect::<Vec<_>>());
+            let truth = reference::render(&s);
+            let w = truth.width;
+            let mut errors = [0.0; 5];
+            for order in 0..=sh::MAX_ORDER {
+                let mut t = s.clone();
+                t.environment.map.as_mut().unwrap().settings.sh_order = order;
+                errors[order as usize] = column_error(&gpu(&t), &truth, (w / 8, 7 * w / 8)).0;
+            }
+            eprintln!(
+                "SH_TABLE | {label} | blinn-phong-normalized, as phong-normalized of n/4 | {k_e} | {}",
+                errors.map(|x| format!("{:.2} %", 100.0 * x)).join(" | ")
+            );
+            for (order, (&got, &want)) in errors.iter().zip(&SH_BLINN_MEASURED[m][e]).enumerate() {
+                assert!(
+                    got <= 1.2 * want + 1e-4,
+                    "{label}, k_e {k_e}, order {order}: error {got} grew beyond {want}"
+                );
+            }
+        }
+    }
+}
+
+/// Mean relative error of normalized Blinn-Phong in the `"sh"` mode,
+/// measured, `[map][exponent][order]`: blobs, sky; n = 4, 16, 64, 256.
+const SH_BLINN_MEASURED: [[[f64; 5]; 4]; 2] = [
+    [
+        [0.1891, 0.1317, 0.1323, 0.1293, 0.1293],
+        [0.1161, 0.0891, 0.0665, 0.0419, 0.0351],
+        [0.0654, 0.0584, 0.0520, 0.0393, 0.0324],
+        [0.0417, 0.0396, 0.0381, 0.0331, 0.0294],
+    ],
+    [
+        [0.1972, 0.1472, 0.1729, 0.1524, 0.1524],
+        [0.1086, 0.0927, 0.0682, 0.0431, 0.0281],
+        [0.0389, 0.0435, 0.0421, 0.0367, 0.0305],
+        [0.0116, 0.0147, 0.0163, 0.0167, 0.0166],
+    ],
+];
 
 /// Mean relative error measured, `[map][lobe][exponent][order]`: maps
 /// blobs, sky; lobes the lecture's Phong, normalized Phong, the lecture's

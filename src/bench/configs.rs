@@ -434,6 +434,65 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
     (out, skipped)
 }
 
+/// The base scene's `[environment]` table after its overrides (`None`
+/// without one): what [`whole_environment`] rewrites the specular mode's
+/// settings against.
+pub fn environment_section(
+    source: &crate::scene::scene_file::SceneSource,
+    base_overrides: &[String],
+) -> crate::Result<Option<toml::Table>> {
+    let (_, _, mut table) = crate::scene::scene_file::scene_table(source)?;
+    for o in base_overrides {
+        crate::scene::scene_file::overrides::apply_override(&mut table, o)?;
+    }
+    Ok(match table.remove("environment") {
+        Some(toml::Value::Table(t)) => Some(t),
+        _ => None,
+    })
+}
+
+/// The keys of `[environment]` that belong to one specular mode: the
+/// loader refuses each under another mode (nothing typed is ignored).
+const MODE_KEYS: [&str; 3] = ["specular", "samples", "prefilter_size"];
+
+/// The `environment_specular` settings as one override of the whole
+/// `[environment]` table: the base's `section` without its mode keys,
+/// plus the setting's own. As separate `--set`s they kept the base's
+/// other mode keys, so a base with `samples = 32` (sampled) failed to
+/// load every non-sampled setting ("environment.samples applies to
+/// environment.specular = \"sampled\""), and one with `prefilter_size`
+/// every non-prefiltered one. Other configurations are returned as they
+/// are.
+pub fn whole_environment(configs: Vec<Config>, section: Option<&toml::Table>) -> Vec<Config> {
+    let Some(section) = section else {
+        return configs;
+    };
+    configs
+        .into_iter()
+        .map(|mut c| {
+            if c.knob != "environment_specular" {
+                return c;
+            }
+            let mut table = section.clone();
+            for key in MODE_KEYS {
+                table.remove(key);
+            }
+            for o in &c.overrides {
+                if let Some((key, value)) = o.split_once('=')
+                    && let Some(key) = key.strip_prefix("environment.")
+                {
+                    table.insert(
+                        key.to_string(),
+                        crate::scene::scene_file::overrides::value_of(value),
+                    );
+                }
+            }
+            c.overrides = vec![format!("environment={}", toml::Value::Table(table))];
+            c
+        })
+        .collect()
+}
+
 /// Whether `a` and `b` draw the same image: same size, shading, lights
 /// and shadow settings, same triangles with the same material on each
 /// mesh. An override that changes nothing drawn (a material key on a
@@ -598,6 +657,56 @@ mod tests {
             let scene =
                 load(&SceneSource::BuiltIn, &all).unwrap_or_else(|e| panic!("{}: {e}", c.label()));
             assert!(!draws_the_same(&base, &scene), "{}", c.label());
+        }
+    }
+
+    /// A base that sets a mode's own key (`samples = 32` with "sampled",
+    /// or `prefilter_size` with "prefiltered") loads every other setting
+    /// of the knob (it failed: the base's key stayed beside the new
+    /// mode), each with the base's other environment keys (scale,
+    /// rotation, order) kept.
+    #[test]
+    fn environment_specular_loads_over_a_base_with_mode_keys() {
+        for mode in [
+            &["environment.specular=sampled", "environment.samples=32"][..],
+            &[
+                "environment.specular=prefiltered",
+                "environment.prefilter_size=32",
+            ][..],
+        ] {
+            let overrides: Vec<String> = BUILTIN_BASE
+                .iter()
+                .map(|s| s.to_string())
+                .chain([
+                    "environment.map=\"sky\"".to_string(),
+                    "environment.scale=0.3".into(),
+                    "environment.rotation_deg=40".into(),
+                ])
+                .chain(mode.iter().map(|s| s.to_string()))
+                .collect();
+            let source = SceneSource::BuiltIn;
+            let base = load(&source, &overrides).unwrap();
+            let section = environment_section(&source, &overrides).unwrap();
+            let (all, _) = configs(&base, false);
+            let settings: Vec<_> = whole_environment(all, section.as_ref())
+                .into_iter()
+                .filter(|c| c.knob == "environment_specular")
+                .collect();
+            // None is the base (32 is not a setting of the knob).
+            assert_eq!(settings.len(), 8, "{mode:?}: {settings:?}");
+            for c in settings {
+                let all: Vec<String> = overrides.iter().chain(&c.overrides).cloned().collect();
+                let scene =
+                    load(&source, &all).unwrap_or_else(|e| panic!("{mode:?}, {}: {e}", c.label()));
+                let settings = scene.environment.map.as_ref().unwrap().settings;
+                assert_eq!(
+                    (settings.scale, settings.rotation_deg),
+                    (0.3, 40.0),
+                    "{}",
+                    c.label()
+                );
+                assert!(!draws_the_same(&base, &scene), "{}", c.label());
+            }
         }
     }
 

@@ -183,6 +183,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         ));
     }
     let (all, mut not_measured) = configs::configs(&base, args.smoke);
+    let all = configs::whole_environment(
+        all,
+        configs::environment_section(&source, &base_overrides)?.as_ref(),
+    );
     let mut measured: Vec<(Config, Scene)> = Vec::new();
     for config in all {
         let overrides: Vec<String> = base_overrides

@@ -12,13 +12,16 @@
 //!   `assets/environment/blobs.hdr` among them).
 //! * [`sh`]: spherical harmonics: projection of a map, the irradiance
 //!   convolution of Ramamoorthi & Hanrahan (2001), evaluation.
-//! * [`sampled`]: the whole BRDF integrated with N directions
+//! * [`sampled`]: the whole BRDF integrated with N directions (cosine and
+//!   BRDF lobe, [`lobe`], by multiple importance sampling)
 //!   (`environment.specular = "sampled"`) and its quadrature truth.
 //! * [`prefiltered`]: glossy reflection by the split-sum approximation
 //!   (`environment.specular = "prefiltered"`), with the environment BRDF
 //!   table of [`dfg`].
 //! * [`sh_phong`]: the lecture's Phong lobes by SH convolution, a zonal
 //!   product (`environment.specular = "sh"`, Ramamoorthi & Hanrahan 2002).
+//! * [`mode_warnings`]: what the `"sh"` and `"prefiltered"` modes leave
+//!   out for a scene's models, said at load time.
 //! * [`sh_error`]: SH irradiance error vs order against the truth.
 //! * [`visibility`]: the reference's environment term with ray-traced
 //!   occlusion (`environment.visibility`).
@@ -29,7 +32,9 @@ pub mod dfg;
 mod exr_header;
 pub mod latlong;
 pub mod load;
+pub mod lobe;
 pub mod map;
+pub mod mode_warnings;
 pub mod prefiltered;
 pub mod quadrature;
 pub mod sampled;

@@ -50,9 +50,23 @@
 //! the usual match (at normal incidence the angle between `ω` and `R` is
 //! twice that between `H` and `N`, and `cos^n(θ/2) ≈ e^{−nθ²/8} ≈
 //! cos^{n/4} θ` near the peak); it is wrong in shape away from normal
-//! incidence, where the true lobe stretches. Normalized Blinn-Phong (a
-//! microfacet lobe) is not done: it gets the SH diffuse term alone, as
-//! every other model.
+//! incidence, where the true lobe stretches.
+//!
+//! **Normalized Blinn-Phong** (`blinn-phong-normalized`), `f_r = D(H) /
+//! (4 (I·H) max(N·I, N·V))`, `D = (n+2)/(2π) (N·H)^n`, is approximated
+//! the same way, as normalized Phong of exponent `n/4`: at normal
+//! incidence (`V = N = R`, `H` halfway between `N` and `ω`, `I·H =
+//! cos(θ/2)`) `f_r cos θ_i = (n+2)/(8π) cos^n(θ/2) cos θ / cos(θ/2) ≈
+//! (n+2)/(8π) (R·ω)^{n/4} (N·ω)`, and normalized Phong of exponent
+//! `s = n/4` is `(s+2)/(2π) (R·ω)^s (N·ω) = (n+8)/(8π) (R·ω)^{n/4} (N·ω)`:
+//! the same lobe, its factor the familiar `(n+8)/(8π)` instead of
+//! `(n+2)/(8π)` (within 6/(n+2) of each other, and the normalized form
+//! keeps the albedo near 1 as the model does). Away from normal
+//! incidence the true lobe stretches and is cut by `max(N·I, N·V)`; the
+//! error is measured (docs/environment.md). Every other model with a
+//! glossy lobe (Cook-Torrance, gltf-pbr, Ward, ABC) and the measured
+//! tables get the SH diffuse term alone in this mode, and the loader
+//! says so (`super::mode_warnings`).
 //!
 //! WGSL twin: shaders/environment_sh.wgsl (same functions, same order).
 
@@ -115,13 +129,14 @@ pub enum Lobe {
 }
 
 /// The lobe of `material` (`None`: the SH diffuse term alone); the
-/// lecture's Blinn-Phong as the mirror lobe of exponent `n/4` (module
-/// docs).
+/// lecture's Blinn-Phong as the mirror lobe of exponent `n/4`, the
+/// normalized one as normalized Phong of exponent `n/4` (module docs).
 pub fn lobe(material: &Material) -> Option<Lobe> {
     match material.brdf().specular {
         BrdfSpecular::Phong { k_e } => Some(Lobe::Lecture { k_e }),
         BrdfSpecular::BlinnPhong { k_e } => Some(Lobe::Lecture { k_e: 0.25 * k_e }),
         BrdfSpecular::PhongNormalized { k_e } => Some(Lobe::Normalized { k_e }),
+        BrdfSpecular::BlinnPhongNormalized { k_e } => Some(Lobe::Normalized { k_e: 0.25 * k_e }),
         _ => None,
     }
 }

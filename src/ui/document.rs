@@ -52,6 +52,9 @@ pub struct Document {
     /// The `[environment]` map keys while the map is switched off in the
     /// viewer (`super::environment`); `None` while it is on.
     pub parked_environment: Option<toml::Table>,
+    /// The `[environment]` map keys as loaded (to tell whether the
+    /// environment was edited: `super::environment::edited`).
+    pub(super) loaded_environment: toml::Table,
 }
 
 impl Document {
@@ -96,10 +99,11 @@ impl Document {
             limits,
             scene,
             file_materials,
-            table: loaded.table,
             source_dir: loaded.base_dir,
             lights: loaded.lights,
             parked_environment: None,
+            loaded_environment: super::environment::map_keys(&loaded.table),
+            table: loaded.table,
         })
     }
 
@@ -134,8 +138,9 @@ impl Document {
     /// Reloads from the source with the same overrides, keeping edits of
     /// materials the new scene still has (by name), of `[[lights]]`
     /// entries it still has (by index), the shading mode and ambient
-    /// radiance. (The viewer keeps its own camera unless the file's camera
-    /// changed.)
+    /// radiance, and of the environment map (its keys as one edit, as a
+    /// material's: `super::environment::keep_edits`). (The viewer keeps
+    /// its own camera unless the file's camera changed.)
     pub fn reload(&self) -> Result<Document> {
         let mut fresh = Document::load(self.source.clone(), self.overrides.clone(), self.limits)?;
         fresh.keep_edits_of(self);
@@ -264,6 +269,7 @@ impl Document {
             assembled.install(&mut self.scene);
             self.lights = lights;
         }
+        super::environment::keep_edits(self, old);
     }
 
     /// `[[lights]]` entries changed since loading: index and entry.

@@ -12,6 +12,11 @@
 //! (and their SH projection, quadrature and prefiltered stacks) are kept
 //! and only the settings change: a rotation or SH-order slider redraws at
 //! frame rate.
+//!
+//! On reload (the file changed on disk) an edited environment is kept as
+//! an edited material is: the map keys as the user left them (and the map
+//! switched off if it was) replace the changed file's; an environment the
+//! user did not touch takes the file's new keys ([`keep_edits`]).
 
 use super::document::Document;
 use crate::environment::EnvironmentMap;
@@ -170,6 +175,48 @@ fn install(doc: &mut Document, table: toml::Table) -> std::result::Result<(), St
     Ok(())
 }
 
+/// The map keys of `table`'s `[environment]` (what the viewer edits).
+pub fn map_keys(table: &toml::Table) -> toml::Table {
+    let mut keys = toml::Table::new();
+    if let Some(toml::Value::Table(e)) = table.get("environment") {
+        for key in MAP_KEYS {
+            if let Some(v) = e.get(key) {
+                keys.insert(key.into(), v.clone());
+            }
+        }
+    }
+    keys
+}
+
+/// Whether `doc`'s environment was edited since loading (a key changed,
+/// or the map switched off).
+pub fn edited(doc: &Document) -> bool {
+    is_off(doc) || map_keys(&doc.table) != doc.loaded_environment
+}
+
+/// After a reload: `fresh` takes `old`'s environment if the user edited
+/// it (the whole set of map keys, and off if it was off), as a reload
+/// keeps an edited material whole. An edit the changed file no longer
+/// accepts (the map file is gone) is dropped, as light edits are.
+pub fn keep_edits(fresh: &mut Document, old: &Document) {
+    if !edited(old) {
+        return;
+    }
+    let mut table = fresh.table.clone();
+    let e = table
+        .entry("environment")
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    if let toml::Value::Table(e) = e {
+        for key in MAP_KEYS {
+            e.remove(key);
+        }
+        e.extend(map_keys(&with_parked(old)));
+    }
+    if install(fresh, table).is_ok() && is_off(old) {
+        let _ = set_enabled(fresh, false);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -252,6 +299,62 @@ mod tests {
             1
         );
         assert!(d.edit("environment.enabled=maybe").is_err());
+    }
+
+    /// A reload keeps an edited environment whole (the file's changes to
+    /// it are not taken, as for an edited material), takes the file's new
+    /// keys when the environment was not edited, and keeps a switched-off
+    /// map off.
+    #[test]
+    fn reload_keeps_environment_edits_as_material_edits() {
+        let dir = std::env::temp_dir().join(format!("gonio-env-reload-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("scene.toml");
+        let write = |scale: f64, k_d: f64| {
+            let text = format!(
+                "[[objects]]\nshape = \"sphere\"\nmaterial = \"ball\"\n\n[materials.ball]\nmodel = \"lambert\"\nk_d = {k_d}\n\n[environment]\nmap = \"sky\"\nscale = {scale}\n"
+            );
+            std::fs::write(&path, text).unwrap();
+        };
+        write(0.3, 0.5);
+        let load =
+            || Document::load(SceneSource::File(path.clone()), vec![], Limits::default()).unwrap();
+        let settings = |d: &Document| d.scene.environment.map.as_ref().map(|m| m.settings);
+        // Not edited: the file's new scale.
+        let d = load();
+        assert!(!edited(&d));
+        write(0.7, 0.5);
+        let r = d.reload().unwrap();
+        assert_eq!(settings(&r).unwrap().scale, 0.7);
+        // Edited: the user's keys, whole (the file's new scale is not taken),
+        // beside the file's new material.
+        let mut d = load();
+        d.edit("environment.rotation_deg=90").unwrap();
+        d.edit("environment.specular=sampled").unwrap();
+        d.edit("environment.samples=16").unwrap();
+        assert!(edited(&d));
+        write(0.2, 0.25);
+        let r = d.reload().unwrap();
+        let s = settings(&r).unwrap();
+        assert_eq!(
+            (s.rotation_deg, s.scale, s.samples, s.specular),
+            (90.0, 0.7, 16, Specular::Sampled)
+        );
+        assert_eq!(r.scene.materials[0].k_d.x, 0.25);
+        assert!(
+            edited(&r),
+            "the kept edit is still an edit (saved, kept again)"
+        );
+        // Switched off: stays off, and on again with the user's keys.
+        let mut d = load();
+        d.edit("environment.scale=0.9").unwrap();
+        d.edit("environment.enabled=false").unwrap();
+        write(0.1, 0.25);
+        let mut r = d.reload().unwrap();
+        assert!(r.scene.environment.map.is_none() && is_off(&r));
+        r.edit("environment.enabled=true").unwrap();
+        assert_eq!(settings(&r).unwrap().scale, 0.9);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

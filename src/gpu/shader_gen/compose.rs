@@ -52,10 +52,15 @@ pub fn compose_brdf_library(variants: &BTreeSet<BrdfVariant>, features: &[Featur
     out.push('\n');
     out.push_str(&file("brdf/variant.wgsl", &features));
     out.push('\n');
-    let needed: BTreeSet<&str> = models
+    let mut needed: BTreeSet<&str> = models
         .iter()
         .flat_map(|&m| m.row().wgsl.iter().copied())
         .collect();
+    // The sampled mode's lobes (shaders/environment_sampled.wgsl) use
+    // phong.wgsl's cosine powers and mirror direction, whatever the models.
+    if features.contains(&Feature::EnvironmentSampled) {
+        needed.insert("brdf/phong.wgsl");
+    }
     for path in brdf_file_order().into_iter().filter(|p| needed.contains(p)) {
         out.push_str(&file(path, &features));
         out.push('\n');
@@ -231,6 +236,10 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
         out.push('\n');
         if key.environment_sh {
             out.push_str(&file("environment_sh.wgsl", &features));
+            out.push('\n');
+        }
+        if key.environment_sampled {
+            out.push_str(&file("environment_sampled.wgsl", &features));
             out.push('\n');
         }
     }

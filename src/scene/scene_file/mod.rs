@@ -120,6 +120,11 @@ pub fn load_for_editing(
     notes.extend(edit_warnings);
     notes.extend(gltf_files.notes().iter().cloned());
     notes.extend(lights.notes());
+    notes.extend(
+        crate::environment::mode_warnings::warnings(&scene)
+            .into_iter()
+            .map(|w| format!("{WARNING}{w}")),
+    );
     Ok(Loaded {
         scene,
         table,
