@@ -54,16 +54,18 @@ impl ScreenProjection {
     /// The screen point of `p`, or `None` when it is not in front of the
     /// near plane.
     pub fn project(&self, p: DVec3) -> Option<DVec2> {
+        (self.depth(p) >= self.near).then(|| self.screen_point(p))
+    }
+
+    /// The screen point of `p`, in front of the eye.
+    fn screen_point(&self, p: DVec3) -> DVec2 {
         let v = p - self.eye;
         let z = v.dot(self.forward);
-        if z < self.near {
-            return None;
-        }
         let ndc = DVec2::new(
             v.dot(self.right) / (z * self.tan_half * self.aspect()),
             v.dot(self.up) / (z * self.tan_half),
         );
-        Some(self.origin + DVec2::new(0.5 * (ndc.x + 1.0), 0.5 * (1.0 - ndc.y)) * self.size)
+        self.origin + DVec2::new(0.5 * (ndc.x + 1.0), 0.5 * (1.0 - ndc.y)) * self.size
     }
 
     /// The segment `a`–`b` on the screen, its part behind the near plane
@@ -80,8 +82,9 @@ impl ScreenProjection {
                 from + (to - from) * ((self.near - z_from) / (z_to - z_from))
             }
         };
+        // A cut end is at the near plane (up to rounding): in front.
         let (a2, b2) = (cut(a, za, b, zb), cut(b, zb, a, za));
-        Some((self.project(a2)?, self.project(b2)?))
+        Some((self.screen_point(a2), self.screen_point(b2)))
     }
 
     /// The world point at screen point `s` and view depth `depth` (the
