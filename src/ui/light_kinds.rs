@@ -44,27 +44,36 @@ struct Essentials {
     distance: f64,
 }
 
-/// A new light of `kind` for a camera at `eye` looking at `target`: above
-/// the target and towards the eye, at the eye's distance from the target,
-/// aimed at the target, putting [`NEW_IRRADIANCE`] on it.
-pub fn new_light(kind: &str, eye: DVec3, target: DVec3) -> Result<LightEntry, String> {
+/// A new light of `kind` for a camera at `eye` looking at `target`, where
+/// the camera sees it: between the eye and the target (0.3 of the way
+/// towards the eye), above the target by 0.2 of their distance and, for
+/// the `slot`-th light, 0.2 of it to the left or right (so lights added
+/// one after another do not coincide); aimed at the target and putting
+/// [`NEW_IRRADIANCE`] on it.
+pub fn new_light(kind: &str, eye: DVec3, target: DVec3, slot: usize) -> Result<LightEntry, String> {
     let reach = (eye - target).length().max(1e-3);
     let toward_eye = (eye - target).normalize_or(DVec3::Z);
-    let up = (DVec3::Y + toward_eye * 0.6).normalize();
-    let position = target + up * reach;
+    let right = DVec3::Y.cross(toward_eye).normalize_or(DVec3::X);
+    let up = toward_eye.cross(right);
+    // Slots 0, 1, 2, 3, 4, …: 0, +1, −1, +2, −2, … steps to the side.
+    let step = slot.div_ceil(2) as f64 * if slot % 2 == 1 { 1.0 } else { -1.0 };
+    let offset = toward_eye * 0.3 + up * 0.2 + right * (0.2 * step);
+    let position = target + offset * reach;
     let essentials = Essentials {
         position,
         axis: (target - position).normalize(),
         irradiance: [NEW_IRRADIANCE; 3],
-        distance: reach,
+        distance: (target - position).length(),
     };
     build(kind, essentials, None)
 }
 
 /// Where the 3D view puts a directional light's handle (it has no place
-/// of its own): up-light of the target, half the eye's distance away.
+/// of its own): up-light of the target, 0.3 of the eye's distance away
+/// (in view for light from above or in front at the usual fields of
+/// view).
 pub fn directional_reach(eye: DVec3, target: DVec3) -> f64 {
-    0.5 * (eye - target).length().max(1e-3)
+    0.3 * (eye - target).length().max(1e-3)
 }
 
 /// `entry` as a light of `kind` with the same place, axis and irradiance
@@ -247,7 +256,7 @@ mod tests {
     fn new_lights_of_every_kind_are_valid_and_light_the_target() {
         let (eye, target) = (DVec3::new(0.0, 1.0, 4.0), DVec3::new(0.0, 0.0, 0.0));
         for kind in KINDS {
-            let entry = new_light(kind, eye, target).unwrap();
+            let entry = new_light(kind, eye, target, 3).unwrap();
             assert_eq!(entry.kind(), kind);
             let e = irradiance_at(&entry, target);
             // Point, spot, directional: exact. Area: the far-field value
@@ -261,13 +270,21 @@ mod tests {
                 "{kind}: {e}"
             );
         }
-        assert!(new_light("lamp", eye, target).is_err());
+        assert!(new_light("lamp", eye, target, 0).is_err());
+        // Lights added one after another do not coincide.
+        let at = |slot| match new_light("point", eye, target, slot).unwrap() {
+            LightEntry::Point(e) => DVec3::from_array(e.position),
+            other => panic!("{other:?}"),
+        };
+        for (a, b) in [(0, 1), (1, 2), (0, 2), (2, 4)] {
+            assert!((at(a) - at(b)).length() > 0.1, "{a} and {b}");
+        }
     }
 
     #[test]
     fn retyping_keeps_place_axis_shadows_and_brightness_at_the_target() {
         let (eye, target) = (DVec3::new(1.0, 2.0, 3.0), DVec3::ZERO);
-        let mut spot = new_light("spot", eye, target).unwrap();
+        let mut spot = new_light("spot", eye, target, 0).unwrap();
         spot.set_shadows(true);
         let mut keys = spot.shadow_keys();
         keys.map_size = Some(512);
@@ -297,7 +314,7 @@ mod tests {
 
     #[test]
     fn reshaping_an_area_light_keeps_its_area() {
-        let LightEntry::Area(mut e) = new_light("area", DVec3::Z * 4.0, DVec3::ZERO).unwrap()
+        let LightEntry::Area(mut e) = new_light("area", DVec3::Z * 4.0, DVec3::ZERO, 0).unwrap()
         else {
             panic!()
         };

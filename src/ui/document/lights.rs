@@ -20,7 +20,8 @@ impl Document {
     /// ([`light_kinds::new_light`]); returns its index.
     pub fn add_light_of_kind(&mut self, kind: &str) -> Result<usize, String> {
         let c = self.scene.camera;
-        self.add_light(light_kinds::new_light(kind, c.position, c.target)?)
+        let slot = self.lights.entries.len();
+        self.add_light(light_kinds::new_light(kind, c.position, c.target, slot)?)
     }
 
     /// Removes `[[lights]]` entry `index`.
