@@ -609,8 +609,8 @@ fn environment_edits_and_drops_reach_the_shader() {
 /// cone now brightens.
 #[test]
 fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
-    use gonio::ui::screen_projection::ScreenProjection;
     use glam::{DVec2, DVec3};
+    use gonio::ui::screen_projection::ScreenProjection;
     let dir = tempfile::tempdir().unwrap();
     let (position, aim) = (DVec3::new(-2.0, 2.5, 2.5), DVec3::new(-1.5, 0.0, 1.5));
     let outside = DVec3::new(1.5, 0.0, 1.5);
@@ -655,7 +655,10 @@ fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
 
     let spot_shot = dir.path().join("spot.png");
     let args = with_edits(&edits);
-    let area = view(&args.iter().map(String::as_str).collect::<Vec<_>>(), &spot_shot);
+    let area = view(
+        &args.iter().map(String::as_str).collect::<Vec<_>>(),
+        &spot_shot,
+    );
     let spot_render = dir.path().join("spot-render.png");
     render(&["--set", &spot_file], area.2, area.3, &spot_render);
     assert_matches(&spot_shot, area, &spot_render, "spot added");
@@ -663,7 +666,10 @@ fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
     edits.push("5:lights.1.kind=point".to_string());
     let point_shot = dir.path().join("point.png");
     let args = with_edits(&edits);
-    let area2 = view(&args.iter().map(String::as_str).collect::<Vec<_>>(), &point_shot);
+    let area2 = view(
+        &args.iter().map(String::as_str).collect::<Vec<_>>(),
+        &point_shot,
+    );
     assert_eq!(area, area2);
     let point_render = dir.path().join("point-render.png");
     render(&["--set", &point_file], area.2, area.3, &point_render);
@@ -680,7 +686,11 @@ fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
     .unwrap()
     .scene
     .camera;
-    let proj = ScreenProjection::new(&camera, DVec2::ZERO, DVec2::new(area.2 as f64, area.3 as f64));
+    let proj = ScreenProjection::new(
+        &camera,
+        DVec2::ZERO,
+        DVec2::new(area.2 as f64, area.3 as f64),
+    );
     let patch = |png: &Path, offset: (u32, u32), p: DVec3| -> f64 {
         let img = image::open(png).unwrap().to_luma8();
         let s = proj.project(p).unwrap();
@@ -702,8 +712,20 @@ fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
     eprintln!(
         "aim point: {plain_aim:.1} → spot {spot_aim:.1} → point {point_aim:.1}; outside the cone: {plain_out:.1} → {spot_out:.1} → {point_out:.1}"
     );
-    assert!(spot_aim > plain_aim + 40.0, "the spot's pool did not brighten");
-    assert!((spot_out - plain_out).abs() <= 1.0, "the spot lit outside its cone");
-    assert!((point_aim - spot_aim).abs() <= 1.0, "inside the cone the point light differs");
-    assert!(point_out > spot_out + 8.0, "the point light did not light outside the cone");
+    assert!(
+        spot_aim > plain_aim + 40.0,
+        "the spot's pool did not brighten"
+    );
+    assert!(
+        (spot_out - plain_out).abs() <= 1.0,
+        "the spot lit outside its cone"
+    );
+    assert!(
+        (point_aim - spot_aim).abs() <= 1.0,
+        "inside the cone the point light differs"
+    );
+    assert!(
+        point_out > spot_out + 8.0,
+        "the point light did not light outside the cone"
+    );
 }

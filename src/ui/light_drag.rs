@@ -222,16 +222,25 @@ mod tests {
             let drag = pick(&doc, &camera, &proj, start + DVec2::new(3.0, 0.0), 12.0).unwrap();
             assert_eq!(drag.index, index);
             let depth = proj.depth(handles(&doc, &camera)[index]);
-            let direction_before = doc.lights.entries[index].to_table().get("direction").cloned();
+            let direction_before = doc.lights.entries[index]
+                .to_table()
+                .get("direction")
+                .cloned();
             let to = start + DVec2::new(43.0, -27.0);
             drag.drag_to(&mut doc, &camera, &proj, to).unwrap();
             let now = handle_on_screen(&doc, &camera, &proj, index).unwrap();
-            assert!((now - (to - DVec2::new(3.0, 0.0))).length() < 1e-6, "{now} {to}");
+            assert!(
+                (now - (to - DVec2::new(3.0, 0.0))).length() < 1e-6,
+                "{now} {to}"
+            );
             let h = handles(&doc, &camera)[index];
             assert!((proj.depth(h) - depth).abs() < 1e-9);
             // The scene's light moved with it; a spot keeps its direction.
             assert_eq!(
-                doc.lights.entries[index].to_table().get("direction").cloned(),
+                doc.lights.entries[index]
+                    .to_table()
+                    .get("direction")
+                    .cloned(),
                 direction_before
             );
             assert_eq!(doc.scene.lights[index].position(), Some(h));

@@ -190,12 +190,18 @@ fn build(kind: &str, e: Essentials, size: Option<[f64; 2]>) -> Result<LightEntry
             t.insert("shape".into(), "rect".into());
             t.insert("position".into(), arr(e.position));
             t.insert("normal".into(), arr(e.axis));
-            t.insert("size".into(), toml::Value::try_from([w, h]).expect("floats"));
+            t.insert(
+                "size".into(),
+                toml::Value::try_from([w, h]).expect("floats"),
+            );
             t.insert(
                 "tangent".into(),
                 arr(crate::base::any_tangent(e.axis).normalize_or(DVec3::X)),
             );
-            t.insert("radiance".into(), col(e.irradiance.map(|c| c * d2 / (w * h))));
+            t.insert(
+                "radiance".into(),
+                col(e.irradiance.map(|c| c * d2 / (w * h))),
+            );
         }
         other => {
             return Err(format!(
@@ -297,7 +303,10 @@ mod tests {
             assert_eq!(other.shadow_keys(), keys, "{kind}");
             let after = irradiance_at(&other, target);
             let tolerance = if kind == "area" { 0.05 } else { 1e-9 };
-            assert!((after - before).abs() <= tolerance * before, "{kind}: {after} vs {before}");
+            assert!(
+                (after - before).abs() <= tolerance * before,
+                "{kind}: {after} vs {before}"
+            );
             // And back: the same place and intensity.
             let back = retype(&other, "spot", eye, target).unwrap();
             let (LightEntry::Spot(a), LightEntry::Spot(b)) = (&spot, &back) else {

@@ -101,7 +101,9 @@ impl Glyph {
                         .collect(),
                     (_, Some([w, h]), _) => [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
                         .iter()
-                        .map(|&(x, y)| position + tangent * (0.5 * w * x) + bitangent * (0.5 * h * y))
+                        .map(|&(x, y)| {
+                            position + tangent * (0.5 * w * x) + bitangent * (0.5 * h * y)
+                        })
                         .collect(),
                     _ => Vec::new(),
                 };
@@ -178,16 +180,11 @@ pub fn draw(
         proj: &proj,
         camera,
     };
-    let others = doc
-        .lights
-        .imported
-        .iter()
-        .cloned()
-        .chain(
-            doc.lights
-                .gets_default_light()
-                .then(crate::scene::scene_file::default_light),
-        );
+    let others = doc.lights.imported.iter().cloned().chain(
+        doc.lights
+            .gets_default_light()
+            .then(crate::scene::scene_file::default_light),
+    );
     for light in others {
         if let Some(glyph) = Glyph::of_light(&light) {
             pen.glyph(&glyph, Color32::from_gray(150), None, false);
@@ -334,7 +331,11 @@ impl Pen<'_> {
         let Some(h) = self.proj.project(glyph.handle(eye, target)) else {
             return;
         };
-        let radius = if hot { HANDLE_RADIUS + 2.0 } else { HANDLE_RADIUS };
+        let radius = if hot {
+            HANDLE_RADIUS + 2.0
+        } else {
+            HANDLE_RADIUS
+        };
         let outline = Stroke::new(1.5, Color32::from_black_alpha(200));
         if label.is_some() {
             self.painter.circle(pos(h), radius, colour, outline);
@@ -389,7 +390,8 @@ mod tests {
         }
         assert_eq!(position, doc.scene.area_lights[0].position);
         assert!((normal - doc.scene.area_lights[0].normal).length() < 1e-12);
-        doc.edit("lights.1.shape=\"disk\"").expect_err("a disk needs a radius");
+        doc.edit("lights.1.shape=\"disk\"")
+            .expect_err("a disk needs a radius");
         // A directional light's handle is up-light of the target.
         doc.edit("lights.1.kind=directional").unwrap();
         let camera = doc.scene.camera;

@@ -192,9 +192,12 @@ mod tests {
             doc.edit("lights.add=directional").unwrap();
             doc.edit(&format!("lights.{n}.kind=area")).unwrap();
             doc.edit(&format!("lights.{n}.shadows=true")).unwrap();
-            doc.edit(&format!("lights.{n}.shadow_per_sample=true")).unwrap();
-            doc.edit(&format!("lights.{n}.shadow_normal_offset=3.5")).unwrap();
-            doc.edit(&format!("lights.{n}.tangent=[0.0, 0.0, 1.0]")).unwrap();
+            doc.edit(&format!("lights.{n}.shadow_per_sample=true"))
+                .unwrap();
+            doc.edit(&format!("lights.{n}.shadow_normal_offset=3.5"))
+                .unwrap();
+            doc.edit(&format!("lights.{n}.tangent=[0.0, 0.0, 1.0]"))
+                .unwrap();
             doc.edit(&format!("lights.{}.range=4.0", n + 1)).unwrap();
             doc.edit(&format!("lights.remove={}", n + 2)).unwrap();
             assert_eq!(doc.lights.entries.len(), n + 2);

@@ -142,6 +142,9 @@ mod tests {
         let (a, b) = proj.project_segment(behind, cam.target).unwrap();
         assert!(a.is_finite() && b.is_finite());
         assert!((b - DVec2::new(50.0, 50.0)).length() < 1e-9);
-        assert!(proj.project_segment(behind, behind - cam.forward()).is_none());
+        assert!(
+            proj.project_segment(behind, behind - cam.forward())
+                .is_none()
+        );
     }
 }

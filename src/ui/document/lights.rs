@@ -87,7 +87,10 @@ impl Document {
 fn no_light(index: usize, count: usize) -> String {
     match count {
         0 => format!("there is no light {index}: the scene file has no [[lights]] entry"),
-        n => format!("there is no light {index}: the scene file has {n} (0..={})", n - 1),
+        n => format!(
+            "there is no light {index}: the scene file has {n} (0..={})",
+            n - 1
+        ),
     }
 }
 
@@ -115,7 +118,8 @@ mod tests {
         assert_eq!(doc.scene.area_lights.len(), 1);
         // 16 samples stand in for it.
         assert_eq!(doc.scene.lights.len(), lights + 16);
-        doc.edit(&format!("lights.{n}.shape=\"disk\"")).expect_err("no radius");
+        doc.edit(&format!("lights.{n}.shape=\"disk\""))
+            .expect_err("no radius");
         doc.edit(&format!("lights.{n}.samples=4")).unwrap();
         assert_eq!(doc.scene.lights.len(), lights + 4);
         doc.edit(&format!("lights.remove={n}")).unwrap();

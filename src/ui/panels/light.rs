@@ -190,7 +190,8 @@ fn area_keys(ui: &mut egui::Ui, id: &dyn Fn(&str) -> String, e: &mut AreaEntry) 
         changed = true;
     }
     ui.end_row();
-    ui.label("samples N").on_hover_text("point lights that stand in for it");
+    ui.label("samples N")
+        .on_hover_text("point lights that stand in for it");
     let mut n = e.samples.unwrap_or(area_light::DEFAULT_SAMPLES);
     let slider = egui::Slider::new(&mut n, 1..=area_light::MAX_SAMPLES)
         .logarithmic(true)
