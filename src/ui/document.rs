@@ -11,7 +11,7 @@
 //!
 //! Saving writes the file's table with every edit applied, so
 //! `gonio render saved.toml` draws what the viewer shows. Lights can also
-//! be added, removed and retyped ([`lights`]).
+//! be added, removed and retyped (`document/lights.rs`).
 
 mod lights;
 

@@ -49,7 +49,7 @@ struct Essentials {
 /// towards the eye), above the target by 0.2 of their distance and, for
 /// the `slot`-th light, 0.2 of it to the left or right (so lights added
 /// one after another do not coincide); aimed at the target and putting
-/// [`NEW_IRRADIANCE`] on it.
+/// 3 W/m² on it (the default light's irradiance).
 pub fn new_light(kind: &str, eye: DVec3, target: DVec3, slot: usize) -> Result<LightEntry, String> {
     let reach = (eye - target).length().max(1e-3);
     let toward_eye = (eye - target).normalize_or(DVec3::Z);

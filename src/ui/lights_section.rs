@@ -28,7 +28,7 @@ pub fn lights_section(ui: &mut egui::Ui, state: &mut ViewerState) {
     for action in actions {
         let doc = &mut state.doc;
         let result = match action {
-            LightAction::Edit(i, entry) => doc.set_light(i, entry),
+            LightAction::Edit(i, entry) => doc.set_light(i, *entry),
             LightAction::Retype(i, kind) => doc.retype_light(i, kind),
             LightAction::Remove(i) => doc.remove_light(i),
             LightAction::Add(kind) => doc.add_light_of_kind(kind).map(|_| ()),

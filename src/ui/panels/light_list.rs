@@ -12,7 +12,7 @@ use crate::ui::light_kinds::KINDS;
 #[derive(Clone, Debug)]
 pub enum LightAction {
     /// Entry N edited (the new value, not yet validated).
-    Edit(usize, LightEntry),
+    Edit(usize, Box<LightEntry>),
     /// Entry N becomes a light of this kind.
     Retype(usize, &'static str),
     Remove(usize),
@@ -57,7 +57,7 @@ pub fn light_list(
             })
             .body(|ui| {
                 if super::light_editor(ui, i, &mut edited, effective(i)) {
-                    actions.push(LightAction::Edit(i, edited));
+                    actions.push(LightAction::Edit(i, Box::new(edited)));
                 }
             });
     }
