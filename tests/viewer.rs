@@ -595,3 +595,137 @@ fn environment_edits_and_drops_reach_the_shader() {
     render(&[no_map.to_str().unwrap()], area.2, area.3, &off);
     assert_matches(&shot, area, &off, "environment map switched off");
 }
+
+/// Issue 17 item 5: lights added and retyped through the panel's path
+/// (`--edit lights.add=KIND`, `lights.N.kind=KIND`) reach the GPU, shadow
+/// maps included. A narrow shadowed spot added at frame 3 and aimed at the
+/// floor left of the ball: the image equals `render` with that light
+/// written in the file; the floor at the spot's aim point brightens and
+/// the floor to the right of the ball, outside the cone, does not change.
+/// Retyped to a point light at frame 5 (same place and intensity): equals
+/// `render` with a point light there; the aim point, inside the inner
+/// cone where the spot gave its full intensity, keeps its value (to one
+/// level: another shader sums the same terms), and the floor outside the
+/// cone now brightens.
+#[test]
+fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
+    use glam::{DVec2, DVec3};
+    use gonio::ui::screen_projection::ScreenProjection;
+    let dir = tempfile::tempdir().unwrap();
+    let (position, aim) = (DVec3::new(-2.0, 2.5, 2.5), DVec3::new(-1.5, 0.0, 1.5));
+    let outside = DVec3::new(1.5, 0.0, 1.5);
+    let direction = aim - position;
+    let v = |p: DVec3| format!("[{}, {}, {}]", p.x, p.y, p.z);
+    let spot_keys = [
+        format!("position={}", v(position)),
+        format!("direction={}", v(direction)),
+        "intensity=[20.0, 20.0, 20.0]".to_string(),
+        "inner_cone_deg=10.0".to_string(),
+        "outer_cone_deg=14.0".to_string(),
+        "shadows=true".to_string(),
+    ];
+    let base = [
+        "--size",
+        "320x240",
+        "--no-panel",
+        "--no-overlay",
+        "--frames",
+        "8",
+    ];
+    let mut edits = vec!["3:lights.add=spot".to_string()];
+    edits.extend(spot_keys.iter().map(|k| format!("3:lights.1.{k}")));
+    let with_edits = |edits: &[String]| {
+        let mut args: Vec<&str> = base.to_vec();
+        for e in edits {
+            args.extend(["--edit", e.as_str()]);
+        }
+        args.iter().map(|s| s.to_string()).collect::<Vec<String>>()
+    };
+    let point = "{kind = \"point\", position = [3.0, 5.0, 3.0], intensity = [60.0, 60.0, 60.0]}";
+    let lights = |second: String| format!("lights=[{point}, {second}]");
+    let spot_file = lights(format!(
+        "{{kind = \"spot\", position = {}, direction = {}, intensity = [20.0, 20.0, 20.0], inner_cone_deg = 10.0, outer_cone_deg = 14.0, shadows = true}}",
+        v(position),
+        v(direction)
+    ));
+    let point_file = lights(format!(
+        "{{kind = \"point\", position = {}, intensity = [20.0, 20.0, 20.0], shadows = true}}",
+        v(position)
+    ));
+
+    let spot_shot = dir.path().join("spot.png");
+    let args = with_edits(&edits);
+    let area = view(
+        &args.iter().map(String::as_str).collect::<Vec<_>>(),
+        &spot_shot,
+    );
+    let spot_render = dir.path().join("spot-render.png");
+    render(&["--set", &spot_file], area.2, area.3, &spot_render);
+    assert_matches(&spot_shot, area, &spot_render, "spot added");
+
+    edits.push("5:lights.1.kind=point".to_string());
+    let point_shot = dir.path().join("point.png");
+    let args = with_edits(&edits);
+    let area2 = view(
+        &args.iter().map(String::as_str).collect::<Vec<_>>(),
+        &point_shot,
+    );
+    assert_eq!(area, area2);
+    let point_render = dir.path().join("point-render.png");
+    render(&["--set", &point_file], area.2, area.3, &point_render);
+    assert_matches(&point_shot, area, &point_render, "spot retyped to point");
+
+    let plain = dir.path().join("plain-render.png");
+    render(&[], area.2, area.3, &plain);
+    // Mean of a 5 × 5 patch around the screen point of `p`.
+    let camera = gonio::ui::document::Document::load(
+        gonio::scene::scene_file::SceneSource::BuiltIn,
+        vec![],
+        gonio::scene::limits::Limits::default(),
+    )
+    .unwrap()
+    .scene
+    .camera;
+    let proj = ScreenProjection::new(
+        &camera,
+        DVec2::ZERO,
+        DVec2::new(area.2 as f64, area.3 as f64),
+    );
+    let patch = |png: &Path, offset: (u32, u32), p: DVec3| -> f64 {
+        let img = image::open(png).unwrap().to_luma8();
+        let s = proj.project(p).unwrap();
+        let (cx, cy) = (s.x as i64, s.y as i64);
+        let mut sum = 0.0;
+        for dy in -2..=2 {
+            for dx in -2..=2 {
+                let px = (cx + dx) as u32 + offset.0;
+                let py = (cy + dy) as u32 + offset.1;
+                sum += img.get_pixel(px, py).0[0] as f64;
+            }
+        }
+        sum / 25.0
+    };
+    let at = (area.0, area.1);
+    let (plain_aim, plain_out) = (patch(&plain, (0, 0), aim), patch(&plain, (0, 0), outside));
+    let (spot_aim, spot_out) = (patch(&spot_shot, at, aim), patch(&spot_shot, at, outside));
+    let (point_aim, point_out) = (patch(&point_shot, at, aim), patch(&point_shot, at, outside));
+    eprintln!(
+        "aim point: {plain_aim:.1} → spot {spot_aim:.1} → point {point_aim:.1}; outside the cone: {plain_out:.1} → {spot_out:.1} → {point_out:.1}"
+    );
+    assert!(
+        spot_aim > plain_aim + 40.0,
+        "the spot's pool did not brighten"
+    );
+    assert!(
+        (spot_out - plain_out).abs() <= 1.0,
+        "the spot lit outside its cone"
+    );
+    assert!(
+        (point_aim - spot_aim).abs() <= 1.0,
+        "inside the cone the point light differs"
+    );
+    assert!(
+        point_out > spot_out + 8.0,
+        "the point light did not light outside the cone"
+    );
+}

@@ -794,6 +794,16 @@ impl App {
     /// The 3D view's mouse and keys; returns whether the event may have
     /// changed what is drawn.
     fn on_view_input(&mut self, event: &WindowEvent) -> bool {
+        // The light handles take the mouse first (super::light_drag).
+        let ppp = self.window.as_ref().map_or(1.0, |w| w.scale_factor());
+        let lights =
+            super::light_drag::on_input(&mut self.state, self.view_rect, self.cursor, ppp, event);
+        if let Some(acted) = lights {
+            if let WindowEvent::CursorMoved { position, .. } = event {
+                self.cursor = (position.x, position.y);
+            }
+            return acted;
+        }
         let [x, y, w, h] = self.view_rect;
         let inside = |(cx, cy): (f64, f64)| {
             cx >= x as f64 && cy >= y as f64 && cx < (x + w) as f64 && cy < (y + h) as f64
@@ -841,6 +851,7 @@ impl App {
                         "+" | "=" => self.state.orbit.zoom(1.0),
                         "-" => self.state.orbit.zoom(-1.0),
                         "p" | "P" => self.state.show_panel = !self.state.show_panel,
+                        "l" | "L" => self.state.lights_view.visible ^= true,
                         _ => {}
                     },
                     _ => {}

@@ -10,7 +10,10 @@
 //!   without reading the scene file or importing its glTF files again.
 //!
 //! Saving writes the file's table with every edit applied, so
-//! `gonio render saved.toml` draws what the viewer shows.
+//! `gonio render saved.toml` draws what the viewer shows. Lights can also
+//! be added, removed and retyped (`document/lights.rs`).
+
+mod lights;
 
 use crate::material::Material;
 use crate::scene::Scene;
@@ -137,10 +140,11 @@ impl Document {
 
     /// Reloads from the source with the same overrides, keeping edits of
     /// materials the new scene still has (by name), of `[[lights]]`
-    /// entries it still has (by index), the shading mode and ambient
-    /// radiance, and of the environment map (its keys as one edit, as a
-    /// material's: `super::environment::keep_edits`). (The viewer keeps
-    /// its own camera unless the file's camera changed.)
+    /// entries it still has (by index; the whole list once lights were
+    /// added or removed), the shading mode and ambient radiance, and of
+    /// the environment map (its keys as one edit, as a material's:
+    /// `super::environment::keep_edits`). (The viewer keeps its own camera
+    /// unless the file's camera changed.)
     pub fn reload(&self) -> Result<Document> {
         let mut fresh = Document::load(self.source.clone(), self.overrides.clone(), self.limits)?;
         fresh.keep_edits_of(self);
@@ -176,6 +180,9 @@ impl Document {
             .split_once('=')
             .ok_or_else(|| bad("expected KEY=VALUE".into()))?;
         let parts: Vec<&str> = key.trim().split('.').collect();
+        if let Some(done) = self.edit_light_list(&parts, value) {
+            return done.map_err(bad);
+        }
         match parts.as_slice() {
             ["materials", name, field] => {
                 let m = self
@@ -214,7 +221,7 @@ impl Document {
                 self.set_light(index, entry).map_err(bad)
             }
             _ => Err(bad(
-                "the viewer edits materials.NAME.KEY, lights.N.KEY, environment.KEY, shading.mode, image.tone_map and ambient.radiance"
+                "the viewer edits materials.NAME.KEY, lights.N.KEY, lights.add=KIND, lights.remove=N, environment.KEY, shading.mode, image.tone_map and ambient.radiance"
                     .into(),
             )),
         }
@@ -251,6 +258,10 @@ impl Document {
         self.scene.shading = old.scene.shading;
         self.scene.ambient = old.scene.ambient;
         let mut lights = self.lights.clone();
+        if old.lights_restructured() {
+            // Lights were added or removed: the viewer's list stands.
+            lights.entries = old.lights.entries.clone();
+        }
         for ((i, entry), loaded) in old
             .lights
             .entries

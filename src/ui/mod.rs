@@ -6,12 +6,19 @@
 //! sections are in [`panels`] and [`plots`], [`state`] is what the panel
 //! edits, [`document`] holds the scene and its edits ([`save`] writes them
 //! as a scene file; [`environment`] edits its map), [`orbit`] moves the camera, [`surface`] owns the
-//! swapchain and screenshots.
+//! swapchain and screenshots. Lights are listed and edited by
+//! [`lights_section`] (new ones and kinds from [`light_kinds`]), drawn over
+//! the 3D view by [`light_overlay`] and dragged by [`light_drag`], both
+//! through [`screen_projection`].
 
 pub mod app;
 pub mod cli;
 pub mod document;
 pub mod environment;
+pub mod light_drag;
+pub mod light_kinds;
+pub mod light_overlay;
+pub mod lights_section;
 pub mod memory;
 pub mod orbit;
 pub mod pacing;
@@ -19,6 +26,7 @@ pub mod panel_cache;
 pub mod panels;
 pub mod plots;
 pub mod save;
+pub mod screen_projection;
 pub mod state;
 pub mod surface;
 pub mod view;

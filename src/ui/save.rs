@@ -2,7 +2,8 @@
 //!
 //! The saved file is the source's table with the overrides applied, the
 //! current camera, shading, ambient and image size, and every edited
-//! material and `[[lights]]` entry of the file written out in full, and
+//! material and `[[lights]]` entry of the file written out in full (the
+//! whole list once lights were added or removed), and
 //! the `[environment]` as edited (no map while it is switched off). glTF
 //! and map paths become absolute, so the saved file may live anywhere.
 
@@ -67,7 +68,12 @@ pub fn scene_file_text(doc: &Document) -> Result<String> {
         *path = absolute.display().to_string();
     }
 
-    if let Some(Value::Array(lights)) = table.get_mut("lights") {
+    if doc.lights_restructured() {
+        // Lights were added or removed: the list as it stands.
+        let entries = doc.lights.entries.iter();
+        let all = entries.map(|e| Value::Table(e.to_table())).collect();
+        table.insert("lights".into(), Value::Array(all));
+    } else if let Some(Value::Array(lights)) = table.get_mut("lights") {
         for (i, entry) in doc.edited_lights() {
             if let Some(slot) = lights.get_mut(i) {
                 *slot = Value::Table(entry.to_table());
@@ -169,5 +175,46 @@ mod tests {
         let saved = Document::load(SceneSource::File(path), vec![], Limits::default()).unwrap();
         assert_eq!(m(&saved), m(&doc));
         assert_eq!(m(&saved).roughness, 0.7);
+    }
+
+    /// Lights added, retyped, edited and removed in the viewer are saved
+    /// and read back the same (issue 17 item 5), in a scene file and on a
+    /// glTF file that had no `[[lights]]`.
+    #[test]
+    fn added_removed_and_retyped_lights_are_saved() {
+        let suzanne = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("assets/gltf/Suzanne/Suzanne.gltf");
+        for source in [SceneSource::BuiltIn, SceneSource::File(suzanne)] {
+            let mut doc = Document::load(source, vec![], Limits::default()).unwrap();
+            let n = doc.lights.entries.len();
+            doc.edit("lights.add=spot").unwrap();
+            doc.edit("lights.add=point").unwrap();
+            doc.edit("lights.add=directional").unwrap();
+            doc.edit(&format!("lights.{n}.kind=area")).unwrap();
+            doc.edit(&format!("lights.{n}.shadows=true")).unwrap();
+            doc.edit(&format!("lights.{n}.shadow_per_sample=true"))
+                .unwrap();
+            doc.edit(&format!("lights.{n}.shadow_normal_offset=3.5"))
+                .unwrap();
+            doc.edit(&format!("lights.{n}.tangent=[0.0, 0.0, 1.0]"))
+                .unwrap();
+            doc.edit(&format!("lights.{}.range=4.0", n + 1)).unwrap();
+            doc.edit(&format!("lights.remove={}", n + 2)).unwrap();
+            assert_eq!(doc.lights.entries.len(), n + 2);
+            let text = scene_file_text(&doc).unwrap();
+            let dir = tempfile::tempdir().unwrap();
+            let path = dir.path().join("saved.toml");
+            std::fs::write(&path, &text).unwrap();
+            let saved = Document::load(SceneSource::File(path), vec![], Limits::default())
+                .unwrap_or_else(|e| panic!("{e}\n{text}"));
+            assert_eq!(saved.scene.lights, doc.scene.lights, "{text}");
+            assert_eq!(saved.scene.light_shadows, doc.scene.light_shadows);
+            assert_eq!(saved.scene.area_lights, doc.scene.area_lights);
+            assert!(saved.scene.area_lights[0].shadow_per_sample);
+            let tables = |d: &Document| -> Vec<toml::Table> {
+                d.lights.entries.iter().map(|e| e.to_table()).collect()
+            };
+            assert_eq!(tables(&saved), tables(&doc));
+        }
     }
 }

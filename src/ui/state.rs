@@ -20,6 +20,8 @@ pub struct ViewerState {
     pub vsync: bool,
     pub show_panel: bool,
     pub show_overlay: bool,
+    /// The lights drawn over the 3D view, and the one being dragged.
+    pub lights_view: super::light_overlay::LightsView,
     /// The last problem (rejected value, bad file), shown until dismissed.
     pub message: Option<String>,
     /// A new document to switch to (opened, dropped, reloaded).
@@ -52,6 +54,7 @@ impl ViewerState {
             vsync: !args.no_vsync,
             show_panel: !args.no_panel,
             show_overlay: !args.no_overlay,
+            lights_view: Default::default(),
             message: None,
             replace: None,
             dirty: true,

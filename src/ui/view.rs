@@ -63,7 +63,7 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
         .show(ui, |ui| material_section(ui, state));
     egui::CollapsingHeader::new("Lights")
         .default_open(true)
-        .show(ui, |ui| lights_section(ui, state));
+        .show(ui, |ui| super::lights_section::lights_section(ui, state));
 }
 
 fn environment_section(ui: &mut egui::Ui, state: &mut ViewerState) {
@@ -208,33 +208,14 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
     state.plots.show(ui, &material);
 }
 
-fn lights_section(ui: &mut egui::Ui, state: &mut ViewerState) {
-    let doc = &mut state.doc;
-    for i in 0..doc.lights.entries.len() {
-        let mut entry = doc.lights.entries[i].clone();
-        let effective = doc.lights.shadow_settings(i);
-        let mut changed = false;
-        egui::CollapsingHeader::new(format!("light {i}"))
-            .default_open(i == 0)
-            .show(ui, |ui| {
-                changed = panels::light_editor(ui, i, &mut entry, effective);
-            });
-        if changed {
-            match doc.set_light(i, entry) {
-                Ok(()) => state.dirty = true,
-                Err(e) => state.message = Some(format!("not applied: {e}")),
-            }
-        }
-    }
-    if doc.lights.entries.is_empty() {
-        ui.label(format!(
-            "{} lights from the model (KHR_lights_punctual or the default light); a scene .toml's [[lights]] can be edited here",
-            doc.scene.lights.len()
-        ));
-    }
-}
-
 fn overlay(ui: &mut egui::Ui, state: &ViewerState, area: egui::Rect) {
+    if state.lights_view.visible {
+        // The orbit's camera: the scene's is set from it after the panel.
+        let camera = state.orbit.camera();
+        let active = state.lights_view.drag.map(|d| d.index);
+        let pointer = ui.ctx().pointer_hover_pos();
+        super::light_overlay::draw(ui.painter(), &state.doc, &camera, area, active, pointer);
+    }
     let gpu = state
         .gpu_ms
         .map(|ms| format!(" · GPU scene pass {ms:.1} ms"))

@@ -4,10 +4,12 @@
 
 mod environment;
 mod light;
+mod light_list;
 mod material;
 
 pub use environment::environment_editor;
 pub use light::light_editor;
+pub use light_list::{LightAction, light_list};
 pub use material::material_editor;
 
 use crate::scene::{Rgb, ShadingMode};
