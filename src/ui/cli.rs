@@ -12,6 +12,20 @@ pub struct ViewArgs {
     /// Override any scene-file key by its dotted path, as for `gonio render`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Compare mode: a material to compare with the selected one, as
+    /// `MODEL[,KEY=VALUE]...` (the syntax of `gonio brdf --compare`, e.g.
+    /// `cook-torrance,preset=gold,roughness=0.1`). Every plot overlays it;
+    /// the 3D view is split, the right half showing the selected material
+    /// replaced by the first compared one. Repeatable; `--edit
+    /// FRAME:compare.N.KEY=VALUE` edits compared material N (from 0).
+    #[arg(long = "compare", value_name = "SPEC")]
+    pub compare: Vec<String>,
+    /// Compare the scene's first material, a measured one, with its fit
+    /// under MODEL (a `gonio fit` model label such as `ct-ggx-conductor`,
+    /// `ward`, `abc`, or a `gonio fit --model` spec): the parameters in
+    /// docs/fit/fits.toml where that material was fitted, else fitted now.
+    #[arg(long = "compare-fit", value_name = "MODEL")]
+    pub compare_fit: Option<String>,
     /// Window size in pixels, e.g. `1280x720`.
     #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),

@@ -52,6 +52,9 @@ pub struct Document {
     /// The `[environment]` map keys while the map is switched off in the
     /// viewer (`super::environment`); `None` while it is on.
     pub parked_environment: Option<toml::Table>,
+    /// Materials compared with the selected one (not part of the scene
+    /// file; [`super::compare`]).
+    pub compare: super::compare::Compare,
 }
 
 impl Document {
@@ -100,6 +103,7 @@ impl Document {
             source_dir: loaded.base_dir,
             lights: loaded.lights,
             parked_environment: None,
+            compare: Default::default(),
         })
     }
 
@@ -201,6 +205,7 @@ impl Document {
                 Ok(())
             }
             ["environment", key] => super::environment::edit(self, key, assignment),
+            ["compare", rest @ ..] => self.compare.edit(rest, value).map_err(bad),
             ["lights", index, _field] => {
                 let index: usize = index
                     .parse()
@@ -209,7 +214,7 @@ impl Document {
                 self.set_light(index, entry).map_err(bad)
             }
             _ => Err(bad(
-                "the viewer edits materials.NAME.KEY, lights.N.KEY, environment.KEY, shading.mode, image.tone_map and ambient.radiance"
+                "the viewer edits materials.NAME.KEY, lights.N.KEY, environment.KEY, compare.N.KEY, compare.split, compare.shown, shading.mode, image.tone_map and ambient.radiance"
                     .into(),
             )),
         }
@@ -236,6 +241,7 @@ impl Document {
     }
 
     fn keep_edits_of(&mut self, old: &Document) {
+        self.compare = old.compare.clone();
         for (m, loaded) in old.scene.materials.iter().zip(&old.loaded_materials) {
             if m != loaded
                 && let Some(slot) = self.scene.materials.iter_mut().find(|n| n.name == m.name)
@@ -322,7 +328,7 @@ pub fn edit_material(
 
 /// VALUE of an `--edit` read as `--set` reads it (unquoted words are
 /// strings: `shading.mode=flat`), then as a `T`.
-fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {
+pub fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {
     crate::scene::scene_file::overrides::value_of(text.trim())
         .try_into()
         .map_err(|e: toml::de::Error| format!("`{text}`: {}", e.message()))

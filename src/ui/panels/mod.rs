@@ -2,10 +2,12 @@
 //! and hands back what changed; the caller validates and applies it, so a
 //! value the renderer rejects becomes a message, never a crash.
 
+mod compare;
 mod environment;
 mod light;
 mod material;
 
+pub use compare::{Request as CompareRequest, compare_editor};
 pub use environment::environment_editor;
 pub use light::light_editor;
 pub use material::material_editor;
