@@ -645,12 +645,18 @@ fn compare_mode_splits_the_view_and_an_edit_changes_only_its_half() {
     assert_eq!(view(&args, &edited), area);
     let (x, y, w, h) = area;
     let half = w / 2;
-    let (left, right) = (((x, y), (0, 0), (half, h)), ((x + half, y), (half, 0), (w - half, h)));
+    let (left, right) = (
+        ((x, y), (0, 0), (half, h)),
+        ((x + half, y), (half, 0), (w - half, h)),
+    );
     let plain = image::open(&plain).unwrap().to_rgb8();
     let edited = image::open(&edited).unwrap().to_rgb8();
 
     let (max, _) = region_difference(&plain, left.0, &edited, left.0, left.2);
-    assert_eq!(max, 0, "the edit of the compared material changed the left half");
+    assert_eq!(
+        max, 0,
+        "the edit of the compared material changed the left half"
+    );
     let (max, fraction) = region_difference(&plain, right.0, &edited, right.0, right.2);
     eprintln!(
         "right half, before and after the edit: {max} levels in {:.1} % of its pixels",
@@ -667,7 +673,10 @@ fn compare_mode_splits_the_view_and_an_edit_changes_only_its_half() {
     let scene_a = image::open(&scene_a).unwrap().to_rgb8();
     let scene_b = dir.path().join("b.png");
     render(
-        &["--set", "materials.ball={model = \"lambert\", k_d = [0.1, 0.2, 0.9]}"],
+        &[
+            "--set",
+            "materials.ball={model = \"lambert\", k_d = [0.1, 0.2, 0.9]}",
+        ],
         w,
         h,
         &scene_b,
@@ -699,7 +708,10 @@ fn compare_fit_of_an_unmeasured_material_is_refused() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("not measured") && stderr.contains("materials.ball.model=measured"), "{stderr}");
+    assert!(
+        stderr.contains("not measured") && stderr.contains("materials.ball.model=measured"),
+        "{stderr}"
+    );
     let out = common::gonio()
         .args(["view", "--compare-fit", "phonk", "--frames", "1"])
         .output()

@@ -438,6 +438,17 @@ impl App {
     fn apply_scripted_edits(&mut self) -> Result<()> {
         let frame = self.frames;
         for (_, kv) in self.args.edits.iter().filter(|(at, _)| *at == frame) {
+            // The plots' settings are the viewer's, not the document's.
+            if let Some((key, value)) = kv
+                .strip_prefix("plots.")
+                .and_then(|rest| rest.split_once('='))
+            {
+                self.state
+                    .plots
+                    .edit(key.trim(), value)
+                    .map_err(|p| Error::argument(format!("--edit {kv}"), p))?;
+                continue;
+            }
             self.state.doc.edit(kv)?;
             self.state.dirty = true;
         }

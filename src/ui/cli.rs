@@ -71,7 +71,11 @@ pub struct ViewArgs {
     /// does (materials in place, lights by reloading), e.g.
     /// `--edit 3:materials.ball.k_d=[0,0,1]`; the environment map's keys
     /// too (`--edit 3:environment.sh_order=4`, `environment.enabled=false`
-    /// switches the map off). Repeatable.
+    /// switches the map off), compared materials (`compare.N.KEY`,
+    /// `compare.split`, `compare.shown`) and the plots' settings
+    /// (`plots.theta_i`, `plots.phi_i`, `plots.quantity=f_r|f_r-cos`,
+    /// `plots.channel`, `plots.log`, `plots.decades`, `plots.lobe`).
+    /// Repeatable.
     #[arg(long = "edit", value_name = "FRAME:KEY=VALUE", value_parser = parse_edit)]
     pub edits: Vec<(u32, String)>,
     /// Scripted file drop: at frame FRAME, open PATH as if it were dropped

@@ -50,9 +50,7 @@ impl Compare {
 
     /// The material the right half of a split view shows, if split.
     pub fn right_half(&self) -> Option<&Material> {
-        self.split
-            .then(|| self.materials.get(self.shown))
-            .flatten()
+        self.split.then(|| self.materials.get(self.shown)).flatten()
     }
 
     /// Applies `compare.…` edit `parts` (after `compare`) `= value`.
@@ -84,14 +82,22 @@ impl Compare {
                 self.materials[i] = edited;
                 Ok(())
             }
-            _ => Err("compare mode takes compare.N.KEY (N from 0), compare.split and compare.shown".into()),
+            _ => Err(
+                "compare mode takes compare.N.KEY (N from 0), compare.split and compare.shown"
+                    .into(),
+            ),
         }
     }
 
     fn no_such(&self, i: usize) -> String {
         match self.materials.len() {
-            0 => format!("there is no compared material {i}: none is compared (gonio view --compare SPEC adds one)"),
-            n => format!("there is no compared material {i}: they are numbered 0 to {}", n - 1),
+            0 => format!(
+                "there is no compared material {i}: none is compared (gonio view --compare SPEC adds one)"
+            ),
+            n => format!(
+                "there is no compared material {i}: they are numbered 0 to {}",
+                n - 1
+            ),
         }
     }
 }
@@ -122,7 +128,11 @@ mod tests {
     #[test]
     fn compare_edits_change_only_the_compared_material() {
         let mut c = Compare::default();
-        assert!(c.edit(&["0", "k_e"], "5").unwrap_err().contains("none is compared"));
+        assert!(
+            c.edit(&["0", "k_e"], "5")
+                .unwrap_err()
+                .contains("none is compared")
+        );
         assert!(c.edit(&["split"], "true").is_err());
         c.add(Material::new("B", ReflectanceModel::Phong));
         assert!(c.split && c.right_half().is_some());

@@ -77,7 +77,10 @@ pub fn fit_now(brdf: &MeasuredBrdf, model: &FitModel) -> Result<Material, String
         problem::fit(model, &data, Metric::Ngan)
     };
     let mut m = result.material;
-    m.name = label(model, &format!("fitted now, error {:.3e} 1/sr", result.error));
+    m.name = label(
+        model,
+        &format!("fitted now, error {:.3e} 1/sr", result.error),
+    );
     Ok(m)
 }
 

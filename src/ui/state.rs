@@ -42,7 +42,10 @@ pub struct ViewerState {
     /// The fit model the compare section's combo shows.
     pub fit_choice: String,
     /// A fit under way in the background: its label and result.
-    pub fitting: Option<(String, std::sync::mpsc::Receiver<Result<crate::material::Material, String>>)>,
+    pub fitting: Option<(
+        String,
+        std::sync::mpsc::Receiver<Result<crate::material::Material, String>>,
+    )>,
 }
 
 impl ViewerState {

@@ -210,7 +210,12 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
 
 fn compare_section(ui: &mut egui::Ui, state: &mut ViewerState) {
     state.collect_fit();
-    let selected = state.doc.scene.materials.get(state.selected_material).cloned();
+    let selected = state
+        .doc
+        .scene
+        .materials
+        .get(state.selected_material)
+        .cloned();
     let measured = selected
         .as_ref()
         .is_some_and(|m| m.model == crate::material::ReflectanceModel::Measured);

@@ -45,23 +45,25 @@ pub fn compare_editor(
         let mut edited = c.materials[i].clone();
         let colour = crate::ui::plots::colour(i + 1);
         ui.push_id(("compared", i), |ui| {
-            egui::CollapsingHeader::new(egui::RichText::new(format!("— {}", edited.name)).color(colour))
-                .id_salt(("compared header", i))
-                .default_open(false)
-                .show(ui, |ui| {
-                    if material_editor(ui, &mut edited) {
-                        match edited.validate() {
-                            Ok(()) => {
-                                c.materials[i] = edited.clone();
-                                changed = true;
-                            }
-                            Err(p) => problem = Some(format!("not applied: {p}")),
+            egui::CollapsingHeader::new(
+                egui::RichText::new(format!("— {}", edited.name)).color(colour),
+            )
+            .id_salt(("compared header", i))
+            .default_open(false)
+            .show(ui, |ui| {
+                if material_editor(ui, &mut edited) {
+                    match edited.validate() {
+                        Ok(()) => {
+                            c.materials[i] = edited.clone();
+                            changed = true;
                         }
+                        Err(p) => problem = Some(format!("not applied: {p}")),
                     }
-                    if ui.button("remove from the comparison").clicked() {
-                        remove = Some(i);
-                    }
-                });
+                }
+                if ui.button("remove from the comparison").clicked() {
+                    remove = Some(i);
+                }
+            });
         });
     }
     if let Some(i) = remove {

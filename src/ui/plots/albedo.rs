@@ -35,6 +35,11 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, curves: &[Option<(&Integrals, bool)
         .x_axis_label("θ_i (°)")
         .y_axis_label("ρ")
         .x_grid_spacer(uniform_grid_spacer(|_| [5.0, 15.0, 45.0]))
+        .x_axis_formatter(|mark, _| format!("{:.0}", mark.value))
+        .y_axis_formatter(|mark, _| {
+            let text = format!("{:.2}", mark.value);
+            text.trim_end_matches('0').trim_end_matches('.').to_string()
+        })
         .y_grid_spacer(uniform_grid_spacer(move |_| {
             if top > 2.0 {
                 [0.1, 0.5, 1.0]

@@ -127,10 +127,7 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, turn: &mut Turn, meshes: &[Option<(
     let centre = rect.center() + egui::vec2(0.0, 0.25 * rect.height());
     let to_screen = |p: DVec3| {
         let (x, y) = turn.project(p);
-        egui::pos2(
-            centre.x + (x * scale) as f32,
-            centre.y - (y * scale) as f32,
-        )
+        egui::pos2(centre.x + (x * scale) as f32, centre.y - (y * scale) as f32)
     };
     let grey = egui::Stroke::new(1.0, egui::Color32::from_gray(80));
     // The surface: the outer ring on the horizon, the normal, ω_i.
@@ -193,7 +190,10 @@ mod tests {
             }
         }
         // Seen from the side (no turn), the normal points up the screen.
-        let t = Turn { yaw: 0.0, pitch: 0.0 };
+        let t = Turn {
+            yaw: 0.0,
+            pitch: 0.0,
+        };
         assert_eq!(t.project(DVec3::Z), (0.0, 1.0));
     }
 }

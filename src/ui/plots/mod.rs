@@ -166,6 +166,56 @@ impl Plots {
         }
     }
 
+    /// A scripted `--edit FRAME:plots.KEY=VALUE` (`key` without
+    /// `plots.`): `theta_i`, `phi_i` (degrees), `quantity` (`f_r-cos` or
+    /// `f_r`), `channel` (`mean`, `luminance`, `r`, `g`, `b`), `log`
+    /// (bool), `decades` (1 to 10), `lobe` (bool).
+    pub fn edit(&mut self, key: &str, value: &str) -> Result<(), String> {
+        let text = value.trim().trim_matches('"');
+        let number = || -> Result<f64, String> {
+            text.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("plots.{key}: `{value}` is not a number"))
+        };
+        let boolean = || -> Result<bool, String> {
+            text.parse::<bool>()
+                .map_err(|_| format!("plots.{key}: `{value}` is not true or false"))
+        };
+        let s = &mut self.settings;
+        match key {
+            "theta_i" => {
+                let v = number()?;
+                if !(0.0..=89.0).contains(&v) {
+                    return Err(format!(
+                        "plots.theta_i = {v}: the plots take θ_i in [0, 89]°"
+                    ));
+                }
+                s.theta_i_deg = v;
+            }
+            "phi_i" => s.phi_i_deg = number()?,
+            "quantity" => s.quantity = text.parse()?,
+            "channel" => s.channel = text.parse()?,
+            "log" => s.log = boolean()?,
+            "decades" => {
+                let v = number()?;
+                if !(1.0..=10.0).contains(&v) || v.fract() != 0.0 {
+                    return Err(format!(
+                        "plots.decades = {v}: give a whole number from 1 to 10"
+                    ));
+                }
+                s.decades = v as u32;
+            }
+            "lobe" => self.show_lobe = boolean()?,
+            _ => {
+                return Err(format!(
+                    "unknown plot setting `plots.{key}`; the plots take theta_i, phi_i, quantity, channel, log, decades, lobe"
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Whether background integrals are under way or finished but not yet
     /// shown.
     pub fn busy(&self) -> bool {
@@ -199,8 +249,9 @@ impl SeriesCache {
     fn refresh(&mut self, m: &Material, s: &Settings, lobe: bool, ctx: &egui::Context) {
         if lobe {
             let settings = *s;
-            self.lobe
-                .request(&lobe_key(m, s), ctx, move |(m, ..)| lobe::mesh(&m, &settings));
+            self.lobe.request(&lobe_key(m, s), ctx, move |(m, ..)| {
+                lobe::mesh(&m, &settings)
+            });
         }
         let key = (m.clone(), *s);
         if self.slice.as_ref().map(|(k, _)| k) != Some(&key) {
@@ -219,13 +270,44 @@ impl SeriesCache {
                 gloss: GEOMETRIES.iter().map(|g| gloss_at(&m, *g, phi)).collect(),
             }
         });
-        self.point.request(&point_key(m, s), ctx, |(m, theta, phi)| {
-            let wi = direction(
-                f64::from_bits(theta).to_radians(),
-                f64::from_bits(phi).to_radians(),
-            );
-            albedo_towards(&m, wi, &frame())
-        });
+        self.point
+            .request(&point_key(m, s), ctx, |(m, theta, phi)| {
+                let wi = direction(
+                    f64::from_bits(theta).to_radians(),
+                    f64::from_bits(phi).to_radians(),
+                );
+                albedo_towards(&m, wi, &frame())
+            });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scripted_plot_settings_are_checked() {
+        let mut p = Plots::default();
+        p.edit("theta_i", "60").unwrap();
+        p.edit("log", "true").unwrap();
+        p.edit("decades", "4").unwrap();
+        p.edit("channel", "\"r\"").unwrap();
+        p.edit("quantity", "f_r").unwrap();
+        let s = p.settings;
+        assert_eq!(
+            (s.theta_i_deg, s.log, s.decades, s.channel, s.quantity),
+            (60.0, true, 4, Channel::R, Quantity::Fr)
+        );
+        for (k, v) in [
+            ("theta_i", "95"),
+            ("decades", "0"),
+            ("log", "yes"),
+            ("channel", "alpha"),
+            ("colour", "1"),
+        ] {
+            assert!(p.edit(k, v).is_err(), "{k}={v}");
+        }
+        assert_eq!(p.settings, s, "refused edits change nothing");
     }
 }
 
@@ -266,10 +348,7 @@ fn controls(ui: &mut egui::Ui, s: &mut Settings) {
                 ui.selectable_value(&mut s.log, false, "linear");
                 ui.selectable_value(&mut s.log, true, "log");
                 if s.log {
-                    ui.add(
-                        egui::Slider::new(&mut s.decades, 1..=10)
-                            .suffix(" decades"),
-                    );
+                    ui.add(egui::Slider::new(&mut s.decades, 1..=10).suffix(" decades"));
                 }
             });
             ui.end_row();

@@ -65,7 +65,11 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
                 let ring: Vec<[f64; 2]> = (0..=90)
                     .map(|k| polar(r, (k as f64 * 2.0 - 90.0).to_radians()))
                     .collect();
-                p.line(Line::new("", PlotPoints::from(ring)).color(FRAME).width(0.5));
+                p.line(
+                    Line::new("", PlotPoints::from(ring))
+                        .color(FRAME)
+                        .width(0.5),
+                );
                 p.text(
                     Text::new("", PlotPoint::new(r, 0.0), label)
                         .color(LABEL)
@@ -75,7 +79,11 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
             for deg in [-90, -60, -30, 0, 30, 60, 90] {
                 let t = (deg as f64).to_radians();
                 let spoke = vec![[0.0, 0.0], polar(outer, t)];
-                p.line(Line::new("", PlotPoints::from(spoke)).color(FRAME).width(0.5));
+                p.line(
+                    Line::new("", PlotPoints::from(spoke))
+                        .color(FRAME)
+                        .width(0.5),
+                );
                 // ±90° sit above the horizon, clear of the rings' labels.
                 let (at, anchor) = match deg {
                     90 => ([1.02 * outer, 0.0], egui::Align2::LEFT_BOTTOM),
@@ -107,7 +115,11 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
                     .filter(|(_, v)| v.is_finite())
                     .map(|&(t, v)| polar(radius.map(v), t))
                     .collect();
-                p.line(Line::new("", PlotPoints::from(lobe)).color(colour(i)).width(1.8));
+                p.line(
+                    Line::new("", PlotPoints::from(lobe))
+                        .color(colour(i))
+                        .width(1.8),
+                );
                 if let Some(d) = sl.dirac {
                     p.points(
                         Points::new("", vec![mirror_marker(theta_i, radius.map(d))])

@@ -115,7 +115,13 @@ mod tests {
     #[test]
     fn linear_rings_are_round_and_cover_the_peak() {
         let r = Radius::new(0.37, false, 6);
-        assert_eq!(r, Radius::Linear { step: 0.1, outer: 0.4 });
+        assert_eq!(
+            r,
+            Radius::Linear {
+                step: 0.1,
+                outer: 0.4
+            }
+        );
         let rings = r.rings();
         assert_eq!(rings.len(), 4);
         assert_eq!(rings[1].1, "0.2");
@@ -129,7 +135,13 @@ mod tests {
     #[test]
     fn log_radius_spans_the_decades() {
         let r = Radius::new(3.0e5, true, 6);
-        assert_eq!(r, Radius::Log { top: 1e6, decades: 6 });
+        assert_eq!(
+            r,
+            Radius::Log {
+                top: 1e6,
+                decades: 6
+            }
+        );
         assert!((r.map(1e6) - 6.0).abs() < 1e-12);
         assert!((r.map(1.0) - 0.0).abs() < 1e-12);
         assert!((r.map(10.0) - 1.0).abs() < 1e-12);

@@ -40,14 +40,19 @@ pub fn show(
                 };
                 ui.label(egui::RichText::new(format!("— {name}")).color(colour(i)))
                     .on_hover_text(&one.label);
-                value(ui, points[i].map(|(a, fresh)| {
-                    let (v, e) = (s.channel.of(a.value), s.channel.of(a.error_bound));
-                    (format!("{v:.4} ± {e:.0e}"), fresh)
-                }));
+                value(
+                    ui,
+                    points[i].map(|(a, fresh)| {
+                        let (v, e) = (s.channel.of(a.value), s.channel.of(a.error_bound));
+                        (format!("{v:.4} ± {e:.0e}"), fresh)
+                    }),
+                );
                 for k in 0..3 {
-                    value(ui, curves[i].map(|(c, fresh)| {
-                        (format!("{:.1}", c.gloss[k].gloss_units), fresh)
-                    }));
+                    value(
+                        ui,
+                        curves[i]
+                            .map(|(c, fresh)| (format!("{:.1}", c.gloss[k].gloss_units), fresh)),
+                    );
                 }
                 ui.end_row();
             }
