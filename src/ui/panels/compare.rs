@@ -32,10 +32,13 @@ pub fn compare_editor(
                 .changed();
             let shown = c.materials.get(c.shown).map_or("", |m| m.name.as_str());
             egui::ComboBox::from_id_salt("shown")
-                .selected_text(shown)
+                .selected_text(short(shown))
                 .show_ui(ui, |ui| {
                     for (i, m) in c.materials.iter().enumerate() {
-                        changed |= ui.selectable_value(&mut c.shown, i, &m.name).changed();
+                        changed |= ui
+                            .selectable_value(&mut c.shown, i, short(&m.name))
+                            .on_hover_text(&m.name)
+                            .changed();
                     }
                 });
         });
@@ -46,7 +49,7 @@ pub fn compare_editor(
         let colour = crate::ui::plots::colour(i + 1);
         ui.push_id(("compared", i), |ui| {
             egui::CollapsingHeader::new(
-                egui::RichText::new(format!("— {}", edited.name)).color(colour),
+                egui::RichText::new(format!("— {}", short(&edited.name))).color(colour),
             )
             .id_salt(("compared header", i))
             .default_open(false)
@@ -99,4 +102,16 @@ pub fn compare_editor(
         });
     }
     (changed, request, problem)
+}
+
+/// A name cut to fit the panel (a long one would widen it: the panel is
+/// resizable and grows to its content).
+pub fn short(name: &str) -> String {
+    const CHARS: usize = 30;
+    if name.chars().count() > CHARS {
+        let head: String = name.chars().take(CHARS - 1).collect();
+        format!("{head}…")
+    } else {
+        name.to_string()
+    }
 }
