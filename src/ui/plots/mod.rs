@@ -281,36 +281,6 @@ impl SeriesCache {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn scripted_plot_settings_are_checked() {
-        let mut p = Plots::default();
-        p.edit("theta_i", "60").unwrap();
-        p.edit("log", "true").unwrap();
-        p.edit("decades", "4").unwrap();
-        p.edit("channel", "\"r\"").unwrap();
-        p.edit("quantity", "f_r").unwrap();
-        let s = p.settings;
-        assert_eq!(
-            (s.theta_i_deg, s.log, s.decades, s.channel, s.quantity),
-            (60.0, true, 4, Channel::R, Quantity::Fr)
-        );
-        for (k, v) in [
-            ("theta_i", "95"),
-            ("decades", "0"),
-            ("log", "yes"),
-            ("channel", "alpha"),
-            ("colour", "1"),
-        ] {
-            assert!(p.edit(k, v).is_err(), "{k}={v}");
-        }
-        assert_eq!(p.settings, s, "refused edits change nothing");
-    }
-}
-
 /// θ_i, φ_i, the radius quantity, channel and scale.
 fn controls(ui: &mut egui::Ui, s: &mut Settings) {
     egui::Grid::new("plot settings")
@@ -353,4 +323,34 @@ fn controls(ui: &mut egui::Ui, s: &mut Settings) {
             });
             ui.end_row();
         });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scripted_plot_settings_are_checked() {
+        let mut p = Plots::default();
+        p.edit("theta_i", "60").unwrap();
+        p.edit("log", "true").unwrap();
+        p.edit("decades", "4").unwrap();
+        p.edit("channel", "\"r\"").unwrap();
+        p.edit("quantity", "f_r").unwrap();
+        let s = p.settings;
+        assert_eq!(
+            (s.theta_i_deg, s.log, s.decades, s.channel, s.quantity),
+            (60.0, true, 4, Channel::R, Quantity::Fr)
+        );
+        for (k, v) in [
+            ("theta_i", "95"),
+            ("decades", "0"),
+            ("log", "yes"),
+            ("channel", "alpha"),
+            ("colour", "1"),
+        ] {
+            assert!(p.edit(k, v).is_err(), "{k}={v}");
+        }
+        assert_eq!(p.settings, s, "refused edits change nothing");
+    }
 }
