@@ -16,12 +16,12 @@
 //! The plots take the panel's width (the panel's left edge can be dragged)
 //! and keep their aspect, so they grow with it.
 
-mod albedo;
-mod lobe;
-mod polar;
+pub mod albedo;
+pub mod lobe;
+pub mod polar;
 pub mod radius;
-mod readout;
-mod worker;
+pub mod readout;
+pub mod worker;
 
 use crate::explore::Channel;
 use crate::explore::albedo::{AlbedoEstimate, albedo_curve, albedo_towards};
