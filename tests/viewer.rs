@@ -729,3 +729,128 @@ fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
         "the point light did not light outside the cone"
     );
 }
+
+/// Largest channel difference and the fraction of differing pixels between
+/// the `(w, h)` rectangles of `a` at `pa` and `b` at `pb`.
+fn region_difference(
+    a: &image::RgbImage,
+    pa: (u32, u32),
+    b: &image::RgbImage,
+    pb: (u32, u32),
+    (w, h): (u32, u32),
+) -> (u8, f64) {
+    let (mut max, mut differing) = (0u8, 0usize);
+    for j in 0..h {
+        for i in 0..w {
+            let p = a.get_pixel(pa.0 + i, pa.1 + j).0;
+            let q = b.get_pixel(pb.0 + i, pb.1 + j).0;
+            let d = (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap();
+            max = max.max(d);
+            differing += (d > 0) as usize;
+        }
+    }
+    (max, differing as f64 / (w * h) as f64)
+}
+
+/// Compare mode (issue 17): `--compare SPEC` splits the 3D view. Its left
+/// half is the scene as `gonio render` draws it, its right half the scene
+/// with the selected material (the ball) replaced by the compared one,
+/// both within the viewer's derived tolerance (1 level, under 1 % of the
+/// pixels); an `--edit` of the compared material changes its half and
+/// leaves the other's pixels exactly as they were.
+#[test]
+fn compare_mode_splits_the_view_and_an_edit_changes_only_its_half() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = [
+        "--size",
+        "320x240",
+        "--no-panel",
+        "--no-overlay",
+        "--frames",
+        "6",
+        "--compare",
+        "lambert,k_d=[0.8, 0.8, 0.8]",
+    ];
+    let plain = dir.path().join("split.png");
+    let area = view(&base, &plain);
+    let edited = dir.path().join("split-edited.png");
+    let mut args = base.to_vec();
+    args.extend(["--edit", "3:compare.0.k_d=[0.1, 0.2, 0.9]"]);
+    assert_eq!(view(&args, &edited), area);
+    let (x, y, w, h) = area;
+    let half = w / 2;
+    let (left, right) = (
+        ((x, y), (0, 0), (half, h)),
+        ((x + half, y), (half, 0), (w - half, h)),
+    );
+    let plain = image::open(&plain).unwrap().to_rgb8();
+    let edited = image::open(&edited).unwrap().to_rgb8();
+
+    let (max, _) = region_difference(&plain, left.0, &edited, left.0, left.2);
+    assert_eq!(
+        max, 0,
+        "the edit of the compared material changed the left half"
+    );
+    let (max, fraction) = region_difference(&plain, right.0, &edited, right.0, right.2);
+    eprintln!(
+        "right half, before and after the edit: {max} levels in {:.1} % of its pixels",
+        100.0 * fraction
+    );
+    assert!(
+        max > 50 && fraction > 0.05,
+        "the edit changed the right half too little: {max} levels in {:.1} % of the pixels",
+        100.0 * fraction
+    );
+
+    let scene_a = dir.path().join("a.png");
+    render(&[], w, h, &scene_a);
+    let scene_a = image::open(&scene_a).unwrap().to_rgb8();
+    let scene_b = dir.path().join("b.png");
+    render(
+        &[
+            "--set",
+            "materials.ball={model = \"lambert\", k_d = [0.1, 0.2, 0.9]}",
+        ],
+        w,
+        h,
+        &scene_b,
+    );
+    let scene_b = image::open(&scene_b).unwrap().to_rgb8();
+    for (what, shot, reference, (at, from, size)) in [
+        ("left half", &plain, &scene_a, left),
+        ("right half", &edited, &scene_b, right),
+    ] {
+        let (max, fraction) = region_difference(shot, at, reference, from, size);
+        eprintln!(
+            "{what} against gonio render: {max} levels, {:.3} % of the pixels differ",
+            100.0 * fraction
+        );
+        assert!(
+            max <= 1 && fraction < 0.01,
+            "{what}: {max} levels in {:.3} % of the pixels (allowed: 1 level, under 1 %)",
+            100.0 * fraction
+        );
+    }
+}
+
+/// `--compare-fit` needs a measured first material, and names the fix.
+#[test]
+fn compare_fit_of_an_unmeasured_material_is_refused() {
+    let out = common::gonio()
+        .args(["view", "--compare-fit", "ward", "--frames", "1"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("not measured") && stderr.contains("materials.ball.model=measured"),
+        "{stderr}"
+    );
+    let out = common::gonio()
+        .args(["view", "--compare-fit", "phonk", "--frames", "1"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("ct-ggx-conductor"), "{stderr}");
+}

@@ -137,6 +137,7 @@ impl Harness {
                 resolve: None,
                 depth: &depth_view,
                 viewport: None,
+                clip: None,
                 timestamps: queries,
             },
         );

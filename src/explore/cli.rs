@@ -2,7 +2,7 @@
 //! only holds the subcommand variant; everything else is here.
 
 use super::albedo::albedo_curve;
-use super::gloss::{GEOMETRIES, gloss};
+use super::gloss::{GEOMETRIES, gloss_at};
 use super::plot::{AlbedoPlot, SlicePlot};
 use super::slice::{Quantity, slice};
 use super::{Channel, Labelled, direction, frame, spec, table};
@@ -58,7 +58,8 @@ pub struct BrdfArgs {
     /// Also print the directional albedo ρ(θ_i) = ∫ f_r cos θ_o dω_o.
     #[arg(long)]
     pub albedo: bool,
-    /// Print the specular gloss (ISO 2813 / ASTM D523) at 20°, 60°, 85°.
+    /// Print the specular gloss (ISO 2813 / ASTM D523) at 20°, 60°, 85°,
+    /// the sample turned so that the light is at azimuth --phi-i.
     #[arg(long)]
     pub gloss: bool,
     /// Write the polar slice in the plane of incidence at θ_i (.png or .svg).
@@ -160,7 +161,7 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         print_albedo(&materials, &angles);
     }
     if args.gloss {
-        print_gloss(&materials);
+        print_gloss(&materials, angles.phi_i);
     }
     let note = shared_note(&args.set);
     if let Some(file) = slice_file {
@@ -331,16 +332,16 @@ fn print_albedo(materials: &[Labelled], a: &Angles) {
     }
 }
 
-fn print_gloss(materials: &[Labelled]) {
+fn print_gloss(materials: &[Labelled], phi_i: f64) {
     println!(
-        "specular gloss (ISO 2813 / ASTM D523): 100 · Y(∫_aperture f_r cos θ_o dω_o) / F(black glass, η = {})",
+        "specular gloss (ISO 2813 / ASTM D523) at φ_i = {phi_i}°: 100 · Y(∫_aperture f_r cos θ_o dω_o) / F(black glass, η = {})",
         super::gloss::STANDARD_ETA
     );
     for m in materials {
         let readings: Vec<String> = GEOMETRIES
             .iter()
             .map(|&g| {
-                let r = gloss(&m.material, g);
+                let r = gloss_at(&m.material, g, phi_i.to_radians());
                 format!("{}°: {} GU", g.angle_deg, number(r.gloss_units))
             })
             .collect();

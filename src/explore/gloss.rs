@@ -44,7 +44,7 @@
 use super::Channel;
 use super::quadrature::{Tolerance, graded, integrate};
 use crate::material::Material;
-use crate::material::brdf::{self, fresnel::fresnel_dielectric};
+use crate::material::brdf::{self, SurfaceFrame, fresnel::fresnel_dielectric};
 use crate::scene::Rgb;
 use glam::DVec3;
 
@@ -98,13 +98,24 @@ pub struct GlossReading {
     pub gloss_units: f64,
 }
 
-/// The gloss of `material` in `geometry`.
+/// The gloss of `material` in `geometry`, light at azimuth `φ_i = 0`.
 pub fn gloss(material: &Material, geometry: GlossGeometry) -> GlossReading {
+    gloss_at(material, geometry, 0.0)
+}
+
+/// The gloss of `material` in `geometry` with the plane of incidence at
+/// azimuth `phi_i` (radians) from the tangent: the sample turned under the
+/// meter. The meter's geometry stays in the plane `y = 0`; the sample's
+/// tangent is turned to `(cos φ_i, −sin φ_i, 0)`, so the light's azimuth
+/// seen from the tangent is `+φ_i` (only anisotropic models change).
+pub fn gloss_at(material: &Material, geometry: GlossGeometry, phi_i: f64) -> GlossReading {
     let theta = geometry.angle_deg.to_radians();
     let wi = super::direction(theta, 0.0);
     let half_a = 0.5 * geometry.in_plane_deg.to_radians();
     let half_b = 0.5 * geometry.perpendicular_deg.to_radians();
-    let (q, error) = aperture_integral(material, wi, theta, half_a, half_b);
+    let (sin_p, cos_p) = phi_i.sin_cos();
+    let frame = SurfaceFrame::new(DVec3::Z, DVec3::new(cos_p, -sin_p, 0.0));
+    let (q, error) = aperture_integral(material, wi, theta, half_a, half_b, &frame);
     // Zero but for a Dirac lobe (the mirror).
     let dirac = brdf::mirror_reflectance(material, theta.cos());
     let aperture_reflectance = q + dirac;
@@ -133,8 +144,8 @@ fn aperture_integral(
     theta: f64,
     half_a: f64,
     half_b: f64,
+    frame: &SurfaceFrame,
 ) -> (Rgb, Rgb) {
-    let frame = super::frame();
     // Panels graded towards the mirror direction from 1e-6 rad.
     let symmetric = |half: f64| {
         let right = graded(0.0, half, 1e-6, 0.25 * half);
@@ -151,7 +162,7 @@ fn aperture_integral(
             if wo.z <= 0.0 {
                 return (Rgb::ZERO, Rgb::ZERO);
             }
-            (material.f_r(wi, wo, &frame) * (wo.z * cos_b), Rgb::ZERO)
+            (material.f_r(wi, wo, frame) * (wo.z * cos_b), Rgb::ZERO)
         })
     })
 }
@@ -171,6 +182,25 @@ mod tests {
             let r = gloss(&glass, g);
             assert!((r.gloss_units - 100.0).abs() < 1e-9, "{r:?}");
         }
+    }
+
+    /// Turning the sample by φ_i = 90° under the meter is anisotropic
+    /// Ward with σ_x and σ_y swapped at φ_i = 0; an isotropic material
+    /// reads the same at every φ_i.
+    #[test]
+    fn gloss_follows_the_azimuth() {
+        let mut w = Material::new("w", ReflectanceModel::WardAnisotropic);
+        (w.k_d, w.k_s, w.sigma_x, w.sigma_y) = (Rgb::ZERO, Rgb::ONE, 0.05, 0.3);
+        let mut swapped = w.clone();
+        (swapped.sigma_x, swapped.sigma_y) = (0.3, 0.05);
+        let g = GEOMETRIES[1];
+        let turned = gloss_at(&w, g, std::f64::consts::FRAC_PI_2).gloss_units;
+        let same = gloss(&swapped, g).gloss_units;
+        assert!((turned / same - 1.0).abs() < 1e-8, "{turned} vs {same}");
+        assert!((turned / gloss(&w, g).gloss_units - 1.0).abs() > 0.1);
+        let l = Material::new("l", ReflectanceModel::BlinnPhong);
+        let (a, b) = (gloss(&l, g).gloss_units, gloss_at(&l, g, 1.0).gloss_units);
+        assert!((a / b - 1.0).abs() < 1e-10, "{a} vs {b}");
     }
 
     #[test]

@@ -28,14 +28,20 @@ pub struct FrameTarget<'a> {
     /// `[x, y, width, height]` in pixels of the 3D area; `None`: all of it.
     /// The scene's camera aspect should be `width / height` of this area.
     pub viewport: Option<[f32; 4]>,
+    /// `[x, y, width, height]` in pixels: draw only inside this rectangle
+    /// and keep the colour target's other pixels (loaded, not cleared).
+    /// The viewer's split view draws two scenes side by side this way.
+    /// `None`: the whole target, cleared first.
+    pub clip: Option<[u32; 4]>,
     /// Timestamps written around the scene pass (indices 0, 1) and around
     /// all shadow passes (2, 3), if given.
     pub timestamps: Option<&'a wgpu::QuerySet>,
 }
 
 /// Begins the scene pass into `target`: clears the whole colour target to
-/// transparent black (coverage 0) and the depth to the far plane, writes
-/// timestamps 0 and 1 around the pass if asked, and sets the viewport.
+/// transparent black (coverage 0) unless it is clipped, and the depth to
+/// the far plane, writes timestamps 0 and 1 around the pass if asked, and
+/// sets the viewport (and the clip's scissor rectangle).
 pub fn begin_scene_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     target: &FrameTarget,
@@ -47,7 +53,11 @@ pub fn begin_scene_pass<'e>(
             depth_slice: None,
             resolve_target: target.resolve,
             ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                load: if target.clip.is_some() {
+                    wgpu::LoadOp::Load
+                } else {
+                    wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
+                },
                 store: wgpu::StoreOp::Store,
             },
         })],
@@ -71,6 +81,9 @@ pub fn begin_scene_pass<'e>(
     });
     if let Some([x, y, w, h]) = target.viewport {
         pass.set_viewport(x, y, w, h, 0.0, 1.0);
+    }
+    if let Some([x, y, w, h]) = target.clip {
+        pass.set_scissor_rect(x, y, w, h);
     }
     pass
 }

@@ -98,6 +98,7 @@ pub fn render(
             resolve: multisampled_view.as_ref().map(|_| &color_view),
             depth: &depth_view,
             viewport: None,
+            clip: None,
             timestamps: queries.as_ref().map(|q| &q.set),
         },
     );

@@ -42,6 +42,9 @@ struct Gfx {
     renderer: GpuRenderer,
     surface: WindowSurface,
     prepared: Option<PreparedScene>,
+    /// The right half of a split view (compare mode): the scene with the
+    /// selected material replaced by a compared one.
+    prepared_right: Option<PreparedScene>,
     egui_renderer: egui_wgpu::Renderer,
     egui_state: egui_winit::State,
     timestamps: Option<crate::gpu::renderer::PassTimestamps>,
@@ -321,6 +324,7 @@ impl App {
             renderer: GpuRenderer::new(ctx),
             surface,
             prepared: None,
+            prepared_right: None,
             egui_renderer,
             egui_state,
             timestamps,
@@ -434,6 +438,17 @@ impl App {
     fn apply_scripted_edits(&mut self) -> Result<()> {
         let frame = self.frames;
         for (_, kv) in self.args.edits.iter().filter(|(at, _)| *at == frame) {
+            // The plots' settings are the viewer's, not the document's.
+            if let Some((key, value)) = kv
+                .strip_prefix("plots.")
+                .and_then(|rest| rest.split_once('='))
+            {
+                self.state
+                    .plots
+                    .edit(key.trim(), value)
+                    .map_err(|p| Error::argument(format!("--edit {kv}"), p))?;
+                continue;
+            }
             self.state.doc.edit(kv)?;
             self.state.dirty = true;
         }
@@ -501,7 +516,11 @@ impl App {
             && let Some(gfx) = &mut self.gfx
         {
             gfx.prepared = None;
+            gfx.prepared_right = None;
         }
+        // The compared materials are the viewer's: they stay.
+        let mut doc = doc;
+        doc.compare = std::mem::take(&mut self.state.doc.compare);
         self.state.doc = doc;
         self.state.dirty = true;
     }
@@ -542,34 +561,48 @@ impl App {
     /// Brings the [`PreparedScene`] up to date: prepared anew after a new
     /// document, updated after an edit, only its view after a camera move.
     fn update_gpu_scene(&mut self) -> Result<()> {
-        let gfx = self.gfx.as_mut().expect("initialized");
-        let scene = &self.state.doc.scene;
-        let renderer = &mut gfx.renderer;
+        let (dirty, view_dirty) = (self.state.dirty, self.state.view_dirty);
         let display_scale = self.state.exposure.exp2() as f32;
-        match &mut gfx.prepared {
-            None => {
-                let mut p = renderer.prepare(scene, gfx.surface.config.format)?;
-                p.display_scale = display_scale;
-                renderer.update(&mut p, scene)?;
-                if self.args.verbose {
-                    eprintln!("shader: {}", p.key.describe());
-                }
-                gfx.prepared = Some(p);
-                self.state.dirty = false;
+        let gfx = self.gfx.as_mut().expect("initialized");
+        let format = gfx.surface.config.format;
+        let verbose = self.args.verbose;
+        let scene = &mut self.state.doc.scene;
+        let message = bring_up_to_date(
+            &mut gfx.renderer,
+            &mut gfx.prepared,
+            scene,
+            format,
+            display_scale,
+            (dirty, view_dirty),
+            verbose,
+        )?;
+        // The split view's right half: the same scene with the selected
+        // material replaced (src/ui/compare.rs).
+        let right = self.state.doc.compare.right_half().cloned();
+        let selected = self.state.selected_material;
+        let right_message = match right {
+            Some(other) if selected < scene.materials.len() => {
+                super::compare::with_material(scene, selected, &other, |scene| {
+                    bring_up_to_date(
+                        &mut gfx.renderer,
+                        &mut gfx.prepared_right,
+                        scene,
+                        format,
+                        display_scale,
+                        (dirty, view_dirty),
+                        false,
+                    )
+                })?
             }
-            Some(p) if self.state.dirty => {
-                p.display_scale = display_scale;
-                if let Err(e) = renderer.update(p, scene) {
-                    self.state.message = Some(e.to_string());
-                }
-                self.state.dirty = false;
+            _ => {
+                gfx.prepared_right = None;
+                None
             }
-            Some(p) if self.state.view_dirty || p.display_scale != display_scale => {
-                p.display_scale = display_scale;
-                renderer.update_view(p, scene);
-            }
-            Some(_) => {}
+        };
+        if let Some(m) = message.or(right_message) {
+            self.state.message = Some(m);
         }
+        self.state.dirty = false;
         self.state.view_dirty = false;
         Ok(())
     }
@@ -609,8 +642,17 @@ impl App {
         let gfx = self.gfx.as_mut().expect("initialized");
         let [x, y, w, h] = self.view_rect;
         let depth = gfx.surface.depth_view(gfx.renderer.context()).clone();
-        let prepared = gfx.prepared.as_mut().expect("prepared by update_gpu_scene");
         let timestamps = gfx.timestamps.as_ref().filter(|_| measure_gpu);
+        let viewport = Some([x as f32, y as f32, w as f32, h as f32]);
+        // Split (compare mode): the same camera and viewport for both
+        // scenes, each clipped to its half, so one object is cut down the
+        // middle.
+        let half = w / 2;
+        let (left, right) = match gfx.prepared_right {
+            Some(_) => (Some([x, y, half, h]), Some([x + half, y, w - half, h])),
+            None => (None, None),
+        };
+        let prepared = gfx.prepared.as_mut().expect("prepared by update_gpu_scene");
         gfx.renderer.encode(
             prepared,
             encoder,
@@ -618,10 +660,25 @@ impl App {
                 color: view,
                 resolve: None,
                 depth: &depth,
-                viewport: Some([x as f32, y as f32, w as f32, h as f32]),
+                viewport,
+                clip: left,
                 timestamps: timestamps.map(|t| &t.set),
             },
         );
+        if let (Some(p), Some(clip)) = (gfx.prepared_right.as_mut(), right) {
+            gfx.renderer.encode(
+                p,
+                encoder,
+                &FrameTarget {
+                    color: view,
+                    resolve: None,
+                    depth: &depth,
+                    viewport,
+                    clip: Some(clip),
+                    timestamps: None,
+                },
+            );
+        }
         if let Some(t) = timestamps {
             t.resolve(encoder);
         }
@@ -863,6 +920,44 @@ impl App {
     }
 }
 
+/// Brings `prepared` up to date with `scene`: prepared anew when there is
+/// none, updated after an edit (`dirty.0`), only its view after a camera
+/// move (`dirty.1`) or a new exposure. Returns a message for an edit the
+/// GPU refused (the scene stays as it was drawn).
+fn bring_up_to_date(
+    renderer: &mut GpuRenderer,
+    prepared: &mut Option<PreparedScene>,
+    scene: &crate::scene::Scene,
+    format: wgpu::TextureFormat,
+    display_scale: f32,
+    (dirty, view_dirty): (bool, bool),
+    verbose: bool,
+) -> Result<Option<String>> {
+    match prepared {
+        None => {
+            let mut p = renderer.prepare(scene, format)?;
+            p.display_scale = display_scale;
+            renderer.update(&mut p, scene)?;
+            if verbose {
+                eprintln!("shader: {}", p.key.describe());
+            }
+            *prepared = Some(p);
+        }
+        Some(p) if dirty => {
+            p.display_scale = display_scale;
+            if let Err(e) = renderer.update(p, scene) {
+                return Ok(Some(e.to_string()));
+            }
+        }
+        Some(p) if view_dirty || p.display_scale != display_scale => {
+            p.display_scale = display_scale;
+            renderer.update_view(p, scene);
+        }
+        Some(_) => {}
+    }
+    Ok(None)
+}
+
 impl ApplicationHandler<Wake> for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.window.is_none()
@@ -935,7 +1030,7 @@ impl ApplicationHandler<Wake> for App {
         };
         let now = Instant::now();
         if !self.pacing.continuous()
-            && let Some(outcome) = self.pacing.idle_exit(now, self.state.plots.busy())
+            && let Some(outcome) = self.pacing.idle_exit(now, self.state.busy())
         {
             match outcome {
                 Ok(report) => {

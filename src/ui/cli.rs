@@ -12,6 +12,20 @@ pub struct ViewArgs {
     /// Override any scene-file key by its dotted path, as for `gonio render`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Compare mode: a material to compare with the selected one, as
+    /// `MODEL[,KEY=VALUE]...` (the syntax of `gonio brdf --compare`, e.g.
+    /// `cook-torrance,preset=gold,roughness=0.1`). Every plot overlays it;
+    /// the 3D view is split, the right half showing the selected material
+    /// replaced by the first compared one. Repeatable; `--edit
+    /// FRAME:compare.N.KEY=VALUE` edits compared material N (from 0).
+    #[arg(long = "compare", value_name = "SPEC")]
+    pub compare: Vec<String>,
+    /// Compare the scene's first material, a measured one, with its fit
+    /// under MODEL (a `gonio fit` model label such as `ct-ggx-conductor`,
+    /// `ward`, `abc`, or a `gonio fit --model` spec): the parameters in
+    /// docs/fit/fits.toml where that material was fitted, else fitted now.
+    #[arg(long = "compare-fit", value_name = "MODEL")]
+    pub compare_fit: Option<String>,
     /// Window size in pixels, e.g. `1280x720`.
     #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),
@@ -57,7 +71,11 @@ pub struct ViewArgs {
     /// does (materials in place, lights by reloading), e.g.
     /// `--edit 3:materials.ball.k_d=[0,0,1]`; the environment map's keys
     /// too (`--edit 3:environment.sh_order=4`, `environment.enabled=false`
-    /// switches the map off). Repeatable.
+    /// switches the map off), compared materials (`compare.N.KEY`,
+    /// `compare.split`, `compare.shown`) and the plots' settings
+    /// (`plots.theta_i`, `plots.phi_i`, `plots.quantity=f_r|f_r-cos`,
+    /// `plots.channel`, `plots.log`, `plots.decades`, `plots.lobe`).
+    /// Repeatable.
     #[arg(long = "edit", value_name = "FRAME:KEY=VALUE", value_parser = parse_edit)]
     pub edits: Vec<(u32, String)>,
     /// Scripted file drop: at frame FRAME, open PATH as if it were dropped

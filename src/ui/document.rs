@@ -58,6 +58,9 @@ pub struct Document {
     /// The `[environment]` map keys as loaded (to tell whether the
     /// environment was edited: `super::environment::edited`).
     pub(super) loaded_environment: toml::Table,
+    /// Materials compared with the selected one (not part of the scene
+    /// file; [`super::compare`]).
+    pub compare: super::compare::Compare,
 }
 
 impl Document {
@@ -107,6 +110,7 @@ impl Document {
             parked_environment: None,
             loaded_environment: super::environment::map_keys(&loaded.table),
             table: loaded.table,
+            compare: Default::default(),
         })
     }
 
@@ -213,6 +217,7 @@ impl Document {
                 Ok(())
             }
             ["environment", key] => super::environment::edit(self, key, assignment),
+            ["compare", rest @ ..] => self.compare.edit(rest, value).map_err(bad),
             ["lights", index, _field] => {
                 let index: usize = index
                     .parse()
@@ -221,7 +226,7 @@ impl Document {
                 self.set_light(index, entry).map_err(bad)
             }
             _ => Err(bad(
-                "the viewer edits materials.NAME.KEY, lights.N.KEY, lights.add=KIND, lights.remove=N, environment.KEY, shading.mode, image.tone_map and ambient.radiance"
+                "the viewer edits materials.NAME.KEY, lights.N.KEY, lights.add=KIND, lights.remove=N, environment.KEY, compare.N.KEY, compare.split, compare.shown, shading.mode, image.tone_map and ambient.radiance"
                     .into(),
             )),
         }
@@ -248,6 +253,7 @@ impl Document {
     }
 
     fn keep_edits_of(&mut self, old: &Document) {
+        self.compare = old.compare.clone();
         for (m, loaded) in old.scene.materials.iter().zip(&old.loaded_materials) {
             if m != loaded
                 && let Some(slot) = self.scene.materials.iter_mut().find(|n| n.name == m.name)
@@ -339,7 +345,7 @@ pub fn edit_material(
 
 /// VALUE of an `--edit` read as `--set` reads it (unquoted words are
 /// strings: `shading.mode=flat`), then as a `T`.
-fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {
+pub fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {
     crate::scene::scene_file::overrides::value_of(text.trim())
         .try_into()
         .map_err(|e: toml::de::Error| format!("`{text}`: {}", e.message()))

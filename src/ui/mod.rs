@@ -13,8 +13,10 @@
 
 pub mod app;
 pub mod cli;
+pub mod compare;
 pub mod document;
 pub mod environment;
+pub mod fitted;
 pub mod light_drag;
 pub mod light_kinds;
 pub mod light_overlay;
@@ -80,7 +82,8 @@ pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
     };
     let mut overrides = chosen;
     overrides.extend(args.set.iter().cloned());
-    let doc = document::Document::load(source, overrides, limits)?;
+    let mut doc = document::Document::load(source, overrides, limits)?;
+    add_compared(&mut doc, &args)?;
     if let Some(path) = &args.screenshot {
         // Fail on an unwritable destination before opening the window.
         crate::output::write::AtomicFile::create(path)?;
@@ -102,4 +105,46 @@ pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
         println!("{}", app.frame_time_report());
     }
     app.result
+}
+
+/// `--compare SPEC`s and `--compare-fit MODEL` into the document's compare
+/// list (a bad one fails before any window opens).
+fn add_compared(doc: &mut document::Document, args: &ViewArgs) -> Result<()> {
+    for spec in &args.compare {
+        let labelled = crate::explore::spec::compare_spec(spec, &[])?;
+        let mut m = labelled.material;
+        m.name = labelled.label;
+        doc.compare.add(m);
+    }
+    if let Some(text) = &args.compare_fit {
+        let flag = format!("--compare-fit {text}");
+        let model = fitted::model(text).map_err(|p| Error::argument(&flag, p))?;
+        let Some(first) = doc.scene.materials.first() else {
+            return Err(Error::argument(flag, "the scene has no material"));
+        };
+        let brdf = match (first.model, first.measured_brdf()) {
+            (crate::material::ReflectanceModel::Measured, Some(b)) => b,
+            _ => {
+                return Err(Error::argument(
+                    flag,
+                    format!(
+                        "the fit is of the scene's first material, and `{0}` is not measured; make it one, e.g. --set materials.{0}.model=measured --set materials.{0}.measured=gold-metallic-paint",
+                        first.name
+                    ),
+                ));
+            }
+        };
+        let start = std::time::Instant::now();
+        let stored = fitted::stored(&brdf.name, &model).is_some();
+        let m = fitted::fit(brdf, &model).map_err(|p| Error::argument(&flag, p))?;
+        if !stored {
+            eprintln!(
+                "gonio view: {} is not in docs/fit/fits.toml; fitted now in {:.1} s",
+                m.name,
+                start.elapsed().as_secs_f64()
+            );
+        }
+        doc.compare.add(m);
+    }
+    Ok(())
 }

@@ -12,9 +12,11 @@ use std::path::{Path, PathBuf};
 pub fn ui(ui: &mut egui::Ui, state: &mut ViewerState, panel_width: f32) -> egui::Rect {
     let mut area = ui.available_rect_before_wrap();
     if state.show_panel {
+        // Resizable (drag its left edge): the plots grow with it.
         let panel = egui::Panel::right("panel")
-            .exact_size(panel_width)
-            .resizable(false)
+            .default_size(panel_width)
+            .size_range(300.0..=1200.0)
+            .resizable(true)
             .show(ui, |ui| {
                 ui.set_max_width(ui.available_width());
                 egui::ScrollArea::vertical().show(ui, |ui| side_panel(ui, state));
@@ -28,7 +30,7 @@ pub fn ui(ui: &mut egui::Ui, state: &mut ViewerState, panel_width: f32) -> egui:
             .max
             .x
             .min(panel.response.rect.min.x)
-            .min(screen.max.x - panel_width);
+            .min(screen.max.x - panel.response.rect.width());
     }
     if state.show_overlay {
         overlay(ui, state, area);
@@ -61,6 +63,12 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
     egui::CollapsingHeader::new("Material")
         .default_open(true)
         .show(ui, |ui| material_section(ui, state));
+    egui::CollapsingHeader::new("Compare")
+        .default_open(true)
+        .show(ui, |ui| compare_section(ui, state));
+    egui::CollapsingHeader::new("Plots")
+        .default_open(true)
+        .show(ui, |ui| plots_section(ui, state));
     egui::CollapsingHeader::new("Lights")
         .default_open(true)
         .show(ui, |ui| super::lights_section::lights_section(ui, state));
@@ -176,6 +184,7 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         return;
     }
     state.selected_material = state.selected_material.min(materials.len() - 1);
+    let before = state.selected_material;
     egui::ComboBox::from_id_salt("which material")
         .selected_text(&materials[state.selected_material].name)
         .show_ui(ui, |ui| {
@@ -183,6 +192,10 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
                 ui.selectable_value(&mut state.selected_material, i, &m.name);
             }
         });
+    if state.selected_material != before && state.doc.compare.right_half().is_some() {
+        // The split view's right half replaces the selected material.
+        state.dirty = true;
+    }
     let mut edited = materials[state.selected_material].clone();
     if panels::material_editor(ui, &mut edited) {
         match edited.validate() {
@@ -193,19 +206,82 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
             Err(problem) => state.message = Some(format!("not applied: {problem}")),
         }
     }
-    ui.separator();
-    // The plots show the material as the renderers evaluate it, as
-    // `gonio brdf` does (explore::spec): roughness no smaller than the
-    // floor. Unfloored, a roughness of 1e-6 kept the albedo worker busy
-    // for minutes (issue 19).
-    let given = &materials[state.selected_material];
-    let material = given.with_roughness_floor(0.0);
-    if material != *given {
+}
+
+fn compare_section(ui: &mut egui::Ui, state: &mut ViewerState) {
+    state.collect_fit();
+    let selected = state
+        .doc
+        .scene
+        .materials
+        .get(state.selected_material)
+        .cloned();
+    let measured = selected
+        .as_ref()
+        .is_some_and(|m| m.model == crate::material::ReflectanceModel::Measured);
+    let fitting = state.fitting.as_ref().map(|(label, _)| label.clone());
+    let (changed, request, problem) = panels::compare_editor(
+        ui,
+        &mut state.doc.compare,
+        measured,
+        &mut state.fit_choice,
+        fitting.as_deref(),
+    );
+    if changed {
+        state.dirty = true;
+    }
+    if problem.is_some() {
+        state.message = problem;
+    }
+    match request {
+        Some(panels::CompareRequest::AddCopy) => {
+            if let Some(mut m) = selected {
+                m.name = format!("{} (copy)", m.name);
+                state.doc.compare.add(m);
+                state.dirty = true;
+            }
+        }
+        Some(panels::CompareRequest::AddFit(model)) => {
+            let ctx = ui.ctx().clone();
+            state.add_fit(&ctx, &model);
+        }
+        None => {}
+    }
+    if state.doc.compare.materials.is_empty() {
+        ui.small("Compare the selected material with others: every plot overlays them, and the 3D view splits (left: as it is, right: the compared material in its place).");
+    }
+}
+
+/// The plots of the selected material and the compared ones, as the
+/// renderers evaluate them, as `gonio brdf` does (explore::spec):
+/// roughness no smaller than the floor. Unfloored, a roughness of 1e-6
+/// kept the albedo worker busy for minutes (issue 19).
+fn plots_section(ui: &mut egui::Ui, state: &mut ViewerState) {
+    let Some(given) = state.doc.scene.materials.get(state.selected_material) else {
+        return;
+    };
+    let mut series = vec![panels_series(given)];
+    series.extend(state.doc.compare.materials.iter().map(panels_series));
+    if series.iter().any(|s| s.1) {
         ui.label(format!(
             "Roughness below the floor {ROUGHNESS_FLOOR:e}: plotted at the floor, as rendered."
         ));
     }
-    state.plots.show(ui, &material);
+    let series: Vec<super::plots::Series> = series.into_iter().map(|s| s.0).collect();
+    state.plots.show(ui, &series);
+}
+
+/// A plotted material (floored) and whether the floor changed it.
+fn panels_series(m: &crate::material::Material) -> (super::plots::Series, bool) {
+    let floored = m.with_roughness_floor(0.0);
+    let changed = floored != *m;
+    (
+        super::plots::Series {
+            label: m.name.clone(),
+            material: floored,
+        },
+        changed,
+    )
 }
 
 fn overlay(ui: &mut egui::Ui, state: &ViewerState, area: egui::Rect) {
@@ -233,6 +309,34 @@ fn overlay(ui: &mut egui::Ui, state: &ViewerState, area: egui::Rect) {
         egui::FontId::monospace(12.0),
         egui::Color32::from_gray(230),
     );
+    // Compare mode's split: the seam and the two materials' names, in
+    // their plot colours.
+    if let (Some(right), Some(left)) = (
+        state.doc.compare.right_half(),
+        state.doc.scene.materials.get(state.selected_material),
+    ) {
+        let x = area.min.x + (area.width() / 2.0).floor();
+        let painter = ui.painter();
+        painter.line_segment(
+            [egui::pos2(x, area.min.y), egui::pos2(x, area.max.y)],
+            egui::Stroke::new(1.0, egui::Color32::from_gray(200)),
+        );
+        let font = egui::FontId::proportional(14.0);
+        painter.text(
+            egui::pos2(x - 8.0, area.min.y + 26.0),
+            egui::Align2::RIGHT_TOP,
+            &left.name,
+            font.clone(),
+            super::plots::colour(0),
+        );
+        painter.text(
+            egui::pos2(x + 8.0, area.min.y + 26.0),
+            egui::Align2::LEFT_TOP,
+            &right.name,
+            font,
+            super::plots::colour(state.doc.compare.shown + 1),
+        );
+    }
 }
 
 fn open_dialog(ctx: &egui::Context, state: &mut ViewerState) {

@@ -2,11 +2,13 @@
 //! and hands back what changed; the caller validates and applies it, so a
 //! value the renderer rejects becomes a message, never a crash.
 
+mod compare;
 mod environment;
 mod light;
 mod light_list;
 mod material;
 
+pub use compare::{Request as CompareRequest, compare_editor};
 pub use environment::environment_editor;
 pub use light::light_editor;
 pub use light_list::{LightAction, light_list};

@@ -1,0 +1,356 @@
+//! The panel's plots of the selected material and of every material it is
+//! compared with, from the same f64 reference functions as `gonio brdf`
+//! (`crate::explore`): the lecture's polar slice for an adjustable
+//! incidence direction (θ_i and φ_i) with a linear or logarithmic radius
+//! ([`polar`], [`radius`]), the directional albedo against θ_i in the
+//! plane φ_i ([`albedo`]), and a table with each material's colour, its
+//! albedo at the current ω_i and a gloss meter's readings at 20°, 60° and
+//! 85° (ISO 2813 / ASTM D523) with the sample turned to φ_i ([`readout`]).
+//! It stands below the plots, so no legend covers data.
+//!
+//! The slice is cheap (about 800 evaluations per material) and follows
+//! every edit at once. Albedo and gloss are adaptive integrals, so they
+//! run in the background ([`worker`]); the panel shows the last finished
+//! result, marked stale until the new one arrives.
+//!
+//! The plots take the panel's width (the panel's left edge can be dragged)
+//! and keep their aspect, so they grow with it.
+
+pub mod albedo;
+pub mod lobe;
+pub mod polar;
+pub mod radius;
+pub mod readout;
+pub mod worker;
+
+use crate::explore::Channel;
+use crate::explore::albedo::{AlbedoEstimate, albedo_curve, albedo_towards};
+use crate::explore::gloss::{GEOMETRIES, GlossReading, gloss_at};
+use crate::explore::slice::{Quantity, Slice, slice};
+use crate::explore::{direction, frame};
+use crate::material::Material;
+use worker::Slot;
+
+/// Incidence angles of the albedo curve, degrees.
+const ALBEDO_ANGLES: usize = 31;
+
+/// One plotted material: its name in the table and the material.
+#[derive(Clone, Debug)]
+pub struct Series {
+    pub label: String,
+    pub material: Material,
+}
+
+/// What the plots show: the incidence direction and how values are drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Incidence polar angle, degrees from the normal.
+    pub theta_i_deg: f64,
+    /// Incidence azimuth, degrees from the tangent (anisotropic models).
+    pub phi_i_deg: f64,
+    /// `f_r` or `f_r · cos θ_o` as the slice's radius.
+    pub quantity: Quantity,
+    /// Which number of RGB is drawn (mean, luminance, R, G or B).
+    pub channel: Channel,
+    /// Logarithmic radius over `decades` decades.
+    pub log: bool,
+    pub decades: u32,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            theta_i_deg: 45.0,
+            phi_i_deg: 0.0,
+            quantity: Quantity::ProjectedFr,
+            channel: Channel::Mean,
+            log: false,
+            decades: 6,
+        }
+    }
+}
+
+/// The albedo curve and gloss readings of one material at one φ_i.
+pub struct Integrals {
+    pub albedo: Vec<(f64, AlbedoEstimate)>,
+    pub gloss: Vec<GlossReading>,
+}
+
+type CurveKey = (Material, u64);
+type PointKey = (Material, u64, u64);
+type SliceKey = (Material, Settings);
+type LobeKey = (Material, u64, u64, Quantity, Channel);
+
+/// The cached results of one series.
+#[derive(Default)]
+struct SeriesCache {
+    slice: Option<(SliceKey, Slice)>,
+    curve: Slot<CurveKey, Integrals>,
+    point: Slot<PointKey, AlbedoEstimate>,
+    lobe: Slot<LobeKey, lobe::Mesh>,
+}
+
+/// The plots' state: settings and each series' cached results.
+pub struct Plots {
+    pub settings: Settings,
+    /// Whether the 3D lobe is drawn (and computed).
+    pub show_lobe: bool,
+    turn: lobe::Turn,
+    caches: Vec<SeriesCache>,
+}
+
+/// The colour of series `i` (the selected material first), the same in
+/// every plot and in the table.
+pub fn colour(i: usize) -> egui::Color32 {
+    const PALETTE: [egui::Color32; 6] = [
+        egui::Color32::from_rgb(90, 170, 255),
+        egui::Color32::from_rgb(255, 150, 60),
+        egui::Color32::from_rgb(110, 205, 110),
+        egui::Color32::from_rgb(225, 110, 225),
+        egui::Color32::from_rgb(235, 215, 80),
+        egui::Color32::from_rgb(90, 220, 220),
+    ];
+    PALETTE[i % PALETTE.len()]
+}
+
+impl Default for Plots {
+    fn default() -> Self {
+        Plots {
+            settings: Settings::default(),
+            show_lobe: true,
+            turn: lobe::Turn::default(),
+            caches: Vec::new(),
+        }
+    }
+}
+
+impl Plots {
+    /// Draws the controls, the slice, the albedo curve and the table of
+    /// `series` into `ui`.
+    pub fn show(&mut self, ui: &mut egui::Ui, series: &[Series]) {
+        controls(ui, &mut self.settings);
+        self.caches.resize_with(series.len(), SeriesCache::default);
+        let s = self.settings;
+        for (cache, one) in self.caches.iter_mut().zip(series) {
+            cache.refresh(&one.material, &s, self.show_lobe, ui.ctx());
+        }
+        let slices: Vec<&Slice> = self
+            .caches
+            .iter()
+            .map(|c| &c.slice.as_ref().expect("refreshed above").1)
+            .collect();
+        polar::show(ui, &s, &slices);
+        let curves: Vec<Option<(&Integrals, bool)>> = self
+            .caches
+            .iter()
+            .zip(series)
+            .map(|(c, one)| c.curve.latest(&curve_key(&one.material, &s)))
+            .collect();
+        albedo::show(ui, &s, &curves);
+        let points: Vec<Option<(&AlbedoEstimate, bool)>> = self
+            .caches
+            .iter()
+            .zip(series)
+            .map(|(c, one)| c.point.latest(&point_key(&one.material, &s)))
+            .collect();
+        readout::show(ui, &s, series, &slices, &points, &curves);
+        ui.checkbox(&mut self.show_lobe, "3D lobe");
+        if self.show_lobe {
+            let meshes: Vec<Option<(&lobe::Mesh, bool)>> = self
+                .caches
+                .iter()
+                .zip(series)
+                .map(|(c, one)| c.lobe.latest(&lobe_key(&one.material, &s)))
+                .collect();
+            lobe::show(ui, &s, &mut self.turn, &meshes);
+        }
+    }
+
+    /// A scripted `--edit FRAME:plots.KEY=VALUE` (`key` without
+    /// `plots.`): `theta_i`, `phi_i` (degrees), `quantity` (`f_r-cos` or
+    /// `f_r`), `channel` (`mean`, `luminance`, `r`, `g`, `b`), `log`
+    /// (bool), `decades` (1 to 10), `lobe` (bool).
+    pub fn edit(&mut self, key: &str, value: &str) -> Result<(), String> {
+        let text = value.trim().trim_matches('"');
+        let number = || -> Result<f64, String> {
+            text.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("plots.{key}: `{value}` is not a number"))
+        };
+        let boolean = || -> Result<bool, String> {
+            text.parse::<bool>()
+                .map_err(|_| format!("plots.{key}: `{value}` is not true or false"))
+        };
+        let s = &mut self.settings;
+        match key {
+            "theta_i" => {
+                let v = number()?;
+                if !(0.0..=89.0).contains(&v) {
+                    return Err(format!(
+                        "plots.theta_i = {v}: the plots take θ_i in [0, 89]°"
+                    ));
+                }
+                s.theta_i_deg = v;
+            }
+            "phi_i" => s.phi_i_deg = number()?,
+            "quantity" => s.quantity = text.parse()?,
+            "channel" => s.channel = text.parse()?,
+            "log" => s.log = boolean()?,
+            "decades" => {
+                let v = number()?;
+                if !(1.0..=10.0).contains(&v) || v.fract() != 0.0 {
+                    return Err(format!(
+                        "plots.decades = {v}: give a whole number from 1 to 10"
+                    ));
+                }
+                s.decades = v as u32;
+            }
+            "lobe" => self.show_lobe = boolean()?,
+            _ => {
+                return Err(format!(
+                    "unknown plot setting `plots.{key}`; the plots take theta_i, phi_i, quantity, channel, log, decades, lobe"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether background integrals are under way or finished but not yet
+    /// shown.
+    pub fn busy(&self) -> bool {
+        self.caches
+            .iter()
+            .any(|c| c.curve.busy() || c.point.busy() || c.lobe.busy())
+    }
+}
+
+fn curve_key(m: &Material, s: &Settings) -> CurveKey {
+    (m.clone(), s.phi_i_deg.to_bits())
+}
+
+fn point_key(m: &Material, s: &Settings) -> PointKey {
+    (m.clone(), s.theta_i_deg.to_bits(), s.phi_i_deg.to_bits())
+}
+
+fn lobe_key(m: &Material, s: &Settings) -> LobeKey {
+    (
+        m.clone(),
+        s.theta_i_deg.to_bits(),
+        s.phi_i_deg.to_bits(),
+        s.quantity,
+        s.channel,
+    )
+}
+
+impl SeriesCache {
+    /// The slice now (if its inputs changed); the integrals (and the 3D
+    /// lobe, if shown) requested.
+    fn refresh(&mut self, m: &Material, s: &Settings, lobe: bool, ctx: &egui::Context) {
+        if lobe {
+            let settings = *s;
+            self.lobe.request(&lobe_key(m, s), ctx, move |(m, ..)| {
+                lobe::mesh(&m, &settings)
+            });
+        }
+        let key = (m.clone(), *s);
+        if self.slice.as_ref().map(|(k, _)| k) != Some(&key) {
+            let (t, p) = (s.theta_i_deg.to_radians(), s.phi_i_deg.to_radians());
+            let computed = slice(m, t, p, s.quantity, s.channel);
+            self.slice = Some((key, computed));
+        }
+        self.curve.request(&curve_key(m, s), ctx, |(m, phi)| {
+            let phi = f64::from_bits(phi).to_radians();
+            let thetas: Vec<f64> = (0..ALBEDO_ANGLES)
+                .map(|k| (k as f64 * 89.0 / (ALBEDO_ANGLES - 1) as f64).to_radians())
+                .collect();
+            let albedo = albedo_curve(&m, &thetas, phi);
+            Integrals {
+                albedo: thetas.iter().map(|t| t.to_degrees()).zip(albedo).collect(),
+                gloss: GEOMETRIES.iter().map(|g| gloss_at(&m, *g, phi)).collect(),
+            }
+        });
+        self.point
+            .request(&point_key(m, s), ctx, |(m, theta, phi)| {
+                let wi = direction(
+                    f64::from_bits(theta).to_radians(),
+                    f64::from_bits(phi).to_radians(),
+                );
+                albedo_towards(&m, wi, &frame())
+            });
+    }
+}
+
+/// θ_i, φ_i, the radius quantity, channel and scale.
+fn controls(ui: &mut egui::Ui, s: &mut Settings) {
+    egui::Grid::new("plot settings")
+        .num_columns(2)
+        .show(ui, |ui| {
+            ui.label("θ_i (°)");
+            ui.add(egui::Slider::new(&mut s.theta_i_deg, 0.0..=89.0).step_by(0.5));
+            ui.end_row();
+            ui.label("φ_i (°)");
+            ui.add(egui::Slider::new(&mut s.phi_i_deg, 0.0..=180.0).step_by(1.0));
+            ui.end_row();
+            ui.label("radius");
+            ui.horizontal(|ui| {
+                ui.selectable_value(&mut s.quantity, Quantity::ProjectedFr, "f_r·cos θ_o");
+                ui.selectable_value(&mut s.quantity, Quantity::Fr, "f_r");
+            });
+            ui.end_row();
+            ui.label("channel");
+            ui.horizontal(|ui| {
+                for c in Channel::ALL {
+                    let name = match c {
+                        Channel::Mean => "mean",
+                        Channel::Luminance => "Y",
+                        Channel::R => "R",
+                        Channel::G => "G",
+                        Channel::B => "B",
+                    };
+                    ui.selectable_value(&mut s.channel, c, name)
+                        .on_hover_text(c.describe());
+                }
+            });
+            ui.end_row();
+            ui.label("scale");
+            ui.horizontal(|ui| {
+                ui.selectable_value(&mut s.log, false, "linear");
+                ui.selectable_value(&mut s.log, true, "log");
+                if s.log {
+                    ui.add(egui::Slider::new(&mut s.decades, 1..=10).suffix(" decades"));
+                }
+            });
+            ui.end_row();
+        });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scripted_plot_settings_are_checked() {
+        let mut p = Plots::default();
+        p.edit("theta_i", "60").unwrap();
+        p.edit("log", "true").unwrap();
+        p.edit("decades", "4").unwrap();
+        p.edit("channel", "\"r\"").unwrap();
+        p.edit("quantity", "f_r").unwrap();
+        let s = p.settings;
+        assert_eq!(
+            (s.theta_i_deg, s.log, s.decades, s.channel, s.quantity),
+            (60.0, true, 4, Channel::R, Quantity::Fr)
+        );
+        for (k, v) in [
+            ("theta_i", "95"),
+            ("decades", "0"),
+            ("log", "yes"),
+            ("channel", "alpha"),
+            ("colour", "1"),
+        ] {
+            assert!(p.edit(k, v).is_err(), "{k}={v}");
+        }
+        assert_eq!(p.settings, s, "refused edits change nothing");
+    }
+}

@@ -1,0 +1,133 @@
+//! The polar slice (the lecture's "2D polar plot, intensity as length of
+//! vector from origin") of every plotted material, drawn as `gonio brdf`
+//! draws it: the normal up, signed θ_o with the light's side right
+//! (`crate::explore::slice::polar`). A real polar frame instead of x/y
+//! axes: rings at round values of the radius (linear or log,
+//! [`super::radius`]) labelled along the horizon, spokes every 30°
+//! labelled with θ_o, the light direction (solid) and the mirror
+//! direction (dashed) as lines from the origin.
+
+use super::radius::Radius;
+use super::{Settings, colour};
+use crate::explore::slice::{Slice, light_marker, mirror_marker, polar};
+use egui_plot::{Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Text};
+
+/// The frame's grey.
+const FRAME: egui::Color32 = egui::Color32::from_gray(90);
+const LABEL: egui::Color32 = egui::Color32::from_gray(170);
+
+/// The radius scale for `slices`: their largest finite value (Dirac
+/// reflectances included).
+pub fn scale(s: &Settings, slices: &[&Slice]) -> Radius {
+    let peak = slices
+        .iter()
+        .flat_map(|sl| sl.points.iter().map(|p| p.1).chain(sl.dirac))
+        .filter(|v| v.is_finite())
+        .fold(0.0_f64, f64::max);
+    Radius::new(peak, s.log, s.decades)
+}
+
+pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
+    let radius = scale(s, slices);
+    let outer = radius.outer();
+    let theta_i = s.theta_i_deg.to_radians();
+    let scale_name = match radius {
+        Radius::Linear { .. } => "linear radius".to_string(),
+        Radius::Log { decades, .. } => format!("log radius, {decades} decades"),
+    };
+    ui.label(format!(
+        "Polar slice at θ_i = {:.1}°, φ_i = {:.0}°: {} [1/sr], {}, {scale_name}",
+        s.theta_i_deg,
+        s.phi_i_deg,
+        match s.quantity {
+            crate::explore::slice::Quantity::ProjectedFr => "f_r·cos θ_o",
+            crate::explore::slice::Quantity::Fr => "f_r",
+        },
+        s.channel.describe(),
+    ));
+    let width = ui.available_width() - 8.0;
+    Plot::new("slice")
+        .width(width)
+        .height(width * 0.56)
+        .data_aspect(1.0)
+        .show_axes(false)
+        .show_grid(false)
+        .allow_scroll(false)
+        .allow_zoom(false)
+        .allow_drag(false)
+        .allow_boxed_zoom(false)
+        .include_x(-1.12 * outer)
+        .include_x(1.12 * outer)
+        .include_y(-0.1 * outer)
+        .include_y(1.1 * outer)
+        .show(ui, |p| {
+            for (r, label) in radius.rings() {
+                let ring: Vec<[f64; 2]> = (0..=90)
+                    .map(|k| polar(r, (k as f64 * 2.0 - 90.0).to_radians()))
+                    .collect();
+                p.line(
+                    Line::new("", PlotPoints::from(ring))
+                        .color(FRAME)
+                        .width(0.5),
+                );
+                p.text(
+                    Text::new("", PlotPoint::new(r, 0.0), label)
+                        .color(LABEL)
+                        .anchor(egui::Align2::CENTER_TOP),
+                );
+            }
+            for deg in [-90, -60, -30, 0, 30, 60, 90] {
+                let t = (deg as f64).to_radians();
+                let spoke = vec![[0.0, 0.0], polar(outer, t)];
+                p.line(
+                    Line::new("", PlotPoints::from(spoke))
+                        .color(FRAME)
+                        .width(0.5),
+                );
+                // ±90° sit above the horizon, clear of the rings' labels.
+                let (at, anchor) = match deg {
+                    90 => ([1.02 * outer, 0.0], egui::Align2::LEFT_BOTTOM),
+                    -90 => ([-1.02 * outer, 0.0], egui::Align2::RIGHT_BOTTOM),
+                    _ => (polar(1.06 * outer, t), egui::Align2::CENTER_CENTER),
+                };
+                p.text(
+                    Text::new("", PlotPoint::new(at[0], at[1]), format!("{deg}°"))
+                        .color(LABEL)
+                        .anchor(anchor),
+                );
+            }
+            let light = vec![[0.0, 0.0], light_marker(theta_i, outer)];
+            p.line(
+                Line::new("light ω_i", PlotPoints::from(light))
+                    .color(egui::Color32::from_rgb(255, 230, 120))
+                    .width(1.5),
+            );
+            let mirror = vec![[0.0, 0.0], mirror_marker(theta_i, outer)];
+            p.line(
+                Line::new("mirror direction", PlotPoints::from(mirror))
+                    .color(LABEL)
+                    .style(LineStyle::dashed_loose()),
+            );
+            for (i, sl) in slices.iter().enumerate() {
+                let lobe: Vec<[f64; 2]> = sl
+                    .points
+                    .iter()
+                    .filter(|(_, v)| v.is_finite())
+                    .map(|&(t, v)| polar(radius.map(v), t))
+                    .collect();
+                p.line(
+                    Line::new("", PlotPoints::from(lobe))
+                        .color(colour(i))
+                        .width(1.8),
+                );
+                if let Some(d) = sl.dirac {
+                    p.points(
+                        Points::new("", vec![mirror_marker(theta_i, radius.map(d))])
+                            .color(colour(i))
+                            .radius(4.0),
+                    );
+                }
+            }
+        });
+    ui.small("yellow: light ω_i · dashed: mirror direction · dot: a Dirac lobe's reflectance");
+}
