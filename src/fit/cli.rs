@@ -3,12 +3,12 @@
 
 use super::models::{ALL, FitModel};
 use super::problem::{fit_from, score};
-use crate::output::progress::Progress;
 use super::report::{self, Row};
 use super::samples::samples;
 use super::{Metric, fit, published};
 use crate::material::material_table;
 use crate::material::measured::{self, MeasuredBrdf, library};
+use crate::output::progress::Progress;
 use crate::scene::default_scene::DEFAULT_SCENE_TOML;
 use crate::{Error, Result};
 use rayon::prelude::*;

@@ -25,7 +25,7 @@
 //! metric searches every number (`problem.rs`).
 
 use super::metric::Metric;
-use super::models::{Free, FitModel};
+use super::models::{FitModel, Free};
 use super::samples::Sample;
 use crate::base::Rgb;
 use crate::base::frame::SurfaceFrame;
@@ -231,10 +231,7 @@ impl Quadratic {
                 r
             })
             .collect();
-        let scale = free
-            .iter()
-            .map(|&i| self.a[i][i].abs())
-            .fold(0.0, f64::max);
+        let scale = free.iter().map(|&i| self.a[i][i].abs()).fold(0.0, f64::max);
         for col in 0..m {
             let p = (col..m)
                 .max_by(|&x, &y| rows[x][col].abs().total_cmp(&rows[y][col].abs()))
@@ -273,9 +270,8 @@ mod tests {
     fn the_solved_numbers_are_the_least_squares_minimum() {
         let truth = Material::new("m", crate::material::ReflectanceModel::Ward);
         let frame = SurfaceFrame::new(DVec3::Z, DVec3::X);
-        let samples = samples_of(|_, _, _, wi, wo| {
-            truth.f_r(wi, wo, &frame) + Rgb::new(0.05, 0.02, 0.1)
-        });
+        let samples =
+            samples_of(|_, _, _, wi, wo| truth.f_r(wi, wo, &frame) + Rgb::new(0.05, 0.02, 0.1));
         for spec in ALL {
             let model = FitModel::parse(spec).unwrap();
             let Some(linear) = Linear::of(&model, Metric::Ngan) else {
