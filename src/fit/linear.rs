@@ -118,15 +118,15 @@ impl Linear {
         let mut row = vec![0.0; n];
         for (i, s) in samples.iter().enumerate() {
             let w = s.weight * s.wi.z * s.wi.z;
-            for c in 0..3 {
-                for (j, &(g, k)) in unknowns.iter().enumerate() {
-                    row[j] = if reaches(&model.free[k], c) {
-                        bases[g][i][c]
+            for (c, y) in s.measured.to_array().into_iter().enumerate() {
+                for (r, &(g, k)) in row.iter_mut().zip(&unknowns) {
+                    *r = if reaches(&model.free[k], c) {
+                        bases[g][i].to_array()[c]
                     } else {
                         0.0
                     };
                 }
-                q.add(w, &row, s.measured[c]);
+                q.add(w, &row, y);
             }
         }
         let lo: Vec<f64> = unknowns.iter().map(|&(_, k)| model.free[k].lo).collect();
@@ -240,10 +240,11 @@ impl Quadratic {
                 return false;
             }
             rows.swap(col, p);
-            for r in col + 1..m {
-                let f = rows[r][col] / rows[col][col];
-                for k in col..=m {
-                    rows[r][k] -= f * rows[col][k];
+            let pivot = rows[col].clone();
+            for row in rows.iter_mut().skip(col + 1) {
+                let f = row[col] / pivot[col];
+                for (a, b) in row[col..].iter_mut().zip(&pivot[col..]) {
+                    *a -= f * b;
                 }
             }
         }
