@@ -160,6 +160,31 @@ fn apply_slot(s: TexturedSurface, slot: TextureSlot, texel: vec4<f32>) -> Textur
     return out;
 }
 
+// material::ROUGHNESS_FLOOR.
+const ROUGHNESS_FLOOR: f32 = 1e-4;
+
+// The pixel footprint's roughness floor (globals.roughness_floor) on the
+// lobe widths a texture multiplied, after texturing: widened first, a
+// texel of 0 would take the floor away. The other widths had it on the
+// CPU. f64 twin: Material::with_textured_widths_floored (the gltf-pbr
+// roughness is perceptual: its α = r² is widened).
+fn textured_widths_floored(base: Material) -> Material {
+    var fields = 0u;
+    for (var i = 0u; i < TEXTURE_SLOTS; i++) {
+        fields |= texture_slots.slots[i].fields;
+    }
+    let f2 = globals.roughness_floor * globals.roughness_floor;
+    var m = base;
+    let pbr = brdf_model(m) == MODEL_GLTF_PBR;
+    let a = select(m.roughness, m.roughness * m.roughness, pbr);
+    let a_floored = max(sqrt(a * a + f2), ROUGHNESS_FLOOR);
+    let r_floored = select(a_floored, sqrt(a_floored), pbr);
+    m.roughness = select(m.roughness, r_floored, (fields & 16u) != 0u);
+    m.sigma_x = select(m.sigma_x, max(sqrt(m.sigma_x * m.sigma_x + f2), ROUGHNESS_FLOOR), (fields & 32u) != 0u);
+    m.sigma_y = select(m.sigma_y, max(sqrt(m.sigma_y * m.sigma_y + f2), ROUGHNESS_FLOOR), (fields & 64u) != 0u);
+    return m;
+}
+
 // The material at a pixel: every slot's texel applied.
 // f64 twin: reference::texture::textured.
 fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
@@ -173,6 +198,7 @@ fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
         let texel = slot_texel(i, slot_uv(slot, uv), slot_duv(slot, ddx), slot_duv(slot, ddy));
         out = apply_slot(out, slot, texel);
     }
+    out.material = textured_widths_floored(out.material);
     return out;
 }
 
@@ -184,6 +210,7 @@ fn textured_surface_level0(base: Material, uv0: vec2<f32>, uv1: vec2<f32>) -> Te
         let uv = select(uv0, uv1, slot.tex_coord == 1u);
         out = apply_slot(out, slot, slot_texel_level0(i, slot_uv(slot, uv)));
     }
+    out.material = textured_widths_floored(out.material);
     return out;
 }
 

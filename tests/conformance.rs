@@ -479,3 +479,66 @@ fn conformance_models_gpu_match_reference() {
         common::assert_agrees(model, "GPU and reference disagree", &c, &frame, &center);
     }
 }
+
+/// MetalRoughSpheres against MetalRoughSpheresNoTextures, in the form
+/// available here (`assets/gltf/MetalRoughSpheresTextured`, made by
+/// `scripts/make_metal_rough_spheres_textured.py`): Khronos's textures of
+/// MetalRoughSpheres on the 98 spheres of NoTextures, each material
+/// reading its cell's texel, against the same spheres with those texels
+/// as factors. Whole images, both renderers, every pixel. Tolerance, as
+/// in `texture_encoding_factors_equal_textures`: the texels are stored
+/// as f16 (relative 2⁻¹²), and metallic-roughness reaches the radiance at
+/// most through GGX's D and height-correlated V, each |∂ln/∂ln α| ≤ 2
+/// with α = r² (so ×4 per term in r): 4 · 2⁻¹¹ relative, plus 10⁻⁶ for
+/// f32 shading. Geometry and coverage are the same in both files.
+#[test]
+fn metal_rough_spheres_textures_equal_their_texel_factors() {
+    let tolerance = 4.0 * 2f64.powi(-11);
+    let sets = [
+        "image.width=160".to_string(),
+        "image.height=120".to_string(),
+    ];
+    let textured = load(
+        "MetalRoughSpheresTextured/MetalRoughSpheresTextured.gltf",
+        &sets,
+    );
+    let factors = load(
+        "MetalRoughSpheresTextured/MetalRoughSpheresTexelFactors.gltf",
+        &sets,
+    );
+    assert!(textured.has_textures() && !factors.has_textures());
+    for name in ["GPU", "reference"] {
+        let render = |scene: &Scene| {
+            if name == "GPU" {
+                common::gpu_renderer().render(scene).unwrap().0
+            } else {
+                gonio::reference::render(scene)
+            }
+        };
+        let (t, f) = (render(&textured), render(&factors));
+        let (mut lit, mut worst) = (0, 0.0f64);
+        for (i, (a, b)) in t.radiance.iter().zip(&f.radiance).enumerate() {
+            for c in 0..3 {
+                let (a, b) = (f64::from(a[c]), f64::from(b[c]));
+                if b > 1e-3 {
+                    lit += 1;
+                }
+                let err = (a - b).abs() / (b.abs() * tolerance + 1e-6);
+                if err > 1.0 && err > worst {
+                    eprintln!(
+                        "{name}: pixel {} of row {}, channel {c}: {a} vs {b}",
+                        i % 160,
+                        i / 160
+                    );
+                }
+                worst = worst.max(err);
+            }
+        }
+        eprintln!("{name}: {lit} lit channels, worst error / tolerance {worst:.3}");
+        assert!(lit > 5_000, "{name}: only {lit} lit channels");
+        assert!(
+            worst <= 1.0,
+            "{name}: textures and texel factors differ: {worst:.3} × the tolerance"
+        );
+    }
+}

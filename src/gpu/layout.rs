@@ -20,7 +20,9 @@ pub struct GpuGlobals {
     /// `ToneMap::code` of `image.tone_map`, read by display targets only.
     pub tone_map: u32,
     pub env_horizon: [f32; 3],
-    pub _pad2: f32,
+    /// `Scene::roughness_floor`, applied on the GPU to lobe widths a
+    /// texture multiplies (`textured_widths_floored` in textures.wgsl).
+    pub roughness_floor: f32,
     pub env_ground: [f32; 3],
     pub _pad3: f32,
     /// Energy compensation's albedo table (`DfgTable::albedo_uniform`),
@@ -127,7 +129,7 @@ impl GpuGlobals {
             env_zenith: f32x3(scene.environment.zenith),
             tone_map: scene.tone_map.code(),
             env_horizon: f32x3(scene.environment.horizon),
-            _pad2: 0.0,
+            roughness_floor: scene.roughness_floor() as f32,
             env_ground: f32x3(scene.environment.ground),
             _pad3: 0.0,
             albedo: if scene.materials.iter().any(|m| m.energy_compensation) {
@@ -327,7 +329,7 @@ mod tests {
                 env_zenith,
                 tone_map,
                 env_horizon,
-                _pad2,
+                roughness_floor,
                 env_ground,
                 _pad3,
                 albedo

@@ -291,17 +291,48 @@ impl Material {
     ///
     /// gltf-pbr's `roughness` is the perceptual r (α = r²): its α is widened
     /// the same way, `r' = sqrt(α')`.
+    ///
+    /// A lobe width a texture multiplies is left as it is here: the floor
+    /// widens the width at the pixel, texel included, so the renderers
+    /// widen it after texturing ([`Material::with_textured_widths_floored`];
+    /// widening first and then multiplying by a texel of 0 would take the
+    /// floor away).
     pub fn with_roughness_floor(&self, floor: f64) -> Material {
-        let widen = |r: f64| (r * r + floor * floor).sqrt().max(ROUGHNESS_FLOOR);
+        self.with_widths_floored(floor, |key| !self.is_textured(key))
+    }
+
+    /// The second half of [`Material::with_roughness_floor`] for a
+    /// textured material: the floor applied to the lobe widths its
+    /// textures multiplied (`self` is the material after texturing).
+    /// GPU twin: `textured_widths_floored` in shaders/textures.wgsl.
+    pub fn with_textured_widths_floored(&self, floor: f64) -> Material {
+        self.with_widths_floored(floor, |key| self.is_textured(key))
+    }
+
+    /// Whether a texture multiplies the parameter with scene-file key `key`.
+    fn is_textured(&self, key: &str) -> bool {
+        self.textures
+            .iter()
+            .any(|t| matches!(t.target, texture::TextureTarget::Param(k) if k == key))
+    }
+
+    fn with_widths_floored(&self, floor: f64, applies: impl Fn(&str) -> bool) -> Material {
+        let widen = |key: &str, r: f64| {
+            if applies(key) {
+                (r * r + floor * floor).sqrt().max(ROUGHNESS_FLOOR)
+            } else {
+                r
+            }
+        };
         let roughness = if self.model == ReflectanceModel::GltfPbr {
-            widen(self.roughness * self.roughness).sqrt()
+            widen("roughness", self.roughness * self.roughness).sqrt()
         } else {
-            widen(self.roughness)
+            widen("roughness", self.roughness)
         };
         Material {
             roughness,
-            sigma_x: widen(self.sigma_x),
-            sigma_y: widen(self.sigma_y),
+            sigma_x: widen("sigma_x", self.sigma_x),
+            sigma_y: widen("sigma_y", self.sigma_y),
             ..self.clone()
         }
     }

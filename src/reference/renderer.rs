@@ -498,7 +498,12 @@ impl<'a> Shader<'a> {
             Some(n_t) => texture::normal_mapped_frame(&frame, sign, n_t),
             None => frame,
         };
-        (std::borrow::Cow::Owned(textured.material), frame)
+        // The pixel footprint's roughness floor on the textured widths
+        // (the others had it in `effective_materials`).
+        let floored = textured
+            .material
+            .with_textured_widths_floored(self.scene.roughness_floor());
+        (std::borrow::Cow::Owned(floored), frame)
     }
 
     /// The UV derivatives of UV set `set` at pixel `(row, column)` on

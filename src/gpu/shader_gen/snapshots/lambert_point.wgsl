@@ -21,7 +21,7 @@ struct Globals {
     env_zenith: vec3<f32>, // the environment a mirror reflects (scene::Environment)
     tone_map: u32,        // image.tone_map (ToneMap::code), read only by display targets
     env_horizon: vec3<f32>,
-    _pad2: f32,
+    roughness_floor: f32, // Scene::roughness_floor, for textured lobe widths (textures.wgsl)
     env_ground: vec3<f32>,
     _pad3: f32,
     // E(μ, α) of energy compensation at the 32 × 32 nodes of dfg::table,
