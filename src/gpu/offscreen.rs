@@ -127,7 +127,7 @@ pub fn render(
 
 /// Refuses a sample count the device cannot draw offscreen radiance
 /// with, naming `image.msaa`.
-fn check_msaa(ctx: &GpuContext, format: wgpu::TextureFormat, samples: u32) -> Result<()> {
+pub fn check_msaa(ctx: &GpuContext, format: wgpu::TextureFormat, samples: u32) -> Result<()> {
     let specific = ctx
         .device
         .features()

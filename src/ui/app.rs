@@ -641,7 +641,17 @@ impl App {
     ) {
         let gfx = self.gfx.as_mut().expect("initialized");
         let [x, y, w, h] = self.view_rect;
-        let depth = gfx.surface.depth_view(gfx.renderer.context()).clone();
+        // image.msaa: the scene pass draws into a multisampled target and
+        // resolves into the swapchain image (bring_up_to_date compiled the
+        // pipelines for the same count).
+        let samples = gfx.prepared.as_ref().map_or(1, |p| p.samples);
+        let ctx = gfx.renderer.context();
+        let depth = gfx.surface.depth_view(ctx, samples).clone();
+        let multisampled = gfx.surface.multisampled_view(ctx, samples).cloned();
+        let (color, resolve) = match &multisampled {
+            Some(m) => (m, Some(view)),
+            None => (view, None),
+        };
         let timestamps = gfx.timestamps.as_ref().filter(|_| measure_gpu);
         let viewport = Some([x as f32, y as f32, w as f32, h as f32]);
         // Split (compare mode): the same camera and viewport for both
@@ -657,8 +667,8 @@ impl App {
             prepared,
             encoder,
             &FrameTarget {
-                color: view,
-                resolve: None,
+                color,
+                resolve,
                 depth: &depth,
                 viewport,
                 clip: left,
@@ -670,8 +680,8 @@ impl App {
                 p,
                 encoder,
                 &FrameTarget {
-                    color: view,
-                    resolve: None,
+                    color,
+                    resolve,
                     depth: &depth,
                     viewport,
                     clip: Some(clip),
@@ -933,9 +943,24 @@ fn bring_up_to_date(
     (dirty, view_dirty): (bool, bool),
     verbose: bool,
 ) -> Result<Option<String>> {
+    // image.msaa, as `gonio render` draws it, or one sample with a word
+    // when the adapter cannot multisample the window's format.
+    let (samples, mut refused) = match scene.msaa {
+        0 | 1 => (1, None),
+        n => match crate::gpu::offscreen::check_msaa(renderer.context(), format, n) {
+            Ok(()) => (n, None),
+            Err(e) => (
+                1,
+                Some(format!("{e}; the viewer draws one sample per pixel")),
+            ),
+        },
+    };
+    if prepared.as_ref().is_some_and(|p| p.samples != samples) {
+        *prepared = None;
+    }
     match prepared {
         None => {
-            let mut p = renderer.prepare(scene, format)?;
+            let mut p = renderer.prepare_with_samples(scene, format, samples)?;
             p.display_scale = display_scale;
             renderer.update(&mut p, scene)?;
             if verbose {
@@ -953,9 +978,9 @@ fn bring_up_to_date(
             p.display_scale = display_scale;
             renderer.update_view(p, scene);
         }
-        Some(_) => {}
+        Some(_) => refused = None,
     }
-    Ok(None)
+    Ok(refused)
 }
 
 impl ApplicationHandler<Wake> for App {

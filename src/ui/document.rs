@@ -75,14 +75,6 @@ impl Document {
         {
             eprintln!("gonio: {warning}");
         }
-        // The window's pass draws one sample per pixel (issue 18: MSAA
-        // was ignored without a word).
-        if loaded.scene.msaa > 1 {
-            eprintln!(
-                "gonio: warning: image.msaa = {}: the viewer draws one sample per pixel; MSAA applies to `gonio render`",
-                loaded.scene.msaa
-            );
-        }
         let file_materials = loaded
             .table
             .get("materials")

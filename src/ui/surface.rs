@@ -19,7 +19,10 @@ pub struct WindowSurface {
     pub copyable: bool,
     /// Whether the swapchain images can be copied into (the panel cache).
     pub writable: bool,
-    depth: Option<(u32, u32, wgpu::TextureView)>,
+    depth: Option<(u32, u32, u32, wgpu::TextureView)>,
+    /// The multisampled colour target the scene pass draws into and
+    /// resolves to the swapchain image (`image.msaa` > 1).
+    multisampled: Option<(u32, u32, u32, wgpu::TextureView)>,
 }
 
 impl WindowSurface {
@@ -78,6 +81,7 @@ impl WindowSurface {
             copyable,
             writable,
             depth: None,
+            multisampled: None,
         })
     }
 
@@ -108,28 +112,71 @@ impl WindowSurface {
         self.surface.configure(&ctx.device, &self.config);
     }
 
-    /// The depth buffer for the current size.
-    pub fn depth_view(&mut self, ctx: &GpuContext) -> &wgpu::TextureView {
-        let (w, h) = (self.config.width, self.config.height);
-        if !matches!(&self.depth, Some((dw, dh, _)) if *dw == w && *dh == h) {
-            let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("viewer depth"),
-                size: wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: DEPTH_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            });
-            self.depth = Some((w, h, texture.create_view(&Default::default())));
-        }
-        &self.depth.as_ref().expect("just created").2
+    /// The depth buffer for the current size and `samples` per pixel.
+    pub fn depth_view(&mut self, ctx: &GpuContext, samples: u32) -> &wgpu::TextureView {
+        let size = (self.config.width, self.config.height);
+        cached_target(
+            &mut self.depth,
+            ctx,
+            size,
+            samples,
+            DEPTH_FORMAT,
+            "viewer depth",
+        )
     }
+
+    /// The multisampled colour target for `samples` > 1 per pixel (in the
+    /// swapchain's format, resolved into its image), `None` for 1.
+    pub fn multisampled_view(
+        &mut self,
+        ctx: &GpuContext,
+        samples: u32,
+    ) -> Option<&wgpu::TextureView> {
+        if samples <= 1 {
+            self.multisampled = None;
+            return None;
+        }
+        let size = (self.config.width, self.config.height);
+        let format = self.config.format;
+        Some(cached_target(
+            &mut self.multisampled,
+            ctx,
+            size,
+            samples,
+            format,
+            "viewer colour (multisampled)",
+        ))
+    }
+}
+
+/// A render attachment of `size`, `samples` and `format`, made again only
+/// when one of them changed.
+fn cached_target<'a>(
+    slot: &'a mut Option<(u32, u32, u32, wgpu::TextureView)>,
+    ctx: &GpuContext,
+    (w, h): (u32, u32),
+    samples: u32,
+    format: wgpu::TextureFormat,
+    label: &str,
+) -> &'a wgpu::TextureView {
+    if !matches!(slot, Some((dw, dh, ds, _)) if (*dw, *dh, *ds) == (w, h, samples)) {
+        let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: samples,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        *slot = Some((w, h, samples, texture.create_view(&Default::default())));
+    }
+    &slot.as_ref().expect("just created").3
 }
 
 /// A copy of a swapchain image on its way to the CPU.
