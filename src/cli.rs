@@ -241,6 +241,8 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             );
         }
         let mut renderer = GpuRenderer::new(context);
+        // One frame: one pipeline to compile (issue 18).
+        renderer.set_one_pipeline(true);
         let (frame, gpu_timings) = renderer.render(&scene)?;
         timings.extend(gpu_timings);
         frame

@@ -63,6 +63,10 @@ pub struct PipelineCache {
     environment_layouts: HashMap<UniformArrays, EnvironmentLayouts>,
     /// Background pipelines by arrays, colour format and samples.
     backgrounds: HashMap<(UniformArrays, wgpu::TextureFormat, u32), wgpu::RenderPipeline>,
+    /// Whether a scene of several BRDF variants is drawn by one pipeline
+    /// that switches per material at run time instead of one specialized
+    /// pipeline per variant ([`Self::specializations`]).
+    pub one_pipeline: bool,
 }
 
 impl PipelineCache {
@@ -113,14 +117,25 @@ impl PipelineCache {
             shadow_sampler,
             environment_layouts: HashMap::new(),
             backgrounds: HashMap::new(),
+            one_pipeline: false,
         }
     }
 
     /// The variants `key`'s pipelines are specialized to: each of its BRDF
     /// variants when it has several (each material's batch is drawn by the
     /// pipeline of its variant), else `None` (one pipeline, no switch).
-    pub fn specializations(key: &ShaderKey) -> Vec<Option<u32>> {
-        key.specializations()
+    /// With [`Self::one_pipeline`], always `None`: the pipeline whose
+    /// variant comes from the material (the switch). Why both: on a
+    /// software rasterizer the switch runs every arm for every pixel, so
+    /// frames are faster specialized (the viewer), but each pipeline costs
+    /// a compilation, which a one-frame render pays once per variant
+    /// (issue 18: the cold `gonio render`).
+    pub fn specializations(&self, key: &ShaderKey) -> Vec<Option<u32>> {
+        if self.one_pipeline {
+            vec![None]
+        } else {
+            key.specializations()
+        }
     }
 
     /// Compiles (once) every pipeline `key` draws with into `format` (one
@@ -132,7 +147,7 @@ impl PipelineCache {
         format: wgpu::TextureFormat,
         samples: u32,
     ) -> Result<()> {
-        for variant in Self::specializations(key) {
+        for variant in self.specializations(key) {
             self.compile_scene_pipeline(key, layout, format, samples, (variant, false))?;
             if key.alpha_blend {
                 self.compile_scene_pipeline(key, layout, format, samples, (variant, true))?;

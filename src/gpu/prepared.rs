@@ -472,7 +472,7 @@ fn batch_pipelines(
     materials: &[super::layout::GpuMaterial],
     draw: &SceneDraw,
 ) -> Vec<(Option<u32>, wgpu::RenderPipeline)> {
-    let specialized = PipelineCache::specializations(key).len() > 1;
+    let specialized = cache.specializations(key).len() > 1;
     draw.batches()
         .iter()
         .map(|b| {

@@ -40,6 +40,14 @@ impl GpuRenderer {
         }
     }
 
+    /// Draws scenes of several BRDF variants with one pipeline that
+    /// switches per material (`true`, one compilation: a one-frame render)
+    /// or one specialized pipeline per variant (`false`, the default:
+    /// faster frames). See [`PipelineCache::specializations`].
+    pub fn set_one_pipeline(&mut self, on: bool) {
+        self.pipelines.one_pipeline = on;
+    }
+
     /// The device this renderer draws with.
     pub fn context(&self) -> &GpuContext {
         &self.ctx
