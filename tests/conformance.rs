@@ -224,36 +224,10 @@ fn alpha_blend_mode_test_cutoffs() {
     }
 }
 
-/// The reference's spread over the levels of detail the GPU may use
-/// (λ ± ½, Vulkan's bound; tests/textures.rs): for each pixel, the
-/// frames at biases ±⅛ … ±½ whose values lie farthest above and below
-/// the centre's, as one pair for `compare_with_spreads`. With alpha the
-/// picture is not monotonic in λ (BLEND composites a texel's alpha with
-/// its colour: a product of two functions of λ), so the two ends of the
-/// interval alone do not bound it; ⅛ steps sample it. Where a bias
-/// changes the coverage (a MASK edge moves), the pair marks the pixel a
-/// silhouette.
-fn lod_envelope(scene: &Scene, center: &Frame) -> (Frame, Frame) {
-    let (mut up, mut down) = (center.clone(), center.clone());
-    for bias in [-0.5, -0.375, -0.25, -0.125, 0.125, 0.25, 0.375, 0.5] {
-        let f = gonio::reference::render_with_lod_bias(scene, bias);
-        for k in 0..center.len() {
-            if f.coverage[k] != center.coverage[k] {
-                up.coverage[k] = f.coverage[k];
-            }
-            for c in 0..3 {
-                up.radiance[k][c] = up.radiance[k][c].max(f.radiance[k][c]);
-                down.radiance[k][c] = down.radiance[k][c].min(f.radiance[k][c]);
-            }
-        }
-    }
-    (up, down)
-}
-
 /// AlphaBlendModeTest whole (OPAQUE, BLEND over the marble, MASK with
 /// mipmapped textures), GPU against reference: the derived render
 /// tolerance with the jitter and the level-of-detail envelope
-/// ([`lod_envelope`]).
+/// ([`common::lod_envelope`]).
 #[test]
 fn alpha_blend_mode_test_gpu_matches_reference() {
     let view = Frontal {
@@ -268,7 +242,7 @@ fn alpha_blend_mode_test_gpu_matches_reference() {
     let scene = load("AlphaBlendModeTest/AlphaBlendModeTest.glb", &sets);
     let frame = common::gpu_renderer().render(&scene).unwrap().0;
     let (center, jittered) = common::reference_with_jitter(&scene);
-    let (up, down) = lod_envelope(&scene, &center);
+    let (up, down) = common::lod_envelope(&scene, &center);
     let c = gonio::output::compare::compare_with_spreads(
         &frame,
         &center,
