@@ -179,7 +179,10 @@ pub fn show(
         let name = series.get(k).map(|one| one.label.as_str()).unwrap_or("");
         let room = (side / 6.5) as usize;
         let name: String = if name.chars().count() > room {
-            name.chars().take(room.saturating_sub(1)).chain(['…']).collect()
+            name.chars()
+                .take(room.saturating_sub(1))
+                .chain(['…'])
+                .collect()
         } else {
             name.to_string()
         };
@@ -216,9 +219,12 @@ pub fn show(
     }
     colour_bar(&painter, &radius, &rects, cols);
 
-    let hovered = response
-        .hover_pos()
-        .and_then(|p| rects.iter().find(|r| r.contains(p)).map(|r| angles_at(*r, p)));
+    let hovered = response.hover_pos().and_then(|p| {
+        rects
+            .iter()
+            .find(|r| r.contains(p))
+            .map(|r| angles_at(*r, p))
+    });
     let Some((th, td)) = hovered.or(view.probe) else {
         ui.weak("Hover an image: f_r of every material at that θ_h, θ_d.");
         return;
@@ -229,7 +235,9 @@ pub fn show(
         painter.circle_stroke(p, 4.0, stroke);
     }
     let pd = s.phi_d_deg;
-    ui.label(format!("at θ_h = {th:.1}°, θ_d = {td:.1}°, φ_d = {pd:.0}°:"));
+    ui.label(format!(
+        "at θ_h = {th:.1}°, θ_d = {td:.1}°, φ_d = {pd:.0}°:"
+    ));
     let mut report = String::new();
     for (k, one) in series.iter().enumerate() {
         let f = f_r_at(
@@ -266,7 +274,10 @@ fn axes(painter: &egui::Painter, r: egui::Rect, left_labels: bool) {
     let stroke = (1.0, FRAME);
     for deg in [0.0, 30.0, 60.0, 90.0] {
         let x = position_of(r, deg, 0.0).x;
-        painter.line_segment([egui::pos2(x, r.max.y), egui::pos2(x, r.max.y + 4.0)], stroke);
+        painter.line_segment(
+            [egui::pos2(x, r.max.y), egui::pos2(x, r.max.y + 4.0)],
+            stroke,
+        );
         painter.text(
             egui::pos2(x, r.max.y + 4.0),
             egui::Align2::CENTER_TOP,
@@ -276,7 +287,10 @@ fn axes(painter: &egui::Painter, r: egui::Rect, left_labels: bool) {
         );
         if left_labels {
             let y = position_of(r, 0.0, deg).y;
-            painter.line_segment([egui::pos2(r.min.x - 4.0, y), egui::pos2(r.min.x, y)], stroke);
+            painter.line_segment(
+                [egui::pos2(r.min.x - 4.0, y), egui::pos2(r.min.x, y)],
+                stroke,
+            );
             painter.text(
                 egui::pos2(r.min.x - 6.0, y),
                 egui::Align2::RIGHT_CENTER,
@@ -295,8 +309,8 @@ fn axes(painter: &egui::Painter, r: egui::Rect, left_labels: bool) {
     );
     if left_labels {
         painter.text(
-            egui::pos2(r.min.x - 6.0, r.min.y - 2.0),
-            egui::Align2::RIGHT_BOTTOM,
+            egui::pos2(r.min.x - LEFT, r.min.y - 2.0),
+            egui::Align2::LEFT_BOTTOM,
             "θ_d (°)",
             font,
             LABEL,
@@ -329,7 +343,9 @@ fn colour_bar(painter: &egui::Painter, radius: &Radius, rects: &[egui::Rect], co
     painter.rect_stroke(bar, 0.0, (1.0, FRAME), egui::StrokeKind::Outside);
     let bottom = match radius {
         Radius::Linear { .. } => "0".to_string(),
-        Radius::Log { top, decades } => format!("1e{}", top.log10().round() as i32 - *decades as i32),
+        Radius::Log { top, decades } => {
+            format!("1e{}", top.log10().round() as i32 - *decades as i32)
+        }
     };
     let rings = std::iter::once((0.0, bottom)).chain(radius.rings());
     for (at, text) in rings {
@@ -397,7 +413,10 @@ mod tests {
             assert!((a - th).abs() < 1e-4 && (b - td).abs() < 1e-4, "{a},{b}");
         }
         assert_eq!(angles_at(r, r.left_bottom()), (0.0, 0.0));
-        assert_eq!((cell_of(0.0), cell_of(20.5), cell_of(90.0)), (0, 20, CELLS - 1));
+        assert_eq!(
+            (cell_of(0.0), cell_of(20.5), cell_of(90.0)),
+            (0, 20, CELLS - 1)
+        );
     }
 
     /// Linear: 0 at the bottom, the round outer value at the top; log:

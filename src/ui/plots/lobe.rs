@@ -214,7 +214,9 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, turn: &mut Turn, meshes: &[Option<(
         })
         .collect();
     for patch in patches(&points, turn) {
-        let p = points[patch.series].as_ref().expect("patches of meshes only");
+        let p = points[patch.series]
+            .as_ref()
+            .expect("patches of meshes only");
         let at = |k: usize, j: usize| to_screen(p[k][j % MERIDIANS]);
         let tint = colour(patch.series);
         let mix = |b: u8, c: u8| (0.85 * b as f32 + 0.15 * c as f32) as u8;
@@ -295,9 +297,7 @@ mod tests {
     fn depth_is_the_third_axis_of_the_view() {
         for (yaw, pitch) in [(-0.6, 0.45), (1.3, -0.2), (2.9, 1.5)] {
             let t = Turn { yaw, pitch };
-            let axis = |f: &dyn Fn(DVec3) -> f64| {
-                DVec3::new(f(DVec3::X), f(DVec3::Y), f(DVec3::Z))
-            };
+            let axis = |f: &dyn Fn(DVec3) -> f64| DVec3::new(f(DVec3::X), f(DVec3::Y), f(DVec3::Z));
             let right = axis(&|p| t.project(p).0);
             let up = axis(&|p| t.project(p).1);
             let towards = axis(&|p| t.depth(p));

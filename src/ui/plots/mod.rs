@@ -282,7 +282,12 @@ fn probe(key: &str, text: &str) -> Result<Option<(f64, f64)>, String> {
     }
     let angles: Vec<Option<f64>> = text
         .split(',')
-        .map(|a| a.trim().parse::<f64>().ok().filter(|v| (0.0..=90.0).contains(v)))
+        .map(|a| {
+            a.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| (0.0..=90.0).contains(v))
+        })
         .collect();
     match angles[..] {
         [Some(th), Some(td)] => Ok(Some((th, td))),
@@ -363,8 +368,9 @@ fn controls(ui: &mut egui::Ui, s: &mut Settings) {
             ui.label("φ_i (°)");
             ui.add(egui::Slider::new(&mut s.phi_i_deg, 0.0..=180.0).step_by(1.0));
             ui.end_row();
-            ui.label("φ_d (°)")
-                .on_hover_text("difference azimuth of the θ_h × θ_d image (BRDF Explorer's default 90°)");
+            ui.label("φ_d (°)").on_hover_text(
+                "difference azimuth of the θ_h × θ_d image (BRDF Explorer's default 90°)",
+            );
             ui.add(egui::Slider::new(&mut s.phi_d_deg, 0.0..=180.0).step_by(1.0));
             ui.end_row();
             ui.label("radius");
@@ -417,7 +423,14 @@ mod tests {
         p.edit("probe", "20, 40").unwrap();
         let s = p.settings;
         assert_eq!(
-            (s.theta_i_deg, s.log, s.decades, s.channel, s.quantity, s.phi_d_deg),
+            (
+                s.theta_i_deg,
+                s.log,
+                s.decades,
+                s.channel,
+                s.quantity,
+                s.phi_d_deg
+            ),
             (60.0, true, 4, Channel::R, Quantity::Fr, 45.0)
         );
         assert!(!p.show_halfdiff);
