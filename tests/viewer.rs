@@ -922,4 +922,66 @@ fn the_viewer_draws_msaa() {
         edges_changed >= 100,
         "MSAA left the silhouettes as they were ({edges_changed} pixels changed)"
     );
+
+/// Issue 17's θ_h × θ_d image in the panel: with a pinned readout point
+/// (`plots.probe`, at a φ_d other than the default), the viewer prints
+/// per material, once its image is current, f_r at that point and the
+/// image's value in the cell holding it. Both must be the f64 functions
+/// of `gonio brdf --plot-halfdiff` (explore::halfdiff) bit for bit: the
+/// same code on the same inputs (the test parses the same degrees and
+/// converts them as the viewer does). The run ends by `--exit-when-idle`,
+/// so only after the images were computed and shown.
+#[test]
+fn the_halfdiff_image_reads_out_f_r_where_the_parameterization_says() {
+    use gonio::explore::halfdiff::{cell_centre, directions, f_r_at};
+    let specs = [
+        "cook-torrance,k_d=0.1,k_s=1,roughness=0.2,preset=gold-rgb",
+        "ward,k_d=0.2,k_s=0.3,sigma_x=0.1,sigma_y=0.3",
+    ];
+    let (th, td, pd) = (20.25_f64, 40.5_f64, 60.0_f64);
+    let out = xvfb()
+        .arg(common::gonio().get_program())
+        .args(["view", "--size", "900x700", "--exit-when-idle", "0.5"])
+        .args(["--compare", specs[0], "--compare", specs[1]])
+        .args(["--edit", &format!("0:plots.probe={th},{td}")])
+        .args(["--edit", &format!("0:plots.phi_d={pd}")])
+        .output()
+        .expect("xvfb-run runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "{stdout}{stderr}{}",
+        common::LAVAPIPE_TEST_HINT
+    );
+    let numbers = |line: &str, key: &str| -> Vec<f64> {
+        let rest = line.split(&format!(" {key}=")).nth(1).unwrap();
+        let rest = rest.trim_start_matches(['[', '(']);
+        let end = rest.find([']', ')']).unwrap();
+        rest[..end]
+            .split(',')
+            .map(|v| v.trim().parse().unwrap())
+            .collect()
+    };
+    for (k, spec) in specs.iter().enumerate() {
+        let series = k + 1;
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("halfdiff probe {series}:")))
+            .unwrap_or_else(|| panic!("no readout of series {series}: {stdout}{stderr}"));
+        let m = gonio::explore::spec::compare_spec(spec, &[])
+            .unwrap()
+            .material
+            .with_roughness_floor(0.0);
+        let f = f_r_at(&m, th.to_radians(), td.to_radians(), pd.to_radians());
+        assert_eq!(numbers(line, "f_r"), vec![f.x, f.y, f.z], "{line}");
+        let cell = numbers(line, "cell");
+        let (i, j) = (cell[0] as usize, cell[1] as usize);
+        assert_eq!((i, j), (20, 40), "{line}");
+        let (wi, wo) = directions(cell_centre(i), cell_centre(j), pd.to_radians());
+        let c = m.f_r(wi, wo, &gonio::explore::frame());
+        assert_eq!(numbers(line, "cell_f_r"), vec![c.x, c.y, c.z], "{line}");
+        assert_ne!(c, f, "the cell's centre is not the probed point");
+    }
+    assert!(stdout.contains("halfdiff probe 0:"), "{stdout}");
 }

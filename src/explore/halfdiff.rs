@@ -3,7 +3,8 @@
 //! Representation", EGWR 1998), as BRDF Explorer's "Image Slice" shows it
 //! (and the natural view of measured tables such as MERL's, binned the same
 //! way). For an isotropic material f_r depends on θ_h, θ_d and φ_d only;
-//! the image fixes φ_d = 90° (BRDF Explorer's default) and φ_h = 0.
+//! `gonio brdf --plot-halfdiff` fixes φ_d = 90° (BRDF Explorer's default),
+//! the viewer takes any φ_d (`src/ui/plots/halfdiff.rs`); both φ_h = 0.
 //!
 //! Directions: the half vector `h = (sin θ_h, 0, cos θ_h)` (φ_h = 0); the
 //! difference vector `d = (θ_d, φ_d)` is given in the frame in which h is
@@ -16,6 +17,7 @@
 
 use super::{Channel, frame};
 use crate::material::Material;
+use crate::scene::Rgb;
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
 
@@ -48,18 +50,31 @@ pub fn directions(theta_h: f64, theta_d: f64, phi_d: f64) -> (DVec3, DVec3) {
     (wi, wo)
 }
 
-/// The image of `m` at φ_d = 90°.
-pub fn half_diff_image(m: &Material, channel: Channel) -> HalfDiffImage {
-    let f = frame();
-    let values = (0..CELLS)
+/// f_r of `m` at half angle `theta_h` and difference angles `theta_d`,
+/// `phi_d` (radians, φ_h = 0): the one evaluation behind every cell of
+/// the image, in `gonio brdf` and in the viewer.
+pub fn f_r_at(m: &Material, theta_h: f64, theta_d: f64, phi_d: f64) -> Rgb {
+    let (wi, wo) = directions(theta_h, theta_d, phi_d);
+    m.f_r(wi, wo, &frame())
+}
+
+/// f_r (RGB) of `m` at the centre of every cell for the difference
+/// azimuth `phi_d` (radians): `rows[j][i]`, i along θ_h, j along θ_d.
+pub fn half_diff_rgb(m: &Material, phi_d: f64) -> Vec<Vec<Rgb>> {
+    (0..CELLS)
         .map(|j| {
             (0..CELLS)
-                .map(|i| {
-                    let (wi, wo) = directions(cell_centre(i), cell_centre(j), FRAC_PI_2);
-                    channel.of(m.f_r(wi, wo, &f))
-                })
+                .map(|i| f_r_at(m, cell_centre(i), cell_centre(j), phi_d))
                 .collect()
         })
+        .collect()
+}
+
+/// The image of `m` at φ_d = 90°.
+pub fn half_diff_image(m: &Material, channel: Channel) -> HalfDiffImage {
+    let values = half_diff_rgb(m, FRAC_PI_2)
+        .into_iter()
+        .map(|row| row.into_iter().map(|c| channel.of(c)).collect())
         .collect();
     HalfDiffImage { values }
 }

@@ -76,7 +76,9 @@ pub fn colour(v: f64, lo: f64, hi: f64) -> RGBColor {
     viridis(t)
 }
 
-fn viridis(t: f64) -> RGBColor {
+/// Viridis at `t` in [0, 1] (0 dark blue, 1 yellow): the viewer's
+/// image uses the same scale.
+pub fn viridis(t: f64) -> RGBColor {
     const P: [(f64, f64, f64); 9] = [
         (68.0, 1.0, 84.0),
         (71.0, 44.0, 122.0),

@@ -73,8 +73,10 @@ pub struct ViewArgs {
     /// too (`--edit 3:environment.sh_order=4`, `environment.enabled=false`
     /// switches the map off), compared materials (`compare.N.KEY`,
     /// `compare.split`, `compare.shown`) and the plots' settings
-    /// (`plots.theta_i`, `plots.phi_i`, `plots.quantity=f_r|f_r-cos`,
-    /// `plots.channel`, `plots.log`, `plots.decades`, `plots.lobe`).
+    /// (`plots.theta_i`, `plots.phi_i`, `plots.phi_d`,
+    /// `plots.quantity=f_r|f_r-cos`, `plots.channel`, `plots.log`,
+    /// `plots.decades`, `plots.probe=TH,TD`, and the views `plots.slice`,
+    /// `plots.albedo`, `plots.halfdiff`, `plots.lobe`).
     /// Repeatable.
     #[arg(long = "edit", value_name = "FRAME:KEY=VALUE", value_parser = parse_edit)]
     pub edits: Vec<(u32, String)>,

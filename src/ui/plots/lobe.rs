@@ -6,6 +6,14 @@
 //! f64 reference (`Material::f_r`) on a worker thread ([`super::worker`]),
 //! one mesh per material; the drawing is an orthographic projection by
 //! egui's painter.
+//!
+//! Hidden lines: the surface is cut into patches (the cells between
+//! neighbouring drawn rings and meridians), each filled with the
+//! background (85 % opaque, tinted with its material's colour) and
+//! outlined, drawn back to front by the depth of its centre (the
+//! painter's algorithm, all materials' patches in one order). Lines behind
+//! the surface show through at 15 %: dimmed, so the lobe reads as a
+//! solid, while a lobe inside another stays visible.
 
 use super::radius::Radius;
 use super::{Settings, colour};
@@ -94,6 +102,52 @@ impl Turn {
         let y = sy * p.x + cy * p.y;
         (x, cp * p.z + sp * y)
     }
+
+    /// How far towards the viewer `p` is (larger is nearer): the view's
+    /// third axis, so that (right, up, towards) is right-handed.
+    pub fn depth(&self, p: DVec3) -> f64 {
+        let (sy, cy) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        let y = sy * p.x + cy * p.y;
+        sp * p.z - cp * y
+    }
+}
+
+/// Rings and meridians between drawn lines: the patch size.
+const STEP: usize = 3;
+
+/// The background of the view.
+const BACKGROUND: egui::Color32 = egui::Color32::from_gray(18);
+
+/// One patch: rings `k0..=k0 + STEP`, meridians `j0..=j0 + STEP` of
+/// series `series`, and its centre's depth.
+struct Patch {
+    depth: f64,
+    series: usize,
+    k0: usize,
+    j0: usize,
+}
+
+/// Every patch of every mesh, farthest first.
+fn patches(points: &[Option<Vec<Vec<DVec3>>>], turn: &Turn) -> Vec<Patch> {
+    let mut all = Vec::new();
+    for (series, p) in points.iter().enumerate() {
+        let Some(p) = p else { continue };
+        for k0 in (0..RINGS - 1).step_by(STEP) {
+            for j0 in (0..MERIDIANS).step_by(STEP) {
+                let (k1, j1) = (k0 + STEP, (j0 + STEP) % MERIDIANS);
+                let centre = (p[k0][j0] + p[k0][j1] + p[k1][j0] + p[k1][j1]) / 4.0;
+                all.push(Patch {
+                    depth: turn.depth(centre),
+                    series,
+                    k0,
+                    j0,
+                });
+            }
+        }
+    }
+    all.sort_by(|a, b| a.depth.total_cmp(&b.depth));
+    all
 }
 
 /// Draws the meshes (one per material, in its colour) into a square as
@@ -115,7 +169,7 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, turn: &mut Turn, meshes: &[Option<(
         turn.pitch = (turn.pitch + d.y as f64 * 0.01).clamp(-0.2, 1.5);
     }
     let painter = ui.painter_at(rect);
-    painter.rect_filled(rect, 2.0, egui::Color32::from_gray(18));
+    painter.rect_filled(rect, 2.0, BACKGROUND);
     let peak = meshes
         .iter()
         .flatten()
@@ -141,22 +195,60 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, turn: &mut Turn, meshes: &[Option<(
         [to_screen(DVec3::ZERO), to_screen(outer * wi)],
         egui::Stroke::new(1.5, egui::Color32::from_rgb(255, 230, 120)),
     );
-    for (i, m) in meshes.iter().enumerate() {
-        let Some((mesh, _)) = m else { continue };
-        let stroke = egui::Stroke::new(1.0, colour(i).gamma_multiply(0.85));
-        let point = |k: usize, j: usize| {
-            let v = mesh.values[k][j % MERIDIANS];
-            let r = if v.is_finite() { radius.map(v) } else { 0.0 };
-            to_screen(r * direction(ring_theta(k), meridian_phi(j)))
-        };
-        for k in (0..RINGS).step_by(3) {
-            let ring: Vec<egui::Pos2> = (0..=MERIDIANS).map(|j| point(k, j)).collect();
-            painter.add(egui::Shape::line(ring, stroke));
+    let points: Vec<Option<Vec<Vec<DVec3>>>> = meshes
+        .iter()
+        .map(|m| {
+            m.map(|(mesh, _)| {
+                (0..RINGS)
+                    .map(|k| {
+                        (0..MERIDIANS)
+                            .map(|j| {
+                                let v = mesh.values[k][j];
+                                let r = if v.is_finite() { radius.map(v) } else { 0.0 };
+                                r * direction(ring_theta(k), meridian_phi(j))
+                            })
+                            .collect()
+                    })
+                    .collect()
+            })
+        })
+        .collect();
+    for patch in patches(&points, turn) {
+        let p = points[patch.series]
+            .as_ref()
+            .expect("patches of meshes only");
+        let at = |k: usize, j: usize| to_screen(p[k][j % MERIDIANS]);
+        let tint = colour(patch.series);
+        let mix = |b: u8, c: u8| (0.85 * b as f32 + 0.15 * c as f32) as u8;
+        let fill = egui::Color32::from_rgba_unmultiplied(
+            mix(BACKGROUND.r(), tint.r()),
+            mix(BACKGROUND.g(), tint.g()),
+            mix(BACKGROUND.b(), tint.b()),
+            217,
+        );
+        let mut cells = egui::Mesh::default();
+        for k in patch.k0..patch.k0 + STEP {
+            for j in patch.j0..patch.j0 + STEP {
+                let base = cells.vertices.len() as u32;
+                for (a, b) in [(k, j), (k + 1, j), (k + 1, j + 1), (k, j + 1)] {
+                    cells.colored_vertex(at(a, b), fill);
+                }
+                cells.add_triangle(base, base + 1, base + 2);
+                cells.add_triangle(base, base + 2, base + 3);
+            }
         }
-        for j in (0..MERIDIANS).step_by(3) {
-            let meridian: Vec<egui::Pos2> = (0..RINGS).map(|k| point(k, j)).collect();
-            painter.add(egui::Shape::line(meridian, stroke));
-        }
+        painter.add(egui::Shape::mesh(cells));
+        let (k0, j0, k1, j1) = (patch.k0, patch.j0, patch.k0 + STEP, patch.j0 + STEP);
+        let outline: Vec<egui::Pos2> = (j0..=j1)
+            .map(|j| at(k0, j))
+            .chain((k0..=k1).map(|k| at(k, j1)))
+            .chain((j0..=j1).rev().map(|j| at(k1, j)))
+            .chain((k0..=k1).rev().map(|k| at(k, j0)))
+            .collect();
+        painter.add(egui::Shape::line(
+            outline,
+            egui::Stroke::new(1.0, tint.gamma_multiply(0.85)),
+        ));
     }
     painter.text(
         rect.left_top() + egui::vec2(6.0, 4.0),
@@ -195,5 +287,43 @@ mod tests {
             pitch: 0.0,
         };
         assert_eq!(t.project(DVec3::Z), (0.0, 1.0));
+    }
+
+    /// The view's axes (right, up, towards the viewer) are orthonormal and
+    /// right-handed for any turn, so the depth order is the one seen: from
+    /// above (pitch > 0) the top of the lobe is nearer than the horizon
+    /// behind it.
+    #[test]
+    fn depth_is_the_third_axis_of_the_view() {
+        for (yaw, pitch) in [(-0.6, 0.45), (1.3, -0.2), (2.9, 1.5)] {
+            let t = Turn { yaw, pitch };
+            let axis = |f: &dyn Fn(DVec3) -> f64| DVec3::new(f(DVec3::X), f(DVec3::Y), f(DVec3::Z));
+            let right = axis(&|p| t.project(p).0);
+            let up = axis(&|p| t.project(p).1);
+            let towards = axis(&|p| t.depth(p));
+            for (a, b) in [(right, up), (up, towards), (towards, right)] {
+                assert!(a.dot(b).abs() < 1e-12);
+            }
+            assert!((right.cross(up) - towards).length() < 1e-12);
+        }
+        let t = Turn::default();
+        let far_horizon = (0..MERIDIANS)
+            .map(|j| direction(ring_theta(RINGS - 1), meridian_phi(j)))
+            .min_by(|a, b| t.depth(*a).total_cmp(&t.depth(*b)))
+            .unwrap();
+        assert!(t.depth(DVec3::Z) > t.depth(far_horizon));
+        // And the patches come farthest first.
+        let m = Material::new("l", ReflectanceModel::Lambert);
+        let mesh = mesh(&m, &Settings::default());
+        let pts: Vec<Vec<DVec3>> = (0..RINGS)
+            .map(|k| {
+                (0..MERIDIANS)
+                    .map(|j| mesh.values[k][j] * direction(ring_theta(k), meridian_phi(j)))
+                    .collect()
+            })
+            .collect();
+        let order = patches(&[Some(pts)], &t);
+        assert_eq!(order.len(), (RINGS - 1) / STEP * MERIDIANS / STEP);
+        assert!(order.windows(2).all(|w| w[0].depth <= w[1].depth));
     }
 }

@@ -6,7 +6,9 @@
 //! plane φ_i ([`albedo`]), and a table with each material's colour, its
 //! albedo at the current ω_i and a gloss meter's readings at 20°, 60° and
 //! 85° (ISO 2813 / ASTM D523) with the sample turned to φ_i ([`readout`]).
-//! It stands below the plots, so no legend covers data.
+//! It stands below the plots, so no legend covers data. The θ_h × θ_d
+//! image ([`halfdiff`]) shows f_r over Rusinkiewicz's half/difference
+//! angles at the panel's φ_d, each material's image beside the others'.
 //!
 //! The slice is cheap (about 800 evaluations per material) and follows
 //! every edit at once. Albedo and gloss are adaptive integrals, so they
@@ -17,6 +19,7 @@
 //! and keep their aspect, so they grow with it.
 
 pub mod albedo;
+pub mod halfdiff;
 pub mod lobe;
 pub mod polar;
 pub mod radius;
@@ -55,6 +58,8 @@ pub struct Settings {
     /// Logarithmic radius over `decades` decades.
     pub log: bool,
     pub decades: u32,
+    /// The θ_h × θ_d image's difference azimuth, degrees.
+    pub phi_d_deg: f64,
 }
 
 impl Default for Settings {
@@ -66,6 +71,7 @@ impl Default for Settings {
             channel: Channel::Mean,
             log: false,
             decades: 6,
+            phi_d_deg: 90.0,
         }
     }
 }
@@ -80,6 +86,7 @@ type CurveKey = (Material, u64);
 type PointKey = (Material, u64, u64);
 type SliceKey = (Material, Settings);
 type LobeKey = (Material, u64, u64, Quantity, Channel);
+type HalfDiffKey = (Material, u64);
 
 /// The cached results of one series.
 #[derive(Default)]
@@ -88,14 +95,20 @@ struct SeriesCache {
     curve: Slot<CurveKey, Integrals>,
     point: Slot<PointKey, AlbedoEstimate>,
     lobe: Slot<LobeKey, lobe::Mesh>,
+    halfdiff: Slot<HalfDiffKey, halfdiff::Image>,
 }
 
 /// The plots' state: settings and each series' cached results.
 pub struct Plots {
     pub settings: Settings,
-    /// Whether the 3D lobe is drawn (and computed).
+    /// Which views are drawn (and computed): the slice, the albedo
+    /// curve, the θ_h × θ_d image and the 3D lobe.
+    pub show_slice: bool,
+    pub show_albedo: bool,
+    pub show_halfdiff: bool,
     pub show_lobe: bool,
     turn: lobe::Turn,
+    halfdiff_view: halfdiff::View,
     caches: Vec<SeriesCache>,
 }
 
@@ -117,36 +130,67 @@ impl Default for Plots {
     fn default() -> Self {
         Plots {
             settings: Settings::default(),
+            show_slice: true,
+            show_albedo: true,
+            show_halfdiff: true,
             show_lobe: true,
             turn: lobe::Turn::default(),
+            halfdiff_view: halfdiff::View::default(),
             caches: Vec::new(),
         }
     }
 }
 
 impl Plots {
-    /// Draws the controls, the slice, the albedo curve and the table of
-    /// `series` into `ui`.
+    /// Draws the controls, the views shown and the table of `series`
+    /// into `ui`.
     pub fn show(&mut self, ui: &mut egui::Ui, series: &[Series]) {
         controls(ui, &mut self.settings);
+        ui.horizontal_wrapped(|ui| {
+            ui.label("views");
+            ui.checkbox(&mut self.show_slice, "slice");
+            ui.checkbox(&mut self.show_albedo, "albedo");
+            ui.checkbox(&mut self.show_halfdiff, "θ_h × θ_d");
+            ui.checkbox(&mut self.show_lobe, "3D lobe");
+        });
         self.caches.resize_with(series.len(), SeriesCache::default);
         let s = self.settings;
         for (cache, one) in self.caches.iter_mut().zip(series) {
             cache.refresh(&one.material, &s, self.show_lobe, ui.ctx());
+            if self.show_halfdiff {
+                cache
+                    .halfdiff
+                    .request(&halfdiff_key(&one.material, &s), ui.ctx(), |(m, phi_d)| {
+                        halfdiff::image(&m, f64::from_bits(phi_d))
+                    });
+            }
         }
         let slices: Vec<&Slice> = self
             .caches
             .iter()
             .map(|c| &c.slice.as_ref().expect("refreshed above").1)
             .collect();
-        polar::show(ui, &s, &slices);
+        if self.show_slice {
+            polar::show(ui, &s, &slices);
+        }
         let curves: Vec<Option<(&Integrals, bool)>> = self
             .caches
             .iter()
             .zip(series)
             .map(|(c, one)| c.curve.latest(&curve_key(&one.material, &s)))
             .collect();
-        albedo::show(ui, &s, &curves);
+        if self.show_albedo {
+            albedo::show(ui, &s, &curves);
+        }
+        if self.show_halfdiff {
+            let images: Vec<Option<(&halfdiff::Image, bool)>> = self
+                .caches
+                .iter()
+                .zip(series)
+                .map(|(c, one)| c.halfdiff.latest(&halfdiff_key(&one.material, &s)))
+                .collect();
+            halfdiff::show(ui, &s, &mut self.halfdiff_view, series, &images);
+        }
         let points: Vec<Option<(&AlbedoEstimate, bool)>> = self
             .caches
             .iter()
@@ -154,7 +198,6 @@ impl Plots {
             .map(|(c, one)| c.point.latest(&point_key(&one.material, &s)))
             .collect();
         readout::show(ui, &s, series, &slices, &points, &curves);
-        ui.checkbox(&mut self.show_lobe, "3D lobe");
         if self.show_lobe {
             let meshes: Vec<Option<(&lobe::Mesh, bool)>> = self
                 .caches
@@ -167,9 +210,11 @@ impl Plots {
     }
 
     /// A scripted `--edit FRAME:plots.KEY=VALUE` (`key` without
-    /// `plots.`): `theta_i`, `phi_i` (degrees), `quantity` (`f_r-cos` or
-    /// `f_r`), `channel` (`mean`, `luminance`, `r`, `g`, `b`), `log`
-    /// (bool), `decades` (1 to 10), `lobe` (bool).
+    /// `plots.`): `theta_i`, `phi_i`, `phi_d` (degrees), `quantity`
+    /// (`f_r-cos` or `f_r`), `channel` (`mean`, `luminance`, `r`, `g`,
+    /// `b`), `log` (bool), `decades` (1 to 10), the views shown `slice`,
+    /// `albedo`, `halfdiff`, `lobe` (bool), and `probe` (`TH,TD`: the θ_h ×
+    /// θ_d image's readout point in degrees, or `none`).
     pub fn edit(&mut self, key: &str, value: &str) -> Result<(), String> {
         let text = value.trim().trim_matches('"');
         let number = || -> Result<f64, String> {
@@ -194,6 +239,7 @@ impl Plots {
                 s.theta_i_deg = v;
             }
             "phi_i" => s.phi_i_deg = number()?,
+            "phi_d" => s.phi_d_deg = number()?,
             "quantity" => s.quantity = text.parse()?,
             "channel" => s.channel = text.parse()?,
             "log" => s.log = boolean()?,
@@ -206,10 +252,14 @@ impl Plots {
                 }
                 s.decades = v as u32;
             }
+            "slice" => self.show_slice = boolean()?,
+            "albedo" => self.show_albedo = boolean()?,
+            "halfdiff" => self.show_halfdiff = boolean()?,
             "lobe" => self.show_lobe = boolean()?,
+            "probe" => self.halfdiff_view.probe = probe(key, text)?,
             _ => {
                 return Err(format!(
-                    "unknown plot setting `plots.{key}`; the plots take theta_i, phi_i, quantity, channel, log, decades, lobe"
+                    "unknown plot setting `plots.{key}`; the plots take theta_i, phi_i, phi_d, quantity, channel, log, decades, slice, albedo, halfdiff, lobe, probe"
                 ));
             }
         }
@@ -221,8 +271,34 @@ impl Plots {
     pub fn busy(&self) -> bool {
         self.caches
             .iter()
-            .any(|c| c.curve.busy() || c.point.busy() || c.lobe.busy())
+            .any(|c| c.curve.busy() || c.point.busy() || c.lobe.busy() || c.halfdiff.busy())
     }
+}
+
+/// `plots.probe=TH,TD` (degrees, each in [0, 90]) or `none`.
+fn probe(key: &str, text: &str) -> Result<Option<(f64, f64)>, String> {
+    if text == "none" {
+        return Ok(None);
+    }
+    let angles: Vec<Option<f64>> = text
+        .split(',')
+        .map(|a| {
+            a.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| (0.0..=90.0).contains(v))
+        })
+        .collect();
+    match angles[..] {
+        [Some(th), Some(td)] => Ok(Some((th, td))),
+        _ => Err(format!(
+            "plots.{key} = {text}: give θ_h,θ_d in degrees, each in [0, 90] (e.g. `20,40`), or `none`"
+        )),
+    }
+}
+
+fn halfdiff_key(m: &Material, s: &Settings) -> HalfDiffKey {
+    (m.clone(), s.phi_d_deg.to_bits())
 }
 
 fn curve_key(m: &Material, s: &Settings) -> CurveKey {
@@ -292,6 +368,11 @@ fn controls(ui: &mut egui::Ui, s: &mut Settings) {
             ui.label("φ_i (°)");
             ui.add(egui::Slider::new(&mut s.phi_i_deg, 0.0..=180.0).step_by(1.0));
             ui.end_row();
+            ui.label("φ_d (°)").on_hover_text(
+                "difference azimuth of the θ_h × θ_d image (BRDF Explorer's default 90°)",
+            );
+            ui.add(egui::Slider::new(&mut s.phi_d_deg, 0.0..=180.0).step_by(1.0));
+            ui.end_row();
             ui.label("radius");
             ui.horizontal(|ui| {
                 ui.selectable_value(&mut s.quantity, Quantity::ProjectedFr, "f_r·cos θ_o");
@@ -337,20 +418,36 @@ mod tests {
         p.edit("decades", "4").unwrap();
         p.edit("channel", "\"r\"").unwrap();
         p.edit("quantity", "f_r").unwrap();
+        p.edit("phi_d", "45").unwrap();
+        p.edit("halfdiff", "false").unwrap();
+        p.edit("probe", "20, 40").unwrap();
         let s = p.settings;
         assert_eq!(
-            (s.theta_i_deg, s.log, s.decades, s.channel, s.quantity),
-            (60.0, true, 4, Channel::R, Quantity::Fr)
+            (
+                s.theta_i_deg,
+                s.log,
+                s.decades,
+                s.channel,
+                s.quantity,
+                s.phi_d_deg
+            ),
+            (60.0, true, 4, Channel::R, Quantity::Fr, 45.0)
         );
+        assert!(!p.show_halfdiff);
+        assert_eq!(p.halfdiff_view.probe, Some((20.0, 40.0)));
         for (k, v) in [
             ("theta_i", "95"),
             ("decades", "0"),
             ("log", "yes"),
             ("channel", "alpha"),
             ("colour", "1"),
+            ("probe", "20"),
+            ("probe", "20,95"),
+            ("phi_d", "x"),
         ] {
             assert!(p.edit(k, v).is_err(), "{k}={v}");
         }
         assert_eq!(p.settings, s, "refused edits change nothing");
+        assert_eq!(p.halfdiff_view.probe, Some((20.0, 40.0)));
     }
 }
