@@ -922,6 +922,7 @@ fn the_viewer_draws_msaa() {
         edges_changed >= 100,
         "MSAA left the silhouettes as they were ({edges_changed} pixels changed)"
     );
+}
 
 /// Issue 17's θ_h × θ_d image in the panel: with a pinned readout point
 /// (`plots.probe`, at a φ_d other than the default), the viewer prints
