@@ -18,8 +18,10 @@
 //! free ones solve their normal equations, and the cheapest pattern whose
 //! solution lies in the box is the minimum (the box minimum of a convex
 //! quadratic is the unconstrained minimum over the numbers not at a bound).
-//! `n ≤ 6` here (`k_d` and `k_s` or `A` per channel), so at most 729 small
-//! solves, negligible beside the samples' evaluation.
+//! The quadratic splits into one block per channel (a channel's `k_d` and
+//! `k_s` or `A` reach that channel alone), `n = 2` each: 3 × 9 small
+//! solves per point. (One block of all 6 numbers, 729 patterns, cost as
+//! much as evaluating the samples.)
 //!
 //! Only the `ngan` metric is a quadratic in these numbers; the `log`
 //! metric searches every number (`problem.rs`).
@@ -27,11 +29,9 @@
 use super::metric::Metric;
 use super::models::{FitModel, Free};
 use super::samples::Sample;
+use super::terms::Terms;
 use crate::base::Rgb;
-use crate::base::frame::SurfaceFrame;
-use crate::material::brdf;
 use crate::material::param::{ABC_A, K_D, K_S, Param};
-use glam::DVec3;
 
 /// The parameters `f_r` is linear in (each with all others held).
 const LINEAR: [&Param; 3] = [&K_D, &K_S, &ABC_A];
@@ -80,8 +80,22 @@ impl Linear {
 
     /// Solves the linear numbers of `values` (the other numbers as given;
     /// the linear ones are overwritten) for the least `ngan` mean against
-    /// `samples`, and returns that mean ([`Metric::mean`]'s `E²`).
-    pub fn solve(&self, model: &FitModel, values: &mut [f64], samples: &[Sample]) -> f64 {
+    /// `samples` (`terms` made from them), and returns that mean
+    /// ([`Metric::mean`]'s `E²`).
+    ///
+    /// A number of one channel reaches that channel's values alone, so the
+    /// quadratic splits into one block per channel (`k_d` and `k_s` or `A`
+    /// of that channel: 2 numbers, 3² patterns, instead of 6 numbers and
+    /// 3⁶ patterns together), each minimized over its box on its own; a
+    /// grey number (none is solved today, see [`Linear::of`]) would join
+    /// them in one block.
+    pub fn solve(
+        &self,
+        model: &FitModel,
+        values: &mut [f64],
+        samples: &[Sample],
+        terms: &Terms,
+    ) -> f64 {
         // The basis: f_r with one parameter at 1 (every channel), the other
         // solved ones at 0 (f_r is the sum of the solved numbers times
         // their bases: every other term is scaled by one of them).
@@ -89,7 +103,6 @@ impl Linear {
         for &k in self.groups.iter().flat_map(|(_, idx)| idx) {
             model.free[k].write(&mut base, 0.0);
         }
-        let frame = SurfaceFrame::new(DVec3::Z, DVec3::X);
         let bases: Vec<Vec<Rgb>> = self
             .groups
             .iter()
@@ -98,11 +111,9 @@ impl Linear {
                 for &k in idx {
                     model.free[k].write(&mut m, 1.0);
                 }
-                let b = m.brdf();
-                samples
-                    .iter()
-                    .map(|s| brdf::eval(&b, s.wi, s.wo, &frame))
-                    .collect()
+                let mut f = Vec::with_capacity(samples.len());
+                terms.f_r(&m, samples, &mut f);
+                f
             })
             .collect();
         // The unknowns, in group order, and the channels each reaches.
@@ -112,28 +123,45 @@ impl Linear {
             .enumerate()
             .flat_map(|(g, (_, idx))| idx.iter().map(move |&k| (g, k)))
             .collect();
-        let n = unknowns.len();
         let reaches = |free: &Free, c: usize| free.channel.is_none_or(|ch| ch == c);
-        let mut q = Quadratic::new(n);
-        let mut row = vec![0.0; n];
-        for (i, s) in samples.iter().enumerate() {
-            let w = s.weight * s.wi.z * s.wi.z;
-            for (c, y) in s.measured.to_array().into_iter().enumerate() {
-                for (r, &(g, k)) in row.iter_mut().zip(&unknowns) {
-                    *r = if reaches(&model.free[k], c) {
-                        bases[g][i].to_array()[c]
-                    } else {
-                        0.0
-                    };
+        let grey = unknowns
+            .iter()
+            .any(|&(_, k)| model.free[k].channel.is_none());
+        let blocks: Vec<Vec<usize>> = if grey {
+            vec![vec![0, 1, 2]]
+        } else {
+            vec![vec![0], vec![1], vec![2]]
+        };
+        let mut sum = 0.0;
+        for channels in blocks {
+            // The block's unknowns: those reaching one of its channels.
+            let block: Vec<(usize, usize)> = unknowns
+                .iter()
+                .copied()
+                .filter(|&(_, k)| channels.iter().any(|&c| reaches(&model.free[k], c)))
+                .collect();
+            let mut q = Quadratic::new(block.len());
+            let mut row = vec![0.0; block.len()];
+            for (i, s) in samples.iter().enumerate() {
+                let w = s.weight * s.wi.z * s.wi.z;
+                for &c in &channels {
+                    for (r, &(g, k)) in row.iter_mut().zip(&block) {
+                        *r = if reaches(&model.free[k], c) {
+                            bases[g][i][c]
+                        } else {
+                            0.0
+                        };
+                    }
+                    q.add(w, &row, s.measured[c]);
                 }
-                q.add(w, &row, y);
             }
-        }
-        let lo: Vec<f64> = unknowns.iter().map(|&(_, k)| model.free[k].lo).collect();
-        let hi: Vec<f64> = unknowns.iter().map(|&(_, k)| model.free[k].hi).collect();
-        let (u, sum) = q.minimize_in_box(&lo, &hi);
-        for (&(_, k), v) in unknowns.iter().zip(u) {
-            values[k] = v;
+            let lo: Vec<f64> = block.iter().map(|&(_, k)| model.free[k].lo).collect();
+            let hi: Vec<f64> = block.iter().map(|&(_, k)| model.free[k].hi).collect();
+            let (u, block_sum) = q.minimize_in_box(&lo, &hi);
+            for (&(_, k), v) in block.iter().zip(u) {
+                values[k] = v;
+            }
+            sum += block_sum;
         }
         sum / 3.0
     }
@@ -269,6 +297,8 @@ mod tests {
     /// values, and no other values of them do better.
     #[test]
     fn the_solved_numbers_are_the_least_squares_minimum() {
+        use crate::base::frame::SurfaceFrame;
+        use glam::DVec3;
         let truth = Material::new("m", crate::material::ReflectanceModel::Ward);
         let frame = SurfaceFrame::new(DVec3::Z, DVec3::X);
         let samples =
@@ -279,7 +309,7 @@ mod tests {
                 continue;
             };
             let mut values: Vec<f64> = model.free.iter().map(|f| f.at(0.37)).collect();
-            let mean = linear.solve(&model, &mut values, &samples);
+            let mean = linear.solve(&model, &mut values, &samples, &Terms::new(&samples));
             let direct = mean_of(&model.material(&values), &samples, Metric::Ngan);
             assert!(
                 (mean - direct).abs() <= 1e-9 * direct.max(1e-12),

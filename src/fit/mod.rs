@@ -6,7 +6,8 @@
 //! The data flow: a measured material's [`samples`] (a fixed grid over
 //! MERL's half/difference angles), a [`metric`], a model with its free
 //! numbers and bounds ([`models`]), the search ([`problem`]: Nelder-Mead
-//! from several starts), and for `--all` the [`report`] (shards, merge,
+//! from several starts; its inner loop, the model at every sample, is
+//! [`terms`]), and for `--all` the [`report`] (shards, merge,
 //! ranking). The command line is [`cli`].
 
 pub mod cli;
@@ -17,6 +18,7 @@ pub mod problem;
 pub mod published;
 pub mod report;
 pub mod samples;
+pub mod terms;
 
 pub use metric::Metric;
 pub use models::FitModel;

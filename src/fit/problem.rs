@@ -26,6 +26,7 @@ use super::linear::Linear;
 use super::metric::Metric;
 use super::models::FitModel;
 use super::samples::Sample;
+use super::terms::Terms;
 use crate::base::Rgb;
 use crate::base::frame::SurfaceFrame;
 use crate::material::Material;
@@ -75,6 +76,8 @@ struct Problem<'a> {
     metric: Metric,
     /// [`Metric::mean`] of `f = 0`: costs are relative to it.
     norm: f64,
+    /// The samples' cosines and groups: the inner loop (`terms.rs`).
+    terms: Terms,
     /// The numbers solved, not searched (`ngan` only).
     linear: Option<Linear>,
     /// The numbers the simplex searches (indices into the model's free
@@ -97,7 +100,7 @@ impl Problem<'_> {
         let mean = self
             .linear
             .as_ref()
-            .map(|l| l.solve(self.model, &mut v, self.samples));
+            .map(|l| l.solve(self.model, &mut v, self.samples, &self.terms));
         (v, mean)
     }
 
@@ -105,8 +108,13 @@ impl Problem<'_> {
         self.point(x).0
     }
 
+    /// The metric's mean at `values`, by [`Terms`] (equal to [`mean_of`]
+    /// to rounding).
     fn mean(&self, values: &[f64]) -> f64 {
-        mean_of(&self.model.material(values), self.samples, self.metric)
+        let mut f = Vec::with_capacity(self.samples.len());
+        self.terms
+            .f_r(&self.model.material(values), self.samples, &mut f);
+        self.metric.mean(self.samples, |i| f[i])
     }
 }
 
@@ -185,6 +193,7 @@ pub fn fit_from(
             .filter(|(idx, _)| !idx.iter().any(|&k| solved(k)))
             .cloned()
             .collect(),
+        terms: Terms::new(samples),
         linear,
         evaluations: AtomicUsize::new(0),
     };
@@ -244,7 +253,8 @@ pub fn fit_from(
         }
     }
     let values = problem.values(&x);
-    let mean = problem.mean(&values);
+    // Reported by `brdf::eval` itself, the truth `Terms` is tested against.
+    let mean = mean_of(&model.material(&values), samples, metric);
     FitResult {
         material: model.material(&values),
         values,
