@@ -744,16 +744,33 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 
     type Twin = fn(f64, f64) -> f64;
     let forms: [(&str, Twin, f64); 4] = [
-        ("g1_beckmann (erf)", |m, c| mf::g1_beckmann(m, c, 1.0), mf::G1_BECKMANN_F32_ERROR),
-        ("1/(1+lambda_beckmann) (erf)", |m, c| 1.0 / (1.0 + mf::lambda_beckmann(m, c)), mf::G1_BECKMANN_F32_ERROR),
-        ("g1_beckmann_rational", |m, c| mf::g1_beckmann_rational(m, c, 1.0), 0.0),
-        ("1/(1+lambda_beckmann_rational)", |m, c| 1.0 / (1.0 + mf::lambda_beckmann_rational(m, c)), 0.0),
+        (
+            "g1_beckmann (erf)",
+            |m, c| mf::g1_beckmann(m, c, 1.0),
+            mf::G1_BECKMANN_F32_ERROR,
+        ),
+        (
+            "1/(1+lambda_beckmann) (erf)",
+            |m, c| 1.0 / (1.0 + mf::lambda_beckmann(m, c)),
+            mf::G1_BECKMANN_F32_ERROR,
+        ),
+        (
+            "g1_beckmann_rational",
+            |m, c| mf::g1_beckmann_rational(m, c, 1.0),
+            0.0,
+        ),
+        (
+            "1/(1+lambda_beckmann_rational)",
+            |m, c| 1.0 / (1.0 + mf::lambda_beckmann_rational(m, c)),
+            0.0,
+        ),
     ];
     let mut failed = Vec::new();
     let mut worst_rational_vs_truth = 0.0f64;
     eprintln!("| G1 form | max abs error | max err/tol | failures |\n|---|---|---|---|");
     for (f, (name, twin, form_error)) in forms.iter().enumerate() {
-        let (mut max_abs, mut worst_ratio, mut failures, mut worst) = (0.0f64, 0.0f64, 0, String::new());
+        let (mut max_abs, mut worst_ratio, mut failures, mut worst) =
+            (0.0f64, 0.0f64, 0, String::new());
         for (input, out) in inputs.iter().zip(gpu) {
             let (m, c) = (input[0] as f64, input[1] as f64);
             let cpu = twin(m, c);
@@ -791,7 +808,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             failed.push(format!("{name}: {failures} failures; worst {worst}"));
         }
     }
-    eprintln!("rational GPU vs exact truth: worst |error| / (bound · G1 + tol) = {worst_rational_vs_truth:.4}");
+    eprintln!(
+        "rational GPU vs exact truth: worst |error| / (bound · G1 + tol) = {worst_rational_vs_truth:.4}"
+    );
     assert!(failed.is_empty(), "{}", failed.join("\n"));
     assert!(worst_rational_vs_truth <= 1.0, "{worst_rational_vs_truth}");
     // The bound is met, not vacuous: the rational form does differ from

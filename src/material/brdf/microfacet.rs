@@ -1012,7 +1012,10 @@ mod tests {
         );
         assert!((1.30..1.37).contains(&at), "{at}");
         assert!(worst_g <= 2.01 * G1_BECKMANN_RATIONAL_ERROR, "{worst_g}");
-        assert!(worst_corr <= 2.0 * G1_BECKMANN_RATIONAL_ERROR, "{worst_corr}");
+        assert!(
+            worst_corr <= 2.0 * G1_BECKMANN_RATIONAL_ERROR,
+            "{worst_corr}"
+        );
     }
 
     /// Every BRDF WGSL file parses and validates with naga, in the order the
