@@ -216,6 +216,13 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     }
 
     check_memory(&scene, args.reference, &limits)?;
+    // A knob of the GPU path: the truth is exact (nothing typed is
+    // ignored without a word).
+    if args.reference && scene.smith_beckmann == crate::material::SmithBeckmann::Rational {
+        eprintln!(
+            "gonio: warning: shading.smith_beckmann = \"rational\" is the GPU's approximation; the reference evaluates the exact erf form"
+        );
+    }
     let frame: Frame = if args.reference {
         if args.verbose {
             eprintln!(

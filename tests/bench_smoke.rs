@@ -85,6 +85,7 @@ fn smoke_bench_writes_a_well_formed_report() {
         "model",
         "fresnel",
         "distribution",
+        "smith_beckmann",
         "shadow_map_size",
         "shadow_filter",
         "area_samples",

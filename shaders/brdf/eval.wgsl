@@ -139,7 +139,11 @@ fn geometry(m: Material, cos_h: f32, cos_i: f32, cos_o: f32, cos_ih: f32, cos_oh
             }
             #endif
             let slope = smith_beckmann_slope(m);
+            #if smith_beckmann_rational
+            return g1_beckmann_rational(slope, cos_i, cos_ih) * g1_beckmann_rational(slope, cos_o, cos_oh);
+            #else
             return g1_beckmann(slope, cos_i, cos_ih) * g1_beckmann(slope, cos_o, cos_oh);
+            #endif
         }
         #endif
         #if geometry=smith-correlated
@@ -150,7 +154,11 @@ fn geometry(m: Material, cos_h: f32, cos_i: f32, cos_o: f32, cos_ih: f32, cos_oh
             }
             #endif
             let slope = smith_beckmann_slope(m);
+            #if smith_beckmann_rational
+            return g_smith_correlated(lambda_beckmann_rational(slope, cos_i), lambda_beckmann_rational(slope, cos_o), cos_i, cos_o, cos_ih, cos_oh);
+            #else
             return g_smith_correlated(lambda_beckmann(slope, cos_i), lambda_beckmann(slope, cos_o), cos_i, cos_o, cos_ih, cos_oh);
+            #endif
         }
         #endif
         case GEOMETRY_NONE, default: { return 1.0; }

@@ -10,7 +10,7 @@
 //! cannot multisample) fails to load or render and is reported as not
 //! measured, with the reason.
 
-use crate::material::{Distribution, Fresnel, ReflectanceModel};
+use crate::material::{Distribution, Fresnel, Geometry, ReflectanceModel, SmithBeckmann};
 use crate::scene::{Light, Scene, ShadowFilter};
 
 /// What the bench adds to the built-in scene so that every knob has
@@ -200,6 +200,35 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         "distribution",
         distribution,
         "no Cook-Torrance material in the base scene",
+    );
+
+    // How the GPU evaluates Smith's G1 for Beckmann (issue 18 item 5):
+    // the exact form with an f32 erf, or Walter's rational approximation
+    // (no exp). The truth always takes the exact form, so the rational
+    // setting's error is its cost in the image.
+    let beckmann_g1 = targets.iter().any(|m| {
+        m.model == ReflectanceModel::CookTorrance
+            && matches!(m.geometry, Geometry::Smith | Geometry::SmithCorrelated)
+            && m.distribution != Distribution::Ggx
+    });
+    let g1_forms = if beckmann_g1 {
+        SmithBeckmann::ALL
+            .iter()
+            .map(|&f| {
+                (
+                    f.name().to_string(),
+                    vec![format!("shading.smith_beckmann=\"{f}\"")],
+                    f == base.smith_beckmann,
+                )
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    knob(
+        "smith_beckmann",
+        g1_forms,
+        "no Cook-Torrance material with Smith's G over a Beckmann-like distribution in the base scene",
     );
 
     // Energy compensation (issue 16 item 5) on the targets that offer it:
@@ -518,6 +547,7 @@ pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
             == b.environment.map.as_ref().map(|m| m.settings)
         && a.measured_network == b.measured_network
         && a.measured_table == b.measured_table
+        && a.smith_beckmann == b.smith_beckmann
 }
 
 /// `(width, height)` scaled by `s`, at least 1 pixel.
@@ -591,12 +621,19 @@ mod tests {
             "msaa",
             "resolution",
             "energy_compensation",
+            "smith_beckmann",
         ] {
             assert!(knobs.contains(k), "knob {k} missing");
         }
         // The base's own settings are not repeated.
         assert!(!configs.iter().any(|c| c.label() == "shading=phong"));
         assert!(!configs.iter().any(|c| c.label() == "fresnel=conductor"));
+        assert!(!configs.iter().any(|c| c.label() == "smith_beckmann=erf"));
+        assert!(
+            configs
+                .iter()
+                .any(|c| c.label() == "smith_beckmann=rational")
+        );
         assert!(!configs.iter().any(|c| c.label() == "area_samples=16"));
         assert!(
             !configs
@@ -724,6 +761,10 @@ mod tests {
         assert!(!draws_the_same(
             &base,
             &with("materials.ball.fresnel=schlick")
+        ));
+        assert!(!draws_the_same(
+            &base,
+            &with("shading.smith_beckmann=rational")
         ));
         // A material no mesh uses changes nothing drawn.
         assert!(draws_the_same(&base, &with("materials.unused.model=ward")));

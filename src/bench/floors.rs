@@ -215,6 +215,9 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         // The globals hold the albedo table as the scene says: the same
         // compensation code as the specialized shader.
         energy_compensation: ShaderKey::new(scene, &ShadowPlan::new(scene)).energy_compensation,
+        // The same G1 form as the specialized shader.
+        smith_beckmann_rational: ShaderKey::new(scene, &ShadowPlan::new(scene))
+            .smith_beckmann_rational,
     }
 }
 

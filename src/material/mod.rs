@@ -17,7 +17,7 @@ pub mod texture;
 
 pub use entry::{MaterialEntry, material_from_entry, material_from_entry_in, material_table};
 pub use model::ReflectanceModel;
-pub use terms::{Denominator, Distribution, Fresnel, Geometry};
+pub use terms::{Denominator, Distribution, Fresnel, Geometry, SmithBeckmann};
 
 use crate::base::Rgb;
 use brdf::{Brdf, SurfaceFrame};

@@ -230,6 +230,24 @@ fn slope_error(r: f64) -> f64 {
 /// allows 3 + 2|x| ≤ 163 ulp.
 const EXP_ERROR: f64 = 163.0 * EPS;
 
+/// Smith's G1 (or Λ) for Beckmann in the GPU's default erf form, for
+/// both directions (`brdf::microfacet::G1_BECKMANN_F32_ERROR`): the
+/// materials whose G uses it, else 0. `approximation` alone: the f32
+/// `erfc`'s 2 × 7.5e-8 (the formula's difference from the truth, for the
+/// image tolerance); else with Vulkan's `exp` allowance (the per-sample
+/// tolerance of tests/brdf_equivalence.rs).
+fn smith_beckmann_error(m: &Material, approximation: bool) -> f64 {
+    use super::{Distribution, Geometry};
+    use crate::material::brdf::microfacet::{ERFC_F32_ERROR, G1_BECKMANN_F32_ERROR};
+    let uses = matches!(m.geometry, Geometry::Smith | Geometry::SmithCorrelated)
+        && m.distribution != Distribution::Ggx;
+    match (uses, approximation) {
+        (false, _) => 0.0,
+        (true, true) => 2.0 * 0.5 * ERFC_F32_ERROR,
+        (true, false) => 2.0 * G1_BECKMANN_F32_ERROR,
+    }
+}
+
 fn no_error(_: &Material) -> f64 {
     0.0
 }
@@ -425,7 +443,7 @@ pub static ROWS: &[ModelRow] = &[
         },
         f32_error: |m| {
             use super::Distribution;
-            match m.distribution {
+            let d = match m.distribution {
                 Distribution::Blinn | Distribution::BlinnNormalized => {
                     pow_error(-std::f64::consts::LN_2 / m.roughness.cos().ln())
                 }
@@ -434,16 +452,18 @@ pub static ROWS: &[ModelRow] = &[
                     2.0 * std::f64::consts::LN_2 * 30.0 * 4096.0 * EPS
                 }
                 _ => slope_error(m.roughness),
-            }
+            };
+            d + smith_beckmann_error(m, true)
         },
         transcendental_error: |m| {
             use super::Distribution;
-            match m.distribution {
+            let d = match m.distribution {
                 Distribution::Gaussian | Distribution::GaussianNormalized => {
                     EXP_ERROR + 2.0 * 80.0 * 4096.0 * EPS
                 }
                 _ => EXP_ERROR,
-            }
+            };
+            d + smith_beckmann_error(m, false)
         },
         albedo_table: CT_ALBEDO,
     },

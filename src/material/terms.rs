@@ -57,6 +57,24 @@ named_enum!(
 );
 
 named_enum!(
+    /// How the GPU evaluates Smith's `G1` and Λ for Beckmann (also the
+    /// Blinn and Gaussian distributions' matched G1): `shading.smith_beckmann`,
+    /// a knob of the GPU path only. The reference always evaluates the
+    /// exact erf form (`brdf::microfacet::g1_beckmann`).
+    #[derive(Default)]
+    SmithBeckmann, "smith_beckmann" {
+        /// The exact form with an f32 `erfc` (Abramowitz & Stegun 7.1.26):
+        /// within `G1_BECKMANN_F32_ERROR` (7.5e-8 plus Vulkan's `exp`
+        /// allowance) of the truth. The default.
+        #[default]
+        Erf = "erf",
+        /// Walter et al. 2007's rational approximation: up to 0.313 % per
+        /// `G1` (`G1_BECKMANN_RATIONAL_ERROR`), 0.63 % per `G`; no `exp`.
+        Rational = "rational",
+    }
+);
+
+named_enum!(
     /// The Cook-Torrance denominator.
     Denominator, "denominator" {
         /// `4 (N·V)(N·I)`: the microfacet-standard normalization (default).

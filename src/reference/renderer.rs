@@ -770,6 +770,7 @@ mod tests {
             environment: crate::scene::Environment::uniform(Rgb::ZERO),
             measured_table: crate::material::measured::DEFAULT_TABLE_RESOLUTION,
             measured_network: false,
+            smith_beckmann: Default::default(),
             images: Vec::new(),
         }
     }

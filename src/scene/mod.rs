@@ -93,6 +93,11 @@ pub struct Scene {
     /// in the measured buffer) instead of a table; `false` ("table", the
     /// default): the table of `measured_table`.
     pub measured_network: bool,
+    /// `shading.smith_beckmann`: how the GPU evaluates Smith's G1 and Λ
+    /// for Beckmann (exact with an f32 erf, the default, or Walter's
+    /// rational approximation); the reference always evaluates the exact
+    /// form.
+    pub smith_beckmann: crate::material::SmithBeckmann,
     /// The images materials' textures read (`MaterialTexture::image`
     /// indexes this); shared, so cloning a scene does not copy texels.
     pub images: Vec<std::sync::Arc<texture::Image>>,

@@ -96,6 +96,10 @@ pub enum Feature {
     /// instead of looking up a table (`shading.measured_mode = "network"`;
     /// `measured_network`).
     MeasuredNetwork,
+    /// Smith's G1 and Λ for Beckmann by Walter et al. 2007's rational
+    /// approximation instead of the exact erf form
+    /// (`shading.smith_beckmann = "rational"`; `smith_beckmann_rational`).
+    SmithBeckmannRational,
 }
 
 impl Feature {
@@ -131,6 +135,7 @@ impl Feature {
             Alpha,
             MeasuredNetwork,
             EnergyCompensation,
+            SmithBeckmannRational,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -179,6 +184,7 @@ impl Feature {
             Feature::Alpha => "alpha",
             Feature::MeasuredNetwork => "measured_network",
             Feature::EnergyCompensation => "energy_compensation",
+            Feature::SmithBeckmannRational => "smith_beckmann_rational",
         };
         flag.into()
     }

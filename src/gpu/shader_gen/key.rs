@@ -63,6 +63,11 @@ pub struct ShaderKey {
     /// Some material the scene draws has energy compensation (feature
     /// `energy_compensation`).
     pub energy_compensation: bool,
+    /// Smith-Beckmann's G1 and Λ by Walter's rational approximation
+    /// (feature `smith_beckmann_rational`, `shading.smith_beckmann =
+    /// "rational"`; only with a variant that uses them); else the exact
+    /// erf form.
+    pub smith_beckmann_rational: bool,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -156,9 +161,12 @@ impl ShaderKey {
                     .meshes
                     .iter()
                     .any(|m| scene.materials[m.material].energy_compensation),
+                smith_beckmann_rational: scene.smith_beckmann
+                    == crate::material::SmithBeckmann::Rational,
             };
         key.arrays.measured = key.has_measured();
         key.measured_network &= key.has_measured();
+        key.smith_beckmann_rational &= key.uses_beckmann_g1();
         key
     }
 
@@ -216,6 +224,24 @@ impl ShaderKey {
         self.variants
             .iter()
             .any(|v| v.model == ReflectanceModel::Measured)
+    }
+
+    /// Whether any variant evaluates Smith's G1 or Λ for Beckmann:
+    /// Cook-Torrance with `smith` or `smith-correlated` geometry and a
+    /// distribution other than GGX (which has its own).
+    pub fn uses_beckmann_g1(&self) -> bool {
+        use crate::material::{Distribution, Geometry};
+        self.variants
+            .iter()
+            .map(super::specialization::resolved)
+            .any(|v| {
+                v.model == ReflectanceModel::CookTorrance
+                    && matches!(
+                        v.geometry,
+                        Some(Geometry::Smith | Geometry::SmithCorrelated)
+                    )
+                    && v.distribution != Some(Distribution::Ggx)
+            })
     }
 
     /// Whether any variant is a mirror (environment reflection code).
@@ -293,6 +319,9 @@ impl ShaderKey {
         }
         if self.energy_compensation {
             f.push(Feature::EnergyCompensation);
+        }
+        if self.smith_beckmann_rational {
+            f.push(Feature::SmithBeckmannRational);
         }
         f
     }

@@ -113,6 +113,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 measured_network: shading == ShadingMode::Phong
                     && v.model == crate::material::ReflectanceModel::Measured,
                 energy_compensation: i % 2 == 1,
+                // Both G1 forms, on alternate keys.
+                smith_beckmann_rational: i % 2 == 0,
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -146,6 +148,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     alpha_blend: false,
                     measured_network: false,
                     energy_compensation: false,
+                    smith_beckmann_rational: pcf,
                 });
             }
         }
@@ -183,6 +186,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 alpha_blend: uniform,
                 measured_network: uniform,
                 energy_compensation: uniform,
+                smith_beckmann_rational: uniform,
             });
         }
     }

@@ -90,6 +90,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         alpha_blend: false,
         measured_network: false,
         energy_compensation: false,
+        smith_beckmann_rational: false,
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -124,6 +125,7 @@ fn snapshot_everything() {
         alpha_blend: false,
         measured_network: false,
         energy_compensation: true,
+        smith_beckmann_rational: false,
     };
     check_snapshot("everything", &compose(&key));
 }

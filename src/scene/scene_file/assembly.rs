@@ -92,6 +92,14 @@ pub fn assemble(
             .map_err(|e| bad(format!("image.tone_map: {e}")))?,
     };
     let measured_network = measured_network(&file, &materials).map_err(bad)?;
+    let smith_beckmann = match &file.shading.smith_beckmann {
+        None => Default::default(),
+        Some(s) => s.parse().map_err(|e| {
+            bad(format!(
+                "shading.smith_beckmann: {e} (\"erf\": the exact G1 with an f32 erf; \"rational\": Walter et al.'s approximation, up to 0.31 % off)"
+            ))
+        })?,
+    };
     let mut scene = Scene {
         width,
         height,
@@ -108,6 +116,7 @@ pub fn assemble(
         environment,
         measured_table: measured_table(&file).map_err(bad)?,
         measured_network,
+        smith_beckmann,
         images: gltf_files.images.images.clone(),
     };
     // A scene-file normal map on a mesh without tangents (a glTF mesh

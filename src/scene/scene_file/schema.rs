@@ -111,6 +111,10 @@ pub struct ShadingSection {
     /// "network".
     #[serde(default)]
     pub measured_mode: Option<String>,
+    /// How the GPU evaluates Smith's G1 for Beckmann: "erf" (default,
+    /// exact to f32) or "rational" (Walter et al. 2007's approximation).
+    #[serde(default)]
+    pub smith_beckmann: Option<String>,
 }
 
 /// One `[[objects]]` entry: a glTF file or a generated shape.

@@ -612,12 +612,52 @@ fn d_gaussian_normalized(m: f32, cos_h: f32, sin2_h: f32, norm: f32) -> f32 {
 }
 
 
+// erfc(x) for x ≥ 0, Abramowitz & Stegun 7.1.26 (after Hastings):
+// t = 1/(1 + p x), erfc ≈ t (a1 + t (a2 + t (a3 + t (a4 + t a5)))) e^{−x²},
+// |error| ≤ 1.5e-7 absolute (ERFC_F32_ERROR in the f64 twin, which calls
+// musl's erfc).
+fn erfc(x: f32) -> f32 {
+    let t = 1.0 / (1.0 + 0.3275911 * x);
+    let poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
+    return poly * exp(-x * x);
+}
+
+const SQRT_PI: f32 = 1.7724538509055159;
+
+// Past a = 1/(m tanθ_v) ≥ 6, Λ < Λ(6) = 1.1e-17: G1 = 1, Λ = 0 (also keeps a
+// finite at normal incidence).
+const BECKMANN_A_CUTOFF: f32 = 6.0;
+
+// Smith G1 for Beckmann, exact (Walter et al. 2007, eq. 25, 27): 1/(1 + Λ(a)),
+// a = 1/(m tanθ_v), Λ = (erf(a) − 1)/2 + e^{−a²}/(2a√π), with the erfc
+// above: G1 within 7.5e-8 + Vulkan's exp allowance of the f64 truth
+// (G1_BECKMANN_F32_ERROR). No division by a: s = 2a√π,
+// 2a√π Λ = e^{−a²} − (s/2) erfc(a) (clamped ≥ 0: the approximate erfc could
+// push G1 past 1), G1 = s / (s + 2a√π Λ), → 0 at grazing. 0 when cos_v ≤ 0
+// (one-sided) or cos_vh ≤ 0 (χ⁺). a ≥ 6 tested as cos ≥ 6 m sin; past it
+// m sin > cos / 6 > 0. The default; g1_beckmann_rational is the knob.
+fn g1_beckmann(m: f32, cos_v: f32, cos_vh: f32) -> f32 {
+    if cos_v <= 0.0 || cos_vh <= 0.0 {
+        return 0.0; // below the horizon, or χ⁺(cos_vh / cos_v) = 0
+    }
+    let cos_vc = min(cos_v, 1.0); // rounding can pass 1
+    let sin_v = sqrt(1.0 - cos_vc * cos_vc);
+    if cos_vc >= BECKMANN_A_CUTOFF * m * sin_v {
+        return 1.0; // a ≥ 6: Λ < 1.1e-17
+    }
+    let a = cos_vc / (m * sin_v);
+    let s = 2.0 * SQRT_PI * a;
+    let s_lambda = max(exp(-a * a) - 0.5 * s * erfc(a), 0.0); // 2a√π Λ
+    return s / (s + s_lambda);
+}
+
 // Smith G1 for Beckmann, Walter et al. 2007's rational approximation (as
 // Mitsuba): a = 1/(m tanθ_v); a ≥ 1.6 → 1; else
-// (3.535a + 2.181a²)/(1 + 2.276a + 2.577a²). 0 when cos_v ≤ 0 (one-sided)
-// or cos_vh ≤ 0 (χ⁺). a ≥ 1.6 tested as cos ≥ 1.6 m sin (no division;
+// (3.535a + 2.181a²)/(1 + 2.276a + 2.577a²); up to 0.313 % above the exact
+// G1 (at a ≈ 1.34). The knob shading.smith_beckmann = "rational". 0 when
+// cos_v ≤ 0 or cos_vh ≤ 0. a ≥ 1.6 tested as cos ≥ 1.6 m sin (no division;
 // normal incidence gives 1); past it m sin > cos / 1.6 > 0.
-fn g1_beckmann(m: f32, cos_v: f32, cos_vh: f32) -> f32 {
+fn g1_beckmann_rational(m: f32, cos_v: f32, cos_vh: f32) -> f32 {
     if cos_v <= 0.0 || cos_vh <= 0.0 {
         return 0.0; // below the horizon, or χ⁺(cos_vh / cos_v) = 0
     }
@@ -643,10 +683,24 @@ fn g1_ggx(alpha: f32, cos_v: f32, cos_vh: f32) -> f32 {
     return 2.0 * cos_vc / (cos_vc + sqrt(cos2 + alpha * alpha * sin2));
 }
 
-// Smith's Λ for Beckmann (Walter 2007's rational form, the Λ of g1_beckmann's
-// G1 = 1/(1 + Λ)): a ≥ 1.6 → 0; else (1 − 1.259a + 0.396a²)/(3.535a + 2.181a²).
-// Needs cos_v > 0 (the caller's χ⁺ test).
+// Smith's Λ for Beckmann, exact (Walter 2007, eq. 27): the Λ of g1_beckmann,
+// (e^{−a²} − a√π erfc(a)) / (2a√π) (numerator clamped ≥ 0); a ≥ 6 → 0.
+// Needs cos_v > 0 (the caller's χ⁺ test); ~1/(2a√π) towards grazing.
 fn lambda_beckmann(m: f32, cos_v: f32) -> f32 {
+    let cos_vc = min(cos_v, 1.0); // rounding can pass 1
+    let sin_v = sqrt(1.0 - cos_vc * cos_vc);
+    if cos_vc >= BECKMANN_A_CUTOFF * m * sin_v {
+        return 0.0; // a ≥ 6: Λ < 1.1e-17
+    }
+    let a = cos_vc / (m * sin_v);
+    let s = 2.0 * SQRT_PI * a;
+    return max(exp(-a * a) - 0.5 * s * erfc(a), 0.0) / s;
+}
+
+// Smith's Λ for Beckmann, Walter 2007's rational form (the Λ of
+// g1_beckmann_rational; the knob): a ≥ 1.6 → 0; else
+// (1 − 1.259a + 0.396a²)/(3.535a + 2.181a²). Needs cos_v > 0.
+fn lambda_beckmann_rational(m: f32, cos_v: f32) -> f32 {
     let cos_vc = min(cos_v, 1.0); // rounding can pass 1
     let sin_v = sqrt(1.0 - cos_vc * cos_vc);
     if cos_vc >= 1.6 * m * sin_v {
