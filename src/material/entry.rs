@@ -18,7 +18,8 @@ const TERM_KEYS: [&str; 4] = ["distribution", "geometry", "fresnel", "denominato
 
 /// `[materials.NAME]`: the model, an optional preset (the lecture's tables
 /// or a coloured conductor, [`super::presets`]), then any parameter or term
-/// (given keys override the preset).
+/// (given keys override the preset and the model's default `k_d`, `k_s`,
+/// which follow the preset and terms: [`super::weights`]).
 /// Keys of another model than the given one are accepted (and kept for
 /// when the material switches models).
 #[derive(Clone, Debug, Default)]
@@ -191,6 +192,13 @@ pub fn material_from_entry_in(
             .map_err(|p| format!("{}: {p}", key("preset")))?
             .apply(&mut m);
     }
+    for (k, text) in &e.terms {
+        set_term(&mut m, k, text).map_err(|p| format!("{}: {p}", key(k)))?;
+    }
+    // The model's default k_d, k_s for the preset and terms now set (a
+    // metal preset on Cook-Torrance: a bare metal; `weights.rs`); the
+    // keys given win below.
+    (m.k_d, m.k_s) = (model.row().weights)(&m);
     // In the table's key order, whatever the file's: a key that sets
     // several fields (Ward's `sigma`) comes before the ones that set one
     // of them (`sigma_x`), which then win.
@@ -200,9 +208,6 @@ pub fn material_from_entry_in(
         {
             p.write(&mut m, *v);
         }
-    }
-    for (k, text) in &e.terms {
-        set_term(&mut m, k, text).map_err(|p| format!("{}: {p}", key(k)))?;
     }
     if let Some(on) = e.energy_compensation {
         m.energy_compensation = on;
