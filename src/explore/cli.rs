@@ -19,7 +19,7 @@ use std::path::PathBuf;
     long_about = "Print f_r [1/sr] of one or more materials for given directions, and plot \
 the lecture's polar slice or the directional albedo. Frame: normal n = +Z, tangent t = +X; \
 θ from the normal, φ from the tangent. Materials take the keys of a scene file's \
-[materials.NAME] table."
+[materials.NAME] table; k_d, k_s left out take the model's defaults (Phong, Blinn-Phong, Ward: 0.5, 0.5; Cook-Torrance: k_s = 1 with k_d = 0 for a conductor's Fresnel term, the default and every metal preset, k_d = 0.5 for a dielectric; docs/brdf-models.md)."
 )]
 pub struct BrdfArgs {
     // Help texts that list models or keys are generated from the table of

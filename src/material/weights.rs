@@ -165,8 +165,14 @@ mod tests {
             read("model = \"ward\"\nk_s = [0.1, 0.2, 0.3]"),
             (Rgb::splat(0.5), Rgb::new(0.1, 0.2, 0.3))
         );
-        assert_eq!(read("model = \"phong\""), plastic(&Material::new("m", ReflectanceModel::Phong)));
-        assert_eq!(read("model = \"mirror\"\npreset = \"silver\""), mirror(&Material::new("m", ReflectanceModel::Mirror)));
+        assert_eq!(
+            read("model = \"phong\""),
+            plastic(&Material::new("m", ReflectanceModel::Phong))
+        );
+        assert_eq!(
+            read("model = \"mirror\"\npreset = \"silver\""),
+            mirror(&Material::new("m", ReflectanceModel::Mirror))
+        );
         assert_eq!(read("model = \"lambert\""), (Rgb::splat(0.8), Rgb::ZERO));
     }
 
