@@ -275,13 +275,15 @@ fn measured_keys_apply(e: &MaterialEntry) -> Result<(), (&str, String)> {
 }
 
 /// `m` with `key` set to `value` as a scene file would give it (the
-/// viewer's edits), validated; messages name `materials.NAME.KEY` (a
+/// viewer's edits; `k_d`, `k_s` left at their defaults follow it:
+/// [`Material::follow_default_weights`]), validated; messages name `materials.NAME.KEY` (a
 /// `measured` path is relative to the working directory).
 pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String> {
     let name = &m.name;
     let bad = |problem: String| format!("materials.{name}.{key}: {problem}");
     let typed = |e: toml::de::Error| bad(e.message().to_string());
     let mut out = m.clone();
+    let before = (m.model.row().weights)(m);
     match key {
         "model" => {
             let text: String = value.try_into().map_err(typed)?;
@@ -322,6 +324,9 @@ pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String
             p.write(&mut out, v);
         }
     }
+    // Weights left at their defaults follow the edit, as a scene file's
+    // `--set` of the same key would have them.
+    out.follow_default_weights(before);
     out.validate()?;
     Ok(out)
 }

@@ -242,6 +242,25 @@ impl Material {
         m
     }
 
+    /// After an edit (the viewer's panel, `--edit`, `compare.N.KEY`): a
+    /// weight `k_d` or `k_s` still at its default for the material as it
+    /// was (`before`, its row's [`weights`]) takes its default for the
+    /// material as it is now, as a scene file that does not give it would:
+    /// a Lambert floor switched to `phong` gets Phong's `k_s = 0.5` and
+    /// keeps its own `k_d`; a bare Cook-Torrance gold given `preset =
+    /// "glass"` becomes the glass plastic. A weight set to another value
+    /// stays (one equal to the default follows it: the viewer does not
+    /// know which keys a file gave).
+    pub fn follow_default_weights(&mut self, before: weights::Weights) {
+        let now = (self.model.row().weights)(self);
+        if self.k_d == before.0 {
+            self.k_d = now.0;
+        }
+        if self.k_s == before.1 {
+            self.k_s = now.1;
+        }
+    }
+
     /// Checks every parameter against the contract's ranges (the table's,
     /// [`table::stored_params`]); the message names the parameter and the
     /// offending value.

@@ -17,8 +17,10 @@
 //! its default terms; a scene-file entry takes them again after its
 //! `preset` and terms are applied (Cook-Torrance's depend on the Fresnel
 //! term: [`cook_torrance`]), for whichever of `k_d`, `k_s` it does not
-//! give. Keys given always win. The viewer's edits change only the key
-//! edited (its material has every value already).
+//! give. Keys given always win. The viewer's edits move a weight still
+//! at its default along with the model, preset or term edited
+//! (`Material::follow_default_weights`), so an edit gives what `--set` of
+//! the same key in the scene file gives.
 
 use super::{Fresnel, Material};
 use crate::base::Rgb;
@@ -230,5 +232,31 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// An edit (the viewer's panel, `--edit`) gives the material a scene
+    /// file with the same key set would: weights at their defaults follow
+    /// the model, preset or term; weights set to other values stay.
+    #[test]
+    fn edits_move_default_weights_as_the_scene_file_does() {
+        use crate::material::entry::with_key;
+        use crate::material::{MaterialEntry, material_from_entry};
+        use serde::Deserialize;
+        let read = |text: &str| {
+            let entry = MaterialEntry::deserialize(text.parse::<toml::Table>().unwrap()).unwrap();
+            material_from_entry("m", &entry).unwrap()
+        };
+        let text = |s: &str| toml::Value::String(s.into());
+        let floor = read("model = \"lambert\"\nk_d = 0.6");
+        assert_eq!(
+            with_key(&floor, "model", text("phong")).unwrap(),
+            read("model = \"phong\"\nk_d = 0.6")
+        );
+        let gold = read("model = \"cook-torrance\"\npreset = \"gold\"");
+        let glass = with_key(&gold, "preset", text("glass")).unwrap();
+        assert_eq!((glass.k_d, glass.k_s), (Rgb::splat(0.5), Rgb::ONE));
+        let tinted = read("model = \"cook-torrance\"\npreset = \"gold\"\nk_d = 0.2\nk_s = 0.3");
+        let kept = with_key(&tinted, "preset", text("glass")).unwrap();
+        assert_eq!((kept.k_d, kept.k_s), (Rgb::splat(0.2), Rgb::splat(0.3)));
     }
 }
