@@ -71,6 +71,8 @@ fn several_models_and_the_default_mirror_direction() {
         "--set",
         "k_s=1",
         "--set",
+        "k_d=0.8",
+        "--set",
         "k_e=50",
         "--theta-i",
         "40",

@@ -19,7 +19,7 @@ use std::path::PathBuf;
     long_about = "Print f_r [1/sr] of one or more materials for given directions, and plot \
 the lecture's polar slice or the directional albedo. Frame: normal n = +Z, tangent t = +X; \
 θ from the normal, φ from the tangent. Materials take the keys of a scene file's \
-[materials.NAME] table."
+[materials.NAME] table; k_d, k_s left out take the model's defaults (Phong, Blinn-Phong, Ward: 0.5, 0.5; Cook-Torrance: k_s = 1 with k_d = 0 for a conductor's Fresnel term, the default and every metal preset, k_d = 0.5 for a dielectric; docs/brdf-models.md)."
 )]
 pub struct BrdfArgs {
     // Help texts that list models or keys are generated from the table of
@@ -118,18 +118,6 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         }
     }
     let materials = materials(args)?;
-    for m in &materials {
-        // A model whose row weighs a lobe by k_s (a Dirac lobe is not seen
-        // in f_r), asked with k_s = 0.
-        let weighs_a_lobe = m.material.model.row().params.iter().any(|p| p.key == "k_s")
-            && !m.material.brdf().is_dirac();
-        if weighs_a_lobe && m.material.k_s == crate::scene::Rgb::ZERO {
-            eprintln!(
-                "gonio: note: `{}` has k_s = 0 (the scene-file default), so only its diffuse part k_d/π shows; try --set k_s=1 (and --set k_d=0 for the lobe alone)",
-                m.label
-            );
-        }
-    }
     let angles = Angles::from_args(args)?;
     // Claim the outputs first: a bad path fails before any work.
     let slice_file = args

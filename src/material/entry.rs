@@ -18,7 +18,8 @@ const TERM_KEYS: [&str; 4] = ["distribution", "geometry", "fresnel", "denominato
 
 /// `[materials.NAME]`: the model, an optional preset (the lecture's tables
 /// or a coloured conductor, [`super::presets`]), then any parameter or term
-/// (given keys override the preset).
+/// (given keys override the preset and the model's default `k_d`, `k_s`,
+/// which follow the preset and terms: [`super::weights`]).
 /// Keys of another model than the given one are accepted (and kept for
 /// when the material switches models).
 #[derive(Clone, Debug, Default)]
@@ -191,6 +192,13 @@ pub fn material_from_entry_in(
             .map_err(|p| format!("{}: {p}", key("preset")))?
             .apply(&mut m);
     }
+    for (k, text) in &e.terms {
+        set_term(&mut m, k, text).map_err(|p| format!("{}: {p}", key(k)))?;
+    }
+    // The model's default k_d, k_s for the preset and terms now set (a
+    // metal preset on Cook-Torrance: a bare metal; `weights.rs`); the
+    // keys given win below.
+    (m.k_d, m.k_s) = (model.row().weights)(&m);
     // In the table's key order, whatever the file's: a key that sets
     // several fields (Ward's `sigma`) comes before the ones that set one
     // of them (`sigma_x`), which then win.
@@ -200,9 +208,6 @@ pub fn material_from_entry_in(
         {
             p.write(&mut m, *v);
         }
-    }
-    for (k, text) in &e.terms {
-        set_term(&mut m, k, text).map_err(|p| format!("{}: {p}", key(k)))?;
     }
     if let Some(on) = e.energy_compensation {
         m.energy_compensation = on;
@@ -270,13 +275,15 @@ fn measured_keys_apply(e: &MaterialEntry) -> Result<(), (&str, String)> {
 }
 
 /// `m` with `key` set to `value` as a scene file would give it (the
-/// viewer's edits), validated; messages name `materials.NAME.KEY` (a
+/// viewer's edits; `k_d`, `k_s` left at their defaults follow it:
+/// [`Material::follow_default_weights`]), validated; messages name `materials.NAME.KEY` (a
 /// `measured` path is relative to the working directory).
 pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String> {
     let name = &m.name;
     let bad = |problem: String| format!("materials.{name}.{key}: {problem}");
     let typed = |e: toml::de::Error| bad(e.message().to_string());
     let mut out = m.clone();
+    let before = (m.model.row().weights)(m);
     match key {
         "model" => {
             let text: String = value.try_into().map_err(typed)?;
@@ -317,6 +324,9 @@ pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String
             p.write(&mut out, v);
         }
     }
+    // Weights left at their defaults follow the edit, as a scene file's
+    // `--set` of the same key would have them.
+    out.follow_default_weights(before);
     out.validate()?;
     Ok(out)
 }

@@ -14,6 +14,7 @@ pub mod presets;
 pub mod table;
 pub mod terms;
 pub mod texture;
+pub mod weights;
 
 pub use entry::{MaterialEntry, material_from_entry, material_from_entry_in, material_table};
 pub use model::ReflectanceModel;
@@ -192,18 +193,22 @@ impl Sides {
 }
 
 impl Material {
-    /// A material with the given model and neutral parameters: `k_d = 0.8`,
-    /// `k_s = 0`, `k_a = 0`, `k_e = 32`, roughness 0.3, σ = 0.2, gold's η/κ
-    /// from the lecture's table, glass (1 → 1.5) for the dielectric,
-    /// Beckmann with Smith G and the exact conductor Fresnel over the
-    /// 4(N·V)(N·I) denominator; then the model's own defaults from its row
-    /// (a mirror: `k_d = 0`, `k_s = 1`, Fresnel `none`, reflectance `k_s`).
+    /// A material with the given model and neutral parameters: `k_a = 0`,
+    /// `k_e = 32`, roughness 0.3, σ = 0.2, gold's η/κ from the lecture's
+    /// table, glass (1 → 1.5) for the dielectric, Beckmann with Smith G and
+    /// the exact conductor Fresnel over the 4(N·V)(N·I) denominator; then
+    /// the model's own defaults from its row (a mirror: Fresnel `none`, so
+    /// its reflectance is `k_s`), and last its default `k_d`, `k_s` for
+    /// those ([`weights`]: `k_d = 0.8`, `k_s = 0` for the diffuse models,
+    /// `k_d = k_s = 0.5` for Phong, Blinn-Phong and Ward, a bare metal
+    /// `k_d = 0`, `k_s = 1` for this Cook-Torrance gold).
     pub fn new(name: impl Into<String>, model: ReflectanceModel) -> Self {
         let mut m = Material {
             name: name.into(),
             model,
             k_a: Rgb::ZERO,
-            k_d: Rgb::splat(0.8),
+            // Placeholders: the row's `weights` set both below.
+            k_d: Rgb::ZERO,
             k_s: Rgb::ZERO,
             k_e: 32.0,
             roughness: 0.3,
@@ -233,7 +238,27 @@ impl Material {
             energy_compensation: false,
         };
         (model.row().defaults)(&mut m);
+        (m.k_d, m.k_s) = (model.row().weights)(&m);
         m
+    }
+
+    /// After an edit (the viewer's panel, `--edit`, `compare.N.KEY`): a
+    /// weight `k_d` or `k_s` still at its default for the material as it
+    /// was (`before`, its row's [`weights`]) takes its default for the
+    /// material as it is now, as a scene file that does not give it would:
+    /// a Lambert floor switched to `phong` gets Phong's `k_s = 0.5` and
+    /// keeps its own `k_d`; a bare Cook-Torrance gold given `preset =
+    /// "glass"` becomes the glass plastic. A weight set to another value
+    /// stays (one equal to the default follows it: the viewer does not
+    /// know which keys a file gave).
+    pub fn follow_default_weights(&mut self, before: weights::Weights) {
+        let now = (self.model.row().weights)(self);
+        if self.k_d == before.0 {
+            self.k_d = now.0;
+        }
+        if self.k_s == before.1 {
+            self.k_s = now.1;
+        }
     }
 
     /// Checks every parameter against the contract's ranges (the table's,

@@ -86,8 +86,12 @@ impl Preset {
     /// Applies the preset to `m`: a conductor sets η, κ and the exact
     /// conductor Fresnel; a dielectric sets η_i = 1, η_t = η, the same η
     /// with κ = 0 (so Schlick's F0 and the conductor formula agree with the
-    /// dielectric one) and the dielectric Fresnel. Keys given explicitly in
-    /// the scene are applied after the preset and win.
+    /// dielectric one) and the dielectric Fresnel. It sets nothing else:
+    /// a scene-file entry then takes the model's default `k_d`, `k_s` for
+    /// the Fresnel term the preset chose (Cook-Torrance: a conductor is a
+    /// bare metal, `k_d = 0`, `k_s = 1`; a dielectric `k_d = 0.5`,
+    /// `k_s = 1`; see `material/weights.rs`). Keys given explicitly in the
+    /// scene are applied after the preset and win.
     pub fn apply(self, m: &mut Material) {
         match self {
             Preset::Conductor { eta, kappa } => {

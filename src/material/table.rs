@@ -19,7 +19,8 @@
 //! 3. Its row in [`ROWS`] below (new parameters as `static`s beside the
 //!    others in `param.rs`; a new `Material` field, if it needs one, with
 //!    its default in `Material::new` and the model's own in the row's
-//!    `defaults`).
+//!    `defaults`; its default `k_d`, `k_s` in `weights`, one of
+//!    `material/weights.rs`).
 //! 4. One [`Specular`] variant with its arm in `brdf::eval` and in
 //!    `Brdf::shader_params` (`brdf/value.rs`; the compiler points at both:
 //!    constants the named GPU fields do not cover go in `lobe`, four
@@ -43,6 +44,7 @@ use super::param::{
     ABC_A, ABC_B, ABC_C, BASE_COLOR, EMISSION, ETA, ETA_I, ETA_T, FACET_SIGMA, K_A, K_D, K_E, K_S,
     KAPPA, METALLIC, PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, SIGMA_X, SIGMA_Y, WARD_SIGMA,
 };
+use super::weights::{self, Weights};
 use super::{Material, ReflectanceModel};
 use crate::base::Rgb;
 
@@ -105,6 +107,10 @@ pub struct ModelRow {
     pub energy_compensation: bool,
     /// Its own defaults, applied by `Material::new` over the common ones.
     pub defaults: fn(&mut Material),
+    /// Its default `k_d`, `k_s` for the rest of the material (see
+    /// [`super::weights`]: a model with a lobe shows it, a metal preset
+    /// renders as that metal).
+    pub weights: fn(&Material) -> Weights,
     /// The specular term of a material of this model, its derived
     /// constants computed.
     pub specular: fn(&Material) -> Specular,
@@ -277,6 +283,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: true,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::diffuse,
         specular: |_| Specular::None,
         f32_error: no_error,
         transcendental_error: |_| EXP_ERROR,
@@ -294,6 +301,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: false,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::plastic,
         specular: |m| Specular::Phong { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
         transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
@@ -315,6 +323,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: true,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::plastic,
         specular: |m| Specular::PhongNormalized { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
         transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
@@ -337,6 +346,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: false,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::plastic,
         specular: |m| Specular::BlinnPhong { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
         transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
@@ -358,6 +368,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: true,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::plastic,
         specular: |m| Specular::BlinnPhongNormalized { k_e: m.k_e },
         f32_error: |m| pow_error(m.k_e),
         transcendental_error: |m| EXP_ERROR + 2f64.powi(-21) * m.k_e.min(1240.0),
@@ -380,6 +391,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: true,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::plastic,
         specular: |m| Specular::Ward { sigma: m.sigma_x },
         f32_error: |m| slope_error(m.sigma_x),
         transcendental_error: |_| EXP_ERROR,
@@ -401,6 +413,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: false,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::plastic,
         specular: |m| Specular::WardAnisotropic {
             sigma_x: m.sigma_x,
             sigma_y: m.sigma_y,
@@ -432,6 +445,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: true,
         energy_compensation: true,
         defaults: |_| {},
+        weights: weights::cook_torrance,
         specular: |m| {
             Specular::CookTorrance(CookTorrance::new(
                 m.distribution,
@@ -481,9 +495,8 @@ pub static ROWS: &[ModelRow] = &[
         reciprocal: true,
         benched: false,
         energy_compensation: false,
-        defaults: |m| {
-            (m.k_d, m.k_s, m.fresnel) = (Rgb::ZERO, Rgb::ONE, super::Fresnel::None);
-        },
+        defaults: |m| m.fresnel = super::Fresnel::None,
+        weights: weights::mirror,
         specular: |m| Specular::Mirror(fresnel_term(m)),
         f32_error: no_error,
         transcendental_error: |_| EXP_ERROR,
@@ -504,6 +517,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: true,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::diffuse,
         specular: |m| Specular::OrenNayar(oren_nayar_terms(m.facet_sigma)),
         f32_error: |_| ON_ERROR,
         transcendental_error: |_| 0.0,
@@ -521,6 +535,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: false,
         energy_compensation: false,
         defaults: |_| {},
+        weights: weights::diffuse,
         specular: |m| Specular::OrenNayarFull(oren_nayar_terms(m.facet_sigma)),
         f32_error: |_| ON_ERROR + ATAN2_TERMS_ERROR,
         transcendental_error: |_| ATAN2_TERMS_ERROR,
@@ -537,10 +552,8 @@ pub static ROWS: &[ModelRow] = &[
         reciprocal: false,
         benched: false,
         energy_compensation: false,
-        defaults: |m| {
-            (m.k_d, m.k_s) = (Rgb::ZERO, Rgb::ZERO);
-            m.measured = Some(super::measured::default_brdf());
-        },
+        defaults: |m| m.measured = Some(super::measured::default_brdf()),
+        weights: weights::none,
         specular: |m| Specular::Measured(m.measured.unwrap_or_else(super::measured::default_brdf)),
         f32_error: |_| MEASURED_F32_ERROR,
         transcendental_error: |_| 0.0,
@@ -569,6 +582,7 @@ pub static ROWS: &[ModelRow] = &[
         benched: false,
         energy_compensation: true,
         defaults: |_| {},
+        weights: weights::diffuse,
         specular: |m| Specular::GltfPbr {
             base_color: m.base_color,
             metallic: m.metallic,
@@ -601,12 +615,11 @@ pub static ROWS: &[ModelRow] = &[
         // The published fit of MERL's gold-metallic-paint (Löw et al.
         // 2012; shared/measured/merl100_abc_fits.csv).
         defaults: |m| {
-            m.k_d = Rgb::new(0.009164, 0.005649, 0.000424);
-            m.k_s = Rgb::ONE;
             m.abc_a = Rgb::new(1.685630, 1.147257, 0.418757);
             (m.abc_b, m.abc_c) = (53.738525, 1.511730);
             (m.eta_i, m.eta_t) = (1.0, 9.031934);
         },
+        weights: weights::abc_published,
         specular: |m| Specular::Abc {
             a: m.abc_a,
             b: m.abc_b,

@@ -12,6 +12,9 @@ use crate::material::{Material, ReflectanceModel, measured};
 /// Edits `m` in place; returns whether anything changed.
 pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
     let mut changed = false;
+    // Weights at their defaults follow a change of model, preset or term
+    // (as `--set` of that key in a scene file would have them).
+    let before = (m.model.row().weights)(m);
     egui::Grid::new("material").num_columns(2).show(ui, |ui| {
         ui.label("model");
         changed |= combo(ui, "model", &mut m.model, ReflectanceModel::ALL, |v| {
@@ -52,6 +55,9 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             ui.end_row();
         }
     });
+    if changed {
+        m.follow_default_weights(before);
+    }
     changed
 }
 
