@@ -345,3 +345,60 @@ fn roughness_below_the_floor_is_evaluated_at_the_floor_and_said() {
         assert_eq!(values(&low), values(&floor), "{below}");
     }
 }
+
+/// `--phi-d` (issue 17: BRDF Explorer's image slice has a φ_d control):
+/// the PNG holds the colours of the image at that φ_d, which differs from
+/// the default 90° one for a Cook-Torrance lobe (its Fresnel and shadowing
+/// depend on φ_d through the directions), and `--phi-d` without the image
+/// is refused rather than ignored.
+#[test]
+fn halfdiff_image_follows_phi_d() {
+    use gonio::explore::Channel;
+    use gonio::explore::halfdiff::{half_diff_image, half_diff_image_at};
+    use gonio::explore::halfdiff_plot::{colour, layout};
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("hd30.png");
+    let spec = "cook-torrance,k_d=0,k_s=1,roughness=0.3";
+    stdout(&brdf(&[
+        "--compare",
+        spec,
+        "--plot-halfdiff",
+        png.to_str().unwrap(),
+        "--phi-d",
+        "30",
+    ]));
+    let m = gonio::explore::spec::compare_spec(spec, &[])
+        .unwrap()
+        .material;
+    let at30 = half_diff_image_at(&m, Channel::Mean, 30f64.to_radians()).values;
+    let at90 = half_diff_image(&m, Channel::Mean).values;
+    assert!(
+        (at30[80][40] - at90[80][40]).abs() > 1e-3 * at90[80][40],
+        "φ_d changes nothing: {} vs {}",
+        at30[80][40],
+        at90[80][40]
+    );
+    let image = image::open(&png).unwrap().into_rgb8();
+    let (w, h) = image.dimensions();
+    let panel = layout(w, h, 1)[0];
+    let logs = at30
+        .iter()
+        .flatten()
+        .filter(|v| **v > 0.0)
+        .map(|v| v.log10());
+    let hi = logs.clone().fold(f64::NEG_INFINITY, f64::max);
+    let lo = logs.fold(f64::INFINITY, f64::min).max(hi - 6.0);
+    for (i, j) in [(0, 45), (40, 80)] {
+        let (x, y) = panel.cell_centre(i, j);
+        let p = image.get_pixel(x as u32, y as u32).0;
+        let want = colour(at30[j][i], lo, hi);
+        assert_eq!(p, [want.0, want.1, want.2], "cell θ_h {i}, θ_d {j}");
+    }
+    let out = brdf(&["--model", "lambert", "--phi-d", "30"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--phi-d 30") && stderr.contains("--plot-halfdiff"),
+        "{stderr}"
+    );
+}

@@ -74,10 +74,14 @@ pub struct BrdfArgs {
     /// Write directional albedo against θ_i = 0…89° (.png or .svg).
     #[arg(long, value_name = "OUT")]
     pub plot_albedo: Option<PathBuf>,
-    /// Write the θ_h × θ_d image slice (Rusinkiewicz 1998; φ_d = 90°, log
-    /// colour of f_r), one panel per material (.png or .svg).
+    /// Write the θ_h × θ_d image slice (Rusinkiewicz 1998; at --phi-d,
+    /// log colour of f_r), one panel per material (.png or .svg).
     #[arg(long, value_name = "OUT")]
     pub plot_halfdiff: Option<PathBuf>,
+    /// The difference azimuth φ_d [°] of --plot-halfdiff's image (BRDF
+    /// Explorer's default, 90°, when not given).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub phi_d: Option<f64>,
     /// What the plots draw of RGB: mean (default), luminance, r, g, b.
     #[arg(long, value_name = "C", default_value = "mean")]
     pub channel: Channel,
@@ -135,6 +139,20 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         .as_deref()
         .map(PlotFile::prepare)
         .transpose()?;
+    if let Some(phi_d) = args.phi_d {
+        if args.plot_halfdiff.is_none() {
+            return Err(Error::argument(
+                format!("--phi-d {phi_d}"),
+                "φ_d is the azimuth of the θ_h × θ_d image: add --plot-halfdiff OUT.png",
+            ));
+        }
+        if !phi_d.is_finite() {
+            return Err(Error::argument(
+                format!("--phi-d {phi_d}"),
+                "the difference azimuth must be a number of degrees",
+            ));
+        }
+    }
     if let Some(max) = args.slice_max
         && !(max.is_finite() && max > 0.0)
     {
@@ -181,7 +199,8 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         println!("wrote {}", path.display());
     }
     if let Some(file) = halfdiff_file {
-        super::halfdiff_plot::write(file, &materials, args.channel, note.clone())?;
+        let phi_d = args.phi_d.unwrap_or(90.0);
+        super::halfdiff_plot::write(file, &materials, args.channel, phi_d, note.clone())?;
     }
     if let Some(file) = albedo_file {
         let phi_i = angles.phi_i.to_radians();

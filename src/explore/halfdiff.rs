@@ -72,7 +72,13 @@ pub fn half_diff_rgb(m: &Material, phi_d: f64) -> Vec<Vec<Rgb>> {
 
 /// The image of `m` at φ_d = 90°.
 pub fn half_diff_image(m: &Material, channel: Channel) -> HalfDiffImage {
-    let values = half_diff_rgb(m, FRAC_PI_2)
+    half_diff_image_at(m, channel, FRAC_PI_2)
+}
+
+/// [`half_diff_image`] at the difference azimuth `phi_d` (radians):
+/// `gonio brdf --plot-halfdiff --phi-d`.
+pub fn half_diff_image_at(m: &Material, channel: Channel, phi_d: f64) -> HalfDiffImage {
+    let values = half_diff_rgb(m, phi_d)
         .into_iter()
         .map(|row| row.into_iter().map(|c| channel.of(c)).collect())
         .collect();

@@ -3,7 +3,7 @@
 //! material, one colour scale for all. Cells are drawn in pixel space from
 //! [`layout`], so a test can find cell (θ_h, θ_d) in the written image.
 
-use super::halfdiff::{CELLS, HalfDiffImage, half_diff_image};
+use super::halfdiff::{CELLS, HalfDiffImage, half_diff_image_at};
 use super::{Channel, Labelled};
 use crate::Result;
 use crate::output::plot::{Plot, PlotFile, err, number};
@@ -21,6 +21,8 @@ pub const NO_DATA: RGBColor = RGBColor(235, 235, 235);
 /// The image slices of several materials.
 pub struct HalfDiffPlot {
     pub channel: Channel,
+    /// The difference azimuth φ_d [°] of every image.
+    pub phi_d_deg: f64,
     /// `(label, image)` per material.
     pub series: Vec<(String, HalfDiffImage)>,
     /// Shared parameters, shown under the title.
@@ -99,12 +101,22 @@ pub fn viridis(t: f64) -> RGBColor {
 }
 
 /// `gonio brdf --plot-halfdiff`: the image of every material into `file`.
-pub fn write(file: PlotFile, materials: &[Labelled], channel: Channel, note: String) -> Result<()> {
+pub fn write(
+    file: PlotFile,
+    materials: &[Labelled],
+    channel: Channel,
+    phi_d_deg: f64,
+    note: String,
+) -> Result<()> {
     let plot = HalfDiffPlot {
         channel,
+        phi_d_deg,
         series: materials
             .iter()
-            .map(|m| (m.label.clone(), half_diff_image(&m.material, channel)))
+            .map(|m| {
+                let image = half_diff_image_at(&m.material, channel, phi_d_deg.to_radians());
+                (m.label.clone(), image)
+            })
             .collect(),
         note,
     };
@@ -149,8 +161,12 @@ impl Plot for HalfDiffPlot {
         let (w, h) = root.dim_in_pixel();
         let centre = |size| TextStyle::from(("sans-serif", size).into_font());
         let at = |s: TextStyle<'static>, hp, vp| s.pos(Pos::new(hp, vp));
+        let title = format!(
+            "BRDF image slice: θ_h × θ_d at φ_d = {}° (Rusinkiewicz 1998), colour log₁₀ f_r",
+            self.phi_d_deg
+        );
         root.draw_text(
-            "BRDF image slice: θ_h × θ_d at φ_d = 90° (Rusinkiewicz 1998), colour log₁₀ f_r",
+            &title,
             &at(centre(22), HPos::Center, VPos::Top),
             (w as i32 / 2, 6),
         )
@@ -278,6 +294,7 @@ mod tests {
         let matte = compare_spec("lambert,k_d=0.5", &[]).unwrap();
         let plot = HalfDiffPlot {
             channel: Channel::Mean,
+            phi_d_deg: 90.0,
             series: vec![
                 (
                     "glossy".into(),
