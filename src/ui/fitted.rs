@@ -117,4 +117,34 @@ mod tests {
         assert!(model("cook-torrance,distribution=ggx,fresnel=conductor").is_ok());
         assert!(model("phonk").unwrap_err().contains("ct-ggx-conductor"));
     }
+
+    /// The path for a material or model not in fits.toml: a fit run now
+    /// is `gonio fit`'s (the same fitter, samples and metric, all
+    /// deterministic), so for a stored pair it gives the stored numbers
+    /// (to the 1e-9 relative fits.toml's decimal printing keeps, with
+    /// room), named as fitted now.
+    #[test]
+    fn a_fit_run_now_is_the_stored_fit() {
+        let brdf = crate::material::measured::library::builtin("gold-metallic-paint").unwrap();
+        for label in ["lambert", "blinn-phong-normalized"] {
+            let m = model(label).unwrap();
+            let stored = stored(&brdf.name, &m).expect("in fits.toml");
+            let now = fit_now(brdf, &m).unwrap();
+            assert!(now.name.contains("fitted now"), "{}", now.name);
+            for (a, b) in [(now.k_d, stored.k_d), (now.k_s, stored.k_s)] {
+                for c in 0..3 {
+                    assert!(
+                        (a[c] - b[c]).abs() <= 1e-6 * b[c].abs().max(1e-3),
+                        "{label}: {a:?} vs {b:?}"
+                    );
+                }
+            }
+            assert!(
+                (now.k_e - stored.k_e).abs() <= 1e-6 * stored.k_e.abs().max(1.0),
+                "{label}: k_e {} vs {}",
+                now.k_e,
+                stored.k_e
+            );
+        }
+    }
 }
