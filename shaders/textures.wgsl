@@ -168,11 +168,8 @@ const ROUGHNESS_FLOOR: f32 = 1e-4;
 // texel of 0 would take the floor away. The other widths had it on the
 // CPU. f64 twin: Material::with_textured_widths_floored (the gltf-pbr
 // roughness is perceptual: its α = r² is widened).
-fn textured_widths_floored(base: Material) -> Material {
-    var fields = 0u;
-    for (var i = 0u; i < TEXTURE_SLOTS; i++) {
-        fields |= texture_slots.slots[i].fields;
-    }
+// `fields`: the slots' field masks ORed (what the textures multiplied).
+fn textured_widths_floored(base: Material, fields: u32) -> Material {
     let f2 = globals.roughness_floor * globals.roughness_floor;
     var m = base;
     let pbr = brdf_model(m) == MODEL_GLTF_PBR;
@@ -189,8 +186,10 @@ fn textured_widths_floored(base: Material) -> Material {
 // f64 twin: reference::texture::textured.
 fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
     var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0));
+    var fields = 0u;
     for (var i = 0u; i < TEXTURE_SLOTS; i++) {
         let slot = texture_slots.slots[i];
+        fields |= slot.fields;
         let second = slot.tex_coord == 1u;
         let uv = select(s.uv0, s.uv1, second);
         let ddx = select(s.ddx0, s.ddx1, second);
@@ -198,19 +197,21 @@ fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
         let texel = slot_texel(i, slot_uv(slot, uv), slot_duv(slot, ddx), slot_duv(slot, ddy));
         out = apply_slot(out, slot, texel);
     }
-    out.material = textured_widths_floored(out.material);
+    out.material = textured_widths_floored(out.material, fields);
     return out;
 }
 
 // The material at a vertex (flat and Gouraud shading): level 0.
 fn textured_surface_level0(base: Material, uv0: vec2<f32>, uv1: vec2<f32>) -> TexturedSurface {
     var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0));
+    var fields = 0u;
     for (var i = 0u; i < TEXTURE_SLOTS; i++) {
         let slot = texture_slots.slots[i];
+        fields |= slot.fields;
         let uv = select(uv0, uv1, slot.tex_coord == 1u);
         out = apply_slot(out, slot, slot_texel_level0(i, slot_uv(slot, uv)));
     }
-    out.material = textured_widths_floored(out.material);
+    out.material = textured_widths_floored(out.material, fields);
     return out;
 }
 

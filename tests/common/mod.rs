@@ -71,14 +71,8 @@ pub fn narrowest_lobes(scene: &Scene, m: &Material) -> Material {
             continue;
         };
         let level = &scene.images[t.image].levels[0];
-        let smallest = level
-            .texels
-            .iter()
-            .enumerate()
-            .map(|(i, _)| {
-                let (x, y) = (i as u32 % level.width, i as u32 / level.width);
-                level.texel(x, y)[t.channel]
-            })
+        let smallest = (0..level.height)
+            .flat_map(|y| (0..level.width).map(move |x| level.texel(x, y)[t.channel]))
             .fold(f64::INFINITY, f64::min);
         match key {
             "roughness" => narrow.roughness *= smallest,
