@@ -407,6 +407,14 @@ fn the_viewer_refuses_bad_input_with_exit_2() {
             "--frames".into(),
             "5".into(),
         ],
+        // A glTF without lights has no [[lights]] entry to move.
+        vec![
+            format!("{}/assets/gltf/Box/Box.gltf", env!("CARGO_MANIFEST_DIR")),
+            "--frames".into(),
+            "2".into(),
+            "--spin-lights".into(),
+            "1".into(),
+        ],
     ] {
         let out = xvfb()
             .arg(common::gonio().get_program())

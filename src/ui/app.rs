@@ -161,7 +161,7 @@ pub struct App {
 
 impl App {
     pub fn new(args: ViewArgs, doc: Document, proxy: EventLoopProxy<Wake>) -> App {
-        let continuous = args.frames.is_some() || args.spin != 0.0;
+        let continuous = args.frames.is_some() || args.spin != 0.0 || args.spin_lights != 0.0;
         let idle_exit = args.exit_when_idle.map(Duration::from_secs_f64);
         App {
             pacing: Pacing::new(continuous, idle_exit),
@@ -547,6 +547,14 @@ impl App {
         }
         if self.args.spin != 0.0 {
             self.state.orbit.rotate_degrees(self.args.spin, 0.0);
+        }
+        if self.args.spin_lights != 0.0 {
+            let target = self.state.orbit.camera().target;
+            match super::light_spin::spin_lights(&mut self.state.doc, target, self.args.spin_lights)
+            {
+                Ok(()) => self.state.dirty = true,
+                Err(e) => self.state.message = Some(e),
+            }
         }
         let scene = &mut self.state.doc.scene;
         let camera = self.state.orbit.camera();

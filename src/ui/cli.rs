@@ -98,6 +98,17 @@ pub struct ViewArgs {
         allow_negative_numbers = true
     )]
     pub spin: f64,
+    /// Orbit every `[[lights]]` entry about the vertical axis through the
+    /// camera's target by this many degrees per frame, so the shadow maps
+    /// are drawn anew every frame (scripted runs that measure a moving
+    /// light; src/ui/light_spin.rs).
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true
+    )]
+    pub spin_lights: f64,
     /// GPU adapter to use (as for `gonio render`; also GONIO_ADAPTER).
     #[arg(long, value_name = "NAME")]
     pub adapter: Option<String>,

@@ -20,6 +20,7 @@ pub mod fitted;
 pub mod light_drag;
 pub mod light_kinds;
 pub mod light_overlay;
+pub mod light_spin;
 pub mod lights_section;
 pub mod memory;
 pub mod orbit;
@@ -65,10 +66,12 @@ pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
             "give a positive number of seconds",
         ));
     }
-    if args.exit_when_idle.is_some() && (args.frames.is_some() || args.spin != 0.0) {
+    if args.exit_when_idle.is_some()
+        && (args.frames.is_some() || args.spin != 0.0 || args.spin_lights != 0.0)
+    {
         return Err(Error::argument(
             "--exit-when-idle",
-            "the scripted mode (--frames) and --spin draw continuously and are never idle; use it without them",
+            "the scripted mode (--frames), --spin and --spin-lights draw continuously and are never idle; use it without them",
         ));
     }
     if args.frames == Some(0) {
@@ -84,6 +87,18 @@ pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
     overrides.extend(args.set.iter().cloned());
     let mut doc = document::Document::load(source, overrides, limits)?;
     add_compared(&mut doc, &args)?;
+    if args.spin_lights != 0.0 && doc.lights.entries.is_empty() {
+        return Err(Error::argument(
+            format!("--spin-lights {}", args.spin_lights),
+            "the scene has no [[lights]] entries to move (a glTF's own lights and the built-in headlight are not moved); add [[lights]] to the scene file or drop the flag",
+        ));
+    }
+    if !args.spin_lights.is_finite() || !args.spin.is_finite() {
+        return Err(Error::argument(
+            "--spin / --spin-lights",
+            "give a finite number of degrees per frame",
+        ));
+    }
     if let Some(path) = &args.screenshot {
         // Fail on an unwritable destination before opening the window.
         crate::output::write::AtomicFile::create(path)?;
