@@ -202,7 +202,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     let limits = Limits::from_assignments(&args.limits)
         .map_err(|(arg, problem)| Error::argument(format!("--limit {arg}"), problem))?;
-    let (scene, notes) = scene_file::load_with_limits(&source, &overrides, limits)?;
+    let (mut scene, notes) = scene_file::load_with_limits(&source, &overrides, limits)?;
     timings.push("load scene", start.elapsed(), Clock::Wall);
     warn_unsupported(&scene);
     for warning in notes.iter().filter(|n| n.starts_with(scene_file::WARNING)) {
@@ -250,7 +250,9 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         let mut renderer = GpuRenderer::new(context);
         // One frame: one pipeline to compile (issue 18).
         renderer.set_one_pipeline(true);
-        let (frame, gpu_timings) = renderer.render(&scene)?;
+        // GPU only: the f64 meshes are freed as they are uploaded
+        // (nothing below reads them).
+        let (frame, gpu_timings) = renderer.render_releasing_meshes(&mut scene)?;
         timings.extend(gpu_timings);
         frame
     };
@@ -293,7 +295,7 @@ fn check_memory(scene: &Scene, reference: bool, limits: &Limits) -> Result<()> {
     } else {
         (
             crate::gpu::prepared::host_memory_estimate(scene),
-            "the GPU path's vertex stream and its upload copy",
+            "the GPU path's vertex stream and its staging window",
         )
     };
     if bytes <= limits.memory {

@@ -144,6 +144,19 @@ fn smoke_bench_writes_a_well_formed_report() {
             "`{target}` = {v}"
         );
     }
+    // The memory rows again with the light casting shadows (issue 18).
+    assert!(
+        report.lines().any(|l| l.starts_with('|')
+            && l.contains("peak memory growth / mesh data as loaded")
+            && l.contains("point light with shadows")),
+        "no shadowed memory row in the targets"
+    );
+    assert!(
+        scale_rows
+            .iter()
+            .any(|l| l.starts_with("triangles-shadowed,")),
+        "no shadowed row in scale.csv"
+    );
     assert!(
         report.contains("msaa"),
         "MSAA is neither measured nor reported as not measured"

@@ -101,14 +101,20 @@ pub fn results_csv(r: &BenchReport) -> String {
 /// `scale.csv`: both sweeps.
 pub fn scale_csv(r: &BenchReport) -> String {
     let mut out = String::from(
-        "sweep,triangles,width,height,time_ms,time_q1_ms,time_q3_ms,mesh_bytes,peak_rss_growth_bytes\n",
+        "sweep,triangles,width,height,time_ms,time_q1_ms,time_q3_ms,mesh_bytes,scene_bytes,peak_rss_growth_bytes,load_rss_growth_bytes,frame_rss_growth_bytes\n",
     );
     if let Some(s) = &r.scale {
-        for (name, points) in [("triangles", &s.triangles), ("pixels", &s.pixels)] {
+        let shadowed: Vec<_> = s.shadowed.iter().cloned().collect();
+        for (name, points) in [
+            ("triangles", &s.triangles),
+            ("triangles-shadowed", &shadowed),
+            ("pixels", &s.pixels),
+        ] {
             for p in points {
+                let bytes = |b: Option<u64>| b.map(|b| b.to_string()).unwrap_or_default();
                 let _ = writeln!(
                     out,
-                    "{name},{},{},{},{:.6},{:.6},{:.6},{},{},{}",
+                    "{name},{},{},{},{:.6},{:.6},{:.6},{},{},{},{},{}",
                     p.triangles,
                     p.width,
                     p.height,
@@ -117,7 +123,9 @@ pub fn scale_csv(r: &BenchReport) -> String {
                     p.time.q3,
                     p.mesh_bytes,
                     p.scene_bytes,
-                    p.peak_rss_bytes.map(|b| b.to_string()).unwrap_or_default()
+                    bytes(p.peak_rss_bytes),
+                    bytes(p.load_rss_bytes),
+                    bytes(p.frame_rss_bytes),
                 );
             }
         }
@@ -141,20 +149,32 @@ fn memory_note(s: &super::scale::Scale) -> String {
     let Some(p) = s.triangles.last() else {
         return String::new();
     };
-    let (Some(load), Some(peak)) = (p.load_rss_bytes, p.peak_rss_bytes) else {
+    let (Some(load), Some(peak), Some(frame)) =
+        (p.load_rss_bytes, p.peak_rss_bytes, p.frame_rss_bytes)
+    else {
         return "Memory: not measured (no /proc on this system).".into();
     };
     let mib = |b: u64| b as f64 / 1048576.0;
-    let frame = peak.saturating_sub(load);
-    format!(
-        "Memory at {} triangles: loading peaks at {:.1} MiB for a {:.1} MiB `f64` scene (72 bytes per vertex for position, normal and tangent, 12 per triangle; the CPU reference needs `f64`, and the GPU path converts from it). Rendering the first frame then adds {:.1} MiB, {:.1}× the {:.1} MiB `f32` vertex and index data it uploads: the renderer keeps the `f32` stream for the whole frame, `create_buffer_init` uploads through a mapped staging copy of the whole buffer, and the vertex and index buffers themselves are host memory on lavapipe, as is whatever the driver allocates around them. What would bring the peak toward 1.5× the mesh (renderer changes, not made here): dropping the `f32` stream once uploaded, uploading in chunks through a small staging belt instead of one staging copy of the whole mesh, and building the `f32` stream straight from the loader for GPU-only runs.",
+    let mut note = format!(
+        "Memory at {} triangles: loading peaks at {:.1} MiB for a {:.1} MiB `f64` scene (72 bytes per vertex for position, normal and tangent, 12 per triangle, as counted here; the sphere's UVs come on top). Rendering it as `gonio render` without `--reference` does (GPU only) brings the peak to {:.1} MiB, of which the frame's fixed cost with an 8-segment sphere is {:.1} MiB: the {:.1} MiB `f32` vertex and index data is written straight from the meshes into its buffers (host memory on lavapipe) through 1 MiB chunks and a 4 MiB staging window (src/gpu/upload.rs), indices first, and each `f64` array is freed as soon as it is written (tangents and UVs the stream does not carry before the upload starts), so the `f64` scene and the buffers are never whole in memory at once. The remaining {:.1} MiB is lavapipe's own memory while it draws that many triangles: a trace of the resident set by phase puts about 70 MiB between the submit and the readback from 3·10⁵ triangles on, which an 8-segment sphere does not reach (docs/bench/memory.md). A run that also renders the reference keeps the `f64` meshes, as do the viewer and the bench's timed renders.",
         p.triangles,
         mib(load),
         mib(p.scene_bytes),
+        mib(peak),
         mib(frame),
-        frame as f64 / p.mesh_bytes as f64,
-        mib(p.mesh_bytes)
-    )
+        mib(p.mesh_bytes),
+        mib(peak.saturating_sub(frame + p.mesh_bytes)),
+    );
+    if let Some(sh) = &s.shadowed
+        && let (Some(peak), Some(frame)) = (sh.peak_rss_bytes, sh.frame_rss_bytes)
+    {
+        note.push_str(&format!(
+            " With the point light casting shadows the peak is {:.1} MiB, of which {:.1} MiB is the frame's fixed cost (mostly the cube shadow map, whatever the mesh); the stream is the same indexed one (per-vertex shadow coordinates, which de-index the stream to three vertices per triangle, are for a single orthographic map only: a directional light).",
+            mib(peak),
+            mib(frame)
+        ));
+    }
+    note
 }
 
 /// A fitted slope, or "–" where there was nothing to fit (all zero).
@@ -282,31 +302,48 @@ pub fn markdown(r: &BenchReport) -> String {
             "| growth of time with pixels (log-log slope) | **{ps:.2}** | ≤ 1 (linear) | {} | | |",
             if ps <= 1.1 { "pass" } else { "miss" }
         );
-        if let Some(p) = s.triangles.last()
-            && let Some(peak) = p.peak_rss_bytes
-        {
-            // The verdict divides by the mesh as loaded (what the user
-            // asked to draw); the GPU stream is shown too.
-            let m = peak as f64 / p.scene_bytes as f64;
+        for p in s.triangles.last().into_iter().chain(&s.shadowed) {
+            let (Some(peak), Some(mesh_peak)) = (p.peak_rss_bytes, p.mesh_peak_bytes()) else {
+                continue;
+            };
+            // The verdict divides the mesh's share of the peak (less the
+            // frame's fixed cost: targets, readback, shadow maps) by the
+            // mesh as loaded (what the user asked to draw); the whole
+            // peak and the GPU stream are shown too.
+            let light = if p.shadows {
+                ", point light with shadows"
+            } else {
+                ""
+            };
+            let mib = |b: u64| b as f64 / 1048576.0;
+            let m = mesh_peak as f64 / p.scene_bytes as f64;
             let _ = writeln!(
                 o,
-                "| peak memory growth / mesh data as loaded (f64) at {} triangles | **{m:.2}** | ≤ 1.5 | {} | {:.1} MiB | {:.1} MiB |",
+                "| peak memory growth / mesh data as loaded (f64), {} triangles{light}, less the frame's fixed cost | **{m:.2}** | ≤ 1.5 | {} | {:.1} MiB | {:.1} MiB |",
                 p.triangles,
                 if m <= 1.5 {
                     "pass".to_string()
                 } else {
                     miss(m, 1.5)
                 },
-                peak as f64 / 1048576.0,
-                p.scene_bytes as f64 / 1048576.0
+                mib(mesh_peak),
+                mib(p.scene_bytes)
             );
-            let g = peak as f64 / p.mesh_bytes as f64;
+            let whole = peak as f64 / p.scene_bytes as f64;
             let _ = writeln!(
                 o,
-                "| peak memory growth / GPU mesh data (f32 stream) at {} triangles | **{g:.2}** | – | – | {:.1} MiB | {:.1} MiB |",
+                "| whole peak memory growth / mesh data as loaded (f64), {} triangles{light} | **{whole:.2}** | – | – | {:.1} MiB | {:.1} MiB |",
                 p.triangles,
-                peak as f64 / 1048576.0,
-                p.mesh_bytes as f64 / 1048576.0
+                mib(peak),
+                mib(p.scene_bytes)
+            );
+            let g = mesh_peak as f64 / p.mesh_bytes as f64;
+            let _ = writeln!(
+                o,
+                "| peak memory growth / GPU mesh data (f32 stream), {} triangles{light}, less the frame's fixed cost | **{g:.2}** | – | – | {:.1} MiB | {:.1} MiB |",
+                p.triangles,
+                mib(mesh_peak),
+                mib(p.mesh_bytes)
             );
         }
     }
@@ -420,7 +457,7 @@ pub fn markdown(r: &BenchReport) -> String {
         let _ = writeln!(o, "## Scale\n");
         let _ = writeln!(
             o,
-            "Scene pass time (GPU) of the built-in scene with the sphere tessellated finer (drawn at {}), and at growing resolution (8.5k triangles). Growth rate: least-squares slope of log time against log size (1 = linear). Memory: the vertex + index bytes uploaded, and the peak resident memory (VmHWM) of loading and rendering the point once in a fresh process that has only opened the device and compiled the pipeline on a tiny mesh, over its resident memory before loading; lavapipe's buffers live in host memory, so they are part of it.\n",
+            "Scene pass time (GPU) of the built-in scene with the sphere tessellated finer (drawn at {}), and at growing resolution (8.5k triangles). Growth rate: least-squares slope of log time against log size (1 = linear). Memory: the vertex + index bytes uploaded, and the peak resident memory (VmHWM) of loading and rendering the point once (GPU only, as `gonio render` does) in a fresh process that has only opened the device and compiled the pipeline on a tiny mesh, over its resident memory before loading; lavapipe's buffers live in host memory, so they are part of it. The frame's fixed cost is the same growth for rendering the scene with an 8-segment sphere, measured just before; the last row has the light casting shadows.\n",
             s.triangles
                 .first()
                 .map(|p| format!("{}x{}", p.width, p.height))
@@ -428,14 +465,15 @@ pub fn markdown(r: &BenchReport) -> String {
         );
         let _ = writeln!(
             o,
-            "| triangles | time [ms] | mesh data (GPU) [MiB] | scene (f64) [MiB] | peak memory growth [MiB] | of which loading [MiB] | peak / scene | peak / GPU mesh |\n| --- | --- | --- | --- | --- | --- | --- | --- |"
+            "| triangles | time [ms] | mesh data (GPU) [MiB] | scene (f64) [MiB] | peak memory growth [MiB] | of which loading [MiB] | frame's fixed cost [MiB] | (peak − fixed) / scene | (peak − fixed) / GPU mesh |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
         );
-        for p in &s.triangles {
+        for p in s.triangles.iter().chain(&s.shadowed) {
             let peak = p.peak_rss_bytes.map(|b| b as f64 / 1048576.0);
             let _ = writeln!(
                 o,
-                "| {} | {} [{}–{}] | {:.1} | {:.1} | {} | {} | {} | {} |",
+                "| {}{} | {} [{}–{}] | {:.1} | {:.1} | {} | {} | {} | {} | {} |",
                 p.triangles,
+                if p.shadows { " (shadowed light)" } else { "" },
                 ms(p.time.median),
                 ms(p.time.q1),
                 ms(p.time.q3),
@@ -446,10 +484,13 @@ pub fn markdown(r: &BenchReport) -> String {
                 p.load_rss_bytes
                     .map(|b| format!("{:.1}", b as f64 / 1048576.0))
                     .unwrap_or_else(|| "–".into()),
-                p.peak_rss_bytes
+                p.frame_rss_bytes
+                    .map(|b| format!("{:.1}", b as f64 / 1048576.0))
+                    .unwrap_or_else(|| "–".into()),
+                p.mesh_peak_bytes()
                     .map(|b| format!("{:.2}", b as f64 / p.scene_bytes as f64))
                     .unwrap_or_else(|| "–".into()),
-                p.peak_rss_bytes
+                p.mesh_peak_bytes()
                     .map(|b| format!("{:.2}", b as f64 / p.mesh_bytes as f64))
                     .unwrap_or_else(|| "–".into()),
             );

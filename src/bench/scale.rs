@@ -42,11 +42,23 @@ pub struct ScalePoint {
     pub peak_rss_bytes: Option<u64>,
     /// The same after loading the scene, before rendering it.
     pub load_rss_bytes: Option<u64>,
+    /// The same for rendering the scene with an 8-segment sphere: what
+    /// the frame costs whatever the mesh (targets, readback, shadow maps).
+    pub frame_rss_bytes: Option<u64>,
+    /// The scene's light casts shadows (a cube map: the mesh's stream is
+    /// the unshadowed one, indexed).
+    pub shadows: bool,
 }
 
 impl ScalePoint {
     pub fn pixels(&self) -> u64 {
         self.width as u64 * self.height as u64
+    }
+
+    /// The mesh's share of the peak: the peak growth less the frame's
+    /// fixed cost ([`ScalePoint::frame_rss_bytes`]).
+    pub fn mesh_peak_bytes(&self) -> Option<u64> {
+        Some(self.peak_rss_bytes?.saturating_sub(self.frame_rss_bytes?))
     }
 }
 
@@ -54,6 +66,8 @@ impl ScalePoint {
 #[derive(Clone, Debug, Default)]
 pub struct Scale {
     pub triangles: Vec<ScalePoint>,
+    /// The largest triangle count again with the light casting shadows.
+    pub shadowed: Option<ScalePoint>,
     pub pixels: Vec<ScalePoint>,
 }
 
@@ -182,7 +196,7 @@ impl Plan {
 
     /// Number of measured points (for the progress bar).
     pub fn len(&self) -> usize {
-        self.triangles.len() + self.resolutions.len()
+        self.triangles.len() + 1 + self.resolutions.len()
     }
 
     pub fn is_empty(&self) -> bool {
@@ -210,13 +224,16 @@ fn status_kib(field: &str) -> Option<u64> {
 /// One point: the built-in scene with `segments` on the sphere at `size`.
 fn point(
     renderer: &mut GpuRenderer,
-    segments: u32,
+    (segments, shadows): (u32, bool),
     size: (u32, u32),
     plan: &Plan,
     adapter: Option<&str>,
 ) -> Result<ScalePoint> {
-    let scene = scene_file::load(&SceneSource::BuiltIn, &point_overrides(segments, size))?;
-    let memory = memory_in_child(segments, size, adapter);
+    let scene = scene_file::load(
+        &SceneSource::BuiltIn,
+        &point_overrides(segments, size, shadows),
+    )?;
+    let memory = memory_in_child(segments, size, shadows, adapter);
     let mut times = Vec::new();
     for i in 0..plan.warmup + plan.repeats {
         let (_, timings) = renderer.render(&scene)?;
@@ -225,9 +242,9 @@ fn point(
         }
     }
     let key = ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene));
-    let geometry = GeometryData::new(&scene, key.needs_tangents(), key.shadow_coords_per_vertex());
-    let mesh_bytes =
-        4 * (geometry.words.len() + geometry.indices.as_ref().map_or(0, Vec::len)) as u64;
+    let (vertex_bytes, index_bytes) =
+        GeometryData::byte_sizes(&scene, key.needs_tangents(), key.shadow_coords_per_vertex());
+    let mesh_bytes = vertex_bytes + index_bytes;
     let scene_bytes = scene
         .meshes
         .iter()
@@ -244,14 +261,17 @@ fn point(
         mesh_bytes,
         peak_rss_bytes: memory.map(|m| m.1),
         load_rss_bytes: memory.map(|m| m.0),
+        frame_rss_bytes: memory.map(|m| m.2),
+        shadows,
     })
 }
 
-fn point_overrides(segments: u32, size: (u32, u32)) -> Vec<String> {
+fn point_overrides(segments: u32, size: (u32, u32), shadows: bool) -> Vec<String> {
     vec![
         format!("objects.0.segments={segments}"),
         format!("image.width={}", size.0),
         format!("image.height={}", size.1),
+        format!("lights.0.shadows={shadows}"),
     ]
 }
 
@@ -259,14 +279,20 @@ fn point_overrides(segments: u32, size: (u32, u32)) -> Vec<String> {
 /// a fresh process (`gonio bench --probe-memory SEGMENTS,W,H`): in this
 /// process the allocator would serve it from memory that earlier, larger
 /// work freed, and the resident set would not show it.
-/// Returns (growth after loading, growth after rendering).
-fn memory_in_child(segments: u32, size: (u32, u32), adapter: Option<&str>) -> Option<(u64, u64)> {
+/// Returns (growth after loading, growth after rendering, growth of
+/// rendering the tiny mesh).
+fn memory_in_child(
+    segments: u32,
+    size: (u32, u32),
+    shadows: bool,
+    adapter: Option<&str>,
+) -> Option<(u64, u64, u64)> {
     let exe = std::env::current_exe().ok()?;
     let mut command = std::process::Command::new(exe);
     command.args([
         "bench",
         "--probe-memory",
-        &format!("{segments},{},{}", size.0, size.1),
+        &format!("{segments},{},{},{}", size.0, size.1, shadows as u8),
     ]);
     if let Some(a) = adapter {
         command.args(["--adapter", a]);
@@ -276,31 +302,39 @@ fn memory_in_child(segments: u32, size: (u32, u32), adapter: Option<&str>) -> Op
         return None;
     }
     let text = String::from_utf8_lossy(&out.stdout);
-    let mut numbers = text.split_whitespace().map(|w| w.parse::<u64>());
-    match (numbers.next(), numbers.next()) {
-        (Some(Ok(load)), Some(Ok(total))) => Some((load, total)),
+    let numbers: Vec<u64> = text
+        .split_whitespace()
+        .map(|w| w.parse::<u64>().ok())
+        .collect::<Option<_>>()?;
+    match numbers[..] {
+        [load, total, frame] => Some((load, total, frame)),
         _ => None,
     }
 }
 
-/// `gonio bench --probe-memory SEGMENTS,W,H`: opens the device, renders
-/// a tiny scene of the same shader key (compiling the pipeline), then
-/// loads and renders the point once and prints the growth of the peak
-/// resident memory over the resident memory before loading, in bytes,
-/// after loading and after rendering.
+/// `gonio bench --probe-memory SEGMENTS,W,H[,SHADOWS]`: opens the
+/// device, renders a tiny scene of the same shader key (compiling the
+/// pipeline), then loads and renders the point once as `gonio render`
+/// does (GPU only: the meshes freed as they are uploaded) and prints the
+/// growth of the peak resident memory over the resident memory before
+/// loading, in bytes, after loading and after rendering; and third, the
+/// same growth for rendering the tiny scene once more (the frame's fixed
+/// cost: targets, readback, shadow maps).
 pub fn probe_memory(spec: &str, adapter: Option<&str>) -> Result<()> {
     let bad = || {
         crate::Error::argument(
             format!("--probe-memory {spec}"),
-            "expected SEGMENTS,WIDTH,HEIGHT",
+            "expected SEGMENTS,WIDTH,HEIGHT[,SHADOWS (0 or 1)]",
         )
     };
     let v: Vec<u32> = spec
         .split(',')
         .map(|x| x.trim().parse().map_err(|_| bad()))
         .collect::<Result<_>>()?;
-    let [segments, w, h] = v[..] else {
-        return Err(bad());
+    let (segments, w, h, shadows) = match v[..] {
+        [segments, w, h] => (segments, w, h, false),
+        [segments, w, h, s @ (0 | 1)] => (segments, w, h, s == 1),
+        _ => return Err(bad()),
     };
     let ctx = crate::gpu::GpuContext::new(&crate::gpu::AdapterChoice::from_flag_or_env(adapter))?;
     let mut renderer = GpuRenderer::new(ctx);
@@ -308,7 +342,7 @@ pub fn probe_memory(spec: &str, adapter: Option<&str>) -> Result<()> {
     // (the driver's JIT) is not what the mesh costs.
     renderer.render(&scene_file::load(
         &SceneSource::BuiltIn,
-        &point_overrides(8, (w, h)),
+        &point_overrides(8, (w, h), shadows),
     )?)?;
     let baseline = reset_peak().ok_or_else(|| {
         crate::Error::Gpu("cannot read /proc/self/status to measure memory".into())
@@ -318,12 +352,22 @@ pub fn probe_memory(spec: &str, adapter: Option<&str>) -> Result<()> {
             .map(|k| k * 1024)
             .ok_or_else(|| crate::Error::Gpu("cannot read VmHWM".into()))
     };
-    let scene = scene_file::load(&SceneSource::BuiltIn, &point_overrides(segments, (w, h)))?;
+    let mut tiny = scene_file::load(&SceneSource::BuiltIn, &point_overrides(8, (w, h), shadows))?;
+    renderer.render_releasing_meshes(&mut tiny)?;
+    let frame = peak()?.saturating_sub(baseline);
+    let baseline = reset_peak().ok_or_else(|| {
+        crate::Error::Gpu("cannot read /proc/self/status to measure memory".into())
+    })?;
+    let mut scene = scene_file::load(
+        &SceneSource::BuiltIn,
+        &point_overrides(segments, (w, h), shadows),
+    )?;
     let loaded = peak()?;
-    renderer.render(&scene)?;
+    // As `gonio render` without `--reference` does.
+    renderer.render_releasing_meshes(&mut scene)?;
     let rendered = peak()?;
     println!(
-        "{} {}",
+        "{} {} {frame}",
         loaded.saturating_sub(baseline),
         rendered.saturating_sub(baseline)
     );
@@ -342,15 +386,27 @@ pub fn run(
     for &t in &plan.triangles {
         scale.triangles.push(point(
             renderer,
-            segments_for(t),
+            (segments_for(t), false),
             plan.triangle_image,
             plan,
             adapter,
         )?);
         tick();
     }
+    if let Some(&t) = plan.triangles.last() {
+        scale.shadowed = Some(point(
+            renderer,
+            (segments_for(t), true),
+            plan.triangle_image,
+            plan,
+            adapter,
+        )?);
+    }
+    tick();
     for &size in &plan.resolutions {
-        scale.pixels.push(point(renderer, 64, size, plan, adapter)?);
+        scale
+            .pixels
+            .push(point(renderer, (64, false), size, plan, adapter)?);
         tick();
     }
     Ok(scale)

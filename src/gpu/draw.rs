@@ -9,10 +9,11 @@
 
 use super::bind_groups::{self, SceneLayouts};
 use super::bindings::{self, UniformArrays};
-use super::geometry::{Batch, GeometryData, VertexLayout};
+use super::geometry::{Batch, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::measured_tables::MeasuredTables;
 use super::shader_gen::ShaderKey;
+use super::upload::GpuGeometry;
 use crate::scene::Scene;
 use wgpu::util::DeviceExt;
 
@@ -148,12 +149,13 @@ pub struct SceneDraw {
 }
 
 impl SceneDraw {
-    /// Uploads `geometry` and the parameters, bound as `arrays` says with
-    /// `layouts` (those of `arrays`).
+    /// Draws `geometry` (uploaded by [`GpuGeometry::upload`]) and uploads
+    /// the parameters, bound as `arrays` says with `layouts` (those of
+    /// `arrays`).
     pub fn new(
         device: &wgpu::Device,
         layouts: &SceneLayouts,
-        geometry: GeometryData,
+        geometry: GpuGeometry,
         arrays: UniformArrays,
         globals: &GpuGlobals,
         materials: MaterialData<'_>,
@@ -170,20 +172,6 @@ impl SceneDraw {
                 usage,
             })
         };
-        let vertex_buffer = init(
-            "vertices",
-            bytemuck::cast_slice(&geometry.words),
-            wgpu::BufferUsages::VERTEX,
-        );
-        let index_buffer = geometry.indices.as_ref().map(|i| {
-            init(
-                "indices",
-                bytemuck::cast_slice(i),
-                wgpu::BufferUsages::INDEX,
-            )
-        });
-        let geometry_bytes =
-            4 * (geometry.words.len() + geometry.indices.as_ref().map_or(0, Vec::len)) as u64;
         let dynamic = wgpu::BufferUsages::COPY_DST;
         let globals_buffer = init(
             "globals",
@@ -212,9 +200,9 @@ impl SceneDraw {
         );
         SceneDraw {
             layout: geometry.layout,
-            geometry_bytes,
-            vertex_buffer,
-            index_buffer,
+            geometry_bytes: geometry.bytes,
+            vertex_buffer: geometry.vertex_buffer,
+            index_buffer: geometry.index_buffer,
             draw_count: geometry.draw_count,
             batches: geometry.batches,
             material_stride,

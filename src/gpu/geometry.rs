@@ -85,6 +85,19 @@ impl VertexLayout {
     }
 }
 
+/// Where a stream's 32-bit words go: a `Vec` (the bench, the tests) or
+/// a buffer filled chunk by chunk (`gpu::upload`), so that the renderer
+/// never holds the whole `f32` stream on the CPU.
+pub trait Words {
+    fn put(&mut self, words: &[u32]);
+}
+
+impl Words for Vec<u32> {
+    fn put(&mut self, words: &[u32]) {
+        self.extend_from_slice(words);
+    }
+}
+
 /// Vertex words (f32 bits and u32), optional indices and the layout.
 pub struct GeometryData {
     /// 32-bit words, `stride / 4` per vertex.
@@ -115,26 +128,31 @@ fn blends(scene: &Scene, mesh: &Mesh) -> bool {
     scene.materials[mesh.material].alpha_mode == crate::material::AlphaMode::Blend
 }
 
-/// The scene's meshes (with their indices) in material order (stable),
-/// so each material's triangles are contiguous, alpha BLEND meshes last
-/// (drawn over everything else).
-fn meshes_by_material(scene: &Scene) -> Vec<(usize, &Mesh)> {
-    let mut meshes: Vec<_> = scene.meshes.iter().enumerate().collect();
-    meshes.sort_by_key(|(_, m)| (blends(scene, m), m.material));
-    meshes
+/// The scene's meshes (index, whether it blends) in material order
+/// (stable), so each material's triangles are contiguous, alpha BLEND
+/// meshes last (drawn over everything else).
+fn meshes_by_material(scene: &Scene) -> Vec<(usize, bool)> {
+    let mut meshes: Vec<_> = scene
+        .meshes
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (i, blends(scene, m), m.material))
+        .collect();
+    meshes.sort_by_key(|&(_, blend, material)| (blend, material));
+    meshes.into_iter().map(|(i, blend, _)| (i, blend)).collect()
 }
 
-/// Appends `count` elements of mesh `index` to `batches`, merging with
-/// the last run of the same material unless it blends (a batch per
-/// BLEND mesh).
+/// Appends `count` elements of mesh `index` (of `material`, blending or
+/// not) to `batches`, merging with the last run of the same material
+/// unless it blends (a batch per BLEND mesh).
 fn extend_batches(
     batches: &mut Vec<Batch>,
-    scene: &Scene,
-    (index, mesh): (usize, &Mesh),
+    (index, blend): (usize, bool),
+    material: usize,
     count: usize,
 ) {
-    let material = mesh.material as u32;
-    let object = blends(scene, mesh).then_some(index as u32);
+    let material = material as u32;
+    let object = blend.then_some(index as u32);
     let start = batches.last().map_or(0, |b| b.range.end);
     let end = start + count as u32;
     match batches.last_mut() {
@@ -149,30 +167,30 @@ fn extend_batches(
     }
 }
 
-fn push3(words: &mut Vec<u32>, v: glam::DVec3) {
-    words.extend(v.as_vec3().to_array().map(f32::to_bits));
+fn push3(words: &mut impl Words, v: glam::DVec3) {
+    words.put(&v.as_vec3().to_array().map(f32::to_bits));
 }
 
 /// Both UV sets of a vertex (or of a centroid), if the stream has them.
-fn push_uvs(words: &mut Vec<u32>, layout: &VertexLayout, uvs: [glam::DVec2; 2]) {
+fn push_uvs(words: &mut impl Words, layout: &VertexLayout, uvs: [glam::DVec2; 2]) {
     if layout.tex_coords {
         for uv in uvs {
-            words.extend(uv.as_vec2().to_array().map(f32::to_bits));
+            words.put(&uv.as_vec2().to_array().map(f32::to_bits));
         }
     }
 }
 
 /// A bitangent sign, if the stream has them.
-fn push_sign(words: &mut Vec<u32>, layout: &VertexLayout, sign: f64) {
+fn push_sign(words: &mut impl Words, layout: &VertexLayout, sign: f64) {
     if layout.bitangent_signs {
-        words.push((sign as f32).to_bits());
+        words.put(&[(sign as f32).to_bits()]);
     }
 }
 
 /// A vertex colour, if the stream has them.
-fn push_color(words: &mut Vec<u32>, layout: &VertexLayout, c: glam::DVec4) {
+fn push_color(words: &mut impl Words, layout: &VertexLayout, c: glam::DVec4) {
     if layout.colors {
-        words.extend(c.as_vec4().to_array().map(f32::to_bits));
+        words.put(&c.as_vec4().to_array().map(f32::to_bits));
     }
 }
 
@@ -186,99 +204,177 @@ fn vertex_uvs(mesh: &Mesh, v: usize) -> [glam::DVec2; 2] {
     [mesh.tex_coord(0, v), mesh.tex_coord(1, v)]
 }
 
-impl GeometryData {
-    /// Lays out `scene`'s meshes for `scene.shading`, with tangents if
-    /// asked, and with face normals (de-indexed) if asked and shaded per
-    /// pixel.
-    /// The UV sets are in the stream when a material has textures.
-    pub fn new(scene: &Scene, tangents: bool, face_normals: bool) -> Self {
-        let tex_coords = scene.has_textures();
-        let signs = crate::gpu::textures::has_normal_maps(scene);
-        match scene.shading {
-            ShadingMode::Flat => Self::flat(scene, tangents, tex_coords, signs),
-            ShadingMode::Phong if face_normals => {
-                Self::phong_faces(scene, tangents, tex_coords, signs)
-            }
-            ShadingMode::Gouraud | ShadingMode::Phong => {
-                Self::indexed(scene, tangents, tex_coords, signs)
-            }
+/// The meshes a stream is written from: kept (the viewer, the bench, a
+/// run that also renders the reference), or released: each array is
+/// freed as soon as its words are written (a GPU-only render, where
+/// nothing reads the `f64` meshes after the upload; the meshes stay in
+/// the scene with their material and name, their arrays empty).
+pub enum Meshes<'a> {
+    Keep(&'a [Mesh]),
+    Release(&'a mut [Mesh]),
+}
+
+impl Meshes<'_> {
+    fn get(&self, i: usize) -> &Mesh {
+        match self {
+            Meshes::Keep(m) => &m[i],
+            Meshes::Release(m) => &m[i],
         }
     }
 
-    /// Bytes of the vertex stream and of the index buffer that
-    /// [`Self::new`] would lay out, computed from the counts alone so a
-    /// stream over the GPU's limits is refused before it is built.
-    pub fn byte_sizes(scene: &Scene, tangents: bool, face_normals: bool) -> (u64, u64) {
-        let triangles = scene.triangle_count() as u64;
-        let tex_coords = scene.has_textures();
-        let layout = |shading_point, face_normal| VertexLayout {
+    /// Frees the triangles of mesh `i` (released meshes only).
+    fn release_indices(&mut self, i: usize) {
+        if let Meshes::Release(m) = self {
+            m[i].indices = Vec::new();
+        }
+    }
+
+    /// Frees every per-vertex array of mesh `i` (released meshes only).
+    fn release_vertices(&mut self, i: usize) {
+        if let Meshes::Release(m) = self {
+            let mesh = &mut m[i];
+            mesh.positions = Vec::new();
+            mesh.normals = Vec::new();
+            release_unused(mesh, None);
+        }
+    }
+}
+
+/// Frees the per-vertex arrays of `mesh` that `layout` does not stream
+/// (all but positions and normals with `None`).
+fn release_unused(mesh: &mut Mesh, layout: Option<&VertexLayout>) {
+    let keeps = |f: fn(&VertexLayout) -> bool| layout.is_some_and(f);
+    if !keeps(|l| l.tangents) {
+        mesh.tangents = Vec::new();
+    }
+    if !keeps(|l| l.tex_coords) {
+        mesh.tex_coords = Vec::new();
+    }
+    if !keeps(|l| l.bitangent_signs) {
+        mesh.bitangent_signs = Vec::new();
+    }
+    if !keeps(|l| l.colors) {
+        mesh.colors = Vec::new();
+    }
+}
+
+/// How a scene's stream is laid out, known from the meshes' counts
+/// before any word is written: the layout, the batches, the byte sizes.
+/// [`StreamPlan::write`] then writes the words into any [`Words`].
+pub struct StreamPlan {
+    pub layout: VertexLayout,
+    /// An index buffer (Gouraud, Phong without per-vertex shadow
+    /// coordinates) or three vertices per triangle.
+    pub indexed: bool,
+    /// The meshes (index, whether it blends) in stream order.
+    order: Vec<(usize, bool)>,
+    pub batches: Vec<Batch>,
+    /// Vertices to draw (non-indexed) or indices to draw (indexed).
+    pub draw_count: u32,
+    pub vertex_bytes: u64,
+    pub index_bytes: u64,
+}
+
+impl StreamPlan {
+    /// The stream of `scene` for `scene.shading`, with tangents if asked,
+    /// and with face normals (de-indexed) if asked and shaded per pixel.
+    /// The UV sets are in the stream when a material has textures.
+    pub fn new(scene: &Scene, tangents: bool, face_normals: bool) -> Self {
+        let (shading_point, face_normal) = match scene.shading {
+            ShadingMode::Flat => (true, false),
+            ShadingMode::Phong if face_normals => (false, true),
+            ShadingMode::Gouraud | ShadingMode::Phong => (false, false),
+        };
+        let layout = VertexLayout {
             tangents,
             shading_point,
             face_normal,
-            tex_coords,
+            tex_coords: scene.has_textures(),
             bitangent_signs: crate::gpu::textures::has_normal_maps(scene),
             colors: has_colors(scene),
         };
-        match scene.shading {
-            ShadingMode::Flat => (3 * triangles * layout(true, false).stride(), 0),
-            ShadingMode::Phong if face_normals => (3 * triangles * layout(false, true).stride(), 0),
-            ShadingMode::Gouraud | ShadingMode::Phong => {
-                let vertices: u64 = scene.meshes.iter().map(|m| m.positions.len() as u64).sum();
-                (vertices * layout(false, false).stride(), 3 * triangles * 4)
+        let indexed = !(shading_point || face_normal);
+        let order = meshes_by_material(scene);
+        let mut batches = Vec::new();
+        for &(i, blend) in &order {
+            let mesh = &scene.meshes[i];
+            extend_batches(
+                &mut batches,
+                (i, blend),
+                mesh.material,
+                3 * mesh.indices.len(),
+            );
+        }
+        let triangles = scene.triangle_count() as u64;
+        let (vertex_bytes, index_bytes) = if indexed {
+            let vertices: u64 = scene.meshes.iter().map(|m| m.positions.len() as u64).sum();
+            (vertices * layout.stride(), 3 * triangles * 4)
+        } else {
+            (3 * triangles * layout.stride(), 0)
+        };
+        StreamPlan {
+            layout,
+            indexed,
+            order,
+            batches,
+            draw_count: (3 * triangles) as u32,
+            vertex_bytes,
+            index_bytes,
+        }
+    }
+
+    /// Writes the stream of `meshes` (the meshes of the scene this plan
+    /// was made for) into `vertices` and, if indexed, `indices`.
+    pub fn write(&self, mut meshes: Meshes, vertices: &mut impl Words, indices: &mut impl Words) {
+        match (self.layout.shading_point, self.layout.face_normal) {
+            (true, _) => self.flat(meshes, vertices),
+            (_, true) => self.phong_faces(meshes, vertices),
+            _ => {
+                if let Meshes::Release(m) = &mut meshes {
+                    for mesh in m.iter_mut() {
+                        release_unused(mesh, Some(&self.layout));
+                    }
+                }
+                self.indexed(meshes, vertices, indices)
             }
         }
     }
 
-    fn indexed(scene: &Scene, tangents: bool, tex_coords: bool, signs: bool) -> Self {
-        let layout = VertexLayout {
-            tangents,
-            shading_point: false,
-            face_normal: false,
-            tex_coords,
-            bitangent_signs: signs,
-            colors: has_colors(scene),
-        };
-        let vertex_count: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
-        let mut words = Vec::with_capacity(vertex_count * layout.stride() as usize / 4);
-        let mut indices = Vec::with_capacity(3 * scene.triangle_count());
+    /// Indices first, then vertices: a released mesh's triangles are
+    /// freed before its vertices are streamed, and each vertex array once
+    /// streamed, so the `f64` mesh shrinks as the buffers fill.
+    fn indexed(&self, mut meshes: Meshes, words: &mut impl Words, indices: &mut impl Words) {
+        let layout = self.layout;
         let mut base = 0u32;
-        let mut batches = Vec::new();
-        for (index, mesh) in meshes_by_material(scene) {
-            extend_batches(&mut batches, scene, (index, mesh), 3 * mesh.indices.len());
-            for v in 0..mesh.positions.len() {
-                push3(&mut words, mesh.positions[v]);
-                push3(&mut words, mesh.normals[v]);
-                if tangents {
-                    push3(&mut words, mesh.tangent(v));
-                }
-                push_uvs(&mut words, &layout, vertex_uvs(mesh, v));
-                push_sign(&mut words, &layout, mesh.bitangent_sign(v));
-                push_color(&mut words, &layout, mesh.color(v));
+        for &(i, _) in &self.order {
+            let mesh = meshes.get(i);
+            for triangle in &mesh.indices {
+                indices.put(&triangle.map(|v| base + v));
             }
-            indices.extend(mesh.indices.iter().flatten().map(|i| base + i));
             base += mesh.positions.len() as u32;
+            meshes.release_indices(i);
         }
-        GeometryData {
-            words,
-            draw_count: indices.len() as u32,
-            indices: Some(indices),
-            batches,
-            layout,
+        for &(i, _) in &self.order {
+            let mesh = meshes.get(i);
+            for v in 0..mesh.positions.len() {
+                push3(words, mesh.positions[v]);
+                push3(words, mesh.normals[v]);
+                if layout.tangents {
+                    push3(words, mesh.tangent(v));
+                }
+                push_uvs(words, &layout, vertex_uvs(mesh, v));
+                push_sign(words, &layout, mesh.bitangent_sign(v));
+                push_color(words, &layout, mesh.color(v));
+            }
+            meshes.release_vertices(i);
         }
     }
 
     /// De-indexed: every corner carries the triangle's frame and centroid
     /// (computed in f64 exactly as the reference's flat shading does).
-    fn flat(scene: &Scene, tangents: bool, tex_coords: bool, signs: bool) -> Self {
-        let layout = VertexLayout {
-            tangents,
-            shading_point: true,
-            face_normal: false,
-            tex_coords,
-            bitangent_signs: signs,
-            colors: has_colors(scene),
-        };
-        Self::de_indexed(scene, layout, |mesh, t, words| {
+    fn flat(&self, meshes: Meshes, words: &mut impl Words) {
+        let layout = self.layout;
+        self.de_indexed(meshes, words, |mesh, t, words| {
             let corners = mesh.triangle(t);
             let frame = mesh.flat_frame(t);
             let shading_point = centroid(corners);
@@ -298,7 +394,7 @@ impl GeometryData {
             for p in corners {
                 push3(words, p);
                 push3(words, frame.n);
-                if tangents {
+                if layout.tangents {
                     push3(words, frame.t);
                 }
                 push3(words, shading_point);
@@ -314,21 +410,14 @@ impl GeometryData {
     /// geometric normal (`mesh::face_normal`, as the reference's offset
     /// normal), from which the vertex shader computes the shadow-map
     /// coordinates (shaders/shadows.wgsl `shadow_ortho_ndc`).
-    fn phong_faces(scene: &Scene, tangents: bool, tex_coords: bool, signs: bool) -> Self {
-        let layout = VertexLayout {
-            tangents,
-            shading_point: false,
-            face_normal: true,
-            tex_coords,
-            bitangent_signs: signs,
-            colors: has_colors(scene),
-        };
-        Self::de_indexed(scene, layout, |mesh, t, words| {
+    fn phong_faces(&self, meshes: Meshes, words: &mut impl Words) {
+        let layout = self.layout;
+        self.de_indexed(meshes, words, |mesh, t, words| {
             let face = face_normal(mesh.triangle(t));
             for v in mesh.indices[t].map(|v| v as usize) {
                 push3(words, mesh.positions[v]);
                 push3(words, mesh.normals[v]);
-                if tangents {
+                if layout.tangents {
                     push3(words, mesh.tangent(v));
                 }
                 push3(words, face);
@@ -340,28 +429,48 @@ impl GeometryData {
     }
 
     /// A non-indexed stream in material order: `triangle(mesh, t, words)`
-    /// appends the three corners of triangle `t` in `layout`.
-    fn de_indexed(
-        scene: &Scene,
-        layout: VertexLayout,
-        triangle: impl Fn(&Mesh, usize, &mut Vec<u32>),
-    ) -> Self {
-        let mut words =
-            Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
-        let mut batches = Vec::new();
-        for (index, mesh) in meshes_by_material(scene) {
-            extend_batches(&mut batches, scene, (index, mesh), 3 * mesh.indices.len());
+    /// writes the three corners of triangle `t`; a released mesh is freed
+    /// once all its triangles are written (they read its vertices in any
+    /// order).
+    fn de_indexed<W: Words>(
+        &self,
+        mut meshes: Meshes,
+        words: &mut W,
+        triangle: impl Fn(&Mesh, usize, &mut W),
+    ) {
+        for &(i, _) in &self.order {
+            let mesh = meshes.get(i);
             for t in 0..mesh.indices.len() {
-                triangle(mesh, t, &mut words);
+                triangle(mesh, t, words);
             }
+            meshes.release_indices(i);
+            meshes.release_vertices(i);
         }
+    }
+}
+
+impl GeometryData {
+    /// Lays out `scene`'s meshes ([`StreamPlan::new`]) into vectors.
+    pub fn new(scene: &Scene, tangents: bool, face_normals: bool) -> Self {
+        let plan = StreamPlan::new(scene, tangents, face_normals);
+        let mut words = Vec::with_capacity((plan.vertex_bytes / 4) as usize);
+        let mut indices = Vec::with_capacity((plan.index_bytes / 4) as usize);
+        plan.write(Meshes::Keep(&scene.meshes), &mut words, &mut indices);
         GeometryData {
-            draw_count: (words.len() as u64 * 4 / layout.stride()) as u32,
             words,
-            indices: None,
-            batches,
-            layout,
+            indices: plan.indexed.then_some(indices),
+            draw_count: plan.draw_count,
+            batches: plan.batches,
+            layout: plan.layout,
         }
+    }
+
+    /// Bytes of the vertex stream and of the index buffer that
+    /// [`Self::new`] would lay out, computed from the counts alone so a
+    /// stream over the GPU's limits is refused before it is built.
+    pub fn byte_sizes(scene: &Scene, tangents: bool, face_normals: bool) -> (u64, u64) {
+        let plan = StreamPlan::new(scene, tangents, face_normals);
+        (plan.vertex_bytes, plan.index_bytes)
     }
 }
 
@@ -416,7 +525,7 @@ mod tests {
         assert!(g.indices.is_none() && g.layout.face_normal);
         let words = (g.layout.stride() / 4) as usize;
         assert_eq!(g.words.len(), words * 3 * scene.triangle_count());
-        let mesh = meshes_by_material(&scene)[0].1;
+        let mesh = &scene.meshes[meshes_by_material(&scene)[0].0];
         let read = |corner: usize, at: usize| {
             let w = &g.words[corner * words + at..corner * words + at + 3];
             glam::DVec3::new(
@@ -433,6 +542,49 @@ mod tests {
                 assert!((read(corner, 0) - mesh.positions[v]).length() < 1e-6);
                 assert!((read(corner, 3) - mesh.normals[v]).length() < 1e-6);
                 assert!((read(corner, 6) - face).length() < 1e-6);
+            }
+        }
+    }
+
+    /// Writing from released meshes gives the same words as from kept
+    /// ones, in every layout, and leaves the meshes with their materials
+    /// and no arrays.
+    #[test]
+    fn released_meshes_stream_the_same_words_and_are_freed() {
+        for (shading, tangents, faces) in [
+            ("phong", false, false),
+            ("gouraud", true, false),
+            ("phong", false, true),
+            ("flat", true, false),
+        ] {
+            let scene = built_in(shading);
+            let kept = GeometryData::new(&scene, tangents, faces);
+            let mut released = scene.clone();
+            let plan = StreamPlan::new(&released, tangents, faces);
+            let (mut words, mut indices) = (Vec::new(), Vec::new());
+            plan.write(
+                Meshes::Release(&mut released.meshes),
+                &mut words,
+                &mut indices,
+            );
+            assert_eq!(words, kept.words, "{shading}: vertex words");
+            assert_eq!(
+                Some(indices).filter(|_| plan.indexed),
+                kept.indices,
+                "{shading}: indices"
+            );
+            assert_eq!(plan.batches, kept.batches, "{shading}: batches");
+            for (m, before) in released.meshes.iter().zip(&scene.meshes) {
+                assert_eq!(m.material, before.material);
+                assert!(
+                    m.positions.is_empty()
+                        && m.normals.is_empty()
+                        && m.tangents.is_empty()
+                        && m.tex_coords.is_empty()
+                        && m.indices.is_empty(),
+                    "{shading}: {} not freed",
+                    m.name
+                );
             }
         }
     }

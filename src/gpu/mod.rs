@@ -8,6 +8,7 @@
 //!   [`bindings`] says which arrays live in uniform buffers (and why),
 //!   [`bind_groups`] packs the buffers' bytes and makes the bind group
 //!   layouts, [`geometry`] lays the meshes out for the shading mode,
+//!   [`upload`] writes that stream into GPU buffers in small chunks,
 //!   [`shadows`] plans the shadow maps;
 //! * [`pipelines`] (the pipeline cache) owns every compiled module,
 //!   pipeline and layout (and `GONIO_DUMP_WGSL`);
@@ -28,16 +29,17 @@
 //!
 //! ```text
 //! renderer    -> offscreen prepared pipelines draw readback timing
-//!                geometry layout shader_gen context
+//!                upload geometry layout shader_gen context
 //! offscreen   -> prepared pipelines draw readback timing context
-//! prepared    -> shadow_maps shadow_masks pipelines draw geometry layout
-//!                shader_gen shadows context
+//! prepared    -> shadow_maps shadow_masks pipelines draw upload geometry
+//!                layout shader_gen shadows context
 //! shadow_maps -> shadow_masks pipelines draw bind_groups bindings shadows
 //! shadow_masks -> textures pipelines geometry shader_gen
-//! draw        -> bind_groups bindings geometry layout shader_gen
+//! draw        -> bind_groups bindings upload geometry layout shader_gen
 //! pipelines   -> bind_groups bindings geometry shader_gen shadows
 //! bind_groups -> bindings layout shadows
 //! readback    -> context
+//! upload      -> geometry
 //! layout      -> nothing in gpu/ (the material's BRDF value, the scene)
 //! shader_gen  -> bindings shadows
 //! shadows     -> layout            (GpuLight, GpuShadowView)
@@ -66,6 +68,7 @@ pub mod shadow_masks;
 pub mod shadows;
 pub mod textures;
 pub mod timing;
+pub mod upload;
 
 pub use context::{AdapterChoice, GpuContext};
 pub use draw::FrameTarget;

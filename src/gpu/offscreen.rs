@@ -33,19 +33,69 @@ pub fn render(
     vertex_shadow_coords: bool,
     scene: &Scene,
 ) -> Result<(Frame, Timings)> {
+    draw_once(ctx, Size::of(scene), |format, samples| {
+        PreparedScene::new(ctx, cache, vertex_shadow_coords, scene, format, samples)
+    })
+}
+
+/// [`render`] for a GPU-only run, freeing `scene`'s meshes as they are
+/// uploaded ([`PreparedScene::new_releasing_meshes`]): afterwards the
+/// meshes have their material and name, their arrays empty.
+pub fn render_releasing_meshes(
+    ctx: &GpuContext,
+    cache: &mut PipelineCache,
+    vertex_shadow_coords: bool,
+    scene: &mut Scene,
+) -> Result<(Frame, Timings)> {
+    draw_once(ctx, Size::of(scene), |format, samples| {
+        PreparedScene::new_releasing_meshes(
+            ctx,
+            cache,
+            vertex_shadow_coords,
+            scene,
+            format,
+            samples,
+        )
+    })
+}
+
+/// A scene's image size and samples per pixel.
+#[derive(Clone, Copy)]
+struct Size {
+    width: u32,
+    height: u32,
+    msaa: u32,
+}
+
+impl Size {
+    fn of(scene: &Scene) -> Self {
+        Size {
+            width: scene.width,
+            height: scene.height,
+            msaa: scene.msaa,
+        }
+    }
+}
+
+/// Both renders: a target of `size`, the scene `prepare`d for its format
+/// and samples, one frame.
+fn draw_once(
+    ctx: &GpuContext,
+    size: Size,
+    prepare: impl FnOnce(wgpu::TextureFormat, u32) -> Result<PreparedScene>,
+) -> Result<(Frame, Timings)> {
     let mut timings = Timings::default();
-    let (width, height) = (scene.width, scene.height);
+    let (width, height) = (size.width, size.height);
     check_target_size(ctx, width, height)?;
     let format = ctx
         .radiance_format()
         .ok_or_else(|| Error::Gpu("the adapter has no renderable radiance format".into()))?;
-    let samples = scene.msaa.max(1);
+    let samples = size.msaa.max(1);
     if samples > 1 {
         check_msaa(ctx, format, samples)?;
     }
     let start = Instant::now();
-    let mut prepared =
-        PreparedScene::new(ctx, cache, vertex_shadow_coords, scene, format, samples)?;
+    let mut prepared = prepare(format, samples)?;
     timings.push(
         "build vertex data + pipeline + upload",
         start.elapsed(),

@@ -15,13 +15,14 @@
 use super::context::GpuContext;
 use super::draw::{self, FrameTarget, SceneDraw};
 use super::environment::GpuEnvironment;
-use super::geometry::GeometryData;
+use super::geometry::{Batch, GeometryData, Meshes, StreamPlan};
 use super::layout::{GpuGlobals, GpuLight};
 use super::pipelines::PipelineCache;
 use super::shader_gen::ShaderKey;
 use super::shadow_maps::{self, ShadowMaps};
 use super::shadow_masks::ShadowMasks;
 use super::shadows::ShadowPlan;
+use super::upload::GpuGeometry;
 use crate::scene::Scene;
 use crate::{Error, Result};
 
@@ -66,6 +67,28 @@ pub struct PreparedScene {
     textures: Option<super::textures::SceneTextures>,
 }
 
+/// The scene a [`PreparedScene`] is built from, and whether its meshes
+/// may be freed as they are uploaded.
+enum Source<'a> {
+    Keep(&'a Scene),
+    Release(&'a mut Scene),
+}
+
+impl Source<'_> {
+    fn scene(&self) -> &Scene {
+        match self {
+            Source::Keep(s) => s,
+            Source::Release(s) => s,
+        }
+    }
+}
+
+/// The colour target a [`PreparedScene`] draws into.
+struct Target {
+    format: wgpu::TextureFormat,
+    samples: u32,
+}
+
 /// What one [`PreparedScene::encode`] drew.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Drawn {
@@ -86,6 +109,51 @@ impl PreparedScene {
         format: wgpu::TextureFormat,
         samples: u32,
     ) -> Result<Self> {
+        let target = Target { format, samples };
+        Self::build(
+            ctx,
+            cache,
+            vertex_shadow_coords,
+            Source::Keep(scene),
+            target,
+        )
+    }
+
+    /// [`PreparedScene::new`] for a GPU-only render: `scene`'s meshes are
+    /// freed as their stream is uploaded ([`Meshes::Release`]), so the
+    /// `f64` meshes and the buffers are not in memory whole at once. The
+    /// meshes stay in `scene` with their material and name, their arrays
+    /// empty: the CPU reference cannot render it afterwards, and
+    /// [`PreparedScene::update`] needs the meshes back.
+    pub fn new_releasing_meshes(
+        ctx: &GpuContext,
+        cache: &mut PipelineCache,
+        vertex_shadow_coords: bool,
+        scene: &mut Scene,
+        format: wgpu::TextureFormat,
+        samples: u32,
+    ) -> Result<Self> {
+        let target = Target { format, samples };
+        Self::build(
+            ctx,
+            cache,
+            vertex_shadow_coords,
+            Source::Release(scene),
+            target,
+        )
+    }
+
+    /// What both constructors do: everything that reads the meshes'
+    /// arrays first, then the upload (which may free them), then what
+    /// reads only materials, lights and the camera.
+    fn build(
+        ctx: &GpuContext,
+        cache: &mut PipelineCache,
+        vertex_shadow_coords: bool,
+        mut source: Source<'_>,
+        Target { format, samples }: Target,
+    ) -> Result<Self> {
+        let scene = source.scene();
         check_drawable(scene)?;
         let (key, plan) = plan(&ctx.device, vertex_shadow_coords, scene)?;
         check_geometry_size(&ctx.device, scene, &key)?;
@@ -95,20 +163,34 @@ impl PreparedScene {
                 ctx.adapter_info.name
             )));
         }
-        let geometry =
-            GeometryData::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
-        cache.compile_scene(&key, geometry.layout, format, samples)?;
+        let stream = StreamPlan::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
+        cache.compile_scene(&key, stream.layout, format, samples)?;
         let arrays = key.arrays;
         let materials = draw::gpu_materials(scene, &key);
         let measured = draw::measured_tables(scene);
         check_measured_size(&ctx.device, &measured.data)?;
         let lights = gpu_lights(scene, &plan);
+        let globals = GpuGlobals::new(scene);
+        let blend_centers = blend_centers(&stream.batches, scene);
+        let triangles = scene.triangle_count() as u64;
+        let geometry = match &mut source {
+            Source::Keep(scene) => {
+                GpuGeometry::upload(&ctx.device, &ctx.queue, stream, Meshes::Keep(&scene.meshes))
+            }
+            Source::Release(scene) => GpuGeometry::upload(
+                &ctx.device,
+                &ctx.queue,
+                stream,
+                Meshes::Release(&mut scene.meshes),
+            ),
+        };
+        let scene = source.scene();
         let draw = SceneDraw::new(
             &ctx.device,
             cache.scene_layouts(arrays),
             geometry,
             arrays,
-            &GpuGlobals::new(scene),
+            &globals,
             draw::MaterialData {
                 records: &materials,
                 measured_tables: &measured.data,
@@ -124,7 +206,6 @@ impl PreparedScene {
             draw.layout.stride(),
         );
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
-        let blend_centers = blend_centers(&draw, scene);
         let order = draw_order(draw.batches().len(), &blend_centers, scene);
         let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
         let textures = if key.texture_slots > 0 {
@@ -148,7 +229,7 @@ impl PreparedScene {
             format,
             display_scale: 1.0,
             samples,
-            triangles: scene.triangle_count() as u64,
+            triangles,
             geometry_bytes: draw.geometry_bytes,
             draw,
             batch_pipelines,
@@ -378,16 +459,18 @@ fn prepare_environment(
 
 /// Host bytes the GPU path allocates for `scene`'s geometry beyond the
 /// scene itself, an upper bound checked against `--limit memory` before a
-/// device is opened: the f32 vertex stream and index buffer, and the
-/// upload copy of each (wgpu's staging). The larger layout is assumed
-/// where the device decides later (per-vertex shadow coordinates, which
-/// store three vertices per triangle).
+/// device is opened: the f32 vertex stream and index buffer (host memory
+/// on lavapipe) and the upload's staging window (`gpu::upload`: the
+/// stream is written straight into chunks, never whole on the CPU). The
+/// larger layout is assumed where the device decides later (per-vertex
+/// shadow coordinates, which store three vertices per triangle).
 pub fn host_memory_estimate(scene: &Scene) -> u64 {
     let mut key = ShaderKey::new(scene, &ShadowPlan::new(scene));
     key.vertex_shadow_coords = true;
     let (vertex_bytes, index_bytes) =
         GeometryData::byte_sizes(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
-    2 * (vertex_bytes + index_bytes)
+    let staging = super::upload::IN_FLIGHT_BYTES + 2 * super::upload::CHUNK_BYTES as u64;
+    vertex_bytes + index_bytes + staging
 }
 
 /// Refuses a vertex stream or index buffer larger than the device's
@@ -498,10 +581,10 @@ fn gpu_lights(scene: &Scene, plan: &ShadowPlan) -> Vec<GpuLight> {
         .collect()
 }
 
-/// The alpha BLEND batches of `draw` (index, the centre of the bounding
-/// box of the mesh each draws, in world space).
-fn blend_centers(draw: &SceneDraw, scene: &Scene) -> Vec<(usize, glam::DVec3)> {
-    draw.batches()
+/// The alpha BLEND batches of `batches` (index, the centre of the
+/// bounding box of the mesh each draws, in world space).
+fn blend_centers(batches: &[Batch], scene: &Scene) -> Vec<(usize, glam::DVec3)> {
+    batches
         .iter()
         .enumerate()
         .filter_map(|(i, b)| {

@@ -5,7 +5,7 @@
 
 use super::context::GpuContext;
 use super::draw::{self, FrameTarget, SceneDraw};
-use super::geometry::GeometryData;
+use super::geometry::{Meshes, StreamPlan};
 use super::layout::{GpuGlobals, GpuLight};
 use super::offscreen;
 use super::pipelines::PipelineCache;
@@ -13,6 +13,7 @@ use super::prepared::{Drawn, PreparedScene};
 use super::readback::COLOR_FORMAT;
 use super::shader_gen::ShaderKey;
 use super::timing::Timings;
+use super::upload::GpuGeometry;
 use crate::Result;
 use crate::frame::Frame;
 use crate::scene::Scene;
@@ -57,6 +58,19 @@ impl GpuRenderer {
     /// step ([`offscreen::render`]).
     pub fn render(&mut self, scene: &Scene) -> Result<(Frame, Timings)> {
         offscreen::render(
+            &self.ctx,
+            &mut self.pipelines,
+            self.vertex_shadow_coords,
+            scene,
+        )
+    }
+
+    /// [`GpuRenderer::render`] for a GPU-only run: `scene`'s meshes are
+    /// freed as they are uploaded
+    /// ([`offscreen::render_releasing_meshes`]), so the `f64` meshes and
+    /// the GPU buffers are not whole in memory at once.
+    pub fn render_releasing_meshes(&mut self, scene: &mut Scene) -> Result<(Frame, Timings)> {
+        offscreen::render_releasing_meshes(
             &self.ctx,
             &mut self.pipelines,
             self.vertex_shadow_coords,
@@ -123,8 +137,13 @@ impl GpuRenderer {
     /// out for `key` (its attributes, its variant indices, its arrays),
     /// without shadows, as the renderer uploads them.
     pub fn scene_draw(&mut self, scene: &Scene, key: &ShaderKey) -> SceneDraw {
-        let geometry =
-            GeometryData::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
+        let stream = StreamPlan::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
+        let geometry = GpuGeometry::upload(
+            &self.ctx.device,
+            &self.ctx.queue,
+            stream,
+            Meshes::Keep(&scene.meshes),
+        );
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
         SceneDraw::new(
             &self.ctx.device,

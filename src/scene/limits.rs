@@ -33,7 +33,7 @@ pub struct Limits {
     pub lights: u64,
     /// Bytes the renderer may allocate beyond the loaded scene, estimated
     /// before it starts: the CPU reference's ray-casting hierarchy, the
-    /// GPU path's vertex stream with its upload copy. Default 8 GiB.
+    /// GPU path's vertex stream and its staging window. Default 8 GiB.
     pub memory: u64,
 }
 
