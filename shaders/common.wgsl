@@ -12,7 +12,7 @@ struct Globals {
     ambient: vec3<f32>,   // L_a: constant incoming ambient radiance
     display_scale: f32,   // 2^exposure, read only by display targets (target_output)
     env_zenith: vec3<f32>, // the environment a mirror reflects (scene::Environment)
-    tone_map: u32,        // image.tone_map (ToneMap::code), read only by display targets
+    tone_map: u32,        // image.tone_map (ToneMap::code); display modules use the constant TONE_MAP
     env_horizon: vec3<f32>,
     roughness_floor: f32, // Scene::roughness_floor, for textured lobe widths (textures.wgsl)
     env_ground: vec3<f32>,
@@ -141,8 +141,9 @@ fn target_texel(value: vec4<f32>) -> TargetTexel {
 #if display
 // Twin of src/output/tone_map.rs `ToneMap::apply` (its doc cites the
 // formulas): 0 clamp, 1 Reinhard, 2 ACES (Narkowicz 2016), 3 Khronos PBR
-// Neutral. All four are computed and `select`ed: `code` is a uniform
-// (UNIFORM_BRANCHES); the branches inside PBR Neutral are `select`s too.
+// Neutral. `code` is the generated constant TONE_MAP (the scene's
+// `image.tone_map`, src/gpu/shader_gen/key.rs), so the compiler keeps the
+// chosen operator only; the branches inside PBR Neutral are `select`s.
 fn tone_map(scaled: vec3<f32>, code: u32) -> vec3<f32> {
     let c = max(scaled, vec3<f32>(0.0));
     let reinhard = c / (1.0 + c);
@@ -172,7 +173,7 @@ fn tone_map(scaled: vec3<f32>, code: u32) -> vec3<f32> {
 // targets blend linear radiance, as the reference composites.
 fn target_output_alpha(radiance: vec3<f32>, alpha: f32) -> TargetTexel {
     #if display
-    return vec4<f32>(srgb_encode(tone_map(radiance * globals.display_scale, globals.tone_map)), alpha);
+    return vec4<f32>(srgb_encode(tone_map(radiance * globals.display_scale, TONE_MAP)), alpha);
     #else
     return target_texel(vec4<f32>(radiance, alpha));
     #endif
@@ -181,7 +182,7 @@ fn target_output_alpha(radiance: vec3<f32>, alpha: f32) -> TargetTexel {
 
 fn target_output(radiance: vec3<f32>) -> TargetTexel {
     #if display
-    return vec4<f32>(srgb_encode(tone_map(radiance * globals.display_scale, globals.tone_map)), 1.0);
+    return vec4<f32>(srgb_encode(tone_map(radiance * globals.display_scale, TONE_MAP)), 1.0);
     #else
     return target_texel(vec4<f32>(radiance, 1.0));
     #endif

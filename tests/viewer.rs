@@ -289,6 +289,9 @@ fn scripted_panel_edits_reach_the_shader() {
         "materials.ball.k_d=[0.1, 0.2, 0.9]",
         "materials.floor.model=\"phong\"",
         "lights.0.shadows=true",
+        // The tone map is compiled in (the constant TONE_MAP): a new one
+        // takes another pipeline.
+        "image.tone_map=\"aces\"",
     ];
     let mut args = vec![
         "--size",

@@ -218,6 +218,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         // The same G1 form as the specialized shader.
         smith_beckmann_rational: ShaderKey::new(scene, &ShadowPlan::new(scene))
             .smith_beckmann_rational,
+        tone_map: scene.tone_map,
     }
 }
 

@@ -33,7 +33,7 @@ use std::fmt;
 use std::str::FromStr;
 
 /// The operator from display-scaled linear radiance to [0, 1].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ToneMap {
     /// `clamp(x, 0, 1)`: today's images, the default.
     #[default]

@@ -68,6 +68,11 @@ pub struct ShaderKey {
     /// "rational"`; only with a variant that uses them); else the exact
     /// erf form.
     pub smith_beckmann_rational: bool,
+    /// `image.tone_map`, compiled into display modules as the constant
+    /// `TONE_MAP` so a window pays for its own operator only (computing
+    /// all four and selecting by a uniform cost 9–13 % of the viewer's CPU
+    /// time on lavapipe, docs/viewer.md). Offscreen modules ignore it.
+    pub tone_map: crate::output::tone_map::ToneMap,
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -163,6 +168,7 @@ impl ShaderKey {
                     .any(|m| scene.materials[m.material].energy_compensation),
                 smith_beckmann_rational: scene.smith_beckmann
                     == crate::material::SmithBeckmann::Rational,
+                tone_map: scene.tone_map,
             };
         key.arrays.measured = key.has_measured();
         key.measured_network &= key.has_measured();

@@ -115,6 +115,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 energy_compensation: i % 2 == 1,
                 // Both G1 forms, on alternate keys.
                 smith_beckmann_rational: i % 2 == 0,
+                tone_map: crate::output::tone_map::ToneMap::ALL
+                    [i % crate::output::tone_map::ToneMap::ALL.len()],
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -149,6 +151,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     measured_network: false,
                     energy_compensation: false,
                     smith_beckmann_rational: pcf,
+                    tone_map: Default::default(),
                 });
             }
         }
@@ -187,6 +190,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 measured_network: uniform,
                 energy_compensation: uniform,
                 smith_beckmann_rational: uniform,
+                tone_map: Default::default(),
             });
         }
     }
