@@ -93,6 +93,7 @@ fn render_inner(
     shader.footprint_scale = lod_bias.exp2();
     let camera = &scene.camera;
     let forward = camera.forward();
+    let rays = camera.rays(width, height);
     let row = width as usize;
     frame
         .radiance
@@ -102,7 +103,7 @@ fn render_inner(
         .for_each(|(i, (radiance, coverage))| {
             let y = i as f64 + 0.5 + offset_y;
             for (j, (out, covered)) in radiance.iter_mut().zip(coverage).enumerate() {
-                let ray = camera.ray(j as f64 + 0.5 + offset_x, y, width, height);
+                let ray = rays.ray(j as f64 + 0.5 + offset_x, y);
                 // The GPU clips at view depths near and far; along this ray
                 // depth grows as t · cos(angle to the viewing axis).
                 let cos = ray.direction.dot(forward);
