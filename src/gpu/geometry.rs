@@ -95,7 +95,20 @@ pub struct GeometryData {
     pub draw_count: u32,
     /// The stream's material runs, in order; together `0..draw_count`.
     pub batches: Vec<Batch>,
+    /// The stream's meshes, in order; together `0..draw_count`: what the
+    /// shadow passes cull per cube face (src/gpu/shadow_culling.rs).
+    pub objects: Vec<ObjectRange>,
     pub layout: VertexLayout,
+}
+
+/// One mesh's part of the stream: a range of indices (indexed streams)
+/// or vertices (de-indexed), inside its material's [`Batch`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ObjectRange {
+    /// Index in `Scene::meshes`.
+    pub mesh: u32,
+    pub material: u32,
+    pub range: std::ops::Range<u32>,
 }
 
 /// The triangles of one material: a range of indices (indexed streams)
@@ -147,6 +160,17 @@ fn extend_batches(
             object,
         }),
     }
+}
+
+/// Records mesh `index`, just appended to `batches`, as the last
+/// `3 · triangles` elements of the stream.
+fn push_object(objects: &mut Vec<ObjectRange>, batches: &[Batch], (index, mesh): (usize, &Mesh)) {
+    let end = batches.last().map_or(0, |b| b.range.end);
+    objects.push(ObjectRange {
+        mesh: index as u32,
+        material: mesh.material as u32,
+        range: end - 3 * mesh.indices.len() as u32..end,
+    });
 }
 
 fn push3(words: &mut Vec<u32>, v: glam::DVec3) {
@@ -243,8 +267,10 @@ impl GeometryData {
         let mut indices = Vec::with_capacity(3 * scene.triangle_count());
         let mut base = 0u32;
         let mut batches = Vec::new();
+        let mut objects = Vec::new();
         for (index, mesh) in meshes_by_material(scene) {
             extend_batches(&mut batches, scene, (index, mesh), 3 * mesh.indices.len());
+            push_object(&mut objects, &batches, (index, mesh));
             for v in 0..mesh.positions.len() {
                 push3(&mut words, mesh.positions[v]);
                 push3(&mut words, mesh.normals[v]);
@@ -263,6 +289,7 @@ impl GeometryData {
             draw_count: indices.len() as u32,
             indices: Some(indices),
             batches,
+            objects,
             layout,
         }
     }
@@ -349,8 +376,10 @@ impl GeometryData {
         let mut words =
             Vec::with_capacity(3 * scene.triangle_count() * layout.stride() as usize / 4);
         let mut batches = Vec::new();
+        let mut objects = Vec::new();
         for (index, mesh) in meshes_by_material(scene) {
             extend_batches(&mut batches, scene, (index, mesh), 3 * mesh.indices.len());
+            push_object(&mut objects, &batches, (index, mesh));
             for t in 0..mesh.indices.len() {
                 triangle(mesh, t, &mut words);
             }
@@ -360,6 +389,7 @@ impl GeometryData {
             words,
             indices: None,
             batches,
+            objects,
             layout,
         }
     }
@@ -404,6 +434,20 @@ mod tests {
                 .map(|m| m.indices.len())
                 .sum();
             assert_eq!(g.batches[0].range.len(), 3 * triangles);
+            // The objects tile the stream too, one per mesh, each inside
+            // its material's batch.
+            let mut end = 0;
+            for o in &g.objects {
+                assert_eq!(o.range.start, end, "{shading}: objects contiguous");
+                end = o.range.end;
+                let mesh = &scene.meshes[o.mesh as usize];
+                assert_eq!(o.range.len(), 3 * mesh.indices.len());
+                assert!(g.batches.iter().any(|b| b.material == o.material
+                    && b.range.start <= o.range.start
+                    && o.range.end <= b.range.end));
+            }
+            assert_eq!(end, g.draw_count, "{shading}: objects cover the stream");
+            assert_eq!(g.objects.len(), scene.meshes.len());
         }
     }
 

@@ -31,6 +31,7 @@ pub fn render(
     ctx: &GpuContext,
     cache: &mut PipelineCache,
     vertex_shadow_coords: bool,
+    cull_shadow_casters: bool,
     scene: &Scene,
 ) -> Result<(Frame, Timings)> {
     let mut timings = Timings::default();
@@ -46,6 +47,7 @@ pub fn render(
     let start = Instant::now();
     let mut prepared =
         PreparedScene::new(ctx, cache, vertex_shadow_coords, scene, format, samples)?;
+    prepared.cull_shadow_casters = cull_shadow_casters;
     timings.push(
         "build vertex data + pipeline + upload",
         start.elapsed(),
@@ -113,7 +115,10 @@ pub fn render(
         let (scene_pass, shadow_passes) = q.read(ctx)?;
         if drawn.shadow_layers > 0 {
             timings.push(
-                format!("shadow passes ({} layers)", drawn.shadow_layers),
+                format!(
+                    "shadow passes ({} layers, {} of {} caster draws culled)",
+                    drawn.shadow_layers, drawn.shadow_draws_culled, drawn.shadow_draws_total
+                ),
                 shadow_passes,
                 Clock::GpuTimestamp,
             );
