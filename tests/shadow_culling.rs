@@ -24,7 +24,10 @@ fn culled(scene: &Scene) -> (usize, usize) {
 fn same_with_and_without(scene: &Scene, what: &str) {
     let (removed, total) = culled(scene);
     println!("{what}: {removed} of {total} caster draws culled");
-    assert!(removed > 0, "{what}: the culling must remove draws for this test to mean anything");
+    assert!(
+        removed > 0,
+        "{what}: the culling must remove draws for this test to mean anything"
+    );
     let mut renderer = common::gpu_renderer();
     renderer.cull_shadow_casters = false;
     let (all, _) = renderer.render(scene).unwrap();
@@ -41,7 +44,10 @@ fn same_with_and_without(scene: &Scene, what: &str) {
     // The map's shadows are really in the image (a lit-only frame would
     // agree trivially): turning shadows off changes it.
     let mut unshadowed = scene.clone();
-    unshadowed.lights.iter_mut().for_each(|l| l.set_shadows(false));
+    unshadowed
+        .lights
+        .iter_mut()
+        .for_each(|l| l.set_shadows(false));
     let (lit, _) = renderer.render(&unshadowed).unwrap();
     assert_ne!(lit.radiance, culled.radiance, "{what}: shadows visible");
     if let Some((name, ..)) = timings
@@ -49,7 +55,10 @@ fn same_with_and_without(scene: &Scene, what: &str) {
         .iter()
         .find(|(n, ..)| n.starts_with("shadow passes"))
     {
-        assert!(name.contains(&format!("{removed} of {total} caster draws culled")), "{name}");
+        assert!(
+            name.contains(&format!("{removed} of {total} caster draws culled")),
+            "{name}"
+        );
     }
 }
 

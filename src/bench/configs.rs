@@ -326,7 +326,10 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
                         "shadows.resolution=fit".into(),
                         format!("shadows.texels_per_pixel={t}"),
                     ],
-                    current == MapResolution::Fit { texels_per_pixel: t },
+                    current
+                        == MapResolution::Fit {
+                            texels_per_pixel: t,
+                        },
                 ));
             }
             v

@@ -406,7 +406,11 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
     let fitted_sides = sides_of(&crate::gpu::shadows::ShadowPlan::new(&fitted_scene));
     let (w, h) = effort.hd;
     let floor = Stats::of(&floor);
-    let shadow_ms: Vec<f64> = frames[0].iter().zip(&passes[0]).map(|(f, p)| f - p).collect();
+    let shadow_ms: Vec<f64> = frames[0]
+        .iter()
+        .zip(&passes[0])
+        .map(|(f, p)| f - p)
+        .collect();
     let shadow = Stats::of(&shadow_ms);
     let pass_stats = Stats::of(&passes[0]);
     let ratio = |side: usize, name: String, target: Option<f64>, note: String| Ratio {

@@ -459,8 +459,17 @@ mod tests {
             assert_eq!(err.unwrap_err().exit_code(), 2, "{kv}");
         }
         for (sets, key) in [
-            (["shadows.resolution=fit", "shadows.texels_per_pixel=0"], "texels_per_pixel"),
-            (["lights.0.shadow_resolution=fit", "lights.0.shadow_texels_per_pixel=17"], "shadow_texels_per_pixel"),
+            (
+                ["shadows.resolution=fit", "shadows.texels_per_pixel=0"],
+                "texels_per_pixel",
+            ),
+            (
+                [
+                    "lights.0.shadow_resolution=fit",
+                    "lights.0.shadow_texels_per_pixel=17",
+                ],
+                "shadow_texels_per_pixel",
+            ),
         ] {
             let sets = sets.map(String::from);
             let err = load(&SceneSource::BuiltIn, &sets).unwrap_err();
@@ -469,12 +478,17 @@ mod tests {
         }
         let fit = load(
             &SceneSource::BuiltIn,
-            &["shadows.resolution=fit".into(), "shadows.texels_per_pixel=0.5".into()],
+            &[
+                "shadows.resolution=fit".into(),
+                "shadows.texels_per_pixel=0.5".into(),
+            ],
         )
         .unwrap();
         assert_eq!(
             fit.shadow_settings(0).resolution,
-            crate::scene::MapResolution::Fit { texels_per_pixel: 0.5 }
+            crate::scene::MapResolution::Fit {
+                texels_per_pixel: 0.5
+            }
         );
     }
 
@@ -605,7 +619,10 @@ mod tests {
             // (texels_per_pixel only beside resolution = "fit").
             for (set, fit) in [
                 (format!("shadows.{short}={a}"), "shadows.resolution=fit"),
-                (format!("lights.0.{long}={a}"), "lights.0.shadow_resolution=fit"),
+                (
+                    format!("lights.0.{long}={a}"),
+                    "lights.0.shadow_resolution=fit",
+                ),
             ] {
                 load(&SceneSource::BuiltIn, &[fit.to_string(), set]).unwrap();
             }
