@@ -38,6 +38,11 @@ pub struct BenchArgs {
     /// (SEGMENTS,WIDTH,HEIGHT) in this fresh process, print it and exit.
     #[arg(long, value_name = "SPEC", hide = true)]
     pub probe_memory: Option<String>,
+    /// Internal: measure only the shadowed Cook-Torrance ratios (the
+    /// budget of --quick, --smoke or the full run), print their rows and
+    /// notes, and exit (A/B timing of the shadow passes).
+    #[arg(long, hide = true)]
+    pub shadow_ratio: bool,
     /// Internal: run the minimal triangle-to-PNG floor program and exit.
     #[arg(long, value_name = "OUT", hide = true)]
     pub floor_triangle_png: Option<PathBuf>,

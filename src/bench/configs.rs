@@ -11,7 +11,7 @@
 //! measured, with the reason.
 
 use crate::material::{Distribution, Fresnel, Geometry, ReflectanceModel, SmithBeckmann};
-use crate::scene::{Light, Scene, ShadowFilter};
+use crate::scene::{Light, MapResolution, Scene, ShadowFilter};
 
 /// What the bench adds to the built-in scene so that every knob has
 /// something to act on: the sphere becomes Cook-Torrance gold with the
@@ -309,6 +309,34 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         None => Vec::new(),
     };
     knob("shadow_filter", pcf, "no light casts shadows");
+    // Fixed sides against sides fitted to the screen (src/gpu/shadow_fit.rs)
+    // at one and at half a texel per pixel, capped by the map size.
+    let resolution = match shadowed {
+        Some(l) => {
+            let current = base.shadow_settings(l).resolution;
+            let mut v = vec![(
+                "fixed".to_string(),
+                vec!["shadows.resolution=fixed".to_string()],
+                current == MapResolution::Fixed,
+            )];
+            for t in [1.0, 0.5] {
+                v.push((
+                    format!("fit {t}"),
+                    vec![
+                        "shadows.resolution=fit".into(),
+                        format!("shadows.texels_per_pixel={t}"),
+                    ],
+                    current
+                        == MapResolution::Fit {
+                            texels_per_pixel: t,
+                        },
+                ));
+            }
+            v
+        }
+        None => Vec::new(),
+    };
+    knob("shadow_resolution", resolution, "no light casts shadows");
 
     let area = area_entry(base);
     let samples = match area {
@@ -617,6 +645,7 @@ mod tests {
             "distribution",
             "shadow_map_size",
             "shadow_filter",
+            "shadow_resolution",
             "area_samples",
             "msaa",
             "resolution",

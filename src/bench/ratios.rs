@@ -284,6 +284,11 @@ pub fn uber_vs_specialized(
 /// The built-in scene at `hd` with a Cook-Torrance gold sphere (exact
 /// conductor Fresnel) and four shadow-casting point lights.
 pub fn ct_four_shadowed(hd: (u32, u32)) -> Result<Scene> {
+    ct_four_shadowed_with(hd, &[])
+}
+
+/// [`ct_four_shadowed`] with `extra` overrides.
+fn ct_four_shadowed_with(hd: (u32, u32), extra: &[&str]) -> Result<Scene> {
     let lights: Vec<String> = [
         [3.0, 5.0, 3.0],
         [-3.0, 5.0, 3.0],
@@ -310,59 +315,146 @@ pub fn ct_four_shadowed(hd: (u32, u32)) -> Result<Scene> {
     .collect();
     overrides.push(format!("lights=[{}]", lights.join(", ")));
     overrides.extend(size_overrides(Some(hd)));
+    overrides.extend(extra.iter().map(|s| s.to_string()));
     builtin(&overrides)
 }
 
+/// The sides of the shadowed ratio: how the shadow maps are made.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum ShadowSide {
+    /// The renderer's default: caster culling per layer, fixed sides.
+    Culled,
+    /// Every caster drawn into every layer (gonio before caster culling).
+    Unculled,
+    /// Caster culling and sides fitted to the screen at one texel per
+    /// pixel (`shadows.resolution = "fit"`).
+    Fitted,
+}
+
 /// Cook-Torrance + exact Fresnel + four shadowed lights vs the unlit
-/// floor on the same geometry. Returns the ratio of whole frames (shadow
-/// passes included) and that of the scene pass alone.
-pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<(Ratio, Ratio)> {
+/// floor on the same geometry, four sides interleaved: the default
+/// renderer (caster culling, fixed 2048² faces), the same without caster
+/// culling (the renderer before it), the same with sides fitted to the
+/// screen, and the unlit pass. Returns the ratios of whole frames (shadow
+/// passes included) of the three, and that of the scene pass alone; the
+/// notes give each frame's error against the ray-traced truth.
+pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<Ratio>> {
     let scene = ct_four_shadowed(effort.hd)?;
+    let fitted_scene = ct_four_shadowed_with(
+        effort.hd,
+        &["shadows.resolution=fit", "shadows.texels_per_pixel=1"],
+    )?;
     let unlit = Harness::new(renderer, &scene, &floors::unlit(&scene))?;
-    let (mut frames, mut passes, mut floor) = (Vec::new(), Vec::new(), Vec::new());
-    let mut layers = String::new();
+    let sides = [ShadowSide::Culled, ShadowSide::Unculled, ShadowSide::Fitted];
+    let mut frames: [Vec<f64>; 3] = Default::default();
+    let mut passes: [Vec<f64>; 3] = Default::default();
+    let mut floor = Vec::new();
+    let mut layers: [String; 3] = Default::default();
+    let mut last: [Option<crate::frame::Frame>; 3] = Default::default();
     for i in 0..effort.warmup + effort.repeats {
-        let (mut timings, mut ms) = (None, 0.0);
-        for side in rotated(2, i) {
-            match side {
-                0 => timings = Some(renderer.render(&scene)?.1),
-                _ => ms = unlit.time_once(renderer.context())?.0,
+        for side in rotated(4, i) {
+            let Some(&which) = sides.get(side) else {
+                let ms = unlit.time_once(renderer.context())?.0;
+                if i >= effort.warmup {
+                    floor.push(ms);
+                }
+                continue;
+            };
+            renderer.cull_shadow_casters = which != ShadowSide::Unculled;
+            let drawn = if which == ShadowSide::Fitted {
+                &fitted_scene
+            } else {
+                &scene
+            };
+            let (frame, timings) = renderer.render(drawn)?;
+            renderer.cull_shadow_casters = true;
+            if i >= effort.warmup {
+                frames[side].push(measure::frame_ms(&timings).0);
+                passes[side].push(measure::render_pass_ms(&timings));
             }
-        }
-        let timings = timings.unwrap_or_default();
-        if i >= effort.warmup {
-            frames.push(measure::frame_ms(&timings).0);
-            passes.push(measure::render_pass_ms(&timings));
-            floor.push(ms);
-        }
-        if let Some((name, ..)) = timings
-            .entries
-            .iter()
-            .find(|(n, ..)| n.starts_with("shadow passes"))
-        {
-            layers = name.clone();
+            if let Some((name, ..)) = timings
+                .entries
+                .iter()
+                .find(|(n, ..)| n.starts_with("shadow passes"))
+            {
+                layers[side] = name.clone();
+            }
+            last[side] = Some(frame);
         }
     }
+    // The ray-traced truth of the same scene (the bench's truth: the CPU
+    // reference, f64, one shadow ray per light and pixel).
+    let truth = measure::truth(&scene, 1);
+    let errors: Vec<f64> = last
+        .iter()
+        .map(|f| f.as_ref().map_or(f64::NAN, |f| measure::error(f, &truth).0))
+        .collect();
+    let sides_of = |plan: &crate::gpu::shadows::ShadowPlan| {
+        let mut sides: Vec<u32> = plan
+            .lights
+            .iter()
+            .flatten()
+            .map(|s| s.settings.map_size)
+            .collect();
+        sides.dedup();
+        sides
+            .iter()
+            .map(|s| format!("{s}²"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let fitted_sides = sides_of(&crate::gpu::shadows::ShadowPlan::new(&fitted_scene));
     let (w, h) = effort.hd;
     let floor = Stats::of(&floor);
-    let shadow_ms: Vec<f64> = frames.iter().zip(&passes).map(|(f, p)| f - p).collect();
+    let shadow_ms: Vec<f64> = frames[0]
+        .iter()
+        .zip(&passes[0])
+        .map(|(f, p)| f - p)
+        .collect();
     let shadow = Stats::of(&shadow_ms);
-    let pass_stats = Stats::of(&passes);
-    let frame = Ratio {
-        name: format!("Cook-Torrance, exact Fresnel, 4 shadowed lights / unlit floor, {w}x{h}"),
-        numerator: format!("whole frame: {layers} + scene pass"),
+    let pass_stats = Stats::of(&passes[0]);
+    let ratio = |side: usize, name: String, target: Option<f64>, note: String| Ratio {
+        name,
+        numerator: format!("whole frame: {} + scene pass", layers[side]),
         denominator: "unlit pass over the same vertex stream".into(),
-        num: Stats::of(&frames),
+        num: Stats::of(&frames[side]),
         den: floor,
-        target: Some(2.5),
-        note: format!(
-            "four point lights cast shadows through cube maps (6 layers of 2048² each, 3x3 PCF): the shadow passes rasterize the scene 24 times into 100 M depth texels, {:.0} ms ({:.1}× the unlit pass) of the frame; the scene pass is the other {:.0} ms ({:.1}×). A software rasterizer shades on the CPU, so a fragment's cost is its arithmetic: 4 lights × (Beckmann D, Smith G, complex-index Fresnel per channel, 9 shadow-map taps) against one constant store. The 2.5× target assumes a GPU, where rasterization and bandwidth, not ALU work, set the floor",
+        target,
+        note,
+    };
+    let unculled = Stats::of(&frames[1]).median;
+    let frame = ratio(
+        0,
+        format!("Cook-Torrance, exact Fresnel, 4 shadowed lights / unlit floor, {w}x{h}"),
+        Some(2.5),
+        format!(
+            "four point lights cast shadows through cube maps (6 layers of 2048² each, 3x3 PCF); each face draws only the casters whose bounding boxes reach its frustum ({}): the shadow passes take {:.0} ms ({:.1}× the unlit pass) of the frame; the scene pass is the other {:.0} ms ({:.1}×). Error against the ray-traced shadows (relative RMS of the radiance): {:.4}. Without caster culling the frame takes {:.0} ms (ratio {:.2}, error {:.4}: the same image), measured interleaved; with sides fitted to the screen ({fitted_sides}) see the row below. A software rasterizer shades on the CPU, so a fragment's cost is its arithmetic: 4 lights × (Beckmann D, Smith G, complex-index Fresnel per channel, 9 shadow-map taps) against one constant store. The 2.5× target assumes a GPU, where rasterization and bandwidth, not ALU work, set the floor",
+            layers[0],
             shadow.median,
             shadow.median / floor.median,
             pass_stats.median,
-            pass_stats.median / floor.median
+            pass_stats.median / floor.median,
+            errors[0],
+            unculled,
+            unculled / floor.median,
+            errors[1],
         ),
-    };
+    );
+    let before = ratio(
+        1,
+        format!("same, every caster drawn into every face (before caster culling), {w}x{h}"),
+        None,
+        format!("error against the ray-traced shadows {:.4}", errors[1]),
+    );
+    let fitted = ratio(
+        2,
+        format!("same, shadow_resolution = \"fit\" (one texel per pixel, at most 2048²), {w}x{h}"),
+        None,
+        format!(
+            "each cube's side fitted to the screen footprint of the receivers its light reaches (src/gpu/shadow_fit.rs): {fitted_sides}; error against the ray-traced shadows {:.4} (fixed 2048²: {:.4})",
+            errors[2], errors[0]
+        ),
+    );
     let pass = Ratio {
         name: format!("same, scene pass only (shadow lookups included), {w}x{h}"),
         numerator: "scene pass".into(),
@@ -372,7 +464,7 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<(Rat
         target: None,
         note: String::new(),
     };
-    Ok((frame, pass))
+    Ok(vec![frame, before, fitted, pass])
 }
 
 /// Cold `gonio render` of the built-in scene to PNG vs the minimal

@@ -186,7 +186,8 @@ fn slope_text(v: f64) -> String {
     }
 }
 
-fn ratio_row(r: &Ratio) -> String {
+/// One row of the ratio table.
+pub fn ratio_row(r: &Ratio) -> String {
     format!(
         "| {} | **{:.3}** | {} | {} | {} ms [{}–{}], n = {} | {} ms [{}–{}] |",
         r.name,

@@ -148,6 +148,21 @@ pub fn scene_label(scene: Option<&Path>) -> String {
 }
 
 /// `gonio bench`.
+/// `--shadow-ratio`: the shadowed Cook-Torrance rows alone, printed as
+/// the report writes them.
+fn shadow_ratio_only(args: &BenchArgs, effort: ratios::Effort) -> Result<()> {
+    let context = GpuContext::new(&AdapterChoice::from_flag_or_env(args.adapter.as_deref()))?;
+    context.require_float_radiance("gonio bench")?;
+    let mut renderer = GpuRenderer::new(context);
+    for r in ratios::heavy_vs_unlit(&mut renderer, effort)? {
+        println!("{}", super::report::ratio_row(&r));
+        if !r.note.is_empty() {
+            println!("  note: {}", r.note);
+        }
+    }
+    Ok(())
+}
+
 pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(out) = &args.floor_triangle_png {
         return floors::triangle_to_png(out, args.adapter.as_deref());
@@ -157,6 +172,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     let started = Instant::now();
     let budget = Budget::from_args(args)?;
+    if args.shadow_ratio {
+        return shadow_ratio_only(args, budget.ratio);
+    }
     let outputs = Outputs::claim(&args.out)?;
 
     // The base scene: the user's (or the built-in with the bench's
@@ -335,9 +353,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         bar.inc(1);
     }
     bar.set_message("Cook-Torrance + 4 shadowed lights vs unlit");
-    let (frame_ratio, pass_ratio) = ratios::heavy_vs_unlit(&mut renderer, effort)?;
-    ratio_list.push(frame_ratio);
-    ratio_list.push(pass_ratio);
+    ratio_list.extend(ratios::heavy_vs_unlit(&mut renderer, effort)?);
     bar.inc(1);
     bar.set_message("cold render vs triangle-to-PNG");
     let scratch = tempfile::tempdir().map_err(|e| {

@@ -9,7 +9,7 @@
 
 use super::bind_groups::{self, SceneLayouts};
 use super::bindings::{self, UniformArrays};
-use super::geometry::{Batch, VertexLayout};
+use super::geometry::{Batch, ObjectRange, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::measured_tables::MeasuredTables;
 use super::shader_gen::ShaderKey;
@@ -136,6 +136,8 @@ pub struct SceneDraw {
     draw_count: u32,
     /// The stream's material runs, in order.
     batches: Vec<Batch>,
+    /// The stream's meshes, in order.
+    objects: Vec<ObjectRange>,
     /// Bytes between materials in the materials buffer (dynamic-offset
     /// alignment; src/gpu/bindings.rs).
     material_stride: u64,
@@ -205,6 +207,7 @@ impl SceneDraw {
             index_buffer: geometry.index_buffer,
             draw_count: geometry.draw_count,
             batches: geometry.batches,
+            objects: geometry.objects,
             material_stride,
             arrays,
             globals_buffer,
@@ -218,6 +221,16 @@ impl SceneDraw {
     /// The stream's material batches, in drawing order.
     pub fn batches(&self) -> &[Batch] {
         &self.batches
+    }
+
+    /// The stream's meshes, in drawing order.
+    pub fn objects(&self) -> &[ObjectRange] {
+        &self.objects
+    }
+
+    /// Indices (or vertices) of the whole stream.
+    pub fn draw_count(&self) -> u32 {
+        self.draw_count
     }
 
     /// Which arrays the bind group has in uniform buffers.

@@ -108,7 +108,24 @@ pub struct GeometryData {
     pub draw_count: u32,
     /// The stream's material runs, in order; together `0..draw_count`.
     pub batches: Vec<Batch>,
+    /// The stream's meshes, in order; together `0..draw_count`: what the
+    /// shadow passes cull per cube face (src/gpu/shadow_culling.rs).
+    pub objects: Vec<ObjectRange>,
     pub layout: VertexLayout,
+}
+
+/// One mesh's part of the stream: a range of indices (indexed streams)
+/// or vertices (de-indexed), inside its material's [`Batch`], with the
+/// bounding box of the vertices its triangles use (taken when the stream
+/// is planned, before a GPU-only run frees the `f64` mesh).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectRange {
+    /// Index in `Scene::meshes`.
+    pub mesh: u32,
+    pub material: u32,
+    pub range: std::ops::Range<u32>,
+    /// World-space box `(min, max)` of the used vertices.
+    pub bounds: (glam::DVec3, glam::DVec3),
 }
 
 /// The triangles of one material: a range of indices (indexed streams)
@@ -269,6 +286,8 @@ pub struct StreamPlan {
     /// The meshes (index, whether it blends) in stream order.
     order: Vec<(usize, bool)>,
     pub batches: Vec<Batch>,
+    /// The meshes' parts of the stream ([`GeometryData::objects`]).
+    pub objects: Vec<ObjectRange>,
     /// Vertices to draw (non-indexed) or indices to draw (indexed).
     pub draw_count: u32,
     pub vertex_bytes: u64,
@@ -296,6 +315,7 @@ impl StreamPlan {
         let indexed = !(shading_point || face_normal);
         let order = meshes_by_material(scene);
         let mut batches = Vec::new();
+        let mut objects = Vec::new();
         for &(i, blend) in &order {
             let mesh = &scene.meshes[i];
             extend_batches(
@@ -304,6 +324,21 @@ impl StreamPlan {
                 mesh.material,
                 3 * mesh.indices.len(),
             );
+            let end = batches.last().map_or(0, |b| b.range.end);
+            // Only the vertices the triangles use (a glTF mesh may carry
+            // others).
+            let used = mesh
+                .indices
+                .iter()
+                .flatten()
+                .map(|&v| mesh.positions[v as usize]);
+            objects.push(ObjectRange {
+                mesh: i as u32,
+                material: mesh.material as u32,
+                range: end - 3 * mesh.indices.len() as u32..end,
+                bounds: crate::scene::mesh::bounds(used)
+                    .unwrap_or((glam::DVec3::ZERO, glam::DVec3::ZERO)),
+            });
         }
         let triangles = scene.triangle_count() as u64;
         let (vertex_bytes, index_bytes) = if indexed {
@@ -317,6 +352,7 @@ impl StreamPlan {
             indexed,
             order,
             batches,
+            objects,
             draw_count: (3 * triangles) as u32,
             vertex_bytes,
             index_bytes,
@@ -461,6 +497,7 @@ impl GeometryData {
             indices: plan.indexed.then_some(indices),
             draw_count: plan.draw_count,
             batches: plan.batches,
+            objects: plan.objects,
             layout: plan.layout,
         }
     }
@@ -513,6 +550,20 @@ mod tests {
                 .map(|m| m.indices.len())
                 .sum();
             assert_eq!(g.batches[0].range.len(), 3 * triangles);
+            // The objects tile the stream too, one per mesh, each inside
+            // its material's batch.
+            let mut end = 0;
+            for o in &g.objects {
+                assert_eq!(o.range.start, end, "{shading}: objects contiguous");
+                end = o.range.end;
+                let mesh = &scene.meshes[o.mesh as usize];
+                assert_eq!(o.range.len(), 3 * mesh.indices.len());
+                assert!(g.batches.iter().any(|b| b.material == o.material
+                    && b.range.start <= o.range.start
+                    && o.range.end <= b.range.end));
+            }
+            assert_eq!(end, g.draw_count, "{shading}: objects cover the stream");
+            assert_eq!(g.objects.len(), scene.meshes.len());
         }
     }
 

@@ -9,7 +9,9 @@
 //!   [`bind_groups`] packs the buffers' bytes and makes the bind group
 //!   layouts, [`geometry`] lays the meshes out for the shading mode,
 //!   [`upload`] writes that stream into GPU buffers in small chunks,
-//!   [`shadows`] plans the shadow maps;
+//!   [`shadows`] plans the shadow maps ([`shadow_fit`] fits their sides
+//!   to the screen when asked), [`shadow_culling`] picks each layer's
+//!   casters;
 //! * [`pipelines`] (the pipeline cache) owns every compiled module,
 //!   pipeline and layout (and `GONIO_DUMP_WGSL`);
 //! * [`draw`] holds a vertex stream and its bind group and records the
@@ -31,9 +33,11 @@
 //! renderer    -> offscreen prepared pipelines draw readback timing
 //!                upload geometry layout shader_gen context
 //! offscreen   -> prepared pipelines draw readback timing context
-//! prepared    -> shadow_maps shadow_masks pipelines draw upload geometry
-//!                layout shader_gen shadows context
-//! shadow_maps -> shadow_masks pipelines draw bind_groups bindings shadows
+//! prepared    -> shadow_maps shadow_culling shadow_masks pipelines draw
+//!                upload geometry layout shader_gen shadows context
+//! shadow_maps -> shadow_culling shadow_masks pipelines draw bind_groups
+//!                bindings shadows
+//! shadow_culling -> geometry shadows
 //! shadow_masks -> textures pipelines geometry shader_gen
 //! draw        -> bind_groups bindings upload geometry layout shader_gen
 //! pipelines   -> bind_groups bindings geometry shader_gen shadows
@@ -42,8 +46,8 @@
 //! upload      -> geometry
 //! layout      -> nothing in gpu/ (the material's BRDF value, the scene)
 //! shader_gen  -> bindings shadows
-//! shadows     -> layout            (GpuLight, GpuShadowView)
-//! bindings, geometry, timing, context -> nothing in gpu/
+//! shadows     -> shadow_fit layout (GpuLight, GpuShadowView)
+//! bindings, geometry, timing, context, shadow_fit -> nothing in gpu/
 //! ```
 //!
 //! Every edge points down: a DAG (`GpuMaterial::new` takes the variant's
@@ -63,6 +67,8 @@ pub mod prepared;
 pub mod readback;
 pub mod renderer;
 pub mod shader_gen;
+pub mod shadow_culling;
+pub mod shadow_fit;
 pub mod shadow_maps;
 pub mod shadow_masks;
 pub mod shadows;

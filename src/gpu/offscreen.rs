@@ -31,10 +31,13 @@ pub fn render(
     ctx: &GpuContext,
     cache: &mut PipelineCache,
     vertex_shadow_coords: bool,
+    cull_shadow_casters: bool,
     scene: &Scene,
 ) -> Result<(Frame, Timings)> {
     draw_once(ctx, Size::of(scene), |format, samples| {
-        PreparedScene::new(ctx, cache, vertex_shadow_coords, scene, format, samples)
+        let mut p = PreparedScene::new(ctx, cache, vertex_shadow_coords, scene, format, samples)?;
+        p.cull_shadow_casters = cull_shadow_casters;
+        Ok(p)
     })
 }
 
@@ -45,17 +48,20 @@ pub fn render_releasing_meshes(
     ctx: &GpuContext,
     cache: &mut PipelineCache,
     vertex_shadow_coords: bool,
+    cull_shadow_casters: bool,
     scene: &mut Scene,
 ) -> Result<(Frame, Timings)> {
     draw_once(ctx, Size::of(scene), |format, samples| {
-        PreparedScene::new_releasing_meshes(
+        let mut p = PreparedScene::new_releasing_meshes(
             ctx,
             cache,
             vertex_shadow_coords,
             scene,
             format,
             samples,
-        )
+        )?;
+        p.cull_shadow_casters = cull_shadow_casters;
+        Ok(p)
     })
 }
 
@@ -163,7 +169,10 @@ fn draw_once(
         let (scene_pass, shadow_passes) = q.read(ctx)?;
         if drawn.shadow_layers > 0 {
             timings.push(
-                format!("shadow passes ({} layers)", drawn.shadow_layers),
+                format!(
+                    "shadow passes ({} layers, {} of {} caster draws culled)",
+                    drawn.shadow_layers, drawn.shadow_draws_culled, drawn.shadow_draws_total
+                ),
                 shadow_passes,
                 Clock::GpuTimestamp,
             );

@@ -19,6 +19,7 @@ use super::geometry::{Batch, GeometryData, Meshes, StreamPlan};
 use super::layout::{GpuGlobals, GpuLight};
 use super::pipelines::PipelineCache;
 use super::shader_gen::ShaderKey;
+use super::shadow_culling::{self, LayerCasters};
 use super::shadow_maps::{self, ShadowMaps};
 use super::shadow_masks::ShadowMasks;
 use super::shadows::ShadowPlan;
@@ -59,6 +60,13 @@ pub struct PreparedScene {
     shadows: Option<ShadowMaps>,
     /// The masked shadow pass of alpha MASK casters (none without them).
     shadow_masks: Option<ShadowMasks>,
+    /// The world bounding box of each object of the stream (for culling
+    /// the casters per shadow-map layer).
+    caster_bounds: Vec<(glam::DVec3, glam::DVec3)>,
+    /// Each shadow-map layer draws only the casters whose boxes reach its
+    /// frustum (src/gpu/shadow_culling.rs); default true. Off draws every
+    /// caster into every layer: the same maps, for tests and A/B timing.
+    pub cull_shadow_casters: bool,
     /// The shadow maps must be drawn before the next scene pass.
     shadows_stale: bool,
     /// The environment map, its uniform and the background pipeline.
@@ -94,6 +102,11 @@ struct Target {
 pub struct Drawn {
     /// Shadow-map layers rendered (0 when the maps were current).
     pub shadow_layers: usize,
+    /// Object draws the caster culling removed from those layers.
+    pub shadow_draws_culled: usize,
+    /// Object draws those layers would make without culling (objects ×
+    /// layers).
+    pub shadow_draws_total: usize,
 }
 
 impl PreparedScene {
@@ -206,6 +219,11 @@ impl PreparedScene {
             draw.layout.stride(),
         );
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
+        let caster_bounds = if shadows.is_some() {
+            shadow_culling::object_bounds(draw.objects())
+        } else {
+            Vec::new()
+        };
         let order = draw_order(draw.batches().len(), &blend_centers, scene);
         let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
         let textures = if key.texture_slots > 0 {
@@ -240,6 +258,8 @@ impl PreparedScene {
             plan,
             shadows,
             shadow_masks,
+            caster_bounds,
+            cull_shadow_casters: true,
             environment,
             textures,
         })
@@ -270,7 +290,7 @@ impl PreparedScene {
             || key.alpha_blend
             || self.key.alpha_blend
         {
-            let display_scale = self.display_scale;
+            let (display_scale, cull) = (self.display_scale, self.cull_shadow_casters);
             *self = Self::new(
                 ctx,
                 cache,
@@ -280,6 +300,7 @@ impl PreparedScene {
                 self.samples,
             )?;
             self.display_scale = display_scale;
+            self.cull_shadow_casters = cull;
             return Ok(());
         }
         cache.compile_scene(&key, layout, self.format, self.samples)?;
@@ -342,6 +363,9 @@ impl PreparedScene {
                 )
             });
             self.shadows_stale = self.shadows.is_some();
+            if self.shadows.is_some() && self.caster_bounds.is_empty() {
+                self.caster_bounds = shadow_culling::object_bounds(self.draw.objects());
+            }
             self.plan = plan;
         }
         self.lights = lights;
@@ -376,13 +400,19 @@ impl PreparedScene {
     pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, target: &FrameTarget) -> Drawn {
         let mut drawn = Drawn::default();
         if let (Some(shadows), true) = (&self.shadows, self.shadows_stale) {
+            let casters = self
+                .cull_shadow_casters
+                .then(|| LayerCasters::new(&self.plan, &self.caster_bounds));
             drawn.shadow_layers = shadows.encode(
                 encoder,
                 &self.plan,
                 &self.draw,
+                casters.as_ref(),
                 self.shadow_masks.as_ref(),
                 target.timestamps,
             );
+            drawn.shadow_draws_total = self.plan.layers.len() * self.draw.objects().len();
+            drawn.shadow_draws_culled = casters.map_or(0, |c| c.culled);
             self.shadows_stale = false;
         }
         let mut pass = draw::begin_scene_pass(encoder, target);

@@ -29,6 +29,9 @@ pub struct GpuRenderer {
     /// Whether shadow-map coordinates may be computed per vertex
     /// ([`ShaderKey::shadow_coords_per_vertex`]); default true.
     pub vertex_shadow_coords: bool,
+    /// Whether each shadow-map layer draws only the casters that reach
+    /// it ([`PreparedScene::cull_shadow_casters`]); default true.
+    pub cull_shadow_casters: bool,
 }
 
 impl GpuRenderer {
@@ -38,6 +41,7 @@ impl GpuRenderer {
             pipelines: PipelineCache::new(&ctx.device),
             ctx,
             vertex_shadow_coords: true,
+            cull_shadow_casters: true,
         }
     }
 
@@ -61,6 +65,7 @@ impl GpuRenderer {
             &self.ctx,
             &mut self.pipelines,
             self.vertex_shadow_coords,
+            self.cull_shadow_casters,
             scene,
         )
     }
@@ -74,6 +79,7 @@ impl GpuRenderer {
             &self.ctx,
             &mut self.pipelines,
             self.vertex_shadow_coords,
+            self.cull_shadow_casters,
             scene,
         )
     }
@@ -96,14 +102,16 @@ impl GpuRenderer {
         format: wgpu::TextureFormat,
         samples: u32,
     ) -> Result<PreparedScene> {
-        PreparedScene::new(
+        let mut prepared = PreparedScene::new(
             &self.ctx,
             &mut self.pipelines,
             self.vertex_shadow_coords,
             scene,
             format,
             samples,
-        )
+        )?;
+        prepared.cull_shadow_casters = self.cull_shadow_casters;
+        Ok(prepared)
     }
 
     /// Brings `prepared` up to date with `scene` ([`PreparedScene::update`]).

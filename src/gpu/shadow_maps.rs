@@ -7,9 +7,11 @@ use super::bind_groups;
 use super::bindings::{self, UniformArrays};
 use super::draw::SceneDraw;
 use super::pipelines::PipelineCache;
+use super::shadow_culling::LayerCasters;
 use super::shadow_masks::ShadowMasks;
 use super::shadows::{self, ShadowPlan};
 use crate::{Error, Result};
+use std::ops::Range;
 use wgpu::util::DeviceExt;
 
 /// The shadow-map array and the bind groups that read and fill it, and
@@ -153,14 +155,18 @@ impl ShadowMaps {
 
     /// Records one depth-only pass per layer of `plan` (the stream of
     /// `draw`, every face), with timestamps 2 and 3 around them all when
-    /// `timestamps` is given; returns the layers drawn. With `masks`, the
-    /// batches of alpha MASK materials are drawn by its pipeline, which
-    /// discards what MASK cuts out (src/gpu/shadow_masks.rs).
+    /// `timestamps` is given; returns the layers drawn. With `casters`,
+    /// each layer draws only the objects it lists
+    /// (src/gpu/shadow_culling.rs); without, the whole stream. With
+    /// `masks`, the draws of alpha MASK materials go through its
+    /// pipeline, which discards what MASK cuts out
+    /// (src/gpu/shadow_masks.rs).
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         plan: &ShadowPlan,
         draw: &SceneDraw,
+        casters: Option<&LayerCasters>,
         masks: Option<&ShadowMasks>,
         timestamps: Option<&wgpu::QuerySet>,
     ) -> usize {
@@ -191,23 +197,22 @@ impl ShadowMaps {
             });
             let size = layer.map_size as f32;
             pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+            let runs = runs(draw, casters.map(|c| c.layers[i].as_slice()), masks);
+            if runs.is_empty() {
+                continue;
+            }
             pass.set_pipeline(&self.pass_pipeline);
             pass.set_bind_group(0, &self.pass_group, &[]);
-            let layer = i as u32..i as u32 + 1;
-            let Some(masks) = masks else {
-                draw.draw_all(&mut pass, layer);
-                continue;
-            };
-            // Batch by batch: MASK ones with the masked pipeline and
-            // their group 1, the others depth-only (both layouts share
-            // group 0).
             draw.bind_geometry(&mut pass);
+            // MASK runs with the masked pipeline and their group 1, the
+            // others depth-only (both layouts share group 0).
             let mut masked = false;
-            for batch in draw.batches() {
-                match masks.group(batch.material) {
+            let layer = i as u32..i as u32 + 1;
+            for (range, material) in runs {
+                match material.and_then(|m| masks?.group(m)) {
                     Some(group) => {
                         if !masked {
-                            pass.set_pipeline(masks.pipeline());
+                            pass.set_pipeline(masks.expect("a group").pipeline());
                             masked = true;
                         }
                         pass.set_bind_group(1, group, &[]);
@@ -218,11 +223,48 @@ impl ShadowMaps {
                     }
                     None => {}
                 }
-                draw.draw_range(&mut pass, batch.range.clone(), layer.clone());
+                draw.draw_range(&mut pass, range, layer.clone());
             }
         }
         self.layer_views.len()
     }
+}
+
+/// The draws of one layer: `objects` of `draw`'s stream (all of it when
+/// `None`), consecutive ones merged into one range where they are
+/// contiguous and draw alike; each with its material where `masks` draws
+/// that material with the masked pipeline, `None` for the depth-only
+/// pipeline. A depth-only pass keeps the nearest depth whatever the draw
+/// order, so merging changes no texel.
+fn runs(
+    draw: &SceneDraw,
+    objects: Option<&[u32]>,
+    masks: Option<&ShadowMasks>,
+) -> Vec<(Range<u32>, Option<u32>)> {
+    let masked = |m: u32| masks.and_then(|k| k.group(m)).map(|_| m);
+    let items: Vec<(Range<u32>, Option<u32>)> = match objects {
+        Some(list) => list
+            .iter()
+            .map(|&o| {
+                let object = &draw.objects()[o as usize];
+                (object.range.clone(), masked(object.material))
+            })
+            .collect(),
+        None if masks.is_none() => vec![(0..draw.draw_count(), None)],
+        None => draw
+            .batches()
+            .iter()
+            .map(|b| (b.range.clone(), masked(b.material)))
+            .collect(),
+    };
+    let mut runs: Vec<(Range<u32>, Option<u32>)> = Vec::with_capacity(items.len());
+    for (range, material) in items {
+        match runs.last_mut() {
+            Some((last, m)) if last.end == range.start && *m == material => last.end = range.end,
+            _ => runs.push((range, material)),
+        }
+    }
+    runs
 }
 
 /// Refuses shadow maps the device cannot hold, naming the setting to

@@ -35,7 +35,8 @@
 //! comparison sampler (`GreaterEqual`: 1 where lit).
 
 use super::layout::{GpuLight, GpuShadowView};
-use crate::scene::{Light, Scene, ShadowFilter, ShadowSettings};
+use super::shadow_fit::ScreenSamples;
+use crate::scene::{Light, MapResolution, Scene, ShadowFilter, ShadowSettings};
 use glam::{DMat4, DVec3, DVec4};
 use std::collections::{BTreeSet, HashMap};
 
@@ -226,6 +227,8 @@ impl ShadowPlan {
             return plan;
         };
         let mut areas: HashMap<usize, LightShadow> = HashMap::new();
+        // The receivers on screen, traced once when some map is fitted.
+        let mut screen: Option<ScreenSamples> = None;
         for (l, light) in scene.lights.iter().enumerate() {
             if !light.casts_shadows() {
                 continue;
@@ -245,51 +248,30 @@ impl ShadowPlan {
                 plan.lights[l] = Some(*shared);
                 continue;
             }
-            let settings = scene.shadow_settings(l);
+            let mut settings = scene.shadow_settings(l);
             let projection = projection_of(light);
             let first_layer = plan.layers.len() as u32;
-            let map_size = settings.map_size;
-            let size = map_size as f64;
-            // Texels kept free around the light's region for the offset
-            // lookup point and the filter taps.
-            let margin = (settings.filter.kernel() as f64 / 2.0 + settings.normal_offset + 2.0)
-                .min(size / 4.0);
-            let widen = 1.0 / (1.0 - 2.0 * margin / size);
-            let (origin, texel) = match *light {
-                Light::Directional { direction, .. } => {
-                    let (clip_from_world, texel) = ortho_layer(direction, lo, hi, size, widen);
-                    plan.layers.push(ShadowLayer {
-                        clip_from_world,
-                        map_size,
-                    });
-                    (DVec3::ZERO, texel)
-                }
-                Light::Spot {
-                    position,
-                    direction,
-                    outer_cone_deg,
-                    ..
-                } if projection == Projection::Perspective => {
-                    let tan_half = outer_cone_deg.to_radians().tan().max(1e-3) * widen;
-                    let near = NEAR_OVER_FAR * far_corner(position, lo, hi);
-                    plan.layers.push(perspective_layer(
-                        position, direction, tan_half, near, map_size,
-                    ));
-                    (position, 2.0 * tan_half / size)
-                }
-                _ => {
-                    let origin = match *light {
-                        Light::AreaSample { center, area, .. } if !per_sample(area) => center,
-                        _ => light.position().unwrap_or_default(),
-                    };
-                    let near = NEAR_OVER_FAR * far_corner(origin, lo, hi);
-                    for forward in CUBE_FACES {
-                        plan.layers
-                            .push(perspective_layer(origin, forward, widen, near, map_size));
-                    }
-                    (origin, 2.0 * widen / size)
-                }
+            let origin = match *light {
+                Light::AreaSample { center, area, .. } if !per_sample(area) => center,
+                _ => light.position().unwrap_or_default(),
             };
+            let mut layers = light_layers(light, projection, origin, &settings, (lo, hi));
+            if let MapResolution::Fit { texels_per_pixel } = settings.resolution {
+                let screen = screen.get_or_insert_with(|| ScreenSamples::new(scene));
+                let cap = settings.map_size;
+                let at_cap = |x: DVec3| match projection {
+                    Projection::Ortho => layers.1,
+                    _ => layers.1 * (x - origin).length(),
+                };
+                let side = screen.fitted_side(light, at_cap, cap, texels_per_pixel);
+                if side != cap {
+                    settings.map_size = side;
+                    layers = light_layers(light, projection, origin, &settings, (lo, hi));
+                }
+            }
+            let (light_layers, texel) = layers;
+            plan.layers.extend(light_layers);
+            let map_size = settings.map_size;
             let shadow = LightShadow {
                 map: plan.casters.len() as u32,
                 projection,
@@ -356,6 +338,61 @@ impl ShadowPlan {
                 clip_from_world: l.clip_from_world.as_mat4().to_cols_array_2d(),
             })
             .collect()
+    }
+}
+
+/// The layers of `light`'s map at `settings.map_size` (its `projection`,
+/// centred on `origin` unless orthographic, over the scene bounds
+/// `(lo, hi)`), and the map's texel: the world size of one texel
+/// (orthographic) or per metre of distance from `origin`.
+fn light_layers(
+    light: &Light,
+    projection: Projection,
+    origin: DVec3,
+    settings: &ShadowSettings,
+    (lo, hi): (DVec3, DVec3),
+) -> (Vec<ShadowLayer>, f64) {
+    let map_size = settings.map_size;
+    let size = map_size as f64;
+    // Texels kept free around the light's region for the offset lookup
+    // point and the filter taps.
+    let margin =
+        (settings.filter.kernel() as f64 / 2.0 + settings.normal_offset + 2.0).min(size / 4.0);
+    let widen = 1.0 / (1.0 - 2.0 * margin / size);
+    match *light {
+        Light::Directional { direction, .. } => {
+            let (clip_from_world, texel) = ortho_layer(direction, lo, hi, size, widen);
+            (
+                vec![ShadowLayer {
+                    clip_from_world,
+                    map_size,
+                }],
+                texel,
+            )
+        }
+        Light::Spot {
+            position,
+            direction,
+            outer_cone_deg,
+            ..
+        } if projection == Projection::Perspective => {
+            let tan_half = outer_cone_deg.to_radians().tan().max(1e-3) * widen;
+            let near = NEAR_OVER_FAR * far_corner(position, lo, hi);
+            (
+                vec![perspective_layer(
+                    position, direction, tan_half, near, map_size,
+                )],
+                2.0 * tan_half / size,
+            )
+        }
+        _ => {
+            let near = NEAR_OVER_FAR * far_corner(origin, lo, hi);
+            let faces = CUBE_FACES
+                .iter()
+                .map(|&forward| perspective_layer(origin, forward, widen, near, map_size))
+                .collect();
+            (faces, 2.0 * widen / size)
+        }
     }
 }
 

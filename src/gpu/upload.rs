@@ -10,7 +10,7 @@
 //! submitted and waited for, so that the staging memory already copied is
 //! recycled: the upload holds at most a few MiB besides the buffers.
 
-use super::geometry::{Batch, Meshes, StreamPlan, VertexLayout, Words};
+use super::geometry::{Batch, Meshes, ObjectRange, StreamPlan, VertexLayout, Words};
 
 /// Words gathered before one `write_buffer` (a multiple of 4 bytes).
 pub const CHUNK_BYTES: usize = 1 << 20;
@@ -115,6 +115,8 @@ pub struct GpuGeometry {
     pub draw_count: u32,
     /// The stream's material runs, in order.
     pub batches: Vec<Batch>,
+    /// The stream's meshes with their bounds, in order (shadow culling).
+    pub objects: Vec<ObjectRange>,
     /// Bytes of vertex and index data.
     pub bytes: u64,
 }
@@ -157,6 +159,7 @@ impl GpuGeometry {
             draw_count: plan.draw_count,
             bytes: plan.vertex_bytes + plan.index_bytes,
             batches: plan.batches,
+            objects: plan.objects,
         }
     }
 }

@@ -192,6 +192,33 @@ pub struct ShadowSettings {
     /// towards the light).
     pub normal_offset: f64,
     pub filter: ShadowFilter,
+    /// Whether `map_size` is the side or the upper bound of a side fitted
+    /// to the screen (`src/gpu/shadow_fit.rs`).
+    pub resolution: MapResolution,
+}
+
+/// How a shadow map's side is chosen (`shadow_resolution`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MapResolution {
+    /// `map_size` texels (the default).
+    Fixed,
+    /// Fitted to the screen footprint of what the light reaches, at most
+    /// `map_size`: about `texels_per_pixel` map texels per pixel along
+    /// each axis.
+    Fit { texels_per_pixel: f64 },
+}
+
+impl MapResolution {
+    /// Accepted `texels_per_pixel`.
+    pub const TEXELS_PER_PIXEL: std::ops::RangeInclusive<f64> = 0.0625..=16.0;
+
+    /// The scene file's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            MapResolution::Fixed => "fixed",
+            MapResolution::Fit { .. } => "fit",
+        }
+    }
 }
 
 /// How the shadow map is filtered.
@@ -256,6 +283,7 @@ impl Default for ShadowSettings {
             slope_bias: 0.0,
             normal_offset: Self::default_normal_offset(filter),
             filter,
+            resolution: MapResolution::Fixed,
         }
     }
 }

@@ -21,7 +21,7 @@ pub mod texture;
 pub use area_light::AreaLight;
 pub use camera::Camera;
 pub use environment::Environment;
-pub use light::{Light, LightKind, ShadowFilter, ShadowSettings};
+pub use light::{Light, LightKind, MapResolution, ShadowFilter, ShadowSettings};
 pub use mesh::Mesh;
 
 use crate::base::named_enum;

@@ -443,6 +443,9 @@ mod tests {
             "lights.0.shadow_normal_offset=nan".to_string(),
             "shadows.map_size=1".to_string(),
             "shadows.imported=true".to_string(),
+            "lights.0.shadow_resolution=auto".to_string(),
+            "shadows.texels_per_pixel=2".to_string(),
+            "lights.0.shadow_texels_per_pixel=100".to_string(),
             area("shape = \"rect\", radius = 1.0"),
             area("shape = \"rect\", size = [1.0, 0.0]"),
             area("shape = \"disk\", radius = 1.0, samples = 0"),
@@ -455,6 +458,38 @@ mod tests {
             assert!(err.is_err(), "{kv} accepted");
             assert_eq!(err.unwrap_err().exit_code(), 2, "{kv}");
         }
+        for (sets, key) in [
+            (
+                ["shadows.resolution=fit", "shadows.texels_per_pixel=0"],
+                "texels_per_pixel",
+            ),
+            (
+                [
+                    "lights.0.shadow_resolution=fit",
+                    "lights.0.shadow_texels_per_pixel=17",
+                ],
+                "shadow_texels_per_pixel",
+            ),
+        ] {
+            let sets = sets.map(String::from);
+            let err = load(&SceneSource::BuiltIn, &sets).unwrap_err();
+            assert_eq!(err.exit_code(), 2, "{sets:?}");
+            assert!(err.to_string().contains(key), "{err}");
+        }
+        let fit = load(
+            &SceneSource::BuiltIn,
+            &[
+                "shadows.resolution=fit".into(),
+                "shadows.texels_per_pixel=0.5".into(),
+            ],
+        )
+        .unwrap();
+        assert_eq!(
+            fit.shadow_settings(0).resolution,
+            crate::scene::MapResolution::Fit {
+                texels_per_pixel: 0.5
+            }
+        );
     }
 
     #[test]
@@ -571,19 +606,25 @@ mod tests {
             normal_offset: Some(2.0),
             filter: Some("none".into()),
             pcf_kernel: Some(3),
+            resolution: Some("fit".into()),
+            texels_per_pixel: Some(0.5),
         };
         let section: Vec<_> = keys.to_toml(false);
         let entry: Vec<_> = keys.to_toml(true);
-        assert_eq!(section.len(), 6);
+        assert_eq!(section.len(), 8);
         for ((short, a), (long, b)) in section.iter().zip(&entry) {
             assert_eq!(format!("shadow_{short}"), *long);
             assert_eq!(a, b);
-            // Both spellings are keys the scene file accepts.
-            for set in [
-                format!("shadows.{short}={a}"),
-                format!("lights.0.{long}={a}"),
+            // Both spellings are keys the scene file accepts
+            // (texels_per_pixel only beside resolution = "fit").
+            for (set, fit) in [
+                (format!("shadows.{short}={a}"), "shadows.resolution=fit"),
+                (
+                    format!("lights.0.{long}={a}"),
+                    "lights.0.shadow_resolution=fit",
+                ),
             ] {
-                load(&SceneSource::BuiltIn, std::slice::from_ref(&set)).unwrap();
+                load(&SceneSource::BuiltIn, &[fit.to_string(), set]).unwrap();
             }
         }
     }

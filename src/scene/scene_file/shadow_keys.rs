@@ -1,7 +1,7 @@
 //! The shadow-map keys, defined once.
 //!
-//! Every `[[lights]]` entry takes `shadows` and six shadow-map keys
-//! (`shadow_map_size`, ...); `[shadows]` takes the same six without the
+//! Every `[[lights]]` entry takes `shadows` and eight shadow-map keys
+//! (`shadow_map_size`, ...); `[shadows]` takes the same eight without the
 //! prefix as the defaults of every entry that does not set its own. The
 //! one list below (`with_shadow_keys!`) generates the entries' fields,
 //! the `[shadows]` section, [`ShadowKeys`] (the six as one value, which
@@ -10,7 +10,7 @@
 //! derivations of the defaults: `docs/shadows.md`.
 
 use super::toml_value::TomlValue;
-use crate::scene::{ShadowFilter, ShadowSettings};
+use crate::scene::{MapResolution, ShadowFilter, ShadowSettings};
 use serde::Deserialize;
 
 /// Calls `$then! { { $args } rows }` with the one list of shadow-map keys;
@@ -27,6 +27,8 @@ macro_rules! with_shadow_keys {
             normal_offset shadow_normal_offset: f64,
             filter shadow_filter: String,
             pcf_kernel shadow_pcf_kernel: u32,
+            resolution shadow_resolution: String,
+            texels_per_pixel shadow_texels_per_pixel: f64,
         }
     };
 }
@@ -131,6 +133,43 @@ pub fn shadow_settings(
             ));
         }
     };
+    let resolution = match keys.resolution.as_deref() {
+        None | Some("fixed") => {
+            if let Some(t) = keys.texels_per_pixel {
+                return Err(format!(
+                    "{} = {t} applies only to fitted maps, and {} is \"fixed\" (the default); set {} = \"fit\" or remove {}",
+                    name("texels_per_pixel"),
+                    name("resolution"),
+                    name("resolution"),
+                    name("texels_per_pixel")
+                ));
+            }
+            MapResolution::Fixed
+        }
+        Some("fit") => {
+            let t = keys.texels_per_pixel.unwrap_or(1.0);
+            let range = MapResolution::TEXELS_PER_PIXEL;
+            if !(t.is_finite() && range.contains(&t)) {
+                return Err(format!(
+                    "{} = {t} is outside {}..={} (map texels per screen pixel along each axis)",
+                    name("texels_per_pixel"),
+                    range.start(),
+                    range.end()
+                ));
+            }
+            MapResolution::Fit {
+                texels_per_pixel: t,
+            }
+        }
+        Some(other) => {
+            return Err(format!(
+                "{} = \"{other}\" is not a shadow-map resolution; expected fixed (the side is {}) or fit (fitted to the screen, at most {})",
+                name("resolution"),
+                name("map_size"),
+                name("map_size")
+            ));
+        }
+    };
     let length = |key: &str, v: Option<f64>, default: f64, max: f64| match v {
         None => Ok(default),
         Some(v) if v.is_finite() && (0.0..=max).contains(&v) => Ok(v),
@@ -147,5 +186,6 @@ pub fn shadow_settings(
             1e3,
         )?,
         filter,
+        resolution,
     })
 }
