@@ -197,6 +197,10 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         counts: Default::default(),
         // The same buffers as the specialized shader: only the code differs.
         arrays: ShaderKey::new(scene, &ShadowPlan::new(scene)).arrays,
+        // Any light may have a range or sit on a surface, as an uber
+        // shader must allow.
+        light_range: true,
+        light_guard: true,
         vertex_shadow_coords: false,
         environment: false,
         environment_sampled: false,

@@ -198,9 +198,9 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
             speed_words(1.0 + gap),
             speed_words(1.0 + loop_gap),
             if gap <= 0.03 {
-                ": the generated shader has the scene's light count compiled in (`LoopCounts` in src/gpu/shader_gen/key.rs), so its loop unrolls like the hand-written one; the generic loop's cost is what that specialization saves"
+                ": the generated shader has the scene's light count compiled in (`LoopCounts` in src/gpu/shader_gen/key.rs), so its loop unrolls like the hand-written one, and the range window and zero-distance guard only where a light has them (`ShaderKey::light_range`, `light_guard`); the generic loop's cost is what that specialization saves"
             } else if loop_gap >= 0.5 * gap {
-                ", so the light loop, not the BRDF code, is most of the gap: specializing it (a loop unrolled for the scene's light count, the range window only where a light has a range) is what would close it"
+                ", so the light loop, not the BRDF code, is most of the gap: its light count, range window and zero-distance guard are specialized already (`LoopCounts`, `ShaderKey::light_range`, `light_guard`), so look at what remains of the loop body"
             } else {
                 ", so the light loop is not the main part of the gap"
             }

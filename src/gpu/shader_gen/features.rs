@@ -50,6 +50,13 @@ pub enum Feature {
     ShadowPixel,
     /// The light count is compiled in as `LIGHT_COUNT` (`light_count`).
     LightCount,
+    /// Some light has a glTF range: the inverse-square law's range window
+    /// is compiled (`light_range`; `ShaderKey::light_range`).
+    LightRange,
+    /// Some light may sit on a shaded point: the inverse-square law's
+    /// zero-distance guard is compiled (`light_guard`;
+    /// `ShaderKey::light_guard`).
+    LightGuard,
     /// The lights are a uniform array (`uniform_lights`; else storage).
     UniformLights,
     /// The shadow views are a uniform array (`uniform_shadow_views`).
@@ -119,6 +126,8 @@ impl Feature {
             ShadowVertex,
             ShadowPixel,
             LightCount,
+            LightRange,
+            LightGuard,
             UniformLights,
             UniformShadowViews,
             Display,
@@ -168,6 +177,8 @@ impl Feature {
             Feature::ShadowVertex => "shadow_vertex",
             Feature::ShadowPixel => "shadow_pixel",
             Feature::LightCount => "light_count",
+            Feature::LightRange => "light_range",
+            Feature::LightGuard => "light_guard",
             Feature::UniformLights => "uniform_lights",
             Feature::UniformShadowViews => "uniform_shadow_views",
             Feature::Display => "display",

@@ -22,6 +22,15 @@ pub struct ShaderKey {
     pub counts: LoopCounts,
     /// Which arrays are bound as uniform buffers (src/gpu/bindings.rs).
     pub arrays: UniformArrays,
+    /// Some light has a glTF range: the range window of the
+    /// inverse-square law is compiled (feature `light_range`); without,
+    /// every light's window is 1 and the code is left out.
+    pub light_range: bool,
+    /// Some light may coincide with a shaded point (`key::light_guard`): the
+    /// inverse-square law's zero-distance guard is compiled (feature
+    /// `light_guard`); without, no shaded point is at a light, `d² > 0`
+    /// and the guard could never fire.
+    pub light_guard: bool,
     /// Compute the shadow-map coordinates per vertex where the key allows
     /// it ([`ShaderKey::shadow_coords_per_vertex`]); `false`: always per
     /// pixel (for tests and measurements of the difference).
@@ -73,6 +82,38 @@ pub struct ShaderKey {
     /// all four and selecting by a uniform cost 9–13 % of the viewer's CPU
     /// time on lavapipe, docs/viewer.md). Offscreen modules ignore it.
     pub tone_map: crate::output::tone_map::ToneMap,
+}
+
+/// Whether some light of `scene` with a position (point, spot, area
+/// sample) may coincide with a point the GPU shades, so that its
+/// inverse-square law needs the zero-distance guard (`d² = 0`: no light
+/// instead of 0/0). A shaded point is interpolated between a triangle's
+/// corners, so it lies in the triangle's mesh's bounding box up to f32
+/// rounding (a few units in the last place of the coordinates, about
+/// 10⁻⁷ relative); a light outside every mesh's box grown by a margin
+/// far above that (10⁻⁴ of the box's size plus its largest coordinate)
+/// is at a distance of at least the margin from every shaded point, so
+/// its `d²` is positive and the guard would never fire. The guard stays
+/// for a light inside or on some box (an area light lying on a wall, a
+/// light inside a room): the per-mesh boxes are a cheap test, not the
+/// exact distance to the triangles. The left-out guard changes no
+/// pixel.
+pub fn light_guard(scene: &Scene) -> bool {
+    let boxes: Vec<_> = scene
+        .meshes
+        .iter()
+        .filter_map(|m| crate::scene::mesh::bounds(m.positions.iter().copied()))
+        .map(|(lo, hi)| {
+            let margin = 1e-4 * ((hi - lo).max_element() + lo.abs().max(hi.abs()).max_element());
+            (lo - margin, hi + margin)
+        })
+        .collect();
+    scene.lights.iter().filter_map(|l| l.position()).any(|p| {
+        !p.is_finite()
+            || boxes
+                .iter()
+                .any(|(lo, hi)| p.cmpge(*lo).all() && p.cmple(*hi).all())
+    })
 }
 
 /// The counts of the shader's loops, compiled in as WGSL constants so the
@@ -131,6 +172,14 @@ impl ShaderKey {
                 },
                 shadows,
                 arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
+                light_range: scene.lights.iter().any(|l| {
+                    matches!(
+                        l,
+                        crate::scene::Light::Point { range: Some(_), .. }
+                            | crate::scene::Light::Spot { range: Some(_), .. }
+                    )
+                }),
+                light_guard: light_guard(scene),
                 vertex_shadow_coords: true,
                 environment: scene.environment.map.is_some(),
                 environment_sampled: scene.environment.map.as_ref().is_some_and(|m| {
@@ -281,6 +330,12 @@ impl ShaderKey {
         if self.counts.lights > 0 {
             f.push(Feature::LightCount);
         }
+        if self.light_range {
+            f.push(Feature::LightRange);
+        }
+        if self.light_guard {
+            f.push(Feature::LightGuard);
+        }
         if self.shadows.pcf && self.counts.pcf_radius.is_some() {
             f.push(Feature::PcfUniform);
         }
@@ -348,5 +403,43 @@ impl ShaderKey {
                 ""
             }
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::scene_file::{self, SceneSource};
+
+    fn key_with_light(light: &str) -> ShaderKey {
+        let scene =
+            scene_file::load(&SceneSource::BuiltIn, &[format!("lights=[{light}]")]).unwrap();
+        ShaderKey::new(&scene, &ShadowPlan::new(&scene))
+    }
+
+    /// The guard and the range window are compiled exactly when a light
+    /// needs them: a light inside a mesh's box (the sphere's centre) or
+    /// on its boundary (the floor's plane) keeps the guard, one above
+    /// the scene does not; a range turns the window on.
+    #[test]
+    fn guard_and_range_window_only_where_a_light_has_them() {
+        let above = key_with_light(
+            r#"{kind="point", position=[3.0, 5.0, 3.0], intensity=[1.0, 1.0, 1.0]}"#,
+        );
+        assert!(!above.light_guard && !above.light_range);
+        let inside = key_with_light(
+            r#"{kind="point", position=[0.0, 1.0, 0.0], intensity=[1.0, 1.0, 1.0]}"#,
+        );
+        assert!(inside.light_guard);
+        let on_floor = key_with_light(
+            r#"{kind="spot", position=[0.5, 0.0, 2.0], direction=[0.0, 1.0, 0.0], intensity=[1.0, 1.0, 1.0], range=4.0}"#,
+        );
+        assert!(on_floor.light_guard && on_floor.light_range);
+        assert!(on_floor.features().contains(&Feature::LightGuard));
+        assert!(on_floor.features().contains(&Feature::LightRange));
+        let sun = key_with_light(
+            r#"{kind="directional", direction=[0.0, -1.0, 0.0], irradiance=[1.0, 1.0, 1.0]}"#,
+        );
+        assert!(!sun.light_guard && !sun.light_range);
     }
 }

@@ -96,6 +96,10 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     ..Default::default()
                 },
                 arrays: arrays(i % 2 == 0),
+                // The inverse-square law with and without its guard and
+                // range window, on alternate keys.
+                light_range: i % 2 == 0,
+                light_guard: i % 4 < 2,
                 vertex_shadow_coords: false,
                 environment: i % 3 == 0 || i % 6 == 5,
                 environment_sampled: i % 6 == 0,
@@ -135,6 +139,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                         pcf_radius: (i % 2 == 0).then_some(1),
                     },
                     arrays: arrays(pcf),
+                    light_range: pcf,
+                    light_guard: !pcf,
                     // Orthographic with PCF: the coordinates per vertex.
                     vertex_shadow_coords: pcf,
                     environment: pcf,
@@ -170,6 +176,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     pcf_radius: None,
                 },
                 arrays: arrays(uniform),
+                light_range: uniform,
+                light_guard: uniform,
                 vertex_shadow_coords: false,
                 environment: uniform,
                 environment_sampled: uniform,
