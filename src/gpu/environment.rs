@@ -280,8 +280,9 @@ pub fn background_pipeline(
     layouts: &EnvironmentLayouts,
     format: wgpu::TextureFormat,
     samples: u32,
+    tone_map: crate::output::tone_map::ToneMap,
 ) -> Result<wgpu::RenderPipeline> {
-    let wgsl = shader_gen::compose_background(Output::for_format(format));
+    let wgsl = shader_gen::compose_background(Output::for_format(format), tone_map);
     shader_gen::validate(&wgsl)
         .map_err(|e| Error::Gpu(format!("the background shader is invalid: {e}")))?;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -62,7 +62,15 @@ pub struct PipelineCache {
     /// Layouts with the environment's group 3, per [`UniformArrays`].
     environment_layouts: HashMap<UniformArrays, EnvironmentLayouts>,
     /// Background pipelines by arrays, colour format and samples.
-    backgrounds: HashMap<(UniformArrays, wgpu::TextureFormat, u32), wgpu::RenderPipeline>,
+    backgrounds: HashMap<
+        (
+            UniformArrays,
+            wgpu::TextureFormat,
+            u32,
+            crate::output::tone_map::ToneMap,
+        ),
+        wgpu::RenderPipeline,
+    >,
     /// Whether a scene of several BRDF variants is drawn by one pipeline
     /// that switches per material at run time instead of one specialized
     /// pipeline per variant ([`Self::specializations`]).
@@ -191,15 +199,16 @@ impl PipelineCache {
         arrays: UniformArrays,
         format: wgpu::TextureFormat,
         samples: u32,
+        tone_map: crate::output::tone_map::ToneMap,
     ) -> Result<wgpu::RenderPipeline> {
-        if let Some(p) = self.backgrounds.get(&(arrays, format, samples)) {
+        let cache_key = (arrays, format, samples, tone_map);
+        if let Some(p) = self.backgrounds.get(&cache_key) {
             return Ok(p.clone());
         }
         self.environment_layouts(arrays);
         let layouts = &self.environment_layouts[&arrays];
-        let pipeline = background_pipeline(&self.device, layouts, format, samples)?;
-        self.backgrounds
-            .insert((arrays, format, samples), pipeline.clone());
+        let pipeline = background_pipeline(&self.device, layouts, format, samples, tone_map)?;
+        self.backgrounds.insert(cache_key, pipeline.clone());
         Ok(pipeline)
     }
 

@@ -304,7 +304,10 @@ impl PreparedScene {
             return Ok(());
         }
         cache.compile_scene(&key, layout, self.format, self.samples)?;
-        if !self.environment.as_ref().is_some_and(|e| e.holds(scene)) {
+        // The background's module has the tone map compiled in.
+        if !self.environment.as_ref().is_some_and(|e| e.holds(scene))
+            || key.tone_map != self.key.tone_map
+        {
             self.environment =
                 prepare_environment(ctx, cache, &key, scene, self.format, self.samples)?;
         }
@@ -482,7 +485,7 @@ fn prepare_environment(
     if scene.environment.map.is_none() {
         return Ok(None);
     }
-    let background = cache.background(key.arrays, format, samples)?;
+    let background = cache.background(key.arrays, format, samples, key.tone_map)?;
     let layouts = cache.environment_layouts(key.arrays);
     GpuEnvironment::new(&ctx.device, &ctx.queue, layouts, background, scene)
 }

@@ -264,10 +264,14 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
 /// The background pass's module (shaders/environment_background.wgsl)
 /// writing `output`: the shared declarations, the environment map and the
 /// full-screen triangle.
-pub fn compose_background(output: Output) -> String {
+pub fn compose_background(output: Output, tone_map: crate::output::tone_map::ToneMap) -> String {
     let mut features = vec![Feature::Environment];
     features.extend(output.feature());
-    let mut out = common(&features);
+    let mut out = String::new();
+    if output == Output::Display {
+        let _ = writeln!(out, "const TONE_MAP: u32 = {}u;", tone_map.code());
+    }
+    out.push_str(&common(&features));
     out.push('\n');
     out.push_str(&file("environment.wgsl", &features));
     out.push('\n');

@@ -287,7 +287,9 @@ mod tests {
     #[test]
     fn the_background_validates() {
         for output in [Output::Radiance, Output::RadianceBits, Output::Display] {
-            validate(&compose_background(output)).unwrap();
+            for t in crate::output::tone_map::ToneMap::ALL {
+                validate(&compose_background(output, t)).unwrap();
+            }
         }
     }
 

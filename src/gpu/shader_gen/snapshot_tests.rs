@@ -93,6 +93,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         measured_network: false,
         energy_compensation: false,
         smith_beckmann_rational: false,
+        tone_map: Default::default(),
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -130,6 +131,7 @@ fn snapshot_everything() {
         measured_network: false,
         energy_compensation: true,
         smith_beckmann_rational: false,
+        tone_map: Default::default(),
     };
     check_snapshot("everything", &compose(&key));
 }

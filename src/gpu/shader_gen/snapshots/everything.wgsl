@@ -20,7 +20,7 @@ struct Globals {
     ambient: vec3<f32>,   // L_a: constant incoming ambient radiance
     display_scale: f32,   // 2^exposure, read only by display targets (target_output)
     env_zenith: vec3<f32>, // the environment a mirror reflects (scene::Environment)
-    tone_map: u32,        // image.tone_map (ToneMap::code), read only by display targets
+    tone_map: u32,        // image.tone_map (ToneMap::code); display modules use the constant TONE_MAP
     env_horizon: vec3<f32>,
     roughness_floor: f32, // Scene::roughness_floor, for textured lobe widths (textures.wgsl)
     env_ground: vec3<f32>,
