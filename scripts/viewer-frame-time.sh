@@ -88,7 +88,7 @@ done
 echo
 echo "| variant | gonio (median of rounds) | / unlit floor | bevy | gonio / bevy |"
 echo "| --- | --- | --- | --- | --- |"
-med() { tr ' ' '\n' | grep . | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+med() { tr ' ' '\n' | grep . | sort -g | awk '{a[NR]=$1} END {m = int((NR+1)/2); printf "%.2f\n", (NR % 2 ? a[m] : (a[m] + a[m+1]) / 2)}'; }
 floor=$(echo "${sum[gonio unlit floor]}" | med)
 for v in "${variants[@]}"; do
     g=$(echo "${sum[gonio $v]}" | med)
