@@ -16,7 +16,7 @@ use gonio::scene::scene_file::{self, SceneSource};
 fn culled(scene: &Scene) -> (usize, usize) {
     let plan = ShadowPlan::new(scene);
     let objects = GeometryData::new(scene, false, false).objects;
-    let casters = LayerCasters::new(&plan, &object_bounds(scene, &objects));
+    let casters = LayerCasters::new(&plan, &object_bounds(&objects));
     (casters.culled, plan.layers.len() * objects.len())
 }
 
