@@ -109,12 +109,25 @@ pub fn minimal_lambert_loop(scene: &Scene) -> HarnessShader {
         wgsl: format!(
             "{}{}{}{MINIMAL_LAMBERT_LOOP_WGSL}",
             common(scene),
-            sources::get("lights/inverse_square.wgsl"),
+            generic_inverse_square(),
             sources::get("lights/point.wgsl")
         ),
         inputs: Inputs::PositionNormal,
         key: specialized_key(scene),
     }
+}
+
+/// `shaders/lights/inverse_square.wgsl` as a generic light loop has it:
+/// with the range window and the zero-distance guard (the features a
+/// specialized key compiles only where a light needs them).
+fn generic_inverse_square() -> String {
+    let path = "lights/inverse_square.wgsl";
+    shader_gen::preprocess(
+        &format!("shaders/{path}"),
+        sources::get(path),
+        &[shader_gen::Feature::LightRange, shader_gen::Feature::LightGuard],
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// `shaders/common.wgsl` with the bindings the harness gives `scene`
