@@ -125,7 +125,10 @@ fn generic_inverse_square() -> String {
     shader_gen::preprocess(
         &format!("shaders/{path}"),
         sources::get(path),
-        &[shader_gen::Feature::LightRange, shader_gen::Feature::LightGuard],
+        &[
+            shader_gen::Feature::LightRange,
+            shader_gen::Feature::LightGuard,
+        ],
     )
     .unwrap_or_else(|e| panic!("{e}"))
 }
