@@ -54,8 +54,6 @@ pub struct PreparedScene {
     /// The order batches are drawn in: the others in stream order, then
     /// the BLEND ones back to front from the camera ([`draw_order`]).
     order: Vec<usize>,
-    /// The light data last uploaded, to tell whether the maps are stale.
-    lights: Vec<GpuLight>,
     plan: ShadowPlan,
     shadows: Option<ShadowMaps>,
     /// The masked shadow pass of alpha MASK casters (none without them).
@@ -253,7 +251,6 @@ impl PreparedScene {
             batch_pipelines,
             blend_centers,
             order,
-            lights,
             shadows_stale: shadows.is_some(),
             plan,
             shadows,
@@ -328,8 +325,6 @@ impl PreparedScene {
             },
             &lights,
         );
-        let lights_changed = bytemuck::cast_slice::<GpuLight, u8>(&self.lights)
-            != bytemuck::cast_slice::<GpuLight, u8>(&lights);
         let masks_changed = self.shadow_masks.as_ref().is_some_and(|m| {
             m.records() != super::shadow_masks::records(&scene.effective_materials())
         }) || (self.shadows.is_some()
@@ -340,12 +335,23 @@ impl PreparedScene {
                     crate::material::AlphaMode::Mask { .. }
                 )
             }));
-        if lights_changed
-            || plan != self.plan
-            || key.shadows != self.key.shadows
-            || arrays != self.key.arrays
-            || masks_changed
-        {
+        // A moved light with maps of the same shape rewrites their views
+        // (a light dragged or spinning in the viewer); anything else that
+        // changes the plan makes new maps. Either way they are drawn again;
+        // a change that leaves the plan as it was (a light's colour) does
+        // not touch them.
+        let reuse = !masks_changed
+            && self
+                .shadows
+                .as_ref()
+                .is_some_and(|s| s.holds(&plan, arrays, layout.stride()));
+        if reuse && plan != self.plan {
+            if let Some(shadows) = &self.shadows {
+                shadows.write_plan(&ctx.queue, &plan);
+            }
+            self.shadows_stale = true;
+            self.plan = plan;
+        } else if !reuse && (plan != self.plan || masks_changed || arrays != self.key.arrays) {
             self.shadows = ShadowMaps::new(
                 &ctx.device,
                 ctx.adapter_info.backend,
@@ -371,7 +377,6 @@ impl PreparedScene {
             }
             self.plan = plan;
         }
-        self.lights = lights;
         self.batch_pipelines = batch_pipelines(
             cache,
             &key,

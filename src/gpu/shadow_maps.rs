@@ -16,11 +16,38 @@ use wgpu::util::DeviceExt;
 
 /// The shadow-map array and the bind groups that read and fill it, and
 /// the depth-only pipeline that fills it.
+///
+/// The layer views live in two buffers: the depth passes read `views`,
+/// the plan's matrices as they are; the scene pass reads `scene_views`,
+/// a copy made when the maps are drawn in which every skipped layer
+/// (a cube face or spot map no caster reaches, see [`ShadowMaps::encode`])
+/// has an all-zero matrix. Its clip `w` is then 0, and the perspective
+/// lookup returns "lit" for `w ≤ 0` (shaders/shadows.wgsl `shadow_read`)
+/// before it reads a texel: what every tap of the cleared layer would
+/// have returned (a cleared texel holds 0, "nothing here", and the
+/// comparison `d ≥ 0` passes). So a skipped layer costs neither its clear
+/// nor its pass, and the image is the one every layer drawn gives.
 pub struct ShadowMaps {
     layer_views: Vec<wgpu::TextureView>,
     scene_group: wgpu::BindGroup,
     pass_group: wgpu::BindGroup,
     pass_pipeline: wgpu::RenderPipeline,
+    views: wgpu::Buffer,
+    scene_views: wgpu::Buffer,
+    casters: wgpu::Buffer,
+    /// What the texture and the buffers were made for:
+    /// [`ShadowMaps::holds`].
+    shape: Shape,
+}
+
+/// The sizes a [`ShadowMaps`] was made for: a plan of the same shape
+/// reuses it ([`ShadowMaps::write_plan`]) instead of allocating anew.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Shape {
+    side: u32,
+    layers: usize,
+    arrays: UniformArrays,
+    stride: u64,
 }
 
 /// Layers of the shadow-map texture for `plan`'s maps: one per map, and
@@ -80,17 +107,24 @@ impl ShadowMaps {
                 usage,
             })
         };
-        // The views are read by the scene pass (uniform or storage, as
-        // `arrays` says) and by the depth passes (storage).
+        // The depth passes read `views` (storage), the scene pass its copy
+        // `scene_views` (uniform or storage, as `arrays` says).
+        let view_bytes = bind_groups::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views);
+        let copy = wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC;
         let views_buffer = init(
             "shadow views",
-            &bind_groups::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views),
-            bindings::usage(arrays.shadow_views) | wgpu::BufferUsages::STORAGE,
+            &view_bytes,
+            wgpu::BufferUsages::STORAGE | copy,
+        );
+        let scene_views = init(
+            "shadow views (scene pass)",
+            &view_bytes,
+            bindings::usage(arrays.shadow_views) | copy,
         );
         let casters_buffer = init(
             "shadow casters",
             &bind_groups::caster_bytes(&plan.casters),
-            wgpu::BufferUsages::UNIFORM,
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         );
         let layer_views = (0..plan.layers.len() as u32)
             .map(|layer| {
@@ -123,7 +157,7 @@ impl ShadowMaps {
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
-                    resource: views_buffer.as_entire_binding(),
+                    resource: scene_views.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
                     binding: 3,
@@ -144,7 +178,40 @@ impl ShadowMaps {
             scene_group,
             pass_group,
             pass_pipeline: cache.shadow_pass(stride).clone(),
+            views: views_buffer,
+            scene_views,
+            casters: casters_buffer,
+            shape: Shape {
+                side: plan.side,
+                layers: plan.layers.len(),
+                arrays,
+                stride,
+            },
         })
+    }
+
+    /// Whether `plan` fits these maps as they are: the same side and
+    /// layers, bound the same way, filled from a stream of `stride`
+    /// bytes. Then [`ShadowMaps::write_plan`] takes it, and a moving light
+    /// costs no new 2D array (24 MiB for a cube of 1024² per light, which
+    /// lavapipe allocates and zeroes in host memory) every frame.
+    pub fn holds(&self, plan: &ShadowPlan, arrays: UniformArrays, stride: u64) -> bool {
+        self.shape
+            == Shape {
+                side: plan.side,
+                layers: plan.layers.len(),
+                arrays,
+                stride,
+            }
+    }
+
+    /// Writes `plan`'s layer views and casters, for a plan these maps
+    /// [`hold`](ShadowMaps::holds); the maps must then be drawn again.
+    pub fn write_plan(&self, queue: &wgpu::Queue, plan: &ShadowPlan) {
+        let views =
+            bind_groups::shadow_view_bytes(&plan.gpu_views(), self.shape.arrays.shadow_views);
+        queue.write_buffer(&self.views, 0, &views);
+        queue.write_buffer(&self.casters, 0, &bind_groups::caster_bytes(&plan.casters));
     }
 
     /// Group 1 of the scene pass: the maps, the comparison sampler, the
@@ -153,13 +220,17 @@ impl ShadowMaps {
         &self.scene_group
     }
 
-    /// Records one depth-only pass per layer of `plan` (the stream of
-    /// `draw`, every face), with timestamps 2 and 3 around them all when
-    /// `timestamps` is given; returns the layers drawn. With `casters`,
-    /// each layer draws only the objects it lists
-    /// (src/gpu/shadow_culling.rs); without, the whole stream. With
-    /// `masks`, the draws of alpha MASK materials go through its
-    /// pipeline, which discards what MASK cuts out
+    /// Records the depth-only passes of `plan`'s layers (the stream of
+    /// `draw`), with timestamps 2 and 3 around them all when `timestamps`
+    /// is given; returns the layers drawn. With `casters`, each layer
+    /// draws only the objects it lists (src/gpu/shadow_culling.rs), and a
+    /// perspective layer (cube face, spot) that lists none is skipped,
+    /// clear included: the scene pass reads it as lit through its zeroed
+    /// view (see [`ShadowMaps`]). An orthographic layer is always drawn
+    /// (its lookup has no `w` to test; a sun's map is fitted to the scene,
+    /// so it is never empty). Without `casters`, every layer draws the
+    /// whole stream. With `masks`, the draws of alpha MASK materials go
+    /// through its pipeline, which discards what MASK cuts out
     /// (src/gpu/shadow_masks.rs).
     pub fn encode(
         &self,
@@ -170,20 +241,40 @@ impl ShadowMaps {
         masks: Option<&ShadowMasks>,
         timestamps: Option<&wgpu::QuerySet>,
     ) -> usize {
-        let last = self.layer_views.len() - 1;
-        for (i, (layer, view)) in plan.layers.iter().zip(&self.layer_views).enumerate() {
+        let skippable = plan.layers_read_lit_when_zeroed();
+        let layer_runs: Vec<_> = (0..plan.layers.len())
+            .map(|i| runs(draw, casters.map(|c| c.layers[i].as_slice()), masks))
+            .collect();
+        let skipped: Vec<bool> = (0..plan.layers.len())
+            .map(|i| skippable[i] && layer_runs[i].is_empty())
+            .collect();
+        // The scene pass's views: the plan's, the skipped layers zeroed.
+        let view_size = size_of::<super::layout::GpuShadowView>() as u64;
+        encoder.copy_buffer_to_buffer(&self.views, 0, &self.scene_views, 0, self.views.size());
+        for i in (0..plan.layers.len()).filter(|&i| skipped[i]) {
+            encoder.clear_buffer(&self.scene_views, i as u64 * view_size, Some(view_size));
+        }
+        let mut drawn: Vec<usize> = (0..plan.layers.len()).filter(|&i| !skipped[i]).collect();
+        // The timestamps need a pass: with every layer skipped, layer 0's
+        // clear carries them (its view stays zeroed).
+        let clear_only = drawn.is_empty() && timestamps.is_some();
+        if clear_only {
+            drawn.push(0);
+        }
+        let (first, last) = (drawn.first().copied(), drawn.last().copied());
+        for &i in &drawn {
             let timestamp_writes = timestamps.and_then(|set| {
-                (i == 0 || i == last).then_some(wgpu::RenderPassTimestampWrites {
+                (Some(i) == first || Some(i) == last).then_some(wgpu::RenderPassTimestampWrites {
                     query_set: set,
-                    beginning_of_pass_write_index: (i == 0).then_some(2),
-                    end_of_pass_write_index: (i == last).then_some(3),
+                    beginning_of_pass_write_index: (Some(i) == first).then_some(2),
+                    end_of_pass_write_index: (Some(i) == last).then_some(3),
                 })
             });
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow map"),
                 color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view,
+                    view: &self.layer_views[i],
                     depth_ops: Some(wgpu::Operations {
                         // Reversed depth: 0 is "nothing here".
                         load: wgpu::LoadOp::Clear(0.0),
@@ -195,10 +286,10 @@ impl ShadowMaps {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            let size = layer.map_size as f32;
+            let size = plan.layers[i].map_size as f32;
             pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
-            let runs = runs(draw, casters.map(|c| c.layers[i].as_slice()), masks);
-            if runs.is_empty() {
+            let runs = &layer_runs[i];
+            if runs.is_empty() || clear_only {
                 continue;
             }
             pass.set_pipeline(&self.pass_pipeline);
@@ -223,10 +314,10 @@ impl ShadowMaps {
                     }
                     None => {}
                 }
-                draw.draw_range(&mut pass, range, layer.clone());
+                draw.draw_range(&mut pass, range.clone(), layer.clone());
             }
         }
-        self.layer_views.len()
+        if clear_only { 0 } else { drawn.len() }
     }
 }
 

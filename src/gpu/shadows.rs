@@ -330,6 +330,21 @@ impl ShadowPlan {
         g.shadow_array_texel = 1.0 / self.side.max(1) as f32;
     }
 
+    /// Per layer: whether its lookup reads "lit" from an all-zero view
+    /// matrix, as it would from a cleared layer (perspective and cube
+    /// layers test clip `w ≤ 0` first; an orthographic layer does not).
+    /// The layers [`super::shadow_maps::ShadowMaps::encode`] may skip.
+    pub fn layers_read_lit_when_zeroed(&self) -> Vec<bool> {
+        let mut lit = vec![false; self.layers.len()];
+        for s in self.lights.iter().flatten() {
+            let first = s.first_layer as usize;
+            for l in &mut lit[first..first + s.projection.layers() as usize] {
+                *l = s.projection != Projection::Ortho;
+            }
+        }
+        lit
+    }
+
     /// The layers as the GPU reads them.
     pub fn gpu_views(&self) -> Vec<GpuShadowView> {
         self.layers
