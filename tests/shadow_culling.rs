@@ -1,7 +1,9 @@
 //! Caster culling per shadow-map layer (src/gpu/shadow_culling.rs) changes
 //! no texel: scenes whose cube faces really skip casters render exactly
 //! (bit for bit, every channel of every pixel) as with every caster drawn
-//! into every face.
+//! into every face. That includes the faces culling leaves empty, which
+//! are not drawn at all (src/gpu/shadow_maps.rs: the scene pass reads them
+//! as lit through a zeroed view).
 
 mod common;
 
@@ -81,6 +83,16 @@ fn four_point_lights_on_the_built_in_scene_render_the_same_culled() {
         ],
     )
     .unwrap();
+    // The upward faces of lights above everything see no caster: the
+    // culled render skips them.
+    let plan = ShadowPlan::new(&scene);
+    let objects = GeometryData::new(&scene, false, false).objects;
+    let casters = LayerCasters::new(&plan, &object_bounds(&objects));
+    let empty = casters.layers.iter().filter(|l| l.is_empty()).count();
+    assert!(
+        empty > 0,
+        "no empty face: the skipped-layer path is not tested"
+    );
     same_with_and_without(&scene, "built-in, 4 point lights");
 }
 

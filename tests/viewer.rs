@@ -301,13 +301,22 @@ fn scripted_panel_edits_reach_the_shader() {
         "--frames",
         "6",
     ];
-    let scripted: Vec<String> = edits.iter().map(|e| format!("3:{e}")).collect();
+    // Frame 5 moves the shadowed light after its maps were drawn: the maps
+    // keep their array and take the new views (src/gpu/shadow_maps.rs
+    // `write_plan`), and must show the moved light's shadows.
+    let moved = "lights.0.position=[-2.0, 4.0, 2.5]";
+    let mut scripted: Vec<String> = edits.iter().map(|e| format!("3:{e}")).collect();
+    scripted.push(format!("5:{moved}"));
     for e in &scripted {
         args.extend(["--edit", e.as_str()]);
     }
     let shot = dir.path().join("edited.png");
     let area = view(&args, &shot);
-    let sets: Vec<&str> = edits.iter().flat_map(|e| ["--set", *e]).collect();
+    let sets: Vec<&str> = edits
+        .iter()
+        .chain([&moved])
+        .flat_map(|e| ["--set", *e])
+        .collect();
     let edited = dir.path().join("edited-render.png");
     render(&sets, area.2, area.3, &edited);
     assert_matches(&shot, area, &edited, "edited");
