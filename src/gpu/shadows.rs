@@ -556,6 +556,10 @@ mod tests {
         assert_eq!(maps, [0, 0, 0, 0, 1]);
         assert_eq!(plan.casters, [0, 4]);
         assert_eq!(plan.lights[4].unwrap().projection, Projection::Ortho);
+        // The cube's faces may be skipped when empty, the sun's map not.
+        let mut skippable = vec![true; 6];
+        skippable.push(false);
+        assert_eq!(plan.layers_read_lit_when_zeroed(), skippable);
         scene.lights.iter_mut().for_each(|l| l.set_shadows(false));
         assert!(ShadowPlan::new(&scene).is_empty());
         assert!(!ShadowFeatures::for_scene(&scene).any());
