@@ -86,14 +86,18 @@ for round in $(seq "$rounds"); do
     done
 done
 echo
-echo "| variant | gonio (median of rounds) | / unlit floor | bevy | gonio / bevy |"
+# Issue 18's targets beside each figure: the shadowed frame at most 4x the
+# unlit floor, and at most 0.2 of Bevy's frame (static and moving lights).
+echo "| variant | gonio (median of rounds) | / unlit floor (target <= 4) | bevy | gonio / bevy (target <= 0.2) |"
 echo "| --- | --- | --- | --- | --- |"
 med() { tr ' ' '\n' | grep . | sort -g | awk '{a[NR]=$1} END {m = int((NR+1)/2); printf "%.2f\n", (NR % 2 ? a[m] : (a[m] + a[m+1]) / 2)}'; }
 floor=$(echo "${sum[gonio unlit floor]}" | med)
 for v in "${variants[@]}"; do
     g=$(echo "${sum[gonio $v]}" | med)
     b=$( [[ -n "${sum[bevy $v]:-}" ]] && echo "${sum[bevy $v]}" | med || echo "")
-    ratio=$(awk -v g="$g" -v f="$floor" 'BEGIN {printf "%.2f", g / f}')
-    vs=$( [[ -n "$b" ]] && awk -v g="$g" -v b="$b" 'BEGIN {printf "%.3f", g / b}' || echo "–")
+    ratio=$(awk -v g="$g" -v f="$floor" -v v="$v" 'BEGIN {
+        r = g / f; printf "%.2f", r; if (v != "unlit floor") printf (r <= 4 ? " met" : " missed")}')
+    vs=$( [[ -n "$b" ]] && awk -v g="$g" -v b="$b" 'BEGIN {
+        r = g / b; printf "%.3f %s", r, (r <= 0.2 ? "met" : "missed")}' || echo "–")
     echo "| $v | $g ms | $ratio | ${b:-–}${b:+ ms} | $vs |"
 done
