@@ -340,18 +340,17 @@ impl PreparedScene {
         // changes the plan makes new maps. Either way they are drawn again;
         // a change that leaves the plan as it was (a light's colour) does
         // not touch them.
-        let reuse = !masks_changed
-            && self
-                .shadows
-                .as_ref()
-                .is_some_and(|s| s.holds(&plan, arrays, layout.stride()));
-        if reuse && plan != self.plan {
-            if let Some(shadows) = &self.shadows {
+        let reusable = self
+            .shadows
+            .as_ref()
+            .filter(|s| !masks_changed && s.holds(&plan, arrays, layout.stride()));
+        if let Some(shadows) = reusable {
+            if plan != self.plan {
                 shadows.write_plan(&ctx.queue, &plan);
+                self.shadows_stale = true;
+                self.plan = plan;
             }
-            self.shadows_stale = true;
-            self.plan = plan;
-        } else if !reuse && (plan != self.plan || masks_changed || arrays != self.key.arrays) {
+        } else if plan != self.plan || masks_changed || arrays != self.key.arrays {
             self.shadows = ShadowMaps::new(
                 &ctx.device,
                 ctx.adapter_info.backend,

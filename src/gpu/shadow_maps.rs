@@ -109,7 +109,7 @@ impl ShadowMaps {
         };
         // The depth passes read `views` (storage), the scene pass its copy
         // `scene_views` (uniform or storage, as `arrays` says).
-        let view_bytes = bind_groups::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views);
+        let view_bytes = view_bytes(plan, arrays);
         let copy = wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC;
         let views_buffer = init(
             "shadow views",
@@ -208,9 +208,7 @@ impl ShadowMaps {
     /// Writes `plan`'s layer views and casters, for a plan these maps
     /// [`hold`](ShadowMaps::holds); the maps must then be drawn again.
     pub fn write_plan(&self, queue: &wgpu::Queue, plan: &ShadowPlan) {
-        let views =
-            bind_groups::shadow_view_bytes(&plan.gpu_views(), self.shape.arrays.shadow_views);
-        queue.write_buffer(&self.views, 0, &views);
+        queue.write_buffer(&self.views, 0, &view_bytes(plan, self.shape.arrays));
         queue.write_buffer(&self.casters, 0, &bind_groups::caster_bytes(&plan.casters));
     }
 
@@ -319,6 +317,11 @@ impl ShadowMaps {
         }
         if clear_only { 0 } else { drawn.len() }
     }
+}
+
+/// `plan`'s layer views as the buffers hold them (`arrays` says how).
+fn view_bytes(plan: &ShadowPlan, arrays: UniformArrays) -> Vec<u8> {
+    bind_groups::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views)
 }
 
 /// The draws of one layer: `objects` of `draw`'s stream (all of it when
