@@ -1,6 +1,12 @@
 //! The headline ratios, each measured in one run with its two sides
 //! interleaved frame by frame (A, B, A, B, ...), so that a slow stretch of
-//! a shared machine slows both sides alike.
+//! a shared machine slows both sides alike. Each ratio is taken per round
+//! (the two sides' frames of the same round, a few milliseconds apart) and
+//! its median over the rounds is the reported value, with the quartiles
+//! of the per-round ratios as its spread: a drift of the machine's load
+//! over the run then cancels within each round, which a ratio of the two
+//! sides' overall medians does not guarantee (the quick and full runs of
+//! the same build gave 1.012 and 1.046 that way).
 
 use super::floors;
 use super::harness::{Harness, HarnessShader};
@@ -13,7 +19,7 @@ use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
 
-/// A measured ratio `numerator / denominator` of medians, with its target.
+/// A measured ratio `numerator / denominator`, with its target.
 #[derive(Clone, Debug)]
 pub struct Ratio {
     pub name: String,
@@ -21,6 +27,9 @@ pub struct Ratio {
     pub denominator: String,
     pub num: Stats,
     pub den: Stats,
+    /// The ratio of each interleaved round ([`per_round`]); `n = 0` where
+    /// the sides are not paired round by round.
+    pub rounds: Stats,
     /// The target: the ratio must be at most this.
     pub target: Option<f64>,
     /// What the reader needs to interpret it (why it misses, what else
@@ -29,8 +38,14 @@ pub struct Ratio {
 }
 
 impl Ratio {
+    /// The median of the per-round ratios, or the ratio of the medians
+    /// where the sides are not paired.
     pub fn value(&self) -> f64 {
-        self.num.median / self.den.median
+        if self.rounds.n > 0 {
+            self.rounds.median
+        } else {
+            self.num.median / self.den.median
+        }
     }
 
     /// "pass", a miss in words ([`miss`]) or "" without a target.
@@ -73,6 +88,14 @@ pub fn speed_words(ratio: f64) -> String {
     }
 }
 
+/// Median and quartiles of `num[i] / den[i]`: the ratio of each
+/// interleaved round (see the module docs).
+pub fn per_round(num: &[f64], den: &[f64]) -> Stats {
+    debug_assert_eq!(num.len(), den.len(), "sides of unequal rounds");
+    let ratios: Vec<f64> = num.iter().zip(den).map(|(a, b)| a / b).collect();
+    Stats::of(&ratios)
+}
+
 /// How much work a ratio measurement does.
 #[derive(Clone, Copy, Debug)]
 pub struct Effort {
@@ -113,7 +136,7 @@ fn interleave_harness(
     a: &Harness,
     b: &Harness,
     effort: Effort,
-) -> Result<(Stats, Stats)> {
+) -> Result<(Vec<f64>, Vec<f64>)> {
     let (mut ta, mut tb) = (Vec::new(), Vec::new());
     for i in 0..effort.warmup + effort.fine_repeats {
         let (mut x, mut y) = (0.0, 0.0);
@@ -128,7 +151,7 @@ fn interleave_harness(
             tb.push(y);
         }
     }
-    Ok((Stats::of(&ta), Stats::of(&tb)))
+    Ok((ta, tb))
 }
 
 /// Specialized vs hand-minimal, on the built-in scene with the sphere
@@ -179,17 +202,21 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
     let (diff, _) = measure::error(&minimal.frame(renderer.context())?, &ours);
     let (diff_special, _) = measure::error(&special.frame(renderer.context())?, &ours);
     let (diff_loop, _) = measure::error(&looped.frame(renderer.context())?, &ours);
+    let shader_rounds = per_round(&generated, &hand);
+    let loop_rounds = per_round(&hand_loop, &hand);
+    let product_rounds = per_round(&product, &hand);
     let hand = Stats::of(&hand);
     let hand_loop = Stats::of(&hand_loop);
     let generated = Stats::of(&generated);
-    let gap = generated.median / hand.median - 1.0;
-    let loop_gap = hand_loop.median / hand.median - 1.0;
+    let gap = shader_rounds.median - 1.0;
+    let loop_gap = loop_rounds.median - 1.0;
     let shader = Ratio {
         name: "specialized scene / hand-minimal shader".into(),
         numerator: format!("generated shader ({})", key.describe()),
         denominator: "hand-written Lambert + one point light shader".into(),
         num: generated,
         den: hand,
+        rounds: shader_rounds,
         target: Some(1.03),
         note: format!(
             "built-in scene with the sphere Lambertian, {}x{}; both drawn by the bench's pass over the renderer's vertex stream and buffers, so only the shader differs; images differ from the renderer's by {diff_special:.1e} (generated) and {diff:.1e} (hand-written) relative RMS. The generated shader is {}; the hand-written shader with the generated shader's generic light loop (every light read from the lights buffer in a loop over `light_count`, the inverse-square law with its optional range window and zero-distance guard) is {}{}",
@@ -212,6 +239,7 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
         denominator: "hand-written Lambert + one point light shader".into(),
         num: Stats::of(&product),
         den: hand,
+        rounds: product_rounds,
         target: None,
         note: "the renderer's own pass: it allocates its colour and depth targets every frame, whose first touch falls inside the pass".into(),
     };
@@ -221,6 +249,7 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
         denominator: "hand-written Lambert + one point light shader".into(),
         num: hand_loop,
         den: hand,
+        rounds: loop_rounds,
         target: None,
         note: format!(
             "how much of the specialization gap is the generic light loop alone (the rest: frame, f_r wrapper, dispatch); image differs from the renderer's by {diff_loop:.1e}"
@@ -264,8 +293,9 @@ pub fn uber_vs_specialized(
                 uber_key.light_kinds.len()
             ),
             denominator: format!("specialized: {}", special_key.describe()),
-            num: uber_ms,
-            den: special_ms,
+            num: Stats::of(&uber_ms),
+            den: Stats::of(&special_ms),
+            rounds: per_round(&uber_ms, &special_ms),
             target: None,
             note: format!(
                 "scene pass only, no shadow code in either; the images differ by {diff:.1e} relative RMS{}",
@@ -405,7 +435,8 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
     };
     let fitted_sides = sides_of(&crate::gpu::shadows::ShadowPlan::new(&fitted_scene));
     let (w, h) = effort.hd;
-    let floor = Stats::of(&floor);
+    let floor_ms = floor;
+    let floor = Stats::of(&floor_ms);
     let shadow_ms: Vec<f64> = frames[0]
         .iter()
         .zip(&passes[0])
@@ -419,6 +450,7 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
         denominator: "unlit pass over the same vertex stream".into(),
         num: Stats::of(&frames[side]),
         den: floor,
+        rounds: per_round(&frames[side], &floor_ms),
         target,
         note,
     };
@@ -461,6 +493,7 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
         denominator: "unlit pass over the same vertex stream".into(),
         num: pass_stats,
         den: floor,
+        rounds: per_round(&passes[0], &floor_ms),
         target: None,
         note: String::new(),
     };
@@ -508,6 +541,7 @@ pub fn cold(dir: &Path, effort: Effort, adapter: Option<&str>) -> Result<Ratio> 
         denominator: "one triangle to PNG (device, pipeline, draw, readback, encode, write), fresh process of the same binary".into(),
         num: Stats::of(&a),
         den: Stats::of(&b),
+        rounds: per_round(&a, &b),
         target: Some(1.5),
         note: "both pay process start, Vulkan instance and lavapipe device creation; the render adds scene building, shader generation and compilation, and 640x480 shading".into(),
     })
@@ -530,5 +564,37 @@ mod wording_tests {
         assert_eq!(speed_words(1.12), "12 % slower");
         assert_eq!(speed_words(2.4), "2.4× as slow");
         assert_eq!(speed_words(1.001), "as fast");
+    }
+}
+
+#[cfg(test)]
+mod per_round_tests {
+    use super::{Ratio, Stats, per_round};
+
+    /// A load drift that moves both sides of each round alike leaves the
+    /// per-round ratio alone, while the ratio of the sides' medians picks
+    /// up whichever round the medians fall in.
+    #[test]
+    fn the_value_is_the_median_of_the_rounds_ratios() {
+        let (num, den) = ([1.0, 2.2, 3.0], [1.0, 2.0, 3.3]);
+        let rounds = per_round(&num, &den);
+        assert_eq!((rounds.median, rounds.n), (1.0, 3));
+        let ratio = Ratio {
+            name: String::new(),
+            numerator: String::new(),
+            denominator: String::new(),
+            num: Stats::of(&num),
+            den: Stats::of(&den),
+            rounds,
+            target: Some(1.03),
+            note: String::new(),
+        };
+        assert_eq!(ratio.value(), 1.0);
+        assert_eq!(ratio.verdict(), "pass");
+        let unpaired = Ratio {
+            rounds: Stats::default(),
+            ..ratio
+        };
+        assert!((unpaired.value() - 1.1).abs() < 1e-12);
     }
 }

@@ -189,9 +189,14 @@ fn slope_text(v: f64) -> String {
 /// One row of the ratio table.
 pub fn ratio_row(r: &Ratio) -> String {
     format!(
-        "| {} | **{:.3}** | {} | {} | {} ms [{}–{}], n = {} | {} ms [{}–{}] |",
+        "| {} | **{:.3}**{} | {} | {} | {} ms [{}–{}], n = {} | {} ms [{}–{}] |",
         r.name,
         r.value(),
+        if r.rounds.n > 0 {
+            format!(" [{:.3}–{:.3}]", r.rounds.q1, r.rounds.q3)
+        } else {
+            String::new()
+        },
         r.target
             .map(|t| format!("≤ {t}"))
             .unwrap_or_else(|| "–".into()),
@@ -274,7 +279,7 @@ pub fn markdown(r: &BenchReport) -> String {
     let _ = writeln!(o, "## Targets\n");
     let _ = writeln!(
         o,
-        "Each ratio's two sides are measured in the same run, interleaved frame by frame in rotating order; values are medians [quartiles] over n frames per side.\n\n| ratio | value | target | verdict | numerator | denominator |\n| --- | --- | --- | --- | --- | --- |"
+        "Each ratio's two sides are measured in the same run, interleaved frame by frame in rotating order; the value is the median [quartiles] of the ratio taken in each round (the two sides' frames of one round), the sides' times medians [quartiles] over n frames per side.\n\n| ratio | value | target | verdict | numerator | denominator |\n| --- | --- | --- | --- | --- | --- |"
     );
     for x in &r.ratios {
         let _ = writeln!(o, "{}", ratio_row(x));
