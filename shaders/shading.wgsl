@@ -18,7 +18,8 @@
 // normal for gouraud) (`#if shadow_pixel`), or, when the vertex shader
 // computed the one map's coordinates (`#if shadow_vertex`,
 // ShaderKey::shadow_coords_per_vertex), from those interpolated
-// coordinates `shadow_ndc`.
+// coordinates `shadow_ndc` (orthographic) or `shadow_clip` (perspective,
+// divided here: shadow_read_clip).
 
 #if mirror
 // Radiance of the environment from unit direction d. Twin: Environment::radiance.
@@ -38,7 +39,11 @@ fn environment_radiance(d: vec3<f32>) -> vec3<f32> {
 #if shadow_pixel
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> {
 #elif shadow_vertex
+#if shadow_ortho
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> {
+#else
+fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_clip: vec4<f32>) -> vec3<f32> {
+#endif
 #else
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
 #endif
@@ -56,8 +61,10 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     for (var s = 0u; s < SHADOW_MAP_COUNT; s++) {
         #if shadow_pixel
         visibility[s] = shadow_visibility(lights[shadow_caster(s)], x, n_g);
-        #else
+        #elif shadow_ortho
         visibility[s] = shadow_read_ndc(lights[shadow_caster(s)], lights[shadow_caster(s)].shadow_layer, shadow_ndc);
+        #else
+        visibility[s] = shadow_read_clip(lights[shadow_caster(s)], lights[shadow_caster(s)].shadow_layer, shadow_clip);
         #endif
     }
     #endif
