@@ -737,7 +737,8 @@ mod tests {
                 .collect();
             (load(&SceneSource::BuiltIn, &overrides).unwrap(), overrides)
         };
-        let (base, overrides) = with(&[&format!("lights=[{spot}]")]);
+        let one = format!("lights=[{spot}]");
+        let (base, overrides) = with(&[one.as_str()]);
         let (configs, skipped) = configs(&base, false);
         assert!(!skipped.iter().any(|s| s.knob == "shadow_coords"));
         let settings: Vec<_> = configs
@@ -758,7 +759,7 @@ mod tests {
         );
         for extra in [
             vec![two.as_str()],
-            vec![&format!("lights=[{spot}]"), "shading.mode=gouraud"],
+            vec![one.as_str(), "shading.mode=gouraud"],
         ] {
             let (base, _) = with(&extra);
             let (_, skipped) = configs(&base, false);
