@@ -73,12 +73,13 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.color = in.color;
     #endif
     // The one orthographic map's coordinates of this corner's lookup point
-    // (ShaderKey::shadow_coords_per_vertex says why this is exact), or the
-    // one perspective map's clip coordinates (approximate: docs/shadows.md).
+    // (ShaderKey::shadow_coords_per_vertex says why this is exact).
     #if shadow_vertex
     #if shadow_ortho
     out.shadow_ndc = shadow_ortho_ndc(lights[shadow_caster(0u)], in.position, in.face_normal);
     #else
+    // Or the one perspective map's clip coordinates (shading.shadow_coords
+    // = "vertex": approximate, docs/shadows.md bounds the displacement).
     out.shadow_clip = shadow_perspective_clip(lights[shadow_caster(0u)], in.position, in.face_normal);
     #endif
     #endif

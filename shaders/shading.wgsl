@@ -18,8 +18,7 @@
 // normal for gouraud) (`#if shadow_pixel`), or, when the vertex shader
 // computed the one map's coordinates (`#if shadow_vertex`,
 // ShaderKey::shadow_coords_per_vertex), from those interpolated
-// coordinates `shadow_ndc` (orthographic) or `shadow_clip` (perspective,
-// divided here: shadow_read_clip).
+// coordinates `shadow_ndc`.
 
 #if mirror
 // Radiance of the environment from unit direction d. Twin: Environment::radiance.
@@ -42,6 +41,8 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
 #if shadow_ortho
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> {
 #else
+// A spot light's map (shading.shadow_coords = "vertex"): the interpolated
+// clip coordinates `shadow_clip`, divided in shadow_read_clip.
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_clip: vec4<f32>) -> vec3<f32> {
 #endif
 #else

@@ -119,6 +119,8 @@ fn shadow_perspective(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 }
 #endif
 
+#if shadow_vertex
+#if shadow_perspective
 // Spot light, coordinates per vertex (`#if shadow_vertex` with a
 // perspective map: shading.shadow_coords = "vertex",
 // ShaderKey::shadow_coords_per_vertex): the vertex shader passes on the
@@ -128,8 +130,6 @@ fn shadow_perspective(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 // shadow_point, which scale with the distance to the light and turn with
 // the direction to it: docs/shadows.md bounds the lookup point's
 // displacement over a triangle.
-#if shadow_vertex
-#if shadow_perspective
 fn shadow_perspective_clip(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> vec4<f32> {
     let to_light = light.shadow_origin - x;
     let r = length(to_light);
