@@ -134,7 +134,7 @@ fn vertex_shadow_coords_differ_only_within_the_derived_band() {
         differ += 1;
         // V differs by whole taps of the k×k kernel.
         let c = (0..3).max_by(|&p, &q| full[p].total_cmp(&full[q])).unwrap();
-        let taps = kernel * kernel * (a[c] - b[c]) / full[c];
+        let taps = kernel * kernel * f64::from(a[c] - b[c]) / f64::from(full[c]);
         if (taps - taps.round()).abs() > 1e-3 {
             not_whole_taps += 1;
         }
