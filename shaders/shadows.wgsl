@@ -146,7 +146,6 @@ fn shadow_read_clip(light: Light, layer: i32, clip: vec4<f32>) -> f32 {
 }
 #endif
 #endif
-
 // Point light (and an area light's shared map): six perspective maps, the
 // face chosen by the major axis of the direction from the light to the
 // lookup point.

@@ -739,12 +739,9 @@ mod tests {
         };
         let one = format!("lights=[{spot}]");
         let (base, overrides) = with(&[one.as_str()]);
-        let (configs, skipped) = configs(&base, false);
+        let (found, skipped) = configs(&base, false);
         assert!(!skipped.iter().any(|s| s.knob == "shadow_coords"));
-        let settings: Vec<_> = configs
-            .iter()
-            .filter(|c| c.knob == "shadow_coords")
-            .collect();
+        let settings: Vec<_> = found.iter().filter(|c| c.knob == "shadow_coords").collect();
         assert_eq!(settings.len(), 1, "{settings:?}");
         assert_eq!(settings[0].value, "vertex");
         let all: Vec<String> = overrides
