@@ -35,7 +35,11 @@ struct VertexOut {
     @location(3) tangent: vec3<f32>,
     #endif
     #if shadow_vertex
+    #if shadow_ortho
     @location(4) shadow_ndc: vec3<f32>,
+    #else
+    @location(4) shadow_clip: vec4<f32>,
+    #endif
     #endif
     #if textures
     @location(5) uv0: vec2<f32>,
@@ -71,7 +75,13 @@ fn vs_main(in: VertexIn) -> VertexOut {
     // The one orthographic map's coordinates of this corner's lookup point
     // (ShaderKey::shadow_coords_per_vertex says why this is exact).
     #if shadow_vertex
+    #if shadow_ortho
     out.shadow_ndc = shadow_ortho_ndc(lights[shadow_caster(0u)], in.position, in.face_normal);
+    #else
+    // Or the one perspective map's clip coordinates (shading.shadow_coords
+    // = "vertex": approximate, docs/shadows.md bounds the displacement).
+    out.shadow_clip = shadow_perspective_clip(lights[shadow_caster(0u)], in.position, in.face_normal);
+    #endif
     #endif
     return out;
 }
@@ -146,7 +156,11 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     #if shadow_pixel
     let radiance = reflected_radiance(material, in.world, frame, n_g);
     #elif shadow_vertex
+    #if shadow_ortho
     let radiance = reflected_radiance(material, in.world, frame, in.shadow_ndc);
+    #else
+    let radiance = reflected_radiance(material, in.world, frame, in.shadow_clip);
+    #endif
     #else
     let radiance = reflected_radiance(material, in.world, frame);
     #endif

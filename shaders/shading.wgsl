@@ -38,7 +38,13 @@ fn environment_radiance(d: vec3<f32>) -> vec3<f32> {
 #if shadow_pixel
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> {
 #elif shadow_vertex
+#if shadow_ortho
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> {
+#else
+// A spot light's map (shading.shadow_coords = "vertex"): the interpolated
+// clip coordinates `shadow_clip`, divided in shadow_read_clip.
+fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_clip: vec4<f32>) -> vec3<f32> {
+#endif
 #else
 fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
 #endif
@@ -56,8 +62,10 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     for (var s = 0u; s < SHADOW_MAP_COUNT; s++) {
         #if shadow_pixel
         visibility[s] = shadow_visibility(lights[shadow_caster(s)], x, n_g);
-        #else
+        #elif shadow_ortho
         visibility[s] = shadow_read_ndc(lights[shadow_caster(s)], lights[shadow_caster(s)].shadow_layer, shadow_ndc);
+        #else
+        visibility[s] = shadow_read_clip(lights[shadow_caster(s)], lights[shadow_caster(s)].shadow_layer, shadow_clip);
         #endif
     }
     #endif

@@ -119,6 +119,33 @@ fn shadow_perspective(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 }
 #endif
 
+#if shadow_vertex
+#if shadow_perspective
+// Spot light, coordinates per vertex (`#if shadow_vertex` with a
+// perspective map: shading.shadow_coords = "vertex",
+// ShaderKey::shadow_coords_per_vertex): the vertex shader passes on the
+// clip coordinates of a corner's lookup point, the rasterizer interpolates
+// them perspective-correctly, the fragment shader divides. Exact for the
+// projection (clip_from_world is linear), approximate for the offsets of
+// shadow_point, which scale with the distance to the light and turn with
+// the direction to it: docs/shadows.md bounds the lookup point's
+// displacement over a triangle.
+fn shadow_perspective_clip(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> vec4<f32> {
+    let to_light = light.shadow_origin - x;
+    let r = length(to_light);
+    let p = shadow_point(light, x, n_g, to_light / max(r, 1e-30), light.shadow_texel * r);
+    return shadow_views[light.shadow_layer].clip_from_world * vec4<f32>(p, 1.0);
+}
+
+// V of interpolated clip coordinates on `layer`, as shadow_read.
+fn shadow_read_clip(light: Light, layer: i32, clip: vec4<f32>) -> f32 {
+    if clip.w <= 0.0 {
+        return 1.0; // behind a perspective layer: outside the light's reach
+    }
+    return shadow_read_ndc(light, layer, clip.xyz / clip.w);
+}
+#endif
+#endif
 // Point light (and an area light's shared map): six perspective maps, the
 // face chosen by the major axis of the direction from the light to the
 // lookup point.

@@ -337,6 +337,30 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         None => Vec::new(),
     };
     knob("shadow_resolution", resolution, "no light casts shadows");
+    // Shadow-map coordinates per vertex where that is an approximation
+    // (issue 18 item 5): a knob only where "vertex" compiles another
+    // shader than "exact" (Phong shading, one perspective map: a spot
+    // light), its error the lookup points' displacement
+    // (docs/shadows.md, "Coordinates per vertex").
+    let coords = if approximate_coords_apply(base) {
+        crate::scene::ShadowCoords::ALL
+            .iter()
+            .map(|&c| {
+                (
+                    c.name().to_string(),
+                    vec![format!("shading.shadow_coords=\"{c}\"")],
+                    c == base.shadow_coords,
+                )
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    knob(
+        "shadow_coords",
+        coords,
+        "no Phong-shaded scene whose one shadow map is a spot light's perspective map",
+    );
 
     let area = area_entry(base);
     let samples = match area {
@@ -576,6 +600,19 @@ pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
         && a.measured_network == b.measured_network
         && a.measured_table == b.measured_table
         && a.smith_beckmann == b.smith_beckmann
+        && a.shadow_coords == b.shadow_coords
+}
+
+/// Whether `shading.shadow_coords = "vertex"` would move some shadow
+/// coordinates of `scene` per vertex that "exact" computes per pixel
+/// (`ShaderKey::shadow_coords_per_vertex`).
+fn approximate_coords_apply(scene: &Scene) -> bool {
+    use crate::gpu::shader_gen::ShaderKey;
+    let mut key = ShaderKey::new(scene, &crate::gpu::shadows::ShadowPlan::new(scene));
+    key.approximate_shadow_coords = false;
+    let exact = key.shadow_coords_per_vertex();
+    key.approximate_shadow_coords = true;
+    key.shadow_coords_per_vertex() != exact
 }
 
 /// `(width, height)` scaled by `s`, at least 1 pixel.
@@ -628,6 +665,7 @@ mod tests {
         assert_eq!(
             names,
             [
+                "shadow_coords",
                 "environment_specular",
                 "environment_sh_order",
                 "measured_mode",
@@ -684,6 +722,51 @@ mod tests {
         }
     }
 
+    /// With one shadowed spot light (a perspective map) under Phong
+    /// shading the shadow coordinates are a knob, and "vertex" draws
+    /// something else than the base; a second shadowed light (two maps)
+    /// or Gouraud shading leaves nothing for it to act on.
+    #[test]
+    fn shadow_coords_is_a_knob_with_one_spot_map() {
+        let spot = r#"{kind="spot", position=[2.0, 4.0, 2.0], direction=[-0.4, -1.0, -0.4], intensity=[30.0, 30.0, 30.0], outer_cone_deg=40.0, shadows=true}"#;
+        let with = |extra: &[&str]| {
+            let overrides: Vec<String> = BUILTIN_BASE
+                .iter()
+                .map(|s| s.to_string())
+                .chain(extra.iter().map(|s| s.to_string()))
+                .collect();
+            (load(&SceneSource::BuiltIn, &overrides).unwrap(), overrides)
+        };
+        let one = format!("lights=[{spot}]");
+        let (base, overrides) = with(&[one.as_str()]);
+        let (found, skipped) = configs(&base, false);
+        assert!(!skipped.iter().any(|s| s.knob == "shadow_coords"));
+        let settings: Vec<_> = found.iter().filter(|c| c.knob == "shadow_coords").collect();
+        assert_eq!(settings.len(), 1, "{settings:?}");
+        assert_eq!(settings[0].value, "vertex");
+        let all: Vec<String> = overrides
+            .iter()
+            .chain(&settings[0].overrides)
+            .cloned()
+            .collect();
+        let vertex = load(&SceneSource::BuiltIn, &all).unwrap();
+        assert!(!draws_the_same(&base, &vertex));
+        let two = format!(
+            r#"lights=[{spot}, {{kind="point", position=[3.0, 5.0, 3.0], intensity=[1.0, 1.0, 1.0], shadows=true}}]"#
+        );
+        for extra in [
+            vec![two.as_str()],
+            vec![one.as_str(), "shading.mode=gouraud"],
+        ] {
+            let (base, _) = with(&extra);
+            let (_, skipped) = configs(&base, false);
+            assert!(
+                skipped.iter().any(|s| s.knob == "shadow_coords"),
+                "{extra:?}"
+            );
+        }
+    }
+
     /// With an environment map the specular mode is a knob: every
     /// setting loads, and each draws something else than the base.
     #[test]
@@ -696,7 +779,9 @@ mod tests {
         let base = load(&SceneSource::BuiltIn, &overrides).unwrap();
         let (configs, skipped) = configs(&base, false);
         assert!(
-            skipped.iter().all(|s| s.knob.starts_with("measured_")),
+            skipped
+                .iter()
+                .all(|s| s.knob.starts_with("measured_") || s.knob == "shadow_coords"),
             "{skipped:?}"
         );
         let settings: Vec<_> = configs

@@ -218,6 +218,7 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         light_range: true,
         light_guard: true,
         vertex_shadow_coords: false,
+        approximate_shadow_coords: false,
         environment: false,
         environment_sampled: false,
         environment_prefiltered: false,

@@ -772,6 +772,7 @@ mod tests {
             measured_table: crate::material::measured::DEFAULT_TABLE_RESOLUTION,
             measured_network: false,
             smith_beckmann: Default::default(),
+            shadow_coords: Default::default(),
             images: Vec::new(),
         }
     }

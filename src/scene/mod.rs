@@ -15,6 +15,7 @@ pub mod limits;
 pub mod mesh;
 pub mod primitives;
 pub mod scene_file;
+pub mod shadow_coords;
 pub mod tangents;
 pub mod texture;
 
@@ -23,6 +24,7 @@ pub use camera::Camera;
 pub use environment::Environment;
 pub use light::{Light, LightKind, MapResolution, ShadowFilter, ShadowSettings};
 pub use mesh::Mesh;
+pub use shadow_coords::ShadowCoords;
 
 use crate::base::named_enum;
 use crate::material::Material;
@@ -98,6 +100,10 @@ pub struct Scene {
     /// rational approximation); the reference always evaluates the exact
     /// form.
     pub smith_beckmann: crate::material::SmithBeckmann,
+    /// `shading.shadow_coords`: where Phong shading computes shadow-map
+    /// coordinates on the GPU (per vertex only where exact, the default,
+    /// or also where approximate); the reference traces shadow rays.
+    pub shadow_coords: ShadowCoords,
     /// The images materials' textures read (`MaterialTexture::image`
     /// indexes this); shared, so cloning a scene does not copy texels.
     pub images: Vec<std::sync::Arc<texture::Image>>,

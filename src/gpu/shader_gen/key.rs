@@ -35,6 +35,10 @@ pub struct ShaderKey {
     /// it ([`ShaderKey::shadow_coords_per_vertex`]); `false`: always per
     /// pixel (for tests and measurements of the difference).
     pub vertex_shadow_coords: bool,
+    /// `shading.shadow_coords = "vertex"`: also per vertex where that is
+    /// an approximation (one perspective map; see
+    /// [`ShaderKey::shadow_coords_per_vertex`]).
+    pub approximate_shadow_coords: bool,
     /// The scene has an environment map (`Feature::Environment`).
     pub environment: bool,
     /// It lights through the whole BRDF, sampled
@@ -152,73 +156,75 @@ impl ShaderKey {
             .any()
             .then(|| ShadowFeatures::uniform_pcf_radius(scene))
             .flatten();
-        let mut key =
-            ShaderKey {
-                shading: scene.shading,
-                variants: scene
-                    .meshes
-                    .iter()
-                    .map(|m| scene.materials[m.material].variant())
-                    .collect(),
-                light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
-                counts: LoopCounts {
-                    lights: scene.lights.len() as u32,
-                    shadow_maps: if shadows.any() {
-                        plan.casters.len() as u32
-                    } else {
-                        0
-                    },
-                    pcf_radius,
+        let mut key = ShaderKey {
+            shading: scene.shading,
+            variants: scene
+                .meshes
+                .iter()
+                .map(|m| scene.materials[m.material].variant())
+                .collect(),
+            light_kinds: scene.lights.iter().map(|l| l.kind()).collect(),
+            counts: LoopCounts {
+                lights: scene.lights.len() as u32,
+                shadow_maps: if shadows.any() {
+                    plan.casters.len() as u32
+                } else {
+                    0
                 },
-                shadows,
-                arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
-                light_range: scene.lights.iter().any(|l| {
-                    matches!(
-                        l,
-                        crate::scene::Light::Point { range: Some(_), .. }
-                            | crate::scene::Light::Spot { range: Some(_), .. }
-                    )
-                }),
-                light_guard: light_guard(scene),
-                vertex_shadow_coords: true,
-                environment: scene.environment.map.is_some(),
-                environment_sampled: scene.environment.map.as_ref().is_some_and(|m| {
-                    m.settings.specular == crate::environment::map::Specular::Sampled
-                }),
-                environment_prefiltered: scene.environment.map.as_ref().is_some_and(|m| {
-                    m.settings.specular == crate::environment::map::Specular::Prefiltered
-                }),
-                environment_sh: scene
-                    .environment
-                    .map
-                    .as_ref()
-                    .is_some_and(|m| m.settings.specular == crate::environment::map::Specular::Sh),
-                texture_slots: crate::gpu::textures::slot_count(scene),
-                normal_maps: crate::gpu::textures::has_normal_maps(scene),
-                two_sided: scene
-                    .meshes
-                    .iter()
-                    .any(|m| scene.materials[m.material].sides == crate::material::Sides::Both),
-                culling: scene
-                    .meshes
-                    .iter()
-                    .any(|m| scene.materials[m.material].sides == crate::material::Sides::Front),
-                vertex_colors: scene.meshes.iter().any(|m| !m.colors.is_empty()),
-                alpha: scene.meshes.iter().any(|m| {
-                    scene.materials[m.material].alpha_mode != crate::material::AlphaMode::Opaque
-                }),
-                alpha_blend: scene.meshes.iter().any(|m| {
-                    scene.materials[m.material].alpha_mode == crate::material::AlphaMode::Blend
-                }),
-                measured_network: scene.measured_network,
-                energy_compensation: scene
-                    .meshes
-                    .iter()
-                    .any(|m| scene.materials[m.material].energy_compensation),
-                smith_beckmann_rational: scene.smith_beckmann
-                    == crate::material::SmithBeckmann::Rational,
-                tone_map: scene.tone_map,
-            };
+                pcf_radius,
+            },
+            shadows,
+            arrays: UniformArrays::for_counts(scene.lights.len(), plan.layers.len()),
+            light_range: scene.lights.iter().any(|l| {
+                matches!(
+                    l,
+                    crate::scene::Light::Point { range: Some(_), .. }
+                        | crate::scene::Light::Spot { range: Some(_), .. }
+                )
+            }),
+            light_guard: light_guard(scene),
+            vertex_shadow_coords: true,
+            approximate_shadow_coords: scene.shadow_coords == crate::scene::ShadowCoords::Vertex,
+            environment: scene.environment.map.is_some(),
+            environment_sampled: scene
+                .environment
+                .map
+                .as_ref()
+                .is_some_and(|m| m.settings.specular == crate::environment::map::Specular::Sampled),
+            environment_prefiltered: scene.environment.map.as_ref().is_some_and(|m| {
+                m.settings.specular == crate::environment::map::Specular::Prefiltered
+            }),
+            environment_sh: scene
+                .environment
+                .map
+                .as_ref()
+                .is_some_and(|m| m.settings.specular == crate::environment::map::Specular::Sh),
+            texture_slots: crate::gpu::textures::slot_count(scene),
+            normal_maps: crate::gpu::textures::has_normal_maps(scene),
+            two_sided: scene
+                .meshes
+                .iter()
+                .any(|m| scene.materials[m.material].sides == crate::material::Sides::Both),
+            culling: scene
+                .meshes
+                .iter()
+                .any(|m| scene.materials[m.material].sides == crate::material::Sides::Front),
+            vertex_colors: scene.meshes.iter().any(|m| !m.colors.is_empty()),
+            alpha: scene.meshes.iter().any(|m| {
+                scene.materials[m.material].alpha_mode != crate::material::AlphaMode::Opaque
+            }),
+            alpha_blend: scene.meshes.iter().any(|m| {
+                scene.materials[m.material].alpha_mode == crate::material::AlphaMode::Blend
+            }),
+            measured_network: scene.measured_network,
+            energy_compensation: scene
+                .meshes
+                .iter()
+                .any(|m| scene.materials[m.material].energy_compensation),
+            smith_beckmann_rational: scene.smith_beckmann
+                == crate::material::SmithBeckmann::Rational,
+            tone_map: scene.tone_map,
+        };
         key.arrays.measured = key.has_measured();
         key.measured_network &= key.has_measured();
         key.smith_beckmann_rational &= key.uses_beckmann_g1();
@@ -265,12 +271,24 @@ impl ShaderKey {
     /// (tests/shadows.rs (e) checks that the images are the same). The
     /// vertex stream is then de-indexed, each corner with its triangle's
     /// normal (`VertexLayout::face_normal`).
+    ///
+    /// With `shading.shadow_coords = "vertex"`
+    /// ([`ShaderKey::approximate_shadow_coords`]) also when the one map is
+    /// perspective (a spot light): the corners' homogeneous map
+    /// coordinates are interpolated and divided per pixel, exact for the
+    /// projection of `x` but not for the lookup point's offsets, which
+    /// scale with the distance to the light and turn with the direction
+    /// to it; docs/shadows.md bounds the displacement over a triangle.
+    /// Cube maps stay per pixel (the face is chosen per lookup point).
     pub fn shadow_coords_per_vertex(&self) -> bool {
+        let projection = |p: Projection| {
+            self.shadows.projections.len() == 1 && self.shadows.projections.contains(&p)
+        };
         self.vertex_shadow_coords
             && self.shading == ShadingMode::Phong
             && self.counts.shadow_maps == 1
-            && self.shadows.projections.len() == 1
-            && self.shadows.projections.contains(&Projection::Ortho)
+            && (projection(Projection::Ortho)
+                || (self.approximate_shadow_coords && projection(Projection::Perspective)))
     }
 
     /// Whether any variant is measured: group 0 then binds the measured

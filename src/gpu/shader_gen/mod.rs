@@ -101,6 +101,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 light_range: i % 2 == 0,
                 light_guard: i % 4 < 2,
                 vertex_shadow_coords: false,
+                approximate_shadow_coords: false,
                 environment: i % 3 == 0 || i % 6 == 5,
                 environment_sampled: i % 6 == 0,
                 environment_prefiltered: i % 6 == 3,
@@ -141,8 +142,10 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     arrays: arrays(pcf),
                     light_range: pcf,
                     light_guard: !pcf,
-                    // Orthographic with PCF: the coordinates per vertex.
+                    // Orthographic or perspective with PCF: the
+                    // coordinates per vertex (perspective approximately).
                     vertex_shadow_coords: pcf,
+                    approximate_shadow_coords: pcf,
                     environment: pcf,
                     environment_sampled: false,
                     environment_prefiltered: false,
@@ -179,6 +182,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 light_range: uniform,
                 light_guard: uniform,
                 vertex_shadow_coords: false,
+                approximate_shadow_coords: false,
                 environment: uniform,
                 environment_sampled: uniform,
                 environment_prefiltered: false,

@@ -100,6 +100,14 @@ pub fn assemble(
             ))
         })?,
     };
+    let shadow_coords = match &file.shading.shadow_coords {
+        None => Default::default(),
+        Some(s) => s.parse().map_err(|e| {
+            bad(format!(
+                "shading.shadow_coords: {e} (\"exact\": shadow-map coordinates per vertex only where that is exact; \"vertex\": also for a spot light's map, approximately, docs/shadows.md)"
+            ))
+        })?,
+    };
     let mut scene = Scene {
         width,
         height,
@@ -117,6 +125,7 @@ pub fn assemble(
         measured_table: measured_table(&file).map_err(bad)?,
         measured_network,
         smith_beckmann,
+        shadow_coords,
         images: gltf_files.images.images.clone(),
     };
     // A scene-file normal map on a mesh without tangents (a glTF mesh

@@ -115,6 +115,11 @@ pub struct ShadingSection {
     /// exact to f32) or "rational" (Walter et al. 2007's approximation).
     #[serde(default)]
     pub smith_beckmann: Option<String>,
+    /// Where Phong shading computes shadow-map coordinates on the GPU:
+    /// "exact" (default: per vertex where exact) or "vertex" (also for a
+    /// spot light's map, approximately; docs/shadows.md).
+    #[serde(default)]
+    pub shadow_coords: Option<String>,
 }
 
 /// One `[[objects]]` entry: a glTF file or a generated shape.
