@@ -462,10 +462,15 @@ impl PreparedScene {
         if let Some(shadows) = &self.shadows {
             pass.set_bind_group(1, shadows.scene_group(), &[]);
         }
-        // The environment's background first, under everything.
-        if let (Some(environment), true) = (&self.environment, position.first) {
-            self.draw.bind_scene_group(&mut pass, 0);
-            environment.encode_background(&mut pass);
+        // The environment's background first, under everything (in the
+        // first part; a later part only binds the map it lights with).
+        if let Some(environment) = &self.environment {
+            if position.first {
+                self.draw.bind_scene_group(&mut pass, 0);
+                environment.encode_background(&mut pass);
+            } else {
+                environment.bind(&mut pass);
+            }
         }
         self.draw.bind_geometry(&mut pass);
         // Each material's batch with its material bound (src/gpu/bindings.rs)
