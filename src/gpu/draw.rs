@@ -12,6 +12,7 @@ use super::bindings::{self, UniformArrays};
 use super::geometry::{Batch, ObjectRange, VertexLayout};
 use super::layout::{GpuGlobals, GpuLight, GpuMaterial};
 use super::measured_tables::MeasuredTables;
+use super::scene_parts::PassPosition;
 use super::shader_gen::ShaderKey;
 use super::upload::GpuGeometry;
 use crate::scene::Scene;
@@ -47,14 +48,34 @@ pub fn begin_scene_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     target: &FrameTarget,
 ) -> wgpu::RenderPass<'e> {
+    begin_scene_pass_part(encoder, target, PassPosition::WHOLE)
+}
+
+/// [`begin_scene_pass`] for one part of a split scene pass
+/// (src/gpu/scene_parts.rs): only the first part clears and writes
+/// timestamp 0; a later part loads the colour and the depth the earlier
+/// one stored; only the last resolves, discards the depth and writes
+/// timestamp 1.
+pub fn begin_scene_pass_part<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    target: &FrameTarget,
+    position: PassPosition,
+) -> wgpu::RenderPass<'e> {
+    let timestamp_writes = target.timestamps.and_then(|set| {
+        (position.first || position.last).then_some(wgpu::RenderPassTimestampWrites {
+            query_set: set,
+            beginning_of_pass_write_index: position.first.then_some(0),
+            end_of_pass_write_index: position.last.then_some(1),
+        })
+    });
     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("scene"),
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
             view: target.color,
             depth_slice: None,
-            resolve_target: target.resolve,
+            resolve_target: if position.last { target.resolve } else { None },
             ops: wgpu::Operations {
-                load: if target.clip.is_some() {
+                load: if target.clip.is_some() || !position.first {
                     wgpu::LoadOp::Load
                 } else {
                     wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
@@ -65,18 +86,20 @@ pub fn begin_scene_pass<'e>(
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
             view: target.depth,
             depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(1.0),
-                store: wgpu::StoreOp::Discard,
+                load: if position.first {
+                    wgpu::LoadOp::Clear(1.0)
+                } else {
+                    wgpu::LoadOp::Load
+                },
+                store: if position.last {
+                    wgpu::StoreOp::Discard
+                } else {
+                    wgpu::StoreOp::Store
+                },
             }),
             stencil_ops: None,
         }),
-        timestamp_writes: target
-            .timestamps
-            .map(|set| wgpu::RenderPassTimestampWrites {
-                query_set: set,
-                beginning_of_pass_write_index: Some(0),
-                end_of_pass_write_index: Some(1),
-            }),
+        timestamp_writes,
         occlusion_query_set: None,
         multiview_mask: None,
     });
@@ -334,9 +357,20 @@ impl SceneDraw {
     /// Draws `batch` of the bound stream with its material bound (group
     /// 0 at the material's slot, src/gpu/bindings.rs).
     pub fn draw_batch(&self, pass: &mut wgpu::RenderPass<'_>, batch: &Batch) {
+        self.draw_batch_part(pass, batch, batch.range.clone());
+    }
+
+    /// [`Self::draw_batch`] of `range`, a part of `batch`'s range (a
+    /// split scene pass: src/gpu/scene_parts.rs).
+    pub fn draw_batch_part(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        batch: &Batch,
+        range: std::ops::Range<u32>,
+    ) {
         let offset = bind_groups::material_offset(batch.material, self.material_stride);
         pass.set_bind_group(0, &self.bind_group, &[offset]);
-        self.draw_range(pass, batch.range.clone(), 0..1);
+        self.draw_range(pass, range, 0..1);
     }
 
     /// Binds group 0 at material `material`'s slot (for a pass that reads

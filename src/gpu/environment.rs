@@ -449,9 +449,16 @@ impl GpuEnvironment {
         }
     }
 
+    /// Binds group 3 (the map the scene pipelines light with) without
+    /// drawing the background: a later part of a split scene pass
+    /// (src/gpu/scene_parts.rs).
+    pub fn bind(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_bind_group(3, &self.bind_group, &[]);
+    }
+
     /// Binds group 3 and draws the background (group 0 must be bound).
     pub fn encode_background(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_bind_group(3, &self.bind_group, &[]);
+        self.bind(pass);
         pass.set_pipeline(&self.background);
         pass.draw(0..3, 0..1);
     }

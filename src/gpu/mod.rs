@@ -66,6 +66,7 @@ pub mod pipelines;
 pub mod prepared;
 pub mod readback;
 pub mod renderer;
+pub mod scene_parts;
 pub mod shader_gen;
 pub mod shadow_culling;
 pub mod shadow_fit;

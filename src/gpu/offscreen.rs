@@ -18,6 +18,7 @@ use super::draw::FrameTarget;
 use super::pipelines::{DEPTH_FORMAT, PipelineCache};
 use super::prepared::PreparedScene;
 use super::readback::{PassTimestamps, Readback};
+use super::scene_parts;
 use super::timing::{Clock, Timings};
 use crate::frame::Frame;
 use crate::scene::Scene;
@@ -91,6 +92,7 @@ fn draw_once(
     prepare: impl FnOnce(wgpu::TextureFormat, u32) -> Result<PreparedScene>,
 ) -> Result<(Frame, Timings)> {
     let mut timings = Timings::default();
+    let pass_triangles = scene_parts::pass_triangles()?;
     let (width, height) = (size.width, size.height);
     check_target_size(ctx, width, height)?;
     let format = ctx
@@ -146,18 +148,34 @@ fn draw_once(
     let multisampled_view = multisampled
         .as_ref()
         .map(|t| t.create_view(&Default::default()));
+    let frame_target = FrameTarget {
+        color: multisampled_view.as_ref().unwrap_or(&color_view),
+        resolve: multisampled_view.as_ref().map(|_| &color_view),
+        depth: &depth_view,
+        viewport: None,
+        clip: None,
+        timestamps: queries.as_ref().map(|q| &q.set),
+    };
     let mut encoder = device.create_command_encoder(&Default::default());
-    let drawn = prepared.encode(
-        &mut encoder,
-        &FrameTarget {
-            color: multisampled_view.as_ref().unwrap_or(&color_view),
-            resolve: multisampled_view.as_ref().map(|_| &color_view),
-            depth: &depth_view,
-            viewport: None,
-            clip: None,
-            timestamps: queries.as_ref().map(|q| &q.set),
-        },
-    );
+    let drawn = prepared.encode_shadows(&mut encoder, frame_target.timestamps);
+    // A huge mesh's scene pass in parts, each submitted and finished
+    // before the next, the shadow passes too: lavapipe's binned scenes
+    // stay small (src/gpu/scene_parts.rs).
+    let parts = prepared.scene_parts(pass_triangles);
+    let finish = |encoder: wgpu::CommandEncoder| {
+        ctx.queue.submit([encoder.finish()]);
+        let _ = device.poll(wgpu::PollType::wait_indefinitely());
+        device.create_command_encoder(&Default::default())
+    };
+    if parts.len() > 1 && drawn.shadow_layers > 0 {
+        encoder = finish(encoder);
+    }
+    for part in parts {
+        prepared.encode_scene_part(&mut encoder, &frame_target, part.position, part.draws);
+        if !part.position.last {
+            encoder = finish(encoder);
+        }
+    }
     readback.copy_from(&mut encoder, &color);
     if let Some(q) = &queries {
         q.resolve(&mut encoder);

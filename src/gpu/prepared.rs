@@ -18,6 +18,7 @@ use super::environment::GpuEnvironment;
 use super::geometry::{Batch, GeometryData, Meshes, StreamPlan};
 use super::layout::{GpuGlobals, GpuLight};
 use super::pipelines::PipelineCache;
+use super::scene_parts::{self, PassPosition, ScenePart};
 use super::shader_gen::ShaderKey;
 use super::shadow_culling::{self, LayerCasters};
 use super::shadow_maps::{self, ShadowMaps};
@@ -405,6 +406,28 @@ impl PreparedScene {
     /// pass into `encoder`. The scene pass clears the whole target to
     /// transparent black (coverage 0) and draws into the viewport.
     pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, target: &FrameTarget) -> Drawn {
+        let drawn = self.encode_shadows(encoder, target.timestamps);
+        let batches = self.draw.batches();
+        let whole = self.order.iter().map(|&b| (b, batches[b].range.clone()));
+        self.encode_scene_part(encoder, target, PassPosition::WHOLE, whole);
+        drawn
+    }
+
+    /// The scene pass split into parts of at most `max_triangles`
+    /// triangles (src/gpu/scene_parts.rs), for
+    /// [`Self::encode_shadows`] and [`Self::encode_scene_part`] to record
+    /// one submission each; one part when the scene has no more.
+    pub fn scene_parts(&self, max_triangles: u64) -> Vec<ScenePart> {
+        scene_parts::split(&self.order, self.draw.batches(), max_triangles)
+    }
+
+    /// Records the shadow passes into `encoder` if the maps are stale
+    /// (timestamps 2 and 3 around them when `timestamps` is given).
+    pub fn encode_shadows(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<&wgpu::QuerySet>,
+    ) -> Drawn {
         let mut drawn = Drawn::default();
         if let (Some(shadows), true) = (&self.shadows, self.shadows_stale) {
             let casters = self
@@ -416,20 +439,37 @@ impl PreparedScene {
                 &self.draw,
                 casters.as_ref(),
                 self.shadow_masks.as_ref(),
-                target.timestamps,
+                timestamps,
             );
             drawn.shadow_draws_total = self.plan.layers.len() * self.draw.objects().len();
             drawn.shadow_draws_culled = casters.map_or(0, |c| c.culled);
             self.shadows_stale = false;
         }
-        let mut pass = draw::begin_scene_pass(encoder, target);
+        drawn
+    }
+
+    /// Records the scene pass, or the part of it at `position` drawing
+    /// `draws` (batch, range of it; in drawing order), into `encoder`.
+    pub fn encode_scene_part(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &FrameTarget,
+        position: PassPosition,
+        draws: impl IntoIterator<Item = (usize, std::ops::Range<u32>)>,
+    ) {
+        let mut pass = draw::begin_scene_pass_part(encoder, target, position);
         if let Some(shadows) = &self.shadows {
             pass.set_bind_group(1, shadows.scene_group(), &[]);
         }
-        // The environment's background first, under everything.
+        // The environment's background first, under everything (in the
+        // first part; a later part only binds the map it lights with).
         if let Some(environment) = &self.environment {
-            self.draw.bind_scene_group(&mut pass, 0);
-            environment.encode_background(&mut pass);
+            if position.first {
+                self.draw.bind_scene_group(&mut pass, 0);
+                environment.encode_background(&mut pass);
+            } else {
+                environment.bind(&mut pass);
+            }
         }
         self.draw.bind_geometry(&mut pass);
         // Each material's batch with its material bound (src/gpu/bindings.rs)
@@ -438,7 +478,7 @@ impl PreparedScene {
         // Alpha BLEND batches last, back to front (`order`), each with its
         // blending pipeline.
         let mut bound = None;
-        for &b in &self.order {
+        for (b, range) in draws {
             let (batch, (variant, pipeline)) = (&self.draw.batches()[b], &self.batch_pipelines[b]);
             let which = (*variant, batch.object.is_some());
             if bound != Some(which) {
@@ -448,9 +488,8 @@ impl PreparedScene {
             if let Some(textures) = &self.textures {
                 pass.set_bind_group(2, textures.group(batch.material), &[]);
             }
-            self.draw.draw_batch(&mut pass, batch);
+            self.draw.draw_batch_part(&mut pass, batch, range);
         }
-        drawn
     }
 
     /// Shadow-map layers this scene renders when its maps are stale.

@@ -1,0 +1,179 @@
+//! A one-shot scene pass split into parts of a bounded number of
+//! triangles, each submitted and finished before the next is recorded.
+//!
+//! Why: lavapipe rasterizes with llvmpipe, which bins a render pass's
+//! triangles into a "scene" (per-tile command lists and the triangles'
+//! setup data) before its threads rasterize it, and flushes a scene when
+//! its data reach a cap (`LP_SCENE_MAX_SIZE`, 36 MiB in Mesa 22,
+//! `src/gallium/drivers/llvmpipe/lp_scene.h`); while the threads
+//! rasterize one scene the submitting thread bins the next, so one huge
+//! draw holds two or more full scenes at once. That is most of what a
+//! 10⁶-triangle render adds to the process's peak beyond its own buffers
+//! (docs/bench/memory.md). A submission ends the scene (the queue flushes
+//! it with a fence); waiting for it before recording the next part keeps
+//! one small scene in memory at a time.
+//!
+//! The parts draw the same triangles in the same order with the same
+//! pipelines and bindings; the depth buffer is stored after a part and
+//! loaded by the next (instead of cleared), the colour target loaded, so
+//! the image is the same bytes (a rasterizer's result does not depend on
+//! where a pass boundary falls: each triangle is tested against the depth
+//! the earlier ones left, as in one pass).
+//!
+//! Only [`super::offscreen`]'s one-shot render splits, and only above
+//! [`PASS_TRIANGLES`]: below it a scene is small anyway, and each part
+//! costs a submission and a wait that serialises the binning and the
+//! rasterization (docs/bench/memory.md gives the measured cost).
+
+use super::geometry::Batch;
+use std::ops::Range;
+
+/// Triangles per part of a split scene pass: a scene pass with more is
+/// split. Derived from the measured scene data per triangle
+/// (docs/bench/memory.md): parts of this size keep llvmpipe's binned
+/// scene within a few MiB.
+pub const PASS_TRIANGLES: u64 = 20_000;
+
+/// The environment variable that overrides [`PASS_TRIANGLES`] (`0`: never
+/// split), for measuring what the split costs and saves.
+pub const PASS_TRIANGLES_ENV: &str = "GONIO_PASS_TRIANGLES";
+
+/// Triangles per part: `GONIO_PASS_TRIANGLES` if set (`0` for no split),
+/// else [`PASS_TRIANGLES`]; a value that is not a count is an error
+/// naming it.
+pub fn pass_triangles() -> crate::Result<u64> {
+    match std::env::var(PASS_TRIANGLES_ENV) {
+        Ok(text) if !text.trim().is_empty() => match text.trim().parse::<u64>() {
+            Ok(0) => Ok(u64::MAX),
+            Ok(n) => Ok(n),
+            Err(_) => Err(crate::Error::argument(
+                format!("{PASS_TRIANGLES_ENV}={text}"),
+                "expected a triangle count per scene-pass part (0: draw the scene pass whole)",
+            )),
+        },
+        _ => Ok(PASS_TRIANGLES),
+    }
+}
+
+/// Where a part falls in the split pass: the first clears the targets,
+/// the last resolves and discards the depth; a pass that is both is the
+/// unsplit pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PassPosition {
+    pub first: bool,
+    pub last: bool,
+}
+
+impl PassPosition {
+    /// The whole scene pass in one.
+    pub const WHOLE: PassPosition = PassPosition {
+        first: true,
+        last: true,
+    };
+}
+
+/// One part: the batches it draws (index into the batches) with the
+/// range of each it draws.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScenePart {
+    pub position: PassPosition,
+    pub draws: Vec<(usize, Range<u32>)>,
+}
+
+/// Splits the batches, drawn in `order`, into parts of at most
+/// `max_triangles` triangles each (a batch's range is split on triangle
+/// boundaries: three indices, or vertices, a triangle). One part, the
+/// whole pass, when everything fits (or there is nothing to draw).
+pub fn split(order: &[usize], batches: &[Batch], max_triangles: u64) -> Vec<ScenePart> {
+    let max = (max_triangles.clamp(1, (u32::MAX / 3) as u64) * 3) as u32;
+    let mut parts: Vec<Vec<(usize, Range<u32>)>> = vec![Vec::new()];
+    let mut room = max;
+    for &b in order {
+        let mut range = batches[b].range.clone();
+        while !range.is_empty() {
+            if room == 0 {
+                parts.push(Vec::new());
+                room = max;
+            }
+            let take = room.min(range.end - range.start);
+            let part = parts.last_mut().expect("one part at least");
+            part.push((b, range.start..range.start + take));
+            range.start += take;
+            room -= take;
+        }
+    }
+    let n = parts.len();
+    parts
+        .into_iter()
+        .enumerate()
+        .map(|(i, draws)| ScenePart {
+            position: PassPosition {
+                first: i == 0,
+                last: i + 1 == n,
+            },
+            draws,
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn batch(range: Range<u32>) -> Batch {
+        Batch {
+            material: 0,
+            range,
+            object: None,
+        }
+    }
+
+    /// Every part within the bound, the draws in order and covering each
+    /// batch exactly once, only the first part first and only the last
+    /// last.
+    #[test]
+    fn parts_cover_the_order_within_the_bound() {
+        let batches = vec![batch(0..30), batch(30..33), batch(33..93), batch(93..93)];
+        let order = [2, 0, 3, 1];
+        for max in [1u64, 2, 7, 10, 31, 1000] {
+            let parts = split(&order, &batches, max);
+            let mut flat: Vec<(usize, Range<u32>)> = Vec::new();
+            for (i, p) in parts.iter().enumerate() {
+                let tris: u32 = p.draws.iter().map(|(_, r)| r.len() as u32 / 3).sum();
+                assert!(tris as u64 <= max, "max {max}: part {i} has {tris}");
+                assert!(
+                    p.draws
+                        .iter()
+                        .all(|(_, r)| r.len() % 3 == 0 && !r.is_empty())
+                );
+                assert_eq!(p.position.first, i == 0);
+                assert_eq!(p.position.last, i + 1 == parts.len());
+                flat.extend(p.draws.iter().cloned());
+            }
+            // Consecutive pieces of one batch join up again.
+            let mut joined: Vec<(usize, Range<u32>)> = Vec::new();
+            for (b, r) in flat {
+                match joined.last_mut() {
+                    Some((lb, lr)) if *lb == b && lr.end == r.start => lr.end = r.end,
+                    _ => joined.push((b, r)),
+                }
+            }
+            let expected: Vec<_> = order
+                .iter()
+                .filter(|&&b| !batches[b].range.is_empty())
+                .map(|&b| (b, batches[b].range.clone()))
+                .collect();
+            assert_eq!(joined, expected, "max {max}");
+            let total: u64 = 31;
+            assert_eq!(parts.len() as u64, total.div_ceil(max), "max {max}");
+        }
+    }
+
+    #[test]
+    fn nothing_to_draw_is_one_whole_pass() {
+        let parts = split(&[], &[], 10);
+        assert_eq!(parts.len(), 1);
+        assert_eq!(parts[0].position, PassPosition::WHOLE);
+        assert!(parts[0].draws.is_empty());
+    }
+}
