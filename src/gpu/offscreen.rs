@@ -18,7 +18,7 @@ use super::draw::FrameTarget;
 use super::pipelines::{DEPTH_FORMAT, PipelineCache};
 use super::prepared::PreparedScene;
 use super::readback::{PassTimestamps, Readback};
-use super::scene_parts;
+use super::scene_parts::{self, PartBreak};
 use super::timing::{Clock, Timings};
 use crate::frame::Frame;
 use crate::scene::Scene;
@@ -156,24 +156,28 @@ fn draw_once(
         clip: None,
         timestamps: queries.as_ref().map(|q| &q.set),
     };
-    let mut encoder = device.create_command_encoder(&Default::default());
-    let drawn = prepared.encode_shadows(&mut encoder, frame_target.timestamps);
-    // A huge mesh's scene pass in parts, each submitted and finished
-    // before the next, the shadow passes too: lavapipe's binned scenes
-    // stay small (src/gpu/scene_parts.rs).
-    let parts = prepared.scene_parts(pass_triangles);
-    let finish = |encoder: wgpu::CommandEncoder| {
-        ctx.queue.submit([encoder.finish()]);
+    // A huge mesh's passes in parts, each submitted and finished before
+    // the next is recorded, the shadow passes' too: lavapipe's binned
+    // scenes stay small (src/gpu/scene_parts.rs).
+    let mut submit_and_wait = |encoder: &mut wgpu::CommandEncoder| {
+        let done = std::mem::replace(encoder, device.create_command_encoder(&Default::default()));
+        ctx.queue.submit([done.finish()]);
         let _ = device.poll(wgpu::PollType::wait_indefinitely());
-        device.create_command_encoder(&Default::default())
     };
+    let mut encoder = device.create_command_encoder(&Default::default());
+    let shadow_parts = PartBreak {
+        max_triangles: pass_triangles,
+        submit_and_wait: &mut submit_and_wait,
+    };
+    let drawn = prepared.encode_shadows(&mut encoder, frame_target.timestamps, Some(shadow_parts));
+    let parts = prepared.scene_parts(pass_triangles);
     if parts.len() > 1 && drawn.shadow_layers > 0 {
-        encoder = finish(encoder);
+        submit_and_wait(&mut encoder);
     }
     for part in parts {
         prepared.encode_scene_part(&mut encoder, &frame_target, part.position, part.draws);
         if !part.position.last {
-            encoder = finish(encoder);
+            submit_and_wait(&mut encoder);
         }
     }
     readback.copy_from(&mut encoder, &color);

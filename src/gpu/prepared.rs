@@ -18,7 +18,7 @@ use super::environment::GpuEnvironment;
 use super::geometry::{Batch, GeometryData, Meshes, StreamPlan};
 use super::layout::{GpuGlobals, GpuLight};
 use super::pipelines::PipelineCache;
-use super::scene_parts::{self, PassPosition, ScenePart};
+use super::scene_parts::{self, PartBreak, PassPosition, ScenePart};
 use super::shader_gen::ShaderKey;
 use super::shadow_culling::{self, LayerCasters};
 use super::shadow_maps::{self, ShadowMaps};
@@ -406,7 +406,7 @@ impl PreparedScene {
     /// pass into `encoder`. The scene pass clears the whole target to
     /// transparent black (coverage 0) and draws into the viewport.
     pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, target: &FrameTarget) -> Drawn {
-        let drawn = self.encode_shadows(encoder, target.timestamps);
+        let drawn = self.encode_shadows(encoder, target.timestamps, None);
         let batches = self.draw.batches();
         let whole = self.order.iter().map(|&b| (b, batches[b].range.clone()));
         self.encode_scene_part(encoder, target, PassPosition::WHOLE, whole);
@@ -422,11 +422,13 @@ impl PreparedScene {
     }
 
     /// Records the shadow passes into `encoder` if the maps are stale
-    /// (timestamps 2 and 3 around them when `timestamps` is given).
+    /// (timestamps 2 and 3 around them when `timestamps` is given), split
+    /// into submitted parts by `parts` (src/gpu/scene_parts.rs).
     pub fn encode_shadows(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<&wgpu::QuerySet>,
+        parts: Option<PartBreak<'_>>,
     ) -> Drawn {
         let mut drawn = Drawn::default();
         if let (Some(shadows), true) = (&self.shadows, self.shadows_stale) {
@@ -437,9 +439,9 @@ impl PreparedScene {
                 encoder,
                 &self.plan,
                 &self.draw,
-                casters.as_ref(),
-                self.shadow_masks.as_ref(),
+                (casters.as_ref(), self.shadow_masks.as_ref()),
                 timestamps,
+                parts,
             );
             drawn.shadow_draws_total = self.plan.layers.len() * self.draw.objects().len();
             drawn.shadow_draws_culled = casters.map_or(0, |c| c.culled);

@@ -116,6 +116,85 @@ pub fn split(order: &[usize], batches: &[Batch], max_triangles: u64) -> Vec<Scen
         .collect()
 }
 
+/// What ends a part of a split pass in a one-shot render: the triangles
+/// drawn since the last submission may reach `max_triangles`, then
+/// `submit_and_wait` submits what the encoder holds, waits for it, and
+/// leaves a fresh encoder in its place.
+pub struct PartBreak<'a> {
+    pub max_triangles: u64,
+    pub submit_and_wait: &'a mut dyn FnMut(&mut wgpu::CommandEncoder),
+}
+
+/// A layer and its draws (stream range, tag) in order.
+pub type LayerDraws<T> = (usize, Vec<(Range<u32>, T)>);
+
+/// One pass of a layered depth-only drawing (the shadow maps) split into
+/// parts: the layer it draws into, whether it is the layer's first pass
+/// (which clears the layer; later ones load it), whether the encoder
+/// must be submitted before it, and its draws.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LayerPart<T> {
+    pub layer: usize,
+    pub clears: bool,
+    pub break_before: bool,
+    pub draws: Vec<(Range<u32>, T)>,
+}
+
+/// Splits the draws of `layers` (layer index, its draws in order; a layer
+/// without draws is only cleared) into passes, so that at most
+/// `max_triangles` triangles are drawn between two breaks (a draw's
+/// range is split on triangle boundaries). Layers share a part's room:
+/// small layers need no break between them. A layer's first pass clears
+/// it, the next ones load what it drew (a depth pass keeps the nearest
+/// depth whatever the order, so the texels are the ones a whole pass
+/// gives).
+pub fn split_layers<T: Clone>(
+    layers: &[LayerDraws<T>],
+    max_triangles: u64,
+) -> Vec<LayerPart<T>> {
+    let max = (max_triangles.clamp(1, (u32::MAX / 3) as u64) * 3) as u32;
+    let mut parts = Vec::new();
+    let mut room = max;
+    for (layer, draws) in layers {
+        let mut part = LayerPart {
+            layer: *layer,
+            clears: true,
+            break_before: false,
+            draws: Vec::new(),
+        };
+        for (range, tag) in draws {
+            let mut range = range.clone();
+            while !range.is_empty() {
+                if room == 0 {
+                    // A layer's pass that has drawn ends here; one that
+                    // has not (the room ran out with the layer before)
+                    // just starts after the break.
+                    if !part.draws.is_empty() {
+                        parts.push(std::mem::replace(
+                            &mut part,
+                            LayerPart {
+                                layer: *layer,
+                                clears: false,
+                                break_before: false,
+                                draws: Vec::new(),
+                            },
+                        ));
+                    }
+                    part.break_before = true;
+                    room = max;
+                }
+                let take = room.min(range.end - range.start);
+                part.draws
+                    .push((range.start..range.start + take, tag.clone()));
+                range.start += take;
+                room -= take;
+            }
+        }
+        parts.push(part);
+    }
+    parts
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -175,5 +254,56 @@ mod tests {
         assert_eq!(parts.len(), 1);
         assert_eq!(parts[0].position, PassPosition::WHOLE);
         assert!(parts[0].draws.is_empty());
+    }
+
+    /// Each layer cleared exactly once, by its first pass; at most `max`
+    /// triangles between breaks; the draws of each layer in order and
+    /// complete; no break without need.
+    #[test]
+    fn layer_parts_clear_once_and_stay_within_the_bound() {
+        let layers: Vec<LayerDraws<u8>> = vec![
+            (0, vec![(0..30, 0), (30..33, 1)]),
+            (3, vec![]),
+            (5, vec![(90..150, 2)]),
+            (6, vec![(0..3, 0)]),
+        ];
+        for max in [1u64, 2, 7, 10, 11, 31, 1000] {
+            let parts = split_layers(&layers, max);
+            let mut since_break = 0u64;
+            for (i, p) in parts.iter().enumerate() {
+                if p.break_before {
+                    assert!(i > 0, "max {max}: a break before the first part");
+                    assert_eq!(since_break, max, "max {max}: a break with room left");
+                    since_break = 0;
+                }
+                since_break += p.draws.iter().map(|(r, _)| r.len() as u64 / 3).sum::<u64>();
+                assert!(since_break <= max, "max {max}: part {i} overflows");
+                assert!(
+                    p.draws
+                        .iter()
+                        .all(|(r, _)| r.len() % 3 == 0 && !r.is_empty())
+                );
+            }
+            for (layer, draws) in &layers {
+                let mine: Vec<_> = parts.iter().filter(|p| p.layer == *layer).collect();
+                assert!(mine[0].clears, "max {max}: layer {layer} not cleared first");
+                assert!(
+                    mine[1..].iter().all(|p| !p.clears),
+                    "max {max}: layer {layer}"
+                );
+                let mut joined: Vec<(Range<u32>, u8)> = Vec::new();
+                for (r, t) in mine.iter().flat_map(|p| p.draws.iter().cloned()) {
+                    match joined.last_mut() {
+                        Some((lr, lt)) if *lt == t && lr.end == r.start => lr.end = r.end,
+                        _ => joined.push((r, t)),
+                    }
+                }
+                assert_eq!(&joined, draws, "max {max}: layer {layer}");
+            }
+        }
+        // Without a bound: one pass per layer, no break.
+        let whole = split_layers(&layers, u64::MAX);
+        assert_eq!(whole.len(), layers.len());
+        assert!(whole.iter().all(|p| p.clears && !p.break_before));
     }
 }

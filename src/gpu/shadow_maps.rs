@@ -7,6 +7,7 @@ use super::bind_groups;
 use super::bindings::{self, UniformArrays};
 use super::draw::SceneDraw;
 use super::pipelines::PipelineCache;
+use super::scene_parts::{self, PartBreak};
 use super::shadow_culling::LayerCasters;
 use super::shadow_masks::ShadowMasks;
 use super::shadows::{self, ShadowPlan};
@@ -229,15 +230,18 @@ impl ShadowMaps {
     /// so it is never empty). Without `casters`, every layer draws the
     /// whole stream. With `masks`, the draws of alpha MASK materials go
     /// through its pipeline, which discards what MASK cuts out
-    /// (src/gpu/shadow_masks.rs).
+    /// (src/gpu/shadow_masks.rs). With `parts` (a one-shot render of a
+    /// huge mesh), the passes are split so that at most its
+    /// `max_triangles` are drawn between two submissions
+    /// (src/gpu/scene_parts.rs): lavapipe's binned scene stays small.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         plan: &ShadowPlan,
         draw: &SceneDraw,
-        casters: Option<&LayerCasters>,
-        masks: Option<&ShadowMasks>,
+        (casters, masks): (Option<&LayerCasters>, Option<&ShadowMasks>),
         timestamps: Option<&wgpu::QuerySet>,
+        mut parts: Option<PartBreak<'_>>,
     ) -> usize {
         let skippable = plan.layers_read_lit_when_zeroed();
         let layer_runs: Vec<_> = (0..plan.layers.len())
@@ -252,30 +256,41 @@ impl ShadowMaps {
         for i in (0..plan.layers.len()).filter(|&i| skipped[i]) {
             encoder.clear_buffer(&self.scene_views, i as u64 * view_size, Some(view_size));
         }
-        let mut drawn: Vec<usize> = (0..plan.layers.len()).filter(|&i| !skipped[i]).collect();
+        let mut drawn: Vec<(usize, Vec<Run>)> = (0..plan.layers.len())
+            .filter(|&i| !skipped[i])
+            .map(|i| (i, layer_runs[i].clone()))
+            .collect();
         // The timestamps need a pass: with every layer skipped, layer 0's
         // clear carries them (its view stays zeroed).
         let clear_only = drawn.is_empty() && timestamps.is_some();
         if clear_only {
-            drawn.push(0);
+            drawn.push((0, Vec::new()));
         }
-        let (first, last) = (drawn.first().copied(), drawn.last().copied());
-        for &i in &drawn {
+        let max_triangles = parts.as_ref().map_or(u64::MAX, |p| p.max_triangles);
+        let passes = scene_parts::split_layers(&drawn, max_triangles);
+        let last = passes.len().saturating_sub(1);
+        for (k, part) in passes.iter().enumerate() {
+            if let (true, Some(parts)) = (part.break_before, parts.as_mut()) {
+                (parts.submit_and_wait)(encoder);
+            }
             let timestamp_writes = timestamps.and_then(|set| {
-                (Some(i) == first || Some(i) == last).then_some(wgpu::RenderPassTimestampWrites {
+                (k == 0 || k == last).then_some(wgpu::RenderPassTimestampWrites {
                     query_set: set,
-                    beginning_of_pass_write_index: (Some(i) == first).then_some(2),
-                    end_of_pass_write_index: (Some(i) == last).then_some(3),
+                    beginning_of_pass_write_index: (k == 0).then_some(2),
+                    end_of_pass_write_index: (k == last).then_some(3),
                 })
             });
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow map"),
                 color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.layer_views[i],
+                    view: &self.layer_views[part.layer],
                     depth_ops: Some(wgpu::Operations {
                         // Reversed depth: 0 is "nothing here".
-                        load: wgpu::LoadOp::Clear(0.0),
+                        load: match part.clears {
+                            true => wgpu::LoadOp::Clear(0.0),
+                            false => wgpu::LoadOp::Load,
+                        },
                         store: wgpu::StoreOp::Store,
                     }),
                     stencil_ops: None,
@@ -284,10 +299,9 @@ impl ShadowMaps {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            let size = plan.layers[i].map_size as f32;
+            let size = plan.layers[part.layer].map_size as f32;
             pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
-            let runs = &layer_runs[i];
-            if runs.is_empty() || clear_only {
+            if part.draws.is_empty() {
                 continue;
             }
             pass.set_pipeline(&self.pass_pipeline);
@@ -296,8 +310,8 @@ impl ShadowMaps {
             // MASK runs with the masked pipeline and their group 1, the
             // others depth-only (both layouts share group 0).
             let mut masked = false;
-            let layer = i as u32..i as u32 + 1;
-            for (range, material) in runs {
+            let layer = part.layer as u32..part.layer as u32 + 1;
+            for (range, material) in &part.draws {
                 match material.and_then(|m| masks?.group(m)) {
                     Some(group) => {
                         if !masked {
@@ -319,6 +333,10 @@ impl ShadowMaps {
     }
 }
 
+/// One draw of a shadow pass: a range of the stream, with the material
+/// whose masked pipeline draws it (`None`: depth-only).
+type Run = (Range<u32>, Option<u32>);
+
 /// `plan`'s layer views as the buffers hold them (`arrays` says how).
 fn view_bytes(plan: &ShadowPlan, arrays: UniformArrays) -> Vec<u8> {
     bind_groups::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views)
@@ -330,11 +348,7 @@ fn view_bytes(plan: &ShadowPlan, arrays: UniformArrays) -> Vec<u8> {
 /// that material with the masked pipeline, `None` for the depth-only
 /// pipeline. A depth-only pass keeps the nearest depth whatever the draw
 /// order, so merging changes no texel.
-fn runs(
-    draw: &SceneDraw,
-    objects: Option<&[u32]>,
-    masks: Option<&ShadowMasks>,
-) -> Vec<(Range<u32>, Option<u32>)> {
+fn runs(draw: &SceneDraw, objects: Option<&[u32]>, masks: Option<&ShadowMasks>) -> Vec<Run> {
     let masked = |m: u32| masks.and_then(|k| k.group(m)).map(|_| m);
     let items: Vec<(Range<u32>, Option<u32>)> = match objects {
         Some(list) => list
