@@ -50,7 +50,19 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
 #endif
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
-    var radiance = m.emission + m.k_a * globals.ambient * m.occlusion;
+    // Emission and ambient occlusion only where some material has them
+    // (ShaderKey::emission, ::occlusion): adding 0 and multiplying by 1
+    // change no pixel, and cost about 6 % of a Lambert frame on lavapipe.
+    #if occlusion
+    let occlusion = m.occlusion;
+    #else
+    let occlusion = 1.0;
+    #endif
+    #if emission
+    var radiance = m.emission + m.k_a * globals.ambient * occlusion;
+    #else
+    var radiance = m.k_a * globals.ambient * occlusion;
+    #endif
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the
@@ -89,19 +101,19 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
         #endif
     }
     #if environment_sampled
-    radiance += environment_sampled(m, wo, frame) * m.occlusion;
+    radiance += environment_sampled(m, wo, frame) * occlusion;
     #elif environment_prefiltered
     // The diffuse term plus the split-sum glossy term (Karis 2013).
-    radiance += environment_prefiltered(m, wo, frame) * m.occlusion;
+    radiance += environment_prefiltered(m, wo, frame) * occlusion;
     #elif environment_sh
     // The diffuse term plus the Phong lobes by SH convolution.
-    radiance += environment_sh(m, wo, frame) * m.occlusion;
+    radiance += environment_sh(m, wo, frame) * occlusion;
     #elif environment
-    radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n) * m.occlusion;
+    radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n) * occlusion;
     #endif
     #if mirror
     let reflected = mirror_direction(wo, n);
-    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected) * m.occlusion;
+    radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected) * occlusion;
     #endif
     return radiance;
 }

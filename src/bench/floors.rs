@@ -236,6 +236,10 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
         // The globals hold the albedo table as the scene says: the same
         // compensation code as the specialized shader.
         energy_compensation: ShaderKey::new(scene, &ShadowPlan::new(scene)).energy_compensation,
+        // Any material may emit or be occluded, as an uber shader must
+        // allow.
+        emission: true,
+        occlusion: true,
         // The same G1 form as the specialized shader.
         smith_beckmann_rational: ShaderKey::new(scene, &ShadowPlan::new(scene))
             .smith_beckmann_rational,

@@ -148,10 +148,7 @@ pub struct LayerPart<T> {
 /// it, the next ones load what it drew (a depth pass keeps the nearest
 /// depth whatever the order, so the texels are the ones a whole pass
 /// gives).
-pub fn split_layers<T: Clone>(
-    layers: &[LayerDraws<T>],
-    max_triangles: u64,
-) -> Vec<LayerPart<T>> {
+pub fn split_layers<T: Clone>(layers: &[LayerDraws<T>], max_triangles: u64) -> Vec<LayerPart<T>> {
     let max = (max_triangles.clamp(1, (u32::MAX / 3) as u64) * 3) as u32;
     let mut parts = Vec::new();
     let mut room = max;

@@ -242,6 +242,23 @@ impl Material {
         m
     }
 
+    /// Whether the material emits anywhere: a non-zero `emission` (an
+    /// emission texture only scales it). The GPU compiles the emission
+    /// term only for a scene with such a material (`ShaderKey::emission`).
+    pub fn emits(&self) -> bool {
+        self.emission != Rgb::ZERO
+    }
+
+    /// Whether its ambient occlusion may differ from 1 somewhere: the
+    /// constant, or an occlusion texture (`ShaderKey::occlusion`).
+    pub fn has_occlusion(&self) -> bool {
+        self.occlusion != 1.0
+            || self
+                .textures
+                .iter()
+                .any(|t| matches!(t.target, texture::TextureTarget::Occlusion { .. }))
+    }
+
     /// After an edit (the viewer's panel, `--edit`, `compare.N.KEY`): a
     /// weight `k_d` or `k_s` still at its default for the material as it
     /// was (`before`, its row's [`weights`]) takes its default for the

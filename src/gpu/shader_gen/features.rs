@@ -107,6 +107,11 @@ pub enum Feature {
     /// approximation instead of the exact erf form
     /// (`shading.smith_beckmann = "rational"`; `smith_beckmann_rational`).
     SmithBeckmannRational,
+    /// Some material emits: `L_e` is added (`emission`).
+    Emission,
+    /// Some material's ambient occlusion is not 1: it multiplies the
+    /// ambient and environment terms (`occlusion`).
+    Occlusion,
 }
 
 impl Feature {
@@ -145,6 +150,8 @@ impl Feature {
             MeasuredNetwork,
             EnergyCompensation,
             SmithBeckmannRational,
+            Emission,
+            Occlusion,
         ];
         all.extend(ReflectanceModel::ALL.into_iter().map(Model));
         all.extend(
@@ -196,6 +203,8 @@ impl Feature {
             Feature::MeasuredNetwork => "measured_network",
             Feature::EnergyCompensation => "energy_compensation",
             Feature::SmithBeckmannRational => "smith_beckmann_rational",
+            Feature::Emission => "emission",
+            Feature::Occlusion => "occlusion",
         };
         flag.into()
     }

@@ -76,6 +76,16 @@ pub struct ShaderKey {
     /// Some material the scene draws has energy compensation (feature
     /// `energy_compensation`).
     pub energy_compensation: bool,
+    /// Some material the scene draws emits (`emission` ≠ 0; feature
+    /// `emission`): without, the emission add is left out of
+    /// `reflected_radiance` (adding 0 changes no pixel).
+    pub emission: bool,
+    /// Some material the scene draws has an ambient occlusion other than
+    /// 1 (a constant or an occlusion texture; feature `occlusion`):
+    /// without, the occlusion multiplies are left out (multiplying by 1
+    /// changes no pixel). The two cost about 6 % of the bench's
+    /// specialized Lambert frame on lavapipe (docs/bench/report.md).
+    pub occlusion: bool,
     /// Smith-Beckmann's G1 and Λ by Walter's rational approximation
     /// (feature `smith_beckmann_rational`, `shading.smith_beckmann =
     /// "rational"`; only with a variant that uses them); else the exact
@@ -221,6 +231,14 @@ impl ShaderKey {
                 .meshes
                 .iter()
                 .any(|m| scene.materials[m.material].energy_compensation),
+            emission: scene
+                .meshes
+                .iter()
+                .any(|m| scene.materials[m.material].emits()),
+            occlusion: scene
+                .meshes
+                .iter()
+                .any(|m| scene.materials[m.material].has_occlusion()),
             smith_beckmann_rational: scene.smith_beckmann
                 == crate::material::SmithBeckmann::Rational,
             tone_map: scene.tone_map,
@@ -401,6 +419,12 @@ impl ShaderKey {
         }
         if self.smith_beckmann_rational {
             f.push(Feature::SmithBeckmannRational);
+        }
+        if self.emission {
+            f.push(Feature::Emission);
+        }
+        if self.occlusion {
+            f.push(Feature::Occlusion);
         }
         f
     }

@@ -120,6 +120,9 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 energy_compensation: i % 2 == 1,
                 // Both G1 forms, on alternate keys.
                 smith_beckmann_rational: i % 2 == 0,
+                // Emission and occlusion on alternate keys.
+                emission: i % 2 == 1,
+                occlusion: i % 3 == 0,
                 tone_map: crate::output::tone_map::ToneMap::ALL
                     [i % crate::output::tone_map::ToneMap::ALL.len()],
             });
@@ -160,6 +163,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     measured_network: false,
                     energy_compensation: false,
                     smith_beckmann_rational: pcf,
+                    emission: pcf,
+                    occlusion: !pcf,
                     tone_map: Default::default(),
                 });
             }
@@ -202,6 +207,8 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 measured_network: uniform,
                 energy_compensation: uniform,
                 smith_beckmann_rational: uniform,
+                emission: uniform,
+                occlusion: uniform,
                 tone_map: Default::default(),
             });
         }

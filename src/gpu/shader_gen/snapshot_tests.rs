@@ -94,6 +94,8 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
         measured_network: false,
         energy_compensation: false,
         smith_beckmann_rational: false,
+        emission: false,
+        occlusion: false,
         tone_map: Default::default(),
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
@@ -133,6 +135,8 @@ fn snapshot_everything() {
         measured_network: false,
         energy_compensation: true,
         smith_beckmann_rational: false,
+        emission: true,
+        occlusion: true,
         tone_map: Default::default(),
     };
     check_snapshot("everything", &compose(&key));
