@@ -7,6 +7,10 @@
 #
 #   scripts/viewer-frame-time.sh [FRAMES] [WARMUP] [ROUNDS] [BEVY_PEER]
 #
+# With GONIO_BEFORE=PATH (another build's gonio binary, e.g. the commit
+# before a change), that binary draws each viewer-bevy-match variant too,
+# in the same rounds, for a before/after column measured interleaved.
+#
 # Scenes:
 # - assets/scenes/viewer-bench.toml (16 128-triangle sphere on a plane, one
 #   shadowed directional light) at 1920x1080, and the default scene at
@@ -30,12 +34,14 @@ bevy="${4:-}"
 cargo build --release --quiet
 gonio=target/release/gonio
 median() { grep -o 'median [0-9.]* ms' | head -1 | grep -o '[0-9.]*'; }
-run() {
-    local size="$1"; shift
-    xvfb-run -a -s "-screen 0 ${size}x24" "$gonio" view --size "$size" --no-vsync \
+before="${GONIO_BEFORE:-}"
+run_with() {
+    local exe="$1" size="$2"; shift 2
+    xvfb-run -a -s "-screen 0 ${size}x24" "$exe" view --size "$size" --no-vsync \
         --frames "$frames" --warmup "$warmup" --frame-times --spin 0.5 "$@" 2>/dev/null \
         | grep '^frame times'
 }
+run() { run_with "$gonio" "$@"; }
 echo "# gonio view frame times ($(date -u +%F), $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg))"
 for panel in "" "--no-panel"; do
     echo "viewer-bench 1920x1080 ${panel:-with panel}:"
@@ -74,6 +80,11 @@ for round in $(seq "$rounds"); do
         m=$(run 1920x1080 "$match" --no-panel --no-overlay "${extra[@]}" | median)
         echo "  round $round gonio $v: $m"
         sum["gonio $v"]+="$m "
+        if [[ -n "$before" ]]; then
+            m=$(run_with "$before" 1920x1080 "$match" --no-panel --no-overlay "${extra[@]}" | median)
+            echo "  round $round before $v: $m"
+            sum["before $v"]+="$m "
+        fi
         if [[ -n "$bevy" && "${a[0]}" != unlit ]]; then
             lights=4; [[ "${a[0]}" == one ]] && lights=1
             spin=(); [[ "${a[1]:-}" == spin ]] && spin=(--spin-lights 1)
@@ -101,3 +112,14 @@ for v in "${variants[@]}"; do
         r = g / b; printf "%.3f %s", r, (r <= 0.2 ? "met" : "missed")}' || echo "–")
     echo "| $v | $g ms | $ratio | ${b:-–}${b:+ ms} | $vs |"
 done
+if [[ -n "$before" ]]; then
+    echo
+    echo "Before ($before) and after, interleaved in the same rounds:"
+    echo "| variant | before | after | after / before |"
+    echo "| --- | --- | --- | --- |"
+    for v in "${variants[@]}"; do
+        a=$(echo "${sum[gonio $v]}" | med)
+        b=$(echo "${sum[before $v]}" | med)
+        echo "| $v | $b ms | $a ms | $(awk -v a="$a" -v b="$b" 'BEGIN {printf "%.2f", a / b}') |"
+    done
+fi
