@@ -77,7 +77,9 @@ impl Budget {
                     fine_repeats: 31,
                     hd: (1920, 1080),
                     small: None,
-                    cold_runs: 2,
+                    // A cold run's ratio spreads by ±10 % (1.17–1.44 in
+                    // one quiet run of 12): the median needs several.
+                    cold_runs: 5,
                 },
                 scale: Some(plan),
                 truth_samples: TRUTH_AREA_SAMPLES,
@@ -93,7 +95,7 @@ impl Budget {
                     fine_repeats: 61,
                     hd: (1920, 1080),
                     small: None,
-                    cold_runs: 3,
+                    cold_runs: 9,
                 },
                 scale: Some(Plan::full()),
                 truth_samples: TRUTH_AREA_SAMPLES,
