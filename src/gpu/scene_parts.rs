@@ -85,33 +85,28 @@ pub struct ScenePart {
 /// boundaries: three indices, or vertices, a triangle). One part, the
 /// whole pass, when everything fits (or there is nothing to draw).
 pub fn split(order: &[usize], batches: &[Batch], max_triangles: u64) -> Vec<ScenePart> {
-    let max = (max_triangles.clamp(1, (u32::MAX / 3) as u64) * 3) as u32;
-    let mut parts: Vec<Vec<(usize, Range<u32>)>> = vec![Vec::new()];
-    let mut room = max;
-    for &b in order {
-        let mut range = batches[b].range.clone();
-        while !range.is_empty() {
-            if room == 0 {
-                parts.push(Vec::new());
-                room = max;
-            }
-            let take = room.min(range.end - range.start);
-            let part = parts.last_mut().expect("one part at least");
-            part.push((b, range.start..range.start + take));
-            range.start += take;
-            room -= take;
-        }
-    }
+    // The scene pass is one layer's drawing: the same split as the
+    // shadow maps' (its first part clears, every later one follows a
+    // break), each draw tagged with its batch.
+    let draws = order
+        .iter()
+        .map(|&b| (batches[b].range.clone(), b))
+        .collect();
+    let parts = split_layers(&[(0, draws)], max_triangles);
     let n = parts.len();
     parts
         .into_iter()
         .enumerate()
-        .map(|(i, draws)| ScenePart {
+        .map(|(i, part)| ScenePart {
             position: PassPosition {
                 first: i == 0,
                 last: i + 1 == n,
             },
-            draws,
+            draws: part
+                .draws
+                .into_iter()
+                .map(|(range, b)| (b, range))
+                .collect(),
         })
         .collect()
 }

@@ -256,9 +256,10 @@ impl ShadowMaps {
         for i in (0..plan.layers.len()).filter(|&i| skipped[i]) {
             encoder.clear_buffer(&self.scene_views, i as u64 * view_size, Some(view_size));
         }
-        let mut drawn: Vec<(usize, Vec<Run>)> = (0..plan.layers.len())
-            .filter(|&i| !skipped[i])
-            .map(|i| (i, layer_runs[i].clone()))
+        let mut drawn: Vec<(usize, Vec<Run>)> = layer_runs
+            .into_iter()
+            .enumerate()
+            .filter(|&(i, _)| !skipped[i])
             .collect();
         // The timestamps need a pass: with every layer skipped, layer 0's
         // clear carries them (its view stays zeroed).
