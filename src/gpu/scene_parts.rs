@@ -48,7 +48,7 @@ pub fn pass_triangles() -> crate::Result<u64> {
             Ok(n) => Ok(n),
             Err(_) => Err(crate::Error::argument(
                 format!("{PASS_TRIANGLES_ENV}={text}"),
-                "expected a triangle count per scene-pass part (0: draw the scene pass whole)",
+                "expected a triangle count per part of a scene or shadow pass (0: draw the passes whole)",
             )),
         },
         _ => Ok(PASS_TRIANGLES),
