@@ -363,6 +363,10 @@ enum ShadowSide {
     /// 0.5`): the bench's Pareto front puts it at about a third of the
     /// fixed maps' cost for about twice their error.
     FittedHalf,
+    /// The default, on textures made for this render: the device's
+    /// texture pool emptied first, as in a process's first render
+    /// (src/gpu/texture_pool.rs), so the passes touch fresh memory.
+    FreshTextures,
 }
 
 /// The 4-shadowed-light ratio issue 18 asks to halve: 29.4, measured
@@ -370,13 +374,15 @@ enum ShadowSide {
 const HEAVY_BEFORE: f64 = 29.4;
 
 /// Cook-Torrance + exact Fresnel + four shadowed lights vs the unlit
-/// floor on the same geometry, four sides interleaved: the default
-/// renderer (caster culling, fixed 2048² faces), the same without caster
-/// culling (the renderer before it), the same with sides fitted to the
-/// screen (at one and at half a texel per pixel), and the unlit pass.
-/// Returns the ratios of whole frames (shadow passes included) of the
-/// four, and that of the scene pass alone; the
-/// notes give each frame's error against the ray-traced truth.
+/// floor on the same geometry, five sides interleaved: the default
+/// renderer (caster culling, fixed 2048² faces, the textures of the
+/// previous render reused), the same without caster culling (the
+/// renderer before it), the same with sides fitted to the screen (at one
+/// and at half a texel per pixel), the default on fresh textures (a
+/// process's first render), and the unlit pass. Returns the ratios of
+/// whole frames (shadow passes included) of the five, and that of the
+/// scene pass alone; the notes give each frame's error against the
+/// ray-traced truth.
 pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<Ratio>> {
     let scene = ct_four_shadowed(effort.hd)?;
     let fitted_scene = ct_four_shadowed_with(
@@ -393,14 +399,15 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
         ShadowSide::Unculled,
         ShadowSide::Fitted,
         ShadowSide::FittedHalf,
+        ShadowSide::FreshTextures,
     ];
-    let mut frames: [Vec<f64>; 4] = Default::default();
-    let mut passes: [Vec<f64>; 4] = Default::default();
+    let mut frames: [Vec<f64>; 5] = Default::default();
+    let mut passes: [Vec<f64>; 5] = Default::default();
     let mut floor = Vec::new();
-    let mut layers: [String; 4] = Default::default();
-    let mut last: [Option<crate::frame::Frame>; 4] = Default::default();
+    let mut layers: [String; 5] = Default::default();
+    let mut last: [Option<crate::frame::Frame>; 5] = Default::default();
     for i in 0..effort.warmup + effort.repeats {
-        for side in rotated(5, i) {
+        for side in rotated(sides.len() + 1, i) {
             let Some(&which) = sides.get(side) else {
                 let ms = unlit.time_once(renderer.context())?.0;
                 if i >= effort.warmup {
@@ -409,10 +416,13 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
                 continue;
             };
             renderer.cull_shadow_casters = which != ShadowSide::Unculled;
+            if which == ShadowSide::FreshTextures {
+                renderer.context().textures.clear();
+            }
             let drawn = match which {
                 ShadowSide::Fitted => &fitted_scene,
                 ShadowSide::FittedHalf => &half_scene,
-                ShadowSide::Culled | ShadowSide::Unculled => &scene,
+                ShadowSide::Culled | ShadowSide::Unculled | ShadowSide::FreshTextures => &scene,
             };
             let (frame, timings) = renderer.render(drawn)?;
             renderer.cull_shadow_casters = true;
@@ -479,7 +489,7 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
         format!("Cook-Torrance, exact Fresnel, 4 shadowed lights / unlit floor, {w}x{h}"),
         Some(2.5),
         format!(
-            "four point lights cast shadows through cube maps (6 layers of 2048² each, 3x3 PCF); each face draws only the casters whose bounding boxes reach its frustum ({}): the shadow passes take {:.0} ms ({:.1}× the unlit pass) of the frame; the scene pass is the other {:.0} ms ({:.1}×). Error against the ray-traced shadows (relative RMS of the radiance): {:.4}. Without caster culling the frame takes {:.0} ms (ratio {:.2}, error {:.4}: the same image), measured interleaved; with sides fitted to the screen ({fitted_sides}) see the row below. A software rasterizer shades on the CPU, so a fragment's cost is its arithmetic: 4 lights × (Beckmann D, Smith G, complex-index Fresnel per channel, 9 shadow-map taps) against one constant store. The 2.5× target assumes a GPU, where rasterization and bandwidth, not ALU work, set the floor",
+            "four point lights cast shadows through cube maps (6 layers of 2048² each, 3x3 PCF); each face draws only the casters whose bounding boxes reach its frustum ({}): the shadow passes take {:.0} ms ({:.1}× the unlit pass) of the frame; the scene pass is the other {:.0} ms ({:.1}×). Like the unlit pass, each render reuses the previous one's textures (maps and targets, cleared by the passes); a process's first render, on fresh textures, is the row \"on fresh textures\" below. Error against the ray-traced shadows (relative RMS of the radiance): {:.4}. Without caster culling the frame takes {:.0} ms (ratio {:.2}, error {:.4}: the same image), measured interleaved; with sides fitted to the screen ({fitted_sides}) see the row below. A software rasterizer shades on the CPU, so a fragment's cost is its arithmetic: 4 lights × (Beckmann D, Smith G, complex-index Fresnel per channel, 9 shadow-map taps) against one constant store. The 2.5× target assumes a GPU, where rasterization and bandwidth, not ALU work, set the floor",
             layers[0],
             shadow.median,
             shadow.median / floor.median,
@@ -525,7 +535,25 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
             errors[3], errors[0]
         ),
     );
-    Ok(vec![frame, before, fitted, half, pass])
+    let fresh_shadow: Vec<f64> = frames[4]
+        .iter()
+        .zip(&passes[4])
+        .map(|(f, p)| f - p)
+        .collect();
+    let fresh = ratio(
+        4,
+        format!("same as the first row, on fresh textures (a process's first render), {w}x{h}"),
+        None,
+        format!(
+            "the rows above reuse the previous render's shadow maps and targets (src/gpu/texture_pool.rs: a renderer that draws again keeps them); here the pool is emptied before each render, so the shadow passes' clears and the scene pass touch memory the kernel has not yet handed out, a 4 KiB page at a time, as `gonio render` does once per process: the shadow passes take {:.0} ms here against {:.0} ms on reused maps, the scene pass {:.0} ms against {:.0} ms. Error against the ray-traced shadows {:.4} (the same image)",
+            Stats::of(&fresh_shadow).median,
+            shadow.median,
+            Stats::of(&passes[4]).median,
+            pass_stats.median,
+            errors[4],
+        ),
+    );
+    Ok(vec![frame, before, fitted, half, fresh, pass])
 }
 
 /// Cold `gonio render` of the built-in scene to PNG vs the minimal

@@ -344,6 +344,10 @@ pub fn probe_memory(spec: &str, adapter: Option<&str>) -> Result<()> {
         &SceneSource::BuiltIn,
         &point_overrides(8, (w, h), shadows),
     )?)?;
+    // Each measured render makes its own textures, as in a `gonio render`
+    // process: none is left in the device's pool (src/gpu/texture_pool.rs)
+    // to hide in the baseline.
+    renderer.context().textures.clear();
     let baseline = reset_peak().ok_or_else(|| {
         crate::Error::Gpu("cannot read /proc/self/status to measure memory".into())
     })?;
@@ -355,6 +359,7 @@ pub fn probe_memory(spec: &str, adapter: Option<&str>) -> Result<()> {
     let mut tiny = scene_file::load(&SceneSource::BuiltIn, &point_overrides(8, (w, h), shadows))?;
     renderer.render_releasing_meshes(&mut tiny)?;
     let frame = peak()?.saturating_sub(baseline);
+    renderer.context().textures.clear();
     let baseline = reset_peak().ok_or_else(|| {
         crate::Error::Gpu("cannot read /proc/self/status to measure memory".into())
     })?;

@@ -1,5 +1,6 @@
 //! Device and adapter selection, headless.
 
+use super::texture_pool::TexturePool;
 use crate::{Error, Result};
 
 /// The environment variable that picks an adapter by (part of) its name,
@@ -64,6 +65,9 @@ pub struct GpuContext {
     pub adapter_info: wgpu::AdapterInfo,
     /// Timestamp queries were requested and granted.
     pub timestamps: bool,
+    /// The textures one offscreen render leaves for the next
+    /// (src/gpu/texture_pool.rs).
+    pub textures: TexturePool,
 }
 
 impl GpuContext {
@@ -252,6 +256,7 @@ impl GpuContext {
             queue,
             adapter_info,
             timestamps,
+            textures: TexturePool::default(),
         })
     }
 

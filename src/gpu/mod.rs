@@ -22,6 +22,9 @@
 //! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
 //!   and reads the timestamp queries; [`timing`] names the durations;
 //! * [`offscreen`] is the one-shot render (`scene -> Frame`);
+//!   [`texture_pool`] keeps its targets and shadow maps for the next one
+//!   on the same device (fresh memory costs a CPU device its first
+//!   touch);
 //! * [`renderer`]'s [`GpuRenderer`] owns the device and the cache and
 //!   hands them to the others, and gives the bench the renderer's
 //!   pipeline with another shader over a [`draw::SceneDraw`].
@@ -33,21 +36,24 @@
 //! renderer    -> offscreen prepared pipelines draw readback timing
 //!                upload geometry layout shader_gen context
 //! offscreen   -> prepared pipelines draw readback timing context
+//!                texture_pool
 //! prepared    -> shadow_maps shadow_culling shadow_masks pipelines draw
 //!                upload geometry layout shader_gen shadows context
 //! shadow_maps -> shadow_culling shadow_masks pipelines draw bind_groups
-//!                bindings shadows
+//!                bindings shadows context texture_pool
 //! shadow_culling -> geometry shadows
 //! shadow_masks -> textures pipelines geometry shader_gen
 //! draw        -> bind_groups bindings upload geometry layout shader_gen
 //! pipelines   -> bind_groups bindings geometry shader_gen shadows
 //! bind_groups -> bindings layout shadows
 //! readback    -> context
+//! context     -> texture_pool
 //! upload      -> geometry
 //! layout      -> nothing in gpu/ (the material's BRDF value, the scene)
 //! shader_gen  -> bindings shadows
 //! shadows     -> shadow_fit layout (GpuLight, GpuShadowView)
-//! bindings, geometry, timing, context, shadow_fit -> nothing in gpu/
+//! bindings, geometry, timing, texture_pool, shadow_fit -> nothing in
+//!                gpu/
 //! ```
 //!
 //! Every edge points down: a DAG (`GpuMaterial::new` takes the variant's
@@ -73,6 +79,7 @@ pub mod shadow_fit;
 pub mod shadow_maps;
 pub mod shadow_masks;
 pub mod shadows;
+pub mod texture_pool;
 pub mod textures;
 pub mod timing;
 pub mod upload;

@@ -19,11 +19,17 @@ use super::pipelines::{DEPTH_FORMAT, PipelineCache};
 use super::prepared::PreparedScene;
 use super::readback::{PassTimestamps, Readback};
 use super::scene_parts::{self, PartBreak};
+use super::texture_pool::TextureRequest;
 use super::timing::{Clock, Timings};
 use crate::frame::Frame;
 use crate::scene::Scene;
 use crate::{Error, Result};
 use std::time::Instant;
+
+/// The targets' labels and their roles in the device's texture pool.
+const COLOR_ROLE: &str = "radiance";
+const DEPTH_ROLE: &str = "depth";
+const MULTISAMPLED_ROLE: &str = "radiance (multisampled)";
 
 /// Renders `scene` offscreen, returning the frame and the time of each
 /// step: a [`PreparedScene`] into an `Rgba32Float` target, one
@@ -112,17 +118,33 @@ fn draw_once(
 
     let start = Instant::now();
     let device = &ctx.device;
-    let target = |label, format, usage, sample_count| {
-        render_target(device, label, (width, height), format, usage, sample_count)
+    // From the device's pool: the last one-shot render's targets when
+    // they have this shape (the scene pass clears both; texture_pool.rs).
+    let target = |role, format, usage, sample_count| {
+        ctx.textures.take(
+            device,
+            &TextureRequest {
+                role,
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                format,
+                usage,
+                sample_count,
+                view_formats: &[],
+            },
+        )
     };
     let color = target(
-        "radiance",
+        COLOR_ROLE,
         format,
         wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         1,
     );
     let depth = target(
-        "depth",
+        DEPTH_ROLE,
         DEPTH_FORMAT,
         wgpu::TextureUsages::RENDER_ATTACHMENT,
         samples,
@@ -132,7 +154,7 @@ fn draw_once(
     // mean, coverage the covered fraction.
     let multisampled = (samples > 1).then(|| {
         target(
-            "radiance (multisampled)",
+            MULTISAMPLED_ROLE,
             format,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
             samples,
@@ -187,6 +209,15 @@ fn draw_once(
     ctx.queue.submit([encoder.finish()]);
     let frame_bytes = readback.read_bytes(device)?;
     timings.push("render pass + readback", start.elapsed(), Clock::Wall);
+    // Done with the textures (the readback waited for the last
+    // submission): the next one-shot render on this device reuses them.
+    drop((color_view, depth_view, multisampled_view));
+    prepared.release(ctx);
+    ctx.textures.give(COLOR_ROLE, color);
+    ctx.textures.give(DEPTH_ROLE, depth);
+    if let Some(t) = multisampled {
+        ctx.textures.give(MULTISAMPLED_ROLE, t);
+    }
     if let Some(q) = &queries {
         let (scene_pass, shadow_passes) = q.read(ctx)?;
         if drawn.shadow_layers > 0 {

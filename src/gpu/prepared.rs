@@ -209,14 +209,7 @@ impl PreparedScene {
             },
             &lights,
         );
-        let shadows = ShadowMaps::new(
-            &ctx.device,
-            ctx.adapter_info.backend,
-            cache,
-            &plan,
-            arrays,
-            draw.layout.stride(),
-        );
+        let shadows = ShadowMaps::new(ctx, cache, &plan, arrays, draw.layout.stride());
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
         let caster_bounds = if shadows.is_some() {
             shadow_culling::object_bounds(draw.objects())
@@ -352,14 +345,7 @@ impl PreparedScene {
                 self.plan = plan;
             }
         } else if plan != self.plan || masks_changed || arrays != self.key.arrays {
-            self.shadows = ShadowMaps::new(
-                &ctx.device,
-                ctx.adapter_info.backend,
-                cache,
-                &plan,
-                arrays,
-                layout.stride(),
-            );
+            self.shadows = ShadowMaps::new(ctx, cache, &plan, arrays, layout.stride());
             // Textured scenes are prepared anew above: no textures here.
             self.shadow_masks = self.shadows.as_ref().and_then(|_| {
                 ShadowMasks::new(
@@ -387,6 +373,15 @@ impl PreparedScene {
         );
         self.key = key;
         Ok(())
+    }
+
+    /// Gives this scene's shadow-map array back to `ctx`'s texture pool
+    /// for the next one-shot render (src/gpu/texture_pool.rs); call it
+    /// after the last submission that draws this scene.
+    pub fn release(self, ctx: &GpuContext) {
+        if let Some(shadows) = self.shadows {
+            shadows.release(ctx);
+        }
     }
 
     /// Writes only the per-view values of `scene` (camera, image size,

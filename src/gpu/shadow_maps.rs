@@ -5,12 +5,14 @@
 
 use super::bind_groups;
 use super::bindings::{self, UniformArrays};
+use super::context::GpuContext;
 use super::draw::SceneDraw;
 use super::pipelines::PipelineCache;
 use super::scene_parts::{self, PartBreak};
 use super::shadow_culling::LayerCasters;
 use super::shadow_masks::ShadowMasks;
 use super::shadows::{self, ShadowPlan};
+use super::texture_pool::TextureRequest;
 use crate::{Error, Result};
 use std::ops::Range;
 use wgpu::util::DeviceExt;
@@ -29,6 +31,9 @@ use wgpu::util::DeviceExt;
 /// comparison `d ≥ 0` passes). So a skipped layer costs neither its clear
 /// nor its pass, and the image is the one every layer drawn gives.
 pub struct ShadowMaps {
+    /// The array itself, kept to give back to the device's
+    /// [`TexturePool`](super::texture_pool::TexturePool) after a one-shot render ([`ShadowMaps::release`]).
+    texture: wgpu::Texture,
     layer_views: Vec<wgpu::TextureView>,
     scene_group: wgpu::BindGroup,
     pass_group: wgpu::BindGroup,
@@ -50,6 +55,9 @@ struct Shape {
     arrays: UniformArrays,
     stride: u64,
 }
+
+/// The shadow-map array's label and its role in the [`TexturePool`](super::texture_pool::TexturePool).
+const SHADOW_MAPS_ROLE: &str = "shadow maps";
 
 /// Layers of the shadow-map texture for `plan`'s maps: one per map, and
 /// on the GL backend one more where the count would make wgpu's GL
@@ -74,10 +82,12 @@ impl ShadowMaps {
     /// The shadow-map array of `plan` with one view per layer to render
     /// into, the bind groups that read and fill it and the depth-only
     /// pipeline for a stream of `stride` bytes; `None` without shadowed
-    /// lights. `backend`: the adapter's (see [`texture_layers`]).
+    /// lights. The array is the one the last one-shot render on `ctx`
+    /// left in its [`TexturePool`](super::texture_pool::TexturePool) when it has this shape (its layers'
+    /// old depths are never read: [`ShadowMaps::encode`] clears every
+    /// layer it draws and zeroes the view of every layer it skips).
     pub fn new(
-        device: &wgpu::Device,
-        backend: wgpu::Backend,
+        ctx: &GpuContext,
         cache: &mut PipelineCache,
         plan: &ShadowPlan,
         arrays: UniformArrays,
@@ -87,20 +97,23 @@ impl ShadowMaps {
             return None;
         }
         cache.compile_shadow_pass(stride);
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("shadow maps"),
-            size: wgpu::Extent3d {
-                width: plan.side,
-                height: plan.side,
-                depth_or_array_layers: texture_layers(plan, backend),
+        let device = &ctx.device;
+        let texture = ctx.textures.take(
+            device,
+            &TextureRequest {
+                role: SHADOW_MAPS_ROLE,
+                size: wgpu::Extent3d {
+                    width: plan.side,
+                    height: plan.side,
+                    depth_or_array_layers: texture_layers(plan, ctx.adapter_info.backend),
+                },
+                format: shadows::SHADOW_FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
+                sample_count: 1,
+                view_formats: &[],
             },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: shadows::SHADOW_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
+        );
         let init = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -175,6 +188,7 @@ impl ShadowMaps {
             }],
         });
         Some(ShadowMaps {
+            texture,
             layer_views,
             scene_group,
             pass_group,
@@ -189,6 +203,12 @@ impl ShadowMaps {
                 stride,
             },
         })
+    }
+
+    /// Gives the array back to `ctx`'s [`TexturePool`](super::texture_pool::TexturePool) for the next
+    /// one-shot render (after this one's last submission).
+    pub fn release(self, ctx: &GpuContext) {
+        ctx.textures.give(SHADOW_MAPS_ROLE, self.texture);
     }
 
     /// Whether `plan` fits these maps as they are: the same side and

@@ -1,0 +1,101 @@
+//! One-shot renders on one device reuse the last render's textures (the
+//! radiance and depth targets, the shadow-map array: src/gpu/texture_pool.rs)
+//! and change no texel by it: a render that follows another, whose maps
+//! and targets held other depths and colours, is bit for bit the render
+//! of a fresh device.
+
+mod common;
+
+use gonio::frame::Frame;
+use gonio::scene::Scene;
+use gonio::scene::scene_file::{self, SceneSource};
+
+/// The built-in scene with two shadowed point lights at `positions`.
+fn two_lights(positions: [[f64; 3]; 2], width: u32) -> Scene {
+    let lights = positions
+        .map(|[x, y, z]| {
+            format!(
+                "{{kind=\"point\", position=[{x}, {y}, {z}], intensity=[20.0, 20.0, 20.0], shadows=true}}"
+            )
+        })
+        .join(", ");
+    scene_file::load(
+        &SceneSource::BuiltIn,
+        &[
+            format!("lights=[{lights}]"),
+            format!("image.width={width}"),
+            "image.height=192".into(),
+            "shadows.map_size=256".into(),
+        ],
+    )
+    .unwrap()
+}
+
+fn differing_pixels(a: &Frame, b: &Frame) -> usize {
+    assert_eq!(a.coverage, b.coverage, "coverage");
+    a.radiance
+        .iter()
+        .zip(&b.radiance)
+        .filter(|(x, y)| x.map(f32::to_bits) != y.map(f32::to_bits))
+        .count()
+}
+
+#[test]
+fn a_render_after_another_reuses_its_textures_and_matches_a_fresh_device() {
+    // The same plan shape (two cubes of 256²) and image size, the lights
+    // moved up: the first render's maps hold nearer (larger, reversed)
+    // depths than the second draws, so a drawn layer not cleared would
+    // keep them (the pass keeps the larger), and its targets the first's
+    // colours.
+    let first = two_lights([[-2.0, 2.0, 2.5], [2.5, 1.5, -1.0]], 256);
+    let second = two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256);
+
+    let mut fresh = common::gpu_renderer();
+    let (expected, _) = fresh.render(&second).unwrap();
+
+    let mut renderer = common::gpu_renderer();
+    let (before, _) = renderer.render(&first).unwrap();
+    let pool = &renderer.context().textures;
+    let maps = pool.held("shadow maps").expect("the shadow maps are held");
+    let radiance = pool.held("radiance").expect("the radiance target is held");
+    let depth = pool.held("depth").expect("the depth target is held");
+    assert_eq!(pool.len(), 3, "one texture per role");
+
+    let (after, _) = renderer.render(&second).unwrap();
+    let pool = &renderer.context().textures;
+    assert_eq!(pool.held("shadow maps"), Some(maps), "the maps were reused");
+    assert_eq!(
+        pool.held("radiance"),
+        Some(radiance),
+        "the target was reused"
+    );
+    assert_eq!(pool.held("depth"), Some(depth), "the depth was reused");
+
+    assert!(
+        differing_pixels(&before, &expected) > 0,
+        "the two scenes must differ for the reuse to be tested"
+    );
+    assert_eq!(
+        differing_pixels(&after, &expected),
+        0,
+        "pixels of the render on reused textures that differ from a fresh device's"
+    );
+}
+
+#[test]
+fn another_shape_gets_new_textures_and_the_pool_keeps_one_per_role() {
+    let mut renderer = common::gpu_renderer();
+    renderer
+        .render(&two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256))
+        .unwrap();
+    let old = renderer.context().textures.held("radiance").unwrap();
+    let wider = two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 320);
+    let (frame, _) = renderer.render(&wider).unwrap();
+    let pool = &renderer.context().textures;
+    let new = pool.held("radiance").unwrap();
+    assert_ne!(new, old, "a wider image needs a new target");
+    assert_eq!(new.width(), 320);
+    assert_eq!(pool.len(), 3, "the old target was dropped, not kept beside");
+    let (expected, _) = common::gpu_renderer().render(&wider).unwrap();
+    assert_eq!(differing_pixels(&frame, &expected), 0);
+}
