@@ -6,6 +6,7 @@ pub mod failure;
 pub mod interrupt;
 pub mod plot;
 pub mod progress;
+pub mod srgb8;
 pub mod tone_map;
 pub mod write;
 

@@ -9,6 +9,7 @@
 //! rendering, so an unwritable destination fails before any work is done.
 
 use super::interrupt;
+use super::srgb8::srgb8;
 use super::tone_map::ToneMap;
 use crate::frame::Frame;
 use crate::{Error, Result};
@@ -157,23 +158,19 @@ pub fn srgb_encode(linear: f64) -> f64 {
 }
 
 /// Linear radiance to an 8-bit sRGB value: scale by `2^exposure`, clamp,
-/// encode, round. NaN maps to 0.
+/// encode, round (by table: [`srgb8`], the same codes). NaN maps to 0.
 pub fn to_srgb8(radiance: f32, exposure: f64) -> u8 {
-    let v = (radiance as f64 * exposure.exp2()).clamp(0.0, 1.0);
-    if v.is_nan() {
-        return 0;
-    }
-    (srgb_encode(v) * 255.0 + 0.5) as u8
+    srgb8((radiance as f64 * exposure.exp2()).clamp(0.0, 1.0))
 }
 
 /// One pixel's linear radiance to 8-bit sRGB: scale by `2^exposure`,
 /// tone-map (`ToneMap::Clamp`: exactly [`to_srgb8`] per channel), encode,
-/// round.
+/// round (by table: [`srgb8`], the same codes).
 pub fn pixel_to_srgb8(radiance: [f32; 3], exposure: f64, tone_map: ToneMap) -> [u8; 3] {
     let scale = exposure.exp2();
     tone_map
         .apply(radiance.map(|c| c as f64 * scale))
-        .map(|v| (srgb_encode(v) * 255.0 + 0.5) as u8)
+        .map(srgb8)
 }
 
 fn encode_png(frame: &Frame, exposure: f64, tone_map: ToneMap) -> Result<Vec<u8>, String> {
