@@ -12,6 +12,11 @@ use gonio::scene::scene_file::{self, SceneSource};
 
 /// The built-in scene with two shadowed point lights at `positions`.
 fn two_lights(positions: [[f64; 3]; 2], width: u32) -> Scene {
+    two_lights_with(positions, width, &[])
+}
+
+/// [`two_lights`] with more `--set`s.
+fn two_lights_with(positions: [[f64; 3]; 2], width: u32, sets: &[&str]) -> Scene {
     let lights = positions
         .map(|[x, y, z]| {
             format!(
@@ -19,16 +24,14 @@ fn two_lights(positions: [[f64; 3]; 2], width: u32) -> Scene {
             )
         })
         .join(", ");
-    scene_file::load(
-        &SceneSource::BuiltIn,
-        &[
-            format!("lights=[{lights}]"),
-            format!("image.width={width}"),
-            "image.height=192".into(),
-            "shadows.map_size=256".into(),
-        ],
-    )
-    .unwrap()
+    let mut overrides = vec![
+        format!("lights=[{lights}]"),
+        format!("image.width={width}"),
+        "image.height=192".into(),
+        "shadows.map_size=256".into(),
+    ];
+    overrides.extend(sets.iter().map(|s| s.to_string()));
+    scene_file::load(&SceneSource::BuiltIn, &overrides).unwrap()
 }
 
 fn differing_pixels(a: &Frame, b: &Frame) -> usize {
@@ -98,4 +101,55 @@ fn another_shape_gets_new_textures_and_the_pool_keeps_one_per_role() {
     assert_eq!(pool.len(), 3, "the old target was dropped, not kept beside");
     let (expected, _) = common::gpu_renderer().render(&wider).unwrap();
     assert_eq!(differing_pixels(&frame, &expected), 0);
+}
+
+#[test]
+fn an_msaa_render_after_another_matches_a_fresh_device_and_a_plain_one_drops_its_target() {
+    let msaa = ["image.msaa=4"];
+    let first = two_lights_with([[-2.0, 2.0, 2.5], [2.5, 1.5, -1.0]], 256, &msaa);
+    let second = two_lights_with([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256, &msaa);
+    let (expected, _) = common::gpu_renderer().render(&second).unwrap();
+    let mut renderer = common::gpu_renderer();
+    renderer.render(&first).unwrap();
+    let held = renderer
+        .context()
+        .textures
+        .held("radiance (multisampled)")
+        .expect("the multisampled target is held");
+    let (after, _) = renderer.render(&second).unwrap();
+    let pool = &renderer.context().textures;
+    assert_eq!(pool.held("radiance (multisampled)"), Some(held), "reused");
+    assert_eq!(
+        differing_pixels(&after, &expected),
+        0,
+        "pixels of the MSAA render on reused textures that differ from a fresh device's"
+    );
+    // A render without MSAA does not keep the multisampled target alive.
+    renderer
+        .render(&two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256))
+        .unwrap();
+    let pool = &renderer.context().textures;
+    assert!(pool.held("radiance (multisampled)").is_none());
+    assert_eq!(pool.len(), 3);
+}
+
+#[test]
+fn an_unshadowed_render_drops_the_held_shadow_maps() {
+    let mut renderer = common::gpu_renderer();
+    renderer
+        .render(&two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256))
+        .unwrap();
+    assert!(renderer.context().textures.held("shadow maps").is_some());
+    let unshadowed = scene_file::load(
+        &SceneSource::BuiltIn,
+        &["image.width=256".into(), "image.height=192".into()],
+    )
+    .unwrap();
+    renderer.render(&unshadowed).unwrap();
+    let pool = &renderer.context().textures;
+    assert!(
+        pool.held("shadow maps").is_none(),
+        "not held past a render that did not take it"
+    );
+    assert_eq!(pool.len(), 2);
 }

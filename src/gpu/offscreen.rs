@@ -160,6 +160,10 @@ fn draw_once(
             samples,
         )
     });
+    // What this render did not take (a multisampled target, shadow maps,
+    // a target of another size) it does not need: dropped before its
+    // passes, so the pool never adds to a render's peak memory.
+    ctx.textures.clear();
     let readback = Readback::new(device, width, height);
     let queries = ctx.timestamps.then(|| PassTimestamps::new(device));
     timings.push("create targets", start.elapsed(), Clock::Wall);

@@ -16,7 +16,10 @@
 //!
 //! The pool holds at most one texture per role (its label), so it never
 //! holds more than one render's textures: a request that does not match
-//! the held texture of its role drops it before making the new one.
+//! the held texture of its role drops it before making the new one, and
+//! a render empties the pool of what it did not take before its passes
+//! (a multisampled target after an MSAA render, shadow maps after a
+//! shadowed one), so what is held never adds to a render's peak.
 //! Only one-shot renders give their textures back
 //! ([`super::offscreen`]); the viewer keeps its own across frames.
 
