@@ -35,13 +35,7 @@ fn same_with_and_without(scene: &Scene, what: &str) {
     let (all, _) = renderer.render(scene).unwrap();
     renderer.cull_shadow_casters = true;
     let (culled, timings) = renderer.render(scene).unwrap();
-    assert_eq!(all.coverage, culled.coverage, "{what}: coverage");
-    let differing = all
-        .radiance
-        .iter()
-        .zip(&culled.radiance)
-        .filter(|(a, b)| a.map(f32::to_bits) != b.map(f32::to_bits))
-        .count();
+    let differing = common::differing_pixels(&all, &culled);
     assert_eq!(differing, 0, "{what}: pixels that differ");
     // The map's shadows are really in the image (a lit-only frame would
     // agree trivially): turning shadows off changes it.

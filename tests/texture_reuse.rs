@@ -6,9 +6,14 @@
 
 mod common;
 
-use gonio::frame::Frame;
 use gonio::scene::Scene;
 use gonio::scene::scene_file::{self, SceneSource};
+
+/// Lights low beside the sphere: their maps hold near (large, reversed)
+/// depths.
+const LOW: [[f64; 3]; 2] = [[-2.0, 2.0, 2.5], [2.5, 1.5, -1.0]];
+/// The same two lights moved up.
+const HIGH: [[f64; 3]; 2] = [[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]];
 
 /// The built-in scene with two shadowed point lights at `positions`.
 fn two_lights(positions: [[f64; 3]; 2], width: u32) -> Scene {
@@ -17,30 +22,14 @@ fn two_lights(positions: [[f64; 3]; 2], width: u32) -> Scene {
 
 /// [`two_lights`] with more `--set`s.
 fn two_lights_with(positions: [[f64; 3]; 2], width: u32, sets: &[&str]) -> Scene {
-    let lights = positions
-        .map(|[x, y, z]| {
-            format!(
-                "{{kind=\"point\", position=[{x}, {y}, {z}], intensity=[20.0, 20.0, 20.0], shadows=true}}"
-            )
-        })
-        .join(", ");
     let mut overrides = vec![
-        format!("lights=[{lights}]"),
+        common::shadowed_point_lights(&positions),
         format!("image.width={width}"),
         "image.height=192".into(),
         "shadows.map_size=256".into(),
     ];
     overrides.extend(sets.iter().map(|s| s.to_string()));
     scene_file::load(&SceneSource::BuiltIn, &overrides).unwrap()
-}
-
-fn differing_pixels(a: &Frame, b: &Frame) -> usize {
-    assert_eq!(a.coverage, b.coverage, "coverage");
-    a.radiance
-        .iter()
-        .zip(&b.radiance)
-        .filter(|(x, y)| x.map(f32::to_bits) != y.map(f32::to_bits))
-        .count()
 }
 
 #[test]
@@ -50,8 +39,8 @@ fn a_render_after_another_reuses_its_textures_and_matches_a_fresh_device() {
     // depths than the second draws, so a drawn layer not cleared would
     // keep them (the pass keeps the larger), and its targets the first's
     // colours.
-    let first = two_lights([[-2.0, 2.0, 2.5], [2.5, 1.5, -1.0]], 256);
-    let second = two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256);
+    let first = two_lights(LOW, 256);
+    let second = two_lights(HIGH, 256);
 
     let mut fresh = common::gpu_renderer();
     let (expected, _) = fresh.render(&second).unwrap();
@@ -75,11 +64,11 @@ fn a_render_after_another_reuses_its_textures_and_matches_a_fresh_device() {
     assert_eq!(pool.held("depth"), Some(depth), "the depth was reused");
 
     assert!(
-        differing_pixels(&before, &expected) > 0,
+        common::differing_pixels(&before, &expected) > 0,
         "the two scenes must differ for the reuse to be tested"
     );
     assert_eq!(
-        differing_pixels(&after, &expected),
+        common::differing_pixels(&after, &expected),
         0,
         "pixels of the render on reused textures that differ from a fresh device's"
     );
@@ -88,11 +77,9 @@ fn a_render_after_another_reuses_its_textures_and_matches_a_fresh_device() {
 #[test]
 fn another_shape_gets_new_textures_and_the_pool_keeps_one_per_role() {
     let mut renderer = common::gpu_renderer();
-    renderer
-        .render(&two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256))
-        .unwrap();
+    renderer.render(&two_lights(HIGH, 256)).unwrap();
     let old = renderer.context().textures.held("radiance").unwrap();
-    let wider = two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 320);
+    let wider = two_lights(HIGH, 320);
     let (frame, _) = renderer.render(&wider).unwrap();
     let pool = &renderer.context().textures;
     let new = pool.held("radiance").unwrap();
@@ -100,14 +87,14 @@ fn another_shape_gets_new_textures_and_the_pool_keeps_one_per_role() {
     assert_eq!(new.width(), 320);
     assert_eq!(pool.len(), 3, "the old target was dropped, not kept beside");
     let (expected, _) = common::gpu_renderer().render(&wider).unwrap();
-    assert_eq!(differing_pixels(&frame, &expected), 0);
+    assert_eq!(common::differing_pixels(&frame, &expected), 0);
 }
 
 #[test]
 fn an_msaa_render_after_another_matches_a_fresh_device_and_a_plain_one_drops_its_target() {
     let msaa = ["image.msaa=4"];
-    let first = two_lights_with([[-2.0, 2.0, 2.5], [2.5, 1.5, -1.0]], 256, &msaa);
-    let second = two_lights_with([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256, &msaa);
+    let first = two_lights_with(LOW, 256, &msaa);
+    let second = two_lights_with(HIGH, 256, &msaa);
     let (expected, _) = common::gpu_renderer().render(&second).unwrap();
     let mut renderer = common::gpu_renderer();
     renderer.render(&first).unwrap();
@@ -120,14 +107,12 @@ fn an_msaa_render_after_another_matches_a_fresh_device_and_a_plain_one_drops_its
     let pool = &renderer.context().textures;
     assert_eq!(pool.held("radiance (multisampled)"), Some(held), "reused");
     assert_eq!(
-        differing_pixels(&after, &expected),
+        common::differing_pixels(&after, &expected),
         0,
         "pixels of the MSAA render on reused textures that differ from a fresh device's"
     );
     // A render without MSAA does not keep the multisampled target alive.
-    renderer
-        .render(&two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256))
-        .unwrap();
+    renderer.render(&two_lights(HIGH, 256)).unwrap();
     let pool = &renderer.context().textures;
     assert!(pool.held("radiance (multisampled)").is_none());
     assert_eq!(pool.len(), 3);
@@ -136,9 +121,7 @@ fn an_msaa_render_after_another_matches_a_fresh_device_and_a_plain_one_drops_its
 #[test]
 fn an_unshadowed_render_drops_the_held_shadow_maps() {
     let mut renderer = common::gpu_renderer();
-    renderer
-        .render(&two_lights([[3.0, 5.0, 3.0], [-3.0, 4.0, -3.0]], 256))
-        .unwrap();
+    renderer.render(&two_lights(HIGH, 256)).unwrap();
     assert!(renderer.context().textures.held("shadow maps").is_some());
     let unshadowed = scene_file::load(
         &SceneSource::BuiltIn,

@@ -194,3 +194,28 @@ pub fn assert_agrees(label: &str, what: &str, c: &Comparison, actual: &Frame, ex
     };
     panic!("{label}: {what}: {}\n{saved}", c.summary());
 }
+
+/// Pixels whose radiance differs in any bit between `a` and `b` (their
+/// coverage must be equal).
+pub fn differing_pixels(a: &gonio::frame::Frame, b: &gonio::frame::Frame) -> usize {
+    assert_eq!(a.coverage, b.coverage, "coverage");
+    a.radiance
+        .iter()
+        .zip(&b.radiance)
+        .filter(|(x, y)| x.map(f32::to_bits) != y.map(f32::to_bits))
+        .count()
+}
+
+/// A `lights=[...]` value: shadowed point lights of intensity 20 at
+/// `positions`.
+pub fn shadowed_point_lights(positions: &[[f64; 3]]) -> String {
+    let lights: Vec<String> = positions
+        .iter()
+        .map(|[x, y, z]| {
+            format!(
+                "{{kind=\"point\", position=[{x}, {y}, {z}], intensity=[20.0, 20.0, 20.0], shadows=true}}"
+            )
+        })
+        .collect();
+    format!("lights=[{}]", lights.join(", "))
+}
