@@ -74,7 +74,7 @@ pub struct GpuMaterial {
     pub occlusion: f32,
 }
 
-/// `Light` (storage buffer element, 112 bytes). The `shadow_*` fields are
+/// `Light` (storage buffer element, 128 bytes). The `shadow_*` fields are
 /// filled by [`super::shadows::ShadowPlan::apply`]; `shadow_layer` is −1
 /// for a light without a shadow map.
 #[repr(C)]
@@ -99,6 +99,13 @@ pub struct GpuLight {
     pub shadow_map: u32,
     pub shadow_array_texel: f32,
     pub _pad: [u32; 2],
+    /// Cube maps: `s · shadow_origin` (f32 of the f64 product), the
+    /// faces' clip x and y offsets up to sign; see `shadow_read_cube_face`
+    /// in shaders/shadows.wgsl.
+    pub shadow_cube_offset: [f32; 3],
+    /// Cube maps: `s`, the faces' clip x and y scale (the projection's
+    /// `1 / tan(fov / 2)`).
+    pub shadow_cube_scale: f32,
 }
 
 /// `ShadowView` (storage buffer element, 64 bytes): one layer of the
@@ -388,7 +395,9 @@ mod tests {
                 shadow_uv_scale,
                 shadow_map,
                 shadow_array_texel,
-                _pad
+                _pad,
+                shadow_cube_offset,
+                shadow_cube_scale
             }),
         );
         let shadows = naga::front::wgsl::parse_str(&format!(

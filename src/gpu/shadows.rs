@@ -328,6 +328,11 @@ impl ShadowPlan {
         g.shadow_uv_scale = (s.settings.map_size as f64 / self.side.max(1) as f64) as f32;
         // As the shader computed it from textureDimensions before (f32).
         g.shadow_array_texel = 1.0 / self.side.max(1) as f32;
+        if s.projection == Projection::Cube {
+            let first = s.first_layer as usize;
+            (g.shadow_cube_scale, g.shadow_cube_offset) =
+                cube_scale_and_offset(&self.layers[first..first + 6]);
+        }
     }
 
     /// Per layer: whether its lookup reads "lit" from an all-zero view
@@ -421,6 +426,23 @@ pub const CUBE_FACES: [DVec3; 6] = [
     DVec3::Z,
     DVec3::NEG_Z,
 ];
+
+/// A cube's `s` and `s · origin` as the f32 entries of its faces'
+/// matrices hold them (`shadow_read_cube_face` in shaders/shadows.wgsl
+/// writes each face's clip coordinates from these): `s` is +X's right
+/// row's z entry, `s·o.z` and `s·o.y` are minus its x and y offsets,
+/// `s·o.x` is +Z's x offset. Rounding to f32 is symmetric, so the negated
+/// entries are the rounded products exactly.
+fn cube_scale_and_offset(faces: &[ShadowLayer]) -> (f32, [f32; 3]) {
+    let (plus_x, plus_z) = (faces[0].clip_from_world, faces[4].clip_from_world);
+    let scale = plus_x.z_axis.x as f32;
+    let offset = [
+        plus_z.w_axis.x as f32,
+        -(plus_x.w_axis.y as f32),
+        -(plus_x.w_axis.x as f32),
+    ];
+    (scale, offset)
+}
 
 /// Eight corners of a box.
 fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
@@ -520,6 +542,67 @@ mod tests {
     fn depth(m: DMat4, p: DVec3) -> f64 {
         let c = m * DVec4::from((p, 1.0));
         c.z / c.w
+    }
+
+    /// What `shadow_read_cube_face` (shaders/shadows.wgsl) assumes of a
+    /// cube face's f32 matrix: per face (right, up, forward) axes and
+    /// signs as listed there, entries ±s, s, ±1 and offsets ∓(s·o), −(s·o),
+    /// near, ∓o, every other entry zero, with s and s·o the light's
+    /// `shadow_cube_scale` and `shadow_cube_offset` and o its f32
+    /// `shadow_origin`. Origins off the dyadic grid, far and near, small
+    /// and large fields.
+    #[test]
+    fn cube_faces_are_their_sparse_form() {
+        // (right axis, right sign, up axis), forward = (k / 2, ±).
+        const ROWS: [(usize, f32, usize); 6] = [
+            (2, 1.0, 1),
+            (2, -1.0, 1),
+            (2, -1.0, 0),
+            (2, 1.0, 0),
+            (0, -1.0, 1),
+            (0, 1.0, 1),
+        ];
+        let origins = [
+            DVec3::new(2.5, 2.5, 2.0),
+            DVec3::new(-0.1, 0.3, 1.0 / 3.0),
+            DVec3::new(1234.567, -0.000123, 98765.4321),
+            DVec3::ZERO,
+        ];
+        for origin in origins {
+            for (widen, near) in [
+                (1.0, 1e-3),
+                (1.0 / (1.0 - 2.0 * 2.7 / 1024.0), 0.0371),
+                (1.37, 5.0),
+            ] {
+                let faces: Vec<ShadowLayer> = CUBE_FACES
+                    .iter()
+                    .map(|&f| perspective_layer(origin, f, widen, near, 1024))
+                    .collect();
+                let (scale, offset) = cube_scale_and_offset(&faces);
+                let o = origin.as_vec3().to_array();
+                for (k, face) in faces.iter().enumerate() {
+                    let (right, sign, up) = ROWS[k];
+                    let (forward, forward_sign) = (k / 2, if k % 2 == 0 { 1.0 } else { -1.0 });
+                    let mut rows = [[0.0f32; 4]; 4];
+                    rows[0][right] = sign * scale;
+                    rows[0][3] = -sign * offset[right];
+                    rows[1][up] = scale;
+                    rows[1][3] = -offset[up];
+                    rows[2][3] = near as f32;
+                    rows[3][forward] = forward_sign;
+                    rows[3][3] = -forward_sign * o[forward];
+                    let m = face
+                        .clip_from_world
+                        .as_mat4()
+                        .transpose()
+                        .to_cols_array_2d();
+                    assert_eq!(
+                        m, rows,
+                        "face {k} of a cube at {origin}, widen {widen}, near {near}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
