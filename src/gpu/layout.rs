@@ -100,7 +100,7 @@ pub struct GpuLight {
     pub shadow_array_texel: f32,
     pub _pad: [u32; 2],
     /// Cube maps: `s · shadow_origin` (f32 of the f64 product), the
-    /// faces' clip x and y offsets up to sign; see `shadow_read_cube_face`
+    /// faces' clip x and y offsets up to sign; see `shadow_cube_clip`
     /// in shaders/shadows.wgsl.
     pub shadow_cube_offset: [f32; 3],
     /// Cube maps: `s`, the faces' clip x and y scale (the projection's

@@ -26,7 +26,7 @@ use wgpu::util::DeviceExt;
 /// (a cube face or spot map no caster reaches, see [`ShadowMaps::encode`])
 /// has an all-zero matrix. Its clip `w` is then 0, and the perspective
 /// lookup returns "lit" for `w ≤ 0` (shaders/shadows.wgsl `shadow_read`;
-/// the cube lookup `shadow_read_cube_face` for its face's `near` entry 0)
+/// the cube lookup `shadow_cube` for its face's `near` entry 0)
 /// before it reads a texel: what every tap of the cleared layer would
 /// have returned (a cleared texel holds 0, "nothing here", and the
 /// comparison `d ≥ 0` passes). So a skipped layer costs neither its clear

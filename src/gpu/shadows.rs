@@ -428,7 +428,7 @@ pub const CUBE_FACES: [DVec3; 6] = [
 ];
 
 /// A cube's `s` and `s · origin` as the f32 entries of its faces'
-/// matrices hold them (`shadow_read_cube_face` in shaders/shadows.wgsl
+/// matrices hold them (`shadow_cube_clip` in shaders/shadows.wgsl
 /// writes each face's clip coordinates from these): `s` is +X's right
 /// row's z entry, `s·o.z` and `s·o.y` are minus its x and y offsets,
 /// `s·o.x` is +Z's x offset. Rounding to f32 is symmetric, so the negated
@@ -544,7 +544,7 @@ mod tests {
         c.z / c.w
     }
 
-    /// What `shadow_read_cube_face` (shaders/shadows.wgsl) assumes of a
+    /// What `shadow_cube_clip` (shaders/shadows.wgsl) assumes of a
     /// cube face's f32 matrix: per face (right, up, forward) axes and
     /// signs as listed there, entries ±s, s, ±1 and offsets ∓(s·o), −(s·o),
     /// near, ∓o, every other entry zero, with s and s·o the light's

@@ -1974,6 +1974,21 @@ fn shadow_cube(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
     let p = shadow_point(light, x, n_g, to_light / max(r, 1e-30), light.shadow_texel * r);
     let v = p - light.shadow_origin;
     let a = abs(v);
+    let face = shadow_cube_face(v, a);
+    let layer = light.shadow_layer + face;
+    // A skipped face's view is all zero (src/gpu/shadow_maps.rs): near 0
+    // says so, as its clip w = 0 did, and it reads lit.
+    let near = shadow_views[layer].clip_from_world[3].z;
+    let clip = shadow_cube_clip(light, face, p, a, near);
+    if clip.w <= 0.0 || near == 0.0 {
+        return 1.0; // behind the face (outside the light's reach), or a skipped face
+    }
+    return shadow_read_ndc(light, layer, clip.xyz / clip.w);
+}
+
+// The face (CUBE_FACES order: +X −X +Y −Y +Z −Z) of the major axis of v,
+// the direction from the light to the lookup point (a = |v|).
+fn shadow_cube_face(v: vec3<f32>, a: vec3<f32>) -> i32 {
     var face = 0;
     if a.x >= a.y && a.x >= a.z {
         face = select(1, 0, v.x > 0.0);
@@ -1982,28 +1997,25 @@ fn shadow_cube(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
     } else {
         face = select(5, 4, v.z > 0.0);
     }
-    return shadow_read_cube_face(light, face, p, a);
+    return face;
 }
 
-// V of the point p on cube face `face` (a = |p − origin|), the face's
-// clip coordinates written out from its view instead of read from
-// shadow_views: a face's matrix (src/gpu/shadows.rs perspective_layer,
-// faces CUBE_FACES) has one non-zero entry per row, ±s in x and y (s =
-// shadow_cube_scale), ±1 in w, and its offsets are ±s·o (o the origin,
-// shadow_cube_offset) in x and y, −(±o) in w and `near` in z. Each
-// coordinate below is that row's product with (p, 1), the same f32
-// operations on the same f32 values (the zero terms add exact zeros), so
-// the lookup is the matrix's bit for bit; the test
+// The clip coordinates of p on cube face `face` (a = |p − origin|, near
+// the face's near entry), written out from the face's view instead of
+// read from shadow_views: a face's matrix (src/gpu/shadows.rs
+// perspective_layer, faces CUBE_FACES) has one non-zero entry per row,
+// ±s in x and y (s = shadow_cube_scale), ±1 in w, and its offsets are
+// ±s·o (o the origin, shadow_cube_offset) in x and y, −(±o) in w and
+// `near` in z. Each coordinate below is that row's product with (p, 1),
+// the same f32 operations on the same f32 values (the zero terms add
+// exact zeros), so the lookup is the matrix's bit for bit: the unit test
 // cube_faces_are_their_sparse_form pins the matrices to this form, and
-// docs/shadows.md says what it saves: the matrix of a per-pixel face is a
-// gather of 16 values per pixel on a software rasterizer, its near entry
-// one. Face rows (right, up, forward): +X (+Z, +Y, +X), −X (−Z, +Y, −X),
-// +Y (−Z, +X, +Y), −Y (+Z, +X, −Y), +Z (−X, +Y, +Z), −Z (+X, +Y, −Z).
-fn shadow_read_cube_face(light: Light, face: i32, p: vec3<f32>, a: vec3<f32>) -> f32 {
-    let layer = light.shadow_layer + face;
-    // A skipped face's view is all zero (src/gpu/shadow_maps.rs): near 0
-    // says so, as its clip w = 0 did, and it reads lit.
-    let near = shadow_views[layer].clip_from_world[3].z;
+// tests/shadow_cube_lookup.rs compares both on the GPU. Why: the matrix
+// of a per-pixel face is a gather of 16 values per pixel on a software
+// rasterizer, its near entry one (docs/shadows.md). Face rows (right, up,
+// forward): +X (+Z, +Y, +X), −X (−Z, +Y, −X), +Y (−Z, +X, +Y),
+// −Y (+Z, +X, −Y), +Z (−X, +Y, +Z), −Z (+X, +Y, −Z).
+fn shadow_cube_clip(light: Light, face: i32, p: vec3<f32>, a: vec3<f32>, near: f32) -> vec4<f32> {
     let s = light.shadow_cube_scale;
     let o = light.shadow_cube_offset;
     let axis = face / 2;
@@ -2014,11 +2026,7 @@ fn shadow_read_cube_face(light: Light, face: i32, p: vec3<f32>, a: vec3<f32>) ->
     let up_offset = select(o.y, o.x, axis == 1);
     // Forward: (±1)·p + (∓o) along the face's axis, which is ±v there: |v|.
     let w = select(select(a.z, a.y, axis == 1), a.x, axis == 0);
-    let clip = vec4<f32>(right_sign * fma(s, right, -right_offset), fma(s, up, -up_offset), near, w);
-    if clip.w <= 0.0 || near == 0.0 {
-        return 1.0; // behind the face (outside the light's reach), or a skipped face
-    }
-    return shadow_read_ndc(light, layer, clip.xyz / clip.w);
+    return vec4<f32>(right_sign * fma(s, right, -right_offset), fma(s, up, -up_offset), near, w);
 }
 
 // V_l at x (n_g: the offset normal).
