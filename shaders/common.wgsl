@@ -77,7 +77,7 @@ struct Light {
     shadow_array_texel: f32,  // 1 / array side: one texel in array uv (PCF steps)
     _pad1: u32,
     _pad2: u32,
-    shadow_cube_offset: vec3<f32>, // cube: s · shadow_origin, the faces' clip x/y offsets up to sign
+    shadow_cube_offset: vec3<f32>, // cube: s × the f64 origin (rounded once), the faces' clip x/y offsets up to sign
     shadow_cube_scale: f32,        // cube: s, the faces' clip x/y scale (1 / tan of the half field of view)
 }
 

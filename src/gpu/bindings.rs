@@ -30,8 +30,8 @@
 //! nothing of `gpu/`); the bytes of each binding and the bind group
 //! layouts are in src/gpu/bind_groups.rs.
 
-/// Lights (area-light samples included) a uniform buffer holds (112 bytes
-/// each: 28 KiB).
+/// Lights (area-light samples included) a uniform buffer holds (128 bytes
+/// each: 32 KiB).
 pub const UNIFORM_LIGHTS: usize = 256;
 /// Shadow-map layers a uniform buffer holds (64 bytes each: 24 KiB; 64
 /// cube maps).

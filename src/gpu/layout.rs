@@ -99,7 +99,8 @@ pub struct GpuLight {
     pub shadow_map: u32,
     pub shadow_array_texel: f32,
     pub _pad: [u32; 2],
-    /// Cube maps: `s · shadow_origin` (f32 of the f64 product), the
+    /// Cube maps: `s` times the f64 origin, rounded once to f32 (not `s`
+    /// times the f32 `shadow_origin`), the
     /// faces' clip x and y offsets up to sign; see `shadow_cube_clip`
     /// in shaders/shadows.wgsl.
     pub shadow_cube_offset: [f32; 3],

@@ -41,7 +41,9 @@ pub enum Feature {
     /// Cube shadow maps (point and area lights) (`shadow_cube`).
     ShadowCube,
     /// Perspective or cube maps: the lookup with the w divide
-    /// (`shadow_projective`).
+    /// (`shadow_projective`; only spot maps call it since the cube lookup
+    /// writes its clip coordinates out, a cube-only shader compiles it
+    /// unused).
     ShadowProjective,
     /// The shadow-map coordinates are computed per vertex
     /// (`shadow_vertex`; `ShaderKey::shadow_coords_per_vertex`).
@@ -246,7 +248,8 @@ impl Feature {
                 .iter()
                 .map(|&p| Feature::of_projection(p)),
         );
-        // Perspective and cube layers share the lookup with the w divide.
+        // Perspective and cube layers: the w divide (a spot's lookup calls
+        // `shadow_read`, the cube's divides its written-out coordinates).
         if shadows
             .projections
             .iter()

@@ -85,7 +85,7 @@ struct Light {
     shadow_array_texel: f32,  // 1 / array side: one texel in array uv (PCF steps)
     _pad1: u32,
     _pad2: u32,
-    shadow_cube_offset: vec3<f32>, // cube: s · shadow_origin, the faces' clip x/y offsets up to sign
+    shadow_cube_offset: vec3<f32>, // cube: s × the f64 origin (rounded once), the faces' clip x/y offsets up to sign
     shadow_cube_scale: f32,        // cube: s, the faces' clip x/y scale (1 / tan of the half field of view)
 }
 
@@ -1981,7 +1981,7 @@ fn shadow_cube(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
     let near = shadow_views[layer].clip_from_world[3].z;
     let clip = shadow_cube_clip(light, face, p, a, near);
     if clip.w <= 0.0 || near == 0.0 {
-        return 1.0; // behind the face (outside the light's reach), or a skipped face
+        return 1.0; // the point on the light (w = |v| = 0), or a skipped face
     }
     return shadow_read_ndc(light, layer, clip.xyz / clip.w);
 }
@@ -2005,12 +2005,17 @@ fn shadow_cube_face(v: vec3<f32>, a: vec3<f32>) -> i32 {
 // read from shadow_views: a face's matrix (src/gpu/shadows.rs
 // perspective_layer, faces CUBE_FACES) has one non-zero entry per row,
 // ±s in x and y (s = shadow_cube_scale), ±1 in w, and its offsets are
-// ±s·o (o the origin, shadow_cube_offset) in x and y, −(±o) in w and
-// `near` in z. Each coordinate below is that row's product with (p, 1),
-// the same f32 operations on the same f32 values (the zero terms add
-// exact zeros), so the lookup is the matrix's bit for bit: the unit test
-// cube_faces_are_their_sparse_form pins the matrices to this form, and
-// tests/shadow_cube_lookup.rs compares both on the GPU. Why: the matrix
+// ±s·o in x and y (s·o = shadow_cube_offset, s times the f64 origin,
+// rounded once), −(±o) in w and `near` in z. Each coordinate below is
+// that row's product with (p, 1): the same f32 values, and on Mesa
+// (lavapipe), whose SPIR-V front end builds a matrix product as col3·1
+// plus a fused multiply-add per column, the same single rounding, so the
+// lookup is the matrix's bit for bit there (the unit test
+// cube_faces_are_their_sparse_form pins the matrices to this form,
+// tests/shadow_cube_lookup.rs compares both on the GPU). A driver that
+// sums a matrix product in another order may round the old product
+// differently: x and y then differ from it by at most an ulp, which moves
+// a tap to the next texel only at an exact texel edge. Why: the matrix
 // of a per-pixel face is a gather of 16 values per pixel on a software
 // rasterizer, its near entry one (docs/shadows.md). Face rows (right, up,
 // forward): +X (+Z, +Y, +X), −X (−Z, +Y, −X), +Y (−Z, +X, +Y),
