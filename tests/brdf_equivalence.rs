@@ -378,18 +378,6 @@ fn gpu_eval(
     gonio::gpu::shader_gen::validate(&src)
         .unwrap_or_else(|e| panic!("{}: {e}", variant.describe()));
     let device = &ctx.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("brdf equivalence"),
-        source: wgpu::ShaderSource::Wgsl(src.into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: None,
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
     let inputs: Vec<[f32; 8]> = samples
         .iter()
         .map(|s| {
@@ -423,37 +411,7 @@ fn gpu_eval(
         bytemuck::cast_slice(&materials),
         wgpu::BufferUsages::STORAGE,
     );
-    let size = (samples.len() * 2 * 16) as u64;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipeline.get_bind_group_layout(1),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input_buffer.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: material_buffer.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
+    let output = common::compute_output(ctx, (samples.len() * 2 * 16) as u64);
     // The measured tables (group 0, binding 3), for a measured variant;
     // the globals (binding 0) with energy compensation's albedo table.
     let measured_buffer = key.has_measured().then(|| {
@@ -469,42 +427,26 @@ fn gpu_eval(
     });
     let mut group0 = Vec::new();
     if let Some(b) = &globals_buffer {
-        group0.push(wgpu::BindGroupEntry {
-            binding: 0,
-            resource: b.as_entire_binding(),
-        });
+        group0.push((0, b));
     }
     if let Some(b) = &measured_buffer {
-        group0.push(wgpu::BindGroupEntry {
-            binding: 3,
-            resource: b.as_entire_binding(),
-        });
+        group0.push((3, b));
     }
-    let measured_group = (!group0.is_empty()).then(|| {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &group0,
-        })
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        if let Some(group) = &measured_group {
-            pass.set_bind_group(0, group, &[]);
-        }
-        pass.set_bind_group(1, &bind_group, &[]);
-        pass.dispatch_workgroups((samples.len() as u32).div_ceil(64), 1, 1);
+    let mut groups = vec![(
+        1,
+        vec![(0, &input_buffer), (1, &material_buffer), (2, &output)],
+    )];
+    if !group0.is_empty() {
+        groups.push((0, group0));
     }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
-    ctx.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let bytes = slice.get_mapped_range().expect("mapped").to_vec();
+    let bytes = common::run_compute(
+        ctx,
+        "brdf equivalence",
+        &src,
+        &groups,
+        samples.len(),
+        &output,
+    );
     let values: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
     values
         .chunks(2)
@@ -681,65 +623,20 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         inputs.push([m, 1.0]);
     }
 
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("smith-beckmann g1"),
-        source: wgpu::ShaderSource::Wgsl(src.into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: None,
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
     let input_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: None,
         contents: bytemuck::cast_slice(&inputs),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let size = (inputs.len() * 16) as u64;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipeline.get_bind_group_layout(1),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input_buffer.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(1, &bind_group, &[]);
-        pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
-    ctx.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let bytes = slice.get_mapped_range().expect("mapped").to_vec();
+    let output = common::compute_output(ctx, (inputs.len() * 16) as u64);
+    let bytes = common::run_compute(
+        ctx,
+        "smith-beckmann g1",
+        &src,
+        &[(1, vec![(0, &input_buffer), (1, &output)])],
+        inputs.len(),
+        &output,
+    );
     let gpu: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
 
     type Twin = fn(f64, f64) -> f64;

@@ -18,7 +18,9 @@
 mod common;
 
 use glam::{DVec3, Vec3};
+use gonio::gpu::bindings::{UNIFORM_LIGHTS, UNIFORM_SHADOW_VIEWS, array_bytes};
 use gonio::gpu::layout::{GpuLight, GpuShadowView};
+use gonio::gpu::prepared::gpu_lights;
 use gonio::gpu::shader_gen::{Feature, common as common_wgsl, preprocess, sources};
 use gonio::gpu::shadows::ShadowPlan;
 use gonio::scene::scene_file::{self, SceneSource};
@@ -121,7 +123,6 @@ fn points_around(origin: Vec3) -> Vec<Vec3> {
 fn written_out_cube_coordinates_equal_the_face_matrix_product() {
     let renderer = common::gpu_renderer();
     let ctx = renderer.context();
-    let device = &ctx.device;
     let mut compared = 0;
     for map_size in [16, 256, 1024] {
         let scene = scene_file::load(
@@ -133,16 +134,7 @@ fn written_out_cube_coordinates_equal_the_face_matrix_product() {
         )
         .unwrap();
         let plan = ShadowPlan::new(&scene);
-        let lights: Vec<GpuLight> = scene
-            .lights
-            .iter()
-            .enumerate()
-            .map(|(l, light)| {
-                let mut g = GpuLight::from(light);
-                plan.apply(l, &mut g);
-                g
-            })
-            .collect();
+        let lights: Vec<GpuLight> = gpu_lights(&scene, &plan);
         assert!(lights.iter().all(|g| g.shadow_projection == 2), "cubes");
         let views: Vec<GpuShadowView> = plan.gpu_views();
         let mut samples: Vec<[u32; 4]> = Vec::new();
@@ -153,88 +145,45 @@ fn written_out_cube_coordinates_equal_the_face_matrix_product() {
         }
         let src = source();
         gonio::gpu::shader_gen::validate(&src).unwrap_or_else(|e| panic!("{e}"));
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("shadow cube lookup"),
-            source: wgpu::ShaderSource::Wgsl(src.into()),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: None,
-            layout: None,
-            module: &module,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
         let init = |contents: &[u8], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: None,
-                contents,
-                usage,
-            })
+            ctx.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: None,
+                    contents,
+                    usage,
+                })
         };
-        let light_bytes = gonio::gpu::bindings::array_bytes(
+        // Uniform arrays cover their declared capacity (src/gpu/bindings.rs).
+        let uniform_array = |contents: &[u8], capacity, element| {
+            init(
+                &array_bytes(contents, true, capacity, element),
+                wgpu::BufferUsages::UNIFORM,
+            )
+        };
+        let lights_buffer = uniform_array(
             bytemuck::cast_slice(&lights),
-            true,
-            gonio::gpu::bindings::UNIFORM_LIGHTS,
+            UNIFORM_LIGHTS,
             size_of::<GpuLight>(),
         );
-        let view_bytes = gonio::gpu::bindings::array_bytes(
+        let views_buffer = uniform_array(
             bytemuck::cast_slice(&views),
-            true,
-            gonio::gpu::bindings::UNIFORM_SHADOW_VIEWS,
+            UNIFORM_SHADOW_VIEWS,
             size_of::<GpuShadowView>(),
         );
-        let lights_buffer = init(&light_bytes, wgpu::BufferUsages::UNIFORM);
-        let views_buffer = init(&view_bytes, wgpu::BufferUsages::UNIFORM);
         let samples_buffer = init(bytemuck::cast_slice(&samples), wgpu::BufferUsages::STORAGE);
-        let out_size = (samples.len() * 2 * 16) as u64;
-        let results = device.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: out_size,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: None,
-            size: out_size,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let group = |index: u32, buffers: &[(u32, &wgpu::Buffer)]| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: None,
-                layout: &pipeline.get_bind_group_layout(index),
-                entries: &buffers
-                    .iter()
-                    .map(|&(binding, b)| wgpu::BindGroupEntry {
-                        binding,
-                        resource: b.as_entire_binding(),
-                    })
-                    .collect::<Vec<_>>(),
-            })
-        };
-        let groups = [
-            group(0, &[(2, &lights_buffer)]),
-            group(1, &[(2, &views_buffer)]),
-            group(2, &[(0, &samples_buffer), (1, &results)]),
-        ];
-        let mut encoder = device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&pipeline);
-            for (i, g) in groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
-            pass.dispatch_workgroups(samples.len().div_ceil(64) as u32, 1, 1);
-        }
-        encoder.copy_buffer_to_buffer(&results, 0, &readback, 0, out_size);
-        ctx.queue.submit([encoder.finish()]);
-        let slice = readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .expect("poll");
-        let bytes = slice.get_mapped_range().expect("mapped").to_vec();
+        let results = common::compute_output(ctx, (samples.len() * 2 * 16) as u64);
+        let bytes = common::run_compute(
+            ctx,
+            "shadow cube lookup",
+            &src,
+            &[
+                (0, vec![(2, &lights_buffer)]),
+                (1, vec![(2, &views_buffer)]),
+                (2, vec![(0, &samples_buffer), (1, &results)]),
+            ],
+            samples.len(),
+            &results,
+        );
         let out: Vec<[f32; 4]> = bytemuck::cast_slice(&bytes).to_vec();
         let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a == 0.0 && b == 0.0);
         for (k, pair) in out.chunks(2).enumerate() {

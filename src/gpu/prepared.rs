@@ -641,7 +641,7 @@ fn batch_pipelines(
 }
 
 /// The lights of `scene` with their shadow maps as `plan` assigns them.
-fn gpu_lights(scene: &Scene, plan: &ShadowPlan) -> Vec<GpuLight> {
+pub fn gpu_lights(scene: &Scene, plan: &ShadowPlan) -> Vec<GpuLight> {
     scene
         .lights
         .iter()

@@ -219,3 +219,84 @@ pub fn shadowed_point_lights(positions: &[[f64; 3]]) -> String {
         .collect();
     format!("lights=[{}]", lights.join(", "))
 }
+
+/// Runs `main` of the WGSL compute shader `src` (workgroups of 64) over
+/// `invocations`, with `groups` bound as (group, [(binding, buffer)]) on
+/// the pipeline's own layout, and returns the bytes of `output` (a
+/// STORAGE | COPY_SRC buffer one of the groups writes). The harness of
+/// the tests that run the renderer's WGSL beside its f64 or matrix twin.
+pub fn run_compute(
+    ctx: &GpuContext,
+    label: &str,
+    src: &str,
+    groups: &[(u32, Vec<(u32, &wgpu::Buffer)>)],
+    invocations: usize,
+    output: &wgpu::Buffer,
+) -> Vec<u8> {
+    let device = &ctx.device;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let bind_groups: Vec<(u32, wgpu::BindGroup)> = groups
+        .iter()
+        .map(|(index, entries)| {
+            let entries: Vec<wgpu::BindGroupEntry> = entries
+                .iter()
+                .map(|&(binding, buffer)| wgpu::BindGroupEntry {
+                    binding,
+                    resource: buffer.as_entire_binding(),
+                })
+                .collect();
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: None,
+                layout: &pipeline.get_bind_group_layout(*index),
+                entries: &entries,
+            });
+            (*index, group)
+        })
+        .collect();
+    let size = output.size();
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        for (index, group) in &bind_groups {
+            pass.set_bind_group(*index, group, &[]);
+        }
+        pass.dispatch_workgroups((invocations as u32).div_ceil(64), 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(output, 0, &readback, 0, size);
+    ctx.queue.submit([encoder.finish()]);
+    let slice = readback.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    slice.get_mapped_range().expect("mapped").to_vec()
+}
+
+/// A STORAGE | COPY_SRC buffer of `size` bytes for [`run_compute`]'s
+/// output.
+pub fn compute_output(ctx: &GpuContext, size: u64) -> wgpu::Buffer {
+    ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    })
+}
