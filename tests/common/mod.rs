@@ -282,12 +282,7 @@ pub fn run_compute(
     }
     encoder.copy_buffer_to_buffer(output, 0, &readback, 0, size);
     ctx.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    slice.get_mapped_range().expect("mapped").to_vec()
+    gonio::gpu::readback::map_read(device, &readback).expect("compute readback")
 }
 
 /// A STORAGE | COPY_SRC buffer of `size` bytes for [`run_compute`]'s
