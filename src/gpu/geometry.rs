@@ -126,9 +126,6 @@ pub struct ObjectRange {
     pub range: std::ops::Range<u32>,
     /// World-space box `(min, max)` of the used vertices.
     pub bounds: (glam::DVec3, glam::DVec3),
-    /// The plane the triangles lie in, if they do:
-    /// [`crate::scene::mesh::flatness`].
-    pub flatness: Option<crate::scene::mesh::Flat>,
 }
 
 /// The triangles of one material: a range of indices (indexed streams)
@@ -341,7 +338,6 @@ impl StreamPlan {
                 range: end - 3 * mesh.indices.len() as u32..end,
                 bounds: crate::scene::mesh::bounds(used)
                     .unwrap_or((glam::DVec3::ZERO, glam::DVec3::ZERO)),
-                flatness: crate::scene::mesh::flatness(mesh),
             });
         }
         let triangles = scene.triangle_count() as u64;

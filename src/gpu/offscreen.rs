@@ -227,11 +227,8 @@ fn draw_once(
         if drawn.shadow_layers > 0 {
             timings.push(
                 format!(
-                    "shadow passes ({} layers, {} of {} caster draws culled, {} flat ones clipped)",
-                    drawn.shadow_layers,
-                    drawn.shadow_draws_culled,
-                    drawn.shadow_draws_total,
-                    drawn.shadow_draws_clipped
+                    "shadow passes ({} layers, {} of {} caster draws culled)",
+                    drawn.shadow_layers, drawn.shadow_draws_culled, drawn.shadow_draws_total
                 ),
                 shadow_passes,
                 Clock::GpuTimestamp,

@@ -59,9 +59,9 @@ pub struct PreparedScene {
     shadows: Option<ShadowMaps>,
     /// The masked shadow pass of alpha MASK casters (none without them).
     shadow_masks: Option<ShadowMasks>,
-    /// The world bounding box and flatness of each object of the stream
-    /// (for culling the casters per shadow-map layer).
-    caster_boxes: Vec<shadow_culling::CasterBox>,
+    /// The world bounding box of each object of the stream (for culling
+    /// the casters per shadow-map layer).
+    caster_bounds: Vec<(glam::DVec3, glam::DVec3)>,
     /// Each shadow-map layer draws only the casters whose boxes reach its
     /// frustum (src/gpu/shadow_culling.rs); default true. Off draws every
     /// caster into every layer: the same maps, for tests and A/B timing.
@@ -106,8 +106,6 @@ pub struct Drawn {
     /// Object draws those layers would make without culling (objects ×
     /// layers).
     pub shadow_draws_total: usize,
-    /// Draws of flat casters limited to what other objects' lookups read.
-    pub shadow_draws_clipped: usize,
 }
 
 impl PreparedScene {
@@ -213,8 +211,8 @@ impl PreparedScene {
         );
         let shadows = ShadowMaps::new(ctx, cache, &plan, arrays, draw.layout.stride());
         let batch_pipelines = batch_pipelines(cache, &key, format, samples, &materials, &draw);
-        let caster_boxes = if shadows.is_some() {
-            shadow_culling::object_boxes(draw.objects())
+        let caster_bounds = if shadows.is_some() {
+            shadow_culling::object_bounds(draw.objects())
         } else {
             Vec::new()
         };
@@ -251,7 +249,7 @@ impl PreparedScene {
             plan,
             shadows,
             shadow_masks,
-            caster_boxes,
+            caster_bounds,
             cull_shadow_casters: true,
             environment,
             textures,
@@ -360,8 +358,8 @@ impl PreparedScene {
                 )
             });
             self.shadows_stale = self.shadows.is_some();
-            if self.shadows.is_some() && self.caster_boxes.is_empty() {
-                self.caster_boxes = shadow_culling::object_boxes(self.draw.objects());
+            if self.shadows.is_some() && self.caster_bounds.is_empty() {
+                self.caster_bounds = shadow_culling::object_bounds(self.draw.objects());
             }
             self.plan = plan;
         }
@@ -429,13 +427,9 @@ impl PreparedScene {
     ) -> Drawn {
         let mut drawn = Drawn::default();
         if let (Some(shadows), true) = (&self.shadows, self.shadows_stale) {
-            let casters = self.cull_shadow_casters.then(|| {
-                LayerCasters::new(
-                    &self.plan,
-                    &self.caster_boxes,
-                    self.key.shadow_coords_per_vertex(),
-                )
-            });
+            let casters = self
+                .cull_shadow_casters
+                .then(|| LayerCasters::new(&self.plan, &self.caster_bounds));
             drawn.shadow_layers = shadows.encode(
                 encoder,
                 &self.plan,
@@ -445,8 +439,7 @@ impl PreparedScene {
                 parts,
             );
             drawn.shadow_draws_total = self.plan.layers.len() * self.draw.objects().len();
-            drawn.shadow_draws_culled = casters.as_ref().map_or(0, |c| c.culled);
-            drawn.shadow_draws_clipped = casters.map_or(0, |c| c.clipped);
+            drawn.shadow_draws_culled = casters.map_or(0, |c| c.culled);
             self.shadows_stale = false;
         }
         drawn

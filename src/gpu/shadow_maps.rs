@@ -9,7 +9,7 @@ use super::context::GpuContext;
 use super::draw::SceneDraw;
 use super::pipelines::PipelineCache;
 use super::scene_parts::{self, PartBreak};
-use super::shadow_culling::{LayerCaster, LayerCasters, TexelRect};
+use super::shadow_culling::LayerCasters;
 use super::shadow_masks::ShadowMasks;
 use super::shadows::{self, ShadowPlan};
 use super::texture_pool::TextureRequest;
@@ -326,8 +326,6 @@ impl ShadowMaps {
             if part.draws.is_empty() {
                 continue;
             }
-            // The scissor the pass starts with: the whole layer.
-            let mut scissor = None;
             pass.set_pipeline(&self.pass_pipeline);
             pass.set_bind_group(0, &self.pass_group, &[]);
             draw.bind_geometry(&mut pass);
@@ -335,18 +333,7 @@ impl ShadowMaps {
             // others depth-only (both layouts share group 0).
             let mut masked = false;
             let layer = part.layer as u32..part.layer as u32 + 1;
-            for (range, (material, region)) in &part.draws {
-                if *region != scissor {
-                    let whole = TexelRect {
-                        x: 0,
-                        y: 0,
-                        width: plan.side,
-                        height: plan.side,
-                    };
-                    let r = region.unwrap_or(whole);
-                    pass.set_scissor_rect(r.x, r.y, r.width, r.height);
-                    scissor = *region;
-                }
+            for (range, material) in &part.draws {
                 match material.and_then(|m| masks?.group(m)) {
                     Some(group) => {
                         if !masked {
@@ -369,10 +356,8 @@ impl ShadowMaps {
 }
 
 /// One draw of a shadow pass: a range of the stream, with the material
-/// whose masked pipeline draws it (`None`: depth-only) and the texels it
-/// is limited to (`None`: the whole layer; a flat caster's
-/// [`LayerCaster::region`]).
-type Run = (Range<u32>, (Option<u32>, Option<TexelRect>));
+/// whose masked pipeline draws it (`None`: depth-only).
+type Run = (Range<u32>, Option<u32>);
 
 /// `plan`'s layer views as the buffers hold them (`arrays` says how).
 fn view_bytes(plan: &ShadowPlan, arrays: UniformArrays) -> Vec<u8> {
@@ -385,28 +370,24 @@ fn view_bytes(plan: &ShadowPlan, arrays: UniformArrays) -> Vec<u8> {
 /// that material with the masked pipeline, `None` for the depth-only
 /// pipeline. A depth-only pass keeps the nearest depth whatever the draw
 /// order, so merging changes no texel.
-fn runs(
-    draw: &SceneDraw,
-    objects: Option<&[LayerCaster]>,
-    masks: Option<&ShadowMasks>,
-) -> Vec<Run> {
+fn runs(draw: &SceneDraw, objects: Option<&[u32]>, masks: Option<&ShadowMasks>) -> Vec<Run> {
     let masked = |m: u32| masks.and_then(|k| k.group(m)).map(|_| m);
-    let items: Vec<Run> = match objects {
+    let items: Vec<(Range<u32>, Option<u32>)> = match objects {
         Some(list) => list
             .iter()
-            .map(|c| {
-                let object = &draw.objects()[c.object as usize];
-                (object.range.clone(), (masked(object.material), c.region))
+            .map(|&o| {
+                let object = &draw.objects()[o as usize];
+                (object.range.clone(), masked(object.material))
             })
             .collect(),
-        None if masks.is_none() => vec![(0..draw.draw_count(), (None, None))],
+        None if masks.is_none() => vec![(0..draw.draw_count(), None)],
         None => draw
             .batches()
             .iter()
-            .map(|b| (b.range.clone(), (masked(b.material), None)))
+            .map(|b| (b.range.clone(), masked(b.material)))
             .collect(),
     };
-    let mut runs: Vec<Run> = Vec::with_capacity(items.len());
+    let mut runs: Vec<(Range<u32>, Option<u32>)> = Vec::with_capacity(items.len());
     for (range, material) in items {
         match runs.last_mut() {
             Some((last, m)) if last.end == range.start && *m == material => last.end = range.end,

@@ -190,51 +190,6 @@ pub fn area_weighted_normals(positions: &[DVec3], indices: &[[u32; 3]]) -> Vec<D
         .collect()
 }
 
-/// The plane a flat mesh's triangles lie in ([`flatness`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Flat {
-    /// Unit normal.
-    pub normal: DVec3,
-    /// `normal · x` on the plane.
-    pub offset: f64,
-    /// The farthest a used vertex lies from the plane.
-    pub bumps: f64,
-}
-
-/// The plane of `mesh`'s triangles when they lie in one: every vertex they
-/// use within [`Flat::bumps`] of it and every normal they use
-/// perpendicular to it (either side, within 10⁻⁶ in sine); `None`
-/// otherwise or without a triangle of non-zero area. The shadow passes
-/// draw such a caster only where other objects may look
-/// (src/gpu/shadow_culling.rs: its own lookups never find it, by the
-/// acne-free rule of docs/shadows.md, "Why these defaults").
-pub fn flatness(mesh: &Mesh) -> Option<Flat> {
-    let corner = |v: u32| mesh.positions[v as usize];
-    // The plane of the largest triangle: the best-conditioned normal.
-    let (origin, normal) = mesh
-        .indices
-        .iter()
-        .map(|&[a, b, c]| {
-            let (pa, pb, pc) = (corner(a), corner(b), corner(c));
-            (pa, (pb - pa).cross(pc - pa))
-        })
-        .max_by(|x, y| x.1.length_squared().total_cmp(&y.1.length_squared()))?;
-    let normal = normal.try_normalize()?;
-    let mut bumps: f64 = 0.0;
-    for &v in mesh.indices.iter().flatten() {
-        bumps = bumps.max((corner(v) - origin).dot(normal).abs());
-        let n = mesh.normals.get(v as usize).copied().unwrap_or(normal);
-        if n.cross(normal).length() > 1e-6 {
-            return None;
-        }
-    }
-    Some(Flat {
-        normal,
-        offset: normal.dot(origin),
-        bumps,
-    })
-}
-
 /// Axis-aligned bounds of a set of points, `None` if it is empty.
 pub fn bounds(points: impl IntoIterator<Item = DVec3>) -> Option<(DVec3, DVec3)> {
     points.into_iter().fold(None, |acc, p| match acc {
