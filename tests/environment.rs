@@ -644,6 +644,7 @@ fn the_sampled_mode_has_no_nan_at_the_limits() {
 fn sh_diffuse_of_gltf_pbr_and_measured_materials() {
     let s = scene(&[
         "environment.map=../environment/blobs.hdr",
+        "environment.specular=none",
         "environment.reference=sh",
         "materials.lambert={model=\"gltf-pbr\", base_color=[0.9, 0.6, 0.2], metallic=0.5}",
         "materials.gold={model=\"measured\", measured=\"gold-metallic-paint\"}",
@@ -677,6 +678,7 @@ fn sh_diffuse_of_gltf_pbr_and_measured_materials() {
     // arithmetic on the GPU up to the albedo's rounding (a few ε).
     let lambert = gpu(&scene(&[
         "environment.map=../environment/blobs.hdr",
+        "environment.specular=none",
         "materials.lambert.k_d=[0.45, 0.3, 0.1]",
     ]));
     let k = (row * frame.width + col) as usize;

@@ -1,6 +1,6 @@
 //! Reading an environment map: OpenEXR (`.exr`) or Radiance RGBE
-//! (`.hdr`, `.pic`) through the `image` crate, or the built-in sky
-//! (`map = "sky"`). Every failure is one sentence the caller prefixes
+//! (`.hdr`, `.pic`) through the `image` crate, or a built-in map
+//! (`map = "sky"`, `map = "studio"`). Every failure is one sentence the caller prefixes
 //! with the scene file and key.
 
 use super::exr_header;
@@ -10,12 +10,17 @@ use std::path::Path;
 
 /// The `map` value that selects the procedural sky instead of a file.
 pub const SKY: &str = "sky";
+/// The `map` value that selects the neutral studio instead of a file.
+pub const STUDIO: &str = "studio";
 
 /// The map `value` names, relative to `base_dir` (the scene file's
 /// folder): [`SKY`] or a path to an `.exr` / `.hdr` file.
 pub fn load(value: &str, base_dir: &Path) -> Result<MapData, String> {
     if value == SKY {
         return Ok(sky::map());
+    }
+    if value == STUDIO {
+        return Ok(super::studio::map());
     }
     let path = base_dir.join(value);
     let extension = path
@@ -24,7 +29,7 @@ pub fn load(value: &str, base_dir: &Path) -> Result<MapData, String> {
         .unwrap_or_default();
     let Some(format) = format_of(&extension) else {
         return Err(format!(
-            "`{value}` is neither an .exr nor an .hdr file (nor \"{SKY}\", the built-in sky)"
+            "`{value}` is neither an .exr nor an .hdr file (nor \"{SKY}\" or \"{STUDIO}\", the built-in maps)"
         ));
     };
     let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;

@@ -62,6 +62,12 @@ pub struct MapSettings {
     pub rotation_deg: f64,
     /// How the environment lights surfaces (`environment.specular`).
     pub specular: Specular,
+    /// `specular` was not chosen by the user (`environment.specular`
+    /// absent or `"auto"`): the scene picks the mode that lights the whole
+    /// BRDF of every material it draws (`scene::environment_mode`), and
+    /// picks again when a material changes. `false`: `specular` is the
+    /// user's and is kept.
+    pub specular_auto: bool,
     /// Directions per shading point of [`Specular::Sampled`]
     /// (`environment.samples`, default 64).
     pub samples: u32,
@@ -77,7 +83,8 @@ pub struct MapSettings {
 /// How the environment lights surfaces (`environment.specular`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Specular {
-    /// The diffuse term only, by SH irradiance (`"none"`, the default).
+    /// The diffuse term only, by SH irradiance (`"none"`; the whole BRDF
+    /// of Lambert and the mirror, which is what `"auto"` picks for them).
     #[default]
     None,
     /// The whole BRDF integrated with `samples` directions per shading
@@ -124,6 +131,7 @@ impl Default for MapSettings {
             reference: ReferenceDiffuse::Integrated,
             rotation_deg: 0.0,
             specular: Specular::None,
+            specular_auto: true,
             samples: 64,
             prefilter_size: super::prefiltered::DEFAULT_SIZE,
             visibility: false,

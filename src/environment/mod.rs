@@ -1,6 +1,6 @@
 //! Light from everywhere: an environment map (a latitude-longitude image
 //! of radiance arriving from infinitely far away), what the renderers
-//! derive from it, and the built-in sky.
+//! derive from it, and the built-in sky and studio.
 //!
 //! * [`latlong`]: the contract's direction convention (`[environment]` in
 //!   `shared/spec/conventions.md`), the one place it is written in Rust;
@@ -8,6 +8,8 @@
 //! * [`map`]: the texels, their bilinear lookup, validation.
 //! * [`load`]: reading `.exr` and Radiance `.hdr` files.
 //! * [`sky`]: the procedural sky (`map = "sky"`), a generated map.
+//! * [`studio`]: the neutral studio (`map = "studio"`), the light of a
+//!   glTF file that brings none.
 //! * [`test_maps`]: maps gonio makes for its tests (the shipped
 //!   `assets/environment/blobs.hdr` among them).
 //! * [`sh`]: spherical harmonics: projection of a map, the irradiance
@@ -42,6 +44,7 @@ pub mod sh;
 pub mod sh_error;
 pub mod sh_phong;
 pub mod sky;
+pub mod studio;
 pub mod test_maps;
 pub mod visibility;
 

@@ -15,7 +15,7 @@ use crate::scene::Scene;
 
 /// Whether `model`'s environment light is what the mode computes for it
 /// (exactly or by a documented approximation).
-fn handled(mode: Specular, model: ReflectanceModel) -> bool {
+pub fn handles(mode: Specular, model: ReflectanceModel) -> bool {
     use ReflectanceModel::*;
     match model {
         // No glossy lobe: the SH diffuse term is all of it; the mirror's
@@ -44,7 +44,7 @@ pub fn warnings(scene: &Scene) -> Vec<String> {
     used.dedup();
     used.into_iter()
         .filter_map(|i| scene.materials.get(i))
-        .filter(|m| !handled(mode, m.model))
+        .filter(|m| !handles(mode, m.model))
         .map(|m| {
             let what = match m.model {
                 ReflectanceModel::Measured => "a measured table has no separate diffuse term, so it is black",
@@ -76,16 +76,16 @@ mod tests {
     #[test]
     fn each_mode_names_what_it_handles() {
         for model in ReflectanceModel::ALL {
-            assert!(handled(Specular::Sampled, model), "{model:?}");
-            assert!(handled(Specular::None, model), "{model:?}");
+            assert!(handles(Specular::Sampled, model), "{model:?}");
+            assert!(handles(Specular::None, model), "{model:?}");
         }
-        assert!(handled(
+        assert!(handles(
             Specular::Sh,
             ReflectanceModel::BlinnPhongNormalized
         ));
-        assert!(!handled(Specular::Sh, ReflectanceModel::CookTorrance));
-        assert!(!handled(Specular::Sh, ReflectanceModel::Measured));
-        assert!(!handled(Specular::Prefiltered, ReflectanceModel::Phong));
-        assert!(handled(Specular::Prefiltered, ReflectanceModel::GltfPbr));
+        assert!(!handles(Specular::Sh, ReflectanceModel::CookTorrance));
+        assert!(!handles(Specular::Sh, ReflectanceModel::Measured));
+        assert!(!handles(Specular::Prefiltered, ReflectanceModel::Phong));
+        assert!(handles(Specular::Prefiltered, ReflectanceModel::GltfPbr));
     }
 }

@@ -9,6 +9,7 @@ pub mod area_light;
 pub mod camera;
 pub mod default_scene;
 pub mod environment;
+pub mod environment_mode;
 pub mod gltf_import;
 pub mod light;
 pub mod limits;

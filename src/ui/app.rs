@@ -155,6 +155,11 @@ pub struct App {
     view_rect: [u32; 4],
     /// When to draw (only on a change, unless scripted or animated).
     pacing: Pacing,
+    /// The document a newly opened one replaced, with its view and
+    /// selection, until the new one is on the GPU: a file the GPU cannot
+    /// take (a limit of the device) brings it back instead of ending the
+    /// viewer.
+    previous: Option<(Document, Orbit, usize)>,
     /// Wakes the loop from egui's repaint callback (any thread).
     proxy: EventLoopProxy<Wake>,
 }
@@ -165,6 +170,7 @@ impl App {
         let idle_exit = args.exit_when_idle.map(Duration::from_secs_f64);
         App {
             pacing: Pacing::new(continuous, idle_exit),
+            previous: None,
             proxy,
             state: ViewerState::new(doc, &args),
             args,
@@ -366,7 +372,28 @@ impl App {
         self.report_message();
         self.take_new_document(&window);
         self.fit_view(panel.central, panel.output.pixels_per_point);
-        self.update_gpu_scene()?;
+        if let Err(e) = self.update_gpu_scene() {
+            let Some((doc, orbit, selected)) = self.previous.take() else {
+                return Err(e);
+            };
+            self.state.message = Some(format!(
+                "cannot show {}: {e}; the previous scene stays",
+                self.state.doc.title()
+            ));
+            window.set_title(&format!("gonio view: {}", doc.title()));
+            self.state.doc = doc;
+            self.state.orbit = orbit;
+            self.state.selected_material = selected;
+            self.state.dirty = true;
+            if let Some(gfx) = &mut self.gfx {
+                gfx.prepared = None;
+                gfx.prepared_right = None;
+            }
+            self.report_message();
+            self.fit_view(panel.central, panel.output.pixels_per_point);
+            self.update_gpu_scene()?;
+        }
+        self.previous = None;
         let Some(frame) = self.acquire_surface_texture()? else {
             // Not drawn: try again shortly (an occluded window keeps
             // failing; do not spin on it).
@@ -504,6 +531,8 @@ impl App {
             return;
         };
         window.set_title(&format!("gonio view: {}", doc.title()));
+        let (previous_orbit, previous_selection) =
+            (self.state.orbit.clone(), self.state.selected_material);
         let keep_view = doc.path() == self.state.doc.path()
             && doc.loaded_camera == self.state.doc.loaded_camera;
         if !keep_view {
@@ -520,8 +549,9 @@ impl App {
         }
         // The compared materials are the viewer's: they stay.
         let mut doc = doc;
-        doc.compare = std::mem::take(&mut self.state.doc.compare);
-        self.state.doc = doc;
+        doc.compare = self.state.doc.compare.clone();
+        let old = std::mem::replace(&mut self.state.doc, doc);
+        self.previous = Some((old, previous_orbit, previous_selection));
         self.state.dirty = true;
     }
 

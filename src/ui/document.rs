@@ -188,6 +188,8 @@ impl Document {
                     .find(|m| m.name == *name)
                     .ok_or_else(|| bad(format!("no material is called `{name}`")))?;
                 *m = edit_material(m, field, value).map_err(bad)?;
+                // Another model may need another environment mode.
+                crate::scene::environment_mode::choose(&mut self.scene);
                 Ok(())
             }
             ["shading", "mode"] => {

@@ -126,6 +126,7 @@ fn set_map(doc: &mut Document, map: Option<EnvironmentMap>) -> std::result::Resu
     lights.assemble()?.install(&mut doc.scene);
     doc.lights = lights;
     doc.scene.environment.map = map;
+    crate::scene::environment_mode::choose(&mut doc.scene);
     Ok(())
 }
 
@@ -161,14 +162,20 @@ fn section(table: &toml::Table) -> std::result::Result<EnvironmentSection, Strin
 /// map); on error nothing changes.
 fn install(doc: &mut Document, table: toml::Table) -> std::result::Result<(), String> {
     let new = section(&table)?;
-    let old = section(&doc.table).ok().and_then(|s| s.map);
+    // A glTF scene without lights shows the studio when it names no map.
+    let default_map = doc
+        .lights
+        .default_studio
+        .then_some(crate::environment::load::STUDIO);
+    let named = |s: &EnvironmentSection| s.map.clone().or(default_map.map(String::from));
+    let old = section(&doc.table).ok().and_then(|s| named(&s));
     let map = match &doc.scene.environment.map {
         // The same file: keep its texels and what is derived from them.
-        Some(current) if new.map.is_some() && new.map == old => Some(EnvironmentMap {
+        Some(current) if named(&new).is_some() && named(&new) == old => Some(EnvironmentMap {
             data: current.data.clone(),
             settings: environment_keys::settings(&new)?,
         }),
-        _ => environment_keys::environment_map(&new, &doc.source_dir)?,
+        _ => environment_keys::environment_map(&new, &doc.source_dir, default_map)?,
     };
     set_map(doc, map)?;
     doc.table = table;

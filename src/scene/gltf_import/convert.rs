@@ -47,6 +47,11 @@ pub(super) fn material_from_pbr(
         f64::from(pbr.metallic_factor()),
         f64::from(pbr.roughness_factor()),
     );
+    // Multiple scattering compensated, as three.js, Filament and
+    // Babylon.js render glTF (the contract's measured-reflectance
+    // section; `[gltf] energy_compensation = false` for the
+    // specification's BRDF exactly).
+    out.energy_compensation = true;
     let strength = f64::from(material.emissive_strength().unwrap_or(1.0));
     out.emission = Rgb::from(material.emissive_factor().map(f64::from)) * strength;
     out.sides = if material.double_sided() {

@@ -316,6 +316,8 @@ impl<'a> Importer<'a> {
             // single-sided.
             let mut material = material_from_metallic_roughness("gltf-default", Rgb::ONE, 1.0, 1.0);
             material.sides = crate::material::Sides::Front;
+            // Compensated, as every glTF material (convert::material_from_pbr).
+            material.energy_compensation = true;
             self.scene.materials.push(material);
             self.scene.materials.len() - 1
         })

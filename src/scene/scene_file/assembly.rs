@@ -59,12 +59,27 @@ pub fn assemble(
     gltf_files
         .charge(0, 0, file.lights.len() as u64)
         .map_err(|p| bad(format!("lights: {p}")))?;
-    let (ambient, environment) = ambient_and_environment(&file, base_dir).map_err(bad)?;
+    let gltf = super::gltf_keys::GltfKeys::read(&file.gltf).map_err(bad)?;
+    gltf.apply_energy_compensation(&mut materials[file.materials.len()..]);
+    // A glTF file that brings no light, in a scene without lights or a
+    // map, is shown in the neutral studio (`[gltf] default_light`).
+    let studio = gltf.default_light == super::gltf_keys::DefaultLight::Studio
+        && file.objects.iter().any(|o| o.gltf.is_some())
+        && objects.lights.is_empty()
+        && file.lights.is_empty()
+        && file.environment.map.is_none();
+    let (ambient, environment) = ambient_and_environment(
+        &file,
+        base_dir,
+        studio.then_some(crate::environment::load::STUDIO),
+    )
+    .map_err(bad)?;
     let light_setup = LightSetup {
         imported: objects.lights,
         shadows: file.shadows.clone(),
         entries: file.lights.clone(),
         environment_map: environment.map.is_some(),
+        default_studio: studio,
     };
     let lights = light_setup.assemble().map_err(bad)?;
 
@@ -290,10 +305,12 @@ fn objects(
 }
 
 /// `[ambient]` and `[environment]` (whose gradient keys default to the
-/// ambient radiance; its map is read relative to `base_dir`).
+/// ambient radiance; its map is read relative to `base_dir`, and is
+/// `default_map` when the section names none).
 fn ambient_and_environment(
     file: &SceneFile,
     base_dir: &Path,
+    default_map: Option<&str>,
 ) -> std::result::Result<(Rgb, Environment), String> {
     let ambient = match file.ambient.radiance {
         None => Rgb::ZERO,
@@ -308,7 +325,7 @@ fn ambient_and_environment(
         zenith: get("zenith", e.zenith)?,
         horizon: get("horizon", e.horizon)?,
         ground: get("ground", e.ground)?,
-        map: super::environment_keys::environment_map(e, base_dir)?,
+        map: super::environment_keys::environment_map(e, base_dir, default_map)?,
     };
     Ok((ambient, environment))
 }

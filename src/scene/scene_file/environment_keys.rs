@@ -9,6 +9,10 @@ use crate::environment::{EnvironmentMap, MapSettings, load, sh};
 use std::path::Path;
 use std::sync::Arc;
 
+/// The `environment.specular` value that lets the scene choose the mode
+/// (the default; `scene::environment_mode`).
+pub const AUTO: &str = "auto";
+
 /// Most directions per shading point `environment.samples` takes.
 pub const MAX_SAMPLES: i64 = 4096;
 
@@ -17,13 +21,15 @@ pub const MIN_PREFILTER_SIZE: i64 = 8;
 pub const MAX_PREFILTER_SIZE: i64 = 2048;
 
 /// The map `e` names, loaded relative to `base_dir` with its settings;
-/// `None` without `map`. A setting given without a map is an error (it
+/// without `map`, `default_map` (the studio of a glTF scene without
+/// lights) or `None`. A setting given without any map is an error (it
 /// would be ignored).
 pub fn environment_map(
     e: &EnvironmentSection,
     base_dir: &Path,
+    default_map: Option<&str>,
 ) -> Result<Option<EnvironmentMap>, String> {
-    let Some(value) = &e.map else {
+    let Some(value) = e.map.as_deref().or(default_map) else {
         let given = [
             ("scale", e.scale.is_some()),
             ("sh_order", e.sh_order.is_some()),
@@ -76,12 +82,13 @@ pub fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
         }
         s.rotation_deg = deg;
     }
-    if let Some(m) = &e.specular {
+    if let Some(m) = e.specular.as_deref().filter(|m| *m != AUTO) {
         s.specular = Specular::parse(m).ok_or_else(|| {
             format!(
-                "environment.specular = \"{m}\" is none of \"none\", \"sampled\", \"prefiltered\", \"sh\""
+                "environment.specular = \"{m}\" is none of \"{AUTO}\", \"none\", \"sampled\", \"prefiltered\", \"sh\""
             )
         })?;
+        s.specular_auto = false;
     }
     if let Some(n) = e.samples {
         if !(1..=MAX_SAMPLES).contains(&n) {
@@ -89,7 +96,7 @@ pub fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
                 "environment.samples = {n} is outside 1..={MAX_SAMPLES}"
             ));
         }
-        if s.specular != Specular::Sampled {
+        if s.specular != Specular::Sampled && !s.specular_auto {
             return Err("environment.samples applies to environment.specular = \"sampled\"".into());
         }
         s.samples = n as u32;
@@ -100,7 +107,7 @@ pub fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
                 "environment.prefilter_size = {size} is not an even width in {MIN_PREFILTER_SIZE}..={MAX_PREFILTER_SIZE}"
             ));
         }
-        if s.specular != Specular::Prefiltered {
+        if s.specular != Specular::Prefiltered && !s.specular_auto {
             return Err(
                 "environment.prefilter_size applies to environment.specular = \"prefiltered\""
                     .into(),

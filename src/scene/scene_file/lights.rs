@@ -29,6 +29,9 @@ pub struct LightSetup {
     /// Kept here so that the viewer's re-assembly after an edit or a
     /// reload keeps the rule too.
     pub environment_map: bool,
+    /// The map is the built-in studio given to a glTF scene without
+    /// lights (`[gltf] default_light = "studio"`), said in the notes.
+    pub default_studio: bool,
 }
 
 /// The scene's lights, as [`Scene`] holds them.
@@ -122,6 +125,12 @@ impl LightSetup {
     /// without lights, and shadows of imported lights by default.
     pub fn notes(&self) -> Vec<String> {
         let mut notes = Vec::new();
+        if self.default_studio {
+            notes.push(
+                "the glTF scene has no light: lit by the built-in neutral studio environment (`--set gltf.default_light=directional` for a directional light instead)"
+                    .to_string(),
+            );
+        }
         if self.gets_default_light() {
             notes.push(
                 "the scene has no light: added the default light (directional, 3 W/m² from the upper front left)"

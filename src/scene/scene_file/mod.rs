@@ -15,6 +15,7 @@
 pub mod assembly;
 pub mod diagnostics;
 pub mod environment_keys;
+pub mod gltf_keys;
 pub mod gltf_material_edits;
 pub mod lights;
 pub mod overrides;
@@ -118,6 +119,7 @@ pub fn load_for_editing(
         })
     })?;
     notes.extend(edit_warnings);
+    crate::scene::environment_mode::choose(&mut scene);
     notes.extend(gltf_files.notes().iter().cloned());
     notes.extend(lights.notes());
     notes.extend(
@@ -348,12 +350,22 @@ mod tests {
         ];
         let scene = load(&source, &own).unwrap();
         assert!(!scene.lights[0].casts_shadows());
-        // A glTF without any light gets the default one, said in the notes.
+        // A glTF without any light gets the studio, said in the notes;
+        // with `gltf.default_light = "directional"` the default light.
         let bare = SceneSource::File(
             Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/gltf/Box/Box.gltf"),
         );
         let (scene, notes) = load_with_limits(&bare, &[], Limits::default()).unwrap();
+        assert!(scene.lights.is_empty());
+        assert_eq!(
+            scene.environment.map.as_ref().unwrap().data.name,
+            crate::environment::load::STUDIO
+        );
+        assert!(notes.iter().any(|n| n.contains("studio")), "{notes:?}");
+        let directional = ["gltf.default_light=\"directional\"".to_string()];
+        let (scene, notes) = load_with_limits(&bare, &directional, Limits::default()).unwrap();
         assert_eq!(scene.lights.len(), 1);
+        assert!(scene.environment.map.is_none());
         assert!(
             notes.iter().any(|n| n.contains("default light")),
             "{notes:?}"

@@ -38,6 +38,24 @@ pub struct SceneFile {
     pub ambient: AmbientSection,
     #[serde(default)]
     pub environment: EnvironmentSection,
+    #[serde(default)]
+    pub gltf: GltfSection,
+}
+
+/// `[gltf]`: how glTF files are shown (their materials, and the light of
+/// a file that brings none).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GltfSection {
+    /// Multiple-scattering energy compensation of every glTF material
+    /// (default true, as three.js, Filament and Babylon.js render glTF;
+    /// false: the specification's BRDF exactly).
+    pub energy_compensation: Option<bool>,
+    /// The light of a scene whose glTF files bring none and that has no
+    /// `[[lights]]` and no map: `"studio"` (default, the built-in neutral
+    /// studio environment) or `"directional"` (the scene files' default
+    /// light).
+    pub default_light: Option<String>,
 }
 
 /// `[image]`: output size in pixels.

@@ -1,0 +1,76 @@
+//! `[gltf]`: how glTF files are shown. `energy_compensation` (default
+//! true: glTF materials are rendered as three.js, Filament and Babylon.js
+//! render them, with multiple scattering compensated; false gives the
+//! specification's BRDF exactly, the contract's measured-reflectance
+//! section) and `default_light` (the light of a glTF scene that has
+//! none). Errors name the key.
+
+use super::schema::GltfSection;
+use crate::material::{Material, ReflectanceModel};
+
+/// The light of a scene whose glTF files bring none, with no
+/// `[[lights]]` and no `[environment] map` (`[gltf] default_light`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DefaultLight {
+    /// The built-in neutral studio environment (`"studio"`), lighting
+    /// the whole BRDF from every side, as model-viewer's neutral
+    /// environment and the Khronos sample viewer do.
+    #[default]
+    Studio,
+    /// The scene files' default light, directional from the upper front
+    /// left (`"directional"`).
+    Directional,
+}
+
+impl DefaultLight {
+    pub const NAMES: [&str; 2] = ["studio", "directional"];
+
+    fn parse(s: &str) -> Option<Self> {
+        match s {
+            "studio" => Some(DefaultLight::Studio),
+            "directional" => Some(DefaultLight::Directional),
+            _ => None,
+        }
+    }
+}
+
+/// `[gltf]`, validated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GltfKeys {
+    /// `None`: each glTF material as imported (compensated).
+    pub energy_compensation: Option<bool>,
+    pub default_light: DefaultLight,
+}
+
+impl GltfKeys {
+    pub fn read(section: &GltfSection) -> Result<GltfKeys, String> {
+        let default_light = match &section.default_light {
+            None => DefaultLight::default(),
+            Some(s) => DefaultLight::parse(s).ok_or_else(|| {
+                format!(
+                    "gltf.default_light = \"{s}\" is neither \"{}\" nor \"{}\"",
+                    DefaultLight::NAMES[0],
+                    DefaultLight::NAMES[1]
+                )
+            })?,
+        };
+        Ok(GltfKeys {
+            energy_compensation: section.energy_compensation,
+            default_light,
+        })
+    }
+
+    /// Sets `gltf.energy_compensation`, when given, on every glTF
+    /// material of `imported` (models without compensation are left as
+    /// they are).
+    pub fn apply_energy_compensation(&self, imported: &mut [Material]) {
+        if let Some(on) = self.energy_compensation {
+            for m in imported
+                .iter_mut()
+                .filter(|m| m.model == ReflectanceModel::GltfPbr)
+            {
+                m.energy_compensation = on;
+            }
+        }
+    }
+}
