@@ -1,9 +1,11 @@
 // Material textures (bind group 2), in the module only when the scene has
 // textures (feature `textures`): the lecture's spatially varying BRDF.
-// Each material has up to MAX_TEXTURE_SLOTS slots; a slot is an image
-// (a full mip-chain view, or level 0 alone for a sampler without
-// mipmaps), its sampler, its UV set and KHR_texture_transform, and which
-// Material fields it scales. f64 twin: src/reference/texture.rs (the
+// Each material binds up to 6 textures (an image as a full mip-chain
+// view, or level 0 alone for a sampler without mipmaps, with its
+// sampler) and has up to MAX_TEXTURE_SLOTS slots; a slot reads one
+// binding with its UV set, KHR_texture_transform and channel, and says
+// which Material fields it scales (a metallic-roughness texture is one
+// binding read by two slots). f64 twin: src/reference/texture.rs (the
 // sampler's filtering is the GPU's own; the twin reproduces Vulkan's
 // rules). CPU side: src/gpu/textures.rs.
 
@@ -16,7 +18,7 @@ struct TextureSlot {
     tex_coord: u32,    // UV set (TEXCOORD_n)
     strength: f32,     // 1; occlusion: glTF's strength; normal map: glTF's scale
     alpha: u32,        // 1: the texel's A multiplies Material.alpha (the base colour's texture)
-    _pad: u32,
+    texture: u32,      // the binding it samples: slot_texture_<texture> with slot_sampler_<texture>
     rotation: vec2<f32>, // (cos r, sin r) of KHR_texture_transform's rotation: turns a normal map's normal
 }
 
@@ -49,7 +51,7 @@ struct SurfaceUv {
     ddy1: vec2<f32>,
 }
 
-// Slot i's texel at uv with the footprint (ddx, ddy). Explicit gradients:
+// Binding i's texel at uv with the footprint (ddx, ddy). Explicit gradients:
 // the level of detail is the one the reference computes from the same
 // derivatives (reference::texture::sample), and sampling is allowed
 // outside uniform control flow.
@@ -65,7 +67,7 @@ fn slot_texel(i: u32, uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec4<f32
     }
 }
 
-// Slot i's texel at level 0 (per-vertex shading).
+// Binding i's texel at level 0 (per-vertex shading).
 fn slot_texel_level0(i: u32, uv: vec2<f32>) -> vec4<f32> {
     switch i {
         case 0u: { return textureSampleLevel(slot_texture_0, slot_sampler_0, uv, 0.0); }
@@ -194,7 +196,7 @@ fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
         let uv = select(s.uv0, s.uv1, second);
         let ddx = select(s.ddx0, s.ddx1, second);
         let ddy = select(s.ddy0, s.ddy1, second);
-        let texel = slot_texel(i, slot_uv(slot, uv), slot_duv(slot, ddx), slot_duv(slot, ddy));
+        let texel = slot_texel(slot.texture, slot_uv(slot, uv), slot_duv(slot, ddx), slot_duv(slot, ddy));
         out = apply_slot(out, slot, texel);
     }
     out.material = textured_widths_floored(out.material, fields);
@@ -209,7 +211,7 @@ fn textured_surface_level0(base: Material, uv0: vec2<f32>, uv1: vec2<f32>) -> Te
         let slot = texture_slots.slots[i];
         fields |= slot.fields;
         let uv = select(uv0, uv1, slot.tex_coord == 1u);
-        out = apply_slot(out, slot, slot_texel_level0(i, slot_uv(slot, uv)));
+        out = apply_slot(out, slot, slot_texel_level0(slot.texture, slot_uv(slot, uv)));
     }
     out.material = textured_widths_floored(out.material, fields);
     return out;

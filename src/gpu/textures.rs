@@ -22,9 +22,17 @@ use bytemuck::{Pod, Zeroable};
 use std::collections::HashMap;
 use wgpu::util::DeviceExt;
 
-/// Texture slots a material can have (bindings 1–6 textures, 7–12
-/// samplers).
-pub const MAX_TEXTURE_SLOTS: usize = 6;
+/// Textures a material can read, counted as glTF counts them: an image
+/// with its sampler (bindings 1–6 textures, 7–12 samplers). Several
+/// slots may read one binding (a metallic-roughness texture feeds two
+/// parameters from two channels; an ORM texture three).
+pub const MAX_TEXTURE_BINDINGS: usize = 6;
+
+/// Texture reads (slots) a material can have: one per parameter a
+/// texture scales, each with its UV set, transform and channel, and each
+/// naming the binding it samples. A uniform array of 64-byte entries, so
+/// room for the layered-material extensions' textures costs 1 KiB.
+pub const MAX_TEXTURE_SLOTS: usize = 16;
 
 /// The format of every texture.
 pub const TEXTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -45,7 +53,10 @@ pub struct GpuTextureSlot {
     /// 1: the texel's A multiplies the material's alpha
     /// (`MaterialTexture::carries_alpha`).
     pub alpha: u32,
-    pub _pad: u32,
+    /// The material's binding this slot samples
+    /// ([`material_bindings`]: texture `1 + texture`, sampler
+    /// `1 + MAX_TEXTURE_BINDINGS + texture`).
+    pub texture: u32,
     /// `(cos r, sin r)` of the transform's rotation (a normal map's
     /// normal turns with it: `material::texture::rotated_normal`).
     pub rotation: [f32; 2],
@@ -88,7 +99,7 @@ pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         },
         count: None,
     }];
-    for s in 0..MAX_TEXTURE_SLOTS as u32 {
+    for s in 0..MAX_TEXTURE_BINDINGS as u32 {
         entries.push(wgpu::BindGroupLayoutEntry {
             binding: 1 + s,
             visibility: stage,
@@ -100,7 +111,7 @@ pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             count: None,
         });
         entries.push(wgpu::BindGroupLayoutEntry {
-            binding: 1 + MAX_TEXTURE_SLOTS as u32 + s,
+            binding: 1 + MAX_TEXTURE_BINDINGS as u32 + s,
             visibility: stage,
             ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
             count: None,
@@ -117,15 +128,27 @@ pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 /// a parameter the GPU cannot vary ([`mt::gpu_field_mask`]) or a
 /// material has more textures than slots.
 pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlot>> {
+    let bindings = material_bindings(m);
+    if bindings.len() > MAX_TEXTURE_BINDINGS {
+        return Err(Error::Scene(format!(
+            "material `{}` reads {} distinct textures (image and sampler pairs); the GPU renderer binds at most {MAX_TEXTURE_BINDINGS} per material",
+            m.name,
+            bindings.len()
+        )));
+    }
     if m.textures.len() > MAX_TEXTURE_SLOTS {
         return Err(Error::Scene(format!(
-            "material `{}` has {} textures; the GPU renderer binds at most {MAX_TEXTURE_SLOTS}",
+            "material `{}` has {} textured parameters; the GPU renderer reads at most {MAX_TEXTURE_SLOTS} per material",
             m.name,
             m.textures.len()
         )));
     }
     let mut slots = vec![GpuTextureSlot::default(); MAX_TEXTURE_SLOTS];
     for (slot, t) in slots.iter_mut().zip(&m.textures) {
+        let texture = bindings
+            .iter()
+            .position(|b| *b == (t.image, t.sampler))
+            .expect("every texture's binding is listed") as u32;
         let matrix = t.transform.matrix();
         let row = |r: usize| {
             [
@@ -159,7 +182,7 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
             tex_coord: t.tex_coord as u32,
             strength,
             alpha: u32::from(t.carries_alpha()),
-            _pad: 0,
+            texture,
             rotation: if t.transform.rotation == 0.0 {
                 [1.0, 0.0]
             } else {
@@ -169,6 +192,20 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
         };
     }
     Ok(slots)
+}
+
+/// The textures material `m` binds: each distinct image and sampler
+/// pair its slots read, in the order of first use (what glTF counts as
+/// its textures: DamagedHelmet's five images are five bindings for six
+/// textured parameters).
+pub fn material_bindings(m: &crate::material::Material) -> Vec<(usize, Sampler)> {
+    let mut bindings: Vec<(usize, Sampler)> = Vec::new();
+    for t in &m.textures {
+        if !bindings.contains(&(t.image, t.sampler)) {
+            bindings.push((t.image, t.sampler));
+        }
+    }
+    bindings
 }
 
 /// The sampler descriptor of a glTF sampler. Without mipmaps the view is
@@ -315,15 +352,16 @@ impl SceneTextures {
                 binding: 0,
                 resource: buffer.as_entire_binding(),
             }];
-            for s in 0..MAX_TEXTURE_SLOTS {
-                let (view, sampler) = match m.textures.get(s) {
-                    Some(t) => (
-                        if t.sampler.mipmap.is_some() {
-                            &full[t.image]
+            let bindings = material_bindings(m);
+            for s in 0..MAX_TEXTURE_BINDINGS {
+                let (view, sampler) = match bindings.get(s) {
+                    Some((image, sampler)) => (
+                        if sampler.mipmap.is_some() {
+                            &full[*image]
                         } else {
-                            &base[t.image]
+                            &base[*image]
                         },
-                        &samplers[&t.sampler],
+                        &samplers[sampler],
                     ),
                     None => (&white, &default_sampler),
                 };
@@ -332,7 +370,7 @@ impl SceneTextures {
                     resource: wgpu::BindingResource::TextureView(view),
                 });
                 entries.push(wgpu::BindGroupEntry {
-                    binding: 1 + (MAX_TEXTURE_SLOTS + s) as u32,
+                    binding: 1 + (MAX_TEXTURE_BINDINGS + s) as u32,
                     resource: wgpu::BindingResource::Sampler(sampler),
                 });
             }
