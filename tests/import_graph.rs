@@ -859,12 +859,17 @@ fn module_components(src: &Path, rel: &str) -> Vec<String> {
     comps
 }
 
+/// One graph's edges, each with what causes it.
+type Edges = BTreeMap<(usize, usize), String>;
+/// A folder's graph: its children's names and the edges between them.
+type Graph = (Vec<String>, Edges);
+
 struct Graphs {
     files: Vec<String>,
     file_edges: BTreeMap<(usize, usize), String>,
     /// Per folder (relative to src, "" for src itself): its children's names
     /// and the edges between them, each with one file edge that causes it.
-    folders: BTreeMap<String, (Vec<String>, BTreeMap<(usize, usize), String>)>,
+    folders: BTreeMap<String, Graph>,
 }
 
 fn graphs(src: &Path) -> Graphs {
@@ -875,8 +880,7 @@ fn graphs(src: &Path) -> Graphs {
         .iter()
         .map(|f| module_components(src, f))
         .collect();
-    let mut folders: BTreeMap<String, (Vec<String>, BTreeMap<(usize, usize), String>)> =
-        BTreeMap::new();
+    let mut folders: BTreeMap<String, Graph> = BTreeMap::new();
     for ((a, b), item) in &file_edges {
         let (ca, cb) = (&comps[*a], &comps[*b]);
         let k = ca.iter().zip(cb).take_while(|(x, y)| x == y).count();

@@ -6,7 +6,7 @@ use std::borrow::Cow;
 use std::panic::{self, AssertUnwindSafe};
 
 /// Message for a panic caught inside the `gltf` crate.
-const PARSER_PANICKED: &str = "the glTF parser failed on malformed data";
+pub(super) const PARSER_PANICKED: &str = "the glTF parser failed on malformed data";
 
 /// Runs `f`, turning a panic into the "malformed data" error. Only code of
 /// the `gltf` crate is expected to panic here, and only on inputs our own
