@@ -137,7 +137,7 @@ fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
 // L̃(R, α) · (F0·A(μ, α) + B(μ, α)), the map prefiltered by GGX lobes
 // (LEVELS lat-long levels stacked in one texture, level k at √α = k/5)
 // and the environment BRDF table. Twins: src/environment/prefiltered.rs
-// and src/environment/dfg.rs (tables made there, on the CPU).
+// and src/material/brdf/dfg.rs (tables made there, on the CPU).
 
 // prefiltered::LEVELS
 const PREFILTER_LEVELS: i32 = 6;

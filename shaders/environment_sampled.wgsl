@@ -5,8 +5,8 @@
 // of the mixture n_c p_c + n_b p_b). Only in shaders of scenes in that
 // mode (feature `environment_sampled`), after environment.wgsl; uses
 // brdf/phong.wgsl (composed whenever this file is).
-// f64 twins: src/environment/lobe.rs (the lobe_* functions) and
-// src/environment/sampled.rs (the estimate), same functions, same order;
+// f64 twins: src/reference/environment/lobe.rs (the lobe_* functions) and
+// src/reference/environment/sampled.rs (the estimate), same functions, same order;
 // the derivations are there.
 
 // Lobe kinds (lobe::Lobe's variants).

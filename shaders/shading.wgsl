@@ -7,7 +7,7 @@
 // BRDF integrated over the map with N directions.
 // The ambient occlusion m.occlusion multiplies the ambient term and every
 // environment term (diffuse, specular, the mirror's), never direct light.
-// f64 twin: reflected_radiance in src/shading.rs.
+// f64 twin: reflected_radiance in src/reference/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
 // kinds (src/gpu/shader_gen/compose.rs). Blocks `#if mirror` exist only
@@ -122,7 +122,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
 // The albedo the environment's SH irradiance lights: k_d; gltf-pbr's
 // Lambert part (1 − m)·b (per pixel, after textures); 0 for a measured
 // table. Selects, not branches (UNIFORM_BRANCHES in brdf/phong.wgsl).
-// f64 twin: environment_diffuse_albedo in src/shading.rs.
+// f64 twin: environment_diffuse_albedo in src/reference/environment/diffuse.rs.
 fn environment_diffuse_albedo(m: Material) -> vec3<f32> {
     let model = brdf_model(m);
     let pbr = (1.0 - m.metallic) * m.base_color;

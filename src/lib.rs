@@ -19,7 +19,6 @@ pub mod material;
 pub mod output;
 pub mod reference;
 pub mod scene;
-pub mod shading;
 #[cfg(feature = "viewer")]
 pub mod ui;
 

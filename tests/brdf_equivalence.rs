@@ -422,7 +422,7 @@ fn gpu_eval(
     });
     let globals_buffer = compensation.then(|| {
         let mut g = <gonio::gpu::layout::GpuGlobals as bytemuck::Zeroable>::zeroed();
-        g.albedo = gonio::environment::dfg::table().albedo_uniform();
+        g.albedo = gonio::material::brdf::dfg::table().albedo_uniform();
         init(bytemuck::bytes_of(&g), wgpu::BufferUsages::UNIFORM)
     });
     let mut group0 = Vec::new();

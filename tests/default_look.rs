@@ -6,7 +6,8 @@
 
 mod common;
 
-use gonio::environment::load::{STUDIO, write_hdr};
+use gonio::environment::load::write_hdr;
+use gonio::environment::studio::STUDIO;
 use gonio::environment::map::Specular;
 use gonio::frame::Frame;
 use gonio::reference;

@@ -489,7 +489,7 @@ fn the_sampled_mode_is_a_furnace_too() {
 
 /// The sampled mode on the GPU against its f64 twin (the same N
 /// directions, the same MIS weights) under the blobs, every material's
-/// whole BRDF, for every lobe kind (`gonio::environment::lobe`): the
+/// whole BRDF, for every lobe kind (`gonio::reference::environment::lobe`): the
 /// scene's Lambert (no lobe), Beckmann gold and mirror; then normalized
 /// Phong (mirror lobe), normalized Blinn-Phong (half-vector power) and a
 /// gltf-pbr metal (GGX); then Ward anisotropic (Beckmann of the larger σ),
@@ -1516,7 +1516,7 @@ fn the_compensated_white_metal_is_a_furnace_on_the_gpu() {
         m.energy_compensation = false;
     }
     let (truth_on, truth_off) = (reference::render(&on), reference::render(&off));
-    let table = gonio::environment::dfg::table();
+    let table = gonio::material::brdf::dfg::table();
     let eye = on.camera.position;
     let (mut n, mut sum_on, mut sum_off, mut worst) = (0, 0.0, 0.0, 0.0f64);
     for i in 0..on.height {

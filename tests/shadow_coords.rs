@@ -27,7 +27,7 @@ mod common;
 use glam::{DVec3, DVec4};
 use gonio::frame::Frame;
 use gonio::gpu::shadows::ShadowPlan;
-use gonio::reference::Bvh;
+use gonio::scene::bvh::Bvh;
 use gonio::scene::scene_file::{self, SceneSource};
 use gonio::scene::shadow_coords::{LookupOffsets, displacement_bound, lookup_point};
 use gonio::scene::{Scene, ShadowCoords};

@@ -1,7 +1,7 @@
 // Energy compensation of the microfacet lobes (Turquin 2019): a lobe of
 // normal-incidence Fresnel F0 is scaled by 1 + F0·(1 − E(μ_o, α))/E(μ_o, α),
 // E the directional albedo of GGX with height-correlated Smith (the table
-// of src/environment/dfg.rs, the same f32 nodes in globals.albedo, filled
+// of src/material/brdf/dfg.rs, the same f32 nodes in globals.albedo, filled
 // when some material has energy_compensation = true).
 // f64 twin: src/material/brdf/energy.rs (same names, same order).
 // Without the feature `energy_compensation` (no material of the scene has

@@ -14,7 +14,8 @@
 //! kind compiled in) for the uber-vs-specialized comparison.
 
 use super::harness::{HarnessShader, Inputs};
-use crate::gpu::readback::{COLOR_FORMAT, Readback};
+use crate::gpu::formats::COLOR_FORMAT;
+use crate::gpu::readback::Readback;
 use crate::gpu::shader_gen::{self, ShaderKey, sources};
 use crate::gpu::shadows::ShadowPlan;
 use crate::gpu::{AdapterChoice, GpuContext};

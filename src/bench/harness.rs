@@ -13,8 +13,9 @@
 
 use crate::frame::Frame;
 use crate::gpu::draw::{self, SceneDraw};
+use crate::gpu::formats::COLOR_FORMAT;
 use crate::gpu::offscreen::render_target;
-use crate::gpu::readback::{COLOR_FORMAT, PassTimestamps, Readback};
+use crate::gpu::readback::{PassTimestamps, Readback};
 use crate::gpu::shader_gen::{self, ShaderKey};
 use crate::gpu::timing::Clock;
 use crate::gpu::{DEPTH_FORMAT, FrameTarget, GpuContext, GpuRenderer};

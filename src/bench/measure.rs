@@ -103,7 +103,7 @@ pub fn render_pass_ms(timings: &Timings) -> f64 {
 /// The truth image of `base`: the CPU reference (f64, ray-traced shadows)
 /// with per-pixel shading and every area light at `area_samples` samples;
 /// an environment map lights through the whole BRDF, integrated by the
-/// map's texel quadrature (`environment::sampled::integrated`), whatever
+/// map's texel quadrature (`reference::environment::sampled::integrated`), whatever
 /// `environment.specular` the GPU uses.
 pub fn truth(base: &Scene, area_samples: u32) -> Frame {
     let mut scene = base.with_area_samples(area_samples);

@@ -5,13 +5,9 @@
 
 use super::exr_header;
 use super::map::{MAX_SIDE, MapData};
-use super::sky;
+use super::sky::{self, SKY};
+use super::studio::STUDIO;
 use std::path::Path;
-
-/// The `map` value that selects the procedural sky instead of a file.
-pub const SKY: &str = "sky";
-/// The `map` value that selects the neutral studio instead of a file.
-pub const STUDIO: &str = "studio";
 
 /// The map `value` names, relative to `base_dir` (the scene file's
 /// folder): [`SKY`] or a path to an `.exr` / `.hdr` file.

@@ -10,7 +10,7 @@
 use super::prefiltered::Prefiltered;
 use super::quadrature::Truth;
 use super::{latlong, sh};
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -88,7 +88,7 @@ pub enum Specular {
     #[default]
     None,
     /// The whole BRDF integrated with `samples` directions per shading
-    /// point (`"sampled"`, [`super::sampled`]).
+    /// point (`"sampled"`, [`crate::reference::environment::sampled`]).
     Sampled,
     /// Diffuse by SH, glossy by the split-sum approximation: a prefiltered
     /// map times the environment BRDF (`"prefiltered"`,

@@ -1,10 +1,11 @@
-//! Glossy reflection by the split-sum approximation (Karis 2013, "Real
+//! The radiance of the split-sum approximation (Karis 2013, "Real
 //! Shading in Unreal Engine 4", SIGGRAPH course notes):
 //! `∫ f_r L cos θ_i dω ≈ L̃(R, α) · (F0 · A(μ, α) + B(μ, α))`,
-//! the radiance prefiltered by the GGX lobe around the mirror direction
-//! `R` (computed with `N = V = R`, Karis's assumption) times the
-//! environment BRDF of [`super::dfg`]
-//! (`environment.specular = "prefiltered"`).
+//! `L̃` the radiance prefiltered by the GGX lobe around the mirror
+//! direction `R` (computed with `N = V = R`, Karis's assumption); the
+//! environment BRDF `A`, `B` is the table of `material::brdf::dfg`, and
+//! the per-pixel estimate of `environment.specular = "prefiltered"` that
+//! multiplies the two is `reference::environment::prefiltered`.
 //!
 //! The prefiltered radiance is a stack of [`LEVELS`] lat-long images of
 //! `environment.prefilter_size × size/2` texels, level `k` filtered at
@@ -17,29 +18,14 @@
 //! Colbert & Křivánek 2007, GPU Gems 3 ch. 20), so the result is smooth
 //! with few samples.
 //!
-//! Which models it applies to (`specular_terms`): gltf-pbr (α = r², F0 =
-//! mix(0.04, b, m), exactly the split of its mix form), and Cook-Torrance
-//! with every distribution taken as GGX of a matched α ([`ggx_alpha`]:
-//! Beckmann's and the Gaussians' m, Blinn's exponent through Walter et
-//! al.'s Phong–Beckmann match) and its Fresnel as Schlick's of `F0 = F(1)`, the lobe times
-//! `k_s · 4/c` (`c` its denominator). Its `G` (Smith, V-groove, none) is
-//! replaced by GGX's height-correlated Smith: that mismatch is part of the
-//! measured error. The other models get the diffuse term alone (as in
-//! `"none"`). Diffuse: SH irradiance times the diffuse albedo.
-//!
-//! WGSL twin: `environment_prefiltered` in shaders/environment.wgsl; this
-//! file's [`estimate`] is its f64 twin (the same f32 tables).
+//! WGSL twin: the stack's lookup in `environment_prefiltered`,
+//! shaders/environment.wgsl (the GPU reads the f32 stack made here).
 
-use super::dfg;
-use super::{EnvironmentMap, latlong};
-use crate::base::{SurfaceFrame, any_tangent};
-use crate::material::brdf::phong::mirror_direction;
-use crate::material::brdf::{DistributionTerm, Specular as BrdfSpecular};
-use crate::material::{Material, ReflectanceModel};
-use crate::scene::Rgb;
+use super::latlong;
+use crate::base::{Rgb, any_tangent};
 use glam::DVec3;
 use rayon::prelude::*;
-use std::f64::consts::{FRAC_1_PI, PI, TAU};
+use std::f64::consts::{PI, TAU};
 
 /// Roughness levels of the stack.
 pub const LEVELS: u32 = 6;
@@ -233,77 +219,6 @@ fn prefilter(pyramid: &Pyramid, r: DVec3, alpha: f64, omega_texel: f64) -> [f64;
         weight += cos_l;
     }
     sum.map(|s| s / weight)
-}
-
-/// `(α, F0, weight)` of the split for `material` (see the module doc):
-/// the specular part is `weight · L̃(R, α) · (F0·A + B)`; weight 0 for
-/// models it does not apply to. Twin: `prefiltered_terms` in
-/// shaders/environment.wgsl.
-pub fn specular_terms(material: &Material) -> (f64, Rgb, Rgb) {
-    match material.model {
-        ReflectanceModel::GltfPbr => {
-            let r = material.roughness;
-            let f0 = Rgb::splat(0.04) * (1.0 - material.metallic)
-                + material.base_color * material.metallic;
-            (r * r, f0, Rgb::ONE)
-        }
-        _ => match material.brdf().specular {
-            BrdfSpecular::CookTorrance(ct) => (
-                ggx_alpha(ct.d),
-                ct.f.eval(1.0),
-                material.brdf().k_s * (4.0 / ct.denominator),
-            ),
-            _ => (0.0, Rgb::ZERO, Rgb::ZERO),
-        },
-    }
-}
-
-/// The GGX α standing in for distribution `d`: its own slope scale `m`
-/// (Beckmann, the Gaussians: the same narrow lobe to first order), GGX's
-/// α, and for Blinn's exponent `e` the Beckmann slope of the same lobe,
-/// `√(2/(e + 2))` (Walter et al. 2007, eq. 33's Phong–Beckmann match).
-/// Twin: the `alpha` of `prefiltered_terms` in shaders/environment.wgsl.
-pub fn ggx_alpha(d: DistributionTerm) -> f64 {
-    match d {
-        DistributionTerm::Beckmann { m }
-        | DistributionTerm::Gaussian { m }
-        | DistributionTerm::GaussianNormalized { m, .. } => m,
-        DistributionTerm::Ggx { alpha } => alpha,
-        DistributionTerm::Blinn { e } | DistributionTerm::BlinnNormalized { e } => {
-            (2.0 / (e + 2.0)).sqrt()
-        }
-    }
-}
-
-/// The split-sum estimate of `L_o` (diffuse by SH plus the prefiltered
-/// specular), the f64 twin of the GPU's `environment_prefiltered`.
-pub fn estimate(
-    map: &EnvironmentMap,
-    prefiltered: &Prefiltered,
-    material: &Material,
-    frame: &SurfaceFrame,
-    wo: DVec3,
-) -> Rgb {
-    let n = frame.n;
-    let diffuse =
-        crate::shading::environment_diffuse_albedo(material) * FRAC_1_PI * map.irradiance_sh(n);
-    let cos_o = n.dot(wo);
-    if cos_o <= 0.0 {
-        return diffuse;
-    }
-    let (alpha, f0, weight) = specular_terms(material);
-    let [a, b] = dfg::table().lookup(cos_o, alpha);
-    let r = mirror_direction(wo, n);
-    let l = prefiltered.lookup(map.to_map(r), alpha) * map.settings.scale;
-    // Energy compensation (issue 16 item 5, `brdf::energy`): the split's
-    // lobe times the same factor, with the split's F0.
-    let ms = if material.energy_compensation {
-        crate::material::brdf::energy::ms_ratio(alpha, cos_o)
-    } else {
-        0.0
-    };
-    let compensation = crate::material::brdf::energy::ms_factor(f0, ms);
-    diffuse + weight * (f0 * a + Rgb::splat(b)) * l * compensation
 }
 
 #[cfg(test)]

@@ -25,7 +25,7 @@
 //! integral) by less than the kernel's curvature over two texels.
 
 use super::latlong;
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use glam::DVec3;
 use std::f64::consts::TAU;
 

@@ -17,7 +17,7 @@
 //! orthonormal real basis gives the same `E(n)`. WGSL twin: `sh_basis` in
 //! `shaders/environment.wgsl` (same functions, same order).
 
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use glam::DVec3;
 use std::f64::consts::PI;
 

@@ -66,17 +66,16 @@
 //! error is measured (docs/environment.md). Every other model with a
 //! glossy lobe (Cook-Torrance, gltf-pbr, Ward, ABC) and the measured
 //! tables get the SH diffuse term alone in this mode, and the loader
-//! says so (`super::mode_warnings`).
+//! says so (`scene::scene_file::mode_warnings`).
+//!
+//! Which lobe a material has and the per-pixel estimate are the
+//! reference's (`reference::environment::sh_phong`).
 //!
 //! WGSL twin: shaders/environment_sh.wgsl (same functions, same order).
 
 use super::EnvironmentMap;
 use super::sh;
-use crate::base::SurfaceFrame;
-use crate::material::Material;
-use crate::material::brdf::Specular as BrdfSpecular;
-use crate::material::brdf::phong::mirror_direction;
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, TAU};
 
@@ -128,19 +127,6 @@ pub enum Lobe {
     Normalized { k_e: f64 },
 }
 
-/// The lobe of `material` (`None`: the SH diffuse term alone); the
-/// lecture's Blinn-Phong as the mirror lobe of exponent `n/4`, the
-/// normalized one as normalized Phong of exponent `n/4` (module docs).
-pub fn lobe(material: &Material) -> Option<Lobe> {
-    match material.brdf().specular {
-        BrdfSpecular::Phong { k_e } => Some(Lobe::Lecture { k_e }),
-        BrdfSpecular::BlinnPhong { k_e } => Some(Lobe::Lecture { k_e: 0.25 * k_e }),
-        BrdfSpecular::PhongNormalized { k_e } => Some(Lobe::Normalized { k_e }),
-        BrdfSpecular::BlinnPhongNormalized { k_e } => Some(Lobe::Normalized { k_e: 0.25 * k_e }),
-        _ => None,
-    }
-}
-
 /// The glossy term without `k_s`, `∫ f_r/k_s · L cos θ_i dω` over the
 /// sphere, for the mirror direction `r` and the normal `n` (world
 /// frame), with `c` the map's radiance coefficients. Twin:
@@ -159,24 +145,6 @@ pub fn glossy(map: &EnvironmentMap, c: &[Rgb; sh::COUNT], lobe: Lobe, r: DVec3, 
             (along_r + across) * ((k_e + 2.0) * 0.5 * FRAC_1_PI)
         }
     }
-}
-
-/// `L_o` of the environment in the `"sh"` mode: the SH diffuse term plus,
-/// for the Phong models, `k_s` times the convolved lobe read at the
-/// mirror direction of `wo`. The f64 twin of the GPU's `environment_sh`.
-pub fn estimate(map: &EnvironmentMap, material: &Material, frame: &SurfaceFrame, wo: DVec3) -> Rgb {
-    let n = frame.n;
-    let diffuse =
-        crate::shading::environment_diffuse_albedo(material) * FRAC_1_PI * map.irradiance_sh(n);
-    let Some(lobe) = lobe(material) else {
-        return diffuse;
-    };
-    if n.dot(wo) <= 0.0 {
-        return diffuse;
-    }
-    let r = mirror_direction(wo, n);
-    let c = map.radiance_coefficients();
-    diffuse + material.brdf().k_s * glossy(map, &c, lobe, r, n)
 }
 
 #[cfg(test)]

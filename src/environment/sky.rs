@@ -12,8 +12,11 @@
 
 use super::latlong;
 use super::map::MapData;
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use glam::DVec3;
+
+/// The `map` value that selects the procedural sky instead of a file.
+pub const SKY: &str = "sky";
 
 /// Width of the generated map (height: half of it).
 pub const WIDTH: u32 = 256;
@@ -73,7 +76,7 @@ pub fn map() -> MapData {
             (sum / (n * n) as f64).as_vec3().to_array()
         })
         .collect();
-    MapData::new(super::load::SKY, w, h, texels).expect("the built-in sky is a valid map")
+    MapData::new(SKY, w, h, texels).expect("the built-in sky is a valid map")
 }
 
 #[cfg(test)]

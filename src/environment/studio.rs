@@ -21,6 +21,9 @@ use super::map::MapData;
 use crate::base::Rgb;
 use glam::DVec3;
 
+/// The `map` value that selects the neutral studio instead of a file.
+pub const STUDIO: &str = "studio";
+
 /// Width of the generated map (height: half of it).
 pub const WIDTH: u32 = 256;
 
@@ -109,7 +112,7 @@ pub fn map() -> MapData {
             (sum / (n * n) as f64).as_vec3().to_array()
         })
         .collect();
-    MapData::new(super::load::STUDIO, w, h, texels).expect("the built-in studio is a valid map")
+    MapData::new(STUDIO, w, h, texels).expect("the built-in studio is a valid map")
 }
 
 #[cfg(test)]

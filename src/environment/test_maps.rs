@@ -4,7 +4,7 @@
 use super::latlong;
 use super::map::MapData;
 use super::sh;
-use crate::scene::Rgb;
+use crate::base::Rgb;
 use glam::DVec3;
 
 /// The blobs: a dim blue-grey ground-and-sky base with three Gaussian

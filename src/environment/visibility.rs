@@ -22,8 +22,8 @@
 
 use super::EnvironmentMap;
 use super::quadrature::Node;
+use crate::base::Rgb;
 use crate::base::SurfaceFrame;
-use crate::scene::Rgb;
 use glam::DVec3;
 
 /// `scale · Σ f(ω) L(ω) cos θ w` over the nodes above the horizon of

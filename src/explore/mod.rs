@@ -14,10 +14,11 @@
 //! tangent `t = +X` (the direction σ_x of anisotropic Ward runs along), the
 //! bitangent `b = +Y`. Polar angles θ are measured from the normal, azimuths
 //! φ from the tangent towards the bitangent, so a direction is
-//! `(sin θ cos φ, sin θ sin φ, cos θ)`.
+//! `(sin θ cos φ, sin θ sin φ, cos θ)` ([`geometry`]).
 
 pub mod albedo;
 pub mod cli;
+pub mod geometry;
 pub mod gloss;
 pub mod halfdiff;
 pub mod halfdiff_plot;
@@ -28,26 +29,12 @@ pub mod spec;
 pub mod table;
 
 pub use albedo::{AlbedoEstimate, directional_albedo};
+pub use geometry::{direction, frame};
 
 use crate::material::Material;
-use crate::material::brdf::SurfaceFrame;
 use crate::scene::Rgb;
-use glam::DVec3;
 use std::fmt;
 use std::str::FromStr;
-
-/// The shading frame of every exploration: `n = +Z`, `t = +X`, `b = +Y`.
-pub fn frame() -> SurfaceFrame {
-    SurfaceFrame::new(DVec3::Z, DVec3::X)
-}
-
-/// The unit direction with polar angle `theta` (from `n = +Z`) and azimuth
-/// `phi` (from `t = +X`), both in radians.
-pub fn direction(theta: f64, phi: f64) -> DVec3 {
-    let (st, ct) = theta.sin_cos();
-    let (sp, cp) = phi.sin_cos();
-    DVec3::new(st * cp, st * sp, ct)
-}
 
 /// A material with the name it is shown under (legend, tables, output).
 #[derive(Clone, Debug)]
@@ -138,6 +125,7 @@ impl FromStr for Channel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     #[test]
     fn directions_follow_the_frame() {

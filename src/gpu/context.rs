@@ -87,7 +87,7 @@ impl GpuContext {
     }
 
     /// The offscreen radiance format of this adapter: `Rgba32Float`
-    /// ([`super::readback::COLOR_FORMAT`]) where it can render into it,
+    /// ([`super::formats::COLOR_FORMAT`]) where it can render into it,
     /// else `Rgba32Uint` holding the same f32 bits (wgpu's GL backend on
     /// Mesa's llvmpipe, `WGPU_BACKEND=gl`, lacks `EXT_color_buffer_float`
     /// and panicked in pipeline creation: issue 19). Both read back the
@@ -95,8 +95,8 @@ impl GpuContext {
     /// which `image.msaa` then says. `None` if neither is renderable.
     pub fn radiance_format(&self) -> Option<wgpu::TextureFormat> {
         [
-            super::readback::COLOR_FORMAT,
-            super::readback::COLOR_BITS_FORMAT,
+            super::formats::COLOR_FORMAT,
+            super::formats::COLOR_BITS_FORMAT,
         ]
         .into_iter()
         .find(|&format| {
@@ -133,7 +133,7 @@ impl GpuContext {
     /// whose hand-written floor shaders (the unlit pass, the minimal
     /// shader) write f32 radiance and have no bits fallback.
     pub fn require_float_radiance(&self, who: &str) -> Result<()> {
-        if self.radiance_format() == Some(super::readback::COLOR_FORMAT) {
+        if self.radiance_format() == Some(super::formats::COLOR_FORMAT) {
             return Ok(());
         }
         Err(Error::NoAdapter(format!(

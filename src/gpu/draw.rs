@@ -24,7 +24,7 @@ pub struct FrameTarget<'a> {
     pub color: &'a wgpu::TextureView,
     /// Where a multisampled `color` is resolved to.
     pub resolve: Option<&'a wgpu::TextureView>,
-    /// Depth attachment ([`super::pipelines::DEPTH_FORMAT`]) of the same
+    /// Depth attachment ([`super::formats::DEPTH_FORMAT`]) of the same
     /// size.
     pub depth: &'a wgpu::TextureView,
     /// `[x, y, width, height]` in pixels of the 3D area; `None`: all of it.

@@ -6,12 +6,12 @@
 //! map where no geometry is.
 
 use super::bind_groups::SceneLayouts;
-use super::pipelines::DEPTH_FORMAT;
+use super::formats::DEPTH_FORMAT;
 use super::shader_gen::{self, Output};
-use crate::environment::dfg;
 use crate::environment::map::{MapData, Specular};
 use crate::environment::prefiltered::{self, Prefiltered};
 use crate::environment::{EnvironmentMap, sh};
+use crate::material::brdf::dfg;
 use crate::scene::Scene;
 use crate::{Error, Result};
 use bytemuck::{Pod, Zeroable};

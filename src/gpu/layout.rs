@@ -141,7 +141,7 @@ impl GpuGlobals {
             env_ground: f32x3(scene.environment.ground),
             _pad3: 0.0,
             albedo: if scene.materials.iter().any(|m| m.energy_compensation) {
-                crate::environment::dfg::table().albedo_uniform()
+                crate::material::brdf::dfg::table().albedo_uniform()
             } else {
                 [[0.0; 4]; 256]
             },

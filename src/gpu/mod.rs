@@ -3,7 +3,8 @@
 //!
 //! One concern per file, each with one owner:
 //!
-//! * [`context`] finds the device;
+//! * [`context`] finds the device; [`formats`] names the render targets'
+//!   texture formats;
 //! * [`shader_gen`] writes a scene's WGSL, [`layout`] mirrors its structs,
 //!   [`bindings`] says which arrays live in uniform buffers (and why),
 //!   [`bind_groups`] packs the buffers' bytes and makes the bind group
@@ -12,10 +13,15 @@
 //!   [`shadows`] plans the shadow maps ([`shadow_fit`] fits their sides
 //!   to the screen when asked), [`shadow_culling`] picks each layer's
 //!   casters;
+//! * [`textures`] holds the material textures and their samplers,
+//!   [`measured_tables`] the tables measured materials are rendered
+//!   from, [`environment`] the environment map's texture, uniform and
+//!   background pass;
 //! * [`pipelines`] (the pipeline cache) owns every compiled module,
 //!   pipeline and layout (and `GONIO_DUMP_WGSL`);
 //! * [`draw`] holds a vertex stream and its bind group and records the
-//!   scene pass; [`shadow_maps`] holds a shadow plan's maps and records
+//!   scene pass ([`scene_parts`] splits a one-shot pass into parts of
+//!   bounded size); [`shadow_maps`] holds a shadow plan's maps and records
 //!   their passes, [`shadow_masks`] the pass of alpha MASK casters;
 //!   [`prepared`] is a scene uploaded once and drawn many
 //!   times (update by what changed, encode a frame);
@@ -30,40 +36,52 @@
 //!   pipeline with another shader over a [`draw::SceneDraw`].
 //!
 //! Who imports whom inside `gpu/` (`a -> b`: `a` uses `b`; listed from
-//! the top, each file uses only files listed after it):
+//! the top, each file uses only files listed after it; every file of
+//! `gpu/` appears; `tests/import_graph.rs` checks that there is no circle,
+//! and `IMPORT_GRAPH_SHOW=gpu cargo test --test import_graph --
+//! --nocapture` prints the edges):
 //!
 //! ```text
 //! renderer    -> offscreen prepared pipelines draw readback timing
-//!                upload geometry layout shader_gen context
-//! offscreen   -> prepared pipelines draw readback timing context
-//!                texture_pool
-//! prepared    -> shadow_maps shadow_culling shadow_masks pipelines draw
-//!                upload geometry layout shader_gen shadows context
-//! shadow_maps -> shadow_culling shadow_masks pipelines draw bind_groups
-//!                bindings shadows context texture_pool
+//!                upload geometry layout shader_gen context formats
+//! offscreen   -> prepared pipelines draw scene_parts readback timing
+//!                context texture_pool formats
+//! prepared    -> shadow_maps shadow_culling shadow_masks pipelines
+//!                environment draw scene_parts upload geometry layout
+//!                textures shader_gen shadows context
+//! shadow_maps -> shadow_culling shadow_masks pipelines draw scene_parts
+//!                bind_groups bindings layout shadows context texture_pool
+//! shadow_masks -> pipelines textures geometry shader_gen
 //! shadow_culling -> geometry shadows
-//! shadow_masks -> textures pipelines geometry shader_gen
-//! draw        -> bind_groups bindings upload geometry layout shader_gen
-//! pipelines   -> bind_groups bindings geometry shader_gen shadows
-//! bind_groups -> bindings layout shadows
-//! readback    -> context
-//! context     -> texture_pool
+//! pipelines   -> environment bind_groups bindings geometry shader_gen
+//!                shadows formats
+//! environment -> bind_groups shader_gen formats
+//! draw        -> bind_groups bindings layout geometry measured_tables
+//!                scene_parts upload shader_gen
+//! scene_parts -> geometry
 //! upload      -> geometry
-//! layout      -> nothing in gpu/ (the material's BRDF value, the scene)
-//! shader_gen  -> bindings shadows
+//! geometry    -> textures
+//! bind_groups -> bindings layout shadows textures
+//! shader_gen  -> bindings shadows textures
 //! shadows     -> shadow_fit layout (GpuLight, GpuShadowView)
-//! bindings, geometry, timing, texture_pool, shadow_fit -> nothing in
-//!                gpu/
+//! readback    -> context
+//! textures    -> context
+//! context     -> formats texture_pool
+//! layout, bindings, measured_tables, timing, texture_pool, shadow_fit,
+//! formats     -> nothing in gpu/
 //! ```
 //!
-//! Every edge points down: a DAG (`GpuMaterial::new` takes the variant's
-//! code, not the `ShaderKey`, so `layout` imports nothing of `gpu/`).
+//! Every edge points down, so there is no circle (`GpuMaterial::new`
+//! takes the variant's code, not the `ShaderKey`, so `layout` imports
+//! nothing of `gpu/`; `shadow_fit` queries the scene's BVH,
+//! `crate::scene::bvh`, not the reference's).
 
 pub mod bind_groups;
 pub mod bindings;
 pub mod context;
 pub mod draw;
 pub mod environment;
+pub mod formats;
 pub mod geometry;
 pub mod layout;
 pub mod measured_tables;
@@ -86,6 +104,6 @@ pub mod upload;
 
 pub use context::{AdapterChoice, GpuContext};
 pub use draw::FrameTarget;
-pub use pipelines::DEPTH_FORMAT;
+pub use formats::DEPTH_FORMAT;
 pub use prepared::PreparedScene;
 pub use renderer::GpuRenderer;

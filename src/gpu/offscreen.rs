@@ -15,7 +15,8 @@
 
 use super::context::GpuContext;
 use super::draw::FrameTarget;
-use super::pipelines::{DEPTH_FORMAT, PipelineCache};
+use super::formats::DEPTH_FORMAT;
+use super::pipelines::PipelineCache;
 use super::prepared::PreparedScene;
 use super::readback::{PassTimestamps, Readback};
 use super::scene_parts::{self, PartBreak};

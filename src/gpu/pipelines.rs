@@ -22,15 +22,13 @@
 use super::bind_groups::SceneLayouts;
 use super::bindings::UniformArrays;
 use super::environment::{EnvironmentLayouts, background_pipeline};
+use super::formats::DEPTH_FORMAT;
 use super::geometry::VertexLayout;
 use super::shader_gen::{self, Output, ShaderKey};
 use super::shadows;
 use crate::{Error, Result};
 use std::collections::HashMap;
 use std::path::Path;
-
-/// The depth format of scene passes.
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// The environment variable naming a directory to write every generated
 /// WGSL module to.

@@ -11,12 +11,8 @@ use crate::frame::Frame;
 use crate::{Error, Result};
 use std::time::Duration;
 
-/// The offscreen colour target: linear radiance and coverage, exact.
-pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-/// The fallback target holding the same f32 values as bits (see
-/// [`GpuContext::radiance_format`]); read back as the same bytes.
-pub const COLOR_BITS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
-/// Bytes of one [`COLOR_FORMAT`] (or [`COLOR_BITS_FORMAT`]) texel.
+/// Bytes of one [`COLOR_FORMAT`](super::formats::COLOR_FORMAT) (or
+/// [`COLOR_BITS_FORMAT`](super::formats::COLOR_BITS_FORMAT)) texel.
 const BYTES_PER_PIXEL: u32 = 16;
 
 /// Maps `buffer` for reading, waits, and copies its bytes out.
@@ -40,7 +36,7 @@ pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>>
     Ok(bytes)
 }
 
-/// A buffer that receives one [`COLOR_FORMAT`] target of `width` ×
+/// A buffer that receives one [`COLOR_FORMAT`](super::formats::COLOR_FORMAT) target of `width` ×
 /// `height` texels, row by padded row.
 pub struct Readback {
     buffer: wgpu::Buffer,
@@ -75,7 +71,7 @@ impl Readback {
         (width * BYTES_PER_PIXEL).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
     }
 
-    /// Records the copy of `texture` (of this size and [`COLOR_FORMAT`])
+    /// Records the copy of `texture` (of this size and [`COLOR_FORMAT`](super::formats::COLOR_FORMAT))
     /// into the buffer.
     pub fn copy_from(&self, encoder: &mut wgpu::CommandEncoder, texture: &wgpu::Texture) {
         encoder.copy_texture_to_buffer(

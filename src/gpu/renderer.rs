@@ -5,12 +5,12 @@
 
 use super::context::GpuContext;
 use super::draw::{self, FrameTarget, SceneDraw};
+use super::formats::COLOR_FORMAT;
 use super::geometry::{Meshes, StreamPlan};
 use super::layout::{GpuGlobals, GpuLight};
 use super::offscreen;
 use super::pipelines::PipelineCache;
 use super::prepared::{Drawn, PreparedScene};
-use super::readback::COLOR_FORMAT;
 use super::shader_gen::ShaderKey;
 use super::timing::Timings;
 use super::upload::GpuGeometry;

@@ -20,12 +20,13 @@
 //! cannot cure grazing light. The side is rounded up to a multiple of 16
 //! and clamped to `[MIN_FIT_SIDE, shadow_map_size]`.
 //!
-//! The receivers are found by tracing primary rays (the reference's BVH)
+//! The receivers are found by tracing primary rays (the scene's BVH, `crate::scene::bvh`, which the reference
+//! traces too)
 //! through a grid of about [`GRID`] samples across the image's longer
 //! side, once per plan. The error this choice costs against ray-traced
 //! shadows is measured by `gonio bench` (knob `shadow_resolution`).
 
-use crate::reference::Bvh;
+use crate::scene::bvh::Bvh;
 use crate::scene::{Light, Scene, mesh};
 use glam::DVec3;
 

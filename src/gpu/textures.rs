@@ -14,7 +14,8 @@
 //! × 4/3 for the mips.
 
 use super::context::GpuContext;
-use crate::material::texture::{self as mt, Filter, Sampler, TextureTarget, Wrap};
+use crate::material::texture::{Filter, Sampler, TextureTarget, Wrap};
+use crate::material::texture_fields;
 use crate::scene::Scene;
 use crate::scene::texture::Image;
 use crate::{Error, Result};
@@ -125,7 +126,7 @@ pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 
 /// The slots of one material: what the GPU multiplies, from the material
 /// as rendered (roughness floor applied). An error when a texture names
-/// a parameter the GPU cannot vary ([`mt::gpu_field_mask`]) or a
+/// a parameter the GPU cannot vary ([`texture_fields::gpu_field_mask`]) or a
 /// material has more textures than slots.
 pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlot>> {
     let bindings = material_bindings(m);
@@ -162,7 +163,7 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
         // an unused slot, which is the same.
         let (fields, channel, strength) = match t.target {
             TextureTarget::Param(key) => {
-                let fields = mt::gpu_field_mask(m, key)
+                let fields = texture_fields::gpu_field_mask(m, key)
                     .map_err(|e| Error::Scene(format!("material `{}`: {e}", m.name)))?;
                 let colour = matches!(
                     crate::material::table::param_for(m.model, key).map(|p| p.kind),
@@ -171,7 +172,9 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
                 (fields, if colour { 4 } else { t.channel as u32 }, 1.0)
             }
             // Material.occlusion (gpu_field_values' order), from R.
-            TextureTarget::Occlusion { strength } => (mt::OCCLUSION_FIELD, 0, strength as f32),
+            TextureTarget::Occlusion { strength } => {
+                (texture_fields::OCCLUSION_FIELD, 0, strength as f32)
+            }
             TextureTarget::Normal { scale } => (0, NORMAL_MAP_CHANNEL, scale as f32),
         };
         *slot = GpuTextureSlot {

@@ -30,8 +30,6 @@
 //! table's 4 decimals), and η, which shapes the fall-off towards grazing,
 //! is the measurement at the channel's wavelength.
 
-use super::presets::Preset;
-
 /// One coloured conductor: preset name, η and κ per channel, and the
 /// normal-incidence reflectance (linear Rec.709) the reduction produced,
 /// which the η, κ reproduce.
@@ -80,16 +78,6 @@ pub const COLOURED_CONDUCTORS: &[ColouredConductor] = &[
         f0: [0.5297, 0.5132, 0.4942],
     },
 ];
-
-impl ColouredConductor {
-    /// The preset this row sets.
-    pub const fn preset(&self) -> Preset {
-        Preset::Conductor {
-            eta: self.eta,
-            kappa: self.kappa,
-        }
-    }
-}
 
 #[cfg(test)]
 mod tests {

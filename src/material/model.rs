@@ -1,6 +1,6 @@
 //! The closed set of reflectance models and their contract names. What
 //! each model needs (files, tangents, terms, parameters) is its row in
-//! [`super::table`].
+//! [`super::table`] (which also gives the model its `row()`).
 
 use crate::base::named_enum;
 
@@ -53,15 +53,3 @@ named_enum!(
         Abc = "abc",
     }
 );
-
-impl ReflectanceModel {
-    /// The model's row in the table of models.
-    pub fn row(self) -> &'static super::table::ModelRow {
-        super::table::row(self)
-    }
-
-    /// Whether the model needs a tangent frame (anisotropy).
-    pub fn needs_tangents(self) -> bool {
-        self.row().needs_tangents
-    }
-}

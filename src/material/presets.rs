@@ -6,7 +6,7 @@
 //! [`super::conductors`]).
 
 use super::Material;
-use super::conductors::COLOURED_CONDUCTORS;
+use super::conductors::{COLOURED_CONDUCTORS, ColouredConductor};
 use super::terms::Fresnel;
 use crate::base::Rgb;
 
@@ -106,6 +106,17 @@ impl Preset {
                 m.eta_t = eta;
                 m.fresnel = Fresnel::Dielectric;
             }
+        }
+    }
+}
+
+impl ColouredConductor {
+    /// The preset this row sets (here, beside the type it makes: the
+    /// table of conductors knows nothing of presets).
+    pub const fn preset(&self) -> Preset {
+        Preset::Conductor {
+            eta: self.eta,
+            kappa: self.kappa,
         }
     }
 }

@@ -133,6 +133,18 @@ pub fn row(model: ReflectanceModel) -> &'static ModelRow {
         .expect("every model has a row (tests: every_model_has_one_row)")
 }
 
+impl ReflectanceModel {
+    /// The model's row in the table of models.
+    pub fn row(self) -> &'static ModelRow {
+        row(self)
+    }
+
+    /// Whether the model needs a tangent frame (anisotropy).
+    pub fn needs_tangents(self) -> bool {
+        self.row().needs_tangents
+    }
+}
+
 /// Parameters of every model (not a BRDF's: the ambient term, emission).
 pub const COMMON: &[&Param] = &[&K_A, &EMISSION];
 

@@ -233,88 +233,6 @@ impl UvTransform {
     }
 }
 
-/// The GPU material's fields, in the order of their bits in a texture
-/// slot's field mask (`shaders/textures.wgsl` reads the same order), with
-/// their component counts: the values the WGSL `Material` holds for a
-/// material (`k_a` from the material, the rest from
-/// [`super::brdf::ShaderParams`]).
-pub fn gpu_field_values(m: &super::Material) -> Vec<(&'static str, Vec<f64>)> {
-    let p = m.brdf().shader_params();
-    let rgb = |c: crate::base::Rgb| c.to_array().to_vec();
-    vec![
-        ("k_a", rgb(m.k_a)),
-        ("k_d", rgb(p.k_d)),
-        ("k_s", rgb(p.k_s)),
-        ("k_e", vec![p.k_e]),
-        ("roughness", vec![p.roughness]),
-        ("sigma_x", vec![p.sigma_x]),
-        ("sigma_y", vec![p.sigma_y]),
-        ("eta", rgb(p.eta)),
-        ("kappa", rgb(p.kappa)),
-        ("eta_i", vec![p.eta_i]),
-        ("eta_t", vec![p.eta_t]),
-        ("d_norm", vec![p.d_norm]),
-        ("blinn_e", vec![p.blinn_e]),
-        ("lobe", p.lobe.to_vec()),
-        ("base_color", rgb(p.base_color)),
-        ("metallic", vec![p.metallic]),
-        ("emission", rgb(m.emission)),
-        ("occlusion", vec![m.occlusion]),
-    ]
-}
-
-/// The bit of the `occlusion` field in a texture slot's field mask (the
-/// occlusion texture's slot sets it; no parameter maps to it).
-pub const OCCLUSION_FIELD: u32 = 1 << 17;
-
-/// Which GPU material fields a texture on parameter `key` scales, as a
-/// bit mask over [`gpu_field_values`]: found by scaling the parameter in a
-/// copy of `m` and seeing which fields change. Each must change by
-/// exactly the same factor (channel by channel for a colour), so that
-/// multiplying the GPU's field by the texel is the same as multiplying
-/// the parameter: an error names the field when a model derives it from
-/// the parameter some other way (e.g. Blinn's exponent from the
-/// roughness), which the GPU could not follow per pixel.
-pub fn gpu_field_mask(m: &super::Material, key: &str) -> Result<u32, String> {
-    use super::param::Value;
-    let p = super::table::param_for(m.model, key)
-        .ok_or_else(|| format!("{} has no parameter `{key}`", m.model.name()))?;
-    let scale = [0.5, 0.25, 0.125];
-    let mut probe = m.clone();
-    let scaled = match p.read(m) {
-        Value::Color(c) => Value::Color(c * crate::base::Rgb::from_array(scale)),
-        Value::Scalar(v) => Value::Scalar(0.5 * v),
-    };
-    p.write(&mut probe, scaled);
-    let colour = matches!(scaled, Value::Color(_));
-    let mut mask = 0;
-    for (bit, ((name, before), (_, after))) in gpu_field_values(m)
-        .into_iter()
-        .zip(gpu_field_values(&probe))
-        .enumerate()
-    {
-        if before == after {
-            continue;
-        }
-        let linear = before.iter().zip(&after).enumerate().all(|(c, (b, a))| {
-            let s = if colour && before.len() == 3 {
-                scale[c]
-            } else {
-                scale[0]
-            };
-            (a - s * b).abs() <= 1e-12 * b.abs()
-        });
-        if !linear || (colour && before.len() != 3) {
-            return Err(format!(
-                "{key}_texture: {} derives `{name}` from {key} on the CPU, so it cannot vary over the surface",
-                m.model.name()
-            ));
-        }
-        mask |= 1 << bit;
-    }
-    Ok(mask)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -354,16 +272,6 @@ mod tests {
             "{n}"
         );
         assert_eq!(rotated_normal(glam::DVec3::ONE, 0.0), glam::DVec3::ONE);
-    }
-
-    #[test]
-    fn occlusion_field_bit_is_its_place_in_the_field_order() {
-        let m = crate::material::Material::new("m", crate::material::ReflectanceModel::Lambert);
-        let at = gpu_field_values(&m)
-            .iter()
-            .position(|(name, _)| *name == "occlusion")
-            .unwrap();
-        assert_eq!(OCCLUSION_FIELD, 1 << at);
     }
 
     #[test]

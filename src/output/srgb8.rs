@@ -14,8 +14,16 @@
 //! that it does not around every threshold, where a `powf` rounding could
 //! make it, and compare both on random values.
 
-use super::write::srgb_encode;
 use std::sync::OnceLock;
+
+/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].
+pub fn srgb_encode(linear: f64) -> f64 {
+    if linear <= 0.0031308 {
+        12.92 * linear
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
 
 /// The formula this module reproduces: `v`'s 8-bit sRGB code (`NaN` and
 /// anything ≤ 0 give 0, anything ≥ 1 gives 255: the cast saturates).

@@ -148,15 +148,6 @@ impl OutputFile {
     }
 }
 
-/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].
-pub fn srgb_encode(linear: f64) -> f64 {
-    if linear <= 0.0031308 {
-        12.92 * linear
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
-}
-
 /// Linear radiance to an 8-bit sRGB value: scale by `2^exposure`, clamp,
 /// encode, round (by table: [`srgb8`], the same codes). NaN maps to 0.
 pub fn to_srgb8(radiance: f32, exposure: f64) -> u8 {

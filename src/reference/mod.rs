@@ -3,16 +3,19 @@
 //! normals, interpolation and clip planes), so the two frames can be
 //! compared pixel by pixel.
 //!
-//! [`bvh`] finds what a ray hits (and whether a shadow ray is blocked);
-//! [`renderer`] turns hits into a [`crate::frame::Frame`]; [`area`]
-//! measures the error of rendering an area light by N point lights.
+//! [`crate::scene::bvh`] finds what a ray hits (and whether a shadow ray
+//! is blocked); [`renderer`] turns hits into a [`crate::frame::Frame`],
+//! each hit shaded by the reflection equation of [`shading`] (the
+//! environment's part by the estimators of [`environment`]); [`texture`]
+//! samples the material textures; [`area`] measures the error of
+//! rendering an area light by N point lights.
 
 pub mod area;
-pub mod bvh;
+pub mod environment;
 pub mod renderer;
+pub mod shading;
 pub mod texture;
 
-pub use bvh::{Bvh, Hit, TriangleId};
 pub use renderer::{
     AreaLights, memory_estimate, render, render_offset, render_with, render_with_lod_bias,
     shadow_epsilon, visibility,

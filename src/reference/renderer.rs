@@ -7,7 +7,7 @@
 //! same interpolation of per-vertex results.
 //!
 //! With an environment map, rays that miss see the map (the background),
-//! and the diffuse term integrates it (`crate::shading`).
+//! and the diffuse term integrates it (`super::shading`).
 //!
 //! Shadows are ray traced ([`visibility`]): the truth the GPU's shadow maps
 //! are measured against. Visibility is evaluated at the shading point of
@@ -15,14 +15,14 @@
 //! with the colour; Phong: the pixel's interpolated position), exactly
 //! where the GPU reads its shadow map.
 
-use super::bvh::{Bvh, Hit};
+use super::shading::reflected_radiance;
 use super::texture::{self, Footprint};
 use crate::frame::Frame;
 use crate::material::brdf::SurfaceFrame;
 use crate::material::{Material, Sides};
+use crate::scene::bvh::{Bvh, Hit};
 use crate::scene::camera::Ray;
 use crate::scene::{Light, Mesh, Rgb, Scene, ShadingMode, mesh};
-use crate::shading::reflected_radiance;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -66,7 +66,7 @@ pub fn memory_estimate(scene: &Scene) -> u64 {
     let pixels = u64::from(scene.width) * u64::from(scene.height);
     let per_pixel = (size_of::<[f32; 3]>() + size_of::<bool>()) as u64;
     (scene.triangle_count() as u64)
-        .saturating_mul(super::bvh::BUILD_BYTES_PER_TRIANGLE)
+        .saturating_mul(crate::scene::bvh::BUILD_BYTES_PER_TRIANGLE)
         .saturating_add(pixels.saturating_mul(per_pixel))
 }
 
@@ -174,7 +174,7 @@ impl<'a> Shader<'a> {
         let mut t_from = t_near;
         // Single-sided materials' back faces are culled, as the GPU
         // discards them.
-        let keeps_back = |id: super::bvh::TriangleId| {
+        let keeps_back = |id: crate::scene::bvh::TriangleId| {
             let m = &scene.meshes[id.mesh as usize];
             self.materials[m.material].sides != Sides::Front
         };

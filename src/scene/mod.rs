@@ -6,6 +6,7 @@
 //! uses it as is.
 
 pub mod area_light;
+pub mod bvh;
 pub mod camera;
 pub mod default_scene;
 pub mod environment;

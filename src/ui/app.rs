@@ -902,7 +902,7 @@ impl App {
         // The light handles take the mouse first (super::light_drag).
         let ppp = self.window.as_ref().map_or(1.0, |w| w.scale_factor());
         let lights =
-            super::light_drag::on_input(&mut self.state, self.view_rect, self.cursor, ppp, event);
+            super::light_input::on_input(&mut self.state, self.view_rect, self.cursor, ppp, event);
         if let Some(acted) = lights {
             if let WindowEvent::CursorMoved { position, .. } = event {
                 self.cursor = (position.x, position.y);

@@ -11,8 +11,14 @@
 //!
 //! Saving writes the file's table with every edit applied, so
 //! `gonio render saved.toml` draws what the viewer shows. Lights can also
-//! be added, removed and retyped (`document/lights.rs`).
+//! be added, removed and retyped (`document/lights.rs`); the environment
+//! map's keys are edited by [`environment`]. Applying an edit by its key
+//! and keeping the edits across a reload (`document/edit.rs`) sit above
+//! those, so this file holds the document and what was loaded, and uses
+//! none of them.
 
+mod edit;
+pub mod environment;
 mod lights;
 
 use crate::material::Material;
@@ -20,7 +26,6 @@ use crate::scene::Scene;
 use crate::scene::limits::Limits;
 use crate::scene::scene_file::{self, LightEntry, LightSetup, SceneSource};
 use crate::{Error, Result};
-use serde::Deserialize;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
@@ -100,7 +105,7 @@ impl Document {
             source_dir: loaded.base_dir,
             lights: loaded.lights,
             parked_environment: None,
-            loaded_environment: super::environment::map_keys(&loaded.table),
+            loaded_environment: map_keys(&loaded.table),
             table: loaded.table,
             compare: Default::default(),
         })
@@ -134,19 +139,6 @@ impl Document {
         self.modified = modified_time(&self.source);
     }
 
-    /// Reloads from the source with the same overrides, keeping edits of
-    /// materials the new scene still has (by name), of `[[lights]]`
-    /// entries it still has (by index; the whole list once lights were
-    /// added or removed), the shading mode and ambient radiance, and of
-    /// the environment map (its keys as one edit, as a material's:
-    /// `super::environment::keep_edits`). (The viewer keeps its own camera
-    /// unless the file's camera changed.)
-    pub fn reload(&self) -> Result<Document> {
-        let mut fresh = Document::load(self.source.clone(), self.overrides.clone(), self.limits)?;
-        fresh.keep_edits_of(self);
-        Ok(fresh)
-    }
-
     /// Replaces `[[lights]]` entry `index` and assembles the lights again;
     /// on error (a value the scene file would refuse) nothing changes.
     pub fn set_light(
@@ -163,124 +155,6 @@ impl Document {
         setup.assemble()?.install(&mut self.scene);
         self.lights = setup;
         Ok(())
-    }
-
-    /// Applies one `KEY=VALUE` edit as the panel would: materials, the
-    /// shading mode, the ambient radiance, `[[lights]]` entries
-    /// (`lights.N.KEY`) and the environment map's keys
-    /// (`environment.KEY`, [`super::environment`]), each validated like
-    /// the scene file.
-    pub fn edit(&mut self, assignment: &str) -> Result<()> {
-        let bad = |problem: String| Error::argument(format!("edit {assignment}"), problem);
-        let (key, value) = assignment
-            .split_once('=')
-            .ok_or_else(|| bad("expected KEY=VALUE".into()))?;
-        let parts: Vec<&str> = key.trim().split('.').collect();
-        if let Some(done) = self.edit_light_list(&parts, value) {
-            return done.map_err(bad);
-        }
-        match parts.as_slice() {
-            ["materials", name, field] => {
-                let m = self
-                    .scene
-                    .materials
-                    .iter_mut()
-                    .find(|m| m.name == *name)
-                    .ok_or_else(|| bad(format!("no material is called `{name}`")))?;
-                *m = edit_material(m, field, value).map_err(bad)?;
-                // Another model may need another environment mode.
-                crate::scene::environment_mode::choose(&mut self.scene);
-                Ok(())
-            }
-            ["shading", "mode"] => {
-                let mode: String = toml_value(value).map_err(bad)?;
-                self.scene.shading = mode.parse().map_err(bad)?;
-                Ok(())
-            }
-            ["image", "tone_map"] => {
-                let name: String = toml_value(value).map_err(bad)?;
-                self.scene.tone_map = name.parse().map_err(bad)?;
-                Ok(())
-            }
-            ["ambient", "radiance"] => {
-                let v: [f64; 3] = toml_value(value).map_err(bad)?;
-                if v.iter().any(|c| !c.is_finite() || *c < 0.0) {
-                    return Err(bad("radiance must be finite and ≥ 0".into()));
-                }
-                self.scene.ambient = crate::scene::Rgb::from_array(v);
-                Ok(())
-            }
-            ["environment", key] => super::environment::edit(self, key, assignment),
-            ["compare", rest @ ..] => self.compare.edit(rest, value).map_err(bad),
-            ["lights", index, _field] => {
-                let index: usize = index
-                    .parse()
-                    .map_err(|_| bad(format!("`{index}` is not a light index")))?;
-                let entry = self.light_entry_with(index, assignment)?;
-                self.set_light(index, entry).map_err(bad)
-            }
-            _ => Err(bad(
-                "the viewer edits materials.NAME.KEY, lights.N.KEY, lights.add=KIND, lights.remove=N, environment.KEY, compare.N.KEY, compare.split, compare.shown, shading.mode, image.tone_map and ambient.radiance"
-                    .into(),
-            )),
-        }
-    }
-
-    /// The `[[lights]]` entry `lights.N.KEY=VALUE` makes: the entry as the
-    /// file writes it, the key set by the override rules of `--set`, read
-    /// back by the scene file's schema (so a misspelt key or a value of the
-    /// wrong type is refused with the file's message).
-    fn light_entry_with(&self, index: usize, assignment: &str) -> Result<LightEntry> {
-        let entries = self.lights.entries.iter();
-        let mut root = toml::Table::new();
-        root.insert(
-            "lights".into(),
-            toml::Value::Array(entries.map(|e| toml::Value::Table(e.to_table())).collect()),
-        );
-        scene_file::apply_override(&mut root, assignment)?;
-        LightEntry::deserialize(root["lights"][index].clone()).map_err(|e| {
-            Error::argument(
-                format!("edit {assignment}"),
-                scene_file::diagnostics::clean_toml_error(&e),
-            )
-        })
-    }
-
-    fn keep_edits_of(&mut self, old: &Document) {
-        self.compare = old.compare.clone();
-        for (m, loaded) in old.scene.materials.iter().zip(&old.loaded_materials) {
-            if m != loaded
-                && let Some(slot) = self.scene.materials.iter_mut().find(|n| n.name == m.name)
-            {
-                *slot = m.clone();
-            }
-        }
-        self.scene.shading = old.scene.shading;
-        self.scene.ambient = old.scene.ambient;
-        let mut lights = self.lights.clone();
-        if old.lights_restructured() {
-            // Lights were added or removed: the viewer's list stands.
-            lights.entries = old.lights.entries.clone();
-        }
-        for ((i, entry), loaded) in old
-            .lights
-            .entries
-            .iter()
-            .enumerate()
-            .zip(&old.loaded_lights)
-        {
-            if entry.to_table() != *loaded
-                && let Some(slot) = lights.entries.get_mut(i)
-            {
-                *slot = entry.clone();
-            }
-        }
-        // Edits the changed file no longer accepts are dropped.
-        if let Ok(assembled) = lights.assemble() {
-            assembled.install(&mut self.scene);
-            self.lights = lights;
-        }
-        super::environment::keep_edits(self, old);
     }
 
     /// `[[lights]]` entries changed since loading: index and entry.
@@ -324,31 +198,37 @@ pub fn describe_error(e: &Error) -> String {
     e.to_string()
 }
 
-/// `m` with `field = value` (TOML), checked as the scene file checks it:
-/// the value is read as the table of models types the key and set through
-/// the parameter's binding (no round trip through the scene file's text).
-pub fn edit_material(
-    m: &Material,
-    field: &str,
-    value: &str,
-) -> std::result::Result<Material, String> {
-    let value: toml::Value =
-        toml_value(value).map_err(|e| format!("materials.{}.{field}: {e}", m.name))?;
-    crate::material::entry::with_key(m, field, value)
-}
+/// The `[environment]` keys of a map (the gradient's `zenith`, `horizon`
+/// and `ground` are not edited here).
+pub const MAP_KEYS: [&str; 8] = [
+    "map",
+    "scale",
+    "sh_order",
+    "reference",
+    "rotation_deg",
+    "specular",
+    "samples",
+    "prefilter_size",
+];
 
-/// VALUE of an `--edit` read as `--set` reads it (unquoted words are
-/// strings: `shading.mode=flat`), then as a `T`.
-pub fn toml_value<T: serde::de::DeserializeOwned>(text: &str) -> std::result::Result<T, String> {
-    crate::scene::scene_file::overrides::value_of(text.trim())
-        .try_into()
-        .map_err(|e: toml::de::Error| format!("`{text}`: {}", e.message()))
+/// The map keys of `table`'s `[environment]` (what the viewer edits).
+pub fn map_keys(table: &toml::Table) -> toml::Table {
+    let mut keys = toml::Table::new();
+    if let Some(toml::Value::Table(e)) = table.get("environment") {
+        for key in MAP_KEYS {
+            if let Some(v) = e.get(key) {
+                keys.insert(key.into(), v.clone());
+            }
+        }
+    }
+    keys
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::material::ReflectanceModel;
+    use crate::ui::edit_values::edit_material;
 
     #[test]
     fn material_edits_are_checked_like_the_scene_file() {

@@ -12,7 +12,6 @@
 //! the overlay; it is part of the overlay, so `--no-overlay` hides it too.
 
 use super::document::Document;
-use super::light_drag::LightDrag;
 use super::light_kinds::directional_reach;
 use super::screen_projection::ScreenProjection;
 use crate::scene::scene_file::LightEntry;
@@ -25,22 +24,6 @@ use std::f64::consts::TAU;
 pub const HANDLE_RADIUS: f32 = 6.0;
 /// Edges of the circles drawn for cones and disks.
 const CIRCLE_EDGES: usize = 48;
-
-/// The overlay's state: shown or not, and the handle being dragged.
-#[derive(Debug)]
-pub struct LightsView {
-    pub visible: bool,
-    pub drag: Option<LightDrag>,
-}
-
-impl Default for LightsView {
-    fn default() -> Self {
-        LightsView {
-            visible: true,
-            drag: None,
-        }
-    }
-}
 
 /// What is drawn for one light, in world space.
 #[derive(Clone, Debug, PartialEq)]
@@ -221,7 +204,7 @@ fn colour_of(entry: &LightEntry) -> Color32 {
         // Lifted towards white so that a deep colour stays visible on a
         // dark scene.
         let v = 0.35 + 0.65 * v.clamp(0.0, 1.0);
-        (crate::output::write::srgb_encode(v) * 255.0).round() as u8
+        (crate::output::srgb8::srgb_encode(v) * 255.0).round() as u8
     });
     Color32::from_rgb(c[0], c[1], c[2])
 }

@@ -5,19 +5,23 @@
 //! [`app`] runs the window loop, [`view`] lays out the panel whose
 //! sections are in [`panels`] and [`plots`], [`state`] is what the panel
 //! edits, [`document`] holds the scene and its edits ([`save`] writes them
-//! as a scene file; [`environment`] edits its map), [`orbit`] moves the camera, [`surface`] owns the
-//! swapchain and screenshots. Lights are listed and edited by
-//! [`lights_section`] (new ones and kinds from [`light_kinds`]), drawn over
-//! the 3D view by [`light_overlay`] and dragged by [`light_drag`], both
+//! as a scene file; [`document::environment`] edits its map; an edit's
+//! value is read by [`edit_values`]; [`compare`] holds the materials
+//! compared with the selected one), [`orbit`] moves the camera,
+//! [`surface`] owns the swapchain and screenshots. Lights are listed and
+//! edited by [`lights_section`] (new ones and kinds from [`light_kinds`]),
+//! drawn over the 3D view by [`light_overlay`] and dragged by
+//! [`light_drag`] (the mouse reaches it through [`light_input`]), both
 //! through [`screen_projection`].
 
 pub mod app;
 pub mod cli;
 pub mod compare;
 pub mod document;
-pub mod environment;
+pub mod edit_values;
 pub mod fitted;
 pub mod light_drag;
+pub mod light_input;
 pub mod light_kinds;
 pub mod light_overlay;
 pub mod light_spin;

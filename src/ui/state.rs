@@ -21,7 +21,7 @@ pub struct ViewerState {
     pub show_panel: bool,
     pub show_overlay: bool,
     /// The lights drawn over the 3D view, and the one being dragged.
-    pub lights_view: super::light_overlay::LightsView,
+    pub lights_view: super::light_drag::LightsView,
     /// The last problem (rejected value, bad file), shown until dismissed.
     pub message: Option<String>,
     /// A new document to switch to (opened, dropped, reloaded).
@@ -142,9 +142,9 @@ impl ViewerState {
     /// A file dropped on the window: a `.hdr` or `.exr` becomes the
     /// environment map, anything else is opened as a scene.
     pub fn drop_file(&mut self, path: PathBuf) {
-        if super::environment::is_map_file(&path) {
+        if super::document::environment::is_map_file(&path) {
             self.environment_path = path.display().to_string();
-            self.edit(&super::environment::map_assignment(&path));
+            self.edit(&super::document::environment::map_assignment(&path));
         } else {
             self.open(path);
         }

@@ -76,7 +76,7 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
 
 fn environment_section(ui: &mut egui::Ui, state: &mut ViewerState) {
     let doc = &state.doc;
-    let off = super::environment::is_off(doc);
+    let off = super::document::environment::is_off(doc);
     let settings = doc.scene.environment.map.as_ref().map(|m| m.settings);
     if let Some(m) = &doc.scene.environment.map
         && state.environment_path.is_empty()

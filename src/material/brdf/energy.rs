@@ -5,7 +5,7 @@
 //! A single-scattering microfacet BRDF loses the light that bounces more
 //! than once between the facets: a white conductor (`F = 1`) of GGX at
 //! α = 1 keeps only `E(μ_o, α) = 0.31..0.45` of a uniform white sky
-//! (`E` the directional albedo, `crate::environment::dfg`). Turquin
+//! (`E` the directional albedo, `crate::material::brdf::dfg`). Turquin
 //! (2019, "Practical multiple scattering compensation for microfacet
 //! models", Tech. report, eq. 7-8) scales the specular lobe by
 //!
@@ -15,7 +15,7 @@
 //! coloured one, adds the energy the missing bounces would carry to first
 //! order in `F0` (Turquin's Fig. 4 compares it with Kulla & Conty 2017's
 //! separate lobe: within a few percent, at no second table). `E` is the
-//! GGX / height-correlated-Smith albedo of [`crate::environment::dfg`]
+//! GGX / height-correlated-Smith albedo of [`crate::material::brdf::dfg`]
 //! (the same f32 nodes on the GPU, `Globals::albedo`), read at `μ_o = N·V`
 //! (Turquin's choice; the compensated BRDF is then not reciprocal) and at
 //! the GGX α of the lobe:
@@ -23,7 +23,7 @@
 //! * gltf-pbr: α = r²; each of its two specular lobes (the dielectric's
 //!   with `F0 = 0.04`, the metal's with `F0 = b`) gets its own factor;
 //! * Cook-Torrance: the GGX α standing in for its distribution
-//!   (`prefiltered::ggx_alpha`, as the split-sum mode takes it) and
+//!   (`dfg::ggx_alpha`, as the split-sum mode takes it) and
 //!   `F0 = F(1)`. Exact (to the table's error) for `distribution = "ggx"`,
 //!   `geometry = "smith-correlated"`, `denominator = "microfacet"`: the
 //!   model the table integrates; for its other terms the GGX albedo is a
@@ -34,8 +34,8 @@
 //!
 //! WGSL twin: `shaders/brdf/energy.wgsl` (same names, same order).
 
+use super::dfg;
 use crate::base::Rgb;
-use crate::environment::dfg;
 
 /// The smallest albedo divided by: `E ≥ 0.3069` everywhere in the table
 /// (α = 1 seen head-on, `1 − ln 2`), so the floor only guards a zeroed

@@ -17,10 +17,14 @@
 //! `roughness` in gonio is α itself (the contract's `m`); the same scene key
 //! means r here and α there, and the panel's label says which.
 //!
-//! WGSL twin: `shaders/brdf/gltf_pbr.wgsl` (same names, same order).
+//! WGSL twin: `shaders/brdf/gltf_pbr.wgsl` (same names, same order; its
+//! `vis_smith_ggx_correlated` and `schlick_weight` are in `microfacet.rs`
+//! here, below the environment BRDF table of `dfg.rs` that integrates them
+//! and that this file's energy compensation reads).
 
-use super::COS_FLOOR;
-use super::microfacet::{d_ggx, half_vector, sin2_between};
+use super::microfacet::{
+    d_ggx, half_vector, schlick_weight, sin2_between, vis_smith_ggx_correlated,
+};
 use crate::base::Rgb;
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
@@ -28,42 +32,6 @@ use std::f64::consts::FRAC_1_PI;
 /// The Fresnel reflectance of glTF's dielectric at normal incidence (an
 /// index of refraction of 1.5).
 pub const DIELECTRIC_F0: f64 = 0.04;
-
-/// glTF's visibility term, height-correlated Smith for GGX (Appendix B,
-/// "Specular BRDF"; Heitz 2014, eq. 99):
-/// `Vis = G2 / (4 |N·L| |N·V|)
-///      = ½ / (N·L √(N·V² (1 − α²) + α²) + N·V √(N·L² (1 − α²) + α²))`,
-/// times `χ⁺(H·L) χ⁺(H·V)`; 0 below either horizon. The roots are taken
-/// as `√(cos² + α² sin²)` (the same number; `1 − α²` rounds to 1 in `f32`
-/// for α < 2.4e-4). The cosines in front of the roots are floored at
-/// [`COS_FLOOR`], as Cook-Torrance's denominator is: at both grazing the
-/// denominator tends to 0 and `D·Vis` would leave `f32`'s range; nothing
-/// changes where both cosines exceed 1e-6.
-pub fn vis_smith_ggx_correlated(
-    alpha: f64,
-    cos_i: f64,
-    cos_o: f64,
-    cos_ih: f64,
-    cos_oh: f64,
-) -> f64 {
-    if cos_i <= 0.0 || cos_o <= 0.0 || cos_ih <= 0.0 || cos_oh <= 0.0 {
-        return 0.0; // below the horizon, or χ⁺ = 0
-    }
-    let (ci, co) = (cos_i.min(1.0), cos_o.min(1.0)); // rounding can pass 1
-    let alpha2 = alpha * alpha;
-    let root_o = (co * co + alpha2 * (1.0 - co * co)).sqrt();
-    let root_i = (ci * ci + alpha2 * (1.0 - ci * ci)).sqrt();
-    0.5 / (ci.max(COS_FLOOR) * root_o + co.max(COS_FLOOR) * root_i)
-}
-
-/// Schlick's weight `w = (1 − |V·H|)⁵` (Appendix B, "Fresnel"), by
-/// multiplications (no `pow`: WGSL's would take it from `log`, 2⁻²¹
-/// absolute error in Vulkan).
-pub fn schlick_weight(cos_oh: f64) -> f64 {
-    let x = 1.0 - cos_oh.abs().min(1.0);
-    let x2 = x * x;
-    x2 * x2 * x
-}
 
 /// `f_r` of glTF's metallic-roughness material (see the module doc), for
 /// `N·I > 0`, `N·V > 0` (the caller's one-sided test). `roughness` is the

@@ -6,6 +6,7 @@
 //! `gpu::shader_gen` generates: the same terms, called in the same order.
 
 pub mod abc;
+pub mod dfg;
 pub mod energy;
 pub mod fresnel;
 pub mod gltf_pbr;
@@ -16,6 +17,7 @@ pub mod phong;
 mod value;
 pub mod ward;
 
+pub use phong::COS_FLOOR;
 pub use value::{
     Brdf, CookTorrance, DistributionTerm, FresnelTerm, GeometryTerm, ShaderParams, Specular,
     smith_beckmann_slope,
@@ -25,11 +27,6 @@ use super::Material;
 use crate::base::Rgb;
 pub use crate::base::frame::{SurfaceFrame, any_tangent};
 use glam::DVec3;
-
-/// Lower bound for the cosines the lecture's forms divide by (`I·N`):
-/// cos θ = 1e-6 is θ = 89.99994°. It keeps `f_r` finite (≤ k_s · 10⁶) where
-/// the formula as written diverges; `f_r · cos θ_i` is unaffected above it.
-pub const COS_FLOOR: f64 = 1e-6;
 
 /// `f_r` of `brdf` for `N·I > 0`, `N·V > 0` (checked by the caller,
 /// [`Material::f_r`]). The mirror's Dirac lobe is not a function value:
@@ -53,11 +50,7 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
             sigma_x, sigma_y, n, frame.t, frame.b, wi, wo,
         )),
         Specular::CookTorrance(ct) => {
-            let ms = compensation_ratio(
-                brdf,
-                crate::environment::prefiltered::ggx_alpha(ct.d),
-                n.dot(wo),
-            );
+            let ms = compensation_ratio(brdf, dfg::ggx_alpha(ct.d), n.dot(wo));
             cook_torrance(&ct, wi, wo, n) * energy::ms_factor(ct.f.eval(1.0), ms)
         }
         Specular::OrenNayar(t) => {

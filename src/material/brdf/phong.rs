@@ -4,12 +4,16 @@
 //! WGSL twin: `shaders/brdf/phong.wgsl` (same names, same order).
 //!
 //! All lobes are returned without `k_s`; the material multiplies. The
-//! helpers here ([`cos_power`], [`mirror_direction`], [`exp_cutoff`]) are
+//! helpers here ([`COS_FLOOR`], [`cos_power`], [`mirror_direction`], [`exp_cutoff`]) are
 //! shared by the later BRDF files (Ward, microfacet).
 
-use super::COS_FLOOR;
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
+
+/// Lower bound for the cosines the lecture's forms divide by (`I·N`):
+/// cos θ = 1e-6 is θ = 89.99994°. It keeps `f_r` finite (≤ k_s · 10⁶) where
+/// the formula as written diverges; `f_r · cos θ_i` is unaffected above it.
+pub const COS_FLOOR: f64 = 1e-6;
 
 /// The exponentials of the lobes are cut off at `e^−80 ≈ 1.8e-35`: below
 /// that `exp` leaves `f32`'s normal range (`e^−87.3`) on the GPU, where it

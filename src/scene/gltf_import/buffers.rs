@@ -3,7 +3,7 @@
 //! path, reads whole files whatever their declared length, and knows no
 //! limits.
 
-use super::abbreviate;
+use super::hostile::abbreviate;
 use crate::scene::limits::{Limits, ReadError, exceeded};
 use base64::Engine as _;
 use std::borrow::Cow;

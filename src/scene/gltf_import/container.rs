@@ -3,7 +3,7 @@
 //! extension checks and gltf-json's validation.
 
 use super::census::Census;
-use super::guarded;
+use super::hostile::guarded;
 use crate::scene::limits::Limits;
 use gltf::json::validation::{Checked, Validate as _};
 use gltf::mesh::Semantic;
@@ -257,7 +257,7 @@ fn check_extensions(root: &gltf::json::Root, notes: &mut Vec<String>) -> Result<
 }
 
 fn describe_extension(name: &str) -> String {
-    let shown = super::abbreviate(name);
+    let shown = super::hostile::abbreviate(name);
     match KNOWN_UNSUPPORTED.iter().find(|(known, _)| *known == name) {
         Some((_, what)) => format!("{shown} ({what})"),
         None => shown.into_owned(),

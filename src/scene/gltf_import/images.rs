@@ -196,7 +196,7 @@ fn image_bytes<'a>(
             }
         }
         gltf::image::Source::Uri { uri, .. } => {
-            let shown = super::abbreviate(uri);
+            let shown = super::hostile::abbreviate(uri);
             if uri
                 .get(..5)
                 .is_some_and(|s| s.eq_ignore_ascii_case("data:"))

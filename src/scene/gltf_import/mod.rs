@@ -113,7 +113,9 @@ mod buffers;
 mod census;
 mod container;
 mod convert;
+mod gltf_scene;
 mod graph;
+mod hostile;
 mod images;
 mod import;
 #[cfg(test)]
@@ -121,51 +123,12 @@ mod tests;
 
 pub use crate::scene::limits::Limits;
 pub use convert::material_from_metallic_roughness;
+pub use gltf_scene::GltfScene;
 
-use crate::material::Material;
 use crate::scene::limits::{ReadError, exceeded, read_regular_file};
-use crate::scene::{Camera, Light, Mesh};
 use crate::{Error, Result};
-use std::borrow::Cow;
-use std::panic::{self, AssertUnwindSafe};
+use hostile::guarded;
 use std::path::Path;
-
-/// Message for a panic caught inside the `gltf` crate.
-const PARSER_PANICKED: &str = "the glTF parser failed on malformed data";
-
-/// The contents of a glTF file, ready to join a [`crate::scene::Scene`].
-#[derive(Clone, Debug)]
-pub struct GltfScene {
-    /// World-space meshes; `mesh.material` indexes [`GltfScene::materials`].
-    pub meshes: Vec<Mesh>,
-    /// One per glTF material, in file order, plus `gltf-default` at the end
-    /// if an imported primitive has no material.
-    pub materials: Vec<Material>,
-    /// `KHR_lights_punctual` lights, world space.
-    pub lights: Vec<Light>,
-    /// The first perspective camera reached in the scene; near/far are 0.0
-    /// (the caller fits them to the scene bounds).
-    pub camera: Option<Camera>,
-    /// Primitives of the scene that were skipped because they draw points
-    /// or lines, which gonio does not render.
-    pub skipped_primitives: usize,
-    /// What was ignored without being an error (optional extensions gonio
-    /// does not implement, unknown GLB chunks, trailing bytes), one
-    /// sentence each, for `--verbose`.
-    pub notes: Vec<String>,
-    /// The images its materials' textures index.
-    pub images: Vec<std::sync::Arc<crate::scene::texture::Image>>,
-}
-
-impl GltfScene {
-    fn vertex_count(&self) -> u64 {
-        self.meshes.iter().map(|m| m.positions.len() as u64).sum()
-    }
-
-    fn triangle_count(&self) -> u64 {
-        self.meshes.iter().map(|m| m.indices.len() as u64).sum()
-    }
-}
 
 /// Loads the default scene of a `.gltf` or `.glb` file within the default
 /// [`Limits`]. See the module documentation for what is imported and how.
@@ -292,21 +255,4 @@ fn load_bytes(
     let buffers = buffers::load(&document, container.bin, folder, &mut used_bytes, limits)?;
     guarded(|| import::Importer::new(&document, &buffers, limits, notes, folder).run(&roots))
         .and_then(|result| result)
-}
-
-/// Runs `f`, turning a panic into the "malformed data" error. Only code of
-/// the `gltf` crate is expected to panic here, and only on inputs our own
-/// checks did not anticipate.
-fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    panic::catch_unwind(AssertUnwindSafe(f)).map_err(|_| PARSER_PANICKED.to_string())
-}
-
-/// The first 80 characters of a text from the file, for messages (data:
-/// URIs can be megabytes long).
-fn abbreviate(text: &str) -> Cow<'_, str> {
-    const KEEP: usize = 80;
-    match text.char_indices().nth(KEEP) {
-        Some((cut, _)) => Cow::Owned(format!("{}…", &text[..cut])),
-        None => Cow::Borrowed(text),
-    }
 }

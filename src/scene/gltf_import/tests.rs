@@ -4,10 +4,11 @@
 
 use super::accessors::triangulate;
 use super::buffers::{has_scheme, percent_decode, relative_path};
+use super::hostile::PARSER_PANICKED;
 use super::*;
 use crate::material::ReflectanceModel;
-use crate::scene::Rgb;
 use crate::scene::mesh::area_weighted_normals;
+use crate::scene::{Light, Rgb};
 use base64::Engine as _;
 use glam::DVec3;
 use gltf::mesh::Mode;

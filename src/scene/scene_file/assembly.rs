@@ -71,7 +71,7 @@ pub fn assemble(
     let (ambient, environment) = ambient_and_environment(
         &file,
         base_dir,
-        studio.then_some(crate::environment::load::STUDIO),
+        studio.then_some(crate::environment::studio::STUDIO),
     )
     .map_err(bad)?;
     let light_setup = LightSetup {

@@ -1,7 +1,10 @@
 //! Step 2 of loading, the diagnostics: toml's errors made into one
 //! readable paragraph (location, the offending source line, the message
 //! cut to a bounded length) with a suggestion when a key or value name is
-//! misspelt.
+//! misspelt; and the prefix that marks a note as a warning ([`WARNING`]).
+
+/// Notes that begin with this are warnings: shown without `--verbose`.
+pub const WARNING: &str = "warning: ";
 
 /// Longest error message kept from toml (its messages quote the offending
 /// value, which may be megabytes long).

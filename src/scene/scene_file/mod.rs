@@ -18,6 +18,7 @@ pub mod environment_keys;
 pub mod gltf_keys;
 pub mod gltf_material_edits;
 pub mod lights;
+pub mod mode_warnings;
 pub mod overrides;
 pub mod schema;
 pub mod shadow_keys;
@@ -26,6 +27,7 @@ pub mod toml_value;
 mod values;
 
 pub use assembly::MAX_IMAGE_SIDE;
+pub use diagnostics::WARNING;
 pub use lights::{LightSetup, MAX_POINT_LIGHTS, SceneLights, default_light};
 pub use overrides::apply_override;
 pub use schema::{LightEntry, SceneFile};
@@ -123,7 +125,7 @@ pub fn load_for_editing(
     notes.extend(gltf_files.notes().iter().cloned());
     notes.extend(lights.notes());
     notes.extend(
-        crate::environment::mode_warnings::warnings(&scene)
+        mode_warnings::warnings(&scene)
             .into_iter()
             .map(|w| format!("{WARNING}{w}")),
     );
@@ -135,9 +137,6 @@ pub fn load_for_editing(
         notes,
     })
 }
-/// Notes that begin with this are warnings: shown without `--verbose`.
-pub const WARNING: &str = "warning: ";
-
 /// A warning per material with keys its model does not read.
 fn inapplicable_keys(file: &SceneFile) -> Vec<String> {
     file.materials
@@ -359,7 +358,7 @@ mod tests {
         assert!(scene.lights.is_empty());
         assert_eq!(
             scene.environment.map.as_ref().unwrap().data.name,
-            crate::environment::load::STUDIO
+            crate::environment::studio::STUDIO
         );
         assert!(notes.iter().any(|n| n.contains("studio")), "{notes:?}");
         let directional = ["gltf.default_light=\"directional\"".to_string()];

@@ -71,7 +71,7 @@ pub fn attach(
             transform: UvTransform::default(),
             sampler: Sampler::default(),
         });
-        crate::material::texture::gpu_field_mask(m, param_key)
+        crate::material::texture_fields::gpu_field_mask(m, param_key)
             .map_err(|e| format!("materials.{name}.{e}"))?;
     }
     Ok(())

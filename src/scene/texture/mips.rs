@@ -10,7 +10,31 @@
 //! linear space); every level is then rounded to f16 once.
 
 use super::decode::Decoded;
-use super::{Level, to_half_bits};
+use glam::DVec4;
+use half::f16;
+
+/// One level of a mip chain: `width · height` RGBA texels as f16 bits,
+/// row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    pub width: u32,
+    pub height: u32,
+    pub texels: Vec<[u16; 4]>,
+}
+
+impl Level {
+    /// Texel (x, y) in f64 (exact: every half is an f64).
+    pub fn texel(&self, x: u32, y: u32) -> DVec4 {
+        let t = self.texels[(y * self.width + x) as usize];
+        DVec4::from_array(t.map(|h| f16::from_bits(h).to_f64()))
+    }
+}
+
+/// The half nearest to `v` (round to nearest even, as the GPU's f16
+/// conversion; the texels are rounded here, once, for both renderers).
+pub fn to_half_bits(v: f32) -> u16 {
+    f16::from_f32(v).to_bits()
+}
 
 /// Every level of `image`, level 0 first.
 pub fn chain(image: Decoded) -> Vec<Level> {

@@ -3,8 +3,9 @@
 //! as the loader does ([`LightSetup::assemble`]) and is refused, leaving
 //! the document as it was, when the loader would refuse it.
 
-use super::{Document, toml_value};
+use super::Document;
 use crate::scene::scene_file::{LightEntry, LightSetup};
+use crate::ui::edit_values::toml_value;
 use crate::ui::light_kinds;
 
 impl Document {

@@ -6,7 +6,7 @@
 //! file's message instead of applying it (issue 17: "a bad value is
 //! refused with a message, never silently clamped").
 
-use super::triple_array;
+use super::widgets::triple_array;
 use crate::base::ColorValue;
 use crate::scene::scene_file::LightEntry;
 use crate::scene::scene_file::schema::AreaEntry;

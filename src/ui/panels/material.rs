@@ -2,7 +2,7 @@
 //! parameters, one row per entry of the model's row in the table of
 //! models ([`crate::material::table`]).
 
-use super::{color, combo, log_slider, triple};
+use super::widgets::{color, combo, log_slider, triple};
 use crate::material::param::{Param, Scale, Value, Widget};
 use crate::material::presets::PRESETS;
 use crate::material::table::{self, Terms};

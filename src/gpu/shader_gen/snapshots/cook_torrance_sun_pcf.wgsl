@@ -767,7 +767,7 @@ fn cook_torrance_specular(d: f32, g: f32, f: vec3<f32>, cos_i: f32, cos_o: f32, 
 // Energy compensation of the microfacet lobes (Turquin 2019): a lobe of
 // normal-incidence Fresnel F0 is scaled by 1 + F0·(1 − E(μ_o, α))/E(μ_o, α),
 // E the directional albedo of GGX with height-correlated Smith (the table
-// of src/environment/dfg.rs, the same f32 nodes in globals.albedo, filled
+// of src/material/brdf/dfg.rs, the same f32 nodes in globals.albedo, filled
 // when some material has energy_compensation = true).
 // f64 twin: src/material/brdf/energy.rs (same names, same order).
 // Without the feature `energy_compensation` (no material of the scene has
@@ -1008,7 +1008,7 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 // BRDF integrated over the map with N directions.
 // The ambient occlusion m.occlusion multiplies the ambient term and every
 // environment term (diffuse, specular, the mirror's), never direct light.
-// f64 twin: reflected_radiance in src/shading.rs.
+// f64 twin: reflected_radiance in src/reference/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
 // kinds (src/gpu/shader_gen/compose.rs). Blocks `#if mirror` exist only

@@ -988,7 +988,7 @@ fn abc_specular(b: f32, c: f32, eta_i: f32, eta_t: f32, n: vec3<f32>, wi: vec3<f
 // Energy compensation of the microfacet lobes (Turquin 2019): a lobe of
 // normal-incidence Fresnel F0 is scaled by 1 + F0·(1 − E(μ_o, α))/E(μ_o, α),
 // E the directional albedo of GGX with height-correlated Smith (the table
-// of src/environment/dfg.rs, the same f32 nodes in globals.albedo, filled
+// of src/material/brdf/dfg.rs, the same f32 nodes in globals.albedo, filled
 // when some material has energy_compensation = true).
 // f64 twin: src/material/brdf/energy.rs (same names, same order).
 // Without the feature `energy_compensation` (no material of the scene has
@@ -1498,7 +1498,7 @@ fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
 // L̃(R, α) · (F0·A(μ, α) + B(μ, α)), the map prefiltered by GGX lobes
 // (LEVELS lat-long levels stacked in one texture, level k at √α = k/5)
 // and the environment BRDF table. Twins: src/environment/prefiltered.rs
-// and src/environment/dfg.rs (tables made there, on the CPU).
+// and src/material/brdf/dfg.rs (tables made there, on the CPU).
 
 // prefiltered::LEVELS
 const PREFILTER_LEVELS: i32 = 6;
@@ -1697,8 +1697,8 @@ fn environment_sh(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> 
 // of the mixture n_c p_c + n_b p_b). Only in shaders of scenes in that
 // mode (feature `environment_sampled`), after environment.wgsl; uses
 // brdf/phong.wgsl (composed whenever this file is).
-// f64 twins: src/environment/lobe.rs (the lobe_* functions) and
-// src/environment/sampled.rs (the estimate), same functions, same order;
+// f64 twins: src/reference/environment/lobe.rs (the lobe_* functions) and
+// src/reference/environment/sampled.rs (the estimate), same functions, same order;
 // the derivations are there.
 
 // Lobe kinds (lobe::Lobe's variants).
@@ -2056,7 +2056,7 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 // BRDF integrated over the map with N directions.
 // The ambient occlusion m.occlusion multiplies the ambient term and every
 // environment term (diffuse, specular, the mirror's), never direct light.
-// f64 twin: reflected_radiance in src/shading.rs.
+// f64 twin: reflected_radiance in src/reference/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
 // kinds (src/gpu/shader_gen/compose.rs). Blocks `#if mirror` exist only
@@ -2112,7 +2112,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<
 // The albedo the environment's SH irradiance lights: k_d; gltf-pbr's
 // Lambert part (1 − m)·b (per pixel, after textures); 0 for a measured
 // table. Selects, not branches (UNIFORM_BRANCHES in brdf/phong.wgsl).
-// f64 twin: environment_diffuse_albedo in src/shading.rs.
+// f64 twin: environment_diffuse_albedo in src/reference/environment/diffuse.rs.
 fn environment_diffuse_albedo(m: Material) -> vec3<f32> {
     let model = brdf_model(m);
     let pbr = (1.0 - m.metallic) * m.base_color;

@@ -343,7 +343,7 @@ fn light_incidence(light: Light, x: vec3<f32>) -> Incidence {
 // BRDF integrated over the map with N directions.
 // The ambient occlusion m.occlusion multiplies the ambient term and every
 // environment term (diffuse, specular, the mirror's), never direct light.
-// f64 twin: reflected_radiance in src/shading.rs.
+// f64 twin: reflected_radiance in src/reference/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
 // over the scene's models; `light_incidence` is generated for its light
 // kinds (src/gpu/shader_gen/compose.rs). Blocks `#if mirror` exist only

@@ -18,7 +18,7 @@
 //! switched off if it was) replace the changed file's; an environment the
 //! user did not touch takes the file's new keys ([`keep_edits`]).
 
-use super::document::Document;
+use super::{Document, MAP_KEYS, map_keys};
 use crate::environment::EnvironmentMap;
 use crate::scene::scene_file::diagnostics::clean_toml_error;
 use crate::scene::scene_file::schema::EnvironmentSection;
@@ -26,19 +26,6 @@ use crate::scene::scene_file::{apply_override, environment_keys};
 use crate::{Error, Result};
 use serde::Deserialize;
 use std::path::Path;
-
-/// The `[environment]` keys of a map (the gradient's `zenith`, `horizon`
-/// and `ground` are not edited here).
-pub const MAP_KEYS: [&str; 8] = [
-    "map",
-    "scale",
-    "sh_order",
-    "reference",
-    "rotation_deg",
-    "specular",
-    "samples",
-    "prefilter_size",
-];
 
 /// Whether `path` names a map file the viewer takes as the environment
 /// when dropped (`.hdr`, `.exr`, any case).
@@ -166,7 +153,7 @@ fn install(doc: &mut Document, table: toml::Table) -> std::result::Result<(), St
     let default_map = doc
         .lights
         .default_studio
-        .then_some(crate::environment::load::STUDIO);
+        .then_some(crate::environment::studio::STUDIO);
     let named = |s: &EnvironmentSection| s.map.clone().or(default_map.map(String::from));
     let old = section(&doc.table).ok().and_then(|s| named(&s));
     let map = match &doc.scene.environment.map {
@@ -180,19 +167,6 @@ fn install(doc: &mut Document, table: toml::Table) -> std::result::Result<(), St
     set_map(doc, map)?;
     doc.table = table;
     Ok(())
-}
-
-/// The map keys of `table`'s `[environment]` (what the viewer edits).
-pub fn map_keys(table: &toml::Table) -> toml::Table {
-    let mut keys = toml::Table::new();
-    if let Some(toml::Value::Table(e)) = table.get("environment") {
-        for key in MAP_KEYS {
-            if let Some(v) = e.get(key) {
-                keys.insert(key.into(), v.clone());
-            }
-        }
-    }
-    keys
 }
 
 /// Whether `doc`'s environment was edited since loading (a key changed,

@@ -26,7 +26,8 @@
 //! energy compensation (`material::brdf::energy`), whose GPU twin reads
 //! the same nodes from the globals (`ms_albedo` in shaders/brdf/energy.wgsl).
 
-use crate::material::brdf::gltf_pbr::{schlick_weight, vis_smith_ggx_correlated};
+use super::DistributionTerm;
+use super::microfacet::{schlick_weight, vis_smith_ggx_correlated};
 use std::f64::consts::TAU;
 use std::sync::OnceLock;
 
@@ -141,6 +142,25 @@ impl DfgTable {
             out[k / 4][k % 4] = *e;
         }
         out
+    }
+}
+
+/// The GGX α standing in for distribution `d`: its own slope scale `m`
+/// (Beckmann, the Gaussians: the same narrow lobe to first order), GGX's
+/// α, and for Blinn's exponent `e` the Beckmann slope of the same lobe,
+/// `√(2/(e + 2))` (Walter et al. 2007, eq. 33's Phong–Beckmann match).
+/// The table is read at this α for the distributions that are not GGX
+/// (the split-sum mode's lobe, energy compensation's albedo). Twin: the
+/// `alpha` of `prefiltered_terms` in shaders/environment.wgsl.
+pub fn ggx_alpha(d: DistributionTerm) -> f64 {
+    match d {
+        DistributionTerm::Beckmann { m }
+        | DistributionTerm::Gaussian { m }
+        | DistributionTerm::GaussianNormalized { m, .. } => m,
+        DistributionTerm::Ggx { alpha } => alpha,
+        DistributionTerm::Blinn { e } | DistributionTerm::BlinnNormalized { e } => {
+            (2.0 / (e + 2.0)).sqrt()
+        }
     }
 }
 

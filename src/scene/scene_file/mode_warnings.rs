@@ -9,7 +9,7 @@
 //! by definition (its name says so) and `"sampled"` integrates every
 //! `f_r`: no warning.
 
-use super::map::Specular;
+use crate::environment::map::Specular;
 use crate::material::ReflectanceModel;
 use crate::scene::Scene;
 

@@ -17,6 +17,7 @@
 //!
 //! This is the CPU twin of `reflected_radiance` in `shaders/shading.wgsl`.
 
+use super::environment::diffuse::environment_diffuse_albedo;
 use crate::material::brdf::{self, SurfaceFrame, phong::mirror_direction};
 use crate::material::{Material, ReflectanceModel};
 use crate::scene::{Rgb, Scene};
@@ -56,8 +57,8 @@ pub fn reflected_radiance(
             material.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
     }
     if let Some(map) = &scene.environment.map {
+        use super::environment::sampled;
         use crate::environment::map::{ReferenceDiffuse, Specular};
-        use crate::environment::sampled;
         let mut environment = match (map.settings.specular, map.settings.reference) {
             (Specular::None, _) => {
                 environment_diffuse_albedo(material) * FRAC_1_PI * map.irradiance_reference(n)
@@ -66,7 +67,7 @@ pub fn reflected_radiance(
                 sampled::estimate(map, material, frame, wo)
             }
             (Specular::Prefiltered, ReferenceDiffuse::Sh) => {
-                crate::environment::prefiltered::estimate(
+                super::environment::prefiltered::estimate(
                     map,
                     &map.prefiltered(),
                     material,
@@ -75,7 +76,7 @@ pub fn reflected_radiance(
                 )
             }
             (Specular::Sh, ReferenceDiffuse::Sh) => {
-                crate::environment::sh_phong::estimate(map, material, frame, wo)
+                super::environment::sh_phong::estimate(map, material, frame, wo)
             }
             (
                 Specular::Sampled | Specular::Prefiltered | Specular::Sh,
@@ -111,20 +112,4 @@ pub fn reflected_radiance(
             * occlusion;
     }
     radiance
-}
-
-/// The albedo the environment's SH irradiance lights (`specular =
-/// "none"`): `k_d` for the lecture's models; for gltf-pbr its Lambert part
-/// `(1 − m)·b` from the per-pixel base colour and metallic (the factor
-/// `1 − F_d` of the mix form depends on `V·H` and is left out: at most 4 %
-/// at normal incidence, more towards grazing); nothing for a measured table
-/// (its `f_r` has no separate diffuse term; `specular = "sampled"`
-/// integrates all of it). WGSL twin: `environment_diffuse_albedo` in
-/// shaders/shading.wgsl.
-pub fn environment_diffuse_albedo(material: &Material) -> Rgb {
-    match material.model {
-        ReflectanceModel::GltfPbr => material.base_color * (1.0 - material.metallic),
-        ReflectanceModel::Measured => Rgb::ZERO,
-        _ => material.brdf().k_d,
-    }
 }

@@ -19,14 +19,13 @@
 //! shaders/environment_sampled.wgsl (same directions, same order).
 //!
 //! The truth it is measured against ([`integrated`]) is the quadrature of
-//! the map's texels ([`super::quadrature::nodes`]) through the BRDF.
+//! the map's texels ([`crate::environment::quadrature::nodes`]) through the BRDF.
 
-use super::EnvironmentMap;
 use super::lobe::{self, Lobe};
-use super::quadrature::Node;
-use crate::base::{SurfaceFrame, any_tangent};
+use crate::base::{Rgb, SurfaceFrame, any_tangent};
+use crate::environment::EnvironmentMap;
+use crate::environment::quadrature::Node;
 use crate::material::Material;
-use crate::scene::Rgb;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, TAU};
 
@@ -115,7 +114,7 @@ pub fn integrated(
 mod tests {
     use super::*;
 
-    use super::super::{MapSettings, map::Specular, test_maps};
+    use crate::environment::{MapSettings, map::Specular, test_maps};
     use crate::material::ReflectanceModel;
     use std::sync::Arc;
 

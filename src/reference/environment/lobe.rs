@@ -39,10 +39,10 @@
 //! measured tables (no parameter to shape a lobe): no lobe, all samples
 //! cosine-weighted.
 
+use crate::base::Rgb;
 use crate::material::Material;
 use crate::material::brdf::phong::{ln_cos, mirror_direction, sin2_between};
 use crate::material::brdf::{DistributionTerm, Specular};
-use crate::scene::Rgb;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, LN_2, TAU};
 

@@ -1,0 +1,12 @@
+//! The texture formats of gonio's render targets, named once: the passes
+//! that draw into them, the device check that picks one and the readback
+//! that copies them all agree on these.
+
+/// The offscreen colour target: linear radiance and coverage, exact.
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The fallback target holding the same f32 values as bits (see
+/// [`GpuContext::radiance_format`](super::context::GpuContext::radiance_format)); read back as the same bytes.
+pub const COLOR_BITS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+
+/// The depth format of scene passes.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;

@@ -1,0 +1,26 @@
+//! What every step of the import shares against hostile files: a panic
+//! inside the `gltf` crate made into an error ([`guarded`]), and text from
+//! the file cut short for messages ([`abbreviate`]).
+
+use std::borrow::Cow;
+use std::panic::{self, AssertUnwindSafe};
+
+/// Message for a panic caught inside the `gltf` crate.
+pub(super) const PARSER_PANICKED: &str = "the glTF parser failed on malformed data";
+
+/// Runs `f`, turning a panic into the "malformed data" error. Only code of
+/// the `gltf` crate is expected to panic here, and only on inputs our own
+/// checks did not anticipate.
+pub(super) fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    panic::catch_unwind(AssertUnwindSafe(f)).map_err(|_| PARSER_PANICKED.to_string())
+}
+
+/// The first 80 characters of a text from the file, for messages (data:
+/// URIs can be megabytes long).
+pub(super) fn abbreviate(text: &str) -> Cow<'_, str> {
+    const KEEP: usize = 80;
+    match text.char_indices().nth(KEEP) {
+        Some((cut, _)) => Cow::Owned(format!("{}…", &text[..cut])),
+        None => Cow::Borrowed(text),
+    }
+}
