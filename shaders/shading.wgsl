@@ -9,8 +9,8 @@
 // environment term (diffuse, specular, the mirror's), never direct light.
 // f64 twin: reflected_radiance in src/reference/shading.rs.
 // `eval_brdf` and `mirror_reflectance` (shaders/brdf/eval.wgsl) switch
-// over the scene's models; `light_incidence` is generated for its light
-// kinds (src/gpu/shader_gen/compose.rs). Blocks `#if mirror` exist only
+// over the scene's models; `light_incidence` (shaders/lights/incidence.wgsl)
+// over its light kinds. Blocks `#if mirror` exist only
 // when the scene has a mirror, blocks
 // `#if shadows` only when a light casts shadows: then V_l comes from
 // the shadow-map lookup (shaders/shadows.wgsl) at the shading point x, with
@@ -51,7 +51,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
     // Emission and ambient occlusion only where some material has them
-    // (ShaderKey::emission, ::occlusion): adding 0 and multiplying by 1
+    // (MaterialsKey::emission, ::occlusion): adding 0 and multiplying by 1
     // change no pixel, and cost about 6 % of a Lambert frame on lavapipe.
     #if occlusion
     let occlusion = m.occlusion;

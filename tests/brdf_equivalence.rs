@@ -28,7 +28,7 @@ mod common;
 use glam::DVec3;
 use gonio::gpu::layout::GpuMaterial;
 use gonio::gpu::measured_tables::MeasuredTables;
-use gonio::gpu::shader_gen::{ShaderKey, compose_brdf_library};
+use gonio::gpu::shader_gen::{MaterialsKey, ShaderKey, compose_brdf_library};
 use gonio::material::brdf::{self, SurfaceFrame};
 use gonio::material::param::{Kind, Value};
 use gonio::material::table::{self, ROWS};
@@ -317,9 +317,10 @@ fn compute_source(variants: &BTreeSet<BrdfVariant>, compensation: bool) -> Strin
     let key = ShaderKey {
         shading: gonio::scene::ShadingMode::Phong,
         variants: variants.clone(),
-        light_kinds: BTreeSet::new(),
-        shadows: Default::default(),
-        energy_compensation: compensation,
+        materials: MaterialsKey {
+            energy_compensation: compensation,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let mut src = compose_brdf_library(variants, &key.features());
@@ -369,9 +370,10 @@ fn gpu_eval(
     let key = ShaderKey {
         shading: gonio::scene::ShadingMode::Phong,
         variants: variants.clone(),
-        light_kinds: BTreeSet::new(),
-        shadows: Default::default(),
-        energy_compensation: compensation,
+        materials: MaterialsKey {
+            energy_compensation: compensation,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let src = compute_source(&variants, compensation);

@@ -2,7 +2,7 @@
 // f64 twin: inverse_square in src/scene/light.rs.
 // The zero-distance guard is compiled only when some light may sit on a
 // shaded point (`#if light_guard`), the range window only when some light
-// has a range (`#if light_range`): ShaderKey::light_guard / light_range.
+// has a range (`#if light_range`): LightsKey::guard / range.
 // Without them the same arithmetic remains (the window is 1: 1/d² is
 // window/d² exactly), so leaving them out changes no pixel; on a software
 // rasterizer both sides of every branch are paid per pixel and light.

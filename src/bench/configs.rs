@@ -609,9 +609,9 @@ pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
 fn approximate_coords_apply(scene: &Scene) -> bool {
     use crate::gpu::shader_gen::ShaderKey;
     let mut key = ShaderKey::new(scene, &crate::gpu::shadows::ShadowPlan::new(scene));
-    key.approximate_shadow_coords = false;
+    key.shadows.approximate_coords = false;
     let exact = key.shadow_coords_per_vertex();
-    key.approximate_shadow_coords = true;
+    key.shadows.approximate_coords = true;
     key.shadow_coords_per_vertex() != exact
 }
 

@@ -16,7 +16,7 @@
 use super::harness::{HarnessShader, Inputs};
 use crate::gpu::formats::COLOR_FORMAT;
 use crate::gpu::readback::Readback;
-use crate::gpu::shader_gen::{self, ShaderKey, sources};
+use crate::gpu::shader_gen::{self, LightsKey, MaterialsKey, ShaderKey, sources};
 use crate::gpu::shadows::ShadowPlan;
 use crate::gpu::{AdapterChoice, GpuContext};
 use crate::output::OutputFile;
@@ -194,8 +194,8 @@ pub fn is_lambert_one_point_light(scene: &Scene) -> bool {
 /// compiles but draws without its direct lighting (found by this bench's
 /// image check), so the uber shader takes each term once (25 variants).
 pub fn uber_key(scene: &Scene) -> ShaderKey {
-    let mut variants: std::collections::BTreeSet<_> =
-        ShaderKey::new(scene, &ShadowPlan::new(scene)).variants;
+    let scene_key = ShaderKey::new(scene, &ShadowPlan::new(scene));
+    let mut variants = scene_key.variants.clone();
     // A measured material needs its tables bound (group 0, binding 3),
     // which only a scene with one has: the uber shader takes it from the
     // scene's own variants only.
@@ -208,43 +208,33 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
     ShaderKey {
         shading: scene.shading,
         variants,
-        light_kinds: LightKind::ALL.into(),
-        shadows: Default::default(),
-        // Light count read at run time, as an uber shader must.
-        counts: Default::default(),
-        // The same buffers as the specialized shader: only the code differs.
-        arrays: ShaderKey::new(scene, &ShadowPlan::new(scene)).arrays,
         // Any light may have a range or sit on a surface, as an uber
         // shader must allow.
-        light_range: true,
-        light_guard: true,
-        vertex_shadow_coords: false,
-        approximate_shadow_coords: false,
-        environment: false,
-        environment_sampled: false,
-        environment_prefiltered: false,
-        environment_sh: false,
-        texture_slots: 0,
-        normal_maps: false,
-        two_sided: false,
-        culling: false,
-        vertex_colors: false,
-        alpha: false,
-        alpha_blend: false,
-        // The buffer holds networks or tables as the scene says: the same
-        // measured code as the specialized shader.
-        measured_network: ShaderKey::new(scene, &ShadowPlan::new(scene)).measured_network,
-        // The globals hold the albedo table as the scene says: the same
-        // compensation code as the specialized shader.
-        energy_compensation: ShaderKey::new(scene, &ShadowPlan::new(scene)).energy_compensation,
-        // Any material may emit or be occluded, as an uber shader must
-        // allow.
-        emission: true,
-        occlusion: true,
-        // The same G1 form as the specialized shader.
-        smith_beckmann_rational: ShaderKey::new(scene, &ShadowPlan::new(scene))
-            .smith_beckmann_rational,
+        lights: LightsKey {
+            kinds: LightKind::ALL.into(),
+            ..Default::default()
+        }
+        .with_flags(true),
+        // The same buffers as the specialized shader: only the code differs.
+        arrays: scene_key.arrays,
+        materials: MaterialsKey {
+            // The buffer holds networks or tables, and the globals the
+            // albedo table, as the scene says: the same measured and
+            // compensation code as the specialized shader.
+            measured_network: scene_key.materials.measured_network,
+            energy_compensation: scene_key.materials.energy_compensation,
+            // Any material may emit or be occluded, as an uber shader must
+            // allow.
+            emission: true,
+            occlusion: true,
+            // The same G1 form as the specialized shader.
+            smith_beckmann_rational: scene_key.materials.smith_beckmann_rational,
+            ..Default::default()
+        },
         tone_map: scene.tone_map,
+        // No shadow, environment or texture code; the light count read
+        // at run time, as an uber shader must.
+        ..Default::default()
     }
 }
 
@@ -252,12 +242,9 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
 /// code (for the harness, which binds group 0 alone, as [`uber_key`]).
 pub fn specialized_key(scene: &Scene) -> ShaderKey {
     let mut key = ShaderKey::new(scene, &ShadowPlan::new(scene));
-    key.shadows = Default::default();
-    key.environment = false;
-    key.environment_sampled = false;
-    key.environment_prefiltered = false;
-    key.environment_sh = false;
-    key.texture_slots = 0;
+    key.shadows.maps = Default::default();
+    key.environment = Default::default();
+    key.materials.texture_slots = 0;
     key
 }
 

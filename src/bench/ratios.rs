@@ -225,9 +225,9 @@ pub fn specialization(renderer: &mut GpuRenderer, effort: Effort) -> Result<[Rat
             speed_words(1.0 + gap),
             speed_words(1.0 + loop_gap),
             if gap <= 0.03 {
-                ": the generated shader has the scene's light count compiled in (`LoopCounts` in src/gpu/shader_gen/key.rs), so its loop unrolls like the hand-written one, and the range window and zero-distance guard only where a light has them (`ShaderKey::light_range`, `light_guard`); the generic loop's cost is what that specialization saves"
+                ": the generated shader has the scene's light count compiled in (`LoopCounts` in src/gpu/shader_gen/key.rs), so its loop unrolls like the hand-written one, and the range window and zero-distance guard only where a light has them (`LightsKey::range`, `guard`); the generic loop's cost is what that specialization saves"
             } else if loop_gap >= 0.5 * gap {
-                ", so the light loop, not the BRDF code, is most of the gap: its light count, range window and zero-distance guard are specialized already (`LoopCounts`, `ShaderKey::light_range`, `light_guard`), so look at what remains of the loop body"
+                ", so the light loop, not the BRDF code, is most of the gap: its light count, range window and zero-distance guard are specialized already (`LoopCounts`, `LightsKey::range`, `guard`), so look at what remains of the loop body"
             } else {
                 ", so the light loop is not the main part of the gap"
             }
@@ -290,7 +290,7 @@ pub fn uber_vs_specialized(
             numerator: format!(
                 "uber shader: {} BRDF variants, {} light kinds, run-time switch",
                 uber_key.variants.len(),
-                uber_key.light_kinds.len()
+                uber_key.lights.kinds.len()
             ),
             denominator: format!("specialized: {}", special_key.describe()),
             num: Stats::of(&uber_ms),

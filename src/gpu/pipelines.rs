@@ -155,7 +155,7 @@ impl PipelineCache {
     ) -> Result<()> {
         for variant in self.specializations(key) {
             self.compile_scene_pipeline(key, layout, format, samples, (variant, false))?;
-            if key.alpha_blend {
+            if key.materials.alpha_blend {
                 self.compile_scene_pipeline(key, layout, format, samples, (variant, true))?;
             }
         }
@@ -265,12 +265,12 @@ impl PipelineCache {
         let module = self.module(key, Output::for_format(format))?.clone();
         let constants = shader_gen::pipeline_constants(variant);
         self.scene_layouts(key.arrays);
-        if key.environment {
+        if key.environment.map {
             self.environment_layouts(key.arrays);
         }
         let layouts = &self.scene_layouts[&key.arrays];
-        let (shadows, textures) = (key.shadows.any(), key.texture_slots > 0);
-        let pipeline_layout = if key.environment {
+        let (shadows, textures) = (key.shadows.any(), key.materials.texture_slots > 0);
+        let pipeline_layout = if key.environment.map {
             self.environment_layouts[&key.arrays].pipeline_layout(shadows, textures)
         } else {
             layouts.pipeline_layout(shadows, textures)

@@ -169,7 +169,7 @@ impl PreparedScene {
         check_drawable(scene)?;
         let (key, plan) = plan(&ctx.device, vertex_shadow_coords, scene)?;
         check_geometry_size(&ctx.device, scene, &key)?;
-        if key.alpha_blend && !ctx.blendable(format) {
+        if key.materials.alpha_blend && !ctx.blendable(format) {
             return Err(Error::Gpu(format!(
                 "the scene has alpha BLEND materials, and the GPU adapter `{}` cannot blend into {format:?} targets; use another backend (unset WGPU_BACKEND for Vulkan)",
                 ctx.adapter_info.name
@@ -218,7 +218,7 @@ impl PreparedScene {
         };
         let order = draw_order(draw.batches().len(), &blend_centers, scene);
         let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
-        let textures = if key.texture_slots > 0 {
+        let textures = if key.materials.texture_slots > 0 {
             let layout = &cache.scene_layouts(arrays).texture_group;
             Some(super::textures::SceneTextures::new(ctx, layout, scene)?)
         } else {
@@ -276,10 +276,10 @@ impl PreparedScene {
         if key.shading != self.key.shading
             || key.needs_tangents() != layout.tangents
             || key.shadow_coords_per_vertex() != layout.face_normal
-            || key.texture_slots > 0
-            || self.key.texture_slots > 0
-            || key.alpha_blend
-            || self.key.alpha_blend
+            || key.materials.texture_slots > 0
+            || self.key.materials.texture_slots > 0
+            || key.materials.alpha_blend
+            || self.key.materials.alpha_blend
         {
             let (display_scale, cull) = (self.display_scale, self.cull_shadow_casters);
             *self = Self::new(
@@ -539,7 +539,7 @@ fn prepare_environment(
 /// shadow coordinates, which store three vertices per triangle).
 pub fn host_memory_estimate(scene: &Scene) -> u64 {
     let mut key = ShaderKey::new(scene, &ShadowPlan::new(scene));
-    key.vertex_shadow_coords = true;
+    key.shadows.vertex_coords = true;
     let (vertex_bytes, index_bytes) =
         GeometryData::byte_sizes(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
     let staging = super::upload::IN_FLIGHT_BYTES + 2 * super::upload::CHUNK_BYTES as u64;
@@ -611,7 +611,7 @@ fn plan(
 ) -> Result<(ShaderKey, ShadowPlan)> {
     let plan = ShadowPlan::new(scene);
     let mut key = ShaderKey::new(scene, &plan);
-    key.vertex_shadow_coords = vertex_shadow_coords;
+    key.shadows.vertex_coords = vertex_shadow_coords;
     debug_assert_eq!(key.counts.shadow_maps as usize, plan.casters.len());
     shadow_maps::check_limits(device, &plan)?;
     Ok((key, plan))

@@ -419,7 +419,10 @@ mod tests {
             )
             .variant()]
             .into(),
-            texture_slots: 1,
+            materials: crate::gpu::shader_gen::MaterialsKey {
+                texture_slots: 1,
+                ..Default::default()
+            },
             ..Default::default()
         };
         let wgsl = crate::gpu::shader_gen::compose(&key);

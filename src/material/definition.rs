@@ -183,13 +183,13 @@ impl Sides {
 impl Material {
     /// Whether the material emits anywhere: a non-zero `emission` (an
     /// emission texture only scales it). The GPU compiles the emission
-    /// term only for a scene with such a material (`ShaderKey::emission`).
+    /// term only for a scene with such a material (`MaterialsKey::emission`).
     pub fn emits(&self) -> bool {
         self.emission != Rgb::ZERO
     }
 
     /// Whether its ambient occlusion may differ from 1 somewhere: the
-    /// constant, or an occlusion texture (`ShaderKey::occlusion`).
+    /// constant, or an occlusion texture (`MaterialsKey::occlusion`).
     pub fn has_occlusion(&self) -> bool {
         self.occlusion != 1.0
             || self

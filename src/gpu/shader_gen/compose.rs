@@ -131,61 +131,47 @@ impl Output {
     }
 }
 
-/// The files a light kind needs and its incidence function's name.
-fn light_wgsl(kind: LightKind) -> (&'static [&'static str], &'static str) {
+/// The files under `shaders/lights/` a light kind's incidence function
+/// needs, each after the ones it uses.
+fn light_files(kind: LightKind) -> &'static [&'static str] {
     match kind {
-        LightKind::Point => (
-            &["lights/inverse_square.wgsl", "lights/point.wgsl"],
-            "point_incidence",
-        ),
-        LightKind::Directional => (&["lights/directional.wgsl"], "directional_incidence"),
-        LightKind::Spot => (
-            &["lights/inverse_square.wgsl", "lights/spot.wgsl"],
-            "spot_incidence",
-        ),
-        LightKind::AreaSample => (
-            &["lights/inverse_square.wgsl", "lights/area_sample.wgsl"],
-            "area_sample_incidence",
-        ),
+        LightKind::Point => &["lights/inverse_square.wgsl", "lights/point.wgsl"],
+        LightKind::Directional => &["lights/directional.wgsl"],
+        LightKind::Spot => &["lights/inverse_square.wgsl", "lights/spot.wgsl"],
+        LightKind::AreaSample => &["lights/inverse_square.wgsl", "lights/area_sample.wgsl"],
     }
 }
 
-/// The light files of `kinds` and `light_incidence`, a `switch` over
-/// `Light.kind` with one arm per kind (none for one kind: a light's kind
-/// is data, not a pipeline constant, and a one-kind scene needs no test).
+/// The WGSL constants naming the light kinds' codes (`LIGHT_POINT`, ...:
+/// `LightKind::id`, the value of `Light.kind`), so the `switch` of
+/// shaders/lights/incidence.wgsl names them and no number is kept in sync
+/// by hand.
+fn light_codes() -> String {
+    let mut out = String::from(
+        "// Codes of the light kinds (Light.kind: LightKind::id, src/scene/light.rs).\n",
+    );
+    for kind in LightKind::ALL {
+        let name = specialization::constant_name(kind.name());
+        let _ = writeln!(out, "const LIGHT_{name}: u32 = {}u;", kind.id());
+    }
+    out
+}
+
+/// The light files of `kinds`, then `light_incidence`
+/// (shaders/lights/incidence.wgsl) with the arms of those kinds.
 fn lights(kinds: &BTreeSet<LightKind>, features: &[Feature]) -> String {
     let mut out = String::new();
     let mut included: Vec<&str> = Vec::new();
-    let mut arms = Vec::new();
-    for &kind in kinds {
-        let (files, function) = light_wgsl(kind);
-        for path in files {
-            if !included.contains(path) {
-                included.push(path);
-                out.push_str(&file(path, features));
-                out.push('\n');
-            }
-        }
-        arms.push((kind.id(), format!("{function}(light, x)")));
-    }
-    out.push_str("fn light_incidence(light: Light, x: vec3<f32>) -> Incidence {\n");
-    let none = "Incidence(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0))";
-    match arms.as_slice() {
-        [] => {
-            let _ = writeln!(out, "    return {none};");
-        }
-        [(_, call)] => {
-            let _ = writeln!(out, "    return {call};");
-        }
-        _ => {
-            out.push_str("    switch light.kind {\n");
-            for (id, call) in &arms {
-                let _ = writeln!(out, "        case {id}u: {{ return {call}; }}");
-            }
-            let _ = writeln!(out, "        default: {{ return {none}; }}\n    }}");
+    for path in kinds.iter().flat_map(|&kind| light_files(kind)) {
+        if !included.contains(path) {
+            included.push(path);
+            out.push_str(&file(path, features));
+            out.push('\n');
         }
     }
-    out.push_str("}\n\n");
+    out.push_str(&light_codes());
+    out.push_str(&file("lights/incidence.wgsl", features));
+    out.push('\n');
     out
 }
 
@@ -220,28 +206,28 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
             let _ = writeln!(out, "const PCF_RADIUS: u32 = {r}u;");
         }
     }
-    if key.texture_slots > 0 {
+    if key.materials.texture_slots > 0 {
         let _ = writeln!(
             out,
             "const TEXTURE_SLOTS: u32 = {}u;\nconst MAX_TEXTURE_SLOTS: u32 = {}u;",
-            key.texture_slots,
+            key.materials.texture_slots,
             crate::gpu::textures::MAX_TEXTURE_SLOTS
         );
     }
     out.push_str(&compose_brdf_library(&key.variants, &features));
-    if key.texture_slots > 0 {
+    if key.materials.texture_slots > 0 {
         out.push_str(&file("textures.wgsl", &features));
         out.push('\n');
     }
-    out.push_str(&lights(&key.light_kinds, &features));
-    if key.environment {
+    out.push_str(&lights(&key.lights.kinds, &features));
+    if key.environment.map {
         out.push_str(&file("environment.wgsl", &features));
         out.push('\n');
-        if key.environment_sh {
+        if key.environment.sh {
             out.push_str(&file("environment_sh.wgsl", &features));
             out.push('\n');
         }
-        if key.environment_sampled {
+        if key.environment.sampled {
             out.push_str(&file("environment_sampled.wgsl", &features));
             out.push('\n');
         }

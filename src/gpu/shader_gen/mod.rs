@@ -1,8 +1,10 @@
 //! Scene-specialized WGSL: only what a scene uses is compiled.
 //!
 //! A [`ShaderKey`] lists the features a scene needs: shading mode, BRDF
-//! variants (a model with its chosen terms), light kinds, shadow-map
-//! projections and filtering. [`compose`] concatenates the WGSL files
+//! variants (a model with its chosen terms), and groups for the lights,
+//! the shadow maps, the environment and the materials
+//! ([`key_groups`]), each flag declared once with the [`Feature`] it
+//! switches. [`compose`] concatenates the WGSL files
 //! ([`sources`]) for exactly those features, keeps only the conditional
 //! blocks (`#if FEATURE` ... `#endif`, [`preprocess`]) whose [`Feature`] is
 //! on, and writes the few constants that specialize it: loop counts, the
@@ -10,7 +12,9 @@
 //! ([`specialization`]). The BRDF dispatch itself (`eval_brdf`, the
 //! Cook-Torrance terms, the mirror) is WGSL, `switch`es on pipeline
 //! constants in shaders/brdf/eval.wgsl, with one arm per model the scene
-//! uses. A Lambert-only scene with a point light therefore contains no
+//! uses; the light dispatch (`light_incidence`) likewise switches on the
+//! light kinds' codes in shaders/lights/incidence.wgsl, one arm per kind
+//! present. A Lambert-only scene with a point light therefore contains no
 //! glossy lobe, no Fresnel, no spot-light code. Parameter values live in
 //! buffers, so changing them never rebuilds a pipeline; changing the key
 //! does.
@@ -18,6 +22,7 @@
 mod compose;
 mod features;
 mod key;
+mod key_groups;
 mod preprocess;
 pub mod sources;
 pub mod specialization;
@@ -27,6 +32,7 @@ pub use compose::{
 };
 pub use features::Feature;
 pub use key::{LoopCounts, ShaderKey};
+pub use key_groups::{EnvironmentKey, LightsKey, MaterialsKey, ShadowKey};
 pub use preprocess::preprocess;
 pub use specialization::pipeline_constants;
 
@@ -71,8 +77,8 @@ pub fn all_variants() -> Vec<BrdfVariant> {
 /// Keys that together compile every line of every WGSL file: each shading
 /// mode with each variant alone (one light kind each, cycling), each
 /// shadow projection alone with and without PCF, plus all variants, all
-/// light kinds and all shadow code at once. Used by the shader validation
-/// test.
+/// light kinds and all shadow code at once, with every flag of every
+/// key group off and on. Used by the shader validation test.
 pub fn representative_keys() -> Vec<ShaderKey> {
     let all_kinds = LightKind::ALL;
     let all_projections = [Projection::Ortho, Projection::Perspective, Projection::Cube];
@@ -89,42 +95,40 @@ pub fn representative_keys() -> Vec<ShaderKey> {
             keys.push(ShaderKey {
                 shading,
                 variants: [*v].into(),
-                light_kinds: [all_kinds[i % all_kinds.len()]].into(),
-                shadows: ShadowFeatures::default(),
+                lights: LightsKey {
+                    kinds: [all_kinds[i % all_kinds.len()]].into(),
+                    // The inverse-square law with and without its guard and
+                    // range window, on alternate keys.
+                    range: i % 2 == 0,
+                    guard: i % 4 < 2,
+                },
                 counts: LoopCounts {
                     lights: 1,
                     ..Default::default()
                 },
                 arrays: arrays(i % 2 == 0),
-                // The inverse-square law with and without its guard and
-                // range window, on alternate keys.
-                light_range: i % 2 == 0,
-                light_guard: i % 4 < 2,
-                vertex_shadow_coords: false,
-                approximate_shadow_coords: false,
-                environment: i % 3 == 0 || i % 6 == 5,
-                environment_sampled: i % 6 == 0,
-                environment_prefiltered: i % 6 == 3,
-                environment_sh: i % 6 == 5,
-                texture_slots: 0,
-                normal_maps: false,
-                two_sided: false,
-                culling: false,
-                vertex_colors: false,
-                alpha: false,
-                alpha_blend: false,
-                // The network arm of measured.wgsl in Phong keys, the
-                // table's in the others.
-                measured_network: shading == ShadingMode::Phong
-                    && v.model == crate::material::ReflectanceModel::Measured,
-                energy_compensation: i % 2 == 1,
-                // Both G1 forms, on alternate keys.
-                smith_beckmann_rational: i % 2 == 0,
-                // Emission and occlusion on alternate keys.
-                emission: i % 2 == 1,
-                occlusion: i % 3 == 0,
+                environment: EnvironmentKey {
+                    map: i % 3 == 0 || i % 6 == 5,
+                    sampled: i % 6 == 0,
+                    prefiltered: i % 6 == 3,
+                    sh: i % 6 == 5,
+                },
+                materials: MaterialsKey {
+                    // The network arm of measured.wgsl in Phong keys, the
+                    // table's in the others.
+                    measured_network: shading == ShadingMode::Phong
+                        && v.model == crate::material::ReflectanceModel::Measured,
+                    energy_compensation: i % 2 == 1,
+                    // Both G1 forms, on alternate keys.
+                    smith_beckmann_rational: i % 2 == 0,
+                    // Emission and occlusion on alternate keys.
+                    emission: i % 2 == 1,
+                    occlusion: i % 3 == 0,
+                    ..Default::default()
+                },
                 tone_map: crate::output::tone_map::ToneMap::ALL
                     [i % crate::output::tone_map::ToneMap::ALL.len()],
+                ..Default::default()
             });
         }
         for (i, projection) in all_projections.into_iter().enumerate() {
@@ -132,10 +136,20 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                 keys.push(ShaderKey {
                     shading,
                     variants: [variants[i]].into(),
-                    light_kinds: [all_kinds[i]].into(),
-                    shadows: ShadowFeatures {
-                        projections: [projection].into(),
-                        pcf,
+                    lights: LightsKey {
+                        kinds: [all_kinds[i]].into(),
+                        range: pcf,
+                        guard: !pcf,
+                    },
+                    shadows: ShadowKey {
+                        maps: ShadowFeatures {
+                            projections: [projection].into(),
+                            pcf,
+                        },
+                        // Orthographic or perspective with PCF: the
+                        // coordinates per vertex (perspective approximately).
+                        vertex_coords: pcf,
+                        approximate_coords: pcf,
                     },
                     counts: LoopCounts {
                         lights: 2,
@@ -143,40 +157,37 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                         pcf_radius: (i % 2 == 0).then_some(1),
                     },
                     arrays: arrays(pcf),
-                    light_range: pcf,
-                    light_guard: !pcf,
-                    // Orthographic or perspective with PCF: the
-                    // coordinates per vertex (perspective approximately).
-                    vertex_shadow_coords: pcf,
-                    approximate_shadow_coords: pcf,
-                    environment: pcf,
-                    environment_sampled: false,
-                    environment_prefiltered: false,
-                    environment_sh: false,
-                    texture_slots: 0,
-                    normal_maps: false,
-                    two_sided: false,
-                    culling: false,
-                    vertex_colors: false,
-                    alpha: false,
-                    alpha_blend: false,
-                    measured_network: false,
-                    energy_compensation: false,
-                    smith_beckmann_rational: pcf,
-                    emission: pcf,
-                    occlusion: !pcf,
-                    tone_map: Default::default(),
+                    environment: EnvironmentKey {
+                        map: pcf,
+                        ..Default::default()
+                    },
+                    materials: MaterialsKey {
+                        smith_beckmann_rational: pcf,
+                        emission: pcf,
+                        occlusion: !pcf,
+                        ..Default::default()
+                    },
+                    ..Default::default()
                 });
             }
         }
+        // Every light kind, every shadow projection and, on one key, every
+        // flag of every group: each `#if` block compiled at least once.
         for uniform in [false, true] {
             keys.push(ShaderKey {
                 shading,
                 variants: variants.iter().copied().collect(),
-                light_kinds: all_kinds.into(),
-                shadows: ShadowFeatures {
-                    projections: all_projections.into(),
-                    pcf: true,
+                lights: LightsKey {
+                    kinds: all_kinds.into(),
+                    ..Default::default()
+                }
+                .with_flags(uniform),
+                shadows: ShadowKey {
+                    maps: ShadowFeatures {
+                        projections: all_projections.into(),
+                        pcf: true,
+                    },
+                    ..Default::default()
                 },
                 counts: LoopCounts {
                     lights: 5,
@@ -184,32 +195,24 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     pcf_radius: None,
                 },
                 arrays: arrays(uniform),
-                light_range: uniform,
-                light_guard: uniform,
-                vertex_shadow_coords: false,
-                approximate_shadow_coords: false,
-                environment: uniform,
-                environment_sampled: uniform,
-                environment_prefiltered: false,
-                environment_sh: false,
-                // Textures with the uber shader: all slots, all models.
-                texture_slots: if uniform {
-                    crate::gpu::textures::MAX_TEXTURE_SLOTS as u32
-                } else {
-                    0
+                environment: EnvironmentKey {
+                    map: uniform,
+                    sampled: uniform,
+                    ..Default::default()
                 },
-                normal_maps: uniform,
-                two_sided: uniform,
-                culling: uniform,
-                vertex_colors: uniform,
-                alpha: uniform,
-                alpha_blend: uniform,
-                measured_network: uniform,
-                energy_compensation: uniform,
-                smith_beckmann_rational: uniform,
-                emission: uniform,
-                occlusion: uniform,
-                tone_map: Default::default(),
+                materials: MaterialsKey {
+                    // Textures with the uber shader: all slots, all models.
+                    texture_slots: if uniform {
+                        crate::gpu::textures::MAX_TEXTURE_SLOTS as u32
+                    } else {
+                        0
+                    },
+                    normal_maps: uniform,
+                    alpha_blend: uniform,
+                    ..Default::default()
+                }
+                .with_flags(uniform),
+                ..Default::default()
             });
         }
     }
@@ -229,8 +232,10 @@ mod tests {
         let key = ShaderKey {
             shading: ShadingMode::Phong,
             variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
-            light_kinds: [LightKind::Point].into(),
-            shadows: ShadowFeatures::default(),
+            lights: LightsKey {
+                kinds: [LightKind::Point].into(),
+                ..Default::default()
+            },
             ..Default::default()
         };
         let wgsl = compose(&key);
@@ -262,10 +267,16 @@ mod tests {
         let key = |projections: &[Projection], pcf| ShaderKey {
             shading: ShadingMode::Phong,
             variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
-            light_kinds: [LightKind::Point].into(),
-            shadows: ShadowFeatures {
-                projections: projections.iter().copied().collect(),
-                pcf,
+            lights: LightsKey {
+                kinds: [LightKind::Point].into(),
+                ..Default::default()
+            },
+            shadows: ShadowKey {
+                maps: ShadowFeatures {
+                    projections: projections.iter().copied().collect(),
+                    pcf,
+                },
+                ..Default::default()
             },
             ..Default::default()
         };

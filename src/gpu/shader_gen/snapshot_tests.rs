@@ -42,13 +42,19 @@ fn snapshot_lambert_point_light() {
     let key = ShaderKey {
         shading: ShadingMode::Phong,
         variants: [Material::new("m", ReflectanceModel::Lambert).variant()].into(),
-        light_kinds: [LightKind::Point].into(),
+        lights: LightsKey {
+            kinds: [LightKind::Point].into(),
+            ..Default::default()
+        },
+        shadows: ShadowKey {
+            vertex_coords: true,
+            ..Default::default()
+        },
         counts: LoopCounts {
             lights: 1,
             ..Default::default()
         },
         arrays: UniformArrays::for_counts(1, 0),
-        vertex_shadow_coords: true,
         ..Default::default()
     };
     check_snapshot("lambert_point", &compose(&key));
@@ -65,10 +71,17 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
     let key = ShaderKey {
         shading: ShadingMode::Phong,
         variants: [ct.variant()].into(),
-        light_kinds: [LightKind::Directional].into(),
-        shadows: ShadowFeatures {
-            projections: [Projection::Ortho].into(),
-            pcf: true,
+        lights: LightsKey {
+            kinds: [LightKind::Directional].into(),
+            ..Default::default()
+        },
+        shadows: ShadowKey {
+            maps: ShadowFeatures {
+                projections: [Projection::Ortho].into(),
+                pcf: true,
+            },
+            vertex_coords: true,
+            approximate_coords: false,
         },
         counts: LoopCounts {
             lights: 1,
@@ -76,27 +89,7 @@ fn snapshot_cook_torrance_shadowed_sun_pcf() {
             pcf_radius: Some(1),
         },
         arrays: UniformArrays::for_counts(1, 1),
-        light_range: false,
-        light_guard: false,
-        vertex_shadow_coords: true,
-        approximate_shadow_coords: false,
-        environment: false,
-        environment_sampled: false,
-        environment_prefiltered: false,
-        environment_sh: false,
-        texture_slots: 0,
-        normal_maps: false,
-        two_sided: false,
-        culling: false,
-        vertex_colors: false,
-        alpha: false,
-        alpha_blend: false,
-        measured_network: false,
-        energy_compensation: false,
-        smith_beckmann_rational: false,
-        emission: false,
-        occlusion: false,
-        tone_map: Default::default(),
+        ..Default::default()
     };
     check_snapshot("cook_torrance_sun_pcf", &compose(&key));
 }
@@ -106,10 +99,18 @@ fn snapshot_everything() {
     let key = ShaderKey {
         shading: ShadingMode::Phong,
         variants: all_variants().into_iter().collect(),
-        light_kinds: LightKind::ALL.into(),
-        shadows: ShadowFeatures {
-            projections: [Projection::Ortho, Projection::Perspective, Projection::Cube].into(),
-            pcf: true,
+        lights: LightsKey {
+            kinds: LightKind::ALL.into(),
+            ..Default::default()
+        }
+        .with_flags(true),
+        shadows: ShadowKey {
+            maps: ShadowFeatures {
+                projections: [Projection::Ortho, Projection::Perspective, Projection::Cube].into(),
+                pcf: true,
+            },
+            vertex_coords: true,
+            approximate_coords: false,
         },
         counts: LoopCounts {
             lights: 5,
@@ -117,27 +118,19 @@ fn snapshot_everything() {
             pcf_radius: None,
         },
         arrays: UniformArrays::for_counts(5, 8),
-        light_range: true,
-        light_guard: true,
-        vertex_shadow_coords: true,
-        approximate_shadow_coords: false,
-        environment: true,
-        environment_sampled: true,
-        environment_prefiltered: true,
-        environment_sh: true,
-        texture_slots: 0,
-        normal_maps: false,
-        two_sided: false,
-        culling: false,
-        vertex_colors: false,
-        alpha: true,
-        alpha_blend: false,
-        measured_network: false,
-        energy_compensation: true,
-        smith_beckmann_rational: false,
-        emission: true,
-        occlusion: true,
-        tone_map: Default::default(),
+        environment: EnvironmentKey {
+            map: true,
+            ..Default::default()
+        }
+        .with_flags(true),
+        materials: MaterialsKey {
+            alpha: true,
+            energy_compensation: true,
+            emission: true,
+            occlusion: true,
+            ..Default::default()
+        },
+        ..Default::default()
     };
     check_snapshot("everything", &compose(&key));
 }

@@ -157,7 +157,7 @@ pub fn pipeline_constants(variant: Option<u32>) -> Vec<(&'static str, f64)> {
 }
 
 /// `"cook-torrance"` → `"COOK_TORRANCE"`.
-fn constant_name(name: &str) -> String {
+pub(super) fn constant_name(name: &str) -> String {
     name.to_uppercase().replace('-', "_")
 }
 
