@@ -164,11 +164,15 @@ fn install(doc: &mut Document, table: toml::Table) -> std::result::Result<(), St
     let old = section(&doc.table).ok().and_then(|s| s.map);
     let map = match &doc.scene.environment.map {
         // The same file: keep its texels and what is derived from them.
-        Some(current) if new.map.is_some() && new.map == old => Some(EnvironmentMap {
-            data: current.data.clone(),
-            settings: environment_keys::settings(&new)?,
-        }),
-        _ => environment_keys::environment_map(&new, &doc.source_dir)?,
+        Some(current) if new.map.is_some() && new.map == old => {
+            let settings = environment_keys::settings(&new)?;
+            environment_keys::check_scaled(&current.data, &settings)?;
+            Some(EnvironmentMap {
+                data: current.data.clone(),
+                settings,
+            })
+        }
+        _ => environment_keys::environment_map(&new, &doc.source_dir, doc.limits.bytes)?,
     };
     set_map(doc, map)?;
     doc.table = table;

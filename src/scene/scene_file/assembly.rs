@@ -59,7 +59,8 @@ pub fn assemble(
     gltf_files
         .charge(0, 0, file.lights.len() as u64)
         .map_err(|p| bad(format!("lights: {p}")))?;
-    let (ambient, environment) = ambient_and_environment(&file, base_dir).map_err(bad)?;
+    let (ambient, environment) =
+        ambient_and_environment(&file, base_dir, &mut gltf_files.images).map_err(bad)?;
     let light_setup = LightSetup {
         imported: objects.lights,
         shadows: file.shadows.clone(),
@@ -294,6 +295,7 @@ fn objects(
 fn ambient_and_environment(
     file: &SceneFile,
     base_dir: &Path,
+    images: &mut crate::scene::texture::store::ImageStore,
 ) -> std::result::Result<(Rgb, Environment), String> {
     let ambient = match file.ambient.radiance {
         None => Rgb::ZERO,
@@ -308,8 +310,11 @@ fn ambient_and_environment(
         zenith: get("zenith", e.zenith)?,
         horizon: get("horizon", e.horizon)?,
         ground: get("ground", e.ground)?,
-        map: super::environment_keys::environment_map(e, base_dir)?,
+        map: super::environment_keys::environment_map(e, base_dir, images.bytes_left())?,
     };
+    if let Some(map) = &environment.map {
+        images.charge(map.data.texel_bytes());
+    }
     Ok((ambient, environment))
 }
 
