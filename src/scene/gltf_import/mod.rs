@@ -237,7 +237,11 @@ impl GltfLoader {
             scene
                 .notes
                 .iter()
-                .map(|note| format!("{}: {note}", path.display())),
+                .map(|note| match note.strip_prefix(WARNING) {
+                    // A warning stays one (shown without --verbose).
+                    Some(w) => format!("{WARNING}{}: {w}", path.display()),
+                    None => format!("{}: {note}", path.display()),
+                }),
         );
         Ok(scene)
     }
@@ -274,6 +278,9 @@ fn folder_of(path: &Path) -> &Path {
     }
 }
 
+/// The prefix of a note that is a warning ([`crate::scene::scene_file::WARNING`]).
+const WARNING: &str = "warning: ";
+
 /// The whole import of one file's bytes; see the module documentation for
 /// the order of the checks.
 fn load_bytes(
@@ -286,6 +293,7 @@ fn load_bytes(
     let container = container::split(bytes, expect_glb, &mut notes)?;
     let mut used_bytes = bytes.len() as u64;
     let document = container::parse(container.json, &mut used_bytes, limits, &mut notes)?;
+    images::check_sources(document.as_json())?;
     let parents = graph::check_forest(&document)?;
     let roots = graph::scene_roots(&document, &parents)?;
     graph::check_cost(&document, &graph::descendants(&document, &roots), limits)?;
@@ -297,8 +305,24 @@ fn load_bytes(
 /// Runs `f`, turning a panic into the "malformed data" error. Only code of
 /// the `gltf` crate is expected to panic here, and only on inputs our own
 /// checks did not anticipate.
+/// The panic's own message stays off stderr (the user gets the error,
+/// not "thread 'main' panicked at …gltf…"): the process's panic hook is
+/// wrapped once, and is quiet on this thread while `f` runs.
 fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    panic::catch_unwind(AssertUnwindSafe(f)).map_err(|_| PARSER_PANICKED.to_string())
+    thread_local!(static QUIET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) });
+    static WRAP_HOOK: std::sync::Once = std::sync::Once::new();
+    WRAP_HOOK.call_once(|| {
+        let previous = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(|q| q.get()) {
+                previous(info);
+            }
+        }));
+    });
+    let was = QUIET.with(|q| q.replace(true));
+    let result = panic::catch_unwind(AssertUnwindSafe(f));
+    QUIET.with(|q| q.set(was));
+    result.map_err(|_| PARSER_PANICKED.to_string())
 }
 
 /// The first 80 characters of a text from the file, for messages (data:
