@@ -188,7 +188,7 @@ impl MapData {
         {
             let (row, col) = (k as u32 / width, k as u32 % width);
             return Err(format!(
-                "texel (column {col}, row {row}) is {:?}: radiance must be finite, non-negative and at most {:e} (the GPU computes in f32, largest 3.4e38; see the range rule in docs/scene-format.md)",
+                "texel (column {col}, row {row}) is {:?}: radiance must be finite and non-negative, and at most {:e} (the range rule of every radiance source: the GPU computes in f32, largest 3.4e38)",
                 texels[k],
                 range::MAX_RADIANCE
             ));

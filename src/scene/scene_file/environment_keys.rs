@@ -60,7 +60,7 @@ pub fn check_scaled(data: &MapData, settings: &MapSettings) -> Result<(), String
     let largest = data.max_texel() * settings.scale;
     if !range::is_radiance(largest) {
         return Err(format!(
-            "environment.scale = {:e} times the map's largest texel {:e} is {largest:e}, over {:e}: the GPU computes in f32 (largest 3.4e38) and multiplies radiance by BRDF values up to about 4e16, so it would overflow to Inf; lower the scale",
+            "environment.scale = {:e} times the map's largest texel {:.3e} is {largest:.3e}, over {:e}: the GPU computes in f32 (largest 3.4e38) and multiplies radiance by BRDF values up to about 4e16, so it would overflow to Inf; lower the scale",
             settings.scale,
             data.max_texel(),
             range::MAX_RADIANCE

@@ -240,11 +240,13 @@ mod tests {
         // A JPEG cut before its end-of-image marker (zune-jpeg alone
         // decodes it as grey).
         let mut jpeg = Vec::new();
-        image::RgbImage::from_pixel(16, 16, image::Rgb([200, 30, 30]))
-            .write_to(&mut Cursor::new(&mut jpeg), image::ImageFormat::Jpeg)
-            .unwrap();
+        image::RgbImage::from_fn(64, 64, |x, y| {
+            image::Rgb([(x * 4) as u8, (y * 4) as u8, (x ^ y) as u8 * 4])
+        })
+        .write_to(&mut Cursor::new(&mut jpeg), image::ImageFormat::Jpeg)
+        .unwrap();
         assert!(decode(&jpeg, Encoding::Srgb, 1 << 20).is_ok());
-        let e = decode(&jpeg[..jpeg.len() - 40], Encoding::Srgb, 1 << 20).unwrap_err();
+        let e = decode(&jpeg[..jpeg.len() * 3 / 4], Encoding::Srgb, 1 << 20).unwrap_err();
         assert!(e.contains("truncated"), "{e}");
         let e = decode(b"GIF89a......", Encoding::Srgb, 1 << 20).unwrap_err();
         assert!(e.contains("PNG and JPEG"), "{e}");
