@@ -394,8 +394,22 @@ fn a_missing_output_folder_is_refused_alike_and_named_cleanly() {
     let missing = |name: &str| d.join("missing/dir").join(name).display().to_string();
     let cases: [Vec<String>; 3] = [
         s(&["fit", "chrome", "--model", "ward", "-o", &missing("f.toml")]),
-        s(&["render", "--width", "16", "--height", "12", "-o", &missing("x.png")]),
-        s(&["brdf", "--model", "lambert", "--plot-albedo", &missing("x.svg")]),
+        s(&[
+            "render",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            &missing("x.png"),
+        ]),
+        s(&[
+            "brdf",
+            "--model",
+            "lambert",
+            "--plot-albedo",
+            &missing("x.svg"),
+        ]),
     ];
     for args in &cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -438,31 +452,68 @@ fn outputs_that_are_not_regular_files_are_never_replaced() {
         && mknod("full.png", "7");
     if devices {
         let (code, stderr) = gonio_status(
-            &["render", "--width", "16", "--height", "12", "-o", &path("null.png")],
+            &[
+                "render",
+                "--width",
+                "16",
+                "--height",
+                "12",
+                "-o",
+                &path("null.png"),
+            ],
             d,
         );
         assert_eq!(code, Some(0), "{stderr}");
         let (code, stderr) = gonio_status(
-            &["brdf", "--model", "lambert", "--plot-albedo", &path("null.svg")],
+            &[
+                "brdf",
+                "--model",
+                "lambert",
+                "--plot-albedo",
+                &path("null.svg"),
+            ],
             d,
         );
         assert_eq!(code, Some(0), "{stderr}");
         let (code, stderr) = gonio_status(
-            &["fit", "chrome", "--model", "lambert", "-o", &path("null.toml")],
+            &[
+                "fit",
+                "chrome",
+                "--model",
+                "lambert",
+                "-o",
+                &path("null.toml"),
+            ],
             d,
         );
         assert_eq!(code, Some(0), "{stderr}");
         // A link to a device is followed, and the link stays.
         symlink(d.join("null.png"), d.join("link.png")).unwrap();
         let (code, stderr) = gonio_status(
-            &["render", "--width", "16", "--height", "12", "-o", &path("link.png")],
+            &[
+                "render",
+                "--width",
+                "16",
+                "--height",
+                "12",
+                "-o",
+                &path("link.png"),
+            ],
             d,
         );
         assert_eq!(code, Some(0), "{stderr}");
         assert!(kind("link.png").is_symlink());
         // A device that refuses the bytes: an error naming it.
         let (code, stderr) = gonio_status(
-            &["render", "--width", "16", "--height", "12", "-o", &path("full.png")],
+            &[
+                "render",
+                "--width",
+                "16",
+                "--height",
+                "12",
+                "-o",
+                &path("full.png"),
+            ],
             d,
         );
         assert_eq!(code, Some(2), "{stderr}");
@@ -479,7 +530,15 @@ fn outputs_that_are_not_regular_files_are_never_replaced() {
         .unwrap();
     assert!(status.success());
     let (code, stderr) = gonio_status(
-        &["render", "--width", "16", "--height", "12", "-o", &path("pipe.png")],
+        &[
+            "render",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            &path("pipe.png"),
+        ],
         d,
     );
     assert_eq!(code, Some(2), "{stderr}");
@@ -489,12 +548,24 @@ fn outputs_that_are_not_regular_files_are_never_replaced() {
     std::fs::write(d.join("real.png"), b"old").unwrap();
     symlink(d.join("real.png"), d.join("to-real.png")).unwrap();
     let (code, stderr) = gonio_status(
-        &["render", "--width", "16", "--height", "12", "-o", &path("to-real.png")],
+        &[
+            "render",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            &path("to-real.png"),
+        ],
         d,
     );
     assert_eq!(code, Some(0), "{stderr}");
     assert!(kind("to-real.png").is_symlink());
-    assert!(std::fs::read(d.join("real.png")).unwrap().starts_with(b"\x89PNG"));
+    assert!(
+        std::fs::read(d.join("real.png"))
+            .unwrap()
+            .starts_with(b"\x89PNG")
+    );
     // No temporary is left behind, whatever happened.
     assert!(
         names_in(d).iter().all(|n| !n.starts_with(".gonio-")),

@@ -264,7 +264,9 @@ fn merge_refuses_incomplete_mixed_and_bad_shards() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let o = d.to_str().unwrap();
-    let row = |m: &str, e: &str| format!("{m},ward,ngan,{e},0.5,10,0.1\n{m},lambert,ngan,2.0,0.9,10,0.1\n");
+    let row = |m: &str, e: &str| {
+        format!("{m},ward,ngan,{e},0.5,10,0.1\n{m},lambert,ngan,2.0,0.9,10,0.1\n")
+    };
     let toml = Some("[materials.x]\nmodel = \"ward\"\n");
     std::fs::write(d.join("ranking.csv"), "the previous ranking\n").unwrap();
     let merge = ["--merge", "--out-dir", o];
@@ -272,7 +274,13 @@ fn merge_refuses_incomplete_mixed_and_bad_shards() {
     write_shards(d, &[(1, 2, &row("a", "1.0"), toml)]);
     fails_with_2(&merge, "shard 2 of 2 is missing");
     // Shards of two runs.
-    write_shards(d, &[(1, 2, &row("a", "1.0"), toml), (1, 3, &row("b", "1.0"), toml)]);
+    write_shards(
+        d,
+        &[
+            (1, 2, &row("a", "1.0"), toml),
+            (1, 3, &row("b", "1.0"), toml),
+        ],
+    );
     fails_with_2(&merge, "mixes runs");
     // A CSV whose TOML was never written (a full disk).
     write_shards(d, &[(1, 1, &row("a", "1.0"), None)]);
@@ -284,7 +292,15 @@ fn merge_refuses_incomplete_mixed_and_bad_shards() {
         fails_with_2(&merge, "shard-1-of-1.csv");
     }
     // A shard TOML that is not TOML was copied into fits.toml.
-    write_shards(d, &[(1, 1, &row("a", "1.0"), Some("[materials.x]\nmodel = 1\n[[[ not toml\n"))]);
+    write_shards(
+        d,
+        &[(
+            1,
+            1,
+            &row("a", "1.0"),
+            Some("[materials.x]\nmodel = 1\n[[[ not toml\n"),
+        )],
+    );
     fails_with_2(&merge, "shard-1-of-1.toml");
     fails_with_2(&merge, "line 3");
     // No rows at all gave "mean rank: " and nothing.
@@ -296,9 +312,19 @@ fn merge_refuses_incomplete_mixed_and_bad_shards() {
     );
     assert!(!d.join("fits.toml").exists() && !d.join("ranking.md").exists());
     // A whole set merges, its files appearing together.
-    write_shards(d, &[(1, 2, &row("a", "1.0"), toml), (2, 2, &row("b", "3.0"), toml)]);
+    write_shards(
+        d,
+        &[
+            (1, 2, &row("a", "1.0"), toml),
+            (2, 2, &row("b", "3.0"), toml),
+        ],
+    );
     let out = gonio().arg("fit").args(merge).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let ranking = std::fs::read_to_string(d.join("ranking.csv")).unwrap();
     assert_eq!(ranking.lines().count(), 5, "{ranking}");
     assert!(d.join("fits.toml").exists() && d.join("ranking.md").exists());

@@ -1585,9 +1585,11 @@ fn maps_and_tables(c: &mut Corpus) {
     // A texture JPEG cut short (a cut PNG was already refused).
     // Cut in its scan data, past the header: zune-jpeg alone decoded it.
     let mut jpeg = std::io::Cursor::new(Vec::new());
-    image::RgbImage::from_fn(64, 64, |x, y| image::Rgb([(x * 4) as u8, (y * 4) as u8, (x ^ y) as u8 * 4]))
-        .write_to(&mut jpeg, image::ImageFormat::Jpeg)
-        .unwrap();
+    image::RgbImage::from_fn(64, 64, |x, y| {
+        image::Rgb([(x * 4) as u8, (y * 4) as u8, (x ^ y) as u8 * 4])
+    })
+    .write_to(&mut jpeg, image::ImageFormat::Jpeg)
+    .unwrap();
     let jpeg = jpeg.into_inner();
     c.write(&format!("{CLASS}/cut.jpg"), &jpeg[..jpeg.len() * 3 / 4]);
     c.scene(
@@ -1952,11 +1954,18 @@ fn the_binary_refuses_maps_tables_and_sourceless_images_without_panic_text() {
         "neither a uri nor a bufferView",
     );
     let (_, stderr) = render(d, &[&path_of("image-without-source.gltf")]);
-    assert!(!stderr.contains("panicked") && !stderr.contains("gltf-1."), "{stderr}");
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("gltf-1."),
+        "{stderr}"
+    );
     #[cfg(unix)]
     {
         assert_refused(d, &[&path_of("map-pipe.hdr.toml")], "not a regular file");
-        assert_refused(d, &[&path_of("merl-pipe.binary.toml")], "not a regular file");
+        assert_refused(
+            d,
+            &[&path_of("merl-pipe.binary.toml")],
+            "not a regular file",
+        );
     }
     assert_refused(
         d,
@@ -1965,7 +1974,12 @@ fn the_binary_refuses_maps_tables_and_sourceless_images_without_panic_text() {
     );
     assert_refused(
         d,
-        &["--set", "environment.map=\"sky\"", "--set", "environment.scale=1e39"],
+        &[
+            "--set",
+            "environment.map=\"sky\"",
+            "--set",
+            "environment.scale=1e39",
+        ],
         "environment.scale",
     );
 }
@@ -2061,7 +2075,10 @@ fn inconsistent_textures_are_refused_or_warned_about() {
     .err()
     .expect("k_d_texture on a measured material is refused")
     .to_string();
-    assert!(err.contains("k_d_texture") && err.contains("measured"), "{err}");
+    assert!(
+        err.contains("k_d_texture") && err.contains("measured"),
+        "{err}"
+    );
     let (_, notes) = load(
         "lambert.toml",
         format!("{object}[materials.m]\nmodel = \"lambert\"\nk_e_texture = \"checker.png\"\n"),
@@ -2080,7 +2097,10 @@ fn inconsistent_textures_are_refused_or_warned_about() {
             r#""materials": [{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0, "texCoord": 1}}}}}}],
   "textures": [{{"source": 0}}],
   "images": [{{"uri": "{}"}}]"#,
-            format_args!("data:image/png;base64,{}", base64::engine::general_purpose::STANDARD.encode(&png))
+            format_args!(
+                "data:image/png;base64,{}",
+                base64::engine::general_purpose::STANDARD.encode(&png)
+            )
         ),
     );
     let gltf = c.write("uv1.gltf", gltf);

@@ -10,8 +10,8 @@
 use super::prefiltered::Prefiltered;
 use super::quadrature::Truth;
 use super::{latlong, sh};
-use crate::scene::Rgb;
 use crate::base::range;
+use crate::scene::Rgb;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -214,10 +214,7 @@ impl MapData {
     /// The largest texel component (unscaled), which `environment.scale`
     /// multiplies: their product is held to [`range::MAX_RADIANCE`].
     pub fn max_texel(&self) -> f64 {
-        self.texels
-            .iter()
-            .flatten()
-            .fold(0.0f32, |m, &v| m.max(v)) as f64
+        self.texels.iter().flatten().fold(0.0f32, |m, &v| m.max(v)) as f64
     }
 
     /// Refuses dimensions that are not a 2 : 1 lat-long map or exceed

@@ -222,7 +222,10 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         written.push((file.into_file(), bytes));
     }
     // The plots appear together or not at all.
-    let paths: Vec<_> = written.iter().map(|(f, _)| f.path().to_path_buf()).collect();
+    let paths: Vec<_> = written
+        .iter()
+        .map(|(f, _)| f.path().to_path_buf())
+        .collect();
     crate::output::commit_all(written)?;
     for path in paths {
         println!("wrote {}", path.display());

@@ -461,7 +461,8 @@ pub fn check_limits(device: &wgpu::Device, plan: &ShadowPlan) -> Result<()> {
 }
 
 /// The key [`check_limits`] names.
-const SHADOW_SIZE_KEY: &str = "shadow_map_size (lights.N.shadow_map_size or [shadows] map_size in the scene file, or --set)";
+const SHADOW_SIZE_KEY: &str =
+    "shadow_map_size (lights.N.shadow_map_size or [shadows] map_size in the scene file, or --set)";
 
 /// `error` with the scene file named, when it is [`check_limits`]'s (the
 /// GPU path does not know which file the scene came from).

@@ -276,7 +276,7 @@ fn measured_keys_apply(e: &MaterialEntry) -> Result<(), (&str, String)> {
     if let Some((k, _)) = e.textures.iter().find(|(k, _)| {
         !MAP_TEXTURE_KEYS.contains(&k.as_str())
             && k.strip_suffix(TEXTURE_SUFFIX)
-            .is_some_and(|p| !table::COMMON.iter().any(|c| c.key == p))
+                .is_some_and(|p| !table::COMMON.iter().any(|c| c.key == p))
     }) {
         return Err(not_read(k));
     }

@@ -73,16 +73,14 @@ impl AtomicFile {
         let refuse = |why: &str| Err(Error::output(path, why.to_string()));
         let dest = match std::fs::symlink_metadata(path) {
             Err(_) => path.to_path_buf(),
-            Ok(meta) if meta.file_type().is_symlink() => {
-                match std::fs::canonicalize(path) {
-                    Ok(real) => real,
-                    Err(_) => {
-                        return refuse(
-                            "it is a symbolic link to nothing; remove it or name the file itself",
-                        );
-                    }
+            Ok(meta) if meta.file_type().is_symlink() => match std::fs::canonicalize(path) {
+                Ok(real) => real,
+                Err(_) => {
+                    return refuse(
+                        "it is a symbolic link to nothing; remove it or name the file itself",
+                    );
                 }
-            }
+            },
             Ok(_) => path.to_path_buf(),
         };
         if let Ok(meta) = std::fs::metadata(&dest) {
@@ -165,7 +163,9 @@ impl AtomicFile {
                 });
             }
             if kind.is_block_device() {
-                return refuse("it is a block device (a disk); gonio writes files, not disks".into());
+                return refuse(
+                    "it is a block device (a disk); gonio writes files, not disks".into(),
+                );
             }
             if kind.is_socket() {
                 return refuse("it is a socket; name a file".into());
@@ -212,7 +212,8 @@ impl AtomicFile {
             temp, dest, armed, ..
         } = &mut self.target
         {
-            std::fs::rename(&*temp, &*dest).map_err(|e| Error::output(&self.path, e.to_string()))?;
+            std::fs::rename(&*temp, &*dest)
+                .map_err(|e| Error::output(&self.path, e.to_string()))?;
             *armed = false;
         }
         Ok(())
@@ -326,7 +327,10 @@ mod tests {
             .unwrap()
             .to_string();
         assert!(err.contains("does not exist"), "{err}");
-        assert!(!err.contains(".partial") && !err.contains(".gonio-"), "{err}");
+        assert!(
+            !err.contains(".partial") && !err.contains(".gonio-"),
+            "{err}"
+        );
         assert!(!dir.path().join("missing").exists());
     }
 

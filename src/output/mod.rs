@@ -11,6 +11,6 @@ pub mod srgb8;
 pub mod tone_map;
 pub mod write;
 
-pub use compare::{Comparison, Tolerance, compare_with_jitter};
 pub use atomic::{AtomicFile, commit_all};
+pub use compare::{Comparison, Tolerance, compare_with_jitter};
 pub use write::{OutputFile, OutputFormat};

@@ -3,12 +3,12 @@
 //! the cost have been checked, on buffers already loaded.
 
 use super::GltfScene;
+use super::WARNING;
 use super::accessors::read_primitive;
 use super::convert::{
     convert_camera, convert_light, local_transform, material_from_metallic_roughness,
     material_from_pbr,
 };
-use super::WARNING;
 use crate::material::texture::TextureTarget;
 use crate::scene::limits::Limits;
 use crate::scene::mesh::area_weighted_normals;
@@ -278,9 +278,11 @@ impl<'a> Importer<'a> {
             // A texture reading a UV set the primitive lacks is invalid
             // glTF (3.7.2.1): said, not passed over (issue 39).
             if let Some(t) = self.scene.materials.get(material).and_then(|m| {
-                m.textures
-                    .iter()
-                    .find(|t| mesh.tex_coords.get(t.tex_coord).is_none_or(|s| s.is_empty()))
+                m.textures.iter().find(|t| {
+                    mesh.tex_coords
+                        .get(t.tex_coord)
+                        .is_none_or(|s| s.is_empty())
+                })
             }) {
                 self.scene.notes.push(format!(
                     "{WARNING}{}: material {material} reads TEXCOORD_{} for a texture and the primitive has no TEXCOORD_{} (invalid glTF, 3.7.2.1)",

@@ -44,8 +44,8 @@ pub fn environment_map(
         return Ok(None);
     };
     let settings = settings(e)?;
-    let data = load::load(value, base_dir, max_bytes)
-        .map_err(|p| format!("environment.map: {p}"))?;
+    let data =
+        load::load(value, base_dir, max_bytes).map_err(|p| format!("environment.map: {p}"))?;
     check_scaled(&data, &settings)?;
     Ok(Some(EnvironmentMap {
         data: Arc::new(data),
