@@ -52,8 +52,9 @@ pub struct Node {
 /// +Y), box-filtered to at most [`MAX_TEXELS`].
 pub fn nodes(width: u32, height: u32, texels: &[[f32; 3]]) -> Vec<Node> {
     let (mut w, mut h) = (width, height);
-    let too_many =
-        |w: u32, h: u32| (w as usize) * (h as usize) > MAX_TEXELS && w % 2 == 0 && h % 2 == 0;
+    let too_many = |w: u32, h: u32| {
+        (w as usize) * (h as usize) > MAX_TEXELS && w.is_multiple_of(2) && h.is_multiple_of(2)
+    };
     let texel = |i: usize| Rgb::from(texels[i].map(f64::from));
     // The first halving reads the f32 texels directly: a full-size f64
     // copy of a large map (24 bytes a texel, twice the texels' own) was
