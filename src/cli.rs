@@ -252,7 +252,13 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         renderer.set_one_pipeline(true);
         // GPU only: the f64 meshes are freed as they are uploaded
         // (nothing below reads them).
-        let (frame, gpu_timings) = renderer.render_releasing_meshes(&mut scene)?;
+        let (frame, gpu_timings) = renderer.render_releasing_meshes(&mut scene).map_err(|e| {
+            let file = match &source {
+                SceneSource::File(p) => p.display().to_string(),
+                SceneSource::BuiltIn => "the built-in scene".into(),
+            };
+            crate::gpu::shadow_maps::name_scene_file(e, &file)
+        })?;
         timings.extend(gpu_timings);
         frame
     };

@@ -360,3 +360,216 @@ fn the_backend_variable_is_checked_and_gl_renders() {
         "bench on GL: exit {code:?}: {stderr}"
     );
 }
+
+/// Runs `gonio ARGS`; the exit status and stderr.
+fn gonio_status(args: &[&str], dir: &Path) -> (Option<i32>, String) {
+    let result = common::gonio()
+        .args(args)
+        .env("XDG_RUNTIME_DIR", dir)
+        .output()
+        .expect("gonio runs");
+    (
+        result.status.code(),
+        String::from_utf8_lossy(&result.stderr).into_owned(),
+    )
+}
+
+/// The names in `dir`, sorted.
+fn names_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// Issue 38 item 6: `-o missing/dir/FILE` is refused alike by `fit`,
+/// `render` and `brdf` (fit created the folders), and the message names
+/// the folder, not the temporary file (`.gonio-…partial`).
+#[test]
+fn a_missing_output_folder_is_refused_alike_and_named_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let missing = |name: &str| d.join("missing/dir").join(name).display().to_string();
+    let cases: [Vec<String>; 3] = [
+        s(&["fit", "chrome", "--model", "ward", "-o", &missing("f.toml")]),
+        s(&[
+            "render",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            &missing("x.png"),
+        ]),
+        s(&[
+            "brdf",
+            "--model",
+            "lambert",
+            "--plot-albedo",
+            &missing("x.svg"),
+        ]),
+    ];
+    for args in &cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, stderr) = gonio_status(&args, d);
+        assert_eq!(code, Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("does not exist"), "{args:?}: {stderr}");
+        assert!(stderr.contains("missing/dir"), "{args:?}: {stderr}");
+        assert!(
+            !stderr.contains(".partial") && !stderr.contains(".gonio-"),
+            "{args:?}: {stderr}"
+        );
+        assert!(!d.join("missing").exists(), "{args:?} created the folder");
+    }
+}
+
+/// Issue 39 item 2: a destination that exists and is not a regular file
+/// is written in place (a character device) or refused (a FIFO nobody
+/// reads), never replaced by a regular file, which a rename as root did
+/// to device nodes. Device nodes are made with `mknod` in a temporary
+/// folder (the tests run as root here; elsewhere the case says so and
+/// checks the FIFO only).
+#[cfg(unix)]
+#[test]
+fn outputs_that_are_not_regular_files_are_never_replaced() {
+    use std::os::unix::fs::{FileTypeExt, symlink};
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let path = |name: &str| d.join(name).display().to_string();
+    let kind = |name: &str| std::fs::symlink_metadata(d.join(name)).unwrap().file_type();
+    let mknod = |name: &str, minor: &str| {
+        std::process::Command::new("mknod")
+            .args([&path(name), "c", "1", minor])
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    // /dev/null's and /dev/full's numbers (1, 3) and (1, 7).
+    let devices = mknod("null.png", "3")
+        && mknod("null.svg", "3")
+        && mknod("null.toml", "3")
+        && mknod("full.png", "7");
+    if devices {
+        let (code, stderr) = gonio_status(
+            &[
+                "render",
+                "--width",
+                "16",
+                "--height",
+                "12",
+                "-o",
+                &path("null.png"),
+            ],
+            d,
+        );
+        assert_eq!(code, Some(0), "{stderr}");
+        let (code, stderr) = gonio_status(
+            &[
+                "brdf",
+                "--model",
+                "lambert",
+                "--plot-albedo",
+                &path("null.svg"),
+            ],
+            d,
+        );
+        assert_eq!(code, Some(0), "{stderr}");
+        let (code, stderr) = gonio_status(
+            &[
+                "fit",
+                "chrome",
+                "--model",
+                "lambert",
+                "-o",
+                &path("null.toml"),
+            ],
+            d,
+        );
+        assert_eq!(code, Some(0), "{stderr}");
+        // A link to a device is followed, and the link stays.
+        symlink(d.join("null.png"), d.join("link.png")).unwrap();
+        let (code, stderr) = gonio_status(
+            &[
+                "render",
+                "--width",
+                "16",
+                "--height",
+                "12",
+                "-o",
+                &path("link.png"),
+            ],
+            d,
+        );
+        assert_eq!(code, Some(0), "{stderr}");
+        assert!(kind("link.png").is_symlink());
+        // A device that refuses the bytes: an error naming it.
+        let (code, stderr) = gonio_status(
+            &[
+                "render",
+                "--width",
+                "16",
+                "--height",
+                "12",
+                "-o",
+                &path("full.png"),
+            ],
+            d,
+        );
+        assert_eq!(code, Some(2), "{stderr}");
+        assert!(stderr.contains("full.png"), "{stderr}");
+        for name in ["null.png", "null.svg", "null.toml", "full.png"] {
+            assert!(kind(name).is_char_device(), "{name} was replaced");
+        }
+    } else {
+        eprintln!("mknod is not permitted here: only the FIFO and link cases run");
+    }
+    let status = std::process::Command::new("mkfifo")
+        .arg(d.join("pipe.png"))
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let (code, stderr) = gonio_status(
+        &[
+            "render",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            &path("pipe.png"),
+        ],
+        d,
+    );
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("no process reads"), "{stderr}");
+    assert!(kind("pipe.png").is_fifo());
+    // A link to a regular file: the file is replaced, the link stays.
+    std::fs::write(d.join("real.png"), b"old").unwrap();
+    symlink(d.join("real.png"), d.join("to-real.png")).unwrap();
+    let (code, stderr) = gonio_status(
+        &[
+            "render",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            &path("to-real.png"),
+        ],
+        d,
+    );
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(kind("to-real.png").is_symlink());
+    assert!(
+        std::fs::read(d.join("real.png"))
+            .unwrap()
+            .starts_with(b"\x89PNG")
+    );
+    // No temporary is left behind, whatever happened.
+    assert!(
+        names_in(d).iter().all(|n| !n.starts_with(".gonio-")),
+        "{:?}",
+        names_in(d)
+    );
+}

@@ -238,3 +238,100 @@ fn the_fitted_scene_file_loads_with_the_fitted_material() {
 fn abc_is_recovered() {
     recovers("abc", &[0.2, 0.1, 0.05, 5.0, 4.0, 3.0, 500.0, 1.2, 1.6]);
 }
+
+/// Shard files by hand: `(i, n, csv rows, toml text)` in `dir/shards`.
+fn write_shards(dir: &std::path::Path, shards: &[(usize, usize, &str, Option<&str>)]) {
+    let folder = dir.join("shards");
+    let _ = std::fs::remove_dir_all(&folder);
+    std::fs::create_dir_all(&folder).unwrap();
+    for (i, n, rows, toml) in shards {
+        std::fs::write(
+            folder.join(format!("shard-{i}-of-{n}.csv")),
+            format!("material,model,metric,error,relative,evaluations,seconds\n{rows}"),
+        )
+        .unwrap();
+        if let Some(t) = toml {
+            std::fs::write(folder.join(format!("shard-{i}-of-{n}.toml")), t).unwrap();
+        }
+    }
+}
+
+/// Issue 39 items 6 and 7: `fit --merge` takes only a whole, sound set of
+/// shards, names the missing shard or the bad file and line, and a
+/// refused merge leaves the previous ranking as it was.
+#[test]
+fn merge_refuses_incomplete_mixed_and_bad_shards() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = d.to_str().unwrap();
+    let row = |m: &str, e: &str| {
+        format!("{m},ward,ngan,{e},0.5,10,0.1\n{m},lambert,ngan,2.0,0.9,10,0.1\n")
+    };
+    let toml = Some("[materials.x]\nmodel = \"ward\"\n");
+    std::fs::write(d.join("ranking.csv"), "the previous ranking\n").unwrap();
+    let merge = ["--merge", "--out-dir", o];
+    // Shard 1 of 2 alone merged with exit 0 and ranked half the materials.
+    write_shards(d, &[(1, 2, &row("a", "1.0"), toml)]);
+    fails_with_2(&merge, "shard 2 of 2 is missing");
+    // Shards of two runs.
+    write_shards(
+        d,
+        &[
+            (1, 2, &row("a", "1.0"), toml),
+            (1, 3, &row("b", "1.0"), toml),
+        ],
+    );
+    fails_with_2(&merge, "mixes runs");
+    // A CSV whose TOML was never written (a full disk).
+    write_shards(d, &[(1, 1, &row("a", "1.0"), None)]);
+    fails_with_2(&merge, "shard-1-of-1.toml");
+    // Non-finite and negative errors were ranked (NaN as rank 0.5).
+    for bad in ["NaN", "inf", "-1.0"] {
+        write_shards(d, &[(1, 1, &row("a", bad), toml)]);
+        fails_with_2(&merge, "line 2");
+        fails_with_2(&merge, "shard-1-of-1.csv");
+    }
+    // A shard TOML that is not TOML was copied into fits.toml.
+    write_shards(
+        d,
+        &[(
+            1,
+            1,
+            &row("a", "1.0"),
+            Some("[materials.x]\nmodel = 1\n[[[ not toml\n"),
+        )],
+    );
+    fails_with_2(&merge, "shard-1-of-1.toml");
+    fails_with_2(&merge, "line 3");
+    // No rows at all gave "mean rank: " and nothing.
+    write_shards(d, &[(1, 1, "", toml)]);
+    fails_with_2(&merge, "no fits");
+    assert_eq!(
+        std::fs::read_to_string(d.join("ranking.csv")).unwrap(),
+        "the previous ranking\n"
+    );
+    assert!(!d.join("fits.toml").exists() && !d.join("ranking.md").exists());
+    // A whole set merges, its files appearing together.
+    write_shards(
+        d,
+        &[
+            (1, 2, &row("a", "1.0"), toml),
+            (2, 2, &row("b", "3.0"), toml),
+        ],
+    );
+    let out = gonio().arg("fit").args(merge).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let ranking = std::fs::read_to_string(d.join("ranking.csv")).unwrap();
+    assert_eq!(ranking.lines().count(), 5, "{ranking}");
+    assert!(d.join("fits.toml").exists() && d.join("ranking.md").exists());
+}
+
+/// Issue 39 item 9: `--shard` without `--all` was ignored without a word.
+#[test]
+fn shard_without_all_is_refused() {
+    fails_with_2(&["chrome", "--model", "ward", "--shard", "1/2"], "--all");
+}

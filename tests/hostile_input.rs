@@ -1454,6 +1454,165 @@ fn environment_maps(c: &mut Corpus) {
     }
 }
 
+/// Environment maps and MERL tables under the rules glTF files already
+/// had (issue 39): special files refused as "not a regular file" (a FIFO
+/// hung `render`, `/dev/zero` read 4 GB), every radiance and reflectance
+/// held to the one range rule (a finite value past f32's range gave Inf
+/// and NaN pixels with exit 0), maps counted against `--limit bytes` from
+/// their header.
+fn maps_and_tables(c: &mut Corpus) {
+    const CLASS: &str = "maps-and-tables";
+    let dir = c.dir.join(CLASS);
+    std::fs::create_dir_all(&dir).unwrap();
+    let object = "[[objects]]\nshape = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"m\"\n";
+    let measured = |file: &str| {
+        format!("{object}[materials.m]\nmodel = \"measured\"\nmeasured = \"{file}\"\n")
+    };
+    let with_map = |file: &str| format!("[environment]\nmap = \"{file}\"\n");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::symlink;
+        for name in ["pipe.hdr", "pipe.exr", "pipe.binary"] {
+            let status = std::process::Command::new("mkfifo")
+                .arg(dir.join(name))
+                .status()
+                .expect("mkfifo runs");
+            assert!(status.success(), "mkfifo {name}");
+        }
+        for name in ["zero.hdr", "zero.exr", "zero.binary"] {
+            symlink("/dev/zero", dir.join(name)).unwrap();
+        }
+        for name in ["pipe.hdr", "pipe.exr", "zero.hdr", "zero.exr"] {
+            c.scene(
+                CLASS,
+                &format!("map-{name}.toml"),
+                with_map(name),
+                &["environment.map", name, "not a regular file"],
+            );
+        }
+        for name in ["pipe.binary", "zero.binary"] {
+            c.scene(
+                CLASS,
+                &format!("merl-{name}.toml"),
+                measured(name),
+                &[name, "not a regular file"],
+            );
+        }
+    }
+    // RGBE exponent 255: 0.5 · 2¹²⁷ = 8.5e37 per channel, finite in f32.
+    let mut rgbe = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n".to_vec();
+    for _ in 0..32 {
+        rgbe.extend([128, 128, 128, 255]);
+    }
+    c.write(&format!("{CLASS}/exponent-255.hdr"), &rgbe);
+    c.scene(
+        CLASS,
+        "map-exponent-255.toml",
+        with_map("exponent-255.hdr"),
+        &["exponent-255.hdr", "at most 1e20"],
+    );
+    let exr = |value: f32| {
+        let image = image::Rgb32FImage::from_pixel(8, 4, image::Rgb([value, 1.0, 1.0]));
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image::DynamicImage::from(image)
+            .write_to(&mut bytes, image::ImageFormat::OpenExr)
+            .unwrap();
+        bytes.into_inner()
+    };
+    c.write(&format!("{CLASS}/3e38.exr"), exr(3e38));
+    c.scene(
+        CLASS,
+        "map-3e38.toml",
+        with_map("3e38.exr"),
+        &["3e38.exr", "at most 1e20"],
+    );
+    // Each factor within the rule, their product past it.
+    c.write(&format!("{CLASS}/1e19.exr"), exr(1e19));
+    c.scene(
+        CLASS,
+        "map-times-scale.toml",
+        format!("{}scale = 100.0\n", with_map("1e19.exr")),
+        &["environment.scale", "largest texel", "over 1e20"],
+    );
+    c.add(
+        CLASS,
+        "sky-scale-1e39",
+        Load::Overrides(vec![
+            "environment.map=\"sky\"".into(),
+            "environment.scale=1e39".into(),
+        ]),
+        errors(&["environment.scale", "1e39", "at most 1e20"]),
+    );
+    // A map over `--limit bytes`, refused from its header: 64 × 32 texels
+    // are 24 KiB as f32 RGB.
+    let mut small = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::from(image::Rgb32FImage::from_pixel(
+        64,
+        32,
+        image::Rgb([1.0, 1.0, 1.0]),
+    ))
+    .write_to(&mut small, image::ImageFormat::Hdr)
+    .unwrap();
+    c.write(&format!("{CLASS}/64x32.hdr"), small.into_inner());
+    let limited = c.write(&format!("{CLASS}/map-limit.toml"), with_map("64x32.hdr"));
+    c.add(
+        CLASS,
+        "map-over-limit-bytes",
+        Load::SceneWithLimits(
+            limited,
+            Limits {
+                bytes: 16 << 10,
+                ..Limits::default()
+            },
+        ),
+        errors(&["64x32.hdr", "--limit bytes=N"]),
+    );
+    // A MERL table of 1e300 values (`fit` reported "error inf").
+    let mut merl = Vec::new();
+    for n in [2i32, 2, 2] {
+        merl.extend(n.to_le_bytes());
+    }
+    for _ in 0..3 * 8 {
+        merl.extend(1e300f64.to_le_bytes());
+    }
+    c.write(&format!("{CLASS}/1e300.binary"), &merl);
+    c.scene(
+        CLASS,
+        "merl-1e300.toml",
+        measured("1e300.binary"),
+        &["1e300.binary", "1e300", "at most f_r = 1e17"],
+    );
+    // A texture JPEG cut short (a cut PNG was already refused).
+    // Cut in its scan data, past the header: zune-jpeg alone decoded it.
+    let mut jpeg = std::io::Cursor::new(Vec::new());
+    image::RgbImage::from_fn(64, 64, |x, y| {
+        image::Rgb([(x * 4) as u8, (y * 4) as u8, (x ^ y) as u8 * 4])
+    })
+    .write_to(&mut jpeg, image::ImageFormat::Jpeg)
+    .unwrap();
+    let jpeg = jpeg.into_inner();
+    c.write(&format!("{CLASS}/cut.jpg"), &jpeg[..jpeg.len() * 3 / 4]);
+    c.scene(
+        CLASS,
+        "texture-cut-jpeg.toml",
+        format!("{object}[materials.m]\nmodel = \"lambert\"\nk_d_texture = \"cut.jpg\"\n"),
+        &["k_d_texture", "cut.jpg", "truncated"],
+    );
+    // glTF images the `gltf` crate unwraps (it panicked on `[{}]`).
+    c.gltf(
+        CLASS,
+        "image-without-source.gltf",
+        with_top_level(&embedded(|t| t), r#""images": [{}]"#),
+        &["image 0", "neither a uri nor a bufferView"],
+    );
+    c.gltf(
+        CLASS,
+        "image-view-without-mime-type.gltf",
+        with_top_level(&embedded(|t| t), r#""images": [{"bufferView": 0}]"#),
+        &["image 0", "no mimeType"],
+    );
+}
+
 fn corpus(dir: &Path) -> Vec<Case> {
     let mut c = Corpus::new(dir);
     glb_container(&mut c);
@@ -1468,6 +1627,7 @@ fn corpus(dir: &Path) -> Vec<Case> {
     extensions(&mut c);
     scene_files(&mut c);
     environment_maps(&mut c);
+    maps_and_tables(&mut c);
     fuzz_findings(&mut c);
     c.cases
 }
@@ -1768,6 +1928,62 @@ fn the_binary_refuses_hostile_files_with_exit_2() {
     );
 }
 
+/// Issue 39 through the binary: a glTF image without a source is refused
+/// with no panic text on stderr (the crate's panic message reached the
+/// user), a FIFO environment map and MERL table are refused at once.
+#[test]
+fn the_binary_refuses_maps_tables_and_sourceless_images_without_panic_text() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut c = Corpus::new(dir.path());
+    maps_and_tables(&mut c);
+    let path_of = |name: &str| -> String {
+        let case = c
+            .cases
+            .iter()
+            .find(|k| k.name == name)
+            .unwrap_or_else(|| panic!("{name}"));
+        match &case.load {
+            Load::Gltf(p) | Load::Scene(p) | Load::SceneWithLimits(p, _) => p.display().to_string(),
+            Load::Overrides(_) => unreachable!(),
+        }
+    };
+    let d = dir.path();
+    assert_refused(
+        d,
+        &[&path_of("image-without-source.gltf")],
+        "neither a uri nor a bufferView",
+    );
+    let (_, stderr) = render(d, &[&path_of("image-without-source.gltf")]);
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("gltf-1."),
+        "{stderr}"
+    );
+    #[cfg(unix)]
+    {
+        assert_refused(d, &[&path_of("map-pipe.hdr.toml")], "not a regular file");
+        assert_refused(
+            d,
+            &[&path_of("merl-pipe.binary.toml")],
+            "not a regular file",
+        );
+    }
+    assert_refused(
+        d,
+        &[&path_of("map-over-limit-bytes"), "--limit", "bytes=16Ki"],
+        "--limit bytes=N",
+    );
+    assert_refused(
+        d,
+        &[
+            "--set",
+            "environment.map=\"sky\"",
+            "--set",
+            "environment.scale=1e39",
+        ],
+        "environment.scale",
+    );
+}
+
 /// Degenerate triangles and a deep hierarchy draw (nothing, or the one
 /// triangle) with both renderers, without panicking.
 #[test]
@@ -1831,4 +2047,71 @@ fn the_binary_renders_degenerate_and_deep_inputs() {
             assert!(dir.path().join("out.png").is_file(), "{args:?}");
         }
     }
+}
+
+/// Issue 39 item 9: what was accepted without a word. A texture on a
+/// parameter a measured material does not read is refused as the
+/// parameter is; one on a parameter a model ignores (`k_e_texture` on
+/// Lambert) warns as the parameter does; a glTF texture reading a UV set
+/// its primitive lacks (invalid glTF) warns.
+#[test]
+fn inconsistent_textures_are_refused_or_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let c = Corpus::new(dir.path());
+    let png = std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/textured/checker.png"),
+    )
+    .unwrap();
+    c.write("checker.png", &png);
+    let object = "[[objects]]\nshape = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"m\"\n";
+    let load = |name: &str, text: String| {
+        let path = c.write(name, text);
+        scene_file::load_with_limits(&SceneSource::File(path), &[], Limits::default())
+    };
+    let err = match load(
+        "measured.toml",
+        format!(
+            "{object}[materials.m]\nmodel = \"measured\"\nmeasured = \"chrome\"\nk_d_texture = \"checker.png\"\n"
+        ),
+    ) {
+        Ok(_) => panic!("k_d_texture on a measured material loaded"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        err.contains("k_d_texture") && err.contains("measured"),
+        "{err}"
+    );
+    let (_, notes) = load(
+        "lambert.toml",
+        format!("{object}[materials.m]\nmodel = \"lambert\"\nk_e_texture = \"checker.png\"\n"),
+    )
+    .unwrap();
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.starts_with(scene_file::WARNING) && n.contains("`k_e_texture`")),
+        "{notes:?}"
+    );
+    // A base colour texture on TEXCOORD_1 of a primitive with no UVs.
+    let gltf = with_top_level(
+        &embedded(|t| swap(&t, r#"{"attributes""#, r#"{"material": 0, "attributes""#)),
+        &format!(
+            r#""materials": [{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0, "texCoord": 1}}}}}}],
+  "textures": [{{"source": 0}}],
+  "images": [{{"uri": "{}"}}]"#,
+            format_args!(
+                "data:image/png;base64,{}",
+                base64::engine::general_purpose::STANDARD.encode(&png)
+            )
+        ),
+    );
+    let gltf = c.write("uv1.gltf", gltf);
+    let (_, notes) =
+        scene_file::load_with_limits(&SceneSource::File(gltf), &[], Limits::default()).unwrap();
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.starts_with(scene_file::WARNING) && n.contains("TEXCOORD_1")),
+        "{notes:?}"
+    );
 }

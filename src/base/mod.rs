@@ -3,7 +3,9 @@
 
 pub mod color;
 pub mod frame;
+pub mod input;
 mod named;
+pub mod range;
 
 pub use color::{ColorValue, Rgb, rgb_to_toml};
 pub use frame::{SurfaceFrame, any_tangent};

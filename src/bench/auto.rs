@@ -151,7 +151,8 @@ pub fn cheapest_within(max_error: f64, results: &Path, scene: Option<&Path>) -> 
     if !max_error.is_finite() || max_error < 0.0 {
         return choose(&[], "", max_error, results);
     }
-    let text = std::fs::read_to_string(results).map_err(|e| {
+    // A bench's results are a few hundred rows; 64 MiB bounds a wrong file.
+    let text = crate::base::input::read_regular_text(results, 64 << 20).map_err(|e| {
         Error::input(
             results,
             format!("cannot read the bench results for --max-error ({e}); run `gonio bench` first (it writes gonio-bench/results.csv) or name the file with --bench-results"),

@@ -430,17 +430,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         ),
         floor_ms: result.unlit.median,
     };
-    outputs.svg.write(&plot)?;
-    outputs.png.write(&plot)?;
-    outputs
-        .results
-        .commit(report::results_csv(&result).as_bytes())?;
-    outputs
-        .scale
-        .commit(report::scale_csv(&result).as_bytes())?;
-    outputs
-        .report
-        .commit(report::markdown(&result).as_bytes())?;
+    // The five files appear together or not at all.
+    let svg = outputs.svg.encode(&plot)?;
+    let png = outputs.png.encode(&plot)?;
+    crate::output::commit_all(vec![
+        (outputs.svg.into_file(), svg),
+        (outputs.png.into_file(), png),
+        (outputs.results, report::results_csv(&result).into_bytes()),
+        (outputs.scale, report::scale_csv(&result).into_bytes()),
+        (outputs.report, report::markdown(&result).into_bytes()),
+    ])?;
     eprintln!(
         "gonio bench: wrote {} (report.md, results.csv, scale.csv, pareto.svg, pareto.png) in {:.0} s",
         args.out.display(),

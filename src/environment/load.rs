@@ -7,11 +7,16 @@ use super::exr_header;
 use super::map::{MAX_SIDE, MapData};
 use super::sky::{self, SKY};
 use super::studio::STUDIO;
+use crate::base::input::{ReadError, read_regular_file};
+use crate::base::input::exceeded;
 use std::path::Path;
 
 /// The map `value` names, relative to `base_dir` (the scene file's
-/// folder): [`SKY`] or a path to an `.exr` / `.hdr` file.
-pub fn load(value: &str, base_dir: &Path) -> Result<MapData, String> {
+/// folder): [`SKY`] or a path to an `.exr` / `.hdr` file, read as a
+/// regular file ([`read_regular_file`]) and held to `max_bytes` (what is
+/// left of `--limit bytes`: the file and its decoded texels together,
+/// checked from the header before decoding).
+pub fn load(value: &str, base_dir: &Path, max_bytes: u64) -> Result<MapData, String> {
     if value == SKY {
         return Ok(sky::map());
     }
@@ -28,9 +33,50 @@ pub fn load(value: &str, base_dir: &Path) -> Result<MapData, String> {
             "`{value}` is neither an .exr nor an .hdr file (nor \"{SKY}\" or \"{STUDIO}\", the built-in maps)"
         ));
     };
-    let bytes = std::fs::read(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let name = path.display().to_string();
-    decode(&bytes, format, &name, MAX_TEXELS).map_err(|e| format!("{name}: {e}"))
+    let bytes = read_regular_file(&path, max_bytes).map_err(|e| match e {
+        ReadError::TooLarge(len) => format!(
+            "{name}: {}",
+            exceeded("the map file", format!("{len} bytes"), "bytes", max_bytes)
+        ),
+        ReadError::Io(e) => format!("cannot read {name}: {e}"),
+        other => format!("{name} {other}"),
+    })?;
+    let budget = Budget {
+        file_bytes: bytes.len() as u64,
+        max_bytes,
+    };
+    decode(&bytes, format, &name, MAX_TEXELS, budget).map_err(|e| format!("{name}: {e}"))
+}
+
+/// The bytes a map load may hold: its file and its decoded texels
+/// together at most `max_bytes` (`--limit bytes`, as for textures).
+#[derive(Clone, Copy, Debug)]
+pub struct Budget {
+    pub file_bytes: u64,
+    pub max_bytes: u64,
+}
+
+impl Budget {
+    /// No limit beyond [`MAX_TEXELS`] (the fuzz target's and tests').
+    pub const UNLIMITED: Budget = Budget {
+        file_bytes: 0,
+        max_bytes: u64::MAX,
+    };
+
+    /// Refuses `decoded` bytes of texels (plus the file) over the budget.
+    fn check(&self, what: &str, decoded: u64) -> Result<(), String> {
+        let total = decoded.saturating_add(self.file_bytes);
+        if total > self.max_bytes {
+            return Err(exceeded(
+                &format!("loading it ({what} and the file)"),
+                format!("{total} bytes"),
+                "bytes",
+                self.max_bytes,
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// Texels a map file may declare: the largest map side gonio accepts
@@ -52,15 +98,17 @@ pub fn format_of(extension: &str) -> Option<image::ImageFormat> {
 }
 
 /// Decodes a map file's `bytes`. The header's dimensions are checked (a
-/// 2 : 1 lat-long map, at most `max_texels`) before any texel is
-/// decoded, so a few bytes declaring a huge image allocate nothing; the
-/// decoder's own allocations are capped just above the texels' size.
-/// `name` is for [`MapData`]; errors are one sentence without it.
+/// 2 : 1 lat-long map, at most `max_texels`, its texels within `budget`)
+/// before any texel is decoded, so a few bytes declaring a huge image
+/// allocate nothing; the decoder's own allocations are capped just above
+/// the texels' size. `name` is for [`MapData`]; errors are one sentence
+/// without it.
 pub fn decode(
     bytes: &[u8],
     format: image::ImageFormat,
     name: &str,
     max_texels: u64,
+    budget: Budget,
 ) -> Result<MapData, String> {
     let kind = format.extensions_str()[0];
     let unreadable = |e: image::ImageError| format!("it is not a readable {kind} image: {e}");
@@ -95,10 +143,12 @@ pub fn decode(
             bytes.len()
         ));
     }
+    // The least a load holds: the texels as f32 RGB.
+    budget.check("its texels as f32 RGB", 12 * texels)?;
     // RGB or RGBA f32 and one converted copy, plus slack for the decoder.
-    let budget = 2 * 16 * texels + (1 << 20);
+    let alloc_cap = 2 * 16 * texels + (1 << 20);
     let mut limits = image::Limits::default();
-    limits.max_alloc = Some(budget);
+    limits.max_alloc = Some(alloc_cap);
     let decoder = reader(limits).into_decoder().map_err(unreadable)?;
     // The decoder's own buffer is sized from what it will decode, which an
     // OpenEXR file may declare apart from the size its header reports (a
@@ -106,16 +156,23 @@ pub fn decode(
     // decoder allocates it.
     let decoded = image::ImageDecoder::dimensions(&decoder);
     let bytes = image::ImageDecoder::total_bytes(&decoder);
-    if decoded != (width, height) || bytes > budget {
+    if decoded != (width, height) || bytes > alloc_cap {
         return Err(format!(
             "its header says {width} × {height} texels but it decodes {} × {} ({bytes} bytes)",
             decoded.0, decoded.1
         ));
     }
+    // A decoder that does not give f32 RGB (an EXR with alpha) is
+    // converted: its buffer and the copy are held at once.
+    let rgb32f = image::ImageDecoder::color_type(&decoder) == image::ColorType::Rgb32F;
+    let peak = if rgb32f { bytes } else { bytes + 12 * texels };
+    budget.check("its decoded texels", peak)?;
     let image = image::DynamicImage::from_decoder(decoder)
         .map_err(unreadable)?
         .into_rgb32f();
-    let texels = image.pixels().map(|p| p.0).collect::<Vec<[f32; 3]>>();
+    // The decoded buffer becomes the map's texels without a copy.
+    let texels: Vec<[f32; 3]> = bytemuck::allocation::try_cast_vec(image.into_raw())
+        .unwrap_or_else(|(_, raw)| raw.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect());
     MapData::new(name, width, height, texels)
 }
 
@@ -137,12 +194,12 @@ mod tests {
     #[test]
     fn bad_files_say_what_is_wrong() {
         let dir = tempfile::tempdir().unwrap();
-        let e = load("nope.exr", dir.path()).unwrap_err();
+        let e = load("nope.exr", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("cannot read") && e.contains("nope.exr"), "{e}");
-        let e = load("sky.png", dir.path()).unwrap_err();
+        let e = load("sky.png", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("neither an .exr nor an .hdr"), "{e}");
         std::fs::write(dir.path().join("bad.hdr"), b"#?RADIANCE\ngarbage").unwrap();
-        let e = load("bad.hdr", dir.path()).unwrap_err();
+        let e = load("bad.hdr", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("not a readable hdr image"), "{e}");
         // A header declaring a huge map is refused before decoding.
         std::fs::write(
@@ -150,7 +207,7 @@ mod tests {
             b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 200000\n",
         )
         .unwrap();
-        let e = load("bomb.hdr", dir.path()).unwrap_err();
+        let e = load("bomb.hdr", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("200000 × 100000"), "{e}");
         // 4096 × 2048 texels (100 MB decoded) declared in 50 bytes.
         std::fs::write(
@@ -158,7 +215,7 @@ mod tests {
             b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2048 +X 4096\n",
         )
         .unwrap();
-        let e = load("small-bomb.hdr", dir.path()).unwrap_err();
+        let e = load("small-bomb.hdr", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("more than any of its codecs expands"), "{e}");
         // A height whose double overflows u32 (a fuzz finding): 2³¹ + 8
         // doubled wrapped to 16, and a 16-wide map passed as 2 : 1.
@@ -167,7 +224,7 @@ mod tests {
             b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2147483656 +X 16\n",
         )
         .unwrap();
-        let e = load("tall.hdr", dir.path()).unwrap_err();
+        let e = load("tall.hdr", dir.path(), u64::MAX).unwrap_err();
         assert!(
             e.contains("twice as wide as high") && e.contains("16 × 2147483656"),
             "{e}"
@@ -180,7 +237,7 @@ mod tests {
         let map = super::super::test_maps::blobs();
         let path = dir.path().join("blobs.hdr");
         write_hdr(&map, &path).unwrap();
-        let back = load("blobs.hdr", dir.path()).unwrap();
+        let back = load("blobs.hdr", dir.path(), u64::MAX).unwrap();
         assert_eq!((back.width, back.height), (map.width, map.height));
         for (a, b) in back.texels.iter().zip(&map.texels) {
             // RGBE shares one exponent: 2⁻⁷ of the largest channel.
@@ -197,7 +254,7 @@ mod tests {
             ..map
         };
         write_hdr(&square, &dir.path().join("square.hdr")).unwrap();
-        let e = load("square.hdr", dir.path()).unwrap_err();
+        let e = load("square.hdr", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("8 × 8"), "{e}");
     }
 }

@@ -11,6 +11,7 @@ use super::prefiltered::Prefiltered;
 use super::quadrature::Truth;
 use super::{latlong, sh};
 use crate::base::Rgb;
+use crate::base::range;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -191,12 +192,13 @@ impl MapData {
         assert_eq!(texels.len(), (width * height) as usize);
         if let Some(k) = texels
             .iter()
-            .position(|t| t.iter().any(|v| !v.is_finite() || *v < 0.0))
+            .position(|t| t.iter().any(|&v| !range::is_radiance(v as f64)))
         {
             let (row, col) = (k as u32 / width, k as u32 % width);
             return Err(format!(
-                "texel (column {col}, row {row}) is {:?}: radiance must be finite and non-negative",
-                texels[k]
+                "texel (column {col}, row {row}) is {:?}: radiance must be finite and non-negative, and at most {:e} (the range rule of every radiance source: the GPU computes in f32, largest 3.4e38)",
+                texels[k],
+                range::MAX_RADIANCE
             ));
         }
         let truth = Truth::new(width, height, &texels);
@@ -210,6 +212,17 @@ impl MapData {
             nodes,
             prefiltered: PrefilteredCache::default(),
         })
+    }
+
+    /// The bytes its texels hold (f32 RGB), charged to `--limit bytes`.
+    pub fn texel_bytes(&self) -> u64 {
+        std::mem::size_of_val(self.texels.as_slice()) as u64
+    }
+
+    /// The largest texel component (unscaled), which `environment.scale`
+    /// multiplies: their product is held to [`range::MAX_RADIANCE`].
+    pub fn max_texel(&self) -> f64 {
+        self.texels.iter().flatten().fold(0.0f32, |m, &v| m.max(v)) as f64
     }
 
     /// Refuses dimensions that are not a 2 : 1 lat-long map or exceed

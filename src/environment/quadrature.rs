@@ -52,9 +52,23 @@ pub struct Node {
 /// +Y), box-filtered to at most [`MAX_TEXELS`].
 pub fn nodes(width: u32, height: u32, texels: &[[f32; 3]]) -> Vec<Node> {
     let (mut w, mut h) = (width, height);
-    let mut grid: Vec<Rgb> = texels.iter().map(|t| Rgb::from(t.map(f64::from))).collect();
-    while (w as usize) * (h as usize) > MAX_TEXELS && w % 2 == 0 && h % 2 == 0 {
-        grid = halve(w, h, &grid);
+    let too_many = |w: u32, h: u32| {
+        (w as usize) * (h as usize) > MAX_TEXELS && w.is_multiple_of(2) && h.is_multiple_of(2)
+    };
+    let texel = |i: usize| Rgb::from(texels[i].map(f64::from));
+    // The first halving reads the f32 texels directly: a full-size f64
+    // copy of a large map (24 bytes a texel, twice the texels' own) was
+    // the load's peak (issue 39).
+    let mut grid: Vec<Rgb> = if too_many(w, h) {
+        let half = halve(w, h, texel);
+        w /= 2;
+        h /= 2;
+        half
+    } else {
+        (0..texels.len()).map(texel).collect()
+    };
+    while too_many(w, h) {
+        grid = halve(w, h, |i| grid[i]);
         w /= 2;
         h /= 2;
     }
@@ -79,16 +93,16 @@ pub fn nodes(width: u32, height: u32, texels: &[[f32; 3]]) -> Vec<Node> {
 
 /// A map of half the width and height: each texel the solid-angle
 /// weighted mean of the 2 × 2 it covers.
-fn halve(w: u32, h: u32, grid: &[Rgb]) -> Vec<Rgb> {
+fn halve(w: u32, h: u32, grid: impl Fn(usize) -> Rgb) -> Vec<Rgb> {
     let solid = |row: u32| {
         let (top, bottom) = latlong::row_cos_bounds(row, h);
         top - bottom
     };
-    let mut out = Vec::with_capacity(grid.len() / 4);
+    let mut out = Vec::with_capacity((w as usize / 2) * (h as usize / 2));
     for row in 0..h / 2 {
         let (a, b) = (solid(2 * row), solid(2 * row + 1));
         for col in 0..w / 2 {
-            let at = |r: u32, c: u32| grid[(r * w + c) as usize];
+            let at = |r: u32, c: u32| grid((r * w + c) as usize);
             let upper = at(2 * row, 2 * col) + at(2 * row, 2 * col + 1);
             let lower = at(2 * row + 1, 2 * col) + at(2 * row + 1, 2 * col + 1);
             out.push((upper * a + lower * b) / (2.0 * (a + b)));
@@ -215,7 +229,7 @@ mod tests {
         let texels: Vec<[f32; 3]> = (0..w * h).map(|i| [i as f32, 1.0, 0.0]).collect();
         let full = nodes(w, h, &texels);
         let grid: Vec<Rgb> = texels.iter().map(|t| Rgb::from(t.map(f64::from))).collect();
-        let half = halve(w, h, &grid);
+        let half = halve(w, h, |i| grid[i]);
         let power = |g: &[Rgb], w: u32, h: u32| -> Rgb {
             (0..h)
                 .flat_map(|r| (0..w).map(move |c| (r, c)))

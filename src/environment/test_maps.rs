@@ -74,7 +74,7 @@ mod tests {
             std::fs::create_dir_all(&dir).unwrap();
             super::super::load::write_hdr(&map, &dir.join("blobs.hdr")).unwrap();
         }
-        let shipped = super::super::load::load("blobs.hdr", &dir).unwrap();
+        let shipped = super::super::load::load("blobs.hdr", &dir, u64::MAX).unwrap();
         assert_eq!((shipped.width, shipped.height), (64, 32));
         for (a, b) in shipped.texels.iter().zip(&map.texels) {
             // RGBE shares one exponent: 2⁻⁷ of the largest channel.

@@ -170,6 +170,7 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         print_gloss(&materials, angles.phi_i);
     }
     let note = shared_note(&args.set);
+    let mut written = Vec::new();
     if let Some(file) = slice_file {
         if angles.theta_i >= 90.0 {
             return Err(Error::argument(
@@ -194,13 +195,14 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
             max: args.slice_max,
             note: note.clone(),
         };
-        let path = file.path().to_path_buf();
-        file.write(&plot)?;
-        println!("wrote {}", path.display());
+        let bytes = file.encode(&plot)?;
+        written.push((file.into_file(), bytes));
     }
     if let Some(file) = halfdiff_file {
         let phi_d = args.phi_d.unwrap_or(90.0);
-        super::halfdiff_plot::write(file, &materials, args.channel, phi_d, note.clone())?;
+        let bytes =
+            super::halfdiff_plot::encode(&file, &materials, args.channel, phi_d, note.clone())?;
+        written.push((file.into_file(), bytes));
     }
     if let Some(file) = albedo_file {
         let phi_i = angles.phi_i.to_radians();
@@ -216,8 +218,16 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
             channel: args.channel,
             note,
         };
-        let path = file.path().to_path_buf();
-        file.write(&plot)?;
+        let bytes = file.encode(&plot)?;
+        written.push((file.into_file(), bytes));
+    }
+    // The plots appear together or not at all.
+    let paths: Vec<_> = written
+        .iter()
+        .map(|(f, _)| f.path().to_path_buf())
+        .collect();
+    crate::output::commit_all(written)?;
+    for path in paths {
         println!("wrote {}", path.display());
     }
     Ok(())

@@ -101,13 +101,13 @@ pub fn viridis(t: f64) -> RGBColor {
 }
 
 /// `gonio brdf --plot-halfdiff`: the image of every material into `file`.
-pub fn write(
-    file: PlotFile,
+pub fn encode(
+    file: &PlotFile,
     materials: &[Labelled],
     channel: Channel,
     phi_d_deg: f64,
     note: String,
-) -> Result<()> {
+) -> Result<Vec<u8>> {
     let plot = HalfDiffPlot {
         channel,
         phi_d_deg,
@@ -120,10 +120,7 @@ pub fn write(
             .collect(),
         note,
     };
-    let path = file.path().to_path_buf();
-    file.write(&plot)?;
-    println!("wrote {}", path.display());
-    Ok(())
+    file.encode(&plot)
 }
 
 impl HalfDiffPlot {

@@ -9,6 +9,7 @@ use super::{Metric, fit, published};
 use crate::material::material_table;
 use crate::material::measured::{self, MeasuredBrdf, library};
 use crate::output::progress::Progress;
+use crate::output::{AtomicFile, commit_all};
 use crate::scene::default_scene::DEFAULT_SCENE_TOML;
 use crate::{Error, Result};
 use rayon::prelude::*;
@@ -66,6 +67,20 @@ pub struct FitArgs {
 
 /// Runs `gonio fit`.
 pub fn run(args: &FitArgs) -> Result<()> {
+    // clap's `requires = "all"` is met by the flag's default `false`: a
+    // shard of a single fit was ignored without a word (issue 39).
+    if !args.all {
+        let given = [
+            ("--shard", args.shard.is_some()),
+            ("--materials", !args.materials.is_empty()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+            return Err(Error::argument(
+                *flag,
+                "applies to --all (it picks the fits of a ranking run); add --all, or drop it for a single fit",
+            ));
+        }
+    }
     if args.merge {
         let summary = report::merge(&args.out_dir, None)?;
         println!("{summary}");
@@ -92,6 +107,8 @@ pub fn run(args: &FitArgs) -> Result<()> {
         }
     };
     let model = FitModel::parse(spec).map_err(|p| Error::argument(format!("--model {spec}"), p))?;
+    // Claimed before the fit: a bad destination fails first.
+    let output = args.output.as_deref().map(AtomicFile::create).transpose()?;
     let start = Instant::now();
     let name = material_name(brdf);
     let result = if model.is_published() {
@@ -132,9 +149,9 @@ pub fn run(args: &FitArgs) -> Result<()> {
         start.elapsed().as_secs_f64()
     );
     let scene = scene_text(&m, &summary);
-    match &args.output {
-        Some(path) => {
-            report::write_atomic(path, &scene)?;
+    match output {
+        Some(file) => {
+            file.commit(scene.as_bytes())?;
             println!("{summary}");
         }
         None => {
@@ -247,6 +264,14 @@ fn run_all(args: &FitArgs) -> Result<()> {
         .filter(|(k, _)| k % of == shard - 1)
         .map(|(_, m)| m)
         .collect();
+    // The shard's two files, claimed before the fits (a bad folder fails
+    // first) and written together.
+    let (csv_path, toml_path) = report::shard_paths(&args.out_dir, shard, of);
+    let shards_dir = csv_path.parent().expect("a shard file is in a folder");
+    std::fs::create_dir_all(shards_dir)
+        .map_err(|e| Error::output(shards_dir, format!("cannot create the folder: {e}")))?;
+    let csv_file = AtomicFile::create(&csv_path)?;
+    let toml_file = AtomicFile::create(&toml_path)?;
     // A bar on a terminal, a line every few seconds in a log (the subject
     // `fits` stays, so two materials in parallel do not print per fit).
     let bar = std::sync::Mutex::new(Progress::new(
@@ -311,9 +336,10 @@ fn run_all(args: &FitArgs) -> Result<()> {
     }
     let rows: Vec<Row> = per_material.iter().flat_map(|(r, _)| r.clone()).collect();
     let tables: String = per_material.iter().map(|(_, t)| t.as_str()).collect();
-    let (csv_path, toml_path) = report::shard_paths(&args.out_dir, shard, of);
-    report::write_atomic(&csv_path, &report::csv(&rows))?;
-    report::write_atomic(&toml_path, &tables)?;
+    commit_all(vec![
+        (csv_file, report::csv(&rows).into_bytes()),
+        (toml_file, tables.into_bytes()),
+    ])?;
     let wall = start.elapsed().as_secs_f64();
     eprintln!(
         "wrote {} ({} fits in {wall:.0} s on {} threads)",

@@ -6,6 +6,8 @@
 //! can run anywhere (a job array) and be merged in any order; the merge
 //! checks that every (material, model) pair is there exactly once.
 
+use crate::base::input::read_regular_text;
+use crate::output::{AtomicFile, commit_all};
 use crate::{Error, Result};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -68,12 +70,21 @@ pub fn parse_csv(path: &Path, text: &str) -> Result<Vec<Row>> {
                 return Err(bad("expected 7 fields"));
             }
             let num = |s: &str| s.parse::<f64>().map_err(|_| bad("not a number"));
+            // An error is a sum of squares or its root: finite and ≥ 0.
+            let error = |s: &str| {
+                let v = num(s)?;
+                if v.is_finite() && v >= 0.0 {
+                    Ok(v)
+                } else {
+                    Err(bad(&format!("error {v} is not a finite number ≥ 0")))
+                }
+            };
             Ok(Row {
                 material: f[0].into(),
                 model: f[1].into(),
                 metric: f[2].into(),
-                error: num(f[3])?,
-                relative: num(f[4])?,
+                error: error(f[3])?,
+                relative: error(f[4])?,
                 evaluations: f[5].parse().map_err(|_| bad("not a count"))?,
                 seconds: num(f[6])?,
             })
@@ -81,30 +92,44 @@ pub fn parse_csv(path: &Path, text: &str) -> Result<Vec<Row>> {
         .collect()
 }
 
-/// Writes `text` to `path` whole or not at all (a temporary file beside
-/// it, renamed).
+/// Writes `text` to `path` whole or not at all ([`crate::output::atomic`]).
 pub fn write_atomic(path: &Path, text: &str) -> Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(|e| Error::output(path, e.to_string()))?;
-    let mut tmp =
-        tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::output(path, e.to_string()))?;
-    std::io::Write::write_all(&mut tmp, text.as_bytes())
-        .map_err(|e| Error::output(path, e.to_string()))?;
-    tmp.persist(path)
-        .map_err(|e| Error::output(path, e.error.to_string()))?;
-    // A temporary file is private (0600); the result is an ordinary file.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        let _ = std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o644));
-    }
-    Ok(())
+    write_set(&[(path, text)])
 }
 
-/// Every row of every shard in `dir/shards`, and the fitted tables.
+/// Writes every `(path, text)` so that the files appear together or not at
+/// all ([`crate::output::commit_all`]).
+pub fn write_set(files: &[(&Path, &str)]) -> Result<()> {
+    let claimed = files
+        .iter()
+        .map(|(path, text)| Ok((AtomicFile::create(path)?, text.as_bytes())))
+        .collect::<Result<Vec<_>>>()?;
+    commit_all(claimed)
+}
+
+/// Largest shard file `--merge` reads (a shard of all 100 materials and
+/// a dozen models is about 100 kB).
+const MAX_SHARD_BYTES: u64 = 64 << 20;
+
+/// `shard-I-of-N.csv` as (I, N).
+fn shard_number(path: &Path) -> Option<(usize, usize)> {
+    let name = path.file_name()?.to_str()?;
+    let (i, n) = name
+        .strip_prefix("shard-")?
+        .strip_suffix(".csv")?
+        .split_once("-of-")?;
+    let (i, n) = (i.parse().ok()?, n.parse().ok()?);
+    (1..=n).contains(&i).then_some((i, n))
+}
+
+/// Reads a shard file (a regular file, bounded).
+fn read_shard_file(path: &Path) -> Result<String> {
+    read_regular_text(path, MAX_SHARD_BYTES).map_err(|e| Error::input(path, e.to_string()))
+}
+
+/// Every row of every shard in `dir/shards`, and the fitted tables. The
+/// set must be whole: shards 1 to N of one N, each with its `.toml`, every
+/// row's errors finite and ≥ 0, every `.toml` valid TOML.
 fn read_shards(dir: &Path) -> Result<(Vec<Row>, String)> {
     let shards = dir.join("shards");
     let mut entries: Vec<PathBuf> = std::fs::read_dir(&shards)
@@ -119,13 +144,69 @@ fn read_shards(dir: &Path) -> Result<(Vec<Row>, String)> {
             "no shard-*.csv: run `gonio fit --all [--shard I/N]` first",
         ));
     }
-    let (mut rows, mut fits) = (Vec::new(), String::new());
-    for p in entries {
-        let text = std::fs::read_to_string(&p).map_err(|e| Error::input(&p, e.to_string()))?;
-        rows.extend(parse_csv(&p, &text)?);
-        if let Ok(t) = std::fs::read_to_string(p.with_extension("toml")) {
-            fits.push_str(&t);
+    let mut numbered = Vec::new();
+    for p in &entries {
+        let Some(number) = shard_number(p) else {
+            return Err(Error::input(
+                p,
+                "is not named like a shard (shard-I-of-N.csv, 1 ≤ I ≤ N): move it out of the shards' folder",
+            ));
+        };
+        numbered.push((number, p));
+    }
+    let of = numbered[0].0.1;
+    if let Some(((_, n), p)) = numbered.iter().find(|((_, n), _)| *n != of) {
+        return Err(Error::input(
+            p,
+            format!(
+                "is a shard of {n}, where {} is a shard of {of}: the folder mixes runs; merge the shards of one run",
+                numbered[0].1.display()
+            ),
+        ));
+    }
+    for i in 1..=of {
+        if !numbered.iter().any(|((k, _), _)| *k == i) {
+            let (missing, _) = shard_paths(dir, i, of);
+            return Err(Error::input(
+                missing,
+                format!(
+                    "shard {i} of {of} is missing: run `gonio fit --all --shard {i}/{of}` (with the run's other flags) before merging"
+                ),
+            ));
         }
+    }
+    let (mut rows, mut fits) = (Vec::new(), String::new());
+    for (_, p) in numbered {
+        let text = read_shard_file(p)?;
+        rows.extend(parse_csv(p, &text)?);
+        let toml_path = p.with_extension("toml");
+        if !toml_path.exists() {
+            return Err(Error::input(
+                &toml_path,
+                format!(
+                    "is missing, while its shard {} is there: the shard was not written whole; run it again",
+                    p.display()
+                ),
+            ));
+        }
+        let t = read_shard_file(&toml_path)?;
+        if let Err(e) = t.parse::<toml::Table>() {
+            let line = e
+                .span()
+                .map(|s| t[..s.start.min(t.len())].matches('\n').count() + 1)
+                .unwrap_or(1);
+            return Err(Error::input(
+                &toml_path,
+                format!("line {line}: not valid TOML: {}", e.message()),
+            ));
+        }
+        fits.push_str(&t);
+    }
+    if rows.is_empty() {
+        return Err(Error::input(
+            &shards,
+            "the shards hold no fits: nothing to rank",
+        ));
     }
     Ok((rows, fits))
 }
@@ -266,17 +347,30 @@ compares with Ngan et al. 2005. {} materials × {} models.\n",
     let _ = writeln!(md, "| material | {} |", models.join(" | "));
     let _ = writeln!(md, "|---|{}", "---|".repeat(models.len()));
     md.push_str(&table);
+    let mut abc = None;
     if let Some((abc_md, abc_csv)) = abc_comparison(&by_material, &metric) {
         let _ = writeln!(
             md,
             "\n## ABC: the published parameters against gonio's fit\n\nSee `abc.md` (and `abc.csv`)."
         );
-        write_atomic(&dir.join("abc.md"), &abc_md)?;
-        write_atomic(&dir.join("abc.csv"), &abc_csv)?;
+        abc = Some((abc_md, abc_csv));
     }
-    write_atomic(&dir.join("ranking.csv"), &csv_out)?;
-    write_atomic(&dir.join("ranking.md"), &md)?;
-    write_atomic(&dir.join("fits.toml"), &fits)?;
+    let (ranking_csv, ranking_md, fits_toml) = (
+        dir.join("ranking.csv"),
+        dir.join("ranking.md"),
+        dir.join("fits.toml"),
+    );
+    let (abc_md, abc_csv) = (dir.join("abc.md"), dir.join("abc.csv"));
+    let mut set: Vec<(&Path, &str)> = vec![
+        (ranking_csv.as_path(), csv_out.as_str()),
+        (ranking_md.as_path(), md.as_str()),
+        (fits_toml.as_path(), fits.as_str()),
+    ];
+    if let Some((m, c)) = &abc {
+        set.push((abc_md.as_path(), m.as_str()));
+        set.push((abc_csv.as_path(), c.as_str()));
+    }
+    write_set(&set)?;
     let summary: Vec<String> = order
         .iter()
         .take(5)

@@ -435,12 +435,43 @@ pub fn check_limits(device: &wgpu::Device, plan: &ShadowPlan) -> Result<()> {
     } else {
         None
     };
+    // The light whose map sets the layers' side (the first of the
+    // largest), by its place in the scene's light list.
+    let largest = plan
+        .lights
+        .iter()
+        .enumerate()
+        .filter_map(|(i, l)| l.as_ref().map(|l| (i, l.settings.map_size)))
+        .fold(None, |best: Option<(usize, u32)>, (i, size)| match best {
+            Some((_, s)) if s >= size => best,
+            _ => Some((i, size)),
+        });
+    let largest = largest
+        .map(|(i, size)| {
+            format!(" (the largest map, {size}x{size}, is light {i}'s, counting the scene's lights in order)")
+        })
+        .unwrap_or_default();
     match problem {
         Some(p) => Err(Error::argument(
-            "shadow_map_size (lights.N.shadow_map_size or [shadows] map_size in the scene file, or --set)",
-            format!("{p}; lower shadow_map_size or turn shadows off for some lights"),
+            SHADOW_SIZE_KEY,
+            format!("{p}{largest}; lower shadow_map_size or turn shadows off for some lights"),
         )),
         None => Ok(()),
+    }
+}
+
+/// The key [`check_limits`] names.
+const SHADOW_SIZE_KEY: &str =
+    "shadow_map_size (lights.N.shadow_map_size or [shadows] map_size in the scene file, or --set)";
+
+/// `error` with the scene file named, when it is [`check_limits`]'s (the
+/// GPU path does not know which file the scene came from).
+pub fn name_scene_file(error: Error, scene: &str) -> Error {
+    match error {
+        Error::Argument { argument, problem } if argument == SHADOW_SIZE_KEY => {
+            Error::argument(format!("{scene}: {argument}"), problem)
+        }
+        other => other,
     }
 }
 

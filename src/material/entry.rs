@@ -232,10 +232,19 @@ pub fn keys_not_applying(e: &MaterialEntry) -> Vec<&str> {
             .chain(row.params.iter())
             .any(|p| p.key == k)
     };
+    // A texture on a parameter the model does not read is as ignored as
+    // the parameter (`k_e_texture` on `lambert`, issue 39).
+    let textured = e
+        .textures
+        .iter()
+        .map(|(k, _)| k.as_str())
+        .filter(|k| !MAP_TEXTURE_KEYS.contains(k))
+        .filter(|k| k.strip_suffix(TEXTURE_SUFFIX).is_some_and(|p| !applies(p)));
     e.params
         .iter()
         .map(|(k, _)| k.as_str())
         .filter(|k| !applies(k))
+        .chain(textured)
         .collect()
 }
 
@@ -260,6 +269,15 @@ fn measured_keys_apply(e: &MaterialEntry) -> Result<(), (&str, String)> {
         return Err(not_read(k));
     }
     if let Some((k, _)) = e.terms.first() {
+        return Err(not_read(k));
+    }
+    // A texture multiplies its parameter: on one the measured BRDF does
+    // not read it is refused as the parameter is (`k_d_texture`).
+    if let Some((k, _)) = e.textures.iter().find(|(k, _)| {
+        !MAP_TEXTURE_KEYS.contains(&k.as_str())
+            && k.strip_suffix(TEXTURE_SUFFIX)
+                .is_some_and(|p| !table::COMMON.iter().any(|c| c.key == p))
+    }) {
         return Err(not_read(k));
     }
     if e.measured.is_none() {

@@ -85,6 +85,18 @@ impl PlotFile {
 
     /// Draws `plot` and moves the file into place.
     pub fn write(self, plot: &impl Plot) -> Result<()> {
+        let bytes = self.encode(plot)?;
+        self.file.commit(&bytes)
+    }
+
+    /// The claimed file, for a set written together
+    /// ([`super::atomic::commit_all`]) with the bytes of [`Self::encode`].
+    pub fn into_file(self) -> AtomicFile {
+        self.file
+    }
+
+    /// Draws `plot` into the bytes of the file.
+    pub fn encode(&self, plot: &impl Plot) -> Result<Vec<u8>> {
         let fail = |e: String| Error::output(self.file.path(), e);
         let bytes = match self.format {
             PlotFormat::Svg => {
@@ -113,7 +125,7 @@ impl PlotFile {
                 out.into_inner()
             }
         };
-        self.file.commit(&bytes)
+        Ok(bytes)
     }
 }
 
@@ -124,7 +136,9 @@ pub fn load_font() -> Result<()> {
         let path = std::env::var_os("GONIO_FONT")
             .map(PathBuf::from)
             .unwrap_or_else(|| PathBuf::from(FONT_PATH));
-        let bytes = std::fs::read(&path).map_err(|e| (path.clone(), e.to_string()))?;
+        // DejaVu Sans is 740 kB; the largest fonts are tens of MB.
+        let bytes = crate::base::input::read_regular_file(&path, 256 << 20)
+            .map_err(|e| (path.clone(), e.to_string()))?;
         // plotters keeps fonts for the whole process: leaking once is that.
         let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
         plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)

@@ -3,18 +3,17 @@
 //! The contract: `.exr` holds linear `L_o` as 32-bit float RGB, no tone
 //! mapping; `.png` holds `clamp(L_o · 2^exposure)` with the sRGB transfer
 //! function (or, with `image.tone_map`, another operator in place of the
-//! clamp: [`super::tone_map`]). The file appears complete or not at all: bytes go to a
-//! temporary file in the target folder, which is renamed over the target
-//! only after everything succeeded. The temporary file is created before
-//! rendering, so an unwritable destination fails before any work is done.
+//! clamp: [`super::tone_map`]). The file appears complete or not at all
+//! ([`super::atomic`]); it is claimed before rendering, so an unwritable
+//! destination fails before any work is done.
 
-use super::interrupt;
+pub use super::atomic::AtomicFile;
 use super::srgb8::srgb8;
 use super::tone_map::ToneMap;
 use crate::frame::Frame;
 use crate::{Error, Result};
-use std::io::{Cursor, Write};
-use std::path::{Path, PathBuf};
+use std::io::Cursor;
+use std::path::Path;
 
 /// The output formats, chosen by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -41,71 +40,6 @@ impl OutputFormat {
                 "unknown image format; the file name must end in .png or .exr",
             )),
         }
-    }
-}
-
-/// A file that appears complete or not at all: created as a temporary
-/// file in the destination's folder (so an unwritable destination fails
-/// before any work is done), renamed over the destination by
-/// [`AtomicFile::commit`], removed if dropped uncommitted or if the
-/// process is interrupted ([`super::interrupt`]).
-pub struct AtomicFile {
-    path: PathBuf,
-    temp: tempfile::NamedTempFile,
-    /// Declared after `temp`: unregistered once the file is gone.
-    _pending: interrupt::Pending,
-}
-
-impl AtomicFile {
-    /// Claims `path`'s folder for a new file.
-    pub fn create(path: &Path) -> Result<Self> {
-        if path.is_dir() {
-            return Err(Error::output(path, "it is a directory"));
-        }
-        let dir = match path.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        interrupt::remove_stale(dir);
-        let prefix = interrupt::own_prefix();
-        let temp = tempfile::Builder::new()
-            .prefix(&prefix)
-            .suffix(interrupt::SUFFIX)
-            .tempfile_in(dir)
-            .map_err(|e| {
-                Error::output(
-                    path,
-                    format!("cannot create a file in {}: {e}", dir.display()),
-                )
-            })?;
-        Ok(AtomicFile {
-            path: path.to_path_buf(),
-            _pending: interrupt::Pending::register(temp.path()),
-            temp,
-        })
-    }
-
-    /// The final path.
-    pub fn path(&self) -> &Path {
-        &self.path
-    }
-
-    /// Writes `bytes`, syncs, and moves the file into place.
-    pub fn commit(mut self, bytes: &[u8]) -> Result<()> {
-        let fail = |e: std::io::Error| Error::output(&self.path, e.to_string());
-        self.temp.write_all(bytes).map_err(fail)?;
-        self.temp.as_file().sync_all().map_err(fail)?;
-        // The temporary file is private (0600); an image is for sharing.
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            let public = std::fs::Permissions::from_mode(0o644);
-            self.temp.as_file().set_permissions(public).map_err(fail)?;
-        }
-        self.temp
-            .persist(&self.path)
-            .map_err(|e| Error::output(&self.path, e.error.to_string()))?;
-        Ok(())
     }
 }
 

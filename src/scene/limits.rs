@@ -1,5 +1,5 @@
-//! Caps on what one input may make gonio hold or draw, and bounded reads of
-//! input files.
+//! Caps on what one input may make gonio hold or draw (the bounded read
+//! of input files is [`crate::base::input`]).
 //!
 //! A glTF file declares sizes and counts; a hostile one declares whatever
 //! exhausts the machine. [`Limits`] says how much an input may take, with
@@ -7,9 +7,7 @@
 //! against it *before* allocating for it. `gonio render --limit KEY=VALUE`
 //! raises (or lowers) one cap; see [`Limits::set`].
 
-use std::fs::{self, File};
-use std::io::Read;
-use std::path::Path;
+pub use crate::base::input::{ReadError, read_regular_file};
 
 /// How much one scene's inputs may take. Every count is a total over the
 /// scene, so a mesh instanced by many nodes counts once per instance.
@@ -100,13 +98,7 @@ impl Limits {
     }
 }
 
-/// The message for a declared amount over its limit: names what, how much,
-/// the limit, and the flag that raises it.
-pub fn exceeded(what: &str, amount: impl std::fmt::Display, key: &str, limit: u64) -> String {
-    format!(
-        "{what} is {amount}, over the limit of {limit} (raise it with `--limit {key}=N` if the file is trusted)"
-    )
-}
+pub use crate::base::input::exceeded;
 
 /// Parses `123`, `5k`, `200M`, `4Gi`, ...
 fn parse_amount(text: &str) -> Result<u64, String> {
@@ -135,64 +127,6 @@ fn parse_amount(text: &str) -> Result<u64, String> {
     number
         .checked_mul(multiplier)
         .ok_or_else(|| format!("`{text}` is too large"))
-}
-
-/// Why [`read_regular_file`] failed.
-#[derive(Debug)]
-pub enum ReadError {
-    /// Not there, not permitted, an I/O error: the message.
-    Io(String),
-    /// A directory, FIFO, device or other special file.
-    NotRegular,
-    /// Larger than the cap given; its size in bytes.
-    TooLarge(u64),
-}
-
-impl std::fmt::Display for ReadError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            ReadError::Io(e) => write!(f, "cannot read the file: {e}"),
-            ReadError::NotRegular => f.write_str("is not a regular file"),
-            ReadError::TooLarge(len) => write!(f, "the file has {len} bytes, too many"),
-        }
-    }
-}
-
-/// Reads a whole input file that must be a regular file of at most
-/// `max_bytes` bytes.
-///
-/// The type is checked before opening, because opening a FIFO blocks until
-/// a writer appears and reading a device such as `/dev/zero` never ends;
-/// and again on the open handle, so that what is read is the file that was
-/// checked. The read itself is capped too, in case the file grows.
-pub fn read_regular_file(path: &Path, max_bytes: u64) -> Result<Vec<u8>, ReadError> {
-    let io = |e: std::io::Error| ReadError::Io(e.to_string());
-    require_regular(&fs::metadata(path).map_err(io)?, max_bytes)?;
-    let file = File::open(path).map_err(io)?;
-    let meta = file.metadata().map_err(io)?;
-    require_regular(&meta, max_bytes)?;
-    let mut bytes = Vec::new();
-    // Reserve what the file has now, which the check above bounded.
-    bytes
-        .try_reserve_exact(meta.len() as usize)
-        .map_err(|e| ReadError::Io(e.to_string()))?;
-    file.take(max_bytes.saturating_add(1))
-        .read_to_end(&mut bytes)
-        .map_err(io)?;
-    if bytes.len() as u64 > max_bytes {
-        return Err(ReadError::TooLarge(bytes.len() as u64));
-    }
-    Ok(bytes)
-}
-
-fn require_regular(meta: &fs::Metadata, max_bytes: u64) -> Result<(), ReadError> {
-    if !meta.is_file() {
-        return Err(ReadError::NotRegular);
-    }
-    if meta.len() > max_bytes {
-        return Err(ReadError::TooLarge(meta.len()));
-    }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -226,24 +160,5 @@ mod tests {
             "{err}"
         );
         assert!(limits.set("nodes").is_err());
-    }
-
-    #[cfg(unix)]
-    #[test]
-    fn special_files_are_refused() {
-        for path in ["/dev/zero", "/dev/null", "/"] {
-            let err = read_regular_file(Path::new(path), 1 << 20).unwrap_err();
-            assert!(matches!(err, ReadError::NotRegular), "{path}: {err}");
-        }
-    }
-
-    #[test]
-    fn size_is_capped() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("f");
-        fs::write(&path, [0u8; 100]).unwrap();
-        assert_eq!(read_regular_file(&path, 100).unwrap().len(), 100);
-        let err = read_regular_file(&path, 99).unwrap_err();
-        assert!(matches!(err, ReadError::TooLarge(100)), "{err}");
     }
 }

@@ -19,6 +19,8 @@
 //! resolution.
 
 use crate::base::Rgb;
+use crate::base::input::read_regular_file;
+use crate::base::range;
 use sha2::{Digest, Sha256};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
@@ -32,6 +34,11 @@ pub const MERL_DIMS: [usize; 3] = [90, 90, 180];
 /// Largest sample count of one axis gonio reads (MERL's is 180): a header
 /// asking for more is an error, not an allocation.
 pub const MAX_SAMPLES_PER_AXIS: usize = 4096;
+
+/// Largest MERL file gonio reads (1 GiB, 30 times MERL's 33.6 MB): a
+/// bigger file, or a FIFO or device named as one, is refused before it is
+/// read.
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
 /// sha256 and size of the 100 original MERL files (`data/measured/`).
 const KNOWN_FILES: &str = include_str!("../../../data/measured/merl-lfs-sha256.txt");
@@ -58,8 +65,8 @@ pub struct MerlTable {
 impl MerlTable {
     /// Reads and validates the file `path`; the message names the file.
     pub fn read(path: &Path) -> Result<MerlTable, String> {
-        let bytes = std::fs::read(path)
-            .map_err(|e| format!("cannot read MERL table {}: {e}", path.display()))?;
+        let bytes = read_regular_file(path, MAX_FILE_BYTES)
+            .map_err(|e| format!("MERL table {}: {e}", path.display()))?;
         MerlTable::parse(&bytes).map_err(|p| format!("MERL table {}: {p}", path.display()))
     }
 
@@ -106,18 +113,22 @@ impl MerlTable {
                 .enumerate()
                 .map(|(i, b)| {
                     let v = f64::from_le_bytes(b.try_into().unwrap());
-                    if !v.is_finite() {
-                        let (ih, id, ip) = (i / (dims[1] * dims[2]), i / dims[2] % dims[1], i % dims[2]);
-                        return Err(format!(
-                            "value {v} in the {} channel at (θ_h, θ_d, φ_d) index ({ih}, {id}, {ip}); values must be finite (negative marks a missing sample)",
-                            ["red", "green", "blue"][c]
-                        ));
-                    }
-                    if v < 0.0 {
+                    // Negative marks a missing sample; the rest is held to
+                    // the range rule of every reflectance source.
+                    if v.is_finite() && v < 0.0 {
                         missing += 1;
                         return Ok(0.0);
                     }
-                    Ok(v * CHANNEL_SCALE[c])
+                    let f_r = v * CHANNEL_SCALE[c];
+                    if !range::is_reflectance(f_r) {
+                        let (ih, id, ip) = (i / (dims[1] * dims[2]), i / dims[2] % dims[1], i % dims[2]);
+                        return Err(format!(
+                            "value {v} in the {} channel at (θ_h, θ_d, φ_d) index ({ih}, {id}, {ip}); values must be finite (negative marks a missing sample) and scale to at most f_r = {:e} 1/sr (the GPU computes in f32, largest 3.4e38)",
+                            ["red", "green", "blue"][c],
+                            range::MAX_REFLECTANCE
+                        ));
+                    }
+                    Ok(f_r)
                 })
                 .collect::<Result<_, _>>()?;
         }

@@ -11,8 +11,24 @@ pub(super) const PARSER_PANICKED: &str = "the glTF parser failed on malformed da
 /// Runs `f`, turning a panic into the "malformed data" error. Only code of
 /// the `gltf` crate is expected to panic here, and only on inputs our own
 /// checks did not anticipate.
+/// The panic's own message stays off stderr (the user gets the error,
+/// not "thread 'main' panicked at …gltf…"): the process's panic hook is
+/// wrapped once, and is quiet on this thread while `f` runs.
 pub(super) fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    panic::catch_unwind(AssertUnwindSafe(f)).map_err(|_| PARSER_PANICKED.to_string())
+    thread_local!(static QUIET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) });
+    static WRAP_HOOK: std::sync::Once = std::sync::Once::new();
+    WRAP_HOOK.call_once(|| {
+        let previous = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(|q| q.get()) {
+                previous(info);
+            }
+        }));
+    });
+    let was = QUIET.with(|q| q.replace(true));
+    let result = panic::catch_unwind(AssertUnwindSafe(f));
+    QUIET.with(|q| q.set(was));
+    result.map_err(|_| PARSER_PANICKED.to_string())
 }
 
 /// The first 80 characters of a text from the file, for messages (data:

@@ -174,6 +174,34 @@ impl<'a> ImageSource<'a> {
     }
 }
 
+/// Checks what the `gltf` crate unwraps when an image's source is asked
+/// for: an image has a `uri` or a `bufferView`, and a `bufferView` comes
+/// with a `mimeType` (glTF 2.0, 5.18 image). Without this,
+/// `"images": [{}]` panicked inside the crate.
+pub(super) fn check_sources(json: &gltf::json::Root) -> Result<(), String> {
+    for (index, image) in json.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (None, None, _) => {
+                return Err(format!(
+                    "image {index} has neither a uri nor a bufferView; glTF requires exactly one (glTF 2.0, 5.18)"
+                ));
+            }
+            (Some(_), Some(_), _) => {
+                return Err(format!(
+                    "image {index} has both a uri and a bufferView; glTF requires exactly one (glTF 2.0, 5.18)"
+                ));
+            }
+            (None, Some(_), None) => {
+                return Err(format!(
+                    "image {index} has a bufferView but no mimeType, which glTF requires with a bufferView (glTF 2.0, 5.18)"
+                ));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// An image's encoded bytes; errors follow "image N ...".
 fn image_bytes<'a>(
     buffers: &'a [Cow<'a, [u8]>],

@@ -3,6 +3,7 @@
 //! the cost have been checked, on buffers already loaded.
 
 use super::GltfScene;
+use super::WARNING;
 use super::accessors::read_primitive;
 use super::convert::{
     convert_camera, convert_light, local_transform, material_from_metallic_roughness,
@@ -274,6 +275,22 @@ impl<'a> Importer<'a> {
                 mesh.bitangent_signs = raw.bitangent_signs.unwrap_or_default();
             }
             mesh.tex_coords = raw.tex_coords;
+            // A texture reading a UV set the primitive lacks is invalid
+            // glTF (3.7.2.1): said, not passed over (issue 39).
+            if let Some(t) = self.scene.materials.get(material).and_then(|m| {
+                m.textures.iter().find(|t| {
+                    mesh.tex_coords
+                        .get(t.tex_coord)
+                        .is_none_or(|s| s.is_empty())
+                })
+            }) {
+                self.scene.notes.push(format!(
+                    "{WARNING}{}: material {material} reads TEXCOORD_{} for a texture and the primitive has no TEXCOORD_{} (invalid glTF, 3.7.2.1)",
+                    context(),
+                    t.tex_coord,
+                    t.tex_coord
+                ));
+            }
             mesh.colors = raw.colors.unwrap_or_default();
             // A normal map without TANGENT: MikkTSpace in object space,
             // as glTF asks (`scene::tangents`).

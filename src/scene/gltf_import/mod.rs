@@ -200,7 +200,11 @@ impl GltfLoader {
             scene
                 .notes
                 .iter()
-                .map(|note| format!("{}: {note}", path.display())),
+                .map(|note| match note.strip_prefix(WARNING) {
+                    // A warning stays one (shown without --verbose).
+                    Some(w) => format!("{WARNING}{}: {w}", path.display()),
+                    None => format!("{}: {note}", path.display()),
+                }),
         );
         Ok(scene)
     }
@@ -237,6 +241,9 @@ fn folder_of(path: &Path) -> &Path {
     }
 }
 
+/// The prefix of a note that is a warning ([`crate::scene::scene_file::WARNING`]).
+const WARNING: &str = "warning: ";
+
 /// The whole import of one file's bytes; see the module documentation for
 /// the order of the checks.
 fn load_bytes(
@@ -249,6 +256,7 @@ fn load_bytes(
     let container = container::split(bytes, expect_glb, &mut notes)?;
     let mut used_bytes = bytes.len() as u64;
     let document = container::parse(container.json, &mut used_bytes, limits, &mut notes)?;
+    images::check_sources(document.as_json())?;
     let parents = graph::check_forest(&document)?;
     let roots = graph::scene_roots(&document, &parents)?;
     graph::check_cost(&document, &graph::descendants(&document, &roots), limits)?;

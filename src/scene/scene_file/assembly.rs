@@ -72,6 +72,7 @@ pub fn assemble(
         &file,
         base_dir,
         studio.then_some(crate::environment::studio::STUDIO),
+        &mut gltf_files.images,
     )
     .map_err(bad)?;
     let light_setup = LightSetup {
@@ -311,6 +312,7 @@ fn ambient_and_environment(
     file: &SceneFile,
     base_dir: &Path,
     default_map: Option<&str>,
+    images: &mut crate::scene::texture::store::ImageStore,
 ) -> std::result::Result<(Rgb, Environment), String> {
     let ambient = match file.ambient.radiance {
         None => Rgb::ZERO,
@@ -325,8 +327,11 @@ fn ambient_and_environment(
         zenith: get("zenith", e.zenith)?,
         horizon: get("horizon", e.horizon)?,
         ground: get("ground", e.ground)?,
-        map: super::environment_keys::environment_map(e, base_dir, default_map)?,
+        map: super::environment_keys::environment_map(e, base_dir, default_map, images.bytes_left())?,
     };
+    if let Some(map) = &environment.map {
+        images.charge(map.data.texel_bytes());
+    }
     Ok((ambient, environment))
 }
 

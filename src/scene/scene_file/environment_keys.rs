@@ -4,7 +4,8 @@
 //! the key.
 
 use super::schema::EnvironmentSection;
-use crate::environment::map::{ReferenceDiffuse, Specular};
+use crate::base::range;
+use crate::environment::map::{MapData, ReferenceDiffuse, Specular};
 use crate::environment::{EnvironmentMap, MapSettings, load, sh};
 use std::path::Path;
 use std::sync::Arc;
@@ -28,6 +29,7 @@ pub fn environment_map(
     e: &EnvironmentSection,
     base_dir: &Path,
     default_map: Option<&str>,
+    max_bytes: u64,
 ) -> Result<Option<EnvironmentMap>, String> {
     let Some(value) = e.map.as_deref().or(default_map) else {
         let given = [
@@ -48,11 +50,29 @@ pub fn environment_map(
         return Ok(None);
     };
     let settings = settings(e)?;
-    let data = load::load(value, base_dir).map_err(|p| format!("environment.map: {p}"))?;
+    let data =
+        load::load(value, base_dir, max_bytes).map_err(|p| format!("environment.map: {p}"))?;
+    check_scaled(&data, &settings)?;
     Ok(Some(EnvironmentMap {
         data: Arc::new(data),
         settings,
     }))
+}
+
+/// The range rule ([`crate::base::range`]) for the radiance a map gives:
+/// its largest texel times `environment.scale` at most
+/// [`range::MAX_RADIANCE`] (each factor alone is checked where it is read).
+pub fn check_scaled(data: &MapData, settings: &MapSettings) -> Result<(), String> {
+    let largest = data.max_texel() * settings.scale;
+    if !range::is_radiance(largest) {
+        return Err(format!(
+            "environment.scale = {:e} times the map's largest texel {:.3e} is {largest:.3e}, over {:e}: the GPU computes in f32 (largest 3.4e38) and multiplies radiance by BRDF values up to about 4e16, so it would overflow to Inf; lower the scale",
+            settings.scale,
+            data.max_texel(),
+            range::MAX_RADIANCE
+        ));
+    }
+    Ok(())
 }
 
 /// The settings of `e`, range-checked (also the viewer's, which keeps a
@@ -60,9 +80,10 @@ pub fn environment_map(
 pub fn settings(e: &EnvironmentSection) -> Result<MapSettings, String> {
     let mut s = MapSettings::default();
     if let Some(scale) = e.scale {
-        if !(scale.is_finite() && scale >= 0.0) {
+        if !range::is_radiance(scale) {
             return Err(format!(
-                "environment.scale = {scale} must be finite and non-negative"
+                "environment.scale = {scale:e} must be finite, non-negative and at most {:e} (the range rule of every radiance source)",
+                range::MAX_RADIANCE
             ));
         }
         s.scale = scale;

@@ -21,12 +21,8 @@ pub fn unit_vec(key: &str, v: [f64; 3]) -> std::result::Result<DVec3, String> {
 
 use crate::scene::MAX_COORDINATE;
 
-/// Largest radiance, intensity or irradiance component: the GPU
-/// multiplies it in f32 by a BRDF value (the lecture's forms reach about
-/// 4e16, shaders/brdf/phong.wgsl) and a cosine, which must stay below
-/// f32's 3.4e38; 1e20 leaves a factor of 200 (`lights.0.intensity =
-/// 3.5e38` gave Inf pixels where the reference stayed finite: issue 19).
-pub const MAX_RADIANCE: f64 = 1e20;
+/// The range rule of every radiance source ([`crate::base::range`]).
+pub use crate::base::range::MAX_RADIANCE;
 
 /// `v` as a position the GPU can compute with ([`MAX_COORDINATE`]).
 pub fn gpu_coordinate(key: &str, v: DVec3) -> std::result::Result<DVec3, String> {

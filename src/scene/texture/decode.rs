@@ -87,6 +87,14 @@ pub fn check_size(width: u32, height: u32, budget: u64) -> Result<u64, String> {
 pub fn decode(bytes: &[u8], encoding: Encoding, budget: u64) -> Result<Decoded, String> {
     let (width, height) = dimensions(bytes)?;
     check_size(width, height, budget)?;
+    if bytes.starts_with(&[0xFF, 0xD8]) && !jpeg_is_complete(bytes) {
+        // zune-jpeg decodes a cut-off scan as grey without an error; a
+        // truncated PNG fails its CRC. Both are refused alike.
+        return Err(
+            "it is corrupt: the JPEG data ends before its end-of-image marker (the file is truncated)"
+                .into(),
+        );
+    }
     let mut reader = image::ImageReader::new(Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| format!("cannot read it: {e}"))?;
@@ -119,6 +127,35 @@ pub fn decode(bytes: &[u8], encoding: Encoding, budget: u64) -> Result<Decoded, 
         height,
         rgba,
     })
+}
+
+/// Whether a JPEG stream reaches its end-of-image marker (`FF D9`) after
+/// its first frame scan: the marker segments before the scan are skipped
+/// by their lengths (an EXIF thumbnail inside APP1 has its own markers),
+/// and entropy-coded data cannot hold `FF D9` (a data byte `FF` is
+/// stuffed as `FF 00`; ITU T.81, B.1.1.5).
+fn jpeg_is_complete(bytes: &[u8]) -> bool {
+    let mut pos = 2;
+    while let (Some(&0xFF), Some(&marker)) = (bytes.get(pos), bytes.get(pos + 1)) {
+        match marker {
+            // Fill bytes before a marker.
+            0xFF => pos += 1,
+            // Markers without a length: TEM, RSTn.
+            0x01 | 0xD0..=0xD7 => pos += 2,
+            // Start of scan: the rest must end the image.
+            0xDA => {
+                return bytes[pos + 2..].windows(2).any(|w| w == [0xFF, 0xD9]);
+            }
+            0xD9 => return false,
+            _ => {
+                let Some(len) = bytes.get(pos + 2..pos + 4) else {
+                    return false;
+                };
+                pos += 2 + usize::from(u16::from_be_bytes([len[0], len[1]]));
+            }
+        }
+    }
+    false
 }
 
 /// The sRGB EOTF (IEC 61966-2-1), encoded value in [0, 1] to linear; in
@@ -200,6 +237,17 @@ mod tests {
                 .unwrap_err()
                 .contains("corrupt")
         );
+        // A JPEG cut before its end-of-image marker (zune-jpeg alone
+        // decodes it as grey).
+        let mut jpeg = Vec::new();
+        image::RgbImage::from_fn(64, 64, |x, y| {
+            image::Rgb([(x * 4) as u8, (y * 4) as u8, (x ^ y) as u8 * 4])
+        })
+        .write_to(&mut Cursor::new(&mut jpeg), image::ImageFormat::Jpeg)
+        .unwrap();
+        assert!(decode(&jpeg, Encoding::Srgb, 1 << 20).is_ok());
+        let e = decode(&jpeg[..jpeg.len() * 3 / 4], Encoding::Srgb, 1 << 20).unwrap_err();
+        assert!(e.contains("truncated"), "{e}");
         let e = decode(b"GIF89a......", Encoding::Srgb, 1 << 20).unwrap_err();
         assert!(e.contains("PNG and JPEG"), "{e}");
         let e = decode(b"hello", Encoding::Srgb, 1 << 20).unwrap_err();

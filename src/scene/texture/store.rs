@@ -52,6 +52,18 @@ impl ImageStore {
         self.load_bytes(name, &bytes, encoding)
     }
 
+    /// What is left of `--limit bytes` for the scene's images and its
+    /// environment map.
+    pub fn bytes_left(&self) -> u64 {
+        self.bytes_left
+    }
+
+    /// Charges `bytes` held by an input loaded elsewhere (the environment
+    /// map, checked against [`Self::bytes_left`] before it was decoded).
+    pub fn charge(&mut self, bytes: u64) {
+        self.bytes_left = self.bytes_left.saturating_sub(bytes);
+    }
+
     /// Adds images loaded elsewhere (a glTF file's, held to that file's
     /// budget); the index of the first.
     pub fn append(&mut self, images: Vec<Arc<Image>>) -> usize {

@@ -158,11 +158,15 @@ fn install(doc: &mut Document, table: toml::Table) -> std::result::Result<(), St
     let old = section(&doc.table).ok().and_then(|s| named(&s));
     let map = match &doc.scene.environment.map {
         // The same file: keep its texels and what is derived from them.
-        Some(current) if named(&new).is_some() && named(&new) == old => Some(EnvironmentMap {
-            data: current.data.clone(),
-            settings: environment_keys::settings(&new)?,
-        }),
-        _ => environment_keys::environment_map(&new, &doc.source_dir, default_map)?,
+        Some(current) if named(&new).is_some() && named(&new) == old => {
+            let settings = environment_keys::settings(&new)?;
+            environment_keys::check_scaled(&current.data, &settings)?;
+            Some(EnvironmentMap {
+                data: current.data.clone(),
+                settings,
+            })
+        }
+        _ => environment_keys::environment_map(&new, &doc.source_dir, default_map, doc.limits.bytes)?,
     };
     set_map(doc, map)?;
     doc.table = table;
