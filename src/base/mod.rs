@@ -3,8 +3,9 @@
 
 pub mod color;
 pub mod frame;
-mod named;
+pub mod named;
 
 pub use color::{ColorValue, Rgb, rgb_to_toml};
 pub use frame::{SurfaceFrame, any_tangent};
 pub(crate) use named::named_enum;
+pub use named::{did_you_mean, nearest_name};

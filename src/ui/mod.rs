@@ -12,6 +12,7 @@
 //! through [`screen_projection`].
 
 pub mod app;
+pub mod background;
 pub mod cli;
 pub mod compare;
 pub mod document;
