@@ -45,7 +45,7 @@ fn render(scene: Option<&Path>, sets: &[&str], out: &Path) -> (Option<i32>, Stri
 #[test]
 fn partial_camera_keys_compose_with_the_automatic_camera() {
     let dir = tempfile::tempdir().unwrap();
-    let coords = common::gltf_asset("TextureCoordinateTest/TextureCoordinateTest.gltf");
+    let coords = common::gltf_asset("TextureCoordinateTest/TextureCoordinateTest.glb");
     let (code, stderr, _) = render(
         Some(&coords),
         &["camera.position=[0,0,-4]", "camera.target=[0,0,0]"],
@@ -103,8 +103,11 @@ fn every_key_path_merges_into_a_gltf_scene_as_in_a_file() {
     for (path, value) in section_keys {
         let key = path.join(".");
         let set = format!("{key}={value}");
-        let by_set = scene_file::load(&SceneSource::File(boxed.clone()), std::slice::from_ref(&set))
-            .unwrap_or_else(|e| panic!("--set {set}: {e}"));
+        let by_set = scene_file::load(
+            &SceneSource::File(boxed.clone()),
+            std::slice::from_ref(&set),
+        )
+        .unwrap_or_else(|e| panic!("--set {set}: {e}"));
         let file = dir.path().join("one-key.toml");
         let mut table = toml::Table::new();
         let mut object = toml::Table::new();
@@ -121,13 +124,22 @@ fn every_key_path_merges_into_a_gltf_scene_as_in_a_file() {
         );
         assert_eq!(
             (by_set.width, by_set.height, by_set.shading, by_set.ambient),
-            (by_file.width, by_file.height, by_file.shading, by_file.ambient),
+            (
+                by_file.width,
+                by_file.height,
+                by_file.shading,
+                by_file.ambient
+            ),
             "{key}"
         );
     }
 }
 
-fn leaf_paths(table: &toml::Table, prefix: &mut Vec<String>, out: &mut Vec<(Vec<String>, toml::Value)>) {
+fn leaf_paths(
+    table: &toml::Table,
+    prefix: &mut Vec<String>,
+    out: &mut Vec<(Vec<String>, toml::Value)>,
+) {
     for (k, v) in table {
         prefix.push(k.clone());
         match v {
@@ -151,11 +163,7 @@ fn box_with_material_name(dir: &Path, name: Option<&str>) -> PathBuf {
             material.as_object_mut().unwrap().remove("name");
         }
     }
-    std::fs::copy(
-        source.with_file_name("Box0.bin"),
-        dir.join("Box0.bin"),
-    )
-    .unwrap();
+    std::fs::copy(source.with_file_name("Box0.bin"), dir.join("Box0.bin")).unwrap();
     let path = dir.join("renamed.gltf");
     std::fs::write(&path, json.to_string()).unwrap();
     path
@@ -211,7 +219,10 @@ fn the_built_in_ball_switches_model_without_the_old_keys() {
     let out = dir.path().join("ball.png");
     let (code, stderr, _) = render(
         None,
-        &["materials.ball.model=measured", "materials.ball.measured=chrome"],
+        &[
+            "materials.ball.model=measured",
+            "materials.ball.measured=chrome",
+        ],
         &out,
     );
     assert_eq!(code, Some(0), "{stderr}{}", common::LAVAPIPE_TEST_HINT);
@@ -238,7 +249,10 @@ fn the_built_in_ball_switches_model_without_the_old_keys() {
         &out,
     );
     assert_eq!(code, Some(0), "{stderr}");
-    assert!(stderr.contains("`k_e` not read by model `lambert`"), "{stderr}");
+    assert!(
+        stderr.contains("`k_e` not read by model `lambert`"),
+        "{stderr}"
+    );
 }
 
 /// Item 5: the scene file `gonio fit -o` writes renders without a warning,
@@ -259,7 +273,11 @@ fn a_fitted_scene_renders_without_a_warning() {
         .arg(&fitted)
         .output()
         .unwrap();
-    assert!(fit.status.success(), "{}", String::from_utf8_lossy(&fit.stderr));
+    assert!(
+        fit.status.success(),
+        "{}",
+        String::from_utf8_lossy(&fit.stderr)
+    );
     let text = std::fs::read_to_string(&fitted).unwrap();
     for number in text
         .lines()
@@ -293,20 +311,36 @@ fn typed_names_get_the_nearest_name_and_messages_name_the_fix() {
         }
         code
     };
-    let render = |set: &str| ["render", "--width", "16", "--height", "16", "-o", out, "--set"]
+    let render = |set: &str| {
+        [
+            "render", "--width", "16", "--height", "16", "-o", out, "--set",
+        ]
         .into_iter()
         .chain([set])
         .map(str::to_string)
-        .collect::<Vec<_>>();
+        .collect::<Vec<_>>()
+    };
     let args = render("materials.ball.model=blinnphong");
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    assert_eq!(expect(&args, &["did you mean `blinn-phong`?"], &[]), Some(2));
     assert_eq!(
-        expect(&["fit", "chrome", "--model", "wrd"], &["did you mean `ward`?"], &[]),
+        expect(&args, &["did you mean `blinn-phong`?"], &[]),
+        Some(2)
+    );
+    assert_eq!(
+        expect(
+            &["fit", "chrome", "--model", "wrd"],
+            &["did you mean `ward`?"],
+            &[]
+        ),
         Some(2)
     );
     let measured = [
-        "render", "-o", out, "--set", "materials.ball.model=measured", "--set",
+        "render",
+        "-o",
+        out,
+        "--set",
+        "materials.ball.model=measured",
+        "--set",
         "materials.ball.measured=chromee",
     ];
     assert_eq!(expect(&measured, &["did you mean `chrome`?"], &[]), Some(2));
@@ -336,22 +370,29 @@ fn typed_names_get_the_nearest_name_and_messages_name_the_fix() {
     let scene = dir.path().join("typo.toml");
     std::fs::write(
         &scene,
-        "[image]\nwidth = 16\n\n[camera]\nposition = [0.0, 1.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 30\n",
+        "[image]\nwidth = 16\n\n[materials.ball]\nmodel = \"lambert\"\nk_a = 0.1\nk_dd = 0.5\n",
     )
     .unwrap();
     let scene = scene.to_str().unwrap();
     expect(
         &["render", scene, "-o", out],
-        &["line 7, column 1 (`fov = 30`)", "did you mean `fov_y_deg`?"],
-        &[],
+        &["line 7, column 1 (`k_dd = 0.5`)", "did you mean `k_d`?"],
+        &["line 4"],
     );
     // A `.hdr` that is not one is named as what it is.
     let fake = dir.path().join("sky.hdr");
     std::fs::write(&fake, "just text\n").unwrap();
-    let map = format!("environment.map={}", toml::Value::String(fake.display().to_string()));
+    let map = format!(
+        "environment.map={}",
+        toml::Value::String(fake.display().to_string())
+    );
     let args = render(&map);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    expect(&args, &["it is a text file, not a hdr image"], &["signature"]);
+    expect(
+        &args,
+        &["it is a text file, not a hdr image"],
+        &["signature"],
+    );
     // `gonio brdf` warns of a key the model does not read, as render does.
     expect(
         &["brdf", "--model", "lambert", "--set", "k_e=50"],
@@ -372,7 +413,9 @@ fn the_readme_fit_example_is_the_real_fit() {
         .nth(1)
         .and_then(|rest| rest.split('`').next())
         .expect("the README has the fit example");
-    let shown = gonio::explore::spec::compare_spec(spec, &[]).unwrap().material;
+    let shown = gonio::explore::spec::compare_spec(spec, &[])
+        .unwrap()
+        .material;
     let fits: toml::Table = std::fs::read_to_string(root.join("docs/fit/fits.toml"))
         .unwrap()
         .parse()
@@ -386,10 +429,7 @@ fn the_readme_fit_example_is_the_real_fit() {
         gonio::material::material_table(&shown),
         gonio::material::material_table(&fitted),
     );
-    assert_eq!(
-        a.keys().collect::<Vec<_>>(),
-        b.keys().collect::<Vec<_>>()
-    );
+    assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
     for (key, value) in &b {
         let numbers = |v: &toml::Value| -> Vec<f64> {
             match v {

@@ -72,7 +72,10 @@ fn a_script_scrolls_the_panel_to_a_section() {
     let area_x: u32 = stdout
         .lines()
         .find_map(|l| l.split("3D area ").nth(1))
-        .and_then(|a| a.split(|c: char| !c.is_ascii_digit()).find(|s| !s.is_empty()))
+        .and_then(|a| {
+            a.split(|c: char| !c.is_ascii_digit())
+                .find(|s| !s.is_empty())
+        })
         .and_then(|s| s.parse().ok())
         .unwrap_or_else(|| panic!("no 3D area reported: {stdout}"));
     assert!(area_x > 100, "the panel is shown: {stdout}");

@@ -139,7 +139,10 @@ mod tests {
         assert_eq!(nearest_name("Lambrt", models), Some("lambert"));
         assert_eq!(nearest_name("fov", ["fov_y_deg", "up"]), Some("fov_y_deg"));
         assert_eq!(nearest_name("zzzzzz", models), None);
-        assert_eq!(did_you_mean("chromee", ["chrome", "gold"]), "; did you mean `chrome`?");
+        assert_eq!(
+            did_you_mean("chromee", ["chrome", "gold"]),
+            "; did you mean `chrome`?"
+        );
         assert_eq!(did_you_mean("q", ["chrome"]), "");
     }
 }

@@ -141,7 +141,11 @@ impl Plot for ParetoPlot<'_> {
                 .collect();
             if triangle {
                 chart
-                    .draw_series(points.iter().map(|&p| TriangleMarker::new(p, 8, c.filled())))
+                    .draw_series(
+                        points
+                            .iter()
+                            .map(|&p| TriangleMarker::new(p, 8, c.filled())),
+                    )
                     .map_err(err)?
                     .label(knob.to_string())
                     .legend(move |(x, y)| TriangleMarker::new((x + 12, y), 8, c.filled()));

@@ -52,7 +52,11 @@ fn what_it_is(bytes: &[u8], expected: image::ImageFormat) -> Option<String> {
         return (actual != expected).then(|| {
             format!(
                 "a {} image",
-                actual.extensions_str().first().unwrap_or(&"other").to_uppercase()
+                actual
+                    .extensions_str()
+                    .first()
+                    .unwrap_or(&"other")
+                    .to_uppercase()
             )
         });
     }

@@ -323,9 +323,12 @@ impl Plot for AlbedoPlot {
         let (bw, bh) = crate::output::legend::box_fraction(&labels, 15.0, pw as f64, ph as f64);
         let mut drawn: Vec<(f64, f64)> = (0..=90).map(|t| (t as f64 / 90.0, 1.0 / y_max)).collect();
         for (_, estimates) in &self.series {
-            drawn.extend(self.thetas_deg.iter().zip(estimates).map(|(&t, e)| {
-                (t / 90.0, self.channel.of(e.value).min(y_max) / y_max)
-            }));
+            drawn.extend(
+                self.thetas_deg
+                    .iter()
+                    .zip(estimates)
+                    .map(|(&t, e)| (t / 90.0, self.channel.of(e.value).min(y_max) / y_max)),
+            );
         }
         chart
             .configure_series_labels()

@@ -54,7 +54,7 @@ mod tests {
         tidy(&mut t);
         assert_eq!(
             toml::to_string(&t).unwrap(),
-            "k_d = [0.0, 0.123457, 3.0]\nk_e = 1234.57\nalpha = 1.23457e-7\n"
+            "alpha = 0.000000123457\nk_d = [0.0, 0.123457, 3.0]\nk_e = 1234.57\n"
         );
     }
 }

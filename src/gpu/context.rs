@@ -25,14 +25,18 @@ fn backends() -> Result<wgpu::Backends> {
             if backends.is_empty() {
                 Err(Error::argument(
                     format!("WGPU_BACKEND={text}"),
-                    format!("names no GPU backend; this gonio has {names} (a comma-separated list picks several), or unset it for Vulkan"),
+                    format!(
+                        "names no GPU backend; this gonio has {names} (a comma-separated list picks several), or unset it for Vulkan"
+                    ),
                 ))
             } else if !backends.intersects(built) {
                 // wgpu would fail with its internal list of backends
                 // (issue 38: `WGPU_BACKEND=metal` on Linux).
                 Err(Error::argument(
                     format!("WGPU_BACKEND={text}"),
-                    format!("names a backend this gonio is not built with on this system; it has {names} (unset WGPU_BACKEND for Vulkan)"),
+                    format!(
+                        "names a backend this gonio is not built with on this system; it has {names} (unset WGPU_BACKEND for Vulkan)"
+                    ),
                 ))
             } else {
                 Ok(backends)
@@ -323,7 +327,10 @@ mod tests {
         let m = no_adapter_named("llvmpip", &names);
         assert!(m.contains("did you mean `llvmpipe`?"), "{m}");
         let m = no_adapter_named("nosuch", &names);
-        assert!(m.contains("available: llvmpipe") && !m.contains("apt-get"), "{m}");
+        assert!(
+            m.contains("available: llvmpipe") && !m.contains("apt-get"),
+            "{m}"
+        );
         assert!(no_adapter_named("x", &[]).contains("apt-get"));
     }
 }

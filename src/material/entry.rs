@@ -368,7 +368,11 @@ pub fn material_table(m: &Material) -> toml::Table {
         t.insert(p.key.into(), text_value(p, m));
     }
     for (key, has, name) in [
-        ("distribution", row.terms.distribution, m.distribution.name()),
+        (
+            "distribution",
+            row.terms.distribution,
+            m.distribution.name(),
+        ),
         ("geometry", row.terms.geometry, m.geometry.name()),
         ("fresnel", row.terms.fresnel, m.fresnel.name()),
         ("denominator", row.terms.denominator, m.denominator.name()),

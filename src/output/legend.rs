@@ -55,7 +55,9 @@ mod tests {
     fn the_legend_goes_where_no_curve_is() {
         // A curve rising from the lower left to the upper right, a second
         // along the top: the lower right is free.
-        let mut points: Vec<(f64, f64)> = (0..=100).map(|k| (k as f64 / 100.0, k as f64 / 100.0)).collect();
+        let mut points: Vec<(f64, f64)> = (0..=100)
+            .map(|k| (k as f64 / 100.0, k as f64 / 100.0))
+            .collect();
         points.extend((0..=100).map(|k| (k as f64 / 100.0, 0.95)));
         assert!(matches!(
             quietest_corner(&points, 0.3, 0.2),

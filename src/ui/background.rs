@@ -62,7 +62,10 @@ mod tests {
             // SAFETY: reads this thread's niceness.
             #[cfg(target_os = "linux")]
             let nice = unsafe {
-                libc::getpriority(libc::PRIO_PROCESS, libc::syscall(libc::SYS_gettid) as libc::id_t)
+                libc::getpriority(
+                    libc::PRIO_PROCESS,
+                    libc::syscall(libc::SYS_gettid) as libc::id_t,
+                )
             };
             #[cfg(not(target_os = "linux"))]
             let nice = NICE;
@@ -104,6 +107,10 @@ mod tests {
         for _ in 0..pool().current_num_threads() {
             let _ = release_tx.send(());
         }
-        assert_eq!(done, Ok(499_500), "the global pool waited for the background");
+        assert_eq!(
+            done,
+            Ok(499_500),
+            "the global pool waited for the background"
+        );
     }
 }

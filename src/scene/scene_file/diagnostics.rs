@@ -57,11 +57,16 @@ pub fn clean_toml_error_in(e: &toml::de::Error, text: &str) -> String {
     else {
         return cleaned;
     };
-    let Some(region) = text.get(span.clone()) else {
+    // toml's span of a table may be its header alone: the table's keys
+    // run from there to the next header.
+    let Some(region) = text.get(span.start..) else {
         return cleaned;
     };
     let mut offset = span.start;
-    for line in region.split_inclusive('\n') {
+    for (k, line) in region.split_inclusive('\n').enumerate() {
+        if k > 0 && offset >= span.end && line.trim_start().starts_with('[') {
+            break;
+        }
         let code = line.trim();
         let key = code
             .strip_prefix(unknown)

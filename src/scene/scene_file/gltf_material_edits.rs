@@ -32,11 +32,13 @@ pub fn redirect(table: &toml::Table, kv: &str) -> Option<String> {
         return None;
     };
     let defined = matches!(table.get("materials"), Some(toml::Value::Table(m)) if m.contains_key(name.as_str()));
-    (materials == "materials" && !defined && field != "model" && has_gltf_objects(table)).then(|| {
-        let mut redirected = parts.clone();
-        redirected[0] = SECTION.to_string();
-        format!("{}={value}", super::overrides::dotted_key(&redirected))
-    })
+    (materials == "materials" && !defined && field != "model" && has_gltf_objects(table)).then(
+        || {
+            let mut redirected = parts.clone();
+            redirected[0] = SECTION.to_string();
+            format!("{}={value}", super::overrides::dotted_key(&redirected))
+        },
+    )
 }
 
 /// Whether any `[[objects]]` entry is a glTF file.

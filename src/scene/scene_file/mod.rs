@@ -108,7 +108,11 @@ pub fn load_for_editing(
         if !dropped.is_empty() {
             let keys: Vec<String> = dropped.iter().map(|k| format!("`{k}`")).collect();
             // The built-in scene's keys are not the user's: a note only.
-            let prefix = if matches!(source, SceneSource::BuiltIn) { "" } else { WARNING };
+            let prefix = if matches!(source, SceneSource::BuiltIn) {
+                ""
+            } else {
+                WARNING
+            };
             switch_notes.push(format!(
                 "{prefix}--set {kv}: {} of {} not read by the new model; dropped",
                 keys.join(", "),

@@ -65,7 +65,10 @@ mod tests {
             key_parts("materials.'material 0'.k_d"),
             ["materials", "material 0", "k_d"]
         );
-        assert_eq!(key_parts("lights.0.intensity"), ["lights", "0", "intensity"]);
+        assert_eq!(
+            key_parts("lights.0.intensity"),
+            ["lights", "0", "intensity"]
+        );
         assert_eq!(key_parts("a..b"), ["a", "", "b"]);
         let parts = ["gltf_materials", "Material.005", "k_d"];
         assert_eq!(key_parts(&dotted_key(&parts)), parts);
