@@ -51,31 +51,6 @@ pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
         .map_err(|p| Error::argument(arg(), format!("`{key}`: {p}")))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn quoted_parts_keep_their_dots() {
-        assert_eq!(
-            key_parts("gltf_materials.\"Material.005\".emission"),
-            ["gltf_materials", "Material.005", "emission"]
-        );
-        assert_eq!(
-            key_parts("materials.'material 0'.k_d"),
-            ["materials", "material 0", "k_d"]
-        );
-        assert_eq!(
-            key_parts("lights.0.intensity"),
-            ["lights", "0", "intensity"]
-        );
-        assert_eq!(key_parts("a..b"), ["a", "", "b"]);
-        let parts = ["gltf_materials", "Material.005", "k_d"];
-        assert_eq!(key_parts(&dotted_key(&parts)), parts);
-        assert_eq!(dotted_key(&parts), "gltf_materials.\"Material.005\".k_d");
-    }
-}
-
 /// Refuses a path into something the scene must already have, with the
 /// reason in the user's words (issue 17): a misspelt material
 /// (`materials.bal.k_e` said "missing field `model`") and an array entry
@@ -219,5 +194,30 @@ impl<'a> TableOrArray<'a> {
                 Ok(())
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quoted_parts_keep_their_dots() {
+        assert_eq!(
+            key_parts("gltf_materials.\"Material.005\".emission"),
+            ["gltf_materials", "Material.005", "emission"]
+        );
+        assert_eq!(
+            key_parts("materials.'material 0'.k_d"),
+            ["materials", "material 0", "k_d"]
+        );
+        assert_eq!(
+            key_parts("lights.0.intensity"),
+            ["lights", "0", "intensity"]
+        );
+        assert_eq!(key_parts("a..b"), ["a", "", "b"]);
+        let parts = ["gltf_materials", "Material.005", "k_d"];
+        assert_eq!(key_parts(&dotted_key(&parts)), parts);
+        assert_eq!(dotted_key(&parts), "gltf_materials.\"Material.005\".k_d");
     }
 }
