@@ -50,13 +50,13 @@ fn succeeded(out: &Output) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
-/// The panel's left edge to the 3D area (the screenshot's first `width`
-/// columns) as RGB bytes.
-fn panel_pixels(shot: &Path, width: u32) -> Vec<u8> {
+/// The panel (the screenshot's columns right of the 3D area, which ends
+/// at `area_end`) as RGB bytes.
+fn panel_pixels(shot: &Path, area_end: u32) -> Vec<u8> {
     let image = image::open(shot).unwrap().into_rgb8();
     let mut out = Vec::new();
     for y in 0..image.height() {
-        for x in 0..width.min(image.width()) {
+        for x in area_end.min(image.width())..image.width() {
             out.extend(image.get_pixel(x, y).0);
         }
     }
