@@ -1193,7 +1193,11 @@ fn scene_files(c: &mut Corpus) {
         CLASS,
         "wrong-type.toml",
         "[image]\nwidth = \"wide\"\n",
-        &["line 2, column 9", "width = \"wide\"", "expected u32"],
+        &[
+            "line 2, column 9",
+            "width = \"wide\"",
+            "expected a whole number ≥ 0",
+        ],
     );
     c.scene(
         CLASS,

@@ -4,9 +4,10 @@
 pub mod color;
 pub mod frame;
 pub mod input;
-mod named;
+pub mod named;
 pub mod range;
 
 pub use color::{ColorValue, Rgb, rgb_to_toml};
 pub use frame::{SurfaceFrame, any_tangent};
 pub(crate) use named::named_enum;
+pub use named::{did_you_mean, nearest_name};

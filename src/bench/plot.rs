@@ -132,18 +132,30 @@ impl Plot for ParetoPlot<'_> {
             }
         }
         for (k, knob) in knobs.iter().enumerate() {
-            let c = COLORS[k % COLORS.len()];
+            let (c, triangle) = knob_style(k);
             let points: Vec<(f64, f64)> = self
                 .rows
                 .iter()
                 .filter(|r| r.config.knob == *knob)
                 .map(|r| self.xy(r))
                 .collect();
-            chart
-                .draw_series(points.iter().map(|&p| Circle::new(p, 6, c.filled())))
-                .map_err(err)?
-                .label(knob.to_string())
-                .legend(move |(x, y)| Circle::new((x + 12, y), 6, c.filled()));
+            if triangle {
+                chart
+                    .draw_series(
+                        points
+                            .iter()
+                            .map(|&p| TriangleMarker::new(p, 8, c.filled())),
+                    )
+                    .map_err(err)?
+                    .label(knob.to_string())
+                    .legend(move |(x, y)| TriangleMarker::new((x + 12, y), 8, c.filled()));
+            } else {
+                chart
+                    .draw_series(points.iter().map(|&p| Circle::new(p, 6, c.filled())))
+                    .map_err(err)?
+                    .label(knob.to_string())
+                    .legend(move |(x, y)| Circle::new((x + 12, y), 6, c.filled()));
+            }
         }
         // Front points: ringed and labelled, each label beside its ring
         // where it overlaps no other label and no front point
@@ -158,6 +170,7 @@ impl Plot for ParetoPlot<'_> {
             .map(|r| label_width(&r.config.label()))
             .collect();
         let offsets = place_labels(&anchors, &widths);
+        let offsets_kept = offsets.clone();
         for (r, offset) in front_rows.iter().zip(offsets) {
             let p = self.xy(r);
             chart
@@ -168,9 +181,33 @@ impl Plot for ParetoPlot<'_> {
                     + Text::new(r.config.label(), offset, ("sans-serif", 13).into_font())])
                 .map_err(err)?;
         }
+        // The legend in the corner the dots and labels crowd least.
+        let plot = chart.plotting_area();
+        let (pw, ph) = plot.dim_in_pixel();
+        let (ox, oy) = plot.get_base_pixel();
+        let mut labels = vec!["Pareto front".to_string()];
+        labels.extend(knobs.iter().map(|k| k.to_string()));
+        let (bw, bh) = crate::output::legend::box_fraction(&labels, 14.0, pw as f64, ph as f64);
+        let fraction = |(x, y): (i32, i32)| {
+            (
+                (x - ox) as f64 / pw as f64,
+                1.0 - (y - oy) as f64 / ph as f64,
+            )
+        };
+        let mut drawn: Vec<(f64, f64)> = self
+            .rows
+            .iter()
+            .map(|r| fraction(chart.backend_coord(&self.xy(r))))
+            .collect();
+        // A front label's box, by its corners.
+        for ((&(x, y), &(dx, dy)), &w) in anchors.iter().zip(&offsets_kept).zip(&widths) {
+            for (cx, cy) in [(0, 0), (w, 0), (0, LABEL_H), (w, LABEL_H)] {
+                drawn.push(fraction((x + dx + cx, y + dy + cy)));
+            }
+        }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(crate::output::legend::quietest_corner(&drawn, bw, bh))
             .label_font(("sans-serif", 14))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
@@ -178,6 +215,14 @@ impl Plot for ParetoPlot<'_> {
             .map_err(err)?;
         Ok(())
     }
+}
+
+/// The colour and marker of the `k`-th knob: the ten colours of
+/// [`COLORS`] as dots, then again as triangles, so every knob of the
+/// bench's 13 (and up to 20) is told apart (issue 38: 13 knobs had 10
+/// colours, `base` and `area_samples` both blue dots).
+pub fn knob_style(k: usize) -> (RGBColor, bool) {
+    (COLORS[k % COLORS.len()], (k / COLORS.len()) % 2 == 1)
 }
 
 /// Height of a 13 px label's box, and the width per character assumed for
@@ -235,6 +280,19 @@ pub fn place_labels(anchors: &[(i32, i32)], widths: &[i32]) -> Vec<(i32, i32)> {
 #[cfg(test)]
 mod label_tests {
     use super::*;
+
+    #[test]
+    fn every_knob_has_its_own_style() {
+        let styles: Vec<_> = (0..20)
+            .map(|k| {
+                let (c, triangle) = knob_style(k);
+                (c.0, c.1, c.2, triangle)
+            })
+            .collect();
+        for (i, a) in styles.iter().enumerate() {
+            assert!(!styles[i + 1..].contains(a), "knob {i}");
+        }
+    }
 
     /// The cluster of the committed docs/bench/pareto.png (fresnel,
     /// distribution and shading_model front points a few pixels apart):

@@ -88,6 +88,34 @@ pub const MAX_TEXELS: u64 = MAX_SIDE as u64 * (MAX_SIDE as u64 / 2);
 /// Radiance RGBE or OpenEXR reaches.
 const MAX_EXPANSION: u64 = 2048;
 
+/// What a map file that does not decode as `expected` is, by its first
+/// bytes (a PNG or JPEG named `.hdr`, a text file): `None` when it looks
+/// like the expected format (then it is a damaged one).
+fn what_it_is(bytes: &[u8], expected: image::ImageFormat) -> Option<String> {
+    if bytes.is_empty() {
+        return Some("an empty file".into());
+    }
+    if let Ok(actual) = image::guess_format(bytes) {
+        return (actual != expected).then(|| {
+            format!(
+                "a {} image",
+                actual
+                    .extensions_str()
+                    .first()
+                    .unwrap_or(&"other")
+                    .to_uppercase()
+            )
+        });
+    }
+    let radiance = bytes.starts_with(b"#?");
+    let text = std::str::from_utf8(&bytes[..bytes.len().min(512)]).is_ok();
+    match (radiance, text) {
+        (true, _) => None,
+        (false, true) => Some("a text file".into()),
+        (false, false) => Some("a file of an unknown format".into()),
+    }
+}
+
 /// The decoder for a file extension (lower case): `exr`, or `hdr`/`pic`.
 pub fn format_of(extension: &str) -> Option<image::ImageFormat> {
     match extension {
@@ -111,7 +139,12 @@ pub fn decode(
     budget: Budget,
 ) -> Result<MapData, String> {
     let kind = format.extensions_str()[0];
-    let unreadable = |e: image::ImageError| format!("it is not a readable {kind} image: {e}");
+    let unreadable = |e: image::ImageError| match what_it_is(bytes, format) {
+        Some(actual) => format!(
+            "it is {actual}, not a {kind} image (an environment map is an OpenEXR .exr or a Radiance .hdr file; convert it, or name it by what it is)"
+        ),
+        None => format!("it is not a readable {kind} image: {e}"),
+    };
     let reader = |limits: image::Limits| {
         let mut reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
         reader.limits(limits);
@@ -201,6 +234,17 @@ mod tests {
         std::fs::write(dir.path().join("bad.hdr"), b"#?RADIANCE\ngarbage").unwrap();
         let e = load("bad.hdr", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("not a readable hdr image"), "{e}");
+        // A file of another kind is named as what it is.
+        std::fs::write(dir.path().join("fake.hdr"), b"not an image at all\n").unwrap();
+        let e = load("fake.hdr", dir.path()).unwrap_err();
+        assert!(e.contains("it is a text file, not a hdr image"), "{e}");
+        let mut png = Vec::new();
+        image::RgbImage::new(2, 1)
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        std::fs::write(dir.path().join("png.hdr"), png).unwrap();
+        let e = load("png.hdr", dir.path()).unwrap_err();
+        assert!(e.contains("it is a PNG image, not a hdr image"), "{e}");
         // A header declaring a huge map is refused before decoding.
         std::fs::write(
             dir.path().join("bomb.hdr"),

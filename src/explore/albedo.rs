@@ -94,10 +94,25 @@ pub fn directional_albedo(material: &Material, theta_i: f64) -> AlbedoEstimate {
 /// ignored `--phi-i`, giving 0.626 where `--albedo` gave 0.6371 for an
 /// anisotropic Ward material: issue 17.)
 pub fn albedo_curve(material: &Material, thetas: &[f64], phi_i: f64) -> Vec<AlbedoEstimate> {
+    albedo_curve_with(material, thetas, phi_i, &|| {})
+}
+
+/// [`albedo_curve`], calling `done` after each angle (a progress bar: a
+/// measured network's curve takes a minute on 2 cores).
+pub fn albedo_curve_with(
+    material: &Material,
+    thetas: &[f64],
+    phi_i: f64,
+    done: &(dyn Fn() + Sync),
+) -> Vec<AlbedoEstimate> {
     let frame = super::frame();
     thetas
         .par_iter()
-        .map(|&t| albedo_towards(material, super::direction(t, phi_i), &frame))
+        .map(|&t| {
+            let a = albedo_towards(material, super::direction(t, phi_i), &frame);
+            done();
+            a
+        })
         .collect()
 }
 

@@ -1,7 +1,7 @@
 //! `gonio brdf`: the command-line face of [`crate::explore`]. `src/cli.rs`
 //! only holds the subcommand variant; everything else is here.
 
-use super::albedo::albedo_curve;
+use super::albedo::albedo_curve_with;
 use super::gloss::{GEOMETRIES, gloss_at};
 use super::plot::{AlbedoPlot, SlicePlot};
 use super::slice::{Quantity, slice};
@@ -208,12 +208,36 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         let phi_i = angles.phi_i.to_radians();
         let thetas_deg: Vec<f64> = (0..=89).map(f64::from).collect();
         let thetas: Vec<f64> = thetas_deg.iter().map(|d| d.to_radians()).collect();
+        // A bar on a terminal, lines in a log: a measured material's
+        // curve takes a minute (issue 38: it ran silent for 40–82 s).
+        // The others take a second at most and stay quiet.
+        let long = materials
+            .iter()
+            .any(|m| m.material.model == crate::material::ReflectanceModel::Measured);
+        let progress = long.then(|| {
+            std::sync::Mutex::new(crate::output::progress::Progress::new(
+                "albedo",
+                (materials.len() * thetas.len()) as u64,
+            ))
+        });
+        let with_progress = |f: &dyn Fn(&mut crate::output::progress::Progress)| {
+            if let Some(Ok(mut p)) = progress.as_ref().map(|p| p.lock()) {
+                f(&mut p);
+            }
+        };
+        let step = || with_progress(&|p| p.inc(1));
+        let series = materials
+            .iter()
+            .map(|m| {
+                with_progress(&|p| p.set_message(m.label.clone()));
+                let curve = albedo_curve_with(&m.material, &thetas, phi_i, &step);
+                (m.label.clone(), curve)
+            })
+            .collect();
+        with_progress(&|p| p.finish());
         let plot = AlbedoPlot {
             phi_i,
-            series: materials
-                .iter()
-                .map(|m| (m.label.clone(), albedo_curve(&m.material, &thetas, phi_i)))
-                .collect(),
+            series,
             thetas_deg,
             channel: args.channel,
             note,

@@ -228,6 +228,12 @@ impl Plot for HalfDiffPlot {
                     BLACK,
                 ))
                 .map_err(err)?;
+                // The corner's 0° is the θ_h axis' label: a second one
+                // beside it, and the previous panel's 90° beside that,
+                // read as "900" (issue 38).
+                if deg == 0 {
+                    continue;
+                }
                 root.draw_text(
                     &format!("{deg}°"),
                     &at(centre(14), HPos::Right, VPos::Center),

@@ -316,9 +316,23 @@ impl Plot for AlbedoPlot {
                     PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
                 });
         }
+        // The legend in the corner the curves cross least.
+        let (pw, ph) = chart.plotting_area().dim_in_pixel();
+        let mut labels = vec!["ρ = 1: energy conservation".to_string()];
+        labels.extend(self.series.iter().map(|(name, _)| name.clone()));
+        let (bw, bh) = crate::output::legend::box_fraction(&labels, 15.0, pw as f64, ph as f64);
+        let mut drawn: Vec<(f64, f64)> = (0..=90).map(|t| (t as f64 / 90.0, 1.0 / y_max)).collect();
+        for (_, estimates) in &self.series {
+            drawn.extend(
+                self.thetas_deg
+                    .iter()
+                    .zip(estimates)
+                    .map(|(&t, e)| (t / 90.0, self.channel.of(e.value).min(y_max) / y_max)),
+            );
+        }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
+            .position(crate::output::legend::quietest_corner(&drawn, bw, bh))
             .label_font(("sans-serif", 15))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)

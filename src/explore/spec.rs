@@ -74,6 +74,25 @@ pub fn material(
     }
     let entry = MaterialEntry::deserialize(toml::Value::Table(table))
         .map_err(|e| bad(one_line(&e.to_string())))?;
+    // As `render` warns of a scene file's key the model does not read
+    // (issue 38: `brdf --model lambert --set k_e=50` said nothing).
+    let unread = crate::material::entry::keys_not_applying(&entry);
+    if !unread.is_empty() {
+        let params: Vec<&str> = entry
+            .model
+            .parse::<ReflectanceModel>()
+            .map(|m| m.row().params.iter().map(|p| p.key).collect())
+            .unwrap_or_default();
+        eprintln!(
+            "gonio: warning: {argument}: {} not read by model `{model}` (its parameters: {}); ignored",
+            unread
+                .iter()
+                .map(|k| format!("`{k}`"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            params.join(", ")
+        );
+    }
     let given: Material = material_from_entry(&label, &entry).map_err(bad)?;
     // The renderers evaluate roughness no smaller than the floor (f32's
     // range on the GPU); `gonio brdf` shows what they render, and says so.

@@ -204,7 +204,9 @@ pub fn scene_text(m: &crate::material::Material, summary: &str) -> String {
     }
     if let Some(toml::Value::Table(materials)) = scene.get_mut("materials") {
         materials.remove("ball");
-        materials.insert(m.name.clone(), toml::Value::Table(material_table(m)));
+        let mut table = material_table(m);
+        super::text_numbers::tidy(&mut table);
+        materials.insert(m.name.clone(), toml::Value::Table(table));
     }
     format!(
         "# gonio fit: {summary}\n# The built-in scene with its sphere in the fitted material [materials.{}].\n\n{}",
@@ -303,7 +305,9 @@ fn run_all(args: &FitArgs) -> Result<()> {
                 let mut m = r.material.clone();
                 m.name = format!("{}--{label}", brdf.name);
                 let mut t = toml::Table::new();
-                t.insert(m.name.clone(), toml::Value::Table(material_table(&m)));
+                let mut table = material_table(&m);
+                super::text_numbers::tidy(&mut table);
+                t.insert(m.name.clone(), toml::Value::Table(table));
                 let mut outer = toml::Table::new();
                 outer.insert("materials".into(), toml::Value::Table(t));
                 tables.push_str(&format!(

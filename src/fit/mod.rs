@@ -19,6 +19,7 @@ pub mod published;
 pub mod report;
 pub mod samples;
 pub mod terms;
+pub mod text_numbers;
 
 pub use metric::Metric;
 pub use models::FitModel;

@@ -337,8 +337,9 @@ impl FitModel {
 
 fn unknown(name: &str) -> String {
     let names: Vec<&str> = FITTABLE.iter().map(|m| m.name()).collect();
+    let hint = crate::base::did_you_mean(name, names.iter().copied());
     format!(
-        "`{name}` is not a model gonio fits; it fits {} (Cook-Torrance with `,distribution=D,fresnel=F`), and scores {ABC_PUBLISHED} (the published ABC parameters of a MERL material)",
+        "`{name}` is not a model gonio fits{hint}; it fits {} (Cook-Torrance with `,distribution=D,fresnel=F`), and scores {ABC_PUBLISHED} (the published ABC parameters of a MERL material)",
         names.join(", ")
     )
 }

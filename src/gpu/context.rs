@@ -20,10 +20,23 @@ fn backends() -> Result<wgpu::Backends> {
     match std::env::var("WGPU_BACKEND") {
         Ok(text) if !text.trim().is_empty() => {
             let backends = wgpu::Backends::from_comma_list(&text);
+            let built = wgpu::Instance::enabled_backend_features();
+            let names = backend_names(built);
             if backends.is_empty() {
                 Err(Error::argument(
                     format!("WGPU_BACKEND={text}"),
-                    "names no GPU backend; use vulkan, gl, metal or dx12 (a comma-separated list picks several), or unset it for Vulkan",
+                    format!(
+                        "names no GPU backend; this gonio has {names} (a comma-separated list picks several), or unset it for Vulkan"
+                    ),
+                ))
+            } else if !backends.intersects(built) {
+                // wgpu would fail with its internal list of backends
+                // (issue 38: `WGPU_BACKEND=metal` on Linux).
+                Err(Error::argument(
+                    format!("WGPU_BACKEND={text}"),
+                    format!(
+                        "names a backend this gonio is not built with on this system; it has {names} (unset WGPU_BACKEND for Vulkan)"
+                    ),
                 ))
             } else {
                 Ok(backends)
@@ -31,6 +44,45 @@ fn backends() -> Result<wgpu::Backends> {
         }
         _ => Ok(wgpu::Backends::VULKAN),
     }
+}
+
+/// The message for `--adapter NAME` that matches none of the adapters
+/// `names`: the nearest adapter's first word when one is near, how to
+/// pick one of those there are, and the advice to install lavapipe only
+/// when there is none (issue 38: it listed llvmpipe as available and said
+/// to install lavapipe).
+fn no_adapter_named(name: &str, names: &[String]) -> String {
+    if names.is_empty() {
+        return format!(
+            "no GPU adapter matches `{name}` (from --adapter or {ADAPTER_ENV}): none is available. {LAVAPIPE_HINT}."
+        );
+    }
+    let words: Vec<&str> = names
+        .iter()
+        .filter_map(|n| n.split_whitespace().next())
+        .collect();
+    let hint = crate::base::did_you_mean(name, words.iter().copied());
+    format!(
+        "no GPU adapter matches `{name}` (from --adapter or {ADAPTER_ENV}){hint}; available: {}. The name matches any part of an adapter's name, case-insensitive (e.g. --adapter {}), and without --adapter gonio picks one itself",
+        names.join(", "),
+        words[0].to_lowercase()
+    )
+}
+
+/// The `WGPU_BACKEND` names of `backends`, e.g. "vulkan, gl".
+fn backend_names(backends: wgpu::Backends) -> String {
+    let known = [
+        (wgpu::Backends::VULKAN, "vulkan"),
+        (wgpu::Backends::GL, "gl"),
+        (wgpu::Backends::METAL, "metal"),
+        (wgpu::Backends::DX12, "dx12"),
+    ];
+    known
+        .iter()
+        .filter(|(b, _)| backends.contains(*b))
+        .map(|(_, n)| *n)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Which adapter to use.
@@ -188,12 +240,7 @@ impl GpuContext {
                 adapters
                     .into_iter()
                     .find(|a| a.get_info().name.to_lowercase().contains(&wanted))
-                    .ok_or_else(|| {
-                        Error::NoAdapter(format!(
-                            "no GPU adapter matches `{name}` (from --adapter or {ADAPTER_ENV}); available: {}. {LAVAPIPE_HINT}.",
-                            if names.is_empty() { "none".to_string() } else { names.join(", ") }
-                        ))
-                    })?
+                    .ok_or_else(|| Error::NoAdapter(no_adapter_named(name, &names)))?
             }
             AdapterChoice::Auto => instance
                 .request_adapter(&wgpu::RequestAdapterOptions {
@@ -267,5 +314,23 @@ impl GpuContext {
             "{} ({:?}, {:?}, driver {} {})",
             i.name, i.backend, i.device_type, i.driver, i.driver_info
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_unknown_adapter_name_lists_the_adapters_there_are() {
+        let names = ["llvmpipe (LLVM 15.0.6, 256 bits)".to_string()];
+        let m = no_adapter_named("llvmpip", &names);
+        assert!(m.contains("did you mean `llvmpipe`?"), "{m}");
+        let m = no_adapter_named("nosuch", &names);
+        assert!(
+            m.contains("available: llvmpipe") && !m.contains("apt-get"),
+            "{m}"
+        );
+        assert!(no_adapter_named("x", &[]).contains("apt-get"));
     }
 }

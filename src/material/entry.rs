@@ -376,26 +376,28 @@ pub fn material_table(m: &Material) -> toml::Table {
         t.insert("measured".into(), Toml::String(brdf.key_text().into()));
         return t;
     }
-    // The model's own parameters first, each through its own accessor
+    // The model's own parameters, each through its own accessor
     // (gltf-pbr's `roughness` is the perceptual r, not a stored field of
-    // its own: Save scene dropped it), then every other stored field.
-    for p in table::COMMON.iter().chain(m.model.row().params.iter()) {
+    // its own: Save scene dropped it), and its own terms: only what the
+    // model reads, so the file reads back without a warning (issue 38:
+    // `gonio fit -o f.toml` wrote 8 keys `render f.toml` warned about).
+    let row = m.model.row();
+    for p in table::COMMON.iter().chain(row.params.iter()) {
         t.insert(p.key.into(), text_value(p, m));
     }
-    for p in table::stored_params() {
-        if !t.contains_key(p.key)
-            && table::param_for(m.model, p.key).is_some_and(|q| std::ptr::eq(p, q))
-        {
-            t.insert(p.key.into(), text_value(p, m));
-        }
-    }
-    for (key, name) in [
-        ("distribution", m.distribution.name()),
-        ("geometry", m.geometry.name()),
-        ("fresnel", m.fresnel.name()),
-        ("denominator", m.denominator.name()),
+    for (key, has, name) in [
+        (
+            "distribution",
+            row.terms.distribution,
+            m.distribution.name(),
+        ),
+        ("geometry", row.terms.geometry, m.geometry.name()),
+        ("fresnel", row.terms.fresnel, m.fresnel.name()),
+        ("denominator", row.terms.denominator, m.denominator.name()),
     ] {
-        t.insert(key.into(), Toml::String(name.into()));
+        if has {
+            t.insert(key.into(), Toml::String(name.into()));
+        }
     }
     if m.model.row().energy_compensation {
         t.insert(
@@ -421,10 +423,24 @@ mod tests {
     #[test]
     fn a_saved_material_reads_back_equal() {
         let mut m = Material::new("m", ReflectanceModel::WardAnisotropic);
-        (m.sigma_x, m.sigma_y, m.k_e) = (0.1, 0.4, 7.0);
-        m.distribution = super::super::Distribution::Ggx;
+        (m.sigma_x, m.sigma_y) = (0.1, 0.4);
         let entry = MaterialEntry::deserialize(Toml::Table(material_table(&m))).unwrap();
         assert_eq!(material_from_entry("m", &entry).unwrap(), m);
+        // Every model's table holds only keys it reads (no warning when
+        // read back), and reads back to the same table.
+        for model in ReflectanceModel::ALL {
+            let mut m = Material::new("m", model);
+            (m.k_e, m.sigma_x) = (7.0, 0.3);
+            m.distribution = super::super::Distribution::Ggx;
+            if model == ReflectanceModel::Measured {
+                m.measured = Some(measured::default_brdf());
+            }
+            let written = material_table(&m);
+            let entry = MaterialEntry::deserialize(Toml::Table(written.clone())).unwrap();
+            assert!(keys_not_applying(&entry).is_empty(), "{model}: {written:?}");
+            let back = material_from_entry("m", &entry).unwrap();
+            assert_eq!(material_table(&back), written, "{model}");
+        }
     }
 
     /// `energy_compensation`: a boolean, saved and read back, refused

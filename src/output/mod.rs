@@ -5,6 +5,7 @@ pub mod atomic;
 pub mod compare;
 pub mod failure;
 pub mod interrupt;
+pub mod legend;
 pub mod plot;
 pub mod progress;
 pub mod srgb8;

@@ -476,6 +476,15 @@ impl App {
                     .map_err(|p| Error::argument(format!("--edit {kv}"), p))?;
                 continue;
             }
+            if let Some((key, value)) = kv
+                .strip_prefix("panel.")
+                .and_then(|rest| rest.split_once('='))
+            {
+                let request = super::view::section_request(key.trim(), value)
+                    .map_err(|p| Error::argument(format!("--edit {kv}"), p))?;
+                self.state.section_requests.push(request);
+                continue;
+            }
             self.state.doc.edit(kv)?;
             self.state.dirty = true;
         }

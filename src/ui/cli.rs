@@ -76,7 +76,9 @@ pub struct ViewArgs {
     /// (`plots.theta_i`, `plots.phi_i`, `plots.phi_d`,
     /// `plots.quantity=f_r|f_r-cos`, `plots.channel`, `plots.log`,
     /// `plots.decades`, `plots.probe=TH,TD`, and the views `plots.slice`,
-    /// `plots.albedo`, `plots.halfdiff`, `plots.lobe`).
+    /// `plots.albedo`, `plots.halfdiff`, `plots.lobe`); the panel's
+    /// sections with `panel.show=SECTION` (open it and scroll it to the
+    /// top: `--edit 1:panel.show=Plots`) and `panel.hide=SECTION`.
     /// Repeatable.
     #[arg(long = "edit", value_name = "FRAME:KEY=VALUE", value_parser = parse_edit)]
     pub edits: Vec<(u32, String)>,

@@ -15,6 +15,7 @@
 //! through [`screen_projection`].
 
 pub mod app;
+pub mod background;
 pub mod cli;
 pub mod compare;
 pub mod document;

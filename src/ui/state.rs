@@ -42,6 +42,10 @@ pub struct ViewerState {
     pub gpu_ms: Option<f64>,
     pub adapter: String,
     /// The fit model the compare section's combo shows.
+    /// Sections of the panel a script opens (and scrolls to the top) or
+    /// closes at the next frame: `--edit N:panel.show=Plots`,
+    /// `panel.hide=Lights` ([`super::view::SECTIONS`]).
+    pub section_requests: Vec<(&'static str, bool)>,
     pub fit_choice: String,
     /// A fit under way in the background: its label and result.
     pub fitting: Option<(
@@ -80,6 +84,7 @@ impl ViewerState {
             adapter: String::new(),
             fit_choice: "ct-ggx-conductor".into(),
             fitting: None,
+            section_requests: Vec::new(),
         }
     }
 
@@ -109,7 +114,7 @@ impl ViewerState {
         let label = format!("{} to {}", model.label(), brdf.name);
         let (tx, rx) = std::sync::mpsc::channel();
         let ctx = ctx.clone();
-        std::thread::spawn(move || {
+        super::background::spawn(move || {
             let _ = tx.send(super::fitted::fit_now(brdf, &model));
             ctx.request_repaint();
         });

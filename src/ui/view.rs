@@ -51,27 +51,64 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
         });
         ui.separator();
     }
-    egui::CollapsingHeader::new("File")
-        .default_open(true)
-        .show(ui, |ui| file_section(ui, state));
-    egui::CollapsingHeader::new("View")
-        .default_open(true)
-        .show(ui, |ui| view_section(ui, state));
-    egui::CollapsingHeader::new("Environment")
-        .default_open(true)
-        .show(ui, |ui| environment_section(ui, state));
-    egui::CollapsingHeader::new("Material")
-        .default_open(true)
-        .show(ui, |ui| material_section(ui, state));
-    egui::CollapsingHeader::new("Compare")
-        .default_open(true)
-        .show(ui, |ui| compare_section(ui, state));
-    egui::CollapsingHeader::new("Plots")
-        .default_open(true)
-        .show(ui, |ui| plots_section(ui, state));
-    egui::CollapsingHeader::new("Lights")
-        .default_open(true)
-        .show(ui, |ui| super::lights_section::lights_section(ui, state));
+    let requests = std::mem::take(&mut state.section_requests);
+    for &name in SECTIONS {
+        let request = requests.iter().rev().find(|(n, _)| *n == name).map(|r| r.1);
+        let header = egui::CollapsingHeader::new(name)
+            .default_open(true)
+            .open(request);
+        let shown = header.show(ui, |ui| match name {
+            "File" => file_section(ui, state),
+            "View" => view_section(ui, state),
+            "Environment" => environment_section(ui, state),
+            "Material" => material_section(ui, state),
+            "Compare" => compare_section(ui, state),
+            "Plots" => plots_section(ui, state),
+            _ => super::lights_section::lights_section(ui, state),
+        });
+        if request == Some(true) {
+            shown.header_response.scroll_to_me(Some(egui::Align::Min));
+        }
+    }
+}
+
+/// The panel's sections, top to bottom.
+pub const SECTIONS: &[&str] = &[
+    "File",
+    "View",
+    "Environment",
+    "Material",
+    "Compare",
+    "Plots",
+    "Lights",
+];
+
+/// `panel.show=SECTION` (open it and scroll it to the top of the panel)
+/// or `panel.hide=SECTION` (close it), for scripted runs (issue 38: at the
+/// default window size the plots are below the fold).
+pub fn section_request(key: &str, value: &str) -> Result<(&'static str, bool), String> {
+    let open = match key {
+        "show" => true,
+        "hide" => false,
+        other => {
+            return Err(format!(
+                "unknown panel setting `panel.{other}`{}; the panel takes show=SECTION and hide=SECTION",
+                crate::base::did_you_mean(other, ["show", "hide"])
+            ));
+        }
+    };
+    let wanted = value.trim().trim_matches('"');
+    SECTIONS
+        .iter()
+        .find(|s| s.eq_ignore_ascii_case(wanted))
+        .map(|s| (*s, open))
+        .ok_or_else(|| {
+            format!(
+                "the panel has no section `{wanted}`{}; its sections are {}",
+                crate::base::did_you_mean(wanted, SECTIONS.iter().copied()),
+                SECTIONS.join(", ")
+            )
+        })
 }
 
 fn environment_section(ui: &mut egui::Ui, state: &mut ViewerState) {
@@ -197,7 +234,17 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         state.dirty = true;
     }
     let mut edited = materials[state.selected_material].clone();
-    if panels::material_editor(ui, &mut edited) {
+    let changed = panels::material_editor(ui, &mut edited);
+    let images: Vec<&str> = state
+        .doc
+        .scene
+        .images
+        .iter()
+        .map(|i| i.name.as_str())
+        .collect();
+    panels::material::texture_notes(ui, &edited, &images);
+    let materials = &mut state.doc.scene.materials;
+    if changed {
         match edited.validate() {
             Ok(()) => {
                 materials[state.selected_material] = edited;

@@ -74,13 +74,13 @@ pub fn all() -> &'static [MeasuredBrdf] {
 /// The built-in material `name`, or a message listing the names.
 pub fn builtin(name: &str) -> Result<&'static MeasuredBrdf, String> {
     all().iter().find(|m| m.name == name).ok_or_else(|| {
+        // The suggestion first: the list of names is long, and messages
+        // are cut for display.
+        let names = all().iter().map(|m| m.name.as_str());
         format!(
-            "`{name}` is not a built-in measured material nor a path to a MERL `.binary` file; the built-in ones are the 100 MERL names: {}",
-            all()
-                .iter()
-                .map(|m| m.name.as_str())
-                .collect::<Vec<_>>()
-                .join(", ")
+            "`{name}` is not a built-in measured material nor a path to a MERL `.binary` file{}; the built-in ones are the 100 MERL names: {}",
+            crate::base::did_you_mean(name, names.clone()),
+            names.collect::<Vec<_>>().join(", ")
         )
     })
 }
@@ -102,5 +102,7 @@ mod tests {
         }
         let e = builtin("gold").unwrap_err();
         assert!(e.contains("gold-metallic-paint"), "{e}");
+        let e = builtin("chromee").unwrap_err();
+        assert!(e.contains("file; did you mean `chrome`?"), "{e}");
     }
 }

@@ -90,15 +90,16 @@ pub fn assemble(
             .filter(|_| meshes.iter().any(|m| !m.indices.is_empty()))
             .ok_or_else(|| bad("the scene has no triangles to draw".into()))?;
     let aspect = width as f64 / height as f64;
+    let automatic = match objects.camera {
+        Some(mut c) => {
+            c.fit_clip_planes(scene_bounds.0, scene_bounds.1);
+            c
+        }
+        None => Camera::framing(scene_bounds.0, scene_bounds.1, aspect),
+    };
     let camera = match &file.camera {
-        Some(section) => camera_from_section(section, scene_bounds).map_err(bad)?,
-        None => match objects.camera {
-            Some(mut c) => {
-                c.fit_clip_planes(scene_bounds.0, scene_bounds.1);
-                c
-            }
-            None => Camera::framing(scene_bounds.0, scene_bounds.1, aspect),
-        },
+        Some(section) => camera_from_section(section, automatic, scene_bounds).map_err(bad)?,
+        None => automatic,
     };
 
     let tone_map = match &file.image.tone_map {
@@ -407,33 +408,37 @@ fn shape_mesh(
     }
 }
 
+/// The camera of `[camera]`: each key given replaces the `automatic`
+/// camera's (the one the scene has without the section).
 fn camera_from_section(
     s: &CameraSection,
+    automatic: Camera,
     (lo, hi): (DVec3, DVec3),
 ) -> std::result::Result<Camera, String> {
-    let position = finite_vec("camera.position", s.position)?;
-    let target = finite_vec("camera.target", s.target)?;
+    let given = |v: Option<[f64; 3]>, fallback: DVec3| v.unwrap_or(fallback.to_array());
+    let position = finite_vec("camera.position", given(s.position, automatic.position))?;
+    let target = finite_vec("camera.target", given(s.target, automatic.target))?;
     for (key, v) in [("camera.position", position), ("camera.target", target)] {
         gpu_coordinate(key, v)?;
     }
-    let up = unit_vec("camera.up", s.up)?;
+    let up = unit_vec("camera.up", given(s.up, automatic.up))?;
+    let fov_y_deg = s.fov_y_deg.unwrap_or(automatic.fov_y_deg);
     let forward = (target - position)
         .try_normalize()
         .ok_or("camera.position and camera.target coincide")?;
     if forward.cross(up).length() < 1e-9 {
         return Err("camera.up is parallel to the viewing direction".into());
     }
-    if !(s.fov_y_deg > 0.0 && s.fov_y_deg < 180.0) {
+    if !(fov_y_deg > 0.0 && fov_y_deg < 180.0) {
         return Err(format!(
-            "camera.fov_y_deg = {} is outside (0, 180)",
-            s.fov_y_deg
+            "camera.fov_y_deg = {fov_y_deg} is outside (0, 180)"
         ));
     }
     let mut camera = Camera {
         position,
         target,
         up,
-        fov_y_deg: s.fov_y_deg,
+        fov_y_deg,
         near: 0.0,
         far: 0.0,
     };

@@ -28,7 +28,7 @@ pub fn clean_toml_error(e: &impl std::fmt::Display) -> String {
             message.push(line);
         }
     }
-    let message = message.join(" ");
+    let message = plain_types(&message.join(" "));
     let suggestion = unknown_name_suggestion(&message)
         .map(|name| format!("; did you mean `{name}`?"))
         .unwrap_or_default();
@@ -42,6 +42,79 @@ pub fn clean_toml_error(e: &impl std::fmt::Display) -> String {
     }
     out += &shorten(&message, MAX_MESSAGE_CHARS);
     out + &suggestion
+}
+
+/// [`clean_toml_error`] for an error in the scene file `text`: an unknown
+/// key is located at its own line, where toml reports the table that holds
+/// it (issue 38: a misspelt key was reported at its table's header).
+pub fn clean_toml_error_in(e: &toml::de::Error, text: &str) -> String {
+    let cleaned = clean_toml_error(e);
+    let Some(span) = e.span() else {
+        return cleaned;
+    };
+    let Some(unknown) = e
+        .message()
+        .split_once("unknown field `")
+        .and_then(|(_, rest)| rest.split_once('`'))
+        .map(|(name, _)| name)
+    else {
+        return cleaned;
+    };
+    // toml's span of a table may be its header alone: the table's keys
+    // run from there to the next header.
+    let Some(region) = text.get(span.start..) else {
+        return cleaned;
+    };
+    let mut offset = span.start;
+    for (k, line) in region.split_inclusive('\n').enumerate() {
+        if k > 0 && offset >= span.end && line.trim_start().starts_with('[') {
+            break;
+        }
+        let code = line.trim();
+        let key = code
+            .strip_prefix(unknown)
+            .or_else(|| code.strip_prefix(&format!("\"{unknown}\"")));
+        if key.is_some_and(|rest| rest.trim_start().starts_with(['=', '.'])) {
+            let line_no = text[..offset].matches('\n').count() + 1;
+            let column = line.len() - line.trim_start().len() + 1;
+            let message = cleaned
+                .split_once("): ")
+                .filter(|(at, _)| at.starts_with("line "))
+                .map_or(cleaned.as_str(), |(_, m)| m);
+            return format!(
+                "line {line_no}, column {column} (`{}`): {message}",
+                shorten(code, 60)
+            );
+        }
+        offset += line.len();
+    }
+    cleaned
+}
+
+/// serde's Rust type names in a message said in the scene file's words
+/// (issue 38: `k_e=abc` said "expected f64").
+fn plain_types(message: &str) -> String {
+    let mut out = message.to_string();
+    for (rust, plain) in [
+        ("expected f64", "expected a number (e.g. 0.5)"),
+        ("expected f32", "expected a number (e.g. 0.5)"),
+        ("expected u32", "expected a whole number ≥ 0"),
+        ("expected u64", "expected a whole number ≥ 0"),
+        ("expected usize", "expected a whole number ≥ 0"),
+        ("expected u8", "expected a whole number from 0 to 255"),
+        ("expected i64", "expected a whole number"),
+        ("expected a boolean", "expected true or false"),
+        ("expected a sequence", "expected an array (e.g. [1, 2, 3])"),
+    ] {
+        if let Some(at) = out.find(rust) {
+            let end = at + rust.len();
+            // Only the whole word (`f64`, not `f64s`).
+            if !out[end..].starts_with(|c: char| c.is_alphanumeric() || c == '_') {
+                out.replace_range(at..end, plain);
+            }
+        }
+    }
+    out
 }
 
 /// A line of toml's caret diagram: `|`, `  |   ^^^` or `12 | code`. Returns
@@ -79,44 +152,4 @@ fn unknown_name_suggestion(message: &str) -> Option<&str> {
     nearest_name(unknown, candidates)
 }
 
-/// The candidate closest to `unknown` by edit distance (ignoring case), if
-/// within a third of its length (at least 2 edits), or if one is a prefix
-/// of the other (`fov` for `fov_y_deg`).
-pub(super) fn nearest_name<'c>(
-    unknown: &str,
-    candidates: impl Iterator<Item = &'c str>,
-) -> Option<&'c str> {
-    // Keys are short; a long one is not a typo, and edit distance is
-    // quadratic.
-    if unknown.is_empty() || unknown.len() > 64 {
-        return None;
-    }
-    let unknown = unknown.to_lowercase();
-    let budget = (unknown.chars().count() / 3).max(2);
-    candidates
-        .filter(|c| !c.is_empty())
-        .map(|c| {
-            let lower = c.to_lowercase();
-            let prefix = lower.starts_with(&unknown) || unknown.starts_with(&lower);
-            (edit_distance(&unknown, &lower), prefix, c)
-        })
-        .filter(|&(distance, prefix, _)| distance <= budget || prefix)
-        .min_by_key(|&(distance, _, _)| distance)
-        .map(|(_, _, c)| c)
-}
-
-/// Levenshtein distance (insertions, deletions, substitutions), by chars.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut previous: Vec<usize> = (0..=b.len()).collect();
-    let mut current = vec![0; b.len() + 1];
-    for (i, ca) in a.chars().enumerate() {
-        current[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let substitute = previous[j] + usize::from(ca != cb);
-            current[j + 1] = substitute.min(previous[j + 1] + 1).min(current[j] + 1);
-        }
-        std::mem::swap(&mut previous, &mut current);
-    }
-    previous[b.len()]
-}
+pub(super) use crate::base::named::nearest_name;

@@ -27,12 +27,18 @@ pub const SECTION: &str = "gltf_materials";
 /// to apply `kv` as it is.
 pub fn redirect(table: &toml::Table, kv: &str) -> Option<String> {
     let (key, value) = kv.split_once('=')?;
-    let rest = key.trim().strip_prefix("materials.")?;
-    let (name, field) = rest.split_once('.')?;
-    let defined =
-        matches!(table.get("materials"), Some(toml::Value::Table(m)) if m.contains_key(name));
-    (!defined && field != "model" && has_gltf_objects(table))
-        .then(|| format!("{SECTION}.{name}.{field}={value}"))
+    let parts = super::overrides::key_parts(key.trim());
+    let [materials, name, field, ..] = parts.as_slice() else {
+        return None;
+    };
+    let defined = matches!(table.get("materials"), Some(toml::Value::Table(m)) if m.contains_key(name.as_str()));
+    (materials == "materials" && !defined && field != "model" && has_gltf_objects(table)).then(
+        || {
+            let mut redirected = parts.clone();
+            redirected[0] = SECTION.to_string();
+            format!("{}={value}", super::overrides::dotted_key(&redirected))
+        },
+    )
 }
 
 /// Whether any `[[objects]]` entry is a glTF file.

@@ -19,6 +19,7 @@ pub mod gltf_keys;
 pub mod gltf_material_edits;
 pub mod lights;
 pub mod mode_warnings;
+pub mod model_switch;
 pub mod overrides;
 pub mod schema;
 pub mod shadow_keys;
@@ -92,20 +93,40 @@ pub fn load_for_editing(
     let mut file = parse_table(&origin, &table)?;
     // Which `--set` made each `[gltf_materials.NAME]` edit, for messages.
     let mut edit_origins = std::collections::BTreeMap::new();
+    let mut written = model_switch::Written::default();
+    let mut switch_notes = Vec::new();
     for kv in overrides {
         let redirected = gltf_material_edits::redirect(&table, kv);
         if let Some(r) = &redirected
-            && let Some(name) = r.split('.').nth(1)
+            && let Some((key, _)) = r.split_once('=')
+            && let Some(name) = overrides::key_parts(key).into_iter().nth(1)
         {
             edit_origins
                 .entry(name.to_string())
                 .or_insert_with(|| format!("--set {kv}"));
         }
         apply_override(&mut table, redirected.as_deref().unwrap_or(kv))?;
+        written.record(kv);
+        let dropped = model_switch::drop_unread_keys(&mut table, kv, &written);
+        if !dropped.is_empty() {
+            let keys: Vec<String> = dropped.iter().map(|k| format!("`{k}`")).collect();
+            // The built-in scene's keys are not the user's: a note only.
+            let prefix = if matches!(source, SceneSource::BuiltIn) {
+                ""
+            } else {
+                WARNING
+            };
+            switch_notes.push(format!(
+                "{prefix}--set {kv}: {} of {} not read by the new model; dropped",
+                keys.join(", "),
+                origin.display()
+            ));
+        }
         file = SceneFile::deserialize(toml::Value::Table(table.clone()))
             .map_err(|e| Error::argument(format!("--set {kv}"), clean_toml_error(&e)))?;
     }
     let mut notes = inapplicable_keys(&file);
+    notes.extend(switch_notes);
     let mut gltf_files = gltf_import::GltfLoader::new(limits);
     let gltf_edits = std::mem::take(&mut file.gltf_materials);
     let file_materials: Vec<String> = file.materials.keys().cloned().collect();
@@ -184,8 +205,9 @@ pub fn scene_table(source: &SceneSource) -> Result<(PathBuf, PathBuf, toml::Tabl
                 Some("toml") => {
                     let text = read_scene_text(path)?;
                     // Typed parse first: syntax and type errors with line/column.
-                    toml::from_str::<SceneFile>(&text)
-                        .map_err(|e| Error::input(path, clean_toml_error(&e)))?;
+                    toml::from_str::<SceneFile>(&text).map_err(|e| {
+                        Error::input(path, diagnostics::clean_toml_error_in(&e, &text))
+                    })?;
                     let table = text
                         .parse::<toml::Table>()
                         .map_err(|e| Error::input(path, clean_toml_error(&e)))?;

@@ -20,15 +20,15 @@ pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
         .ok_or_else(|| Error::argument(arg(), "expected KEY=VALUE, e.g. materials.ball.k_e=80"))?;
     let key = key.trim();
     let raw = raw.trim();
-    if key.is_empty() || key.split('.').any(str::is_empty) {
+    let parts = key_parts(key);
+    if parts.is_empty() || parts.iter().any(String::is_empty) {
         return Err(Error::argument(
             arg(),
             "the key is empty or has an empty part",
         ));
     }
     let value = value_of(raw);
-
-    let parts: Vec<&str> = key.split('.').collect();
+    let parts: Vec<&str> = parts.iter().map(String::as_str).collect();
     if parts.len() > MAX_KEY_DEPTH {
         return Err(Error::argument(
             arg(),
@@ -92,6 +92,52 @@ fn must_exist(table: &toml::Table, parts: &[&str]) -> std::result::Result<(), St
     Ok(())
 }
 
+/// The parts of a dotted `--set` key, read as TOML reads a dotted key in a
+/// file: a part may be quoted, so a name with dots or spaces is addressed
+/// as in the file (`gltf_materials."Material.005".emission`,
+/// `materials."material 0".k_d`). A key that is not a TOML key (a bare
+/// part with a space, say) is split at its dots as written.
+pub fn key_parts(key: &str) -> Vec<String> {
+    let quoted = key.contains('"') || key.contains('\'');
+    let parsed = quoted
+        .then(|| format!("{key} = 0").parse::<toml::Table>().ok())
+        .flatten();
+    let Some(mut table) = parsed else {
+        return key.split('.').map(str::to_string).collect();
+    };
+    let mut parts = Vec::new();
+    loop {
+        let Some((part, value)) = table.into_iter().next() else {
+            return parts;
+        };
+        parts.push(part);
+        match value {
+            toml::Value::Table(inner) => table = inner,
+            _ => return parts,
+        }
+    }
+}
+
+/// `parts` as one dotted key that [`key_parts`] reads back: a part that
+/// is not a bare TOML key (letters, digits, `_`, `-`) is quoted.
+pub fn dotted_key<S: AsRef<str>>(parts: &[S]) -> String {
+    parts
+        .iter()
+        .map(|p| {
+            let p = p.as_ref();
+            let bare = !p.is_empty()
+                && p.bytes()
+                    .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-');
+            if bare {
+                p.to_string()
+            } else {
+                toml::Value::String(p.to_string()).to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(".")
+}
+
 /// VALUE of a `--set` (and of the viewer's `--edit`): a TOML value, or
 /// the text as a string when it is not valid TOML (`flat`, `ggx`).
 pub fn value_of(raw: &str) -> toml::Value {
@@ -148,5 +194,30 @@ impl<'a> TableOrArray<'a> {
                 Ok(())
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quoted_parts_keep_their_dots() {
+        assert_eq!(
+            key_parts("gltf_materials.\"Material.005\".emission"),
+            ["gltf_materials", "Material.005", "emission"]
+        );
+        assert_eq!(
+            key_parts("materials.'material 0'.k_d"),
+            ["materials", "material 0", "k_d"]
+        );
+        assert_eq!(
+            key_parts("lights.0.intensity"),
+            ["lights", "0", "intensity"]
+        );
+        assert_eq!(key_parts("a..b"), ["a", "", "b"]);
+        let parts = ["gltf_materials", "Material.005", "k_d"];
+        assert_eq!(key_parts(&dotted_key(&parts)), parts);
+        assert_eq!(dotted_key(&parts), "gltf_materials.\"Material.005\".k_d");
     }
 }

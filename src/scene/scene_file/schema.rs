@@ -97,22 +97,17 @@ impl Default for ImageSection {
 }
 
 /// `[camera]`: a perspective camera looking from `position` to `target`.
-#[derive(Clone, Debug, Deserialize)]
+/// Every key is optional: a key not given is the scene's automatic
+/// camera's (a glTF file's first camera, else one framing the scene from
+/// +Y up with a 45° field of view), so `--set camera.fov_y_deg=30` on a
+/// glTF keeps the rest of its camera, as the same key alone in a file does.
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSection {
-    pub position: [f64; 3],
-    pub target: [f64; 3],
-    #[serde(default = "default_up")]
-    pub up: [f64; 3],
-    #[serde(default = "default_fov")]
-    pub fov_y_deg: f64,
-}
-
-fn default_up() -> [f64; 3] {
-    [0.0, 1.0, 0.0]
-}
-fn default_fov() -> f64 {
-    45.0
+    pub position: Option<[f64; 3]>,
+    pub target: Option<[f64; 3]>,
+    pub up: Option<[f64; 3]>,
+    pub fov_y_deg: Option<f64>,
 }
 
 /// `[shading]`: flat | gouraud | phong.

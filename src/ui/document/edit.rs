@@ -34,7 +34,8 @@ impl Document {
         let (key, value) = assignment
             .split_once('=')
             .ok_or_else(|| bad("expected KEY=VALUE".into()))?;
-        let parts: Vec<&str> = key.trim().split('.').collect();
+        let parts = scene_file::overrides::key_parts(key.trim());
+        let parts: Vec<&str> = parts.iter().map(String::as_str).collect();
         if let Some(done) = self.edit_light_list(&parts, value) {
             return done.map_err(bad);
         }

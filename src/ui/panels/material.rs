@@ -132,3 +132,97 @@ fn param(ui: &mut egui::Ui, p: &Param, m: &mut Material) -> bool {
     }
     changed
 }
+
+/// One line per texture of `m`: what it multiplies, the image (by its
+/// name in `images`), the channel it reads, its UV set and its
+/// `KHR_texture_transform` (issue 38: the panel showed only the factors
+/// of textured parameters, with no sign that a texture multiplies them).
+pub fn texture_lines(m: &Material, images: &[&str]) -> Vec<String> {
+    use crate::material::texture::TextureTarget;
+    m.textures
+        .iter()
+        .map(|t| {
+            let image = images.get(t.image).copied().unwrap_or("?");
+            let what = match t.target {
+                TextureTarget::Param(key) => {
+                    let colour = table::all_params()
+                        .iter()
+                        .any(|p| p.key == key && p.kind == crate::material::param::Kind::Color);
+                    let channel = if colour {
+                        "RGB".to_string()
+                    } else {
+                        ["R", "G", "B", "A"][t.channel.min(3)].to_string()
+                    };
+                    format!("{key} × texture ({channel})")
+                }
+                TextureTarget::Normal { scale } => format!("normal map (scale {scale})"),
+                TextureTarget::Occlusion { strength } => {
+                    format!("occlusion map (R, strength {strength})")
+                }
+            };
+            let mut line = format!("{what}: {image}, UV {}", t.tex_coord);
+            let tr = t.transform;
+            if tr != Default::default() {
+                line += &format!(
+                    "; offset ({}, {}), rotation {:.1}°, scale ({}, {})",
+                    tr.offset.x,
+                    tr.offset.y,
+                    tr.rotation.to_degrees(),
+                    tr.scale.x,
+                    tr.scale.y
+                );
+            }
+            line
+        })
+        .collect()
+}
+
+/// [`texture_lines`] under the material's parameters, when it has any.
+pub fn texture_notes(ui: &mut egui::Ui, m: &Material, images: &[&str]) {
+    let lines = texture_lines(m, images);
+    if lines.is_empty() {
+        return;
+    }
+    ui.label(egui::RichText::new("textures (each multiplies the factor above)").small());
+    for line in lines {
+        ui.label(egui::RichText::new(line).small().monospace());
+    }
+}
+
+#[cfg(test)]
+mod texture_tests {
+    use super::*;
+    use crate::material::texture::{MaterialTexture, TextureTarget, UvTransform};
+
+    #[test]
+    fn each_texture_is_listed_with_its_channel_and_transform() {
+        let mut m = Material::new("m", ReflectanceModel::GltfPbr);
+        m.textures.push(MaterialTexture {
+            target: TextureTarget::Param("roughness"),
+            image: 1,
+            channel: 1,
+            tex_coord: 0,
+            transform: UvTransform {
+                rotation: std::f64::consts::FRAC_PI_2,
+                ..Default::default()
+            },
+            sampler: Default::default(),
+        });
+        m.textures.push(MaterialTexture {
+            target: TextureTarget::Param("base_color"),
+            image: 0,
+            channel: 0,
+            tex_coord: 1,
+            transform: Default::default(),
+            sampler: Default::default(),
+        });
+        let lines = texture_lines(&m, &["albedo.png", "orm.png"]);
+        assert_eq!(
+            lines,
+            [
+                "roughness × texture (G): orm.png, UV 0; offset (0, 0), rotation 90.0°, scale (1, 1)",
+                "base_color × texture (RGB): albedo.png, UV 1",
+            ]
+        );
+    }
+}

@@ -6,7 +6,7 @@ mod compare;
 mod environment;
 mod light;
 mod light_list;
-mod material;
+pub mod material;
 mod widgets;
 
 pub use compare::{Request as CompareRequest, compare_editor};

@@ -278,14 +278,24 @@ fn axes(painter: &egui::Painter, r: egui::Rect, left_labels: bool) {
             [egui::pos2(x, r.max.y), egui::pos2(x, r.max.y + 4.0)],
             stroke,
         );
+        // The end labels stay within their image's width: centred, one
+        // image's 90 and the next one's 0 read as "900" (issue 38).
+        let align = if deg == 0.0 {
+            egui::Align2::LEFT_TOP
+        } else if deg == 90.0 {
+            egui::Align2::RIGHT_TOP
+        } else {
+            egui::Align2::CENTER_TOP
+        };
         painter.text(
             egui::pos2(x, r.max.y + 4.0),
-            egui::Align2::CENTER_TOP,
+            align,
             format!("{deg:.0}"),
             font.clone(),
             LABEL,
         );
-        if left_labels {
+        // The corner's 0 is the θ_h axis' label.
+        if left_labels && deg > 0.0 {
             let y = position_of(r, 0.0, deg).y;
             painter.line_segment(
                 [egui::pos2(r.min.x - 4.0, y), egui::pos2(r.min.x, y)],

@@ -1,6 +1,7 @@
 //! One background computation per plotted quantity: the albedo and gloss
 //! integrals take milliseconds to a second (narrow lobes, measured
-//! networks), so they run on a worker thread while the panel shows the
+//! networks), so they run on a background thread (`ui::background`: lower priority,
+//! a thread pool of their own) while the panel shows the
 //! last finished result, marked stale until the new one arrives. The frame
 //! rate never waits for them, and the (otherwise idle) window is woken by
 //! egui's repaint request when a result is ready.
@@ -46,7 +47,8 @@ impl<K: PartialEq + Clone + Send + 'static, V: Send + 'static> Slot<K, V> {
         let (tx, rx) = channel();
         let ctx = ctx.clone();
         let k = key.clone();
-        std::thread::spawn(move || {
+        // Off the UI thread and below its priority (`ui::background`).
+        crate::ui::background::spawn(move || {
             let _ = tx.send(compute(k));
             ctx.request_repaint();
         });
