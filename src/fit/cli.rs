@@ -53,8 +53,10 @@ pub struct FitArgs {
     #[arg(long, value_name = "NAMES", value_delimiter = ',', requires = "all")]
     pub materials: Vec<String>,
     /// With --all: run shard I of N (1-based; materials I, I+N, ...) and
-    /// write only its files; `--merge` joins the shards.
-    #[arg(long, value_name = "I/N", requires = "all")]
+    /// write only its files; `--merge` joins the shards. `auto` (or
+    /// `auto/N`) reads the shard from Slurm's SLURM_ARRAY_TASK_ID,
+    /// Kubernetes' JOB_COMPLETION_INDEX or HyperQueue's HQ_TASK_ID.
+    #[arg(long, value_name = "I/N|auto", requires = "all")]
     pub shard: Option<String>,
     /// Merge the shards in --out-dir into the ranking.
     #[arg(long, conflicts_with_all = ["material", "output"])]
@@ -196,25 +198,6 @@ pub fn scene_text(m: &crate::material::Material, summary: &str) -> String {
     )
 }
 
-/// `--shard I/N` as (I, N), 1 ≤ I ≤ N.
-fn parse_shard(text: &str) -> Result<(usize, usize)> {
-    let bad = || {
-        Error::argument(
-            format!("--shard {text}"),
-            "expected I/N with 1 ≤ I ≤ N, e.g. --shard 2/8",
-        )
-    };
-    let (i, n) = text.split_once('/').ok_or_else(bad)?;
-    let (i, n): (usize, usize) = (
-        i.trim().parse().map_err(|_| bad())?,
-        n.trim().parse().map_err(|_| bad())?,
-    );
-    if i == 0 || i > n {
-        return Err(bad());
-    }
-    Ok((i, n))
-}
-
 /// `gonio fit --all`.
 fn run_all(args: &FitArgs) -> Result<()> {
     let start = Instant::now();
@@ -237,9 +220,18 @@ fn run_all(args: &FitArgs) -> Result<()> {
             })
             .collect::<Result<_>>()?
     };
-    let (shard, of) = match &args.shard {
-        Some(s) => parse_shard(s)?,
-        None => (1, 1),
+    let crate::cluster::Shard {
+        index: shard,
+        count: of,
+    } = match &args.shard {
+        Some(s) => {
+            let (shard, source) = crate::cluster::Shard::from_arg(s)?;
+            if let Some(source) = source {
+                eprintln!("gonio fit: --shard {s}: shard {shard} ({source})");
+            }
+            shard
+        }
+        None => crate::cluster::Shard::WHOLE,
     };
     materials = materials
         .into_iter()

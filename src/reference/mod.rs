@@ -14,6 +14,7 @@ pub mod texture;
 
 pub use bvh::{Bvh, Hit, TriangleId};
 pub use renderer::{
-    AreaLights, memory_estimate, render, render_offset, render_with, render_with_lod_bias,
+    AreaLights, memory_estimate, render, render_offset, render_rows, render_with,
+    render_with_lod_bias,
     shadow_epsilon, visibility,
 };
