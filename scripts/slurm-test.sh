@@ -85,12 +85,19 @@ for _ in $(seq 50); do [[ -S $SOCKET ]] && break; sleep 0.1; done
 
 # Two free TCP ports for slurmctld and slurmd (not the defaults, so that a
 # Slurm already on the machine is left alone).
-read -r CTLD_PORT SLURMD_PORT < <(python3 -c '
-import socket
-s = [socket.socket() for _ in range(2)]
-for x in s: x.bind(("127.0.0.1", 0))
-print(*[x.getsockname()[1] for x in s])')
-HOST=$(hostname -s)
+free_port() {
+    local p
+    while :; do
+        p=$((20000 + RANDOM % 40000))
+        # A connection that succeeds means the port is taken.
+        (exec 3<>"/dev/tcp/127.0.0.1/$p") 2>/dev/null || { echo "$p"; return; }
+    done
+}
+CTLD_PORT=$(free_port)
+SLURMD_PORT=$(free_port)
+while [[ $SLURMD_PORT == "$CTLD_PORT" ]]; do SLURMD_PORT=$(free_port); done
+HOST=$(uname -n)
+HOST=${HOST%%.*}
 NODE=$(slurmd -C | head -1)
 [[ $NODE == NodeName=* ]] || die "slurmd -C did not describe this machine: $NODE"
 export SLURM_CONF=$T/slurm.conf

@@ -74,9 +74,10 @@ pub fn check_set(parts: &[PathBuf]) -> Result<Vec<(PathBuf, Header)>> {
         return Err(Error::argument(
             "gonio merge",
             format!(
-                "the set is incomplete: shard{} {} missing ({} of {count} given); render {} with `gonio render --reference --shard I/{count}` and merge again",
-                if missing.len() == 1 { " is" } else { "s are" },
+                "the set is incomplete: {} {} {} missing ({} of {count} given); render {} with `gonio render --reference --shard I/{count}` and merge again",
+                if missing.len() == 1 { "shard" } else { "shards" },
                 missing.join(", "),
+                if missing.len() == 1 { "is" } else { "are" },
                 headers.len(),
                 if missing.len() == 1 { "it" } else { "them" },
             ),
