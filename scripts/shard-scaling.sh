@@ -25,8 +25,9 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 # Runs "$@" under /usr/bin/time; appends "wall user sys" to $T/times.
 timed() { /usr/bin/time -f '%e %U %S' -a -o "$T/times" "$@"; }
-sum() { awk '{w = $1 > w ? $1 : w; c += $2 + $3} END {printf "%.2f %.2f", w, c}' "$T/times"; }
+sum() { awk '{w = $1 > w ? $1 : w; c += $2 + $3} END {printf "%.2f %.2f\n", w, c}' "$T/times"; }
 
+echo "# $(date -u '+%F %T') UTC, $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 printf 'round\tprocesses\tthreads each\twall s\tCPU s\tmerge wall s\n'
 for round in $(seq "$ROUNDS"); do
     : >"$T/times"
@@ -44,6 +45,7 @@ for round in $(seq "$ROUNDS"); do
                 --shard "$i/$n" -o "$T/parts/part-{shard}.exr" 2>/dev/null &
         done
         wait
+        echo "#   load average $(cut -d' ' -f1-3 /proc/loadavg)" >&2
         t1=$(date +%s.%N)
         read -r _ cpu < <(sum)
         "$GONIO" merge -o "$T/merged.exr" "$T"/parts/part-*.exr

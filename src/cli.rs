@@ -180,7 +180,9 @@ pub fn main() -> ExitCode {
         Command::Brdf(args) => crate::explore::cli::run(&args),
         Command::Bench(args) => crate::bench::run::run(&args),
         Command::Fit(args) => crate::fit::cli::run(&args),
-        Command::Merge(args) => crate::cluster::merge::run(&args.output, args.exposure, &args.parts),
+        Command::Merge(args) => {
+            crate::cluster::merge::run(&args.output, args.exposure, &args.parts)
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

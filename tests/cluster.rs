@@ -93,21 +93,50 @@ fn shard_and_merge(scene: &[OsString], shards: usize, dir: &Path) -> Vec<PathBuf
 #[test]
 fn merged_shards_equal_the_single_render_byte_for_byte() {
     let dir = tempfile::tempdir().unwrap();
-    let environment: OsString = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/environment.toml").into();
+    let environment: OsString = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/environment.toml"
+    )
+    .into();
     let suzanne: OsString = common::gltf_asset("Suzanne/Suzanne.gltf").into();
     let cases: [(&str, Vec<OsString>, &[usize]); 4] = [
-        ("built-in", args(&[&"--width", &"37", &"--height", &"23"]), &[1, 3, 23]),
+        (
+            "built-in",
+            args(&[&"--width", &"37", &"--height", &"23"]),
+            &[1, 3, 23],
+        ),
         (
             "flat, aces",
-            args(&[&"--width", &"32", &"--height", &"24", &"--shading", &"flat", &"--set", &"image.tone_map=\"aces\""]),
+            args(&[
+                &"--width",
+                &"32",
+                &"--height",
+                &"24",
+                &"--shading",
+                &"flat",
+                &"--set",
+                &"image.tone_map=\"aces\"",
+            ]),
             &[4],
         ),
         (
             "suzanne, gouraud",
-            args(&[&suzanne, &"--width", &"40", &"--height", &"30", &"--shading", &"gouraud"]),
+            args(&[
+                &suzanne,
+                &"--width",
+                &"40",
+                &"--height",
+                &"30",
+                &"--shading",
+                &"gouraud",
+            ]),
             &[5],
         ),
-        ("environment", args(&[&environment, &"--width", &"48", &"--height", &"24"]), &[3]),
+        (
+            "environment",
+            args(&[&environment, &"--width", &"48", &"--height", &"24"]),
+            &[3],
+        ),
     ];
     for (k, (name, scene, counts)) in cases.iter().enumerate() {
         let single = dir.path().join(format!("single-{k}"));
@@ -120,14 +149,20 @@ fn merged_shards_equal_the_single_render_byte_for_byte() {
             for ext in ["exr", "png"] {
                 let a = std::fs::read(single.join(format!("image.{ext}"))).unwrap();
                 let b = std::fs::read(parts.join(format!("merged.{ext}"))).unwrap();
-                assert!(a == b, "{name}, {n} shards: the merged .{ext} differs from the single render");
+                assert!(
+                    a == b,
+                    "{name}, {n} shards: the merged .{ext} differs from the single render"
+                );
             }
         }
     }
     // An exposure applies to the merge's PNG as to the render's.
     let scene = &cases[0].1;
     let single = dir.path().join("exposed.png");
-    ok(&render(scene, &args(&[&"--exposure", &"1.5"]), &single), &[]);
+    ok(
+        &render(scene, &args(&[&"--exposure", &"1.5"]), &single),
+        &[],
+    );
     let parts: Vec<OsString> = (1..=3)
         .map(|i| dir.path().join(format!("parts-0-3/part-{i}.exr")).into())
         .collect();
@@ -151,8 +186,14 @@ fn a_finished_shard_is_skipped_and_a_stale_one_replaced() {
     let before = std::fs::metadata(&part).unwrap().modified().unwrap();
     let bytes = std::fs::read(&part).unwrap();
     let stderr = ok(&render(&scene, &shard, &part), &[]);
-    assert!(stderr.contains("skipped") && stderr.contains("shard 2/3"), "{stderr}");
-    assert_eq!(std::fs::metadata(&part).unwrap().modified().unwrap(), before);
+    assert!(
+        stderr.contains("skipped") && stderr.contains("shard 2/3"),
+        "{stderr}"
+    );
+    assert_eq!(
+        std::fs::metadata(&part).unwrap().modified().unwrap(),
+        before
+    );
     assert!(std::fs::read(&part).unwrap() == bytes);
 
     let mut other = scene.clone();
@@ -184,7 +225,11 @@ fn the_merge_refuses_an_incomplete_duplicated_or_mixed_set() {
 
     let copy = dir.path().join("copy-of-3.exr");
     std::fs::copy(&parts[2], &copy).unwrap();
-    let e = refused(&merge(&[&parts[0], &parts[1], &parts[2], &copy, &parts[3]]), &[], &out);
+    let e = refused(
+        &merge(&[&parts[0], &parts[1], &parts[2], &copy, &parts[3]]),
+        &[],
+        &out,
+    );
     assert!(e.contains("copy-of-3.exr") && e.contains("twice"), "{e}");
 
     let odd = dir.path().join("odd-2.exr");
@@ -192,18 +237,28 @@ fn the_merge_refuses_an_incomplete_duplicated_or_mixed_set() {
     other.extend(args(&[&"--set", &"lights.0.intensity=[9,9,9]"]));
     ok(&render(&other, &args(&[&"--shard", &"2/4"]), &odd), &[]);
     let e = refused(&merge(&[&parts[0], &odd, &parts[2], &parts[3]]), &[], &out);
-    assert!(e.contains("odd-2.exr") && e.contains("another render"), "{e}");
+    assert!(
+        e.contains("odd-2.exr") && e.contains("another render"),
+        "{e}"
+    );
 
     // Same scene, another shard count.
     let five = dir.path().join("five.exr");
     ok(&render(&scene, &args(&[&"--shard", &"1/5"]), &five), &[]);
-    let e = refused(&merge(&[&parts[0], &parts[1], &parts[2], &parts[3], &five]), &[], &out);
+    let e = refused(
+        &merge(&[&parts[0], &parts[1], &parts[2], &parts[3], &five]),
+        &[],
+        &out,
+    );
     assert!(e.contains("five.exr") && e.contains("5 shards"), "{e}");
 
     let plain = dir.path().join("plain.exr");
     ok(&render(&scene, &[], &plain), &[]);
     let e = refused(&merge(&[&plain]), &[], &out);
-    assert!(e.contains("plain.exr") && e.contains("not a partial image"), "{e}");
+    assert!(
+        e.contains("plain.exr") && e.contains("not a partial image"),
+        "{e}"
+    );
 }
 
 /// `--shard auto` takes the shard from a Slurm array task's variables
@@ -221,11 +276,24 @@ fn auto_shards_read_the_scheduler_and_bad_shards_are_refused() {
         ("SLURM_ARRAY_TASK_MAX", "3"),
         ("SLURM_ARRAY_TASK_COUNT", "3"),
     ];
-    ok(&render(&scene, &args(&[&"--shard", &"auto", &"--verbose"]), &pattern), &slurm);
+    ok(
+        &render(
+            &scene,
+            &args(&[&"--shard", &"auto", &"--verbose"]),
+            &pattern,
+        ),
+        &slurm,
+    );
     let k8s = [("JOB_COMPLETION_INDEX", "0")];
-    ok(&render(&scene, &args(&[&"--shard", &"auto/3"]), &pattern), &k8s);
+    ok(
+        &render(&scene, &args(&[&"--shard", &"auto/3"]), &pattern),
+        &k8s,
+    );
     let hq = [("HQ_TASK_ID", "2")];
-    ok(&render(&scene, &args(&[&"--shard", &"auto/3"]), &pattern), &hq);
+    ok(
+        &render(&scene, &args(&[&"--shard", &"auto/3"]), &pattern),
+        &hq,
+    );
     let merged = dir.path().join("merged.exr");
     let single = dir.path().join("single.exr");
     let mut a = args(&[&"merge", &"-o", &merged]);
@@ -235,8 +303,17 @@ fn auto_shards_read_the_scheduler_and_bad_shards_are_refused() {
     assert!(std::fs::read(&merged).unwrap() == std::fs::read(&single).unwrap());
 
     let nothing = dir.path().join("none-{shard}.exr");
-    let e = refused(&render(&scene, &args(&[&"--shard", &"auto"]), &nothing), &[], &dir.path().join("none-1.exr"));
-    assert!(e.contains("SLURM_ARRAY_TASK_ID") && e.contains("JOB_COMPLETION_INDEX") && e.contains("HQ_TASK_ID"), "{e}");
+    let e = refused(
+        &render(&scene, &args(&[&"--shard", &"auto"]), &nothing),
+        &[],
+        &dir.path().join("none-1.exr"),
+    );
+    assert!(
+        e.contains("SLURM_ARRAY_TASK_ID")
+            && e.contains("JOB_COMPLETION_INDEX")
+            && e.contains("HQ_TASK_ID"),
+        "{e}"
+    );
 
     let gpu = dir.path().join("gpu.exr");
     let mut a = args(&[&"render", &"-o", &gpu, &"--shard", &"1/2"]);
@@ -244,9 +321,17 @@ fn auto_shards_read_the_scheduler_and_bad_shards_are_refused() {
     let e = refused(&a, &[], &gpu);
     assert!(e.contains("--reference"), "{e}");
     let png = dir.path().join("part.png");
-    let e = refused(&render(&scene, &args(&[&"--shard", &"1/2"]), &png), &[], &png);
+    let e = refused(
+        &render(&scene, &args(&[&"--shard", &"1/2"]), &png),
+        &[],
+        &png,
+    );
     assert!(e.contains(".exr"), "{e}");
     let many = dir.path().join("many.exr");
-    let e = refused(&render(&scene, &args(&[&"--shard", &"1/17"]), &many), &[], &many);
+    let e = refused(
+        &render(&scene, &args(&[&"--shard", &"1/17"]), &many),
+        &[],
+        &many,
+    );
     assert!(e.contains("16 rows"), "{e}");
 }

@@ -186,7 +186,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     // A shard writes its own file only (super::shards).
     let (outputs, shard_file) = match &args.shard {
         None => (Some(Outputs::claim(&args.out)?), None),
-        Some(text) => (None, Some(super::shards::ShardFile::claim(&args.out, text)?)),
+        Some(text) => (
+            None,
+            Some(super::shards::ShardFile::claim(&args.out, text)?),
+        ),
     };
 
     // The base scene: the user's (or the built-in with the bench's

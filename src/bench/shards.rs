@@ -30,8 +30,10 @@ use std::path::{Path, PathBuf};
 
 /// The shard file of shard `shard` in `dir`.
 pub fn shard_path(dir: &Path, shard: Shard) -> PathBuf {
-    dir.join("shards")
-        .join(format!("bench-shard-{}-of-{}.csv", shard.index, shard.count))
+    dir.join("shards").join(format!(
+        "bench-shard-{}-of-{}.csv",
+        shard.index, shard.count
+    ))
 }
 
 /// A SHA-256 (hex) of what decides the set of measurements: `what`'s
@@ -235,7 +237,11 @@ pub fn merge(dir: &Path) -> Result<()> {
         if let Some(r) = rows.iter().find(|r| r.len() != RESULTS_HEADER.len()) {
             return Err(Error::input(
                 path,
-                format!("a row has {} fields, expected {}", r.len(), RESULTS_HEADER.len()),
+                format!(
+                    "a row has {} fields, expected {}",
+                    r.len(),
+                    RESULTS_HEADER.len()
+                ),
             ));
         }
         shards.push((path.clone(), meta, rows, adapter));
@@ -265,14 +271,22 @@ pub fn merge(dir: &Path) -> Result<()> {
         if let Some(other) = by_shard[m.shard.index - 1].replace(k) {
             return Err(Error::input(
                 path,
-                format!("holds shard {} as {} does", m.shard, shards[other].0.display()),
+                format!(
+                    "holds shard {} as {} does",
+                    m.shard,
+                    shards[other].0.display()
+                ),
             ));
         }
         let want = m.shard.items(configs).count();
         if rows.len() != want {
             return Err(Error::input(
                 path,
-                format!("holds {} rows; shard {} of {configs} configurations has {want}", rows.len(), m.shard),
+                format!(
+                    "holds {} rows; shard {} of {configs} configurations has {want}",
+                    rows.len(),
+                    m.shard
+                ),
             ));
         }
     }
@@ -293,8 +307,17 @@ pub fn merge(dir: &Path) -> Result<()> {
     let mut rows: Vec<Vec<String>> = (0..configs)
         .map(|k| shards[by_shard[k % count].expect("complete")].2[k / count].clone())
         .collect();
-    let column = |name: &str| RESULTS_HEADER.iter().position(|h| *h == name).expect("a column");
-    let (relative, error, front) = (column("time_over_unlit"), column("rel_rms_error"), column("on_front"));
+    let column = |name: &str| {
+        RESULTS_HEADER
+            .iter()
+            .position(|h| *h == name)
+            .expect("a column")
+    };
+    let (relative, error, front) = (
+        column("time_over_unlit"),
+        column("rel_rms_error"),
+        column("on_front"),
+    );
     let points: Vec<Point> = rows
         .iter()
         .map(|r| Point {
@@ -317,7 +340,10 @@ pub fn merge(dir: &Path) -> Result<()> {
         md,
         "Merged by `gonio bench --merge` from {count} shards of `gonio bench --shard I/{count}` ({configs} configurations). Each shard measured its configurations against the truth image and the unlit floor of its own machine; `× unlit` (the time over that floor) is what compares across shards, and the Pareto front (★) is found on it. The target ratios and the scale sweeps are measured by an unsharded `gonio bench` only.\n"
     );
-    let _ = writeln!(md, "| shard | machine (adapter) | unlit floor (ms) |\n| --- | --- | --- |");
+    let _ = writeln!(
+        md,
+        "| shard | machine (adapter) | unlit floor (ms) |\n| --- | --- | --- |"
+    );
     for (_, m, _, adapter) in by_shard.iter().map(|k| &shards[k.expect("complete")]) {
         let _ = writeln!(md, "| {} | {adapter} | {:.3} |", m.shard, m.unlit_ms);
     }
@@ -326,7 +352,12 @@ pub fn merge(dir: &Path) -> Result<()> {
         "\n| configuration | × unlit | time (ms) [q1–q3] | rel. RMS error | max rel. error | front |\n| --- | --- | --- | --- | --- | --- |"
     );
     let (knob, value) = (column("knob"), column("value"));
-    let (t, q1, q3, max_rel) = (column("time_ms"), column("time_q1_ms"), column("time_q3_ms"), column("max_rel_error"));
+    let (t, q1, q3, max_rel) = (
+        column("time_ms"),
+        column("time_q1_ms"),
+        column("time_q3_ms"),
+        column("max_rel_error"),
+    );
     for r in &rows {
         let label = if r[knob] == "base" {
             "base".to_string()
@@ -371,5 +402,4 @@ mod tests {
         assert_eq!(parse_meta(&line, Path::new("x")).unwrap(), m);
         assert!(parse_meta("scene,knob", Path::new("x")).is_err());
     }
-
 }

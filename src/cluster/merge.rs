@@ -28,7 +28,12 @@ pub fn check_set(parts: &[PathBuf]) -> Result<Vec<(PathBuf, Header)>> {
     // The render the set is of: the one most files belong to (the first
     // file's on a tie), so that the message names the odd file out.
     let render = |h: &Header| (h.key.clone(), h.width, h.height, h.shard.count);
-    let votes = |h: &Header| headers.iter().filter(|(_, o)| render(o) == render(h)).count();
+    let votes = |h: &Header| {
+        headers
+            .iter()
+            .filter(|(_, o)| render(o) == render(h))
+            .count()
+    };
     let (_, majority) = headers
         .iter()
         .rev()
@@ -75,7 +80,11 @@ pub fn check_set(parts: &[PathBuf]) -> Result<Vec<(PathBuf, Header)>> {
             "gonio merge",
             format!(
                 "the set is incomplete: {} {} {} missing ({} of {count} given); render {} with `gonio render --reference --shard I/{count}` and merge again",
-                if missing.len() == 1 { "shard" } else { "shards" },
+                if missing.len() == 1 {
+                    "shard"
+                } else {
+                    "shards"
+                },
                 missing.join(", "),
                 if missing.len() == 1 { "is" } else { "are" },
                 headers.len(),
@@ -123,7 +132,10 @@ pub fn run(output: &Path, exposure: f64, parts: &[PathBuf]) -> Result<()> {
     if let Some(p) = parts.iter().find(|p| same_file(p, output)) {
         return Err(Error::argument(
             format!("-o {}", output.display()),
-            format!("{} is also one of the parts to merge: write the image elsewhere", p.display()),
+            format!(
+                "{} is also one of the parts to merge: write the image elsewhere",
+                p.display()
+            ),
         ));
     }
     let file = OutputFile::prepare(output)?;

@@ -100,15 +100,9 @@ pub fn key(scene: &Scene) -> String {
     let mut h = Hasher(Sha256::new());
     let _ = std::fmt::write(
         &mut h,
-        format_args!(
-            "gonio {} reference\n{scene:?}",
-            env!("CARGO_PKG_VERSION")
-        ),
+        format_args!("gonio {} reference\n{scene:?}", env!("CARGO_PKG_VERSION")),
     );
-    h.0.finalize()
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
+    h.0.finalize().iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// Encodes the shard's rows `rows` (a frame of `width × header.rows()`
@@ -227,7 +221,12 @@ pub fn read_rows(path: &Path, header: &Header) -> Result<Vec<[f32; 3]>> {
     if pixels.len() != width * header.rows() {
         return Err(Error::input(
             path,
-            format!("holds {} pixels, {} has {}", pixels.len(), header.describe(), width * header.rows()),
+            format!(
+                "holds {} pixels, {} has {}",
+                pixels.len(),
+                header.describe(),
+                width * header.rows()
+            ),
         ));
     }
     Ok(pixels)
@@ -242,7 +241,11 @@ pub fn is_done(path: &Path, header: &Header) -> std::result::Result<bool, String
     }
     match read_header(path) {
         Ok(h) if &h == header => Ok(true),
-        Ok(h) => Err(format!("it holds {}, not {}", h.describe(), header.describe())),
+        Ok(h) => Err(format!(
+            "it holds {}, not {}",
+            h.describe(),
+            header.describe()
+        )),
         Err(e) => Err(e.to_string()),
     }
 }

@@ -121,10 +121,7 @@ impl Shard {
                     ),
                 ));
             }
-            (
-                shard,
-                format!("SLURM_ARRAY_TASK_ID={id} of {min}-{max}"),
-            )
+            (shard, format!("SLURM_ARRAY_TASK_ID={id} of {min}-{max}"))
         } else if let Some(k) = number("JOB_COMPLETION_INDEX")? {
             let n = count.ok_or_else(|| {
                 Error::argument(
@@ -135,7 +132,9 @@ impl Shard {
             if k < 0 || k as usize >= n {
                 return Err(Error::argument(
                     argument(),
-                    format!("JOB_COMPLETION_INDEX={k} is outside 0..{n}: the job's `completions` must be {n}"),
+                    format!(
+                        "JOB_COMPLETION_INDEX={k} is outside 0..{n}: the job's `completions` must be {n}"
+                    ),
                 ));
             }
             (
@@ -155,7 +154,9 @@ impl Shard {
             if id < 1 || id as usize > n {
                 return Err(Error::argument(
                     argument(),
-                    format!("HQ_TASK_ID={id} is outside 1..={n}: submit with `hq submit --array=1-{n}`"),
+                    format!(
+                        "HQ_TASK_ID={id} is outside 1..={n}: submit with `hq submit --array=1-{n}`"
+                    ),
                 ));
             }
             (
@@ -311,7 +312,10 @@ mod tests {
                         seen[k] += 1;
                     }
                 }
-                assert!(seen.iter().all(|&n| n == 1), "{total} items, {count} shards");
+                assert!(
+                    seen.iter().all(|&n| n == 1),
+                    "{total} items, {count} shards"
+                );
             }
         }
     }
@@ -319,8 +323,14 @@ mod tests {
     #[test]
     fn the_output_path_takes_the_padded_index() {
         let p = std::path::Path::new("out/part-{shard}.exr");
-        assert_eq!(shard(3, 12).expand(p), std::path::Path::new("out/part-03.exr"));
-        assert_eq!(shard(3, 9).expand(p), std::path::Path::new("out/part-3.exr"));
+        assert_eq!(
+            shard(3, 12).expand(p),
+            std::path::Path::new("out/part-03.exr")
+        );
+        assert_eq!(
+            shard(3, 9).expand(p),
+            std::path::Path::new("out/part-3.exr")
+        );
         let plain = std::path::Path::new("part.exr");
         assert_eq!(shard(3, 9).expand(plain), plain);
     }

@@ -198,6 +198,37 @@ pub fn scene_text(m: &crate::material::Material, summary: &str) -> String {
     )
 }
 
+/// Whether a shard's files are there and its CSV holds exactly the fits
+/// this run would make (material, model and metric, in order): a
+/// restarted array job skips it. Both files are written whole or not at
+/// all (the CSV first), and a fit is deterministic, so they are this
+/// run's.
+fn shard_is_done(
+    csv: &Path,
+    toml: &Path,
+    materials: &[&MeasuredBrdf],
+    models: &[FitModel],
+    args: &FitArgs,
+) -> bool {
+    let Ok(text) = std::fs::read_to_string(csv) else {
+        return false;
+    };
+    let Ok(rows) = report::parse_csv(csv, &text) else {
+        return false;
+    };
+    let metric = args.metric.name();
+    let expected = materials.iter().flat_map(|m| {
+        models
+            .iter()
+            .map(move |model| (m.name.clone(), model.label()))
+    });
+    toml.exists()
+        && rows.len() == materials.len() * models.len()
+        && rows.iter().zip(expected).all(|(r, (material, model))| {
+            r.material == material && r.model == model && r.metric == metric
+        })
+}
+
 /// `gonio fit --all`.
 fn run_all(args: &FitArgs) -> Result<()> {
     let start = Instant::now();
@@ -239,6 +270,15 @@ fn run_all(args: &FitArgs) -> Result<()> {
         .filter(|(k, _)| k % of == shard - 1)
         .map(|(_, m)| m)
         .collect();
+    let (csv_path, toml_path) = report::shard_paths(&args.out_dir, shard, of);
+    if args.shard.is_some() && shard_is_done(&csv_path, &toml_path, &materials, &models, args) {
+        eprintln!(
+            "gonio fit: {} already holds shard {shard}/{of} ({} fits of this run): skipped",
+            csv_path.display(),
+            materials.len() * models.len()
+        );
+        return Ok(());
+    }
     // A bar on a terminal, a line every few seconds in a log (the subject
     // `fits` stays, so two materials in parallel do not print per fit).
     let bar = std::sync::Mutex::new(Progress::new(
@@ -303,7 +343,6 @@ fn run_all(args: &FitArgs) -> Result<()> {
     }
     let rows: Vec<Row> = per_material.iter().flat_map(|(r, _)| r.clone()).collect();
     let tables: String = per_material.iter().map(|(_, t)| t.as_str()).collect();
-    let (csv_path, toml_path) = report::shard_paths(&args.out_dir, shard, of);
     report::write_atomic(&csv_path, &report::csv(&rows))?;
     report::write_atomic(&toml_path, &tables)?;
     let wall = start.elapsed().as_secs_f64();

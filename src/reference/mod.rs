@@ -15,6 +15,5 @@ pub mod texture;
 pub use bvh::{Bvh, Hit, TriangleId};
 pub use renderer::{
     AreaLights, memory_estimate, render, render_offset, render_rows, render_with,
-    render_with_lod_bias,
-    shadow_epsilon, visibility,
+    render_with_lod_bias, shadow_epsilon, visibility,
 };
