@@ -222,15 +222,15 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     );
     // The key of a sharded run: what decides every shard's measurements.
     let shard_key = super::shards::key(&(&base, &budget, &all));
-    if let Some(file) = &shard_file {
-        if file.is_done(&shard_key) {
-            eprintln!(
-                "gonio bench: {} already holds shard {} of this run: skipped",
-                file.path().display(),
-                file.shard
-            );
-            return Ok(());
-        }
+    if let Some(file) = &shard_file
+        && file.is_done(&shard_key)
+    {
+        eprintln!(
+            "gonio bench: {} already holds shard {} of this run: skipped",
+            file.path().display(),
+            file.shard
+        );
+        return Ok(());
     }
     let mut measured: Vec<(Config, Scene)> = Vec::new();
     for config in all {
