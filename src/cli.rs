@@ -1,5 +1,6 @@
 //! The command line: `gonio render`, a thin layer over the library.
 
+use crate::cluster::render::ShardOutput;
 use crate::frame::Frame;
 use crate::gpu::timing::{Clock, Timings};
 use crate::gpu::{AdapterChoice, GpuContext, GpuRenderer};
@@ -34,6 +35,29 @@ pub enum Command {
     Bench(crate::bench::cli::BenchArgs),
     /// Fit reflectance models to a measured BRDF; --all ranks them on the 100 MERL materials.
     Fit(crate::fit::cli::FitArgs),
+    /// Join the partial images of `gonio render --reference --shard` into the whole image.
+    Merge(MergeArgs),
+}
+
+/// `gonio merge -o OUT.(exr|png) PART.exr...`
+#[derive(Debug, clap::Args)]
+#[command(
+    long_about = "Join the partial images that `gonio render --reference --shard I/N` wrote into \
+the image one `gonio render --reference` writes, bit for bit. The set must be one render's \
+(the same scene, settings and shard count: each partial file's header carries a key of them) \
+with every shard exactly once; otherwise the odd or missing part is named and nothing is written \
+(docs/cluster.md)."
+)]
+pub struct MergeArgs {
+    /// The partial images (any order), e.g. `parts/part-*.exr`.
+    #[arg(required = true, value_name = "PART")]
+    pub parts: Vec<PathBuf>,
+    /// Output file; `.png` (sRGB, the scene's tone map) or `.exr` (linear float radiance).
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// PNG exposure in stops, as for `gonio render`.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f64,
 }
 
 /// `gonio render [SCENE] -o OUT.(png|exr) ...`
@@ -61,6 +85,14 @@ pub struct RenderArgs {
     /// Render with the CPU reference renderer (f64 ray casting) instead of the GPU.
     #[arg(long)]
     pub reference: bool,
+    /// With --reference: render only shard I of N (image rows I-1, I-1+N,
+    /// ...) into a partial .exr for `gonio merge`; `auto` (or `auto/N`)
+    /// reads the shard from Slurm's SLURM_ARRAY_TASK_ID, Kubernetes'
+    /// JOB_COMPLETION_INDEX or HyperQueue's HQ_TASK_ID. `{shard}` in -o
+    /// becomes the shard's number. A shard whose file already exists
+    /// complete is skipped.
+    #[arg(long, value_name = "I/N|auto")]
+    pub shard: Option<String>,
     /// PNG exposure in stops: the image is scaled by 2^EXPOSURE before encoding.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f64,
@@ -148,6 +180,9 @@ pub fn main() -> ExitCode {
         Command::Brdf(args) => crate::explore::cli::run(&args),
         Command::Bench(args) => crate::bench::run::run(&args),
         Command::Fit(args) => crate::fit::cli::run(&args),
+        Command::Merge(args) => {
+            crate::cluster::merge::run(&args.output, args.exposure, &args.parts)
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -179,7 +214,18 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         ));
     }
     // Claim the destination first: a bad path fails before any work.
-    let output = OutputFile::prepare(&args.output)?;
+    let (output, shard) = match &args.shard {
+        None => (Some(OutputFile::prepare(&args.output)?), None),
+        Some(text) => (
+            None,
+            Some(ShardOutput::prepare(
+                text,
+                &args.output,
+                args.reference,
+                args.verbose,
+            )?),
+        ),
+    };
 
     let mut overrides = args
         .quality
@@ -223,6 +269,16 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             "gonio: warning: shading.smith_beckmann = \"rational\" is the GPU's approximation; the reference evaluates the exact erf form"
         );
     }
+    if let Some(shard) = shard {
+        let label = format!("reference render, shard {}", shard.shard());
+        timings.wall(&label, || shard.render(&scene))?;
+        timings.push("total", total.elapsed(), Clock::Wall);
+        if args.timings {
+            println!("{}", timings.report());
+        }
+        return Ok(());
+    }
+    let output = output.expect("claimed when not sharded");
     let frame: Frame = if args.reference {
         if args.verbose {
             eprintln!(

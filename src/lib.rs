@@ -9,6 +9,7 @@
 pub mod base;
 pub mod bench;
 pub mod cli;
+pub mod cluster;
 pub mod environment;
 pub mod error;
 pub mod explore;

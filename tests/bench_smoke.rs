@@ -247,3 +247,63 @@ fn bench_refuses_bad_input_without_output() {
     assert_eq!(run.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&run.stderr).contains("no-such-scene.toml"));
 }
+
+/// `gonio bench --shard I/N` measures a disjoint part of the
+/// configurations each, `--merge` joins them into a `results.csv` with
+/// every row once (in the run's order) and a front, a finished shard is
+/// skipped, and a missing one is named.
+#[test]
+fn sharded_bench_merges_into_one_results_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bench");
+    let bench = |extra: &[&str]| {
+        let run = common::gonio()
+            .args(["bench", "-o"])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap();
+        (
+            run.status.code(),
+            String::from_utf8_lossy(&run.stderr).into_owned(),
+        )
+    };
+    let (code, err) = bench(&["--smoke", "--shard", "2/2"]);
+    assert_eq!(code, Some(0), "{err}");
+    let (code, err) = bench(&["--merge"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("1/2") && err.contains("missing"), "{err}");
+    let (code, err) = bench(&["--smoke", "--shard", "1/2"]);
+    assert_eq!(code, Some(0), "{err}");
+    let (code, err) = bench(&["--smoke", "--shard", "1/2"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(err.contains("skipped"), "{err}");
+    let (code, err) = bench(&["--merge"]);
+    assert_eq!(code, Some(0), "{err}");
+
+    let rows = |path: &std::path::Path, skip: usize| -> Vec<Vec<String>> {
+        std::fs::read_to_string(path)
+            .unwrap()
+            .lines()
+            .skip(skip)
+            .filter(|l| !l.is_empty())
+            .map(parse_csv_line)
+            .collect()
+    };
+    let shard = |i: usize| rows(&out.join(format!("shards/bench-shard-{i}-of-2.csv")), 2);
+    let (one, two) = (shard(1), shard(2));
+    let merged = rows(&out.join("results.csv"), 1);
+    assert_eq!(merged.len(), one.len() + two.len());
+    assert_eq!(merged[0][1], "base");
+    let on_front = RESULTS_HEADER
+        .iter()
+        .position(|h| *h == "on_front")
+        .unwrap();
+    assert!(merged.iter().any(|r| r[on_front] == "true"));
+    // Configuration k is shard (k mod 2) + 1's row k / 2.
+    for (k, row) in merged.iter().enumerate() {
+        let from = if k % 2 == 0 { &one } else { &two };
+        assert_eq!(row[..on_front], from[k / 2][..on_front], "row {k}");
+    }
+    assert!(out.join("report.md").exists());
+}

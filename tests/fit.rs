@@ -334,4 +334,68 @@ fn merge_refuses_incomplete_mixed_and_bad_shards() {
 #[test]
 fn shard_without_all_is_refused() {
     fails_with_2(&["chrome", "--model", "ward", "--shard", "1/2"], "--all");
+/// `--shard auto` takes the shard from a Slurm array task's variables;
+/// a shard whose files already hold this run's fits is skipped, and one
+/// of another run (other models) is fitted again.
+#[test]
+fn fit_shards_read_slurm_and_restart() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |model: &str, env: &[(&str, &str)]| {
+        let mut cmd = gonio();
+        for v in [
+            "SLURM_ARRAY_TASK_ID",
+            "SLURM_ARRAY_TASK_MIN",
+            "SLURM_ARRAY_TASK_MAX",
+            "SLURM_ARRAY_TASK_COUNT",
+            "JOB_COMPLETION_INDEX",
+            "HQ_TASK_ID",
+        ] {
+            cmd.env_remove(v);
+        }
+        let out = cmd
+            .args([
+                "fit",
+                "--all",
+                "--materials",
+                "chrome,blue-fabric,alum-bronze",
+            ])
+            .args(["--model", model, "--shard", "auto", "--out-dir"])
+            .arg(dir.path())
+            .envs(env.iter().copied())
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let slurm = [
+        ("SLURM_ARRAY_TASK_ID", "2"),
+        ("SLURM_ARRAY_TASK_MIN", "1"),
+        ("SLURM_ARRAY_TASK_MAX", "2"),
+        ("SLURM_ARRAY_TASK_COUNT", "2"),
+    ];
+    let (code, err) = run("lambert", &slurm);
+    assert_eq!(code, Some(0), "{err}");
+    let csv = dir.path().join("shards/shard-2-of-2.csv");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    // Shard 2 of 2 of three materials: the second only.
+    assert!(
+        text.contains("blue-fabric,lambert") && !text.contains("chrome"),
+        "{text}"
+    );
+    let (code, err) = run("lambert", &slurm);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(err.contains("skipped"), "{err}");
+    let (code, err) = run("ward", &slurm);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(!err.contains("skipped"), "{err}");
+    assert!(
+        std::fs::read_to_string(&csv)
+            .unwrap()
+            .contains("blue-fabric,ward")
+    );
+    let (code, err) = run("lambert", &[]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("SLURM_ARRAY_TASK_ID"), "{err}");
 }

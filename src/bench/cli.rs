@@ -31,6 +31,16 @@ pub struct BenchArgs {
     /// Override a key of the base scene, as for `gonio render`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Measure only shard I of N of the configurations (configuration k
+    /// by shard k mod N + 1) into DIR/shards/bench-shard-I-of-N.csv, for
+    /// `--merge`; no target ratios, no scale sweeps. `auto` (or `auto/N`)
+    /// reads Slurm's, Kubernetes' or HyperQueue's task variables. A shard
+    /// whose file exists for the same run is skipped.
+    #[arg(long, value_name = "I/N|auto", conflicts_with_all = ["merge", "shadow_ratio", "probe_memory", "floor_triangle_png"])]
+    pub shard: Option<String>,
+    /// Join the shards in DIR/shards into DIR/results.csv and DIR/report.md.
+    #[arg(long, conflicts_with_all = ["scene", "quick", "smoke", "repeats", "no_scale", "set"])]
+    pub merge: bool,
     /// GPU adapter to use (also GONIO_ADAPTER).
     #[arg(long, value_name = "NAME")]
     pub adapter: Option<String>,

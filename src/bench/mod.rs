@@ -25,6 +25,7 @@ pub mod ratios;
 pub mod report;
 pub mod run;
 pub mod scale;
+pub mod shards;
 
 use crate::gpu::timing::Clock;
 use configs::{Config, Skipped};

@@ -175,12 +175,22 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(spec) = &args.probe_memory {
         return scale::probe_memory(spec, args.adapter.as_deref());
     }
+    if args.merge {
+        return super::shards::merge(&args.out);
+    }
     let started = Instant::now();
     let budget = Budget::from_args(args)?;
     if args.shadow_ratio {
         return shadow_ratio_only(args, budget.ratio);
     }
-    let outputs = Outputs::claim(&args.out)?;
+    // A shard writes its own file only (super::shards).
+    let (outputs, shard_file) = match &args.shard {
+        None => (Some(Outputs::claim(&args.out)?), None),
+        Some(text) => (
+            None,
+            Some(super::shards::ShardFile::claim(&args.out, text)?),
+        ),
+    };
 
     // The base scene: the user's (or the built-in with the bench's
     // additions), then the user's --set.
@@ -210,6 +220,18 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         all,
         configs::environment_section(&source, &base_overrides)?.as_ref(),
     );
+    // The key of a sharded run: what decides every shard's measurements.
+    let shard_key = super::shards::key(&(&base, &budget, &all));
+    if let Some(file) = &shard_file
+        && file.is_done(&shard_key)
+    {
+        eprintln!(
+            "gonio bench: {} already holds shard {} of this run: skipped",
+            file.path().display(),
+            file.shard
+        );
+        return Ok(());
+    }
     let mut measured: Vec<(Config, Scene)> = Vec::new();
     for config in all {
         let overrides: Vec<String> = base_overrides
@@ -238,6 +260,25 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 },
             }),
         }
+    }
+    // A shard takes every N-th of the configurations that are measured
+    // (the list every shard computes alike).
+    let total_configs = measured.len();
+    if let Some(file) = &shard_file {
+        if file.shard.count > total_configs {
+            return Err(Error::argument(
+                format!("--shard {}", file.shard),
+                format!(
+                    "this run measures {total_configs} configurations, and a shard is at least one: use at most {total_configs} shards"
+                ),
+            ));
+        }
+        measured = measured
+            .into_iter()
+            .enumerate()
+            .filter(|(k, _)| file.shard.takes(*k))
+            .map(|(_, m)| m)
+            .collect();
     }
 
     let context = GpuContext::new(&AdapterChoice::from_flag_or_env(args.adapter.as_deref()))?;
@@ -338,6 +379,29 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     };
     bar.inc(1);
 
+    if let Some(file) = shard_file {
+        bar.finish();
+        let path = file.path().to_path_buf();
+        file.write(
+            &shard_key,
+            total_configs,
+            &scene_label(args.scene.as_deref()),
+            &base_overrides,
+            &rows,
+            unlit.median,
+            &adapter,
+            clock,
+        )?;
+        eprintln!(
+            "gonio bench: wrote {} ({} configurations) in {:.0} s; `gonio bench --merge -o {}` joins the shards",
+            path.display(),
+            rows.len(),
+            started.elapsed().as_secs_f64(),
+            args.out.display()
+        );
+        return Ok(());
+    }
+    let outputs = outputs.expect("claimed when not sharded");
     let effort = budget.ratio;
     let mut ratio_list = Vec::new();
     let mut compile = Vec::new();

@@ -54,8 +54,10 @@ pub struct FitArgs {
     #[arg(long, value_name = "NAMES", value_delimiter = ',', requires = "all")]
     pub materials: Vec<String>,
     /// With --all: run shard I of N (1-based; materials I, I+N, ...) and
-    /// write only its files; `--merge` joins the shards.
-    #[arg(long, value_name = "I/N", requires = "all")]
+    /// write only its files; `--merge` joins the shards. `auto` (or
+    /// `auto/N`) reads the shard from Slurm's SLURM_ARRAY_TASK_ID,
+    /// Kubernetes' JOB_COMPLETION_INDEX or HyperQueue's HQ_TASK_ID.
+    #[arg(long, value_name = "I/N|auto", requires = "all")]
     pub shard: Option<String>,
     /// Merge the shards in --out-dir into the ranking.
     #[arg(long, conflicts_with_all = ["material", "output"])]
@@ -215,23 +217,35 @@ pub fn scene_text(m: &crate::material::Material, summary: &str) -> String {
     )
 }
 
-/// `--shard I/N` as (I, N), 1 ≤ I ≤ N.
-fn parse_shard(text: &str) -> Result<(usize, usize)> {
-    let bad = || {
-        Error::argument(
-            format!("--shard {text}"),
-            "expected I/N with 1 ≤ I ≤ N, e.g. --shard 2/8",
-        )
+/// Whether a shard's files are there and its CSV holds exactly the fits
+/// this run would make (material, model and metric, in order): a
+/// restarted array job skips it. Both files are written whole or not at
+/// all (the CSV first), and a fit is deterministic, so they are this
+/// run's.
+fn shard_is_done(
+    csv: &Path,
+    toml: &Path,
+    materials: &[&MeasuredBrdf],
+    models: &[FitModel],
+    args: &FitArgs,
+) -> bool {
+    let Ok(text) = std::fs::read_to_string(csv) else {
+        return false;
     };
-    let (i, n) = text.split_once('/').ok_or_else(bad)?;
-    let (i, n): (usize, usize) = (
-        i.trim().parse().map_err(|_| bad())?,
-        n.trim().parse().map_err(|_| bad())?,
-    );
-    if i == 0 || i > n {
-        return Err(bad());
-    }
-    Ok((i, n))
+    let Ok(rows) = report::parse_csv(csv, &text) else {
+        return false;
+    };
+    let metric = args.metric.name();
+    let expected = materials.iter().flat_map(|m| {
+        models
+            .iter()
+            .map(move |model| (m.name.clone(), model.label()))
+    });
+    toml.exists()
+        && rows.len() == materials.len() * models.len()
+        && rows.iter().zip(expected).all(|(r, (material, model))| {
+            r.material == material && r.model == model && r.metric == metric
+        })
 }
 
 /// `gonio fit --all`.
@@ -256,9 +270,18 @@ fn run_all(args: &FitArgs) -> Result<()> {
             })
             .collect::<Result<_>>()?
     };
-    let (shard, of) = match &args.shard {
-        Some(s) => parse_shard(s)?,
-        None => (1, 1),
+    let crate::cluster::Shard {
+        index: shard,
+        count: of,
+    } = match &args.shard {
+        Some(s) => {
+            let (shard, source) = crate::cluster::Shard::from_arg(s)?;
+            if let Some(source) = source {
+                eprintln!("gonio fit: --shard {s}: shard {shard} ({source})");
+            }
+            shard
+        }
+        None => crate::cluster::Shard::WHOLE,
     };
     materials = materials
         .into_iter()
@@ -267,8 +290,17 @@ fn run_all(args: &FitArgs) -> Result<()> {
         .map(|(_, m)| m)
         .collect();
     // The shard's two files, claimed before the fits (a bad folder fails
-    // first) and written together.
+    // first) and written together; a shard whose files already hold this
+    // run's fits is skipped (a restarted array job).
     let (csv_path, toml_path) = report::shard_paths(&args.out_dir, shard, of);
+    if args.shard.is_some() && shard_is_done(&csv_path, &toml_path, &materials, &models, args) {
+        eprintln!(
+            "gonio fit: {} already holds shard {shard}/{of} ({} fits of this run): skipped",
+            csv_path.display(),
+            materials.len() * models.len()
+        );
+        return Ok(());
+    }
     let shards_dir = csv_path.parent().expect("a shard file is in a folder");
     std::fs::create_dir_all(shards_dir)
         .map_err(|e| Error::output(shards_dir, format!("cannot create the folder: {e}")))?;

@@ -17,6 +17,6 @@ pub mod shading;
 pub mod texture;
 
 pub use renderer::{
-    AreaLights, memory_estimate, render, render_offset, render_with, render_with_lod_bias,
-    shadow_epsilon, visibility,
+    AreaLights, memory_estimate, render, render_offset, render_rows, render_with,
+    render_with_lod_bias, shadow_epsilon, visibility,
 };

@@ -75,6 +75,17 @@ pub fn render_with(scene: &Scene, offset_x: f64, offset_y: f64, area: AreaLights
     render_inner(scene, offset_x, offset_y, area, 0.0)
 }
 
+/// The image rows `rows` (row 0 at the top) of [`render`], stacked in
+/// that order: a frame of `scene.width × rows.len()` pixels, each equal
+/// bit for bit to the same pixel of the whole image. A pixel depends on
+/// the scene and its own position only (one ray, no random numbers, the
+/// per-triangle and per-vertex tables computed the same way for every
+/// subset), which is what lets `gonio render --shard` split an image
+/// over processes and machines (`crate::cluster`).
+pub fn render_rows(scene: &Scene, rows: &[u32]) -> Frame {
+    render_rows_inner(scene, rows, 0.0, 0.0, AreaLights::Samples, 0.0)
+}
+
 fn render_inner(
     scene: &Scene,
     offset_x: f64,
@@ -82,8 +93,20 @@ fn render_inner(
     area: AreaLights,
     lod_bias: f64,
 ) -> Frame {
+    let rows: Vec<u32> = (0..scene.height).collect();
+    render_rows_inner(scene, &rows, offset_x, offset_y, area, lod_bias)
+}
+
+fn render_rows_inner(
+    scene: &Scene,
+    rows: &[u32],
+    offset_x: f64,
+    offset_y: f64,
+    area: AreaLights,
+    lod_bias: f64,
+) -> Frame {
     let (width, height) = (scene.width, scene.height);
-    let mut frame = Frame::new(width, height);
+    let mut frame = Frame::new(width, rows.len() as u32);
     if frame.is_empty() {
         return frame;
     }
@@ -99,8 +122,9 @@ fn render_inner(
         .radiance
         .par_chunks_mut(row)
         .zip(frame.coverage.par_chunks_mut(row))
-        .enumerate()
-        .for_each(|(i, (radiance, coverage))| {
+        .zip(rows.par_iter())
+        .for_each(|((radiance, coverage), &i)| {
+            let i = i as usize;
             let y = i as f64 + 0.5 + offset_y;
             for (j, (out, covered)) in radiance.iter_mut().zip(coverage).enumerate() {
                 let ray = rays.ray(j as f64 + 0.5 + offset_x, y);
