@@ -74,6 +74,10 @@ pub struct Material {
     pub base_color: Rgb,
     /// gltf-pbr's metallic `m` (glTF's `metallicFactor`), in [0, 1].
     pub metallic: f64,
+    /// gltf-pbr's layers (`KHR_materials_ior`, `_specular`, `_clearcoat`,
+    /// `_sheen`, `_iridescence`, `_anisotropy`; contract "Layered glTF
+    /// materials"): the glTF defaults leave the core BRDF unchanged.
+    pub layers: brdf::gltf_layers::GltfLayers,
     /// abc's distribution `D = A / (1 + B(1 − cos θ_h))^C`: `A` per
     /// channel (≥ 0, in 1/sr: the lobe's peak), `B` (> 0, the inverse
     /// width in `1 − cos θ_h`) and `C` (> 0, the tail's power).
@@ -226,6 +230,7 @@ impl Material {
             measured: None,
             base_color: Rgb::splat(0.8),
             metallic: 0.0,
+            layers: brdf::gltf_layers::GltfLayers::default(),
             abc_a: Rgb::splat(10.0),
             abc_b: 1000.0,
             abc_c: 1.0,
