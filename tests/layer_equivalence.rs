@@ -544,3 +544,78 @@ fn every_layer_matches_its_f64_reference() {
     );
     assert!(failed.is_empty(), "GPU and CPU layers disagree:\n{}", failed.join("\n"));
 }
+
+/// The GPU's table of the sheen albedo against the exact quadrature, on a
+/// grid through the nodes and the cell centres (√μ in steps of 1/124, r_sh
+/// of 1/62): the GPU lookup equals its f64 twin (`sheen_albedo_lookup`, the
+/// same f32 nodes) to f32 rounding, and the table's own error
+/// `|E_table − E|` is reported per band of `sheen_roughness`. Through the
+/// albedo scaling it moves `f_r` by at most `max₃(c_sh) |ΔE| · f_below`
+/// (while σ > 0).
+#[test]
+fn sheen_albedo_table_error() {
+    use rayon::prelude::*;
+    let renderer = common::gpu_renderer();
+    let ctx = renderer.context();
+    let n = SHEEN_ALBEDO_TABLE_SIZE;
+    let steps_x = 4 * (n - 1);
+    let steps_r = 2 * (n - 1);
+    let grid: Vec<(f64, f64)> = (0..=steps_r)
+        .flat_map(|j| {
+            (0..=steps_x).map(move |i| {
+                let x = i as f64 / steps_x as f64;
+                (r32(x * x), r32(j as f64 / steps_r as f64))
+            })
+        })
+        .collect();
+    // Dummy samples carrying the grid in albedo.zw.
+    let frame = SurfaceFrame {
+        n: DVec3::Z,
+        t: DVec3::X,
+        b: DVec3::Y,
+    };
+    let dummy = Sample {
+        wi: DVec3::Z,
+        wo: DVec3::Z,
+        frame,
+        base_color: Rgb::ZERO,
+        metallic: 0.0,
+        roughness: 0.5,
+        ms: 0.0,
+        layers: GltfLayers::default(),
+        albedo_o: 0.0,
+        albedo_i: 0.0,
+    };
+    let samples = vec![dummy; grid.len()];
+    let gpu = gpu_eval(ctx, &samples, &grid);
+    let nodes = table_nodes();
+    let last = (n - 1) as f64;
+    let results: Vec<(f64, f64, f64, f64)> = grid
+        .par_iter()
+        .zip(&gpu)
+        .map(|(&(mu, r), (_, g))| {
+            let twin = sheen_albedo_lookup(mu, r, nodes);
+            let exact = sheen_albedo(mu, sheen_alpha(r));
+            // f32 rounding of the lookup: 64 roundings of the largest node
+            // of the cell, and the position x = 31√μ off by sqrt's 3 ulp
+            // and 64 roundings, times the cell's largest node step.
+            let (x, y) = (mu.sqrt() * last, r * last);
+            let (i, j) = ((x.floor().min(last - 1.0)) as usize, (y.floor().min(last - 1.0)) as usize);
+            let cell = [nodes[j * n + i], nodes[j * n + i + 1], nodes[(j + 1) * n + i], nodes[(j + 1) * n + i + 1]]
+                .map(|v| v as f64);
+            let big = cell.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            let step = cell.iter().fold(0.0f64, |a, v| a.max(*v)) - cell.iter().fold(f64::INFINITY, |a, v| a.min(*v));
+            let tol = 64.0 * U * big + step * (3.0 + 64.0) * U * x.max(1.0) + 1e-37;
+            (r, (*g as f64 - twin).abs() / tol, (twin - exact).abs(), exact)
+        })
+        .collect();
+    let worst_twin = results.iter().map(|r| r.1).fold(0.0, f64::max);
+    eprintln!("sheen table: GPU lookup vs its f64 twin, max err/tol {worst_twin:.4}");
+    eprintln!("| sheen_roughness | max |E_table − E| | max E |\n|---|---|---|");
+    for (lo, hi) in [(0.0, 0.05), (0.05, 0.1), (0.1, 0.23), (0.23, 0.5), (0.5, 1.01)] {
+        let band = results.iter().filter(|r| r.0 >= lo && r.0 < hi);
+        let (err, e_max) = band.fold((0.0f64, 0.0f64), |a, r| (a.0.max(r.2), a.1.max(r.3)));
+        eprintln!("| [{lo}, {hi}) | {err:.3e} | {e_max:.4} |");
+    }
+    assert!(worst_twin <= 1.0, "{worst_twin}");
+}
