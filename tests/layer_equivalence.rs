@@ -35,6 +35,7 @@ mod common;
 use glam::DVec3;
 use gonio::gpu::shader_gen::{ShaderKey, compose_brdf_library};
 use gonio::material::brdf::SurfaceFrame;
+use gonio::material::brdf::gltf_layers::GltfLayers;
 use gonio::material::brdf::gltf_layers::base_ior_specular::base_lobe;
 use gonio::material::brdf::gltf_layers::iridescence::{
     SENSITIVITY_NORM, SENSITIVITY_SIGMA, SENSITIVITY_V, SENSITIVITY_X2, XYZ_TO_REC709,
@@ -44,7 +45,6 @@ use gonio::material::brdf::gltf_layers::sheen_albedo::{
     SHEEN_ALBEDO_TABLE_SIZE, sheen_albedo, sheen_albedo_lookup, sheen_albedo_table,
 };
 use gonio::material::brdf::gltf_layers::stack::gltf_layered_with_albedos;
-use gonio::material::brdf::gltf_layers::GltfLayers;
 use gonio::material::brdf::microfacet::{half_vector, sin2_between};
 use gonio::material::{Material, ReflectanceModel};
 use gonio::scene::Rgb;
@@ -128,12 +128,54 @@ struct Case {
 }
 
 const CASES: &[Case] = &[
-    Case { name: "base: ior, specular, specular_color", base: true, anisotropy: false, iridescence: false, sheen: false, clearcoat: false },
-    Case { name: "anisotropy", base: false, anisotropy: true, iridescence: false, sheen: false, clearcoat: false },
-    Case { name: "iridescence", base: false, anisotropy: false, iridescence: true, sheen: false, clearcoat: false },
-    Case { name: "sheen", base: false, anisotropy: false, iridescence: false, sheen: true, clearcoat: false },
-    Case { name: "clearcoat", base: false, anisotropy: false, iridescence: false, sheen: false, clearcoat: true },
-    Case { name: "full stack", base: true, anisotropy: true, iridescence: true, sheen: true, clearcoat: true },
+    Case {
+        name: "base: ior, specular, specular_color",
+        base: true,
+        anisotropy: false,
+        iridescence: false,
+        sheen: false,
+        clearcoat: false,
+    },
+    Case {
+        name: "anisotropy",
+        base: false,
+        anisotropy: true,
+        iridescence: false,
+        sheen: false,
+        clearcoat: false,
+    },
+    Case {
+        name: "iridescence",
+        base: false,
+        anisotropy: false,
+        iridescence: true,
+        sheen: false,
+        clearcoat: false,
+    },
+    Case {
+        name: "sheen",
+        base: false,
+        anisotropy: false,
+        iridescence: false,
+        sheen: true,
+        clearcoat: false,
+    },
+    Case {
+        name: "clearcoat",
+        base: false,
+        anisotropy: false,
+        iridescence: false,
+        sheen: false,
+        clearcoat: true,
+    },
+    Case {
+        name: "full stack",
+        base: true,
+        anisotropy: true,
+        iridescence: true,
+        sheen: true,
+        clearcoat: true,
+    },
 ];
 
 // Sample values of each parameter, over its range (0 and the ends included).
@@ -184,7 +226,11 @@ fn samples(case: Case) -> Vec<Sample> {
             };
             // Each parameter steps through its list with its own prime
             // stride, so that combinations mix.
-            let mut strides = [1u64, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83].into_iter();
+            let mut strides = [
+                1u64, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73,
+                79, 83,
+            ]
+            .into_iter();
             let mut pick = |list: &[f64]| {
                 let k = strides.next().unwrap();
                 list[((i / k) % list.len() as u64) as usize]
@@ -195,7 +241,11 @@ fn samples(case: Case) -> Vec<Sample> {
             if case.base {
                 l.ior = pick(IOR);
                 l.specular = pick(SPECULAR);
-                l.specular_color = Rgb::new(pick(SPECULAR_COLOR), pick(SPECULAR_COLOR), pick(SPECULAR_COLOR));
+                l.specular_color = Rgb::new(
+                    pick(SPECULAR_COLOR),
+                    pick(SPECULAR_COLOR),
+                    pick(SPECULAR_COLOR),
+                );
             }
             if case.anisotropy {
                 l.anisotropy_strength = pick(STRENGTH);
@@ -217,7 +267,13 @@ fn samples(case: Case) -> Vec<Sample> {
             let layers = round_layers(&l);
             let (wi, wo) = (r32v(wi), r32v(wo));
             // The albedos both sides get: the table's, at these directions.
-            let albedo = |c: f64| r32(sheen_albedo_lookup(c, layers.sheen_roughness, table_nodes()));
+            let albedo = |c: f64| {
+                r32(sheen_albedo_lookup(
+                    c,
+                    layers.sheen_roughness,
+                    table_nodes(),
+                ))
+            };
             Sample {
                 wi,
                 wo,
@@ -257,7 +313,16 @@ fn cpu_eval(s: &Sample) -> Rgb {
         return Rgb::ZERO;
     }
     gltf_layered_with_albedos(
-        s.base_color, s.metallic, s.roughness, s.ms, &s.layers, s.albedo_o, s.albedo_i, &s.frame, s.wi, s.wo,
+        s.base_color,
+        s.metallic,
+        s.roughness,
+        s.ms,
+        &s.layers,
+        s.albedo_o,
+        s.albedo_i,
+        &s.frame,
+        s.wi,
+        s.wo,
     )
 }
 
@@ -269,9 +334,18 @@ fn perturbations() -> Vec<(Perturb, bool)> {
     for a in 0..3 {
         p.push((Box::new(move |s: &mut Sample, d| s.wi[a] += d), true));
         p.push((Box::new(move |s: &mut Sample, d| s.wo[a] += d), true));
-        p.push((Box::new(move |s: &mut Sample, d| s.base_color[a] *= 1.0 + d), false));
-        p.push((Box::new(move |s: &mut Sample, d| s.layers.specular_color[a] *= 1.0 + d), false));
-        p.push((Box::new(move |s: &mut Sample, d| s.layers.sheen_color[a] *= 1.0 + d), false));
+        p.push((
+            Box::new(move |s: &mut Sample, d| s.base_color[a] *= 1.0 + d),
+            false,
+        ));
+        p.push((
+            Box::new(move |s: &mut Sample, d| s.layers.specular_color[a] *= 1.0 + d),
+            false,
+        ));
+        p.push((
+            Box::new(move |s: &mut Sample, d| s.layers.sheen_color[a] *= 1.0 + d),
+            false,
+        ));
     }
     let scalars: [fn(&mut Sample) -> &mut f64; 14] = [
         |s| &mut s.metallic,
@@ -349,7 +423,9 @@ fn film_cos_bound(l: &GltfLayers, cos_o: f64, f0: Rgb) -> Rgb {
     let f = iridescence_fresnel(cos_o, l.iridescence_ior, l.iridescence_thickness, f0);
     let coefficient = 2.0 * 2.0 * (2.0 + f.max_element());
     Rgb::from_array(std::array::from_fn(|c| {
-        let row: f64 = (0..3).map(|k| XYZ_TO_REC709[c][k].abs() * amplitude[k]).sum();
+        let row: f64 = (0..3)
+            .map(|k| XYZ_TO_REC709[c][k].abs() * amplitude[k])
+            .sum();
         coefficient * row * TRIG_ERROR
     }))
 }
@@ -360,9 +436,19 @@ fn transcendental(s: &Sample) -> Rgb {
     let n = s.frame.n;
     let mut t = Rgb::ZERO;
     if l.has_iridescence() {
-        let lobe = base_lobe(s.roughness * s.roughness, l, n, s.frame.t, s.frame.b, s.wi, s.wo);
-        let f0 = gonio::material::brdf::gltf_layers::base_ior_specular::dielectric_f0(l.ior, l.specular_color)
-            * l.specular;
+        let lobe = base_lobe(
+            s.roughness * s.roughness,
+            l,
+            n,
+            s.frame.t,
+            s.frame.b,
+            s.wi,
+            s.wo,
+        );
+        let f0 = gonio::material::brdf::gltf_layers::base_ior_specular::dielectric_f0(
+            l.ior,
+            l.specular_color,
+        ) * l.specular;
         let b = s.base_color;
         let reach = (Rgb::splat(b.max_element() / PI + lobe * (1.0 + s.ms)) * (1.0 - s.metallic)
             + Rgb::splat(lobe) * (Rgb::ONE + b * s.ms) * s.metallic)
@@ -376,7 +462,11 @@ fn transcendental(s: &Sample) -> Rgb {
         let h = half_vector(s.wi, s.wo);
         let cos2 = h.z * h.z;
         let lobe = sheen_lobe(alpha, h.z, sin2_between(n, h), s.wi.z, s.wo.z);
-        let handover = if (0.1..0.5).contains(&cos2) { LOG_ERROR / (2.0 * alpha) } else { 0.0 };
+        let handover = if (0.1..0.5).contains(&cos2) {
+            LOG_ERROR / (2.0 * alpha)
+        } else {
+            0.0
+        };
         let d_error = 163.0 * U + 240.0 * U + handover;
         t += l.sheen_color * lobe * (d_error + SHEEN_V_ERROR);
     }
@@ -439,29 +529,70 @@ fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 32] {
     let l = &s.layers;
     let v = |x: f64| x as f32;
     [
-        v(s.wi.x), v(s.wi.y), v(s.wi.z), v(s.metallic),
-        v(s.wo.x), v(s.wo.y), v(s.wo.z), v(s.roughness),
-        v(s.base_color.x), v(s.base_color.y), v(s.base_color.z), v(s.ms),
-        v(s.albedo_o), v(s.albedo_i), v(table_at.0), v(table_at.1),
-        v(l.specular_color.x), v(l.specular_color.y), v(l.specular_color.z), v(l.ior),
-        v(l.sheen_color.x), v(l.sheen_color.y), v(l.sheen_color.z), v(l.specular),
-        v(l.clearcoat), v(l.clearcoat_roughness), v(l.sheen_roughness), v(l.iridescence),
-        v(l.iridescence_ior), v(l.iridescence_thickness), v(l.anisotropy_strength), v(l.anisotropy_rotation),
+        v(s.wi.x),
+        v(s.wi.y),
+        v(s.wi.z),
+        v(s.metallic),
+        v(s.wo.x),
+        v(s.wo.y),
+        v(s.wo.z),
+        v(s.roughness),
+        v(s.base_color.x),
+        v(s.base_color.y),
+        v(s.base_color.z),
+        v(s.ms),
+        v(s.albedo_o),
+        v(s.albedo_i),
+        v(table_at.0),
+        v(table_at.1),
+        v(l.specular_color.x),
+        v(l.specular_color.y),
+        v(l.specular_color.z),
+        v(l.ior),
+        v(l.sheen_color.x),
+        v(l.sheen_color.y),
+        v(l.sheen_color.z),
+        v(l.specular),
+        v(l.clearcoat),
+        v(l.clearcoat_roughness),
+        v(l.sheen_roughness),
+        v(l.iridescence),
+        v(l.iridescence_ior),
+        v(l.iridescence_thickness),
+        v(l.anisotropy_strength),
+        v(l.anisotropy_rotation),
     ]
 }
 
 /// Runs the shader; returns per sample (f_r, table lookup at `table_at`).
-fn gpu_eval(ctx: &gonio::gpu::GpuContext, samples: &[Sample], table_at: &[(f64, f64)]) -> Vec<([f32; 3], f32)> {
+fn gpu_eval(
+    ctx: &gonio::gpu::GpuContext,
+    samples: &[Sample],
+    table_at: &[(f64, f64)],
+) -> Vec<([f32; 3], f32)> {
     let src = compute_source();
     gonio::gpu::shader_gen::validate(&src).unwrap_or_else(|e| panic!("{e}"));
-    let data: Vec<[f32; 32]> = samples.iter().zip(table_at).map(|(s, t)| pack(s, *t)).collect();
-    let input = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: None,
-        contents: bytemuck::cast_slice(&data),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
+    let data: Vec<[f32; 32]> = samples
+        .iter()
+        .zip(table_at)
+        .map(|(s, t)| pack(s, *t))
+        .collect();
+    let input = ctx
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: None,
+            contents: bytemuck::cast_slice(&data),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
     let output = common::compute_output(ctx, (samples.len() * 16) as u64);
-    let bytes = common::run_compute(ctx, "layer equivalence", &src, &[(0, vec![(0, &input), (1, &output)])], samples.len(), &output);
+    let bytes = common::run_compute(
+        ctx,
+        "layer equivalence",
+        &src,
+        &[(0, vec![(0, &input), (1, &output)])],
+        samples.len(),
+        &output,
+    );
     let values: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
     values.iter().map(|v| ([v[0], v[1], v[2]], v[3])).collect()
 }
@@ -487,7 +618,10 @@ fn every_layer_matches_its_f64_reference() {
     let mut failed = Vec::new();
     for case in CASES {
         let samples = samples(*case);
-        let table_at: Vec<(f64, f64)> = samples.iter().map(|s| (s.wo.z.max(0.0), s.layers.sheen_roughness)).collect();
+        let table_at: Vec<(f64, f64)> = samples
+            .iter()
+            .map(|s| (s.wo.z.max(0.0), s.layers.sheen_roughness))
+            .collect();
         let gpu = gpu_eval(ctx, &samples, &table_at);
         let stats = samples
             .par_iter()
@@ -512,7 +646,8 @@ fn every_layer_matches_its_f64_reference() {
                     let ratio = err / tol;
                     if ratio > st.worst_ratio {
                         st.worst_ratio = ratio;
-                        st.worst = format!("{s:?}: channel {c} gpu {gpu:e} cpu {cpu:e} tol {tol:e}");
+                        st.worst =
+                            format!("{s:?}: channel {c} gpu {gpu:e} cpu {cpu:e} tol {tol:e}");
                     }
                     st.failures += (ratio > 1.0) as usize;
                 }
@@ -523,16 +658,29 @@ fn every_layer_matches_its_f64_reference() {
                 max_rel: a.max_rel.max(b.max_rel),
                 failures: a.failures + b.failures,
                 non_finite: a.non_finite + b.non_finite,
-                worst: if a.worst_ratio >= b.worst_ratio { a.worst.clone() } else { b.worst.clone() },
+                worst: if a.worst_ratio >= b.worst_ratio {
+                    a.worst.clone()
+                } else {
+                    b.worst.clone()
+                },
                 worst_ratio: a.worst_ratio.max(b.worst_ratio),
             });
         let row = format!(
             "| {:<36} | {:>7} | {:>9.3e} | {:>9.3e} | {:>7.4} | {:>6} | {:>4} |",
-            case.name, samples.len(), stats.max_abs, stats.max_rel, stats.worst_ratio, stats.failures, stats.non_finite
+            case.name,
+            samples.len(),
+            stats.max_abs,
+            stats.max_rel,
+            stats.worst_ratio,
+            stats.failures,
+            stats.non_finite
         );
         eprintln!("{row}");
         if stats.failures > 0 || stats.non_finite > 0 {
-            failed.push(format!("{}: {} failures, {} non-finite; worst: {}", case.name, stats.failures, stats.non_finite, stats.worst));
+            failed.push(format!(
+                "{}: {} failures, {} non-finite; worst: {}",
+                case.name, stats.failures, stats.non_finite, stats.worst
+            ));
         } else {
             eprintln!("  worst: {}", stats.worst);
         }
@@ -542,7 +690,11 @@ fn every_layer_matches_its_f64_reference() {
         "\n| case | samples | max abs error | max rel error | max err/tol | failures | NaN/Inf |\n|---|---|---|---|---|---|---|\n{}",
         rows.join("\n")
     );
-    assert!(failed.is_empty(), "GPU and CPU layers disagree:\n{}", failed.join("\n"));
+    assert!(
+        failed.is_empty(),
+        "GPU and CPU layers disagree:\n{}",
+        failed.join("\n")
+    );
 }
 
 /// The GPU's table of the sheen albedo against the exact quadrature, on a
@@ -600,19 +752,39 @@ fn sheen_albedo_table_error() {
             // of the cell, and the position x = 31√μ off by sqrt's 3 ulp
             // and 64 roundings, times the cell's largest node step.
             let (x, y) = (mu.sqrt() * last, r * last);
-            let (i, j) = ((x.floor().min(last - 1.0)) as usize, (y.floor().min(last - 1.0)) as usize);
-            let cell = [nodes[j * n + i], nodes[j * n + i + 1], nodes[(j + 1) * n + i], nodes[(j + 1) * n + i + 1]]
-                .map(|v| v as f64);
+            let (i, j) = (
+                (x.floor().min(last - 1.0)) as usize,
+                (y.floor().min(last - 1.0)) as usize,
+            );
+            let cell = [
+                nodes[j * n + i],
+                nodes[j * n + i + 1],
+                nodes[(j + 1) * n + i],
+                nodes[(j + 1) * n + i + 1],
+            ]
+            .map(|v| v as f64);
             let big = cell.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            let step = cell.iter().fold(0.0f64, |a, v| a.max(*v)) - cell.iter().fold(f64::INFINITY, |a, v| a.min(*v));
+            let step = cell.iter().fold(0.0f64, |a, v| a.max(*v))
+                - cell.iter().fold(f64::INFINITY, |a, v| a.min(*v));
             let tol = 64.0 * U * big + step * (3.0 + 64.0) * U * x.max(1.0) + 1e-37;
-            (r, (*g as f64 - twin).abs() / tol, (twin - exact).abs(), exact)
+            (
+                r,
+                (*g as f64 - twin).abs() / tol,
+                (twin - exact).abs(),
+                exact,
+            )
         })
         .collect();
     let worst_twin = results.iter().map(|r| r.1).fold(0.0, f64::max);
     eprintln!("sheen table: GPU lookup vs its f64 twin, max err/tol {worst_twin:.4}");
     eprintln!("| sheen_roughness | max |E_table − E| | max E |\n|---|---|---|");
-    for (lo, hi) in [(0.0, 0.05), (0.05, 0.1), (0.1, 0.23), (0.23, 0.5), (0.5, 1.01)] {
+    for (lo, hi) in [
+        (0.0, 0.05),
+        (0.05, 0.1),
+        (0.1, 0.23),
+        (0.23, 0.5),
+        (0.5, 1.01),
+    ] {
         let band = results.iter().filter(|r| r.0 >= lo && r.0 < hi);
         let (err, e_max) = band.fold((0.0f64, 0.0f64), |a, r| (a.0.max(r.2), a.1.max(r.3)));
         eprintln!("| [{lo}, {hi}) | {err:.3e} | {e_max:.4} |");

@@ -129,8 +129,12 @@ fn furnace_rule_matches_the_adaptive_albedo() {
         gltf(1.0, 1.0, 0.3, |_| {}),
         gltf(1.0, 0.0, 0.5, |m| m.layers.ior = 2.5),
         gltf(1.0, 1.0, 0.5, |m| m.layers.anisotropy_strength = 0.8),
-        gltf(0.5, 0.0, 0.5, |m| (m.layers.clearcoat, m.layers.clearcoat_roughness) = (1.0, 0.3)),
-        gltf(0.5, 0.3, 0.5, |m| (m.layers.iridescence, m.layers.iridescence_thickness) = (1.0, 400.0)),
+        gltf(0.5, 0.0, 0.5, |m| {
+            (m.layers.clearcoat, m.layers.clearcoat_roughness) = (1.0, 0.3)
+        }),
+        gltf(0.5, 0.3, 0.5, |m| {
+            (m.layers.iridescence, m.layers.iridescence_thickness) = (1.0, 400.0)
+        }),
     ];
     let mut worst = 0.0f64;
     for m in &cases {
@@ -163,46 +167,84 @@ const THETAS: [f64; 7] = [0.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0];
 fn white_furnace_per_layer() {
     type Case = (&'static str, Material, bool);
     let cases: Vec<Case> = vec![
-        ("core dielectric b=1 r=0.5", gltf(1.0, 0.0, 0.5, |_| {}), false),
+        (
+            "core dielectric b=1 r=0.5",
+            gltf(1.0, 0.0, 0.5, |_| {}),
+            false,
+        ),
         ("core metal b=1 r=0.5", gltf(1.0, 1.0, 0.5, |_| {}), true),
-        ("ior=0 (spec-gloss) b=1 r=0.5", gltf(1.0, 0.0, 0.5, |m| m.layers.ior = 0.0), true),
-        ("ior=1 (no specular) b=1 r=0.5", gltf(1.0, 0.0, 0.5, |m| m.layers.ior = 1.0), true),
-        ("specular_color=2.5 b=0.5 r=0.5", gltf(0.5, 0.0, 0.5, |m| m.layers.specular_color = Rgb::splat(2.5)), false),
-        ("anisotropy 0.8 metal b=1 r=0.3", gltf(1.0, 1.0, 0.3, |m| m.layers.anisotropy_strength = 0.8), true),
-        ("anisotropy 1 metal b=1 r=0.5", gltf(1.0, 1.0, 0.5, |m| m.layers.anisotropy_strength = 1.0), true),
+        (
+            "ior=0 (spec-gloss) b=1 r=0.5",
+            gltf(1.0, 0.0, 0.5, |m| m.layers.ior = 0.0),
+            true,
+        ),
+        (
+            "ior=1 (no specular) b=1 r=0.5",
+            gltf(1.0, 0.0, 0.5, |m| m.layers.ior = 1.0),
+            true,
+        ),
+        (
+            "specular_color=2.5 b=0.5 r=0.5",
+            gltf(0.5, 0.0, 0.5, |m| m.layers.specular_color = Rgb::splat(2.5)),
+            false,
+        ),
+        (
+            "anisotropy 0.8 metal b=1 r=0.3",
+            gltf(1.0, 1.0, 0.3, |m| m.layers.anisotropy_strength = 0.8),
+            true,
+        ),
+        (
+            "anisotropy 1 metal b=1 r=0.5",
+            gltf(1.0, 1.0, 0.5, |m| m.layers.anisotropy_strength = 1.0),
+            true,
+        ),
         (
             "iridescence 1 d=400 metal b=1 r=0.5",
-            gltf(1.0, 1.0, 0.5, |m| (m.layers.iridescence, m.layers.iridescence_thickness) = (1.0, 400.0)),
+            gltf(1.0, 1.0, 0.5, |m| {
+                (m.layers.iridescence, m.layers.iridescence_thickness) = (1.0, 400.0)
+            }),
             false,
         ),
         (
             "iridescence 1 d=400 dielectric b=0.5",
-            gltf(0.5, 0.0, 0.5, |m| (m.layers.iridescence, m.layers.iridescence_thickness) = (1.0, 400.0)),
+            gltf(0.5, 0.0, 0.5, |m| {
+                (m.layers.iridescence, m.layers.iridescence_thickness) = (1.0, 400.0)
+            }),
             false,
         ),
         (
             "sheen c=1 r_sh=0.5 over metal b=1 r=0.5",
-            gltf(1.0, 1.0, 0.5, |m| (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::ONE, 0.5)),
+            gltf(1.0, 1.0, 0.5, |m| {
+                (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::ONE, 0.5)
+            }),
             true,
         ),
         (
             "sheen c=1 r_sh=0.3 over black",
-            gltf(0.0, 0.0, 0.5, |m| (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::ONE, 0.3)),
+            gltf(0.0, 0.0, 0.5, |m| {
+                (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::ONE, 0.3)
+            }),
             true,
         ),
         (
             "sheen c=1 r_sh=0.1 over black",
-            gltf(0.0, 0.0, 0.5, |m| (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::ONE, 0.1)),
+            gltf(0.0, 0.0, 0.5, |m| {
+                (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::ONE, 0.1)
+            }),
             false,
         ),
         (
             "clearcoat 1 r_c=0.3 over metal b=1 r=0.5",
-            gltf(1.0, 1.0, 0.5, |m| (m.layers.clearcoat, m.layers.clearcoat_roughness) = (1.0, 0.3)),
+            gltf(1.0, 1.0, 0.5, |m| {
+                (m.layers.clearcoat, m.layers.clearcoat_roughness) = (1.0, 0.3)
+            }),
             false,
         ),
         (
             "clearcoat 1 r_c=0.3 over dielectric b=1",
-            gltf(1.0, 0.0, 0.5, |m| (m.layers.clearcoat, m.layers.clearcoat_roughness) = (1.0, 0.3)),
+            gltf(1.0, 0.0, 0.5, |m| {
+                (m.layers.clearcoat, m.layers.clearcoat_roughness) = (1.0, 0.3)
+            }),
             false,
         ),
         (
@@ -226,10 +268,16 @@ fn white_furnace_per_layer() {
     let mut failures = Vec::new();
     let mut rows = Vec::new();
     for (name, m, conserving) in &cases {
-        let rho: Vec<f64> = THETAS.iter().map(|&t| furnace(m, t).max_element()).collect();
+        let rho: Vec<f64> = THETAS
+            .iter()
+            .map(|&t| furnace(m, t).max_element())
+            .collect();
         table.push_str(&format!(
             "| {name} | {} |\n",
-            rho.iter().map(|r| format!("{r:.4}")).collect::<Vec<_>>().join(" | ")
+            rho.iter()
+                .map(|r| format!("{r:.4}"))
+                .collect::<Vec<_>>()
+                .join(" | ")
         ));
         if *conserving {
             for (t, r) in THETAS.iter().zip(&rho) {
@@ -241,10 +289,22 @@ fn white_furnace_per_layer() {
         rows.push((name.to_string(), rho));
     }
     eprintln!("\nwhite furnace, max₃ ρ(θ_i) (product rule, ± {FURNACE_ERROR:.0e}):\n{table}");
-    assert!(failures.is_empty(), "albedo above 1:\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "albedo above 1:\n{}",
+        failures.join("\n")
+    );
     // The clearcoat's simple layering gains energy towards grazing.
-    let coat = &rows.iter().find(|r| r.0.starts_with("clearcoat 1 r_c=0.3 over metal")).unwrap().1;
-    assert!(coat[5] > 1.0 + FURNACE_ERROR, "clearcoat at 85°: {}", coat[5]);
+    let coat = &rows
+        .iter()
+        .find(|r| r.0.starts_with("clearcoat 1 r_c=0.3 over metal"))
+        .unwrap()
+        .1;
+    assert!(
+        coat[5] > 1.0 + FURNACE_ERROR,
+        "clearcoat at 85°: {}",
+        coat[5]
+    );
     // The sheen of a small roughness over black exceeds 1 near grazing (E > 1).
     let e = sheen_albedo(89f64.to_radians().cos(), sheen_alpha(0.1));
     eprintln!("E(89°, r_sh = 0.1) = {e:.4}");
@@ -271,7 +331,8 @@ fn layers_are_finite_and_non_negative_at_the_extremes() {
                             let l = &mut m.layers;
                             l.ior = ior;
                             l.specular_color = Rgb::new(0.0, 1.0, 100.0);
-                            (l.iridescence, l.iridescence_ior, l.iridescence_thickness) = (1.0, 3.0, thickness);
+                            (l.iridescence, l.iridescence_ior, l.iridescence_thickness) =
+                                (1.0, 3.0, thickness);
                             (l.sheen_color, l.sheen_roughness) = (Rgb::ONE, r);
                             (l.clearcoat, l.clearcoat_roughness) = (1.0, r);
                             l.anisotropy_strength = r.min(1.0);
@@ -307,18 +368,26 @@ fn reciprocity_where_the_layering_keeps_it() {
             (l.ior, l.specular, l.specular_color) = (1.8, 0.6, Rgb::new(1.5, 1.0, 0.2));
             (l.anisotropy_strength, l.anisotropy_rotation) = (0.7, 0.9);
         }),
-        gltf(0.7, 0.0, 0.4, |m| (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::new(0.9, 0.5, 0.3), 0.4)),
+        gltf(0.7, 0.0, 0.4, |m| {
+            (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::new(0.9, 0.5, 0.3), 0.4)
+        }),
     ];
     let pairs: Vec<(DVec3, DVec3)> = (0..400)
         .map(|k| {
             let k = k as f64;
-            (dir((k * 37.3) % 88.0, (k * 71.1) % 360.0), dir((k * 53.9) % 88.0, (k * 13.7) % 360.0))
+            (
+                dir((k * 37.3) % 88.0, (k * 71.1) % 360.0),
+                dir((k * 53.9) % 88.0, (k * 13.7) % 360.0),
+            )
         })
         .collect();
     for m in &reciprocal {
         for &(wi, wo) in &pairs {
             let (a, b) = (m.f_r(wi, wo, &frame()), m.f_r(wo, wi, &frame()));
-            assert!((a - b).abs().max_element() <= 1e-12 * a.max_element().max(1e-300), "{a} vs {b}");
+            assert!(
+                (a - b).abs().max_element() <= 1e-12 * a.max_element().max(1e-300),
+                "{a} vs {b}"
+            );
         }
     }
     // The measured violations: max |f(i,o) − f(o,i)| / max(f).
@@ -331,12 +400,17 @@ fn reciprocity_where_the_layering_keeps_it() {
             })
             .fold(0.0, f64::max)
     };
-    let coat = violation(&gltf(0.7, 0.0, 0.4, |m| (m.layers.clearcoat, m.layers.clearcoat_roughness) = (1.0, 0.2)));
+    let coat = violation(&gltf(0.7, 0.0, 0.4, |m| {
+        (m.layers.clearcoat, m.layers.clearcoat_roughness) = (1.0, 0.2)
+    }));
     let film = violation(&gltf(0.7, 0.5, 0.4, |m| m.layers.iridescence = 1.0));
     // The one-sided sheen scaling, from the layer functions.
     let one_sided = {
         use gonio::material::brdf::gltf_layers::stack::gltf_layered_with_albedos;
-        let l = gltf(0.7, 0.0, 0.4, |m| (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::ONE, 0.4)).layers;
+        let l = gltf(0.7, 0.0, 0.4, |m| {
+            (m.layers.sheen_color, m.layers.sheen_roughness) = (Rgb::ONE, 0.4)
+        })
+        .layers;
         let alpha = sheen_alpha(l.sheen_roughness);
         pairs
             .iter()
@@ -344,7 +418,18 @@ fn reciprocity_where_the_layering_keeps_it() {
                 // σ from E(μ_o) alone: both albedo arguments E(μ_o).
                 let f = |wi: DVec3, wo: DVec3| {
                     let e = sheen_albedo(wo.z, alpha);
-                    gltf_layered_with_albedos(Rgb::splat(0.7), 0.0, 0.4, 0.0, &l, e, e, &frame(), wi, wo)
+                    gltf_layered_with_albedos(
+                        Rgb::splat(0.7),
+                        0.0,
+                        0.4,
+                        0.0,
+                        &l,
+                        e,
+                        e,
+                        &frame(),
+                        wi,
+                        wo,
+                    )
                 };
                 let (a, b) = (f(wi, wo), f(wo, wi));
                 (a - b).abs().max_element() / a.max(b).max_element().max(1e-300)
@@ -354,5 +439,8 @@ fn reciprocity_where_the_layering_keeps_it() {
     eprintln!(
         "reciprocity violation max |f(i,o) − f(o,i)| / f: clearcoat 1 (r_c 0.2) {coat:.3}, iridescence 1 {film:.3}, one-sided sheen scaling E(μ_o) {one_sided:.3}"
     );
-    assert!(coat > 0.01 && film > 0.01 && one_sided > 0.01, "{coat} {film} {one_sided}");
+    assert!(
+        coat > 0.01 && film > 0.01 && one_sided > 0.01,
+        "{coat} {film} {one_sided}"
+    );
 }

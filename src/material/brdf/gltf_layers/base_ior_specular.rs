@@ -168,7 +168,11 @@ pub fn gltf_base(
     let mut f_metal = base_color + (Rgb::ONE - base_color) * w;
     if layers.has_iridescence() {
         let iota = layers.iridescence;
-        let (eta_f, d, cos_o) = (layers.iridescence_ior, layers.iridescence_thickness, n.dot(wo));
+        let (eta_f, d, cos_o) = (
+            layers.iridescence_ior,
+            layers.iridescence_thickness,
+            n.dot(wo),
+        );
         f_dielectric = f_dielectric * (1.0 - iota)
             + iridescence_fresnel(cos_o, eta_f, d, f0 * layers.specular) * iota;
         f_metal = f_metal * (1.0 - iota) + iridescence_fresnel(cos_o, eta_f, d, base_color) * iota;

@@ -54,13 +54,13 @@ pub fn cos_wrapped(x: f64) -> f64 {
 /// does), in linear Rec.709.
 pub fn eval_sensitivity(opd: f64, shift: Rgb) -> Rgb {
     let phase = TAU * opd * 1e-9;
-    let mut xyz = [0.0; 3];
-    for k in 0..3 {
+    let mut xyz: [f64; 3] = std::array::from_fn(|k| {
         let (v, p, s) = (SENSITIVITY_V[k], SENSITIVITY_P[k], SENSITIVITY_SIGMA[k]);
-        xyz[k] = v * (TAU * s).sqrt() * cos_wrapped(p * phase + shift[k]) * (-phase * phase * s).exp();
-    }
+        v * (TAU * s).sqrt() * cos_wrapped(p * phase + shift[k]) * (-phase * phase * s).exp()
+    });
     let [v2, p2, s2] = SENSITIVITY_X2;
-    xyz[0] += v2 * (TAU * s2).sqrt() * cos_wrapped(p2 * phase + shift[0]) * (-s2 * phase * phase).exp();
+    xyz[0] +=
+        v2 * (TAU * s2).sqrt() * cos_wrapped(p2 * phase + shift[0]) * (-s2 * phase * phase).exp();
     let xyz = Rgb::from_array(xyz) / SENSITIVITY_NORM;
     let m = XYZ_TO_REC709;
     Rgb::new(

@@ -88,9 +88,9 @@ fn gk15(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
     let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
     let centre = f(c);
     let (mut k, mut g) = (GK_KRONROD[7] * centre, GK_GAUSS[3] * centre);
-    for j in 0..7 {
-        let pair = f(c - h * GK_NODES[j]) + f(c + h * GK_NODES[j]);
-        k += GK_KRONROD[j] * pair;
+    for (j, (&x, &w)) in GK_NODES.iter().zip(&GK_KRONROD).take(7).enumerate() {
+        let pair = f(c - h * x) + f(c + h * x);
+        k += w * pair;
         if j % 2 == 1 {
             g += GK_GAUSS[j / 2] * pair;
         }
@@ -108,8 +108,8 @@ fn adaptive(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64, depth: u32) -> f64
     adaptive(f, a, m, 0.5 * tol, depth - 1) + adaptive(f, m, b, 0.5 * tol, depth - 1)
 }
 
-/// Composite Gauss-Legendre over `panels` (consecutive break points), 16
-/// points each, times `scale` points per panel subdivision.
+/// Composite Gauss-Legendre over the panels between consecutive `breaks`,
+/// each split into `split` equal parts of 16 points.
 fn gauss_legendre(f: &dyn Fn(f64) -> f64, breaks: &[f64], split: usize) -> f64 {
     let mut sum = 0.0;
     for w in breaks.windows(2) {
@@ -117,9 +117,9 @@ fn gauss_legendre(f: &dyn Fn(f64) -> f64, breaks: &[f64], split: usize) -> f64 {
         for s in 0..split {
             let a = w[0] + step * s as f64;
             let (c, h) = (a + 0.5 * step, 0.5 * step);
-            for j in 0..8 {
-                let x = h * GL16_NODES[j];
-                sum += GL16_WEIGHTS[j] * (f(c - x) + f(c + x)) * h;
+            for (&node, &weight) in GL16_NODES.iter().zip(&GL16_WEIGHTS) {
+                let x = h * node;
+                sum += weight * (f(c - x) + f(c + x)) * h;
             }
         }
     }

@@ -14,8 +14,8 @@ use super::clearcoat::clearcoat_over;
 use super::sheen::{sheen_alpha, sheen_lobe, sheen_scaling};
 use super::sheen_albedo::sheen_albedo;
 use crate::base::Rgb;
-use crate::material::brdf::microfacet::{half_vector, sin2_between};
 use crate::material::brdf::SurfaceFrame;
+use crate::material::brdf::microfacet::{half_vector, sin2_between};
 use glam::DVec3;
 
 /// The sheen over `below`: `c_sh · D_sh · V_sh + σ · below`, with the
@@ -53,7 +53,9 @@ pub fn gltf_layered_with_albedos(
     wo: DVec3,
 ) -> Rgb {
     let n = frame.n;
-    let mut f = gltf_base(base_color, metallic, roughness, ms, layers, n, frame.t, frame.b, wi, wo);
+    let mut f = gltf_base(
+        base_color, metallic, roughness, ms, layers, n, frame.t, frame.b, wi, wo,
+    );
     if layers.has_sheen() {
         f = sheen_over(f, layers, albedo_o, albedo_i, n, wi, wo);
     }
@@ -87,5 +89,7 @@ pub fn gltf_layered(
     wo: DVec3,
 ) -> Rgb {
     let (e_o, e_i) = sheen_albedos(layers, frame.n.dot(wi), frame.n.dot(wo));
-    gltf_layered_with_albedos(base_color, metallic, roughness, ms, layers, e_o, e_i, frame, wi, wo)
+    gltf_layered_with_albedos(
+        base_color, metallic, roughness, ms, layers, e_o, e_i, frame, wi, wo,
+    )
 }

@@ -1,15 +1,15 @@
 //! The layers against the core and against the contract's own numbers.
 
+use super::GltfLayers;
 use super::base_ior_specular::{d_ggx_anisotropic, f0_from_ior, vis_ggx_anisotropic};
 use super::iridescence::{XYZ_TO_REC709, eval_sensitivity, iridescence_fresnel};
 use super::sheen::{sheen_alpha, sheen_scaling};
 use super::sheen_albedo::{sheen_albedo, sheen_albedo_fine};
 use super::stack::gltf_layered;
-use super::GltfLayers;
 use crate::base::Rgb;
+use crate::material::brdf::SurfaceFrame;
 use crate::material::brdf::gltf_pbr::{gltf_pbr, vis_smith_ggx_correlated};
 use crate::material::brdf::microfacet::{d_ggx, half_vector, sin2_between};
-use crate::material::brdf::SurfaceFrame;
 use glam::DVec3;
 
 fn dir(theta_deg: f64, phi_deg: f64) -> DVec3 {
@@ -75,7 +75,11 @@ fn f0_from_ior_ends() {
 fn anisotropic_lobe_at_equal_alphas_is_isotropic() {
     let n = DVec3::Z;
     for alpha in [1e-4, 0.01, 0.2, 0.7, 1.0] {
-        for (ti, pi, to, po) in [(10.0, 0.0, 20.0, 180.0), (60.0, 30.0, 45.0, 250.0), (85.0, 10.0, 80.0, 170.0)] {
+        for (ti, pi, to, po) in [
+            (10.0, 0.0, 20.0, 180.0),
+            (60.0, 30.0, 45.0, 250.0),
+            (85.0, 10.0, 80.0, 170.0),
+        ] {
             let (wi, wo) = (dir(ti, pi), dir(to, po));
             let h = half_vector(wi, wo);
             let iso = d_ggx(alpha, h.z, sin2_between(n, h))
@@ -83,10 +87,21 @@ fn anisotropic_lobe_at_equal_alphas_is_isotropic() {
             let (t, b) = (DVec3::X, DVec3::Y);
             let aniso = d_ggx_anisotropic(alpha, alpha, t.dot(h), b.dot(h), h.z)
                 * vis_ggx_anisotropic(
-                    alpha, alpha, wi.z, wo.z, t.dot(wi), b.dot(wi), t.dot(wo), b.dot(wo),
-                    wi.dot(h), wo.dot(h),
+                    alpha,
+                    alpha,
+                    wi.z,
+                    wo.z,
+                    t.dot(wi),
+                    b.dot(wi),
+                    t.dot(wo),
+                    b.dot(wo),
+                    wi.dot(h),
+                    wo.dot(h),
                 );
-            assert!((aniso - iso).abs() <= 1e-12 * iso, "α {alpha}: {aniso} vs {iso}");
+            assert!(
+                (aniso - iso).abs() <= 1e-12 * iso,
+                "α {alpha}: {aniso} vs {iso}"
+            );
         }
     }
 }
@@ -106,9 +121,30 @@ fn anisotropy_rotation_turns_the_lobe_counter_clockwise() {
         ..along_t
     };
     for (ti, pi, to, po) in [(30.0, 0.0, 40.0, 170.0), (60.0, 20.0, 50.0, 230.0)] {
-        let a = gltf_layered(base, 1.0, 0.3, 0.0, &along_t, &frame(), dir(ti, pi), dir(to, po));
-        let b = gltf_layered(base, 1.0, 0.3, 0.0, &along_b, &frame(), dir(ti, pi + 90.0), dir(to, po + 90.0));
-        assert!((a - b).abs().max_element() <= 1e-12 * a.max_element(), "{a} vs {b}");
+        let a = gltf_layered(
+            base,
+            1.0,
+            0.3,
+            0.0,
+            &along_t,
+            &frame(),
+            dir(ti, pi),
+            dir(to, po),
+        );
+        let b = gltf_layered(
+            base,
+            1.0,
+            0.3,
+            0.0,
+            &along_b,
+            &frame(),
+            dir(ti, pi + 90.0),
+            dir(to, po + 90.0),
+        );
+        assert!(
+            (a - b).abs().max_element() <= 1e-12 * a.max_element(),
+            "{a} vs {b}"
+        );
     }
     // And it is anisotropic: the lobe is wider along T (stretched α_t).
     let (wi, wo_t, wo_b) = (dir(0.0, 0.0), dir(40.0, 0.0), dir(40.0, 90.0));
@@ -142,13 +178,19 @@ fn film_is_finite_and_invisible_when_index_matched() {
         for cos in [1e-6, 0.01, 0.3, 0.7, 1.0] {
             for eta in [1.0, 1.3, 2.0, 3.0] {
                 let f = iridescence_fresnel(cos, eta, d, Rgb::new(0.04, 0.5, 0.9999));
-                assert!(f.is_finite() && f.min_element() >= 0.0, "d {d} cos {cos} η {eta}: {f}");
+                assert!(
+                    f.is_finite() && f.min_element() >= 0.0,
+                    "d {d} cos {cos} η {eta}: {f}"
+                );
             }
         }
     }
     let f0 = Rgb::new(0.04, 0.2, 0.6);
     let matched = iridescence_fresnel(1.0, 1.0, 400.0, f0);
-    assert!((matched - f0).abs().max_element() < 0.02, "{matched} vs {f0}");
+    assert!(
+        (matched - f0).abs().max_element() < 0.02,
+        "{matched} vs {f0}"
+    );
 }
 
 /// The contract's numbers for `E`: 3.0 at θ = 89° for
@@ -164,7 +206,10 @@ fn sheen_albedo_matches_the_contract() {
             assert!(e <= 1.0, "r {r} θ {theta}: E = {e}");
         }
     }
-    assert_eq!(sheen_albedo(89f64.to_radians().cos(), sheen_alpha(0.0)), 0.0);
+    assert_eq!(
+        sheen_albedo(89f64.to_radians().cos(), sheen_alpha(0.0)),
+        0.0
+    );
 }
 
 /// The quadrature against one of four times its `φ` resolution and a
@@ -175,7 +220,10 @@ fn sheen_albedo_quadrature_converged() {
     for r in [0.02, 0.05, 0.1, 0.3, 0.6, 1.0] {
         for theta in [0.0, 30.0, 60.0, 80.0, 88.0, 89.9] {
             let mu = f64::to_radians(theta).cos();
-            let (e, fine) = (sheen_albedo(mu, sheen_alpha(r)), sheen_albedo_fine(mu, sheen_alpha(r)));
+            let (e, fine) = (
+                sheen_albedo(mu, sheen_alpha(r)),
+                sheen_albedo_fine(mu, sheen_alpha(r)),
+            );
             worst = worst.max((e - fine).abs());
         }
     }
@@ -225,7 +273,8 @@ fn sheen_table_is_current() {
     );
 }
 
-const SHEEN_TABLE_HEADER: &str = "// The sheen's directional albedo E(μ, α_sh(r_sh)) for the albedo scaling of
+const SHEEN_TABLE_HEADER: &str =
+    "// The sheen's directional albedo E(μ, α_sh(r_sh)) for the albedo scaling of
 // KHR_materials_sheen, as a table the GPU interpolates: the nodes are the
 // exact quadrature of the f64 reference (src/material/brdf/gltf_layers/
 // sheen_albedo.rs, sheen_albedo_table), rounded to f32; the table's error
