@@ -486,7 +486,11 @@ fn compute_source() -> String {
     let mut src = compose_brdf_library(&variants, &key.features());
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders/brdf/gltf_layers");
     for f in LAYER_FILES {
-        src.push_str(&std::fs::read_to_string(dir.join(f)).unwrap());
+        let mut text = std::fs::read_to_string(dir.join(f)).unwrap();
+        if *f == "sheen_albedo.wgsl" {
+            text = table_as_buffer(&text);
+        }
+        src.push_str(&text);
         src.push('\n');
     }
     src.push_str(
@@ -523,6 +527,22 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 "#,
     );
     src
+}
+
+/// The table's nodes as a storage buffer (binding 2) instead of the
+/// file's `const` array, the same f32 values: lavapipe's LLVM (15) spends
+/// tens of minutes in its coroutine-splitting pass on a shader that
+/// indexes a 1024-element `const` array at run time (measured on this
+/// machine, 2026-12-04), so the GPU dispatch must upload the table as a
+/// buffer, as energy compensation's table is (`globals.albedo`).
+fn table_as_buffer(text: &str) -> String {
+    let start = text.find("const SHEEN_ALBEDO_TABLE:").expect("the table's declaration");
+    let end = start + text[start..].find(");\n").expect("the table's end") + 3;
+    format!(
+        "{}@group(0) @binding(2) var<storage, read> SHEEN_ALBEDO_TABLE: array<f32>;\n{}",
+        &text[..start],
+        &text[end..]
+    )
 }
 
 fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 32] {
@@ -584,12 +604,17 @@ fn gpu_eval(
             contents: bytemuck::cast_slice(&data),
             usage: wgpu::BufferUsages::STORAGE,
         });
+    let table = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: None,
+        contents: bytemuck::cast_slice(table_nodes()),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
     let output = common::compute_output(ctx, (samples.len() * 16) as u64);
     let bytes = common::run_compute(
         ctx,
         "layer equivalence",
         &src,
-        &[(0, vec![(0, &input), (1, &output)])],
+        &[(0, vec![(0, &input), (1, &output), (2, &table)])],
         samples.len(),
         &output,
     );
