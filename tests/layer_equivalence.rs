@@ -536,7 +536,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 /// machine, 2026-12-04), so the GPU dispatch must upload the table as a
 /// buffer, as energy compensation's table is (`globals.albedo`).
 fn table_as_buffer(text: &str) -> String {
-    let start = text.find("const SHEEN_ALBEDO_TABLE:").expect("the table's declaration");
+    let start = text
+        .find("const SHEEN_ALBEDO_TABLE:")
+        .expect("the table's declaration");
     let end = start + text[start..].find(");\n").expect("the table's end") + 3;
     format!(
         "{}@group(0) @binding(2) var<storage, read> SHEEN_ALBEDO_TABLE: array<f32>;\n{}",
@@ -604,11 +606,13 @@ fn gpu_eval(
             contents: bytemuck::cast_slice(&data),
             usage: wgpu::BufferUsages::STORAGE,
         });
-    let table = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: None,
-        contents: bytemuck::cast_slice(table_nodes()),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
+    let table = ctx
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: None,
+            contents: bytemuck::cast_slice(table_nodes()),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
     let output = common::compute_output(ctx, (samples.len() * 16) as u64);
     let bytes = common::run_compute(
         ctx,
