@@ -193,7 +193,9 @@ const OUTER: Tolerance = Tolerance {
 
 /// `(∫ f_r cos θ_o dω_o, error bound)` over the upper hemisphere.
 fn integrate(material: &Material, wi: DVec3, frame: &SurfaceFrame, g: &MirrorFrame) -> (Rgb, Rgb) {
-    let isotropic = !material.model.needs_tangents();
+    // gltf-pbr's anisotropy layer turns its lobe out of the plane of
+    // incidence: no mirror symmetry then.
+    let isotropic = !material.model.needs_tangents() && material.layers.anisotropy_strength == 0.0;
     let (beta_end, symmetry) = if isotropic {
         (PI, 2.0)
     } else {

@@ -62,6 +62,10 @@ pub struct Material {
     pub base_color: Rgb,
     /// gltf-pbr's metallic `m` (glTF's `metallicFactor`), in [0, 1].
     pub metallic: f64,
+    /// gltf-pbr's layers (`KHR_materials_ior`, `_specular`, `_clearcoat`,
+    /// `_sheen`, `_iridescence`, `_anisotropy`; contract "Layered glTF
+    /// materials"): the glTF defaults leave the core BRDF unchanged.
+    pub layers: super::brdf::gltf_layers::GltfLayers,
     /// abc's distribution `D = A / (1 + B(1 − cos θ_h))^C`: `A` per
     /// channel (≥ 0, in 1/sr: the lobe's peak), `B` (> 0, the inverse
     /// width in `1 − cos θ_h`) and `C` (> 0, the tail's power).

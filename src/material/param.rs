@@ -65,6 +65,12 @@ pub enum Range {
     Positive,
     /// Finite and `≥ 0`.
     NonNegative,
+    /// Finite and `≥ min`; `text` as messages write it, e.g. `≥ 1`.
+    AtLeast { min: f64, text: &'static str },
+    /// Exactly 0, or finite and `≥ min` (glTF's `ior`: 0 or ≥ 1).
+    ZeroOrAtLeast { min: f64, text: &'static str },
+    /// Any finite number (an angle).
+    Finite,
 }
 
 impl Range {
@@ -75,6 +81,9 @@ impl Range {
             Range::OpenClosed { min, max, .. } => v > min && v <= max,
             Range::Positive => v.is_finite() && v > 0.0,
             Range::NonNegative => v.is_finite() && v >= 0.0,
+            Range::AtLeast { min, .. } => v.is_finite() && v >= min,
+            Range::ZeroOrAtLeast { min, .. } => v == 0.0 || (v.is_finite() && v >= min),
+            Range::Finite => v.is_finite(),
         }
     }
 
@@ -83,7 +92,11 @@ impl Range {
     pub fn bounds(self) -> (f64, f64) {
         match self {
             Range::Closed { min, max, .. } | Range::OpenClosed { min, max, .. } => (min, max),
-            Range::Positive | Range::NonNegative => (0.0, f64::INFINITY),
+            Range::Positive | Range::NonNegative | Range::ZeroOrAtLeast { .. } => {
+                (0.0, f64::INFINITY)
+            }
+            Range::AtLeast { min, .. } => (min, f64::INFINITY),
+            Range::Finite => (f64::NEG_INFINITY, f64::INFINITY),
         }
     }
 
@@ -97,6 +110,9 @@ impl Range {
             }
             Range::Positive => "must be finite and > 0".into(),
             Range::NonNegative => "must be finite and ≥ 0".into(),
+            Range::AtLeast { text, .. } => format!("must be finite and {text}"),
+            Range::ZeroOrAtLeast { text, .. } => format!("must be 0 or finite and {text}"),
+            Range::Finite => "must be finite".into(),
         }
     }
 }
@@ -494,4 +510,194 @@ pub static EMISSION: Param = Param {
     samples: &[0.0, 1.0],
     get: |m| Value::Color(m.emission),
     set: |m, v| m.emission = v.color(),
+};
+
+// ---------------------------------------------------------------------
+// gltf-pbr's layers (contract: "Layered glTF materials", keys): the glTF
+// property names in snake_case, with the glTF defaults (`GltfLayers`).
+//
+// Their `samples` are the defaults alone until the GPU's gltf-pbr
+// dispatch reads the layers: the model-wide sweeps (tests/brdf_equivalence.rs,
+// tests/brdf_properties.rs) compare the GPU renderer's model, and the
+// layers are swept over their ranges by tests/layer_equivalence.rs and
+// tests/layer_properties.rs.
+
+const UNIT_SLIDER: Widget = Widget::Slider {
+    min: 0.0,
+    max: 1.0,
+    scale: Scale::Linear,
+};
+
+/// `KHR_materials_ior.ior`: 0 is the specular-glossiness mode (the IOR's
+/// Fresnel term is 1), else ≥ 1.
+pub static IOR: Param = Param {
+    key: "ior",
+    label: "ior (0: specular-glossiness)",
+    kind: Kind::Scalar,
+    range: Range::ZeroOrAtLeast {
+        min: 1.0,
+        text: "≥ 1",
+    },
+    widget: Widget::Drag {
+        speed: 0.005,
+        min: 0.0,
+        max: 10.0,
+    },
+    stored: true,
+    samples: &[1.5],
+    get: |m| Value::Scalar(m.layers.ior),
+    set: |m, v| m.layers.ior = v.scalar(),
+};
+/// `KHR_materials_specular.specularFactor`, `s_w`.
+pub static SPECULAR: Param = Param {
+    key: "specular",
+    label: "specular weight",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: UNIT_SLIDER,
+    stored: true,
+    samples: &[1.0],
+    get: |m| Value::Scalar(m.layers.specular),
+    set: |m, v| m.layers.specular = v.scalar(),
+};
+/// `KHR_materials_specular.specularColorFactor`, `c_s` (may exceed 1).
+pub static SPECULAR_COLOR: Param = Param {
+    key: "specular_color",
+    label: "specular colour",
+    kind: Kind::Color,
+    range: Range::NonNegative,
+    widget: Widget::Drag {
+        speed: 0.01,
+        min: 0.0,
+        max: 100.0,
+    },
+    stored: true,
+    samples: &[1.0],
+    get: |m| Value::Color(m.layers.specular_color),
+    set: |m, v| m.layers.specular_color = v.color(),
+};
+/// `KHR_materials_clearcoat.clearcoatFactor`, `k`.
+pub static CLEARCOAT: Param = Param {
+    key: "clearcoat",
+    label: "clearcoat",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: UNIT_SLIDER,
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.clearcoat),
+    set: |m, v| m.layers.clearcoat = v.scalar(),
+};
+/// `…clearcoatRoughnessFactor`, perceptual `r_c` (0: a mirror coat).
+pub static CLEARCOAT_ROUGHNESS: Param = Param {
+    key: "clearcoat_roughness",
+    label: "clearcoat roughness r_c (α = r_c²)",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: UNIT_SLIDER,
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.clearcoat_roughness),
+    set: |m, v| m.layers.clearcoat_roughness = v.scalar(),
+};
+/// `KHR_materials_sheen.sheenColorFactor`, `c_sh`.
+pub static SHEEN_COLOR: Param = Param {
+    key: "sheen_color",
+    label: "sheen colour",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Color(m.layers.sheen_color),
+    set: |m, v| m.layers.sheen_color = v.color(),
+};
+/// `…sheenRoughnessFactor`, perceptual `r_sh`.
+pub static SHEEN_ROUGHNESS: Param = Param {
+    key: "sheen_roughness",
+    label: "sheen roughness",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: UNIT_SLIDER,
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.sheen_roughness),
+    set: |m, v| m.layers.sheen_roughness = v.scalar(),
+};
+/// `KHR_materials_iridescence.iridescenceFactor`, `ι`.
+pub static IRIDESCENCE: Param = Param {
+    key: "iridescence",
+    label: "iridescence",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: UNIT_SLIDER,
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.iridescence),
+    set: |m, v| m.layers.iridescence = v.scalar(),
+};
+/// `…iridescenceIor`, the film's index `η_f`.
+pub static IRIDESCENCE_IOR: Param = Param {
+    key: "iridescence_ior",
+    label: "film ior",
+    kind: Kind::Scalar,
+    range: Range::AtLeast {
+        min: 1.0,
+        text: "≥ 1",
+    },
+    widget: Widget::Drag {
+        speed: 0.005,
+        min: 1.0,
+        max: 5.0,
+    },
+    stored: true,
+    samples: &[1.3],
+    get: |m| Value::Scalar(m.layers.iridescence_ior),
+    set: |m, v| m.layers.iridescence_ior = v.scalar(),
+};
+/// The film's thickness `d` [nm] (`…iridescenceThicknessMaximum`; with a
+/// thickness texture the maximum).
+pub static IRIDESCENCE_THICKNESS: Param = Param {
+    key: "iridescence_thickness",
+    label: "film thickness [nm]",
+    kind: Kind::Scalar,
+    range: Range::NonNegative,
+    widget: Widget::Drag {
+        speed: 1.0,
+        min: 0.0,
+        max: 2000.0,
+    },
+    stored: true,
+    samples: &[400.0],
+    get: |m| Value::Scalar(m.layers.iridescence_thickness),
+    set: |m, v| m.layers.iridescence_thickness = v.scalar(),
+};
+/// `KHR_materials_anisotropy.anisotropyStrength`, `s_a`.
+pub static ANISOTROPY_STRENGTH: Param = Param {
+    key: "anisotropy_strength",
+    label: "anisotropy strength",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: UNIT_SLIDER,
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.anisotropy_strength),
+    set: |m, v| m.layers.anisotropy_strength = v.scalar(),
+};
+/// `…anisotropyRotation`, `ρ` [rad] from the tangent towards the
+/// bitangent.
+pub static ANISOTROPY_ROTATION: Param = Param {
+    key: "anisotropy_rotation",
+    label: "anisotropy rotation ρ [rad]",
+    kind: Kind::Scalar,
+    range: Range::Finite,
+    widget: Widget::Slider {
+        min: -std::f64::consts::PI,
+        max: std::f64::consts::PI,
+        scale: Scale::Linear,
+    },
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.anisotropy_rotation),
+    set: |m, v| m.layers.anisotropy_rotation = v.scalar(),
 };

@@ -41,8 +41,11 @@
 use super::brdf::oren_nayar::oren_nayar_terms;
 use super::brdf::{CookTorrance, FresnelTerm, Specular};
 use super::param::{
-    ABC_A, ABC_B, ABC_C, BASE_COLOR, EMISSION, ETA, ETA_I, ETA_T, FACET_SIGMA, K_A, K_D, K_E, K_S,
-    KAPPA, METALLIC, PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, SIGMA_X, SIGMA_Y, WARD_SIGMA,
+    ABC_A, ABC_B, ABC_C, ANISOTROPY_ROTATION, ANISOTROPY_STRENGTH, BASE_COLOR, CLEARCOAT,
+    CLEARCOAT_ROUGHNESS, EMISSION, ETA, ETA_I, ETA_T, FACET_SIGMA, IOR, IRIDESCENCE,
+    IRIDESCENCE_IOR, IRIDESCENCE_THICKNESS, K_A, K_D, K_E, K_S, KAPPA, METALLIC,
+    PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, SHEEN_COLOR, SHEEN_ROUGHNESS, SIGMA_X, SIGMA_Y,
+    SPECULAR, SPECULAR_COLOR, WARD_SIGMA,
 };
 use super::weights::{self, Weights};
 use super::{Material, ReflectanceModel};
@@ -589,7 +592,23 @@ pub static ROWS: &[ModelRow] = &[
         ],
         needs_tangents: false,
         terms: Terms::NONE,
-        params: &[&BASE_COLOR, &METALLIC, &PERCEPTUAL_ROUGHNESS],
+        params: &[
+            &BASE_COLOR,
+            &METALLIC,
+            &PERCEPTUAL_ROUGHNESS,
+            &IOR,
+            &SPECULAR,
+            &SPECULAR_COLOR,
+            &CLEARCOAT,
+            &CLEARCOAT_ROUGHNESS,
+            &SHEEN_COLOR,
+            &SHEEN_ROUGHNESS,
+            &IRIDESCENCE,
+            &IRIDESCENCE_IOR,
+            &IRIDESCENCE_THICKNESS,
+            &ANISOTROPY_STRENGTH,
+            &ANISOTROPY_ROTATION,
+        ],
         reciprocal: true,
         benched: false,
         energy_compensation: true,
@@ -599,6 +618,7 @@ pub static ROWS: &[ModelRow] = &[
             base_color: m.base_color,
             metallic: m.metallic,
             roughness: m.roughness,
+            layers: m.layers,
         },
         // GGX's lobe of width α = r² (slope_error); no transcendental
         // function: w = (1 − |V·H|)⁵ is taken by multiplications, the rest

@@ -9,6 +9,7 @@ pub mod abc;
 pub mod dfg;
 pub mod energy;
 pub mod fresnel;
+pub mod gltf_layers;
 pub mod gltf_pbr;
 pub mod lambert;
 pub mod microfacet;
@@ -72,9 +73,12 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
             base_color,
             metallic,
             roughness,
+            layers,
         } => {
             let ms = compensation_ratio(brdf, roughness * roughness, n.dot(wo));
-            return gltf_pbr::gltf_pbr(base_color, metallic, roughness, ms, n, wi, wo);
+            return gltf_layers::stack::gltf_layered(
+                base_color, metallic, roughness, ms, &layers, frame, wi, wo,
+            );
         }
         Specular::Abc {
             a,

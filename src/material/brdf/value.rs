@@ -64,10 +64,13 @@ pub enum Specular {
     /// `f_r` (k_d and k_s are not read). `roughness` is glTF's perceptual
     /// roughness r; the GGX α is r², squared by the twins themselves (so a
     /// per-pixel roughness on the GPU is squared the same way).
+    /// Its layers (`gltf_layers`: ior, specular, clearcoat, sheen,
+    /// iridescence, anisotropy; all off at their defaults).
     GltfPbr {
         base_color: Rgb,
         metallic: f64,
         roughness: f64,
+        layers: super::gltf_layers::GltfLayers,
     },
     /// The ABC model (`abc::abc_specular`, Löw et al. 2012): `a` is the
     /// distribution's peak `A` per channel, `b`, `c` its shape, the
@@ -383,10 +386,13 @@ impl Brdf {
             // The table's place in the measured buffer is the GPU's
             // (`gpu::measured_tables`), written into `lobe` there.
             Specular::Measured(_) => {}
+            // The layers are not uploaded yet: the GPU's dispatch evaluates
+            // the core (the layers' WGSL twins are shaders/brdf/gltf_layers/).
             Specular::GltfPbr {
                 base_color,
                 metallic,
                 roughness,
+                layers: _,
             } => {
                 (p.base_color, p.metallic, p.roughness) = (base_color, metallic, roughness);
                 p.lobe[0] = self.compensation_weight();

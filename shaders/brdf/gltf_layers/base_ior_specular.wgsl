@@ -1,0 +1,96 @@
+// The base of the layered glTF material: glTF 2.0 Appendix B (mix form)
+// with KHR_materials_ior, KHR_materials_specular and the anisotropic GGX
+// lobe of KHR_materials_anisotropy (Burley 2012; Heitz 2014, eq. 99)
+// (contract: "Layered glTF materials", "Anisotropic lobe", "Base").
+// f64 twin: src/material/brdf/gltf_layers/base_ior_specular.rs (same names, same order).
+// Uses phong.wgsl (COS_FLOOR, sin2_between), microfacet.wgsl (half_vector,
+// d_ggx), energy.wgsl (ms_factor), gltf_pbr.wgsl (schlick_weight,
+// vis_smith_ggx_correlated), iridescence.wgsl (iridescence_fresnel) and
+// mod.wgsl (GltfLayers).
+
+// ((ior − 1)/(ior + 1))² as (ior − 1)²/(ior + 1)²; 1 at ior = 0.
+fn f0_from_ior(ior: f32) -> f32 {
+    let num = ior - 1.0;
+    let den = ior + 1.0;
+    return (num * num) / (den * den);
+}
+
+// min(f0_ior · c_s, 1) per channel.
+fn dielectric_f0(ior: f32, specular_color: vec3<f32>) -> vec3<f32> {
+    return min(vec3<f32>(f0_from_ior(ior)) * specular_color, vec3<f32>(1.0));
+}
+
+// T = cos ρ · t + sin ρ · b; B = N × T (pinned choice 8). Returns (T, B).
+fn anisotropy_frame(rotation: f32, n: vec3<f32>, t: vec3<f32>, b: vec3<f32>) -> array<vec3<f32>, 2> {
+    let dir = t * cos(rotation) + b * sin(rotation);
+    return array<vec3<f32>, 2>(dir, cross(n, dir));
+}
+
+// α_t = α + (1 − α) s_a².
+fn anisotropic_alpha_t(alpha: f32, strength: f32) -> f32 {
+    return alpha + (1.0 - alpha) * strength * strength;
+}
+
+// Burley's anisotropic GGX as (α_t α_b)³ / (π (α_b²(H·T)² + α_t²(H·B)² + α_t²α_b²(N·H)²)²).
+fn d_ggx_anisotropic(alpha_t: f32, alpha_b: f32, cos_th: f32, cos_bh: f32, cos_h: f32) -> f32 {
+    if cos_h <= 0.0 {
+        return 0.0;
+    }
+    let a2 = alpha_t * alpha_b;
+    let f = vec3<f32>(alpha_b * cos_th, alpha_t * cos_bh, a2 * cos_h);
+    let w2 = a2 / dot(f, f);
+    return a2 * w2 * w2 / PI;
+}
+
+// ½ / (μ_i √(α_t²(T·V)² + α_b²(B·V)² + μ_o²) + μ_o √(α_t²(T·L)² + α_b²(B·L)² + μ_i²)),
+// χ⁺(H·L) χ⁺(H·V), the front cosines floored at COS_FLOOR.
+fn vis_ggx_anisotropic(alpha_t: f32, alpha_b: f32, cos_i: f32, cos_o: f32, cos_ti: f32, cos_bi: f32, cos_to: f32, cos_bo: f32, cos_ih: f32, cos_oh: f32) -> f32 {
+    if cos_i <= 0.0 || cos_o <= 0.0 || cos_ih <= 0.0 || cos_oh <= 0.0 {
+        return 0.0;
+    }
+    let ci = min(cos_i, 1.0);
+    let co = min(cos_o, 1.0);
+    let root_o = length(vec3<f32>(alpha_t * cos_to, alpha_b * cos_bo, co));
+    let root_i = length(vec3<f32>(alpha_t * cos_ti, alpha_b * cos_bi, ci));
+    return 0.5 / (max(ci, COS_FLOOR) * root_o + max(co, COS_FLOOR) * root_i);
+}
+
+// S = D·Vis: the core's isotropic lobe at s_a = 0, the anisotropic one above.
+fn base_lobe(alpha: f32, layers: GltfLayers, n: vec3<f32>, t: vec3<f32>, b: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> f32 {
+    let h = half_vector(wi, wo);
+    let cos_i = dot(n, wi);
+    let cos_o = dot(n, wo);
+    let cos_h = dot(n, h);
+    let cos_ih = dot(wi, h);
+    let cos_oh = dot(wo, h);
+    if !(layers.anisotropy_strength > 0.0) {
+        let sin2_h = sin2_between(n, h);
+        return d_ggx(alpha, cos_h, sin2_h) * vis_smith_ggx_correlated(alpha, cos_i, cos_o, cos_ih, cos_oh);
+    }
+    let tb = anisotropy_frame(layers.anisotropy_rotation, n, t, b);
+    let alpha_t = anisotropic_alpha_t(alpha, layers.anisotropy_strength);
+    return d_ggx_anisotropic(alpha_t, alpha, dot(tb[0], h), dot(tb[1], h), cos_h)
+        * vis_ggx_anisotropic(alpha_t, alpha, cos_i, cos_o, dot(tb[0], wi), dot(tb[1], wi), dot(tb[0], wo), dot(tb[1], wo), cos_ih, cos_oh);
+}
+
+// The base material for N·L > 0, N·V > 0; the film mixed into the Fresnel
+// terms when on (pinned choice 9); ms: energy compensation's (1 − E)/E.
+fn gltf_base(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, layers: GltfLayers, n: vec3<f32>, t: vec3<f32>, b: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
+    let alpha = roughness * roughness;
+    let specular = base_lobe(alpha, layers, n, t, b, wi, wo);
+    let w = schlick_weight(dot(wo, half_vector(wi, wo)));
+    let f0 = dielectric_f0(layers.ior, layers.specular_color);
+    var f_dielectric = (f0 + (vec3<f32>(1.0) - f0) * w) * layers.specular;
+    var f_metal = base_color + (vec3<f32>(1.0) - base_color) * w;
+    if layers.iridescence > 0.0 && layers.iridescence_thickness > 0.0 {
+        let iota = layers.iridescence;
+        let cos_o = dot(n, wo);
+        f_dielectric = f_dielectric * (1.0 - iota)
+            + iridescence_fresnel(cos_o, layers.iridescence_ior, layers.iridescence_thickness, f0 * layers.specular) * iota;
+        f_metal = f_metal * (1.0 - iota) + iridescence_fresnel(cos_o, layers.iridescence_ior, layers.iridescence_thickness, base_color) * iota;
+    }
+    let dielectric = base_color * ((1.0 - max(f_dielectric.x, max(f_dielectric.y, f_dielectric.z))) * FRAC_1_PI)
+        + f_dielectric * specular * ms_factor(f0 * layers.specular, ms);
+    let metal = f_metal * specular * ms_factor(base_color, ms);
+    return dielectric * (1.0 - metallic) + metal * metallic;
+}

@@ -1,0 +1,55 @@
+//! The coat of `KHR_materials_clearcoat` (contract: "Layered glTF
+//! materials", "Clearcoat"; pinned choice 7): a dielectric layer of IOR
+//! 1.5 (whatever `ior` is) with its own isotropic GGX lobe of
+//! `α_c = r_c²` (glTF 2.0 Appendix B's `specular_brdf`), over the layers
+//! below, weighted by the coat's Fresnel at the view,
+//! `F_c = 0.04 + 0.96 (1 − μ_o)⁵` (the specification's
+//! `fresnel_coat(clearcoat_normal, …)`, evaluated with `N·V`):
+//!
+//! `f_r = (1 − k F_c) · below + k F_c · G_{α_c}`.
+//!
+//! `r_c = 0` is an ideal mirror coat: its Dirac lobe of weight `k F_c(μ_o)`
+//! is not a function value, so `G_0 = 0` here (the finite part). Above 0,
+//! `α_c` is floored at the renderer's [`ROUGHNESS_FLOOR`] (1e-4), as every
+//! other lobe is: below it `1/α²` leaves `f32`'s range.
+//!
+//! `F_c` depends on `V` alone: with a coat `f_r` is not reciprocal.
+//!
+//! WGSL twin: `shaders/brdf/gltf_layers/clearcoat.wgsl`.
+
+use crate::base::Rgb;
+use crate::material::ROUGHNESS_FLOOR;
+use crate::material::brdf::gltf_pbr::{DIELECTRIC_F0, schlick_weight, vis_smith_ggx_correlated};
+use crate::material::brdf::microfacet::{d_ggx, half_vector, sin2_between};
+use glam::DVec3;
+
+/// `F_c = 0.04 + 0.96 (1 − μ_o)⁵`: the coat's Schlick Fresnel (IOR 1.5)
+/// at the view.
+pub fn clearcoat_fresnel(cos_o: f64) -> f64 {
+    DIELECTRIC_F0 + (1.0 - DIELECTRIC_F0) * schlick_weight(cos_o)
+}
+
+/// The coat's GGX lobe `G_{α_c} = D·Vis`, `α_c = r_c²` floored at
+/// [`ROUGHNESS_FLOOR`]; 0 for `r_c = 0` (the mirror coat's finite part).
+pub fn clearcoat_lobe(clearcoat_roughness: f64, n: DVec3, wi: DVec3, wo: DVec3) -> f64 {
+    if clearcoat_roughness <= 0.0 {
+        return 0.0;
+    }
+    let alpha = (clearcoat_roughness * clearcoat_roughness).max(ROUGHNESS_FLOOR);
+    let h = half_vector(wi, wo);
+    d_ggx(alpha, n.dot(h), sin2_between(n, h))
+        * vis_smith_ggx_correlated(alpha, n.dot(wi), n.dot(wo), wi.dot(h), wo.dot(h))
+}
+
+/// The coat over `below`: `(1 − k F_c) · below + k F_c · G_{α_c}`.
+pub fn clearcoat_over(
+    below: Rgb,
+    clearcoat: f64,
+    clearcoat_roughness: f64,
+    n: DVec3,
+    wi: DVec3,
+    wo: DVec3,
+) -> Rgb {
+    let weight = clearcoat * clearcoat_fresnel(n.dot(wo));
+    below * (1.0 - weight) + Rgb::splat(weight * clearcoat_lobe(clearcoat_roughness, n, wi, wo))
+}

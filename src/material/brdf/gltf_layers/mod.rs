@@ -1,0 +1,109 @@
+//! glTF's "PBR next" layers on the metallic-roughness BRDF: the contract's
+//! "Layered glTF materials" (`shared/spec/conventions.md`), one layer per
+//! file, composed as the KHR_materials_* specifications layer them:
+//!
+//! * [`base_ior_specular`]: the base (glTF 2.0 Appendix B) with
+//!   `KHR_materials_ior`, `KHR_materials_specular` and the anisotropic GGX
+//!   lobe of `KHR_materials_anisotropy` (Burley 2012);
+//! * [`iridescence`]: the thin-film Fresnel of `KHR_materials_iridescence`
+//!   (Belcour & Barla 2017, in the Khronos Sample Renderer's XYZ-Fourier
+//!   form), mixed into the base's Fresnel terms;
+//! * [`sheen`] and [`sheen_albedo`]: the Charlie sheen of
+//!   `KHR_materials_sheen` (Conty & Kulla 2017) and the exact directional
+//!   albedo `E(μ, α_sh)` its albedo scaling uses (Kulla & Conty 2017);
+//! * [`clearcoat`]: `KHR_materials_clearcoat`'s coat, a GGX lobe of IOR 1.5
+//!   over everything below;
+//! * [`stack`]: base → sheen → clearcoat.
+//!
+//! Every layer at its default leaves the core BRDF exactly as
+//! [`super::gltf_pbr::gltf_pbr`] computes it (each layer is switched off by
+//! its contract condition, and the base keeps the core's operations).
+//!
+//! WGSL twins: `shaders/brdf/gltf_layers/*.wgsl` (same files, names and
+//! order).
+
+pub mod base_ior_specular;
+pub mod clearcoat;
+pub mod iridescence;
+pub mod sheen;
+pub mod sheen_albedo;
+pub mod stack;
+
+use crate::base::Rgb;
+
+/// The layer parameters of a `gltf-pbr` material (the contract's keys,
+/// with its defaults); the core's `base_color`, `metallic` and
+/// `roughness` are passed beside it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GltfLayers {
+    /// `KHR_materials_ior.ior`; 0 is the specular-glossiness mode (the
+    /// Fresnel term of the IOR is 1).
+    pub ior: f64,
+    /// `KHR_materials_specular.specularFactor`, `s_w`.
+    pub specular: f64,
+    /// `…specularColorFactor`, `c_s` (may exceed 1).
+    pub specular_color: Rgb,
+    /// `KHR_materials_clearcoat.clearcoatFactor`, `k`.
+    pub clearcoat: f64,
+    /// `…clearcoatRoughnessFactor`, perceptual `r_c` (α_c = r_c²).
+    pub clearcoat_roughness: f64,
+    /// `KHR_materials_sheen.sheenColorFactor`, `c_sh`.
+    pub sheen_color: Rgb,
+    /// `…sheenRoughnessFactor`, perceptual `r_sh`.
+    pub sheen_roughness: f64,
+    /// `KHR_materials_iridescence.iridescenceFactor`, `ι`.
+    pub iridescence: f64,
+    /// `…iridescenceIor`, the film's index `η_f`.
+    pub iridescence_ior: f64,
+    /// The film's thickness `d` [nm].
+    pub iridescence_thickness: f64,
+    /// `KHR_materials_anisotropy.anisotropyStrength`, `s_a`.
+    pub anisotropy_strength: f64,
+    /// `…anisotropyRotation`, `ρ` [rad] from `t` towards `b`.
+    pub anisotropy_rotation: f64,
+}
+
+impl Default for GltfLayers {
+    /// The glTF defaults: every layer off, the core BRDF unchanged.
+    fn default() -> Self {
+        GltfLayers {
+            ior: 1.5,
+            specular: 1.0,
+            specular_color: Rgb::ONE,
+            clearcoat: 0.0,
+            clearcoat_roughness: 0.0,
+            sheen_color: Rgb::ZERO,
+            sheen_roughness: 0.0,
+            iridescence: 0.0,
+            iridescence_ior: 1.3,
+            iridescence_thickness: 400.0,
+            anisotropy_strength: 0.0,
+            anisotropy_rotation: 0.0,
+        }
+    }
+}
+
+impl GltfLayers {
+    /// Whether the thin film is on (`ι > 0` and `d > 0`, pinned choice 2).
+    pub fn has_iridescence(&self) -> bool {
+        self.iridescence > 0.0 && self.iridescence_thickness > 0.0
+    }
+
+    /// Whether the sheen is on (`c_sh ≠ 0`).
+    pub fn has_sheen(&self) -> bool {
+        self.sheen_color != Rgb::ZERO
+    }
+
+    /// Whether the coat is on (`k > 0`).
+    pub fn has_clearcoat(&self) -> bool {
+        self.clearcoat > 0.0
+    }
+
+    /// Whether the base lobe is anisotropic (`s_a > 0`).
+    pub fn has_anisotropy(&self) -> bool {
+        self.anisotropy_strength > 0.0
+    }
+}
+
+#[cfg(test)]
+mod tests;

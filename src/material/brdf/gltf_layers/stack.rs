@@ -1,0 +1,95 @@
+//! The composition of the layered glTF material (contract: "Layered glTF
+//! materials", "Composition"): the base (`material`, with `ior`,
+//! `specular`, `iridescence`, `anisotropy` inside it,
+//! [`super::base_ior_specular`]) → the sheen on top (`sheened`,
+//! [`super::sheen`]) → the clearcoat on top (`f_r`, [`super::clearcoat`]),
+//! each layer skipped when its contract condition is off (so the defaults
+//! give the core BRDF exactly).
+//!
+//! WGSL twin: `shaders/brdf/gltf_layers/stack.wgsl`.
+
+use super::GltfLayers;
+use super::base_ior_specular::gltf_base;
+use super::clearcoat::clearcoat_over;
+use super::sheen::{sheen_alpha, sheen_lobe, sheen_scaling};
+use super::sheen_albedo::sheen_albedo;
+use crate::base::Rgb;
+use crate::material::brdf::SurfaceFrame;
+use crate::material::brdf::microfacet::{half_vector, sin2_between};
+use glam::DVec3;
+
+/// The sheen over `below`: `c_sh · D_sh · V_sh + σ · below`, with the
+/// sheen's directional albedos `albedo_o = E(μ_o)`, `albedo_i = E(μ_i)`
+/// given (exact in [`gltf_layered`]; the GPU's from its table).
+pub fn sheen_over(
+    below: Rgb,
+    layers: &GltfLayers,
+    albedo_o: f64,
+    albedo_i: f64,
+    n: DVec3,
+    wi: DVec3,
+    wo: DVec3,
+) -> Rgb {
+    let alpha = sheen_alpha(layers.sheen_roughness);
+    let h = half_vector(wi, wo);
+    let lobe = sheen_lobe(alpha, n.dot(h), sin2_between(n, h), n.dot(wi), n.dot(wo));
+    layers.sheen_color * lobe + below * sheen_scaling(layers.sheen_color, albedo_o, albedo_i)
+}
+
+/// The layered `f_r` for `N·L > 0`, `N·V > 0` with the sheen albedos
+/// given: base → sheen → clearcoat. `ms` is energy compensation's ratio of
+/// the base (0 without).
+#[allow(clippy::too_many_arguments)]
+pub fn gltf_layered_with_albedos(
+    base_color: Rgb,
+    metallic: f64,
+    roughness: f64,
+    ms: f64,
+    layers: &GltfLayers,
+    albedo_o: f64,
+    albedo_i: f64,
+    frame: &SurfaceFrame,
+    wi: DVec3,
+    wo: DVec3,
+) -> Rgb {
+    let n = frame.n;
+    let mut f = gltf_base(
+        base_color, metallic, roughness, ms, layers, n, frame.t, frame.b, wi, wo,
+    );
+    if layers.has_sheen() {
+        f = sheen_over(f, layers, albedo_o, albedo_i, n, wi, wo);
+    }
+    if layers.has_clearcoat() {
+        f = clearcoat_over(f, layers.clearcoat, layers.clearcoat_roughness, n, wi, wo);
+    }
+    f
+}
+
+/// The sheen's directional albedos `(E(μ_o), E(μ_i))`, exact (0, 0 without
+/// sheen: not read).
+pub fn sheen_albedos(layers: &GltfLayers, cos_i: f64, cos_o: f64) -> (f64, f64) {
+    if !layers.has_sheen() {
+        return (0.0, 0.0);
+    }
+    let alpha = sheen_alpha(layers.sheen_roughness);
+    (sheen_albedo(cos_o, alpha), sheen_albedo(cos_i, alpha))
+}
+
+/// The layered `f_r` of the contract for `N·L > 0`, `N·V > 0`, the sheen
+/// scaled by the exact albedos.
+#[allow(clippy::too_many_arguments)]
+pub fn gltf_layered(
+    base_color: Rgb,
+    metallic: f64,
+    roughness: f64,
+    ms: f64,
+    layers: &GltfLayers,
+    frame: &SurfaceFrame,
+    wi: DVec3,
+    wo: DVec3,
+) -> Rgb {
+    let (e_o, e_i) = sheen_albedos(layers, frame.n.dot(wi), frame.n.dot(wo));
+    gltf_layered_with_albedos(
+        base_color, metallic, roughness, ms, layers, e_o, e_i, frame, wi, wo,
+    )
+}
