@@ -10,20 +10,23 @@ use gltf::mesh::Semantic;
 
 /// Required extensions this importer honours.
 pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
+    "EXT_meshopt_compression",
+    "EXT_texture_webp",
+    "KHR_draco_mesh_compression",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_mesh_quantization",
+    "KHR_meshopt_compression",
+    "KHR_texture_basisu",
     "KHR_texture_transform",
 ];
 
 /// Required extensions users are likely to meet, with what they do: the
 /// message says why the file cannot be drawn without them.
 const KNOWN_UNSUPPORTED: &[(&str, &str)] = &[
-    ("KHR_draco_mesh_compression", "Draco mesh compression"),
-    ("EXT_meshopt_compression", "meshoptimizer compression"),
-    ("KHR_meshopt_compression", "meshoptimizer compression"),
-    ("KHR_texture_basisu", "Basis Universal textures"),
-    ("EXT_texture_webp", "WebP textures"),
+    ("EXT_mesh_gpu_instancing", "GPU instancing"),
+    ("KHR_materials_variants", "material variants"),
+    ("EXT_texture_avif", "AVIF textures"),
 ];
 
 /// The GLB header: magic, version, total length.
@@ -191,10 +194,11 @@ pub(super) fn parse(
     notes: &mut Vec<String>,
 ) -> Result<gltf::Document, String> {
     Census::take(json)?.check(used_bytes, limits)?;
-    let root: gltf::json::Root =
+    let mut root: gltf::json::Root =
         gltf::json::deserialize::from_slice(json).map_err(|e| format!("invalid glTF: {e}"))?;
     check_version(&root.asset)?;
     check_extensions(&root, notes)?;
+    super::compressed::use_extension_sources(&mut root)?;
     check_position_accessors(&root)?;
     check_cameras(&root)?;
     validate(&root, notes)?;

@@ -111,11 +111,14 @@
 mod accessors;
 mod buffers;
 mod census;
+mod compressed;
 mod container;
 mod convert;
+mod draco;
 mod graph;
 mod images;
 mod import;
+mod meshopt;
 #[cfg(test)]
 mod tests;
 
@@ -290,6 +293,7 @@ fn load_bytes(
     let roots = graph::scene_roots(&document, &parents)?;
     graph::check_cost(&document, &graph::descendants(&document, &roots), limits)?;
     let buffers = buffers::load(&document, container.bin, folder, &mut used_bytes, limits)?;
+    let (document, buffers) = compressed::decode(document, buffers, &mut used_bytes, limits)?;
     guarded(|| import::Importer::new(&document, &buffers, limits, notes, folder).run(&roots))
         .and_then(|result| result)
 }
