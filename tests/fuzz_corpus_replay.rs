@@ -443,8 +443,7 @@ fn glb_parts(bytes: &[u8]) -> (serde_json::Value, Vec<u8>) {
     (json, bytes[20 + json_len + 8..].to_vec())
 }
 
-fn view_bytes(json: &serde_json::Value, bin: &[u8], view: &serde_json::Value) -> Vec<u8> {
-    let _ = json;
+fn view_bytes(bin: &[u8], view: &serde_json::Value) -> Vec<u8> {
     let offset = view["byteOffset"].as_u64().unwrap_or(0) as usize;
     let length = view["byteLength"].as_u64().unwrap() as usize;
     bin[offset..offset + length].to_vec()
@@ -474,7 +473,7 @@ fn draco_seeds() -> Vec<(String, Vec<u8>)> {
         let primitive = &json["meshes"][0]["primitives"][0];
         let extension = &primitive["extensions"]["KHR_draco_mesh_compression"];
         let view = &json["bufferViews"][extension["bufferView"].as_u64().unwrap() as usize];
-        let stream = view_bytes(&json, &bin, view);
+        let stream = view_bytes(&bin, view);
         let count = |accessor: &serde_json::Value| {
             json["accessors"][accessor.as_u64().unwrap() as usize]["count"]
                 .as_u64()
@@ -548,7 +547,7 @@ fn meshopt_seeds() -> Vec<(String, Vec<u8>)> {
                 continue;
             }
             let count = e["count"].as_u64().unwrap() as u32;
-            let data = view_bytes(&json, &bin, e);
+            let data = view_bytes(&bin, e);
             let seed = |data: &[u8]| {
                 [&[khr, mode, filter, stride][..], &count.to_le_bytes(), data].concat()
             };

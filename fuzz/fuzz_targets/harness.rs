@@ -194,11 +194,11 @@ pub fn webp_texture(data: &[u8]) {
 /// A GLB of `json` and `bin` (chunks padded to 4 bytes).
 pub fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     let mut json = json.as_bytes().to_vec();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let mut file = b"glTF".to_vec();

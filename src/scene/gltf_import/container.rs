@@ -322,18 +322,28 @@ fn semantic_name(semantic: &Checked<Semantic>) -> String {
 /// does not know (application-specific ones such as `_BATCHID`, which the
 /// spec allows). gonio reads only `POSITION`, `NORMAL` and indices, so they
 /// are ignored, with a note. Nor are required extensions gltf-json does
-/// not parse but gonio implements (`check_extensions` ran first).
+/// not parse but gonio implements (`check_extensions` ran first), nor a
+/// missing `bufferView` of an accessor a Draco stream fills.
 fn validate(root: &gltf::json::Root, notes: &mut Vec<String>) -> Result<(), String> {
     const SHOWN: usize = 8;
     const UNKNOWN_ATTRIBUTE: &str = "attributes[\"<invalid semantic name>\"]";
     let mut problems = Vec::new();
     let mut more = 0usize;
     let mut unknown_attributes = 0usize;
+    let draco_filled = super::draco::filled_accessors(root);
+    let filled_by_draco = |path: &str| {
+        path.strip_prefix("accessors[")
+            .and_then(|rest| rest.strip_suffix("].bufferView"))
+            .and_then(|index| index.parse::<usize>().ok())
+            .is_some_and(|index| draco_filled.contains(&index))
+    };
     guarded(|| {
         root.validate(root, gltf::json::Path::new, &mut |path, error| {
             let path = path().to_string();
             if path.ends_with(UNKNOWN_ATTRIBUTE) {
                 unknown_attributes += 1;
+            } else if error == gltf::json::validation::Error::Missing && filled_by_draco(&path) {
+                // Filled from the Draco stream (`draco`).
             } else if path.starts_with("extensionsRequired")
                 && error == gltf::json::validation::Error::Unsupported
             {

@@ -22,6 +22,24 @@ use std::borrow::Cow;
 
 const EXTENSION: &str = "KHR_draco_mesh_compression";
 
+/// The accessors Draco-compressed primitives fill: their data comes from
+/// the stream, so they may have no `bufferView` (which gltf-json's
+/// validation would report as missing).
+pub(super) fn filled_accessors(root: &gltf::json::Root) -> std::collections::HashSet<usize> {
+    let mut filled = std::collections::HashSet::new();
+    for primitive in root.meshes.iter().flat_map(|m| &m.primitives) {
+        let compressed = primitive
+            .extensions
+            .as_ref()
+            .is_some_and(|e| e.others.contains_key(EXTENSION));
+        if compressed {
+            filled.extend(primitive.indices.map(|i| i.value()));
+            filled.extend(primitive.attributes.values().map(|a| a.value()));
+        }
+    }
+    filled
+}
+
 /// One accessor's decoded bytes.
 struct Decoded {
     accessor: usize,
