@@ -164,9 +164,8 @@ fn meshopt_renders_exactly_as_the_same_data_uncompressed() {
 /// approximate the original to 14-bit positions, so they differ by at
 /// most two half-steps of 2⁻¹⁴ of each mesh's extent (plus f32 rounding);
 /// their normals are 8-bit snorm (each component within ½/127) and 8-bit
-/// octahedral (each of two octahedral coordinates within ½/127, and the
-/// octahedron-to-sphere map stretches by at most 2√2), so they differ by
-/// at most √3·½/127 + 2√2·½/127 ≈ 0.0180 in length. (The index codec at
+/// octahedral ([`octahedral_bound`] of 8 bits), so they differ by at most
+/// √3·½/127 + 6√2/255 ≈ 0.040 in length. (The index codec at
 /// this level reorders the vertices, so each is matched to its nearest.)
 #[test]
 fn meshopt_filters_decode_within_their_quantization() {
