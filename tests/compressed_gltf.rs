@@ -46,7 +46,7 @@ fn render(file: &Path, size: u32) -> Vec<f32> {
         String::from_utf8_lossy(&output.stderr),
         common::LAVAPIPE_TEST_HINT
     );
-    image::open(&out).unwrap().into_rgba32f().into_raw()
+    image::open(out).unwrap().into_rgba32f().into_raw()
 }
 
 /// Each triangle with its smallest index first (the same triangle and
