@@ -8,6 +8,8 @@
 #   - the font plots are labelled with: fonts-dejavu-core
 #   - Mesa's GL through EGL, for WGPU_BACKEND=gl and tests/gl_backend.rs:
 #     libegl1, libegl-mesa0, libgles2, libgl1-mesa-dri
+#   - a C++ compiler for meshoptimizer (the `meshopt` crate builds its C++
+#     sources with `cc`; glTF meshopt decoding): g++
 # Rust itself is not installed here: gonio needs rustc/cargo >= 1.95 (rustup.rs).
 set -euo pipefail
 
@@ -15,6 +17,7 @@ packages=(
   mesa-vulkan-drivers libvulkan1
   libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri
   fonts-dejavu-core
+  g++
   xvfb xauth libxkbcommon-x11-0 libx11-xcb1 libxcursor1 libxi6 libxrandr2
 )
 

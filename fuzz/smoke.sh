@@ -14,7 +14,7 @@ if ! rustup toolchain list 2>/dev/null | grep -q '^nightly' || ! cargo fuzz --ve
 fi
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
-for target in gltf_load scene_toml texture_decode merl_parse environment_map; do
+for target in gltf_load scene_toml texture_decode merl_parse environment_map draco_mesh meshopt_buffer ktx2_texture webp_texture; do
     dict=()
     [ "$target" = gltf_load ] && dict=(-dict=fuzz/gltf.dict)
     [ "$target" = scene_toml ] && dict=(-dict=fuzz/scene.dict)

@@ -5,7 +5,9 @@
 //!
 //! The seed files are generated from the sample models and a few
 //! hand-written inputs by the ignored test `regenerate_seed_corpus`:
-//! `cargo test --release --test fuzz_corpus_replay -- --ignored`.
+//! `cargo test --release --test fuzz_corpus_replay -- --ignored`
+//! (the compressed-asset codecs' seeds by `regenerate_codec_seed_corpus`,
+//! from assets/gltf-compressed).
 //! Inputs the fuzzers found interesting can be added to the same folders.
 
 #[path = "../fuzz/fuzz_targets/harness.rs"]
@@ -93,6 +95,26 @@ fn merl_corpus_replays_without_panic_or_hang() {
 #[test]
 fn environment_map_corpus_replays_without_panic_or_hang() {
     replay_target("environment_map", harness::environment_map, 6);
+}
+
+#[test]
+fn draco_corpus_replays_without_panic_or_hang() {
+    replay_target("draco_mesh", harness::draco_mesh, 4);
+}
+
+#[test]
+fn meshopt_corpus_replays_without_panic_or_hang() {
+    replay_target("meshopt_buffer", harness::meshopt_buffer, 4);
+}
+
+#[test]
+fn ktx2_corpus_replays_without_panic_or_hang() {
+    replay_target("ktx2_texture", harness::ktx2_texture, 4);
+}
+
+#[test]
+fn webp_corpus_replays_without_panic_or_hang() {
+    replay_target("webp_texture", harness::webp_texture, 3);
 }
 
 /// The generated seeds are valid and must load through the fuzz harness's
@@ -396,6 +418,242 @@ fn regenerate_seed_corpus() {
         ("texture_decode", texture_seeds()),
         ("merl_parse", merl_seeds()),
         ("environment_map", environment_map_seeds()),
+    ] {
+        let dir = corpus_dir(target);
+        std::fs::create_dir_all(&dir).unwrap();
+        for (name, bytes) in seeds {
+            std::fs::write(dir.join(name), bytes).unwrap();
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Seeds of the compressed-asset codecs
+
+fn compressed_sample(relative: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/gltf-compressed")
+        .join(relative)
+}
+
+/// A GLB's JSON and BIN chunk.
+fn glb_parts(bytes: &[u8]) -> (serde_json::Value, Vec<u8>) {
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    (json, bytes[20 + json_len + 8..].to_vec())
+}
+
+fn view_bytes(bin: &[u8], view: &serde_json::Value) -> Vec<u8> {
+    let offset = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+    let length = view["byteLength"].as_u64().unwrap() as usize;
+    bin[offset..offset + length].to_vec()
+}
+
+/// Draco seeds (`harness::draco_mesh`: vertex count, index count, stream):
+/// the streams of the sample files with their real counts, and hostile
+/// variants (truncated, scrambled, wrong counts).
+fn draco_seeds() -> Vec<(String, Vec<u8>)> {
+    let mut seeds = Vec::new();
+    let box_json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(compressed_sample("Box-Draco/Box.gltf")).unwrap())
+            .unwrap();
+    let box_bin = std::fs::read(compressed_sample("Box-Draco/Box.bin")).unwrap();
+    let mut sources = vec![("box", box_json, box_bin)];
+    for (name, file) in [
+        ("suzanne", "Suzanne-Draco/Suzanne-Draco.glb"),
+        (
+            "suzanne-sequential",
+            "Suzanne-Draco/Suzanne-Draco-Sequential.glb",
+        ),
+    ] {
+        let (json, bin) = glb_parts(&std::fs::read(compressed_sample(file)).unwrap());
+        sources.push((name, json, bin));
+    }
+    for (name, json, bin) in sources {
+        let primitive = &json["meshes"][0]["primitives"][0];
+        let extension = &primitive["extensions"]["KHR_draco_mesh_compression"];
+        let view = &json["bufferViews"][extension["bufferView"].as_u64().unwrap() as usize];
+        let stream = view_bytes(&bin, view);
+        let count = |accessor: &serde_json::Value| {
+            json["accessors"][accessor.as_u64().unwrap() as usize]["count"]
+                .as_u64()
+                .unwrap() as u32
+        };
+        let vertices = count(&primitive["attributes"]["POSITION"]);
+        let indices = count(&primitive["indices"]);
+        let seed = |counts: (u32, u32), stream: &[u8]| {
+            [&counts.0.to_le_bytes()[..], &counts.1.to_le_bytes(), stream].concat()
+        };
+        seeds.push((format!("{name}.draco"), seed((vertices, indices), &stream)));
+        seeds.push((
+            format!("{name}-truncated.draco"),
+            seed((vertices, indices), &stream[..stream.len() / 2]),
+        ));
+        let mut scrambled = stream.clone();
+        let n = scrambled.len();
+        for b in &mut scrambled[n / 3..n / 2] {
+            *b = b.wrapping_mul(31).wrapping_add(7);
+        }
+        seeds.push((
+            format!("{name}-scrambled.draco"),
+            seed((vertices, indices), &scrambled),
+        ));
+        seeds.push((
+            format!("{name}-wrong-counts.draco"),
+            seed((vertices + 1, 3), &stream),
+        ));
+    }
+    seeds
+}
+
+/// Meshopt seeds (`harness::meshopt_buffer`: extension, mode, filter,
+/// stride, count, bytes): one view of each kind the sample files hold,
+/// and hostile variants (truncated, zeroed).
+fn meshopt_seeds() -> Vec<(String, Vec<u8>)> {
+    let mut seeds = Vec::new();
+    let mut seen = std::collections::HashSet::new();
+    for (khr, file) in [
+        (
+            0u8,
+            "MetalRoughSpheres-Meshopt/MetalRoughSpheres-EXT-Meshopt.glb",
+        ),
+        (
+            1u8,
+            "MetalRoughSpheres-Meshopt/MetalRoughSpheres-KHR-Meshopt.glb",
+        ),
+        (
+            1u8,
+            "MetalRoughSpheres-Meshopt/MetalRoughSpheres-KHR-Meshopt-Filters.glb",
+        ),
+    ] {
+        let (json, bin) = glb_parts(&std::fs::read(compressed_sample(file)).unwrap());
+        for view in json["bufferViews"].as_array().unwrap() {
+            let Some(e) = view["extensions"]
+                .get("EXT_meshopt_compression")
+                .or_else(|| view["extensions"].get("KHR_meshopt_compression"))
+            else {
+                continue;
+            };
+            let mode = ["ATTRIBUTES", "TRIANGLES", "INDICES"]
+                .iter()
+                .position(|m| e["mode"] == *m)
+                .unwrap() as u8;
+            let filter = ["NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL", "COLOR"]
+                .iter()
+                .position(|f| e.get("filter").map_or(*f == "NONE", |v| v == *f))
+                .unwrap() as u8;
+            let stride = e["byteStride"].as_u64().unwrap() as u8;
+            if !seen.insert((khr, mode, filter, stride)) {
+                continue;
+            }
+            let count = e["count"].as_u64().unwrap() as u32;
+            let data = view_bytes(&bin, e);
+            let seed = |data: &[u8]| {
+                [&[khr, mode, filter, stride][..], &count.to_le_bytes(), data].concat()
+            };
+            let name = format!(
+                "{}-{}-{}-{stride}",
+                if khr == 1 { "khr" } else { "ext" },
+                e["mode"].as_str().unwrap().to_lowercase(),
+                e.get("filter")
+                    .and_then(|f| f.as_str())
+                    .unwrap_or("NONE")
+                    .to_lowercase()
+            );
+            seeds.push((format!("{name}.meshopt"), seed(&data)));
+            seeds.push((
+                format!("{name}-truncated.meshopt"),
+                seed(&data[..data.len() / 2]),
+            ));
+            seeds.push((format!("{name}-zeroed.meshopt"), seed(&vec![0; data.len()])));
+        }
+    }
+    seeds
+}
+
+/// KTX2 seeds: the four Basis files (ETC1S and UASTC + Zstandard, made
+/// here and from the Khronos samples), and hostile variants (truncated, a
+/// header declaring 65535², a scrambled level).
+fn ktx2_seeds() -> Vec<(String, Vec<u8>)> {
+    let mut seeds = Vec::new();
+    for file in [
+        "BoxTextured-KTX2/CesiumLogoFlat-ETC1S.ktx2",
+        "BoxTextured-KTX2/CesiumLogoFlat-UASTC-zstd.ktx2",
+        "StainedGlassLamp-KTX2/StainedGlassLamp_hardware_basecolor.ktx2",
+        "StainedGlassLamp-KTX2/StainedGlassLamp_bulbs_occlusion-rough-metal.ktx2",
+    ] {
+        let bytes = std::fs::read(compressed_sample(file)).unwrap();
+        let name = Path::new(file)
+            .file_stem()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        seeds.push((format!("{name}.ktx2"), bytes.clone()));
+        if name.starts_with("CesiumLogoFlat") {
+            seeds.push((
+                format!("{name}-truncated.ktx2"),
+                bytes[..bytes.len() / 2].to_vec(),
+            ));
+            // pixelWidth and pixelHeight at bytes 20..28 of the header.
+            let mut bomb = bytes.clone();
+            bomb[20..28].copy_from_slice(&[0xff, 0xff, 0, 0, 0xff, 0xff, 0, 0]);
+            seeds.push((format!("{name}-dimension-bomb.ktx2"), bomb));
+            let mut scrambled = bytes.clone();
+            let n = scrambled.len();
+            for b in &mut scrambled[n / 2..] {
+                *b = b.wrapping_mul(17);
+            }
+            seeds.push((format!("{name}-scrambled.ktx2"), scrambled));
+        }
+    }
+    seeds
+}
+
+/// WebP seeds: a lossless and a lossy image, and a truncated one.
+fn webp_seeds() -> Vec<(String, Vec<u8>)> {
+    let lossless = std::fs::read(compressed_sample(
+        "BoxTextured-WebP/CesiumLogoFlat-lossless.webp",
+    ))
+    .unwrap();
+    let lossy = std::fs::read(compressed_sample(
+        "BoxTextured-WebP/CesiumLogoFlat-lossy.webp",
+    ))
+    .unwrap();
+    vec![
+        ("lossless.webp".to_string(), lossless.clone()),
+        ("lossy.webp".to_string(), lossy.clone()),
+        (
+            "lossless-truncated.webp".to_string(),
+            lossless[..lossless.len() / 2].to_vec(),
+        ),
+        (
+            "lossy-truncated.webp".to_string(),
+            lossy[..lossy.len() / 2].to_vec(),
+        ),
+    ]
+}
+
+/// The valid codec seeds must decode through their harness's path: a seed
+/// that fails early would fuzz only the first checks.
+#[test]
+fn codec_seeds_decode() {
+    use gonio::scene::texture::{Encoding, decode};
+    for (name, bytes) in ktx2_seeds().into_iter().chain(webp_seeds()) {
+        if name.contains("truncated") || name.contains("bomb") || name.contains("scrambled") {
+            continue;
+        }
+        decode::decode(&bytes, Encoding::Srgb, 64 << 20).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+#[test]
+#[ignore = "writes the codec seed corpus; run by hand after changing it"]
+fn regenerate_codec_seed_corpus() {
+    for (target, seeds) in [
+        ("draco_mesh", draco_seeds()),
+        ("meshopt_buffer", meshopt_seeds()),
+        ("ktx2_texture", ktx2_seeds()),
+        ("webp_texture", webp_seeds()),
     ] {
         let dir = corpus_dir(target);
         std::fs::create_dir_all(&dir).unwrap();

@@ -383,7 +383,7 @@ fn a_gltf_image_view_past_its_buffer_is_refused() {
 #[test]
 fn a_corrupt_gltf_image_is_named() {
     let gltf = gltf_with_image(r#"{"bufferView": 2, "mimeType": "image/png"}"#, 8);
-    bad_gltf_case(&gltf, &["neither a PNG nor a JPEG"]);
+    bad_gltf_case(&gltf, &["not a PNG, JPEG, WebP or KTX2"]);
 }
 
 /// `KHR_texture_transform` is read (offset, rotation, scale, texCoord)

@@ -173,3 +173,119 @@ const TRIANGLE_GLTF: &str = r#"{
     {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}
   ]
 }"#;
+
+/// Decodes `data` as a KTX2 (Basis Universal) texture, as
+/// [`texture_decode`] does; input without the KTX2 identifier gets it
+/// prefixed, so mutations stay in the Basis transcoder.
+pub fn ktx2_texture(data: &[u8]) {
+    use gonio::scene::texture::ktx2::{MAGIC, is_ktx2};
+    if is_ktx2(data) {
+        texture_decode(data);
+    } else {
+        texture_decode(&[&MAGIC[..], data].concat());
+    }
+}
+
+/// Decodes `data` as a WebP texture, as [`texture_decode`] does.
+pub fn webp_texture(data: &[u8]) {
+    texture_decode(data);
+}
+
+/// A GLB of `json` and `bin` (chunks padded to 4 bytes).
+pub fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let mut bin = bin.to_vec();
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let mut file = b"glTF".to_vec();
+    file.extend_from_slice(&2u32.to_le_bytes());
+    file.extend_from_slice(&((12 + 8 + json.len() + 8 + bin.len()) as u32).to_le_bytes());
+    for (kind, data) in [(b"JSON", &json), (b"BIN\0", &bin)] {
+        file.extend_from_slice(&(data.len() as u32).to_le_bytes());
+        file.extend_from_slice(kind);
+        file.extend_from_slice(data);
+    }
+    file
+}
+
+/// Loads a GLB whose one triangle-list primitive is the Draco stream
+/// `data[8..]` (`KHR_draco_mesh_compression`, POSITION as Draco attribute
+/// 0, NORMAL as 1), declaring `data[0..4]` vertices and `data[4..8]`
+/// indices (u32, little-endian, each capped at 2²⁰), so seeds made from
+/// real files reach the whole path past the decoder.
+pub fn draco_mesh(data: &[u8]) {
+    if data.len() < 8 {
+        return;
+    }
+    let count =
+        |at: usize| u32::from_le_bytes(data[at..at + 4].try_into().unwrap()).clamp(1, 1 << 20);
+    let (vertices, indices) = (count(0), count(4));
+    let stream = &data[8..];
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0}}],
+  "extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1}}, "indices": 2,
+    "extensions": {{"KHR_draco_mesh_compression": {{"bufferView": 0, "attributes": {{"POSITION": 0, "NORMAL": 1}}}}}}}}]}}],
+  "buffers": [{{"byteLength": {len}}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
+  "accessors": [
+    {{"componentType": 5126, "count": {vertices}, "type": "VEC3", "min": [-1, -1, -1], "max": [1, 1, 1]}},
+    {{"componentType": 5126, "count": {vertices}, "type": "VEC3"}},
+    {{"componentType": 5125, "count": {indices}, "type": "SCALAR"}}
+  ]}}"#,
+        len = stream.len().max(1),
+    );
+    let mut bin = stream.to_vec();
+    bin.resize(bin.len().max(1), 0);
+    no_guarded_panic(gltf_import::load_from_bytes(
+        &glb(&json, &bin),
+        workspace(),
+        &limits(),
+    ));
+}
+
+/// Loads a GLB with one `EXT_meshopt_compression` (`data[0]` odd:
+/// `KHR_meshopt_compression`) buffer view: mode `data[1] % 3`
+/// (ATTRIBUTES, TRIANGLES, INDICES), filter `data[2] % 5` (NONE,
+/// OCTAHEDRAL, QUATERNION, EXPONENTIAL, COLOR), byteStride `data[3]`,
+/// count `data[4..8]` (u32, capped at 2¹⁶), compressed bytes `data[8..]`;
+/// the view is read as a triangle's positions when the shape allows.
+pub fn meshopt_buffer(data: &[u8]) {
+    if data.len() < 8 {
+        return;
+    }
+    let name = if data[0] % 2 == 1 {
+        "KHR_meshopt_compression"
+    } else {
+        "EXT_meshopt_compression"
+    };
+    let mode = ["ATTRIBUTES", "TRIANGLES", "INDICES"][usize::from(data[1] % 3)];
+    let filter =
+        ["NONE", "OCTAHEDRAL", "QUATERNION", "EXPONENTIAL", "COLOR"][usize::from(data[2] % 5)];
+    let stride = usize::from(data[3]).max(1);
+    let count = u32::from_le_bytes(data[4..8].try_into().unwrap()).clamp(1, 1 << 16) as usize;
+    let compressed = &data[8..];
+    let decoded = count * stride;
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0}}],
+  "extensionsUsed": ["{name}"], "extensionsRequired": ["{name}"],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
+  "buffers": [{{"byteLength": {len}}}, {{"byteLength": {decoded}, "extensions": {{"{name}": {{"fallback": true}}}}}}],
+  "bufferViews": [{{"buffer": 1, "byteLength": {decoded}, "extensions": {{"{name}": {{
+    "buffer": 0, "byteLength": {clen}, "byteStride": {stride}, "count": {count}, "mode": "{mode}", "filter": "{filter}"}}}}}}],
+  "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, -1, -1], "max": [1, 1, 1]}}]}}"#,
+        len = compressed.len().max(1),
+        clen = compressed.len(),
+    );
+    let mut bin = compressed.to_vec();
+    bin.resize(bin.len().max(1), 0);
+    no_guarded_panic(gltf_import::load_from_bytes(
+        &glb(&json, &bin),
+        workspace(),
+        &limits(),
+    ));
+}

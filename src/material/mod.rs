@@ -66,7 +66,6 @@ impl Material {
             base_color: Rgb::splat(0.8),
             metallic: 0.0,
             layers: brdf::gltf_layers::GltfLayers::default(),
-            layers: brdf::gltf_layers::GltfLayers::default(),
             abc_a: Rgb::splat(10.0),
             abc_b: 1000.0,
             abc_c: 1.0,

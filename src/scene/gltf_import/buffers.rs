@@ -28,6 +28,13 @@ pub(super) fn load<'b>(
             let index = buffer.index();
             let declared = buffer.length();
             match buffer.source() {
+                // A meshopt fallback buffer without data: every view of it
+                // is decoded from another buffer (`meshopt`).
+                gltf::buffer::Source::Bin
+                    if super::meshopt::is_placeholder(&buffer) && (index > 0 || bin.is_none()) =>
+                {
+                    Ok(Cow::Borrowed(&[][..]))
+                }
                 gltf::buffer::Source::Bin => bin_chunk(bin, index, declared).map(Cow::Borrowed),
                 gltf::buffer::Source::Uri(uri) => load_uri(uri, declared, folder)
                     .map(Cow::Owned)

@@ -10,20 +10,23 @@ use gltf::mesh::Semantic;
 
 /// Required extensions this importer honours.
 pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
+    "EXT_meshopt_compression",
+    "EXT_texture_webp",
+    "KHR_draco_mesh_compression",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_mesh_quantization",
+    "KHR_meshopt_compression",
+    "KHR_texture_basisu",
     "KHR_texture_transform",
 ];
 
 /// Required extensions users are likely to meet, with what they do: the
 /// message says why the file cannot be drawn without them.
 const KNOWN_UNSUPPORTED: &[(&str, &str)] = &[
-    ("KHR_draco_mesh_compression", "Draco mesh compression"),
-    ("EXT_meshopt_compression", "meshoptimizer compression"),
-    ("KHR_meshopt_compression", "meshoptimizer compression"),
-    ("KHR_texture_basisu", "Basis Universal textures"),
-    ("EXT_texture_webp", "WebP textures"),
+    ("EXT_mesh_gpu_instancing", "GPU instancing"),
+    ("KHR_materials_variants", "material variants"),
+    ("EXT_texture_avif", "AVIF textures"),
 ];
 
 /// The GLB header: magic, version, total length.
@@ -191,10 +194,11 @@ pub(super) fn parse(
     notes: &mut Vec<String>,
 ) -> Result<gltf::Document, String> {
     Census::take(json)?.check(used_bytes, limits)?;
-    let root: gltf::json::Root =
+    let mut root: gltf::json::Root =
         gltf::json::deserialize::from_slice(json).map_err(|e| format!("invalid glTF: {e}"))?;
     check_version(&root.asset)?;
     check_extensions(&root, notes)?;
+    super::compressed::use_extension_sources(&mut root)?;
     check_position_accessors(&root)?;
     check_cameras(&root)?;
     validate(&root, notes)?;
@@ -318,18 +322,28 @@ fn semantic_name(semantic: &Checked<Semantic>) -> String {
 /// does not know (application-specific ones such as `_BATCHID`, which the
 /// spec allows). gonio reads only `POSITION`, `NORMAL` and indices, so they
 /// are ignored, with a note. Nor are required extensions gltf-json does
-/// not parse but gonio implements (`check_extensions` ran first).
+/// not parse but gonio implements (`check_extensions` ran first), nor a
+/// missing `bufferView` of an accessor a Draco stream fills.
 fn validate(root: &gltf::json::Root, notes: &mut Vec<String>) -> Result<(), String> {
     const SHOWN: usize = 8;
     const UNKNOWN_ATTRIBUTE: &str = "attributes[\"<invalid semantic name>\"]";
     let mut problems = Vec::new();
     let mut more = 0usize;
     let mut unknown_attributes = 0usize;
+    let draco_filled = super::draco::filled_accessors(root);
+    let filled_by_draco = |path: &str| {
+        path.strip_prefix("accessors[")
+            .and_then(|rest| rest.strip_suffix("].bufferView"))
+            .and_then(|index| index.parse::<usize>().ok())
+            .is_some_and(|index| draco_filled.contains(&index))
+    };
     guarded(|| {
         root.validate(root, gltf::json::Path::new, &mut |path, error| {
             let path = path().to_string();
             if path.ends_with(UNKNOWN_ATTRIBUTE) {
                 unknown_attributes += 1;
+            } else if error == gltf::json::validation::Error::Missing && filled_by_draco(&path) {
+                // Filled from the Draco stream (`draco`).
             } else if path.starts_with("extensionsRequired")
                 && error == gltf::json::validation::Error::Unsupported
             {

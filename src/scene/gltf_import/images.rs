@@ -164,13 +164,24 @@ impl<'a> ImageSource<'a> {
         );
         let bytes =
             image_bytes(self.buffers, self.folder, image).map_err(|e| format!("{name} {e}"))?;
+        // A decoding error names the image file too, when there is one.
+        let shown = match image.source() {
+            gltf::image::Source::Uri { uri, .. }
+                if !uri
+                    .get(..5)
+                    .is_some_and(|s| s.eq_ignore_ascii_case("data:")) =>
+            {
+                format!("{name} (uri \"{}\")", super::abbreviate(uri))
+            }
+            _ => name.clone(),
+        };
         self.store
             .load_bytes(
                 format!("{}:{name}", self.folder.display()),
                 &bytes,
                 encoding,
             )
-            .map_err(|e| format!("{name}: {e}"))
+            .map_err(|e| format!("{shown}: {e}"))
     }
 }
 

@@ -111,13 +111,16 @@
 mod accessors;
 mod buffers;
 mod census;
+mod compressed;
 mod container;
 mod convert;
+mod draco;
 mod gltf_scene;
 mod graph;
 mod hostile;
 mod images;
 mod import;
+mod meshopt;
 #[cfg(test)]
 mod tests;
 
@@ -261,6 +264,7 @@ fn load_bytes(
     let roots = graph::scene_roots(&document, &parents)?;
     graph::check_cost(&document, &graph::descendants(&document, &roots), limits)?;
     let buffers = buffers::load(&document, container.bin, folder, &mut used_bytes, limits)?;
+    let (document, buffers) = compressed::decode(document, buffers, &mut used_bytes, limits)?;
     guarded(|| import::Importer::new(&document, &buffers, limits, notes, folder).run(&roots))
         .and_then(|result| result)
 }

@@ -476,11 +476,11 @@ fn unsupported_required_extension_is_named() {
     let gltf = triangle_gltf(&data_uri(&triangle_bytes([0, 1, 2]))).replace(
         "\"scene\": 0,",
         r#""scene": 0,
-  "extensionsUsed": ["KHR_draco_mesh_compression"],
-  "extensionsRequired": ["KHR_draco_mesh_compression"],"#,
+  "extensionsUsed": ["EXT_texture_avif"],
+  "extensionsRequired": ["EXT_texture_avif"],"#,
     );
     let result = load_written(dir.path(), "model.gltf", gltf.as_bytes());
-    assert_input_error(result, &["KHR_draco_mesh_compression"]);
+    assert_input_error(result, &["EXT_texture_avif", "AVIF textures"]);
 }
 
 #[test]

@@ -1,5 +1,5 @@
-//! PNG and JPEG bytes to linear RGBA, with the size checked before any
-//! pixel is decoded.
+//! PNG, JPEG, WebP and KTX2 (Basis Universal, [`super::ktx2`]) bytes to
+//! linear RGBA, with the size checked before any pixel is decoded.
 //!
 //! Colour images in 8- or 16-bit formats are sRGB-encoded (glTF 2.0 §3.9.6
 //! for base colour and emission; the contract for scene files' colour
@@ -44,17 +44,20 @@ pub const BYTES_PER_TEXEL: u64 = 8 + 16 + 11;
 
 /// The size the header of `bytes` declares, read without decoding pixels.
 pub fn dimensions(bytes: &[u8]) -> Result<(u32, u32), String> {
+    if super::ktx2::is_ktx2(bytes) {
+        return super::ktx2::dimensions(bytes);
+    }
     let reader = image::ImageReader::new(Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| format!("cannot read it: {e}"))?;
     match reader.format() {
-        Some(image::ImageFormat::Png | image::ImageFormat::Jpeg) => {}
+        Some(image::ImageFormat::Png | image::ImageFormat::Jpeg | image::ImageFormat::WebP) => {}
         Some(other) => {
             return Err(format!(
-                "it is a {other:?} image; gonio reads PNG and JPEG textures"
+                "it is a {other:?} image; gonio reads PNG, JPEG, WebP and KTX2 (Basis Universal) textures"
             ));
         }
-        None => return Err("it is neither a PNG nor a JPEG image".into()),
+        None => return Err("it is not a PNG, JPEG, WebP or KTX2 image".into()),
     }
     reader
         .into_dimensions()
@@ -81,9 +84,11 @@ pub fn check_size(width: u32, height: u32, budget: u64) -> Result<u64, String> {
     Ok(bytes)
 }
 
-/// Decodes `bytes` (PNG or JPEG) to linear RGBA after checking the
-/// declared size against `budget` bytes; the decoder is held to the same
-/// allocation limit. Grey images repeat their value in R, G and B.
+/// Decodes `bytes` (PNG, JPEG, WebP or KTX2) to linear RGBA after
+/// checking the declared size against `budget` bytes; the decoder is held
+/// to the same allocation limit. Grey images repeat their value in R, G
+/// and B. A KTX2 texture is transcoded to RGBA8 and then read as an 8-bit
+/// image is.
 pub fn decode(bytes: &[u8], encoding: Encoding, budget: u64) -> Result<Decoded, String> {
     let (width, height) = dimensions(bytes)?;
     check_size(width, height, budget)?;
@@ -94,6 +99,25 @@ pub fn decode(bytes: &[u8], encoding: Encoding, budget: u64) -> Result<Decoded, 
             "it is corrupt: the JPEG data ends before its end-of-image marker (the file is truncated)"
                 .into(),
         );
+    }
+    let to_linear = |v: f32| match encoding {
+        Encoding::Srgb => srgb_to_linear(v),
+        Encoding::Linear => v,
+    };
+    if super::ktx2::is_ktx2(bytes) {
+        let (_, _, rgba8) = super::ktx2::transcode_rgba8(bytes)?;
+        let rgba = rgba8
+            .chunks_exact(4)
+            .map(|p| {
+                let [r, g, b, a] = [p[0], p[1], p[2], p[3]].map(|c| f32::from(c) / 255.0);
+                [to_linear(r), to_linear(g), to_linear(b), a]
+            })
+            .collect();
+        return Ok(Decoded {
+            width,
+            height,
+            rgba,
+        });
     }
     let mut reader = image::ImageReader::new(Cursor::new(bytes))
         .with_guessed_format()
@@ -111,10 +135,6 @@ pub fn decode(bytes: &[u8], encoding: Encoding, budget: u64) -> Result<Decoded, 
     let image =
         image::DynamicImage::from_decoder(decoder).map_err(|e| format!("it is corrupt: {e}"))?;
     let rgba = image.into_rgba32f();
-    let to_linear = |v: f32| match encoding {
-        Encoding::Srgb => srgb_to_linear(v),
-        Encoding::Linear => v,
-    };
     let rgba = rgba
         .pixels()
         .map(|p| {
@@ -249,8 +269,8 @@ mod tests {
         let e = decode(&jpeg[..jpeg.len() * 3 / 4], Encoding::Srgb, 1 << 20).unwrap_err();
         assert!(e.contains("truncated"), "{e}");
         let e = decode(b"GIF89a......", Encoding::Srgb, 1 << 20).unwrap_err();
-        assert!(e.contains("PNG and JPEG"), "{e}");
+        assert!(e.contains("PNG, JPEG, WebP and KTX2"), "{e}");
         let e = decode(b"hello", Encoding::Srgb, 1 << 20).unwrap_err();
-        assert!(e.contains("neither"), "{e}");
+        assert!(e.contains("not a PNG, JPEG, WebP or KTX2"), "{e}");
     }
 }

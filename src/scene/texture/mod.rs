@@ -5,6 +5,7 @@
 //! halves, so the two start from identical texels).
 
 pub mod decode;
+pub mod ktx2;
 pub mod mips;
 pub mod store;
 
