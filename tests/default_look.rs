@@ -7,8 +7,8 @@
 mod common;
 
 use gonio::environment::load::write_hdr;
-use gonio::environment::studio::STUDIO;
 use gonio::environment::map::Specular;
+use gonio::environment::studio::STUDIO;
 use gonio::frame::Frame;
 use gonio::reference;
 use gonio::scene::Scene;

@@ -7,8 +7,8 @@ use super::exr_header;
 use super::map::{MAX_SIDE, MapData};
 use super::sky::{self, SKY};
 use super::studio::STUDIO;
-use crate::base::input::{ReadError, read_regular_file};
 use crate::base::input::exceeded;
+use crate::base::input::{ReadError, read_regular_file};
 use std::path::Path;
 
 /// The map `value` names, relative to `base_dir` (the scene file's

@@ -147,7 +147,7 @@ fn decode_primitive(
         .and_then(Value::as_object)
         .ok_or("`attributes` is missing or not an object")?;
     for (semantic, id) in names {
-        let shown = super::abbreviate(semantic);
+        let shown = super::hostile::abbreviate(semantic);
         let id = id
             .as_u64()
             .ok_or_else(|| format!("attribute {shown}: the id is not an integer"))?;

@@ -171,7 +171,7 @@ impl<'a> ImageSource<'a> {
                     .get(..5)
                     .is_some_and(|s| s.eq_ignore_ascii_case("data:")) =>
             {
-                format!("{name} (uri \"{}\")", super::abbreviate(uri))
+                format!("{name} (uri \"{}\")", super::hostile::abbreviate(uri))
             }
             _ => name.clone(),
         };

@@ -161,7 +161,7 @@ fn parse(value: &Value, color_allowed: bool) -> Result<Compressed, String> {
                 .ok_or(format!("`{key}` is missing")),
             Some(v) => v
                 .as_str()
-                .map(|s| super::abbreviate(s).into_owned())
+                .map(|s| super::hostile::abbreviate(s).into_owned())
                 .ok_or(format!("`{key}` is not a string")),
         }
     };

@@ -328,7 +328,12 @@ fn ambient_and_environment(
         zenith: get("zenith", e.zenith)?,
         horizon: get("horizon", e.horizon)?,
         ground: get("ground", e.ground)?,
-        map: super::environment_keys::environment_map(e, base_dir, default_map, images.bytes_left())?,
+        map: super::environment_keys::environment_map(
+            e,
+            base_dir,
+            default_map,
+            images.bytes_left(),
+        )?,
     };
     if let Some(map) = &environment.map {
         images.charge(map.data.texel_bytes());

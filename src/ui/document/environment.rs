@@ -166,7 +166,9 @@ fn install(doc: &mut Document, table: toml::Table) -> std::result::Result<(), St
                 settings,
             })
         }
-        _ => environment_keys::environment_map(&new, &doc.source_dir, default_map, doc.limits.bytes)?,
+        _ => {
+            environment_keys::environment_map(&new, &doc.source_dir, default_map, doc.limits.bytes)?
+        }
     };
     set_map(doc, map)?;
     doc.table = table;

@@ -28,8 +28,8 @@ use super::iridescence::iridescence_fresnel;
 use crate::base::Rgb;
 use crate::material::brdf::COS_FLOOR;
 use crate::material::brdf::energy::ms_factor;
-use crate::material::brdf::gltf_pbr::{schlick_weight, vis_smith_ggx_correlated};
 use crate::material::brdf::microfacet::{d_ggx, half_vector, sin2_between};
+use crate::material::brdf::microfacet::{schlick_weight, vis_smith_ggx_correlated};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, PI};
 

@@ -19,8 +19,9 @@
 
 use crate::base::Rgb;
 use crate::material::ROUGHNESS_FLOOR;
-use crate::material::brdf::gltf_pbr::{DIELECTRIC_F0, schlick_weight, vis_smith_ggx_correlated};
+use crate::material::brdf::gltf_pbr::DIELECTRIC_F0;
 use crate::material::brdf::microfacet::{d_ggx, half_vector, sin2_between};
+use crate::material::brdf::microfacet::{schlick_weight, vis_smith_ggx_correlated};
 use glam::DVec3;
 
 /// `F_c = 0.04 + 0.96 (1 − μ_o)⁵`: the coat's Schlick Fresnel (IOR 1.5)

@@ -16,7 +16,7 @@
 //! WGSL twin: `shaders/brdf/gltf_layers/iridescence.wgsl`.
 
 use crate::base::Rgb;
-use crate::material::brdf::gltf_pbr::schlick_weight;
+use crate::material::brdf::microfacet::schlick_weight;
 use std::f64::consts::{PI, TAU};
 
 /// XYZ → linear Rec.709 (sRGB primaries, D65), rows.

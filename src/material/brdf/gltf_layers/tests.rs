@@ -8,7 +8,8 @@ use super::sheen_albedo::{sheen_albedo, sheen_albedo_fine};
 use super::stack::gltf_layered;
 use crate::base::Rgb;
 use crate::material::brdf::SurfaceFrame;
-use crate::material::brdf::gltf_pbr::{gltf_pbr, vis_smith_ggx_correlated};
+use crate::material::brdf::gltf_pbr::gltf_pbr;
+use crate::material::brdf::microfacet::vis_smith_ggx_correlated;
 use crate::material::brdf::microfacet::{d_ggx, half_vector, sin2_between};
 use glam::DVec3;
 
