@@ -334,6 +334,8 @@ fn merge_refuses_incomplete_mixed_and_bad_shards() {
 #[test]
 fn shard_without_all_is_refused() {
     fails_with_2(&["chrome", "--model", "ward", "--shard", "1/2"], "--all");
+}
+
 /// `--shard auto` takes the shard from a Slurm array task's variables;
 /// a shard whose files already hold this run's fits is skipped, and one
 /// of another run (other models) is fitted again.
