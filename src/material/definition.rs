@@ -65,7 +65,7 @@ pub struct Material {
     /// gltf-pbr's layers (`KHR_materials_ior`, `_specular`, `_clearcoat`,
     /// `_sheen`, `_iridescence`, `_anisotropy`; contract "Layered glTF
     /// materials"): the glTF defaults leave the core BRDF unchanged.
-    pub layers: super::brdf::gltf_layers::GltfLayers,
+    pub layers: super::layers::GltfLayers,
     /// abc's distribution `D = A / (1 + B(1 − cos θ_h))^C`: `A` per
     /// channel (≥ 0, in 1/sr: the lobe's peak), `B` (> 0, the inverse
     /// width in `1 − cos θ_h`) and `C` (> 0, the tail's power).

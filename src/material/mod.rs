@@ -12,6 +12,7 @@ pub mod brdf;
 pub mod conductors;
 mod definition;
 pub mod entry;
+pub mod layers;
 pub mod measured;
 mod model;
 pub mod param;
@@ -65,7 +66,7 @@ impl Material {
             measured: None,
             base_color: Rgb::splat(0.8),
             metallic: 0.0,
-            layers: brdf::gltf_layers::GltfLayers::default(),
+            layers: layers::GltfLayers::default(),
             abc_a: Rgb::splat(10.0),
             abc_b: 1000.0,
             abc_c: 1.0,

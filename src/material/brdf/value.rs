@@ -70,7 +70,7 @@ pub enum Specular {
         base_color: Rgb,
         metallic: f64,
         roughness: f64,
-        layers: super::gltf_layers::GltfLayers,
+        layers: crate::material::layers::GltfLayers,
     },
     /// The ABC model (`abc::abc_specular`, Löw et al. 2012): `a` is the
     /// distribution's peak `A` per channel, `b`, `c` its shape, the

@@ -5,6 +5,9 @@
 use std::borrow::Cow;
 use std::panic::{self, AssertUnwindSafe};
 
+/// The prefix of a note that is a warning ([`crate::scene::scene_file::WARNING`]).
+pub(super) const WARNING: &str = "warning: ";
+
 /// Message for a panic caught inside the `gltf` crate.
 pub(super) const PARSER_PANICKED: &str = "the glTF parser failed on malformed data";
 

@@ -3,12 +3,12 @@
 //! the cost have been checked, on buffers already loaded.
 
 use super::GltfScene;
-use super::WARNING;
 use super::accessors::read_primitive;
 use super::convert::{
     convert_camera, convert_light, local_transform, material_from_metallic_roughness,
     material_from_pbr,
 };
+use super::hostile::WARNING;
 use crate::material::texture::TextureTarget;
 use crate::scene::limits::Limits;
 use crate::scene::mesh::area_weighted_normals;

@@ -130,7 +130,7 @@ pub use gltf_scene::GltfScene;
 
 use crate::scene::limits::{ReadError, exceeded, read_regular_file};
 use crate::{Error, Result};
-use hostile::guarded;
+use hostile::{WARNING, guarded};
 use std::path::Path;
 
 /// Loads the default scene of a `.gltf` or `.glb` file within the default
@@ -243,9 +243,6 @@ fn folder_of(path: &Path) -> &Path {
         _ => Path::new("."),
     }
 }
-
-/// The prefix of a note that is a warning ([`crate::scene::scene_file::WARNING`]).
-const WARNING: &str = "warning: ";
 
 /// The whole import of one file's bytes; see the module documentation for
 /// the order of the checks.
