@@ -82,6 +82,14 @@ fn require_regular(meta: &fs::Metadata, max_bytes: u64) -> Result<(), ReadError>
     Ok(())
 }
 
+/// The message for a declared amount over its limit: names what, how much,
+/// the limit, and the flag that raises it.
+pub fn exceeded(what: &str, amount: impl std::fmt::Display, key: &str, limit: u64) -> String {
+    format!(
+        "{what} is {amount}, over the limit of {limit} (raise it with `--limit {key}=N` if the file is trusted)"
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -104,12 +112,4 @@ mod tests {
         let err = read_regular_file(&path, 99).unwrap_err();
         assert!(matches!(err, ReadError::TooLarge(100)), "{err}");
     }
-}
-
-/// The message for a declared amount over its limit: names what, how much,
-/// the limit, and the flag that raises it.
-pub fn exceeded(what: &str, amount: impl std::fmt::Display, key: &str, limit: u64) -> String {
-    format!(
-        "{what} is {amount}, over the limit of {limit} (raise it with `--limit {key}=N` if the file is trusted)"
-    )
 }

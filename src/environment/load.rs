@@ -236,14 +236,14 @@ mod tests {
         assert!(e.contains("not a readable hdr image"), "{e}");
         // A file of another kind is named as what it is.
         std::fs::write(dir.path().join("fake.hdr"), b"not an image at all\n").unwrap();
-        let e = load("fake.hdr", dir.path()).unwrap_err();
+        let e = load("fake.hdr", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("it is a text file, not a hdr image"), "{e}");
         let mut png = Vec::new();
         image::RgbImage::new(2, 1)
             .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
             .unwrap();
         std::fs::write(dir.path().join("png.hdr"), png).unwrap();
-        let e = load("png.hdr", dir.path()).unwrap_err();
+        let e = load("png.hdr", dir.path(), u64::MAX).unwrap_err();
         assert!(e.contains("it is a PNG image, not a hdr image"), "{e}");
         // A header declaring a huge map is refused before decoding.
         std::fs::write(

@@ -81,7 +81,7 @@ mod tests {
         for model in ReflectanceModel::ALL {
             let mode = whole_brdf_mode([model]);
             assert!(
-                crate::environment::mode_warnings::handles(mode, model),
+                crate::scene::scene_file::mode_warnings::handles(mode, model),
                 "{model:?} -> {mode:?}"
             );
         }
