@@ -1,4 +1,4 @@
-//! [`named_enum!`]: a closed set of names (reflectance models, their terms,
+//! `named_enum!`: a closed set of names (reflectance models, their terms,
 //! shading modes) declared once, with its contract names, its parse (and
 //! the error that lists what is accepted), `ALL` and `Display`; and
 //! [`nearest_name`], the one "did you mean" of every name a user types

@@ -28,11 +28,11 @@ pub struct GltfLayers {
     pub iridescence: f64,
     /// `…iridescenceIor`, the film's index `η_f`.
     pub iridescence_ior: f64,
-    /// The film's thickness `d` [nm].
+    /// The film's thickness `d` \[nm\].
     pub iridescence_thickness: f64,
     /// `KHR_materials_anisotropy.anisotropyStrength`, `s_a`.
     pub anisotropy_strength: f64,
-    /// `…anisotropyRotation`, `ρ` [rad] from `t` towards `b`.
+    /// `…anisotropyRotation`, `ρ` \[rad\] from `t` towards `b`.
     pub anisotropy_rotation: f64,
 }
 

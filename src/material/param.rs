@@ -655,7 +655,7 @@ pub static IRIDESCENCE_IOR: Param = Param {
     get: |m| Value::Scalar(m.layers.iridescence_ior),
     set: |m, v| m.layers.iridescence_ior = v.scalar(),
 };
-/// The film's thickness `d` [nm] (`…iridescenceThicknessMaximum`; with a
+/// The film's thickness `d` \[nm\] (`…iridescenceThicknessMaximum`; with a
 /// thickness texture the maximum).
 pub static IRIDESCENCE_THICKNESS: Param = Param {
     key: "iridescence_thickness",
@@ -684,7 +684,7 @@ pub static ANISOTROPY_STRENGTH: Param = Param {
     get: |m| Value::Scalar(m.layers.anisotropy_strength),
     set: |m, v| m.layers.anisotropy_strength = v.scalar(),
 };
-/// `…anisotropyRotation`, `ρ` [rad] from the tangent towards the
+/// `…anisotropyRotation`, `ρ` \[rad\] from the tangent towards the
 /// bitangent.
 pub static ANISOTROPY_ROTATION: Param = Param {
     key: "anisotropy_rotation",

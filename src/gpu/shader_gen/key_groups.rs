@@ -68,7 +68,7 @@ key_group! {
         /// inverse-square law is compiled; without, every light's window
         /// is 1 and the code is left out.
         range => LightRange,
-        /// Some light may coincide with a shaded point ([`light_guard`]):
+        /// Some light may coincide with a shaded point (`light_guard`):
         /// the inverse-square law's zero-distance guard is compiled;
         /// without, no shaded point is at a light, `d² > 0` and the guard
         /// could never fire.

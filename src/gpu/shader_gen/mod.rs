@@ -3,7 +3,7 @@
 //! A [`ShaderKey`] lists the features a scene needs: shading mode, BRDF
 //! variants (a model with its chosen terms), and groups for the lights,
 //! the shadow maps, the environment and the materials
-//! ([`key_groups`]), each flag declared once with the [`Feature`] it
+//! (`key_groups`), each flag declared once with the [`Feature`] it
 //! switches. [`compose`] concatenates the WGSL files
 //! ([`sources`]) for exactly those features, keeps only the conditional
 //! blocks (`#if FEATURE` ... `#endif`, [`preprocess`]) whose [`Feature`] is

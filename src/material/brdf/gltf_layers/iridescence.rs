@@ -49,7 +49,7 @@ pub fn cos_wrapped(x: f64) -> f64 {
 }
 
 /// `𝒮(x, φ)`: the sensitivity of the Fourier term of optical path
-/// difference `x` [nm] and phase shifts `shift` (one per RGB channel,
+/// difference `x` \[nm\] and phase shifts `shift` (one per RGB channel,
 /// applied to the XYZ component of the same index, as the Sample Renderer
 /// does), in linear Rec.709.
 pub fn eval_sensitivity(opd: f64, shift: Rgb) -> Rgb {
