@@ -89,8 +89,8 @@ fn bad_inputs_exit_2_with_a_clear_message_and_no_output() {
     let invalid_json = write(d, "broken.gltf", b"{ \"asset\": { \"version\": \"2.0\" ");
     let unknown_ext = write(
         d,
-        "draco.gltf",
-        br#"{"asset":{"version":"2.0"},"extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"],"scenes":[{"nodes":[]}],"scene":0}"#,
+        "instancing.gltf",
+        br#"{"asset":{"version":"2.0"},"extensionsUsed":["EXT_mesh_gpu_instancing"],"extensionsRequired":["EXT_mesh_gpu_instancing"],"scenes":[{"nodes":[]}],"scene":0}"#,
     );
     let glb = std::fs::read(common::gltf_asset("Box/Box.glb")).unwrap();
     let truncated = write(d, "truncated.glb", &glb[..glb.len() / 2]);
@@ -141,7 +141,7 @@ fn bad_inputs_exit_2_with_a_clear_message_and_no_output() {
         Case {
             name: "unknown required extension",
             args: s(&[&unknown_ext, "-o", &out]),
-            names: "KHR_draco_mesh_compression",
+            names: "EXT_mesh_gpu_instancing",
         },
         Case {
             name: "truncated glb",
