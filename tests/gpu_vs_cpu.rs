@@ -67,6 +67,10 @@ fn load(source: SceneSource, mode: ShadingMode, extra: &[&str]) -> Scene {
         "image.width=200".to_string(),
         "image.height=150".to_string(),
         format!("shading.mode={mode}"),
+        // A glTF without lights under the directional default light, not
+        // the studio: both renderers evaluate it exactly (the studio's
+        // split sum is the GPU's approximation; tests/default_look.rs).
+        "gltf.default_light=\"directional\"".to_string(),
     ];
     sets.extend(extra.iter().map(|s| s.to_string()));
     scene_file::load(&source, &sets).expect("scene loads")

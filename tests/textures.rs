@@ -36,8 +36,11 @@ fn textured_scene() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/textured/textured.toml")
 }
 
+/// A glTF without lights is loaded under the directional default light,
+/// not the studio: both renderers evaluate it exactly.
 fn load(path: &Path, sets: &[&str]) -> Scene {
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let mut sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    sets.insert(0, "gltf.default_light=\"directional\"".into());
     scene_file::load(&SceneSource::File(path.to_path_buf()), &sets).expect("scene loads")
 }
 
