@@ -8,8 +8,13 @@ use gonio::frame::Frame;
 use gonio::scene::Scene;
 use gonio::scene::scene_file::{self, SceneSource};
 
+/// The model under the scene files' directional default light (not the
+/// studio a glTF without lights gets by default): a light both renderers
+/// evaluate exactly, so GPU and reference compare like for like.
 fn load(relative: &str, sets: &[String]) -> Scene {
-    scene_file::load(&SceneSource::File(common::gltf_asset(relative)), sets)
+    let mut sets = sets.to_vec();
+    sets.insert(0, "gltf.default_light=\"directional\"".into());
+    scene_file::load(&SceneSource::File(common::gltf_asset(relative)), &sets)
         .unwrap_or_else(|e| panic!("{relative} loads: {e}"))
 }
 
