@@ -30,7 +30,13 @@ use std::path::PathBuf;
 
 /// Scene sources with their overrides (160 × 120 pixels).
 fn load(source: SceneSource, sets: &[&str]) -> Scene {
-    let mut all = vec!["image.width=160", "image.height=120"];
+    // A glTF without lights under the directional default light, which
+    // both renderers evaluate exactly (not the studio's split sum).
+    let mut all = vec![
+        "image.width=160",
+        "image.height=120",
+        "gltf.default_light=\"directional\"",
+    ];
     all.extend_from_slice(sets);
     let sets: Vec<String> = all.iter().map(|s| s.to_string()).collect();
     scene_file::load(&source, &sets).expect("scene loads")
