@@ -7,6 +7,7 @@
 //!
 //! WGSL twin: `latlong_uv` in `shaders/environment.wgsl`.
 
+use crate::base::Rgb;
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 
@@ -49,6 +50,28 @@ pub fn texel_direction(col: u32, row: u32, width: u32, height: u32) -> DVec3 {
         (col as f64 + 0.5) / width as f64,
         (row as f64 + 0.5) / height as f64,
     )
+}
+
+/// Texels of a `width` × `width/2` lat-long map of `radiance`, each the
+/// mean of 4 × 4 samples uniform in `(u, v)` over the texel (so a sharp
+/// edge is antialiased): the built-in maps' generator.
+pub fn supersampled_texels(width: u32, radiance: impl Fn(DVec3) -> Rgb) -> Vec<[f32; 3]> {
+    let (w, h) = (width, width / 2);
+    let n = 4;
+    (0..h)
+        .flat_map(|row| (0..w).map(move |col| (row, col)))
+        .map(|(row, col)| {
+            let mut sum = Rgb::ZERO;
+            for a in 0..n {
+                for b in 0..n {
+                    let u = (col as f64 + (b as f64 + 0.5) / n as f64) / w as f64;
+                    let v = (row as f64 + (a as f64 + 0.5) / n as f64) / h as f64;
+                    sum += radiance(direction(u, v));
+                }
+            }
+            (sum / (n * n) as f64).as_vec3().to_array()
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -96,23 +96,8 @@ pub fn radiance(d: DVec3) -> Rgb {
 
 /// The generated map.
 pub fn map() -> MapData {
-    let (w, h) = (WIDTH, WIDTH / 2);
-    let n = 4;
-    let texels = (0..h)
-        .flat_map(|row| (0..w).map(move |col| (row, col)))
-        .map(|(row, col)| {
-            let mut sum = Rgb::ZERO;
-            for a in 0..n {
-                for b in 0..n {
-                    let u = (col as f64 + (b as f64 + 0.5) / n as f64) / w as f64;
-                    let v = (row as f64 + (a as f64 + 0.5) / n as f64) / h as f64;
-                    sum += radiance(latlong::direction(u, v));
-                }
-            }
-            (sum / (n * n) as f64).as_vec3().to_array()
-        })
-        .collect();
-    MapData::new(STUDIO, w, h, texels).expect("the built-in studio is a valid map")
+    let texels = latlong::supersampled_texels(WIDTH, radiance);
+    MapData::new(STUDIO, WIDTH, WIDTH / 2, texels).expect("the built-in studio is a valid map")
 }
 
 #[cfg(test)]
