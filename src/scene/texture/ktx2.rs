@@ -18,6 +18,7 @@ pub fn is_ktx2(bytes: &[u8]) -> bool {
 }
 
 fn transcoder(bytes: &[u8]) -> Result<basisu::Transcoder<'_>, String> {
+    super::ktx2_layout::check_layout(bytes)?;
     guarded(|| basisu::Transcoder::new(bytes))?.map_err(|e| {
         format!("it is a KTX2 file gonio cannot read as Basis Universal ({e:?}); glTF's KHR_texture_basisu needs ETC1S or UASTC data")
     })

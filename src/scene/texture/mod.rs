@@ -6,6 +6,7 @@
 
 pub mod decode;
 pub mod ktx2;
+pub mod ktx2_layout;
 pub mod mips;
 pub mod store;
 
