@@ -121,7 +121,8 @@ fn sh_basis(d: vec3<f32>) -> array<f32, 25> {
     return b;
 }
 
-// E(n) = Σ_i sh[i] · Y_i(n) at the normal in the file's frame.
+// E(n) = max(Σ_i sh[i] · Y_i(n), 0) at the normal in the file's frame
+// (the expansion rings negative opposite a sun; the truth never is).
 // Twin: EnvironmentMap::irradiance_sh.
 fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
     let b = sh_basis(environment_to_map(world_n));
@@ -129,7 +130,7 @@ fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
     for (var i = 0u; i < 25u; i++) {
         e += environment.sh[i].rgb * b[i];
     }
-    return e;
+    return max(e, vec3<f32>(0.0));
 }
 
 #if environment_prefiltered

@@ -306,8 +306,23 @@ impl EnvironmentMap {
         c
     }
 
-    /// Irradiance by SH of `sh_order` (the GPU's diffuse term).
+    /// Irradiance by SH of `sh_order` (the GPU's diffuse term), clamped at
+    /// zero per channel.
+    ///
+    /// Why the clamp: the band-limited expansion rings below zero on the
+    /// side facing away from a small bright source (a sun), where the
+    /// true irradiance is small but never negative; a negative diffuse
+    /// term would darken, or with several channels tint, what the sun does
+    /// not reach. Since the truth is `≥ 0`, `max(E_SH, 0)` is never farther
+    /// from it than `E_SH` (`sh_error::tests` measures both). GPU twin:
+    /// `sh_irradiance` in shaders/environment.wgsl.
     pub fn irradiance_sh(&self, n: DVec3) -> Rgb {
+        self.irradiance_sh_unclamped(n).max(Rgb::ZERO)
+    }
+
+    /// The SH expansion itself, `Σ c_i Y_i(n)` (may be negative; see
+    /// [`Self::irradiance_sh`]).
+    pub fn irradiance_sh_unclamped(&self, n: DVec3) -> Rgb {
         sh::evaluate(&self.irradiance_coefficients(), self.to_map(n))
     }
 
