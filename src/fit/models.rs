@@ -15,10 +15,19 @@
 //! its published fits: `k_s = 1`, `A` per channel, `B`, `C`, and `η_i = 1`
 //! with a free `η_t` (the published `ior`); `abc-published` is no fit but
 //! those published parameters (`published.rs`), scored alike.
+//!
+//! Layered models: `gltf-pbr,layers=clearcoat` fits a `KHR_materials_clearcoat`
+//! coat (`clearcoat`, `clearcoat_roughness`) over the metallic-roughness
+//! base, the two-lobe structure of paints and varnished surfaces;
+//! `gltf-pbr,layers=sheen` a `KHR_materials_sheen` sheen (`sheen_color`,
+//! `sheen_roughness`) over it, for fabrics; `layers=clearcoat+sheen` both.
+//! The layers are those of the contract ("Layered glTF materials"), with
+//! the sheen's exact albedo scaling.
 
 use crate::material::param::{
-    ABC_A, ABC_B, ABC_C, BASE_COLOR, ETA, ETA_T, K_D, K_E, K_S, KAPPA, METALLIC,
-    PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, Value, WARD_SIGMA,
+    ABC_A, ABC_B, ABC_C, BASE_COLOR, CLEARCOAT, CLEARCOAT_ROUGHNESS, ETA, ETA_T, K_D, K_E, K_S,
+    KAPPA, METALLIC, PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, SHEEN_COLOR, SHEEN_ROUGHNESS, Value,
+    WARD_SIGMA,
 };
 use crate::material::{
     Distribution, Fresnel, Geometry, Material, ROUGHNESS_FLOOR, ReflectanceModel,
@@ -119,6 +128,8 @@ pub const ALL: &[&str] = &[
     "cook-torrance,distribution=gaussian-normalized,fresnel=dielectric",
     "cook-torrance,distribution=ggx,fresnel=dielectric",
     "gltf-pbr",
+    "gltf-pbr,layers=clearcoat",
+    "gltf-pbr,layers=sheen",
     "abc",
     "abc,start=published",
     ABC_PUBLISHED,
@@ -214,6 +225,7 @@ impl FitModel {
         }
         let mut base = Material::new("fit", model);
         let mut from_published = false;
+        let mut layers = Layers::default();
         (base.geometry, base.fresnel) = (Geometry::Smith, Fresnel::Conductor);
         for part in parts {
             let Some((key, value)) = part.split_once('=') else {
@@ -221,6 +233,10 @@ impl FitModel {
             };
             if model == ReflectanceModel::Abc && part == "start=published" {
                 from_published = true;
+                continue;
+            }
+            if model == ReflectanceModel::GltfPbr && key.trim() == "layers" {
+                layers = parse_layers(value)?;
                 continue;
             }
             if model != ReflectanceModel::CookTorrance {
@@ -239,7 +255,8 @@ impl FitModel {
                 }
             }
         }
-        let free = free_numbers(&mut base);
+        let mut free = free_numbers(&mut base);
+        free.extend(layer_numbers(layers));
         let spec = if model == ReflectanceModel::CookTorrance {
             format!(
                 "{name},distribution={},fresnel={}{}",
@@ -253,6 +270,8 @@ impl FitModel {
             )
         } else if from_published {
             format!("{name},start=published")
+        } else if let Some(names) = layers.names() {
+            format!("{name},layers={names}")
         } else {
             name.to_string()
         };
@@ -276,6 +295,10 @@ impl FitModel {
                 (of(&ABC_C), (0..=6).map(|k| k as f64 / 6.0).collect()),
                 (of(&ETA_T), vec![0.1, 0.3, 0.6]),
             ]
+        } else if layers.clearcoat {
+            // The coat's width, like the base's: a wide and a narrow
+            // lobe are told apart by where they start.
+            vec![(of(&CLEARCOAT_ROUGHNESS), vec![0.1, 0.4, 0.8])]
         } else {
             Vec::new()
         };
@@ -297,6 +320,9 @@ impl FitModel {
             return "abc-from-published".into();
         }
         let m = &self.base;
+        if let Some((_, names)) = self.spec.split_once(",layers=") {
+            return format!("{}+{names}", m.model.name());
+        }
         if m.model != ReflectanceModel::CookTorrance {
             return m.model.name().to_string();
         }
@@ -333,6 +359,69 @@ impl FitModel {
         }
         m
     }
+}
+
+/// The layers a `gltf-pbr` fit adds (`layers=clearcoat+sheen`).
+#[derive(Clone, Copy, Debug, Default)]
+struct Layers {
+    clearcoat: bool,
+    sheen: bool,
+}
+
+impl Layers {
+    /// `clearcoat`, `sheen` or `clearcoat+sheen`; `None` without layers.
+    fn names(self) -> Option<String> {
+        let names: Vec<&str> = [(self.clearcoat, "clearcoat"), (self.sheen, "sheen")]
+            .into_iter()
+            .filter_map(|(on, name)| on.then_some(name))
+            .collect();
+        (!names.is_empty()).then(|| names.join("+"))
+    }
+}
+
+fn parse_layers(value: &str) -> Result<Layers, String> {
+    let mut layers = Layers::default();
+    for name in value.split('+').map(str::trim) {
+        match name {
+            "clearcoat" => layers.clearcoat = true,
+            "sheen" => layers.sheen = true,
+            other => {
+                return Err(format!(
+                    "`{other}` is not a layer a fit adds (clearcoat, sheen, or clearcoat+sheen)"
+                ));
+            }
+        }
+    }
+    Ok(layers)
+}
+
+/// The free numbers of the layers: a coat's weight and perceptual
+/// roughness (from 0.01, as the base's), a sheen's colour and perceptual
+/// roughness.
+fn layer_numbers(layers: Layers) -> Vec<Free> {
+    let mut free = Vec::new();
+    if layers.clearcoat {
+        free.push(Free {
+            channel: None,
+            ..colour(&CLEARCOAT, 0.0, 1.0).next().expect("three channels")
+        });
+        free.push(shape(
+            &CLEARCOAT_ROUGHNESS,
+            PERCEPTUAL_BOUNDS.0,
+            PERCEPTUAL_BOUNDS.1,
+            true,
+        ));
+    }
+    if layers.sheen {
+        free.extend(colour(&SHEEN_COLOR, 0.0, 1.0));
+        free.push(shape(
+            &SHEEN_ROUGHNESS,
+            PERCEPTUAL_BOUNDS.0,
+            PERCEPTUAL_BOUNDS.1,
+            true,
+        ));
+    }
+    free
 }
 
 fn unknown(name: &str) -> String {
