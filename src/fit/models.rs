@@ -18,16 +18,14 @@
 //!
 //! Layered models: `gltf-pbr,layers=clearcoat` fits a `KHR_materials_clearcoat`
 //! coat (`clearcoat`, `clearcoat_roughness`) over the metallic-roughness
-//! base, the two-lobe structure of paints and varnished surfaces;
-//! `gltf-pbr,layers=sheen` a `KHR_materials_sheen` sheen (`sheen_color`,
-//! `sheen_roughness`) over it, for fabrics; `layers=clearcoat+sheen` both.
-//! The layers are those of the contract ("Layered glTF materials"), with
-//! the sheen's exact albedo scaling.
+//! base, the two-lobe structure of paints and varnished surfaces (the
+//! contract's "Layered glTF materials"). A sheen is not offered: its
+//! albedo scaling integrates `E(μ)` exactly for every direction and
+//! roughness a search visits (one fabric took over 10 minutes).
 
 use crate::material::param::{
     ABC_A, ABC_B, ABC_C, BASE_COLOR, CLEARCOAT, CLEARCOAT_ROUGHNESS, ETA, ETA_T, K_D, K_E, K_S,
-    KAPPA, METALLIC, PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, SHEEN_COLOR, SHEEN_ROUGHNESS, Value,
-    WARD_SIGMA,
+    KAPPA, METALLIC, PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, Value, WARD_SIGMA,
 };
 use crate::material::{
     Distribution, Fresnel, Geometry, Material, ROUGHNESS_FLOOR, ReflectanceModel,
@@ -129,7 +127,6 @@ pub const ALL: &[&str] = &[
     "cook-torrance,distribution=ggx,fresnel=dielectric",
     "gltf-pbr",
     "gltf-pbr,layers=clearcoat",
-    "gltf-pbr,layers=sheen",
     "abc",
     "abc,start=published",
     ABC_PUBLISHED,
@@ -361,43 +358,30 @@ impl FitModel {
     }
 }
 
-/// The layers a `gltf-pbr` fit adds (`layers=clearcoat+sheen`).
+/// The layers a `gltf-pbr` fit adds (`layers=clearcoat`).
 #[derive(Clone, Copy, Debug, Default)]
 struct Layers {
     clearcoat: bool,
-    sheen: bool,
 }
 
 impl Layers {
-    /// `clearcoat`, `sheen` or `clearcoat+sheen`; `None` without layers.
+    /// `clearcoat`; `None` without layers.
     fn names(self) -> Option<String> {
-        let names: Vec<&str> = [(self.clearcoat, "clearcoat"), (self.sheen, "sheen")]
-            .into_iter()
-            .filter_map(|(on, name)| on.then_some(name))
-            .collect();
-        (!names.is_empty()).then(|| names.join("+"))
+        self.clearcoat.then(|| "clearcoat".to_string())
     }
 }
 
 fn parse_layers(value: &str) -> Result<Layers, String> {
-    let mut layers = Layers::default();
-    for name in value.split('+').map(str::trim) {
-        match name {
-            "clearcoat" => layers.clearcoat = true,
-            "sheen" => layers.sheen = true,
-            other => {
-                return Err(format!(
-                    "`{other}` is not a layer a fit adds (clearcoat, sheen, or clearcoat+sheen)"
-                ));
-            }
-        }
+    match value.trim() {
+        "clearcoat" => Ok(Layers { clearcoat: true }),
+        other => Err(format!(
+            "`{other}` is not a layer a fit adds: it adds `clearcoat` (a sheen's exact albedo scaling is too slow to search)"
+        )),
     }
-    Ok(layers)
 }
 
 /// The free numbers of the layers: a coat's weight and perceptual
-/// roughness (from 0.01, as the base's), a sheen's colour and perceptual
-/// roughness.
+/// roughness (from 0.01, as the base's).
 fn layer_numbers(layers: Layers) -> Vec<Free> {
     let mut free = Vec::new();
     if layers.clearcoat {
@@ -407,15 +391,6 @@ fn layer_numbers(layers: Layers) -> Vec<Free> {
         });
         free.push(shape(
             &CLEARCOAT_ROUGHNESS,
-            PERCEPTUAL_BOUNDS.0,
-            PERCEPTUAL_BOUNDS.1,
-            true,
-        ));
-    }
-    if layers.sheen {
-        free.extend(colour(&SHEEN_COLOR, 0.0, 1.0));
-        free.push(shape(
-            &SHEEN_ROUGHNESS,
             PERCEPTUAL_BOUNDS.0,
             PERCEPTUAL_BOUNDS.1,
             true,
