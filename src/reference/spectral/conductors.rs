@@ -153,7 +153,8 @@ mod tests {
                 panic!("{name} is a conductor preset");
             };
             let e = conductor_error(metal, Rgb::from_array(eta), Rgb::from_array(kappa));
-            println!("{}", markdown_row(name, &e, |deg| format!("{deg}°")));
+            let label = format!("{name} (lecture, one η, κ)");
+            println!("{}", markdown_row(&label, &e, |deg| format!("{deg}°")));
             let rgb = &coloured.iter().find(|(p, _)| *p == metal.preset).unwrap().1;
             assert!(rgb.mean.max_element() < e.mean.max_element(), "{name}");
         }
