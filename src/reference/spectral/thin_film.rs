@@ -304,7 +304,10 @@ mod tests {
                         for i in 0..super::super::cie::SAMPLES {
                             let nm = super::super::cie::wavelength(i);
                             let r = airy_reflectance(cos, eta_f, d as f64, base.index_at(nm), nm);
-                            assert!(r >= 0.0 && r <= 1.0 + 1e-15, "{eta_f} {d} {cos} {nm}: {r}");
+                            assert!(
+                                (0.0..=1.0 + 1e-15).contains(&r),
+                                "{eta_f} {d} {cos} {nm}: {r}"
+                            );
                             worst = worst.max(r);
                         }
                     }
