@@ -8,9 +8,9 @@
 //! published `n(λ) + i k(λ)`; [`thin_film`] is the Airy reflectance of a
 //! film and the error of the specification's RGB form; [`conductors`] the
 //! exact Fresnel of the metals and the error of their three-channel
-//! presets; [`error_table`] the statistics both report; [`film_plot`] draws the film's colour
-//! against thickness; [`complex`] the
-//! arithmetic of complex indices. Results: `docs/spectral.md`.
+//! presets; [`error_table`] the statistics both report; [`film_plot`]
+//! draws the film's colour against thickness; [`complex`] the arithmetic
+//! of complex indices. Results: `docs/spectral.md`.
 
 pub mod cie;
 pub mod complex;
