@@ -8,12 +8,14 @@
 //! each hit shaded by the reflection equation of [`shading`] (the
 //! environment's part by the estimators of [`environment`]); [`texture`]
 //! samples the material textures; [`area`] measures the error of
-//! rendering an area light by N point lights.
+//! rendering an area light by N point lights; [`spectral`] measures the
+//! three-channel thin film and conductors against their spectral truth.
 
 pub mod area;
 pub mod environment;
 pub mod renderer;
 pub mod shading;
+pub mod spectral;
 pub mod texture;
 
 pub use renderer::{
