@@ -248,6 +248,15 @@ def main():
         if r.get("missing"):
             cells[0] += f" (no {r['missing']})"
         print("| " + " | ".join(cells) + " |")
+    full = [rows[n] for n in order if rows[n].get("inside")]
+    if full:
+        num = lambda k: np.array([float(r[k]) for r in full])
+        nearest = np.minimum(np.minimum(num("gonio_three"), num("gonio_babylon")), num("gonio_filament"))
+        pairs = np.minimum(np.minimum(num("three_babylon"), num("three_filament")), num("babylon_filament"))
+        print(f"\ninside on {sum(r['inside'] == 'yes' for r in full)} of {len(full)} files rendered by all four; "
+              f"medians over the files: gonio-median {np.median(num('gonio_median')):.1f}, "
+              f"peer-median {np.median(num('peer_median')):.1f}, gonio to its nearest peer {np.median(nearest):.1f}, "
+              f"closest pair of peers {np.median(pairs):.1f} codes")
 
 
 if __name__ == "__main__":

@@ -22,7 +22,7 @@
 #   OUT        renders and logs [target/peers]
 #   DOCS       pictures and results.csv [docs/peers]
 #
-# Camera (all four renderers): up +Y, target the centre of the file's world AABB (accessor bounds
+# Camera (all four renderers): up +Y (a file camera's roll is not kept), target the centre of the file's world AABB (accessor bounds
 # through the node transforms of the default scene), position on +Z at r / sin(fov_y / 2) (r: half
 # the AABB diagonal), fov_y 45 deg, 480 x 360; the peers' far plane 50 (d + r) (Babylon.js's skybox
 # hides geometry under a closer far plane). A file's own lights are kept by all four, unshadowed.
@@ -147,7 +147,7 @@ for file in "${FILES[@]}"; do
     if [ "$r" = gonio ]; then
       "$GONIO" render "$file" -o "$png" --width $W --height $H \
         --set "environment.map=\"$MAP\"" --set 'image.tone_map="pbr-neutral"' \
-        --set "camera.position=[$pos]" --set "camera.target=[$target]" --set "camera.fov_y_deg=$FOV" \
+        --set "camera.position=[$pos]" --set "camera.target=[$target]" --set "camera.fov_y_deg=$FOV" --set "camera.up=[0,1,0]" \
         --set shadows.imported_lights=false > "$dir/$r.log" 2>&1
     else
       "$WEB_PEERS/render.sh" "$r" "$file" "$png" --width $W --height $H --env "$MAP" --tone-map neutral \
