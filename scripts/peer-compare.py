@@ -12,11 +12,11 @@ itself is left out because it only measures the map's filtering (Filament's is a
 
 Per file:
   d(a, b)      mean |a - b| over the object pixels, for every pair of renderers;
-  gonio-median mean |gonio - median of the three peers| (per pixel and channel);
-  peer-median  the largest mean |peer - median of the three peers| over the peers: how far the
-               most outlying peer lies from the consensus;
-  inside       gonio-median <= peer-median (gonio is no further from the consensus than the
-               most outlying established renderer);
+  odd(X)       mean |X - per-pixel median of the other three renderers|, for each of the four
+               (for gonio: the median of the three peers);
+  gonio-odd    odd(gonio); peer-odd the largest odd(peer) of the three peers;
+  inside       gonio-odd <= peer-odd: gonio is not the odd one out of the four (some established
+               renderer lies at least as far from the rest); margin = gonio-odd - peer-odd;
   in-range     the share of object pixel-channels where gonio lies within [min, max] of the
                three peers widened by 2 codes (Filament's dithering and LUT: web-peers README).
 
@@ -41,7 +41,7 @@ LABELS = {"gonio": "gonio", "three": "three.js r187", "babylon": "Babylon.js 9.2
 BACKGROUND_CODES = 6  # above the bilinear/rounding noise of a sharp background, measured on Box (max 3)
 DITHER_CODES = 2
 COLUMNS = ["file", "object_px", "gonio_three", "gonio_babylon", "gonio_filament", "three_babylon",
-           "three_filament", "babylon_filament", "gonio_median", "peer_median", "inside", "in_range_pct",
+           "three_filament", "babylon_filament", "gonio_odd", "peer_odd", "margin", "inside", "in_range_pct",
            "missing"]
 
 
@@ -172,13 +172,16 @@ def measure(name, images, bg):
         for b in RENDERERS[i + 1:]:
             if a in pix and b in pix:
                 row[f"{a}_{b}"] = float(np.mean(np.abs(pix[a] - pix[b])))
-    peers = [pix[p] for p in PEERS if p in pix]
-    if len(peers) == 3 and "gonio" in pix:
-        stack = np.stack(peers)
-        med = np.median(stack, axis=0)
-        row["gonio_median"] = float(np.mean(np.abs(pix["gonio"] - med)))
-        row["peer_median"] = float(max(np.mean(np.abs(p - med)) for p in peers))
-        row["inside"] = "yes" if row["gonio_median"] <= row["peer_median"] else "no"
+    if len(pix) == 4:
+        odd = {}
+        for r in RENDERERS:
+            med = np.median(np.stack([pix[o] for o in RENDERERS if o != r]), axis=0)
+            odd[r] = float(np.mean(np.abs(pix[r] - med)))
+        row["gonio_odd"] = odd["gonio"]
+        row["peer_odd"] = max(odd[p] for p in PEERS)
+        row["margin"] = row["gonio_odd"] - row["peer_odd"]
+        row["inside"] = "yes" if row["margin"] <= 0 else "no"
+        stack = np.stack([pix[p] for p in PEERS])
         lo, hi = stack.min(axis=0) - DITHER_CODES, stack.max(axis=0) + DITHER_CODES
         g = pix["gonio"]
         row["in_range_pct"] = float(100 * np.mean((g >= lo) & (g <= hi)))
@@ -239,7 +242,7 @@ def main():
         for n in order:
             wr.writerow({k: rows[n].get(k, "") for k in COLUMNS})
     head = ["file", "object px", "g–three", "g–babylon", "g–filament", "three–babylon", "three–filament",
-            "babylon–filament", "g–median", "peer–median", "inside", "in range %"]
+            "babylon–filament", "gonio odd", "peer odd", "margin", "inside", "in range %"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for n in order:
@@ -254,8 +257,8 @@ def main():
         nearest = np.minimum(np.minimum(num("gonio_three"), num("gonio_babylon")), num("gonio_filament"))
         pairs = np.minimum(np.minimum(num("three_babylon"), num("three_filament")), num("babylon_filament"))
         print(f"\ninside on {sum(r['inside'] == 'yes' for r in full)} of {len(full)} files rendered by all four; "
-              f"medians over the files: gonio-median {np.median(num('gonio_median')):.1f}, "
-              f"peer-median {np.median(num('peer_median')):.1f}, gonio to its nearest peer {np.median(nearest):.1f}, "
+              f"medians over the files: gonio-odd {np.median(num('gonio_odd')):.1f}, "
+              f"peer-odd {np.median(num('peer_odd')):.1f}, gonio to its nearest peer {np.median(nearest):.1f}, "
               f"closest pair of peers {np.median(pairs):.1f} codes")
 
 

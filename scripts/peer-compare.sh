@@ -22,10 +22,10 @@
 #   OUT        renders and logs [target/peers]
 #   DOCS       pictures and results.csv [docs/peers]
 #
-# Camera (all four renderers): up +Y (a file camera's roll is not kept), target the centre of the file's world AABB (accessor bounds
-# through the node transforms of the default scene), position on +Z at r / sin(fov_y / 2) (r: half
-# the AABB diagonal), fov_y 45 deg, 480 x 360; the peers' far plane 50 (d + r) (Babylon.js's skybox
-# hides geometry under a closer far plane). A file's own lights are kept by all four, unshadowed.
+# Camera (all four renderers, not the file's own): up +Y, target the centre of the file's world
+# AABB (accessor bounds through the node transforms of the default scene), position on +Z at
+# r / sin(fov_y / 2) (r: half the AABB diagonal), fov_y 45 deg, 480 x 360; the peers' far plane
+# 50 (d + r) (Babylon.js's skybox hides geometry under a closer far plane). A file's own lights are kept by all four, unshadowed.
 set -u
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -102,7 +102,7 @@ default_files() {
 }
 
 # A name per file: the file's base name, with its folder's when that adds something
-# (WaterBottle/glTF-Draco/WaterBottle.gltf -> WaterBottle-glTF-Draco).
+# (WaterBottle/glTF-Draco/WaterBottle.gltf -> WaterBottle-glTF-Draco, Box-Draco/Box.gltf -> Box-Draco).
 name_of() {
   local base dir
   base=$(basename "$1"); base=${base%.*}
@@ -110,6 +110,7 @@ name_of() {
   case "$dir" in
     glTF) echo "$base" ;;
     glTF-*) echo "$base-$dir" ;;
+    "$base"-*) echo "$dir" ;;
     *) echo "$base" ;;
   esac
 }
