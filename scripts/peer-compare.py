@@ -17,6 +17,8 @@ Per file:
   gonio-odd    odd(gonio); peer-odd the largest odd(peer) of the three peers;
   inside       gonio-odd <= peer-odd: gonio is not the odd one out of the four (some established
                renderer lies at least as far from the rest); margin = gonio-odd - peer-odd;
+  sampled-odd  odd() of gonio with specular = "sampled", 1024 directions ("gonio-sampled.png",
+               measured against the same median of the peers, not pictured), and its inside;
   in-range     the share of object pixel-channels where gonio lies within [min, max] of the
                three peers widened by 2 codes (Filament's dithering and LUT: web-peers README).
 
@@ -29,6 +31,7 @@ import csv
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -41,7 +44,7 @@ LABELS = {"gonio": "gonio", "three": "three.js r187", "babylon": "Babylon.js 9.2
 BACKGROUND_CODES = 6  # above the bilinear/rounding noise of a sharp background, measured on Box (max 3)
 DITHER_CODES = 2
 COLUMNS = ["file", "object_px", "gonio_three", "gonio_babylon", "gonio_filament", "three_babylon",
-           "three_filament", "babylon_filament", "gonio_odd", "peer_odd", "margin", "inside", "in_range_pct",
+           "three_filament", "babylon_filament", "gonio_odd", "peer_odd", "margin", "inside", "in_range_pct", "sampled_odd", "sampled_inside",
            "missing"]
 
 
@@ -167,7 +170,7 @@ def measure(name, images, bg):
     row["object_px"] = int(mask.sum())
     if not mask.any():
         return row, mask
-    pix = {r: img[mask] for r, img in images.items()}
+    pix = {r: images[r][mask] for r in RENDERERS if r in images}
     for i, a in enumerate(RENDERERS):
         for b in RENDERERS[i + 1:]:
             if a in pix and b in pix:
@@ -181,6 +184,11 @@ def measure(name, images, bg):
         row["peer_odd"] = max(odd[p] for p in PEERS)
         row["margin"] = row["gonio_odd"] - row["peer_odd"]
         row["inside"] = "yes" if row["margin"] <= 0 else "no"
+        if "gonio-sampled" in images:
+            s_pix = images["gonio-sampled"][mask]
+            med = np.median(np.stack([pix[p] for p in PEERS]), axis=0)
+            row["sampled_odd"] = float(np.mean(np.abs(s_pix - med)))
+            row["sampled_inside"] = "yes" if row["sampled_odd"] <= row["peer_odd"] else "no"
         stack = np.stack([pix[p] for p in PEERS])
         lo, hi = stack.min(axis=0) - DITHER_CODES, stack.max(axis=0) + DITHER_CODES
         g = pix["gonio"]
@@ -188,15 +196,29 @@ def measure(name, images, bg):
     return row, mask
 
 
-def montage(name, paths, out):
+def why_missing(log_path):
+    """A short reason for a render that did not happen, from its log."""
+    try:
+        log = open(log_path, errors="replace").read()
+    except OSError:
+        return "not rendered"
+    m = re.search(r"requires the glTF extension (\S+)", log)
+    if m:
+        return "refuses " + m.group(1).rstrip(",")
+    if "timed out" in log:
+        return "timed out"
+    return "failed"
+
+
+def montage(name, paths, out, logs):
     """gonio | three.js | Babylon.js | Filament, labelled, 128 colours (no dithering) to keep the PNG near 120 kB."""
     args = ["convert"]
     for r in RENDERERS:
         p = paths.get(r)
         src = p if p else "xc:gray20[480x360]"
+        text = LABELS[r] if p else f"{LABELS[r]}: {why_missing(logs[r])}"
         args += ["(", src, "-resize", "480x360!", "-gravity", "north", "-background", "black", "-fill", "white",
-                 "-font", "DejaVu-Sans", "-pointsize", "15", "-splice", "0x22",
-                 "-annotate", "+0+3", LABELS[r] + ("" if p else " (failed)"), ")"]
+                 "-font", "DejaVu-Sans", "-pointsize", "15", "-splice", "0x22", "-annotate", "+0+3", text, ")"]
     args += ["+append", "-gravity", "south", "-background", "black", "-splice", "0x0",
              "-dither", "None", "-colors", "128", "PNG8:" + out]
     subprocess.run(args, check=True)
@@ -228,11 +250,14 @@ def main():
         cam = json.load(open(os.path.join(d, "camera.json")))
         paths = {r: os.path.join(d, r + ".png") for r in RENDERERS if os.path.exists(os.path.join(d, r + ".png"))}
         images = {r: np.asarray(Image.open(p).convert("RGB"), dtype=np.float64) for r, p in paths.items()}
+        sampled = os.path.join(d, "gonio-sampled.png")
+        if os.path.exists(sampled):
+            images["gonio-sampled"] = np.asarray(Image.open(sampled).convert("RGB"), dtype=np.float64)
         bg = background(cam, env)
         row, mask = measure(name, images, bg)
         Image.fromarray((mask * 255).astype(np.uint8)).save(os.path.join(d, "mask.png"))
         Image.fromarray(bg.astype(np.uint8)).save(os.path.join(d, "background.png"))
-        montage(name, paths, os.path.join(a.docs, name + ".png"))
+        montage(name, paths, os.path.join(a.docs, name + ".png"), {r: os.path.join(d, r + ".log") for r in RENDERERS})
         rows[name] = {k: fmt(row.get(k)) for k in COLUMNS}
         if name not in order:
             order.append(name)
@@ -242,7 +267,7 @@ def main():
         for n in order:
             wr.writerow({k: rows[n].get(k, "") for k in COLUMNS})
     head = ["file", "object px", "g–three", "g–babylon", "g–filament", "three–babylon", "three–filament",
-            "babylon–filament", "gonio odd", "peer odd", "margin", "inside", "in range %"]
+            "babylon–filament", "gonio odd", "peer odd", "margin", "inside", "in range %", "sampled odd", "sampled inside"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for n in order:
@@ -256,7 +281,8 @@ def main():
         num = lambda k: np.array([float(r[k]) for r in full])
         nearest = np.minimum(np.minimum(num("gonio_three"), num("gonio_babylon")), num("gonio_filament"))
         pairs = np.minimum(np.minimum(num("three_babylon"), num("three_filament")), num("babylon_filament"))
-        print(f"\ninside on {sum(r['inside'] == 'yes' for r in full)} of {len(full)} files rendered by all four; "
+        print(f"\ninside on {sum(r['inside'] == 'yes' for r in full)} of {len(full)} files rendered by all four "
+              f"(sampled: {sum(r.get('sampled_inside') == 'yes' for r in full)}); "
               f"medians over the files: gonio-odd {np.median(num('gonio_odd')):.1f}, "
               f"peer-odd {np.median(num('peer_odd')):.1f}, gonio to its nearest peer {np.median(nearest):.1f}, "
               f"closest pair of peers {np.median(pairs):.1f} codes")

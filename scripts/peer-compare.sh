@@ -9,6 +9,10 @@
 #   FORCE=1 scripts/peer-compare.sh ...     # render again even where a render exists
 #   ONLY=gonio scripts/peer-compare.sh ...  # re-render one renderer (e.g. gonio after a change)
 #
+# "gonio-sampled" is gonio with environment.specular = "sampled", 1024 directions (the whole BRDF
+# against the map by multiple importance sampling, close to gonio's integrated truth): it is
+# measured beside gonio's default (the prefiltered split sum) but not pictured.
+#
 # Environment (defaults in brackets):
 #   WEB_PEERS  the installed web-peers harness, see its README.md [~/web-peers]
 #   GONIO      gonio binary [target/release/gonio]
@@ -25,7 +29,8 @@
 # Camera (all four renderers, not the file's own): up +Y, target the centre of the file's world
 # AABB (accessor bounds through the node transforms of the default scene), position on +Z at
 # r / sin(fov_y / 2) (r: half the AABB diagonal), fov_y 45 deg, 480 x 360; the peers' far plane
-# 50 (d + r) (Babylon.js's skybox hides geometry under a closer far plane). A file's own lights are kept by all four, unshadowed.
+# 50 (d + r) (Babylon.js's skybox hides geometry under a closer far plane). A file's own lights
+# are kept by all four, unshadowed.
 set -u
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -37,7 +42,7 @@ OUT=${OUT:-$ROOT/target/peers}
 DOCS=${DOCS:-$ROOT/docs/peers}
 FORCE=${FORCE:-0}
 PYTHON=${PYTHON:-/usr/bin/python3}
-ONLY=${ONLY:-gonio three babylon filament}
+ONLY=${ONLY:-gonio gonio-sampled three babylon filament}
 W=480
 H=360
 FOV=45
@@ -145,11 +150,13 @@ for file in "${FILES[@]}"; do
     if [ "$FORCE" != 1 ] && [ -s "$png" ]; then continue; fi
     rm -f "$png"
     start=$(date +%s.%N)
-    if [ "$r" = gonio ]; then
+    if [ "$r" = gonio ] || [ "$r" = gonio-sampled ]; then
+      extra=()
+      [ "$r" = gonio-sampled ] && extra=(--set 'environment.specular="sampled"' --set environment.samples=1024)
       "$GONIO" render "$file" -o "$png" --width $W --height $H \
         --set "environment.map=\"$MAP\"" --set 'image.tone_map="pbr-neutral"' \
         --set "camera.position=[$pos]" --set "camera.target=[$target]" --set "camera.fov_y_deg=$FOV" --set "camera.up=[0,1,0]" \
-        --set shadows.imported_lights=false > "$dir/$r.log" 2>&1
+        --set shadows.imported_lights=false "${extra[@]}" > "$dir/$r.log" 2>&1
     else
       "$WEB_PEERS/render.sh" "$r" "$file" "$png" --width $W --height $H --env "$MAP" --tone-map neutral \
         --position="$pos" --target="$target" --fov-y $FOV --near "$near" --far "$far" \
