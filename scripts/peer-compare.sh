@@ -6,7 +6,7 @@
 #
 #   scripts/peer-compare.sh                 # every file of the default list below
 #   scripts/peer-compare.sh FILE.gltf ...   # only these files (their rows of the table are replaced)
-#   FORCE=1 scripts/peer-compare.sh ...     # render again even where a render exists
+#   FORCE=1 scripts/peer-compare.sh ...     # render again even where a render (or a failed one's log) exists
 #   ONLY=gonio scripts/peer-compare.sh ...  # re-render one renderer (e.g. gonio after a change)
 #
 # "gonio-sampled" is gonio with environment.specular = "sampled", 1024 directions (the whole BRDF
@@ -147,7 +147,8 @@ for file in "${FILES[@]}"; do
     "$file" "$pos" "$target" "$FOV" "$W" "$H" "$MAP" > "$dir/camera.json"
   for r in $ONLY; do
     png=$dir/$r.png
-    if [ "$FORCE" != 1 ] && [ -s "$png" ]; then continue; fi
+    # Done before (or failed before: its log stays, e.g. a refused extension or a timeout).
+    if [ "$FORCE" != 1 ] && { [ -s "$png" ] || [ -s "$dir/$r.log" ]; }; then continue; fi
     rm -f "$png"
     start=$(date +%s.%N)
     if [ "$r" = gonio ] || [ "$r" = gonio-sampled ]; then
