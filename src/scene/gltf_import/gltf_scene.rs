@@ -26,6 +26,12 @@ pub struct GltfScene {
     pub notes: Vec<String>,
     /// The images its materials' textures index.
     pub images: Vec<std::sync::Arc<crate::scene::texture::Image>>,
+    /// The names of its material variants (`KHR_materials_variants`), in
+    /// the file's order; [`GltfScene::choose_variant`] picks one.
+    pub variants: Vec<String>,
+    /// Per mesh (parallel to [`GltfScene::meshes`]): the material of each
+    /// variant that maps one, as `(variant, material)`.
+    pub variant_materials: Vec<Vec<(usize, usize)>>,
 }
 
 impl GltfScene {

@@ -120,9 +120,15 @@ mod graph;
 mod hostile;
 mod images;
 mod import;
+#[cfg(test)]
+mod layer_tests;
+mod layers;
 mod meshopt;
+mod spec_gloss;
 #[cfg(test)]
 mod tests;
+mod unlit;
+mod variants;
 
 pub use crate::scene::limits::Limits;
 pub use convert::material_from_metallic_roughness;
