@@ -22,7 +22,8 @@ pub struct GltfScene {
     pub skipped_primitives: usize,
     /// What was ignored without being an error (optional extensions gonio
     /// does not implement, unknown GLB chunks, trailing bytes), one
-    /// sentence each, for `--verbose`.
+    /// sentence each, for `--verbose`; those prefixed as warnings
+    /// (`scene_file::WARNING`) are shown without it.
     pub notes: Vec<String>,
     /// The images its materials' textures index.
     pub images: Vec<std::sync::Arc<crate::scene::texture::Image>>,

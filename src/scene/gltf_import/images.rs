@@ -14,7 +14,7 @@ use std::borrow::Cow;
 use std::path::Path;
 
 /// A glTF `textureInfo` as an extension's raw JSON holds it (glTF 2.0,
-/// 5.22 textureInfo). Unknown members (`extras`) are allowed, as glTF allows
+/// 5.22 textureInfo; `normalTextureInfo`'s `scale` too). Unknown members (`extras`) are allowed, as glTF allows
 /// them.
 #[derive(Clone, Debug, serde::Deserialize)]
 #[serde(rename_all = "camelCase")]
@@ -22,8 +22,15 @@ pub(super) struct RawTextureInfo {
     pub index: usize,
     #[serde(default)]
     pub tex_coord: u32,
+    /// `normalTextureInfo.scale` (default 1), for a coat's normal map.
+    #[serde(default = "one")]
+    pub scale: f64,
     #[serde(default)]
     pub extensions: Option<serde_json::Map<String, serde_json::Value>>,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// An image computed from a file's image texel by texel, in linear

@@ -144,20 +144,7 @@ impl<'a> Importer<'a> {
             converted.validate()?;
             return Ok(converted);
         }
-        let mut notes = Vec::new();
-        super::layers::read(
-            material,
-            self.document,
-            &mut self.images,
-            &mut converted,
-            &mut notes,
-        )?;
-        let index = material.index().unwrap_or_default();
-        self.scene.notes.extend(
-            notes
-                .into_iter()
-                .map(|n| format!("{WARNING}material {index}: {n}")),
-        );
+        super::layers::read(material, self.document, &mut self.images, &mut converted)?;
         let spec_gloss =
             super::spec_gloss::convert(material, self.document, &mut self.images, &mut converted)?;
         if !spec_gloss {

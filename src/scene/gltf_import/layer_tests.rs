@@ -10,6 +10,7 @@ use crate::scene::Rgb;
 use crate::scene::texture::Encoding;
 use base64::Engine as _;
 use glam::DVec2;
+use std::path::PathBuf;
 
 /// A 4×1 RGBA PNG whose texels' G run through 0, 85, 170, 255 and A
 /// through 255, 170, 85, 0, as a data URI.
@@ -49,7 +50,7 @@ fn load_json(json: &str) -> Result<GltfScene> {
 }
 
 /// The texture on `key` of `m`.
-fn slot<'a>(m: &'a crate::material::Material, key: &str) -> &'a MaterialTexture {
+fn slot<'a>(m: &'a crate::material::Material, key: &'static str) -> &'a MaterialTexture {
     m.textures
         .iter()
         .find(|t| t.target == TextureTarget::Param(key))
@@ -62,6 +63,8 @@ fn layer_extensions_set_the_keys_and_their_textures() {
         r#"{"name": "coat", "extensions": {"KHR_materials_clearcoat": {
             "clearcoatFactor": 0.5, "clearcoatRoughnessFactor": 0.25,
             "clearcoatTexture": {"index": 1, "texCoord": 1},
+            "clearcoatNormalTexture": {"index": 0, "scale": 0.5, "extensions":
+                {"KHR_texture_transform": {"rotation": 0.5}}},
             "clearcoatRoughnessTexture": {"index": 0, "extensions": {"KHR_texture_transform":
                 {"offset": [0.5, 0.25], "rotation": 0.3, "scale": [2, 3], "texCoord": 1}}}}}}"#,
         r#"{"name": "sheen", "extensions": {"KHR_materials_sheen": {
@@ -76,7 +79,8 @@ fn layer_extensions_set_the_keys_and_their_textures() {
             "iridescenceThicknessMinimum": 200, "iridescenceThicknessMaximum": 600,
             "iridescenceTexture": {"index": 0}, "iridescenceThicknessTexture": {"index": 0}}}}"#,
         r#"{"name": "brushed", "extensions": {"KHR_materials_anisotropy": {
-            "anisotropyStrength": 0.6, "anisotropyRotation": -1.0}}}"#,
+            "anisotropyStrength": 0.6, "anisotropyRotation": -1.0,
+            "anisotropyTexture": {"index": 1, "texCoord": 1}}}}"#,
         r#"{"name": "defaults", "extensions": {"KHR_materials_clearcoat": {},
             "KHR_materials_sheen": {}, "KHR_materials_iridescence": {},
             "KHR_materials_specular": {}, "KHR_materials_anisotropy": {}, "KHR_materials_ior": {}}}"#,
@@ -105,6 +109,14 @@ fn layer_extensions_set_the_keys_and_their_textures() {
             scale: DVec2::new(2.0, 3.0)
         }
     );
+
+    let normal = coat
+        .textures
+        .iter()
+        .find(|t| t.target == TextureTarget::ClearcoatNormal { scale: 0.5 })
+        .expect("the coat's normal map with its scale");
+    assert_eq!(normal.transform.rotation, 0.5);
+    assert_eq!(scene.images[normal.image].encoding, Encoding::Linear);
 
     let sheen = &m[1];
     assert_eq!(sheen.layers.sheen_color, Rgb::new(0.2, 0.4, 0.6));
@@ -149,6 +161,13 @@ fn layer_extensions_set_the_keys_and_their_textures() {
     let brushed = &m[4];
     assert_eq!(brushed.layers.anisotropy_strength, 0.6);
     assert_eq!(brushed.layers.anisotropy_rotation, -1.0);
+    let map = brushed
+        .textures
+        .iter()
+        .find(|t| t.target == TextureTarget::Anisotropy)
+        .expect("the anisotropy map");
+    assert_eq!(map.tex_coord, 1);
+    assert_eq!(scene.images[map.image].encoding, Encoding::Linear);
 
     // Every extension at its defaults leaves the core unchanged.
     assert_eq!(m[5].layers, crate::material::layers::GltfLayers::default());
@@ -235,7 +254,8 @@ fn unlit_emits_its_base_colour_and_reflects_nothing() {
     ];
     let scene = load_json(&file_with(&materials, "")).unwrap();
     let m = &scene.materials[0];
-    assert_eq!(m.emission, Rgb::new(0.2, 0.5, 0.8));
+    // The crate's f32 base colour, widened.
+    assert_eq!(m.emission, Rgb::new(0.2f32.into(), 0.5, 0.8f32.into()));
     assert_eq!(m.alpha, 0.5);
     assert_eq!(
         (m.base_color, m.k_a, m.metallic, m.layers.specular),
@@ -422,7 +442,13 @@ fn sample(name: &str) -> Option<GltfScene> {
         eprintln!("{} is not on this machine: not checked", path.display());
         return None;
     }
-    Some(load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
+    // Trusted files: SpecGlossVsMetalRough's 2048² textures exceed the
+    // default byte limit.
+    let limits = Limits {
+        bytes: 4 << 30,
+        ..Limits::default()
+    };
+    Some(load_with_limits(&path, &limits).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
 }
 
 fn named<'a>(scene: &'a GltfScene, name: &str) -> &'a crate::material::Material {
@@ -439,7 +465,7 @@ fn khronos_samples_read_their_extensions() {
         let partial = named(&s, "Partial_Coated");
         assert_eq!(
             (partial.layers.clearcoat, partial.layers.clearcoat_roughness),
-            (1.0, 0.03f32.into())
+            (1.0, 0.03)
         );
         assert_eq!(slot(partial, "clearcoat").channel, 0);
         assert_eq!(

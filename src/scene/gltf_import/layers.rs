@@ -23,8 +23,11 @@
 //! | `iridescenceTexture` | `iridescence` | R, linear |
 //! | `iridescenceThicknessTexture` | `iridescence_thickness` | G, linear, derived (below) |
 //!
-//! `clearcoatNormalTexture` and `anisotropyTexture` are not textures of a
-//! key: they are not read, and each one a material names is a warning.
+//! `clearcoatNormalTexture` (linear, with its `scale`) is the coat's own
+//! normal map ([`TextureTarget::ClearcoatNormal`]) and `anisotropyTexture`
+//! (linear: RG the direction, B the strength) the anisotropy map
+//! ([`TextureTarget::Anisotropy`]), each with its `texCoord`, sampler and
+//! `KHR_texture_transform` too.
 //!
 //! **The film thickness.** `KHR_materials_iridescence` gives the thickness
 //! as `mix(minimum, maximum, G)`, not as a factor times the texel, and the
@@ -176,21 +179,20 @@ fn colour(what: &str, c: [f64; 3], max: f64) -> Result<Rgb, String> {
 }
 
 /// Reads the layer extensions of glTF material `material` into
-/// `out.layers` and their textures into `out.textures`; `notes` gets a
-/// warning for each texture gonio does not read yet.
+/// `out.layers` and their textures into `out.textures`.
 pub(super) fn read(
     material: &gltf::Material,
     document: &gltf::Document,
     images: &mut ImageSource,
     out: &mut Material,
-    notes: &mut Vec<String>,
 ) -> Result<(), String> {
-    let mut texture = |info: &RawTextureInfo,
-                       what: &str,
-                       key: &'static str,
-                       encoding: Encoding,
-                       channel: usize,
-                       out: &mut Material|
+    let texture = |images: &mut ImageSource,
+                   info: &RawTextureInfo,
+                   what: &str,
+                   key: &'static str,
+                   encoding: Encoding,
+                   channel: usize,
+                   out: &mut Material|
      -> Result<(), String> {
         let mut t = images
             .raw_texture(document, info, TextureTarget::Param(key), encoding, None)
@@ -224,11 +226,19 @@ pub(super) fn read(
         )?;
         if let Some(info) = &e.specular_texture {
             let what = format!("{NAME}.specularTexture");
-            texture(info, &what, "specular", Encoding::Linear, A, out)?;
+            texture(images, info, &what, "specular", Encoding::Linear, A, out)?;
         }
         if let Some(info) = &e.specular_color_texture {
             let what = format!("{NAME}.specularColorTexture");
-            texture(info, &what, "specular_color", Encoding::Srgb, R, out)?;
+            texture(
+                images,
+                info,
+                &what,
+                "specular_color",
+                Encoding::Srgb,
+                R,
+                out,
+            )?;
         }
     }
 
@@ -241,16 +251,30 @@ pub(super) fn read(
         )?;
         if let Some(info) = &e.clearcoat_texture {
             let what = format!("{NAME}.clearcoatTexture");
-            texture(info, &what, "clearcoat", Encoding::Linear, R, out)?;
+            texture(images, info, &what, "clearcoat", Encoding::Linear, R, out)?;
         }
         if let Some(info) = &e.clearcoat_roughness_texture {
             let what = format!("{NAME}.clearcoatRoughnessTexture");
-            texture(info, &what, "clearcoat_roughness", Encoding::Linear, G, out)?;
+            texture(
+                images,
+                info,
+                &what,
+                "clearcoat_roughness",
+                Encoding::Linear,
+                G,
+                out,
+            )?;
         }
-        if e.clearcoat_normal_texture.is_some() {
-            notes.push(format!(
-                "{NAME}.clearcoatNormalTexture is not read yet: the coat takes the base's normal"
-            ));
+        if let Some(info) = &e.clearcoat_normal_texture {
+            let what = format!("{NAME}.clearcoatNormalTexture");
+            if !info.scale.is_finite() {
+                return Err(format!("{what}: scale {} is not finite", info.scale));
+            }
+            let target = TextureTarget::ClearcoatNormal { scale: info.scale };
+            let t = images
+                .raw_texture(document, info, target, Encoding::Linear, None)
+                .map_err(|e| format!("{what}: {e}"))?;
+            out.textures.push(t);
         }
     }
 
@@ -267,11 +291,19 @@ pub(super) fn read(
         )?;
         if let Some(info) = &e.sheen_color_texture {
             let what = format!("{NAME}.sheenColorTexture");
-            texture(info, &what, "sheen_color", Encoding::Srgb, R, out)?;
+            texture(images, info, &what, "sheen_color", Encoding::Srgb, R, out)?;
         }
         if let Some(info) = &e.sheen_roughness_texture {
             let what = format!("{NAME}.sheenRoughnessTexture");
-            texture(info, &what, "sheen_roughness", Encoding::Linear, A, out)?;
+            texture(
+                images,
+                info,
+                &what,
+                "sheen_roughness",
+                Encoding::Linear,
+                A,
+                out,
+            )?;
         }
     }
 
@@ -298,7 +330,7 @@ pub(super) fn read(
         )?;
         if let Some(info) = &e.iridescence_texture {
             let what = format!("{NAME}.iridescenceTexture");
-            texture(info, &what, "iridescence", Encoding::Linear, R, out)?;
+            texture(images, info, &what, "iridescence", Encoding::Linear, R, out)?;
         }
         out.layers.iridescence_thickness = maximum;
         if let Some(info) = &e.iridescence_thickness_texture {
@@ -329,10 +361,18 @@ pub(super) fn read(
         out.layers.anisotropy_strength =
             unit(&format!("{NAME}.anisotropyStrength"), e.anisotropy_strength)?;
         out.layers.anisotropy_rotation = e.anisotropy_rotation;
-        if e.anisotropy_texture.is_some() {
-            notes.push(format!(
-                "{NAME}.anisotropyTexture is not read yet: direction and strength are the factors'"
-            ));
+        if let Some(info) = &e.anisotropy_texture {
+            let what = format!("{NAME}.anisotropyTexture");
+            let t = images
+                .raw_texture(
+                    document,
+                    info,
+                    TextureTarget::Anisotropy,
+                    Encoding::Linear,
+                    None,
+                )
+                .map_err(|e| format!("{what}: {e}"))?;
+            out.textures.push(t);
         }
     }
     Ok(())
