@@ -14,7 +14,16 @@ pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
     "EXT_texture_webp",
     "KHR_draco_mesh_compression",
     "KHR_lights_punctual",
+    "KHR_materials_anisotropy",
+    "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_iridescence",
+    "KHR_materials_pbrSpecularGlossiness",
+    "KHR_materials_sheen",
+    "KHR_materials_specular",
+    "KHR_materials_unlit",
+    "KHR_materials_variants",
     "KHR_mesh_quantization",
     "KHR_meshopt_compression",
     "KHR_texture_basisu",
@@ -25,8 +34,14 @@ pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
 /// message says why the file cannot be drawn without them.
 const KNOWN_UNSUPPORTED: &[(&str, &str)] = &[
     ("EXT_mesh_gpu_instancing", "GPU instancing"),
-    ("KHR_materials_variants", "material variants"),
     ("EXT_texture_avif", "AVIF textures"),
+    ("KHR_materials_transmission", "light through the surface"),
+    ("KHR_materials_volume", "a volume under the surface"),
+    ("KHR_materials_dispersion", "dispersion"),
+    (
+        "KHR_materials_diffuse_transmission",
+        "diffuse light through the surface",
+    ),
 ];
 
 /// The GLB header: magic, version, total length.
@@ -233,7 +248,10 @@ fn check_version(asset: &gltf::json::Asset) -> Result<(), String> {
 }
 
 /// A required extension gonio does not implement makes the file
-/// undrawable: an error naming it. An optional one is ignored, with a note.
+/// undrawable: an error naming it (glTF 2.0, 3.12: a loader must refuse
+/// it). The optional ones gonio ignores are named in one warning, shown
+/// by `render` and `view` without `--verbose`: the file draws, but not as
+/// its authors show it.
 fn check_extensions(root: &gltf::json::Root, notes: &mut Vec<String>) -> Result<(), String> {
     let unsupported: Vec<String> = root
         .extensions_required
@@ -249,13 +267,19 @@ fn check_extensions(root: &gltf::json::Root, notes: &mut Vec<String>) -> Result<
             SUPPORTED_REQUIRED_EXTENSIONS.join(", ")
         ));
     }
-    for used in &root.extensions_used {
-        if !SUPPORTED_REQUIRED_EXTENSIONS.contains(&used.as_str()) {
-            notes.push(format!(
-                "optional glTF extension {} ignored",
-                describe_extension(used)
-            ));
-        }
+    let ignored: Vec<String> = root
+        .extensions_used
+        .iter()
+        .filter(|e| !SUPPORTED_REQUIRED_EXTENSIONS.contains(&e.as_str()))
+        .map(|e| describe_extension(e))
+        .collect();
+    if !ignored.is_empty() {
+        notes.push(format!(
+            "{}the file uses the glTF extension{} {}, which gonio ignores",
+            super::hostile::WARNING,
+            if ignored.len() == 1 { "" } else { "s" },
+            ignored.join(", ")
+        ));
     }
     Ok(())
 }

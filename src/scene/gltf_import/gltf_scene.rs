@@ -22,10 +22,17 @@ pub struct GltfScene {
     pub skipped_primitives: usize,
     /// What was ignored without being an error (optional extensions gonio
     /// does not implement, unknown GLB chunks, trailing bytes), one
-    /// sentence each, for `--verbose`.
+    /// sentence each, for `--verbose`; those prefixed as warnings
+    /// (`scene_file::WARNING`) are shown without it.
     pub notes: Vec<String>,
     /// The images its materials' textures index.
     pub images: Vec<std::sync::Arc<crate::scene::texture::Image>>,
+    /// The names of its material variants (`KHR_materials_variants`), in
+    /// the file's order; [`GltfScene::choose_variant`] picks one.
+    pub variants: Vec<String>,
+    /// Per mesh (parallel to [`GltfScene::meshes`]): the material of each
+    /// variant that maps one, as `(variant, material)`.
+    pub variant_materials: Vec<Vec<(usize, usize)>>,
 }
 
 impl GltfScene {

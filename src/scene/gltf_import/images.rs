@@ -13,6 +13,36 @@ use glam::DVec2;
 use std::borrow::Cow;
 use std::path::Path;
 
+/// A glTF `textureInfo` as an extension's raw JSON holds it (glTF 2.0,
+/// 5.22 textureInfo; `normalTextureInfo`'s `scale` too). Unknown members (`extras`) are allowed, as glTF allows
+/// them.
+#[derive(Clone, Debug, serde::Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub(super) struct RawTextureInfo {
+    pub index: usize,
+    #[serde(default)]
+    pub tex_coord: u32,
+    /// `normalTextureInfo.scale` (default 1), for a coat's normal map.
+    #[serde(default = "one")]
+    pub scale: f64,
+    #[serde(default)]
+    pub extensions: Option<serde_json::Map<String, serde_json::Value>>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// An image computed from a file's image texel by texel, in linear
+/// values before the mip chain (`ImageStore::load_bytes_mapped`), where a
+/// glTF texture means something other than a factor of the parameter it
+/// sets (`1 − A`, `mix(min, max, G)`); `label` names the derivation (the
+/// store keeps the file's image and each derivation apart).
+pub(super) struct Derived<'f> {
+    pub label: String,
+    pub map: &'f dyn Fn(&mut [f32; 4]),
+}
+
 /// Where the images of one file come from and go to.
 pub(super) struct ImageSource<'a> {
     pub buffers: &'a [Cow<'a, [u8]>],
@@ -62,6 +92,41 @@ impl<'a> ImageSource<'a> {
         Ok(t)
     }
 
+    /// The texture a raw `textureInfo` object names (one inside a
+    /// material extension the `gltf` crate does not parse): its `index`
+    /// checked against the file's textures, its `texCoord` and its
+    /// `KHR_texture_transform`, read as [`Self::texture_with_raw_transform`]
+    /// reads them; the image as `derived` computes it from the file's, if
+    /// given.
+    pub fn raw_texture(
+        &mut self,
+        document: &gltf::Document,
+        info: &RawTextureInfo,
+        target: TextureTarget,
+        encoding: Encoding,
+        derived: Option<Derived>,
+    ) -> Result<MaterialTexture, String> {
+        let count = document.textures().len();
+        let texture = document.textures().nth(info.index).ok_or_else(|| {
+            format!(
+                "texture {} does not exist (the file has {count})",
+                info.index
+            )
+        })?;
+        let transform = info
+            .extensions
+            .as_ref()
+            .and_then(|e| e.get("KHR_texture_transform"));
+        self.transformed(
+            &texture,
+            info.tex_coord,
+            target,
+            encoding,
+            transform,
+            derived,
+        )
+    }
+
     /// [`Self::texture_of`] with the `KHR_texture_transform` found in the
     /// texture reference's raw `extensions` (`extension`: the normal and
     /// occlusion textures', which the `gltf` crate does not parse; the
@@ -74,7 +139,19 @@ impl<'a> ImageSource<'a> {
         encoding: Encoding,
         extension: Option<&serde_json::Value>,
     ) -> Result<MaterialTexture, String> {
-        let mut t = self.texture_of(texture, tex_coord, target, encoding)?;
+        self.transformed(texture, tex_coord, target, encoding, extension, None)
+    }
+
+    fn transformed(
+        &mut self,
+        texture: &gltf::Texture,
+        tex_coord: u32,
+        target: TextureTarget,
+        encoding: Encoding,
+        extension: Option<&serde_json::Value>,
+        derived: Option<Derived>,
+    ) -> Result<MaterialTexture, String> {
+        let mut t = self.texture_derived(texture, tex_coord, target, encoding, derived)?;
         let Some(value) = extension else {
             return Ok(t);
         };
@@ -127,6 +204,19 @@ impl<'a> ImageSource<'a> {
         target: TextureTarget,
         encoding: Encoding,
     ) -> Result<MaterialTexture, String> {
+        self.texture_derived(texture, tex_coord, target, encoding, None)
+    }
+
+    /// [`Self::texture_of`], its image derived from the file's by
+    /// `derived` when given.
+    pub fn texture_derived(
+        &mut self,
+        texture: &gltf::Texture,
+        tex_coord: u32,
+        target: TextureTarget,
+        encoding: Encoding,
+        derived: Option<Derived>,
+    ) -> Result<MaterialTexture, String> {
         let at = format!("texture {}", texture.index());
         let tex_coord = tex_coord as usize;
         if tex_coord > 1 {
@@ -135,7 +225,7 @@ impl<'a> ImageSource<'a> {
             ));
         }
         let image = self
-            .image(&texture.source(), encoding)
+            .image(&texture.source(), encoding, derived)
             .map_err(|e| format!("{at}: {e}"))?;
         let s = texture.sampler();
         let sampler = Sampler::from_gltf(
@@ -156,7 +246,12 @@ impl<'a> ImageSource<'a> {
     }
 
     /// The index of glTF image `image` decoded as `encoding`.
-    fn image(&mut self, image: &gltf::Image, encoding: Encoding) -> Result<usize, String> {
+    fn image(
+        &mut self,
+        image: &gltf::Image,
+        encoding: Encoding,
+        derived: Option<Derived>,
+    ) -> Result<usize, String> {
         let index = image.index();
         let name = image.name().map_or_else(
             || format!("image {index}"),
@@ -175,13 +270,17 @@ impl<'a> ImageSource<'a> {
             }
             _ => name.clone(),
         };
-        self.store
-            .load_bytes(
-                format!("{}:{name}", self.folder.display()),
+        let stored = format!("{}:{name}", self.folder.display());
+        match derived {
+            None => self.store.load_bytes(stored, &bytes, encoding),
+            Some(d) => self.store.load_bytes_mapped(
+                format!("{stored} as {}", d.label),
                 &bytes,
                 encoding,
-            )
-            .map_err(|e| format!("{shown}: {e}"))
+                d.map,
+            ),
+        }
+        .map_err(|e| format!("{shown}: {e}"))
     }
 }
 

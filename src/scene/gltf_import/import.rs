@@ -32,6 +32,9 @@ pub(super) struct Importer<'a> {
     /// The file uses `KHR_mesh_quantization`: integer vertex attributes
     /// are allowed (`accessors::Usage::accepts`).
     quantized: bool,
+    /// Indices of the unlit materials (`unlit`), whose emission vertex
+    /// colours do not multiply.
+    unlit: std::collections::BTreeSet<usize>,
 }
 
 impl<'a> Importer<'a> {
@@ -56,6 +59,8 @@ impl<'a> Importer<'a> {
                 skipped_primitives: 0,
                 notes,
                 images: Vec::new(),
+                variants: Vec::new(),
+                variant_materials: Vec::new(),
             },
             default_material: None,
             images: super::images::ImageSource {
@@ -66,20 +71,21 @@ impl<'a> Importer<'a> {
             quantized: document
                 .extensions_used()
                 .any(|e| e == "KHR_mesh_quantization"),
+            unlit: Default::default(),
         }
     }
 
     /// Imports the trees below `roots`, which must be roots of a forest
     /// (see `graph::check_forest`).
     pub(super) fn run(mut self, roots: &[usize]) -> Result<GltfScene, String> {
+        self.scene.variants = super::variants::names(self.document)?;
         for material in self.document.materials() {
             let index = material.index().unwrap_or_default();
             let name = material
                 .name()
                 .map_or_else(|| format!("material {index}"), str::to_string);
-            let pbr = material.pbr_metallic_roughness();
-            let mut converted = material_from_pbr(name, &material)?;
-            self.textures(&material, &pbr, &mut converted)
+            let converted = self
+                .material(name, &material)
                 .map_err(|e| format!("material {index}: {e}"))?;
             // What alpha does and does not do here (docs/gltf.md, "alphaMode").
             match converted.alpha_mode {
@@ -122,16 +128,39 @@ impl<'a> Importer<'a> {
         Ok(self.scene)
     }
 
-    /// The textures of glTF material `material` on `converted` (a
-    /// gltf-pbr material): base colour (sRGB) on `base_color` and on the
-    /// ambient `k_a` (which the import sets to the base colour),
-    /// metallic-roughness (linear) on `roughness` (G) and `metallic` (B),
-    /// emissive (sRGB) on `emission`, normal (linear, a tangent-space
-    /// normal map with its `scale`) and occlusion (linear, R, on the
-    /// ambient term with its `strength`).
-    fn textures(
+    /// glTF material `material` as a gltf-pbr material: unlit
+    /// (`unlit`), specular-glossiness (`spec_gloss`) or
+    /// metallic-roughness, with the layer extensions (`layers`) and the
+    /// core's textures.
+    fn material(
         &mut self,
+        name: String,
         material: &gltf::Material,
+    ) -> Result<crate::material::Material, String> {
+        let mut converted = material_from_pbr(name, material)?;
+        if super::unlit::is_unlit(material) {
+            super::unlit::convert(material, &mut self.images, &mut converted)?;
+            self.unlit.insert(self.scene.materials.len());
+            converted.validate()?;
+            return Ok(converted);
+        }
+        super::layers::read(material, self.document, &mut self.images, &mut converted)?;
+        let spec_gloss =
+            super::spec_gloss::convert(material, self.document, &mut self.images, &mut converted)?;
+        if !spec_gloss {
+            self.metallic_roughness_textures(&material.pbr_metallic_roughness(), &mut converted)?;
+        }
+        self.textures(material, &mut converted)?;
+        converted.validate()?;
+        Ok(converted)
+    }
+
+    /// The textures of the metallic-roughness workflow on `converted`:
+    /// base colour (sRGB) on `base_color` and on the ambient `k_a` (which
+    /// the import sets to the base colour), metallic-roughness (linear)
+    /// on `roughness` (G) and `metallic` (B).
+    fn metallic_roughness_textures(
+        &mut self,
         pbr: &gltf::material::PbrMetallicRoughness,
         converted: &mut crate::material::Material,
     ) -> Result<(), String> {
@@ -151,6 +180,18 @@ impl<'a> Importer<'a> {
                     .push(t.map_err(|e| format!("metallicRoughnessTexture: {e}"))?);
             }
         }
+        Ok(())
+    }
+
+    /// The textures every lit workflow shares, on `converted`: emissive
+    /// (sRGB) on `emission`, normal (linear, a tangent-space normal map
+    /// with its `scale`) and occlusion (linear, R, on the ambient term
+    /// with its `strength`).
+    fn textures(
+        &mut self,
+        material: &gltf::Material,
+        converted: &mut crate::material::Material,
+    ) -> Result<(), String> {
         if let Some(info) = material.emissive_texture() {
             let t = self.images.texture(&info, "emission", Encoding::Srgb, 0);
             converted
@@ -254,6 +295,12 @@ impl<'a> Importer<'a> {
                 Some(index) => index,
                 None => self.default_material(),
             };
+            let variant_materials = super::variants::mappings(
+                &primitive,
+                self.scene.variants.len(),
+                self.document.materials().len(),
+            )
+            .map_err(|p| format!("{}: {p}", context()))?;
             let mut mesh = match raw.normals {
                 Some(normals) => Mesh {
                     name,
@@ -292,6 +339,12 @@ impl<'a> Importer<'a> {
                 ));
             }
             mesh.colors = raw.colors.unwrap_or_default();
+            if !mesh.colors.is_empty() && self.unlit.contains(&material) {
+                self.scene.notes.push(format!(
+                    "{WARNING}{}: material {material} is unlit (KHR_materials_unlit) and its COLOR_0 is not applied (gonio shows an unlit base colour as emission, which vertex colours do not multiply)",
+                    context()
+                ));
+            }
             // A normal map without TANGENT: MikkTSpace in object space,
             // as glTF asks (`scene::tangents`).
             if mesh.tangents.is_empty()
@@ -323,6 +376,7 @@ impl<'a> Importer<'a> {
             // fall back to normals of the flattened geometry.
             repair_normals(&mut mesh);
             self.scene.meshes.push(mesh);
+            self.scene.variant_materials.push(variant_materials);
         }
         Ok(())
     }

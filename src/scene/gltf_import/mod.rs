@@ -44,8 +44,8 @@
 //! there are no scenes), with node transforms composed into world space.
 //! Triangle lists, strips and fans become indexed triangles; points and
 //! lines are skipped and counted in [`GltfScene::skipped_primitives`].
-//! Optional extensions gonio does not implement are ignored, each with a
-//! line in [`GltfScene::notes`] (shown by `--verbose`).
+//! Optional extensions gonio does not implement are ignored, named in one
+//! warning in [`GltfScene::notes`] (shown without `--verbose`).
 //! `NORMAL` is used when present, otherwise normals are generated
 //! (area-weighted). `TEXCOORD_0` and `TEXCOORD_1` are read, and the
 //! base colour, metallic-roughness and emissive textures with their
@@ -80,6 +80,16 @@
 //! lights the base colour) and `k_d = b·(1 − m)` (where a lecture model
 //! chosen in the viewer starts). `emission = emissiveFactor ×
 //! emissiveStrength` (`KHR_materials_emissive_strength`, 1 without it).
+//! The material extensions that layer this BRDF (`KHR_materials_ior`,
+//! `_specular`, `_clearcoat`, `_sheen`, `_iridescence`, `_anisotropy`) set
+//! [`crate::material::Material::layers`] and put their textures on the
+//! layer keys (`layers`); `KHR_materials_unlit` becomes an emitting
+//! material that reflects nothing (`unlit`); the archived
+//! `KHR_materials_pbrSpecularGlossiness` is converted into `gltf-pbr` with
+//! `ior = 0` (`spec_gloss`); `KHR_materials_variants` loads every
+//! variant's materials and draws the file's default ones until one is
+//! chosen ([`GltfScene::choose_variant`], `variants`). The optional
+//! extensions gonio ignores are named in one warning.
 //! A scene file's `material =` on the object replaces all of this with any
 //! model.
 //!
@@ -120,9 +130,15 @@ mod graph;
 mod hostile;
 mod images;
 mod import;
+#[cfg(test)]
+mod layer_tests;
+mod layers;
 mod meshopt;
+mod spec_gloss;
 #[cfg(test)]
 mod tests;
+mod unlit;
+mod variants;
 
 pub use crate::scene::limits::Limits;
 pub use convert::material_from_metallic_roughness;

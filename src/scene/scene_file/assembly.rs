@@ -244,6 +244,7 @@ fn objects(
     gltf_files: &mut gltf_import::GltfLoader,
 ) -> Result<Objects> {
     let bad = |problem: String| Error::input(origin, problem);
+    let mut variant = super::gltf_keys::VariantChoice::new(&file.gltf);
     let mut out = Objects {
         meshes: Vec::new(),
         lights: Vec::new(),
@@ -261,7 +262,9 @@ fn objects(
         };
         match (&object.gltf, &object.shape) {
             (Some(gltf), None) => {
-                let mut imported = gltf_files.load(&base_dir.join(gltf))?;
+                let path = base_dir.join(gltf);
+                let mut imported = gltf_files.load(&path)?;
+                variant.apply(&path, &mut imported)?;
                 let image_offset = gltf_files
                     .images
                     .append(std::mem::take(&mut imported.images));
@@ -303,6 +306,7 @@ fn objects(
             }
         }
     }
+    variant.finish().map_err(bad)?;
     Ok(out)
 }
 

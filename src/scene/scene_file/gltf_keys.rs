@@ -2,11 +2,14 @@
 //! true: glTF materials are rendered as three.js, Filament and Babylon.js
 //! render them, with multiple scattering compensated; false gives the
 //! specification's BRDF exactly, the contract's measured-reflectance
-//! section) and `default_light` (the light of a glTF scene that has
-//! none). Errors name the key.
+//! section), `default_light` (the light of a glTF scene that has
+//! none) and `variant` (the `KHR_materials_variants` variant the files are
+//! drawn in). Errors name the key.
 
 use super::schema::GltfSection;
 use crate::material::{Material, ReflectanceModel};
+use crate::scene::gltf_import::GltfScene;
+use std::path::Path;
 
 /// The light of a scene whose glTF files bring none, with no
 /// `[[lights]]` and no `[environment] map` (`[gltf] default_light`).
@@ -30,6 +33,51 @@ impl DefaultLight {
             "studio" => Some(DefaultLight::Studio),
             "directional" => Some(DefaultLight::Directional),
             _ => None,
+        }
+    }
+}
+
+/// `gltf.variant`: the material variant each glTF file of the scene is
+/// drawn in. A file that has variants must have one of that name (an
+/// error lists the file's); files without variants are drawn as they
+/// are, but at least one file of the scene must have variants.
+#[derive(Clone, Debug, Default)]
+pub struct VariantChoice {
+    name: Option<String>,
+    found: bool,
+}
+
+impl VariantChoice {
+    pub fn new(section: &GltfSection) -> Self {
+        VariantChoice {
+            name: section.variant.clone(),
+            found: false,
+        }
+    }
+
+    /// Draws `imported` (read from `path`) in the chosen variant.
+    pub fn apply(&mut self, path: &Path, imported: &mut GltfScene) -> crate::Result<()> {
+        let Some(name) = &self.name else {
+            return Ok(());
+        };
+        if imported.variants.is_empty() {
+            return Ok(());
+        }
+        imported
+            .choose_variant(name)
+            .map_err(|p| crate::Error::input(path, format!("gltf.variant = \"{name}\": {p}")))?;
+        self.found = true;
+        Ok(())
+    }
+
+    /// After every file: an error if a variant was asked for and no file
+    /// has variants.
+    pub fn finish(&self) -> Result<(), String> {
+        match &self.name {
+            Some(name) if !self.found => Err(format!(
+                "gltf.variant = \"{name}\": no glTF file of the scene has material variants (KHR_materials_variants)"
+            )),
+            _ => Ok(()),
         }
     }
 }

@@ -56,6 +56,9 @@ pub struct GltfSection {
     /// studio environment) or `"directional"` (the scene files' default
     /// light).
     pub default_light: Option<String>,
+    /// The material variant (`KHR_materials_variants`) the glTF files
+    /// are drawn in, by name; their default materials without it.
+    pub variant: Option<String>,
 }
 
 /// `[image]`: output size in pixels.

@@ -80,6 +80,21 @@ impl ImageStore {
         bytes: &[u8],
         encoding: Encoding,
     ) -> Result<usize, String> {
+        self.load_bytes_mapped(name, bytes, encoding, |_| {})
+    }
+
+    /// [`Self::load_bytes`] with `map` applied to every decoded linear
+    /// texel before the mip chain is built: an image derived from a file's
+    /// (a glTF value stored as `1 − A`, say), computed from the decoded
+    /// f32 values so that it is rounded to the stored halves once. `name`
+    /// must tell the derivation apart from the plain image.
+    pub fn load_bytes_mapped(
+        &mut self,
+        name: String,
+        bytes: &[u8],
+        encoding: Encoding,
+        map: impl Fn(&mut [f32; 4]),
+    ) -> Result<usize, String> {
         if let Some(&i) = self.loaded.get(&(name.clone(), encoding)) {
             return Ok(i);
         }
@@ -90,7 +105,8 @@ impl ImageStore {
         }
         let (width, height) = decode::dimensions(bytes)?;
         let cost = decode::check_size(width, height, self.bytes_left)?;
-        let decoded = decode::decode(bytes, encoding, self.bytes_left)?;
+        let mut decoded = decode::decode(bytes, encoding, self.bytes_left)?;
+        decoded.rgba.iter_mut().for_each(map);
         self.bytes_left -= cost;
         self.count_left -= 1;
         self.images
