@@ -67,6 +67,9 @@ pub fn estimate(
     if cos_o <= 0.0 {
         return diffuse;
     }
+    if material.model == ReflectanceModel::GltfPbr {
+        return super::prefiltered_layers::estimate(map, prefiltered, material, frame, wo);
+    }
     let (alpha, f0, weight) = specular_terms(material);
     let [a, b] = dfg::table().lookup(cos_o, alpha);
     let r = mirror_direction(wo, n);
