@@ -883,7 +883,7 @@ fn the_sampled_error_vs_n_is_measured() {
 /// Before BRDF sampling (cosine only) the gltf-pbr rows were: blobs
 /// 10.65 / 3.40 / 0.81 / 0.14 % mean, 106 / 35.7 / 12.5 / 1.8 % p99; sky
 /// 7.88 / 12.05 / 9.47 / 4.60 %, 75.7 / 174 / 119 / 52.9 %. The gold rows
-/// are measured with its lobe (`k_d = 0`, `k_s = 1`, stop 25); until
+/// are measured with its lobe (`k_d = 0`, `k_s = 1`, since 2026-12-02); until
 /// then the scene's gold had `k_s = 0` and its rows measured a diffuse
 /// sphere (docs/environment.md).
 const SAMPLED_MEASURED: [[(f64, f64); 4]; 4] = [

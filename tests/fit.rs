@@ -154,6 +154,16 @@ fn gltf_pbr_is_recovered() {
     recovers("gltf-pbr", &[0.7, 0.4, 0.2, 0.3, 0.4]);
 }
 
+/// A coat over the base: base colour, metallic, roughness, then the coat's
+/// weight and roughness (a narrow coat over a wide base, a paint).
+#[test]
+fn gltf_pbr_with_a_clearcoat_is_recovered() {
+    recovers(
+        "gltf-pbr,layers=clearcoat",
+        &[0.6, 0.3, 0.2, 0.2, 0.6, 0.8, 0.2],
+    );
+}
+
 /// Runs `gonio fit ARGS` and checks the one-paragraph exit-2 error.
 fn fails_with_2(args: &[&str], names: &str) {
     let out = gonio().arg("fit").args(args).output().unwrap();

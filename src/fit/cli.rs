@@ -33,7 +33,8 @@ pub struct FitArgs {
     #[arg(required_unless_present_any = ["all", "merge"])]
     pub material: Option<String>,
     /// The model: lambert, phong, phong-normalized, blinn-phong,
-    /// blinn-phong-normalized, ward, gltf-pbr, abc (Löw et al. 2012),
+    /// blinn-phong-normalized, ward, gltf-pbr, `gltf-pbr,layers=clearcoat`
+    /// (a KHR_materials_clearcoat coat over the base), abc (Löw et al. 2012),
     /// `abc,start=published` (also started from the published parameters),
     /// abc-published (the published ABC parameters, scored, not fitted), or
     /// `cook-torrance[,distribution=D][,fresnel=F][,geometry=G]`

@@ -15,10 +15,17 @@
 //! its published fits: `k_s = 1`, `A` per channel, `B`, `C`, and `η_i = 1`
 //! with a free `η_t` (the published `ior`); `abc-published` is no fit but
 //! those published parameters (`published.rs`), scored alike.
+//!
+//! Layered models: `gltf-pbr,layers=clearcoat` fits a `KHR_materials_clearcoat`
+//! coat (`clearcoat`, `clearcoat_roughness`) over the metallic-roughness
+//! base, the two-lobe structure of paints and varnished surfaces (the
+//! contract's "Layered glTF materials"). A sheen is not offered: its
+//! albedo scaling integrates `E(μ)` exactly for every direction and
+//! roughness a search visits (one fabric took over 10 minutes).
 
 use crate::material::param::{
-    ABC_A, ABC_B, ABC_C, BASE_COLOR, ETA, ETA_T, K_D, K_E, K_S, KAPPA, METALLIC,
-    PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, Value, WARD_SIGMA,
+    ABC_A, ABC_B, ABC_C, BASE_COLOR, CLEARCOAT, CLEARCOAT_ROUGHNESS, ETA, ETA_T, K_D, K_E, K_S,
+    KAPPA, METALLIC, PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, Value, WARD_SIGMA,
 };
 use crate::material::{
     Distribution, Fresnel, Geometry, Material, ROUGHNESS_FLOOR, ReflectanceModel,
@@ -119,6 +126,7 @@ pub const ALL: &[&str] = &[
     "cook-torrance,distribution=gaussian-normalized,fresnel=dielectric",
     "cook-torrance,distribution=ggx,fresnel=dielectric",
     "gltf-pbr",
+    "gltf-pbr,layers=clearcoat",
     "abc",
     "abc,start=published",
     ABC_PUBLISHED,
@@ -214,6 +222,7 @@ impl FitModel {
         }
         let mut base = Material::new("fit", model);
         let mut from_published = false;
+        let mut layers = Layers::default();
         (base.geometry, base.fresnel) = (Geometry::Smith, Fresnel::Conductor);
         for part in parts {
             let Some((key, value)) = part.split_once('=') else {
@@ -221,6 +230,10 @@ impl FitModel {
             };
             if model == ReflectanceModel::Abc && part == "start=published" {
                 from_published = true;
+                continue;
+            }
+            if model == ReflectanceModel::GltfPbr && key.trim() == "layers" {
+                layers = parse_layers(value)?;
                 continue;
             }
             if model != ReflectanceModel::CookTorrance {
@@ -239,7 +252,8 @@ impl FitModel {
                 }
             }
         }
-        let free = free_numbers(&mut base);
+        let mut free = free_numbers(&mut base);
+        free.extend(layer_numbers(layers));
         let spec = if model == ReflectanceModel::CookTorrance {
             format!(
                 "{name},distribution={},fresnel={}{}",
@@ -253,6 +267,8 @@ impl FitModel {
             )
         } else if from_published {
             format!("{name},start=published")
+        } else if let Some(names) = layers.names() {
+            format!("{name},layers={names}")
         } else {
             name.to_string()
         };
@@ -276,6 +292,10 @@ impl FitModel {
                 (of(&ABC_C), (0..=6).map(|k| k as f64 / 6.0).collect()),
                 (of(&ETA_T), vec![0.1, 0.3, 0.6]),
             ]
+        } else if layers.clearcoat {
+            // The coat's width, like the base's: a wide and a narrow
+            // lobe are told apart by where they start.
+            vec![(of(&CLEARCOAT_ROUGHNESS), vec![0.1, 0.4, 0.8])]
         } else {
             Vec::new()
         };
@@ -297,6 +317,9 @@ impl FitModel {
             return "abc-from-published".into();
         }
         let m = &self.base;
+        if let Some((_, names)) = self.spec.split_once(",layers=") {
+            return format!("{}+{names}", m.model.name());
+        }
         if m.model != ReflectanceModel::CookTorrance {
             return m.model.name().to_string();
         }
@@ -333,6 +356,47 @@ impl FitModel {
         }
         m
     }
+}
+
+/// The layers a `gltf-pbr` fit adds (`layers=clearcoat`).
+#[derive(Clone, Copy, Debug, Default)]
+struct Layers {
+    clearcoat: bool,
+}
+
+impl Layers {
+    /// `clearcoat`; `None` without layers.
+    fn names(self) -> Option<String> {
+        self.clearcoat.then(|| "clearcoat".to_string())
+    }
+}
+
+fn parse_layers(value: &str) -> Result<Layers, String> {
+    match value.trim() {
+        "clearcoat" => Ok(Layers { clearcoat: true }),
+        other => Err(format!(
+            "`{other}` is not a layer a fit adds: it adds `clearcoat` (a sheen's exact albedo scaling is too slow to search)"
+        )),
+    }
+}
+
+/// The free numbers of the layers: a coat's weight and perceptual
+/// roughness (from 0.01, as the base's).
+fn layer_numbers(layers: Layers) -> Vec<Free> {
+    let mut free = Vec::new();
+    if layers.clearcoat {
+        free.push(Free {
+            channel: None,
+            ..colour(&CLEARCOAT, 0.0, 1.0).next().expect("three channels")
+        });
+        free.push(shape(
+            &CLEARCOAT_ROUGHNESS,
+            PERCEPTUAL_BOUNDS.0,
+            PERCEPTUAL_BOUNDS.1,
+            true,
+        ));
+    }
+    free
 }
 
 fn unknown(name: &str) -> String {

@@ -291,7 +291,7 @@ impl Bvh {
         // Nodes and entry distances in two arrays: zeroed, they are one
         // `memset` each, where an array of `(u32, f64)` pairs was filled
         // element by element (its padding), 290 instructions a ray, a
-        // fifth of a primary ray's walk (docs/reference-timing.md).
+        // fifth of a primary ray's walk (docs/notes/reference-timing.md).
         let mut stack = [0u32; STACK];
         let mut stack_t = [0.0f64; STACK];
         stack_t[0] = t_root;

@@ -102,7 +102,7 @@ impl Camera {
     /// [`Camera::ray`] for many points of one image: the basis, the
     /// tangent of the half angle and the aspect computed once (a tangent
     /// and three normalizations per ray were a fifth of the reference's
-    /// camera-ray cost; docs/reference-timing.md). Same arithmetic in the
+    /// camera-ray cost; docs/notes/reference-timing.md). Same arithmetic in the
     /// same order, so the same bits as [`Camera::ray`].
     pub fn rays(&self, width: u32, height: u32) -> PrimaryRays {
         PrimaryRays {

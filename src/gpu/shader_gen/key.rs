@@ -29,7 +29,7 @@ pub struct ShaderKey {
     /// `image.tone_map`, compiled into display modules as the constant
     /// `TONE_MAP` so a window pays for its own operator only (computing
     /// all four and selecting by a uniform cost 9–13 % of the viewer's CPU
-    /// time on lavapipe, docs/viewer.md). Offscreen modules ignore it.
+    /// time on lavapipe, docs/notes/viewer-frame-times.md). Offscreen modules ignore it.
     pub tone_map: crate::output::tone_map::ToneMap,
 }
 

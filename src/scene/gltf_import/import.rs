@@ -81,7 +81,7 @@ impl<'a> Importer<'a> {
             let mut converted = material_from_pbr(name, &material)?;
             self.textures(&material, &pbr, &mut converted)
                 .map_err(|e| format!("material {index}: {e}"))?;
-            // What alpha does and does not do here (README, "alphaMode").
+            // What alpha does and does not do here (docs/gltf.md, "alphaMode").
             match converted.alpha_mode {
                 crate::material::AlphaMode::Opaque => {}
                 crate::material::AlphaMode::Mask { cutoff } => self.scene.notes.push(format!(
