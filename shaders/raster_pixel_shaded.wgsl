@@ -125,7 +125,11 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     #else
     let textured = textured_surface(material, surface_uv);
     #endif
+    #if layer_clearcoat
+    var material = textured.material;
+    #else
     let material = textured.material;
+    #endif
     #elif vertex_colors
     let material = vertex_coloured(material, in.color);
     #endif
@@ -151,7 +155,15 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     // interpolation is ±1 within a triangle: split vertices keep a
     // triangle's corners on one side of a mirror seam).
     #if normal_map
+    #if layer_clearcoat
+    let vertex_frame = frame;
+    #endif
     frame = normal_mapped_frame(frame, flip * select(1.0, -1.0, in.bitangent_sign < 0.0), textured.normal);
+    // The coat's normal map, in the mesh's frame, in the shading frame's
+    // coordinates.
+    #if layer_clearcoat
+    material.layers.clearcoat_normal = clearcoat_normal_coords(vertex_frame, flip * select(1.0, -1.0, in.bitangent_sign < 0.0), textured.clearcoat_normal, frame, material.layers.clearcoat_normal);
+    #endif
     #endif
     #if shadow_pixel
     let radiance = reflected_radiance(material, in.world, frame, n_g);

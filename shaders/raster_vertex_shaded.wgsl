@@ -99,14 +99,26 @@ fn vertex_radiance(in: VertexIn, flip: f32) -> vec3<f32> {
     #else
     let textured = textured_surface_level0(material, in.uv0, in.uv1);
     #endif
+    #if layer_clearcoat
+    var material = textured.material;
+    #else
     let material = textured.material;
+    #endif
     #elif vertex_colors
     let material = vertex_coloured(material, in.color);
     #endif
     // A normal map (flat: the triangle's first corner's sign at every
     // corner, as the reference).
     #if normal_map
+    #if layer_clearcoat
+    let vertex_frame = frame;
+    #endif
     frame = normal_mapped_frame(frame, flip * select(1.0, -1.0, in.bitangent_sign < 0.0), textured.normal);
+    // The coat's normal map, in the mesh's frame, in the shading frame's
+    // coordinates.
+    #if layer_clearcoat
+    material.layers.clearcoat_normal = clearcoat_normal_coords(vertex_frame, flip * select(1.0, -1.0, in.bitangent_sign < 0.0), textured.clearcoat_normal, frame, material.layers.clearcoat_normal);
+    #endif
     #endif
     // Shadows: looked up here, at the same shading point, offset along the
     // face normal (flat) or the vertex normal (gouraud), as the reference.

@@ -14,7 +14,7 @@ struct TextureSlot {
     row_u: vec4<f32>,  // u' = dot(row_u.xyz, (u, v, 1)): KHR_texture_transform, first row
     row_v: vec4<f32>,  // v' = dot(row_v.xyz, (u, v, 1))
     fields: u32,       // bit mask of the Material fields it scales (material::texture::gpu_field_values order); 0: unused
-    channel: u32,      // 4: RGB (a colour parameter); 0-3: the channel a scalar parameter reads; 5: a normal map
+    channel: u32,      // 4: RGB (a colour parameter); 0-3: the channel a scalar parameter reads; 5: a normal map; 6: the coat's normal map; 7: the anisotropy map
     tex_coord: u32,    // UV set (TEXCOORD_n)
     strength: f32,     // 1; occlusion: glTF's strength; normal map: glTF's scale
     alpha: u32,        // 1: the texel's A multiplies Material.alpha (the base colour's texture)
@@ -105,6 +105,21 @@ fn scale_fields(base: Material, fields: u32, f: vec3<f32>) -> Material {
     m.metallic *= select(1.0, f.x, (fields & 32768u) != 0u);
     m.emission *= select(one, f, (fields & 65536u) != 0u);
     m.occlusion *= select(1.0, f.x, (fields & 131072u) != 0u);
+    #if gltf_layers
+    // gltf-pbr's layers: bits 18-28 (29, the anisotropy direction, is
+    // never set: a texture on the rotation is refused on the CPU).
+    m.layers.ior *= select(1.0, f.x, (fields & (1u << 18u)) != 0u);
+    m.layers.specular *= select(1.0, f.x, (fields & (1u << 19u)) != 0u);
+    m.layers.specular_color *= select(one, f, (fields & (1u << 20u)) != 0u);
+    m.layers.clearcoat *= select(1.0, f.x, (fields & (1u << 21u)) != 0u);
+    m.layers.clearcoat_roughness *= select(1.0, f.x, (fields & (1u << 22u)) != 0u);
+    m.layers.sheen_color *= select(one, f, (fields & (1u << 23u)) != 0u);
+    m.layers.sheen_roughness *= select(1.0, f.x, (fields & (1u << 24u)) != 0u);
+    m.layers.iridescence *= select(1.0, f.x, (fields & (1u << 25u)) != 0u);
+    m.layers.iridescence_ior *= select(1.0, f.x, (fields & (1u << 26u)) != 0u);
+    m.layers.iridescence_thickness *= select(1.0, f.x, (fields & (1u << 27u)) != 0u);
+    m.layers.anisotropy_strength *= select(1.0, f.x, (fields & (1u << 28u)) != 0u);
+    #endif
     return m;
 }
 
@@ -143,11 +158,33 @@ fn slot_duv(slot: TextureSlot, d: vec2<f32>) -> vec2<f32> {
 }
 
 // The material at a point, and its normal map's tangent-space normal
-// ((0, 0, 1) without one). f64 twin: reference::texture::Textured.
+// ((0, 0, 1) without one); with the coat compiled, the coat's normal map's
+// ((0, 0, 0) without one). f64 twin: reference::texture::Textured.
 struct TexturedSurface {
     material: Material,
     normal: vec3<f32>,
+    #if layer_clearcoat
+    clearcoat_normal: vec3<f32>,
+    #endif
 }
+
+#if layer_anisotropy
+// KHR_materials_anisotropy's texture: the direction d = 2·rg − 1, turned
+// by the slot's rotation cs as a normal map's normal is, normalized
+// ((1, 0) for a zero d), multiplies (cos ρ, sin ρ) as a complex number
+// (the angles add); B multiplies the strength. Twin:
+// material::texture::decode_anisotropy (which adds the angles).
+fn anisotropy_texel(layers: GltfLayers, texel: vec4<f32>, cs: vec2<f32>) -> GltfLayers {
+    var out = layers;
+    let d = rotated_normal(vec3<f32>(2.0 * texel.rg - 1.0, 0.0), cs).xy;
+    let len2 = dot(d, d);
+    let u = select(vec2<f32>(1.0, 0.0), d * inverseSqrt(len2), len2 > 0.0);
+    let r = layers.anisotropy_direction;
+    out.anisotropy_direction = vec2<f32>(r.x * u.x - r.y * u.y, r.x * u.y + r.y * u.x);
+    out.anisotropy_strength *= texel.b;
+    return out;
+}
+#endif
 
 // One slot's texel applied: its fields scaled (none for a normal map,
 // whose fields are 0), or its normal taken (channel 5); the base colour's
@@ -159,6 +196,15 @@ fn apply_slot(s: TexturedSurface, slot: TextureSlot, texel: vec4<f32>) -> Textur
     out.material.alpha *= select(1.0, texel.a, slot.alpha != 0u);
     let n = rotated_normal(decoded_normal(texel, slot.strength), slot.rotation);
     out.normal = select(s.normal, n, slot.channel == 5u);
+    #if layer_clearcoat
+    out.clearcoat_normal = select(s.clearcoat_normal, n, slot.channel == 6u);
+    #endif
+    #if layer_anisotropy
+    let turned = anisotropy_texel(out.material.layers, texel, slot.rotation);
+    let anisotropy = slot.channel == 7u;
+    out.material.layers.anisotropy_direction = select(out.material.layers.anisotropy_direction, turned.anisotropy_direction, anisotropy);
+    out.material.layers.anisotropy_strength = select(out.material.layers.anisotropy_strength, turned.anisotropy_strength, anisotropy);
+    #endif
     return out;
 }
 
@@ -187,7 +233,11 @@ fn textured_widths_floored(base: Material, fields: u32) -> Material {
 // The material at a pixel: every slot's texel applied.
 // f64 twin: reference::texture::textured.
 fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
+    #if layer_clearcoat
+    var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(0.0));
+    #else
     var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0));
+    #endif
     var fields = 0u;
     for (var i = 0u; i < TEXTURE_SLOTS; i++) {
         let slot = texture_slots.slots[i];
@@ -205,7 +255,11 @@ fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
 
 // The material at a vertex (flat and Gouraud shading): level 0.
 fn textured_surface_level0(base: Material, uv0: vec2<f32>, uv1: vec2<f32>) -> TexturedSurface {
+    #if layer_clearcoat
+    var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(0.0));
+    #else
     var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0));
+    #endif
     var fields = 0u;
     for (var i = 0u; i < TEXTURE_SLOTS; i++) {
         let slot = texture_slots.slots[i];
@@ -227,4 +281,19 @@ fn normal_mapped_frame(frame: SurfaceFrame, sign: f32, n_t: vec3<f32>) -> Surfac
     let n = normalize_or_zero(frame.t * n_t.x + b * n_t.y + frame.n * n_t.z);
     return surface_frame(n, frame.t);
 }
+
+#if layer_clearcoat
+// The coat's normal map applied: n_c from n_t in the mesh's frame
+// vertex_frame (before the base's normal map), written in the coordinates
+// of the shading frame `shading` (GltfLayers.clearcoat_normal); `keep`
+// (the material's, (0, 0, 1)) where the material has no coat normal map
+// (n_t = 0). Twin: reference::texture::clearcoat_normal_coords.
+fn clearcoat_normal_coords(vertex_frame: SurfaceFrame, sign: f32, n_t: vec3<f32>, shading: SurfaceFrame, keep: vec3<f32>) -> vec3<f32> {
+    if all(n_t == vec3<f32>(0.0)) {
+        return keep;
+    }
+    let n_c = normal_mapped_frame(vertex_frame, sign, n_t).n;
+    return vec3<f32>(dot(n_c, shading.t), dot(n_c, shading.b), dot(n_c, shading.n));
+}
+#endif
 #endif

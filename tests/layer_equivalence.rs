@@ -17,9 +17,9 @@
 //! moved by K = 64 roundings (directions absolutely, parameters
 //! relatively), plus N = 64 roundings of the result, plus what Vulkan
 //! allows the transcendental functions beyond rounding:
-//! * the anisotropy direction `T = cos ρ t + sin ρ b`: `sin`, `cos` are
-//!   within 2⁻¹¹ absolute, the same as moving `t` and `b` by 2⁻¹¹ per
-//!   component, so those inputs move by that much more;
+//! * (the anisotropy direction `(cos ρ, sin ρ)` is computed in f64 and
+//!   rounded once, as the renderer uploads it: `t` and `b` move by the
+//!   roundings of the direction's use, no transcendental allowance);
 //! * the thin film's `cos` of the (reduced) phase: 2⁻¹¹ absolute per XYZ
 //!   term, through `M` and the Airy coefficients to `F_ir`
 //!   ([`film_cos_bound`]) and from `F_ir` to `f_r` at most
@@ -66,17 +66,6 @@ const LOG_ERROR: f64 = 1.0 / 2_097_152.0;
 /// by 2⁻²¹ (or 3 ulp of a larger value), times `c ≤ 0.2` and ln 2, moves
 /// `l` by at most `a/4 ≤ 6.4` times that relative error.
 const SHEEN_V_ERROR: f64 = 53.0 * U + 6.4 * 0.2 * std::f64::consts::LN_2 * LOG_ERROR + 64.0 * U;
-
-/// The layer files, in dependency order (each may use those before).
-const LAYER_FILES: &[&str] = &[
-    "mod.wgsl",
-    "iridescence.wgsl",
-    "base_ior_specular.wgsl",
-    "sheen.wgsl",
-    "sheen_albedo.wgsl",
-    "clearcoat.wgsl",
-    "stack.wgsl",
-];
 
 /// One evaluation.
 #[derive(Clone, Debug)]
@@ -195,6 +184,15 @@ const SHEEN_COLOR: &[f64] = &[0.0, 0.2, 1.0];
 const SHEEN_ROUGHNESS: &[f64] = &[0.0, 0.01, 0.05, 0.2, 0.5, 1.0];
 const CLEARCOAT: &[f64] = &[0.0, 0.3, 1.0];
 const CLEARCOAT_ROUGHNESS: &[f64] = &[0.0, 0.01, 0.1, 0.3, 0.7, 1.0];
+/// The coat's own normal (`clearcoat_normal_texture`) in the frame: the
+/// shading normal, tilted ones, and one turned below the view's horizon
+/// for some directions (`F_c` at `max(n_c·V, 0)`).
+const COAT_NORMAL: &[[f64; 3]] = &[
+    [0.0, 0.0, 1.0],
+    [0.3, -0.2, 0.93],
+    [-0.6, 0.5, 0.62],
+    [0.9, 0.0, 0.44],
+];
 
 fn table_nodes() -> &'static [f32] {
     static NODES: OnceLock<Vec<f32>> = OnceLock::new();
@@ -263,6 +261,9 @@ fn samples(case: Case) -> Vec<Sample> {
             if case.clearcoat {
                 l.clearcoat = pick(CLEARCOAT);
                 l.clearcoat_roughness = pick(CLEARCOAT_ROUGHNESS);
+                let k = strides.next().unwrap();
+                let c = COAT_NORMAL[((i / k) % COAT_NORMAL.len() as u64) as usize];
+                l.clearcoat_normal = DVec3::from_array(c).normalize();
             }
             let layers = round_layers(&l);
             let (wi, wo) = (r32v(wi), r32v(wo));
@@ -304,6 +305,7 @@ fn round_layers(l: &GltfLayers) -> GltfLayers {
         iridescence_thickness: r32(l.iridescence_thickness),
         anisotropy_strength: r32(l.anisotropy_strength),
         anisotropy_rotation: r32(l.anisotropy_rotation),
+        clearcoat_normal: r32v(l.clearcoat_normal),
     }
 }
 
@@ -346,6 +348,10 @@ fn perturbations() -> Vec<(Perturb, bool)> {
             Box::new(move |s: &mut Sample, d| s.layers.sheen_color[a] *= 1.0 + d),
             false,
         ));
+        p.push((
+            Box::new(move |s: &mut Sample, d| s.layers.clearcoat_normal[a] += d),
+            true,
+        ));
     }
     let scalars: [fn(&mut Sample) -> &mut f64; 14] = [
         |s| &mut s.metallic,
@@ -369,8 +375,8 @@ fn perturbations() -> Vec<(Perturb, bool)> {
     p
 }
 
-/// The frame's tangent and bitangent moved by `sin`/`cos`'s allowance
-/// (anisotropic samples only).
+/// The frame's tangent and bitangent moved as the rounded direction
+/// `(cos ρ, sin ρ)` moves them (anisotropic samples only).
 fn frame_perturbations() -> Vec<Perturb> {
     let mut p: Vec<Perturb> = Vec::new();
     for a in 0..3 {
@@ -398,7 +404,7 @@ fn perturbation_error(s: &Sample, f: Rgb, list: &[(Perturb, bool)], frame: &[Per
     }
     if s.layers.anisotropy_strength > 0.0 {
         for p in frame {
-            add(p.as_ref(), step + TRIG_ERROR);
+            add(p.as_ref(), step);
         }
     }
     total
@@ -478,21 +484,23 @@ fn transcendental(s: &Sample) -> Rgb {
 fn compute_source() -> String {
     let material = Material::new("layers", ReflectanceModel::GltfPbr);
     let variants: BTreeSet<_> = [material.variant()].into();
+    // Every layer compiled, as a scene with all of them has it (the
+    // sheen's table a uniform buffer at group 0, binding 4).
     let key = ShaderKey {
         shading: gonio::scene::ShadingMode::Phong,
         variants: variants.clone(),
+        materials: gonio::gpu::shader_gen::MaterialsKey {
+            gltf_layers: true,
+            layer_ior_specular: true,
+            layer_clearcoat: true,
+            layer_sheen: true,
+            layer_iridescence: true,
+            layer_anisotropy: true,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let mut src = compose_brdf_library(&variants, &key.features());
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders/brdf/gltf_layers");
-    for f in LAYER_FILES {
-        let mut text = std::fs::read_to_string(dir.join(f)).unwrap();
-        if *f == "sheen_albedo.wgsl" {
-            text = table_as_buffer(&text);
-        }
-        src.push_str(&text);
-        src.push('\n');
-    }
     src.push_str(
         r#"
 struct LayerSample {
@@ -529,27 +537,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     src
 }
 
-/// The table's nodes as a storage buffer (binding 2) instead of the
-/// file's `const` array, the same f32 values: lavapipe's LLVM (15) spends
-/// tens of minutes in its coroutine-splitting pass on a shader that
-/// indexes a 1024-element `const` array at run time (measured on this
-/// machine, 2026-12-04), so the GPU dispatch must upload the table as a
-/// buffer, as energy compensation's table is (`globals.albedo`).
-fn table_as_buffer(text: &str) -> String {
-    let start = text
-        .find("const SHEEN_ALBEDO_TABLE:")
-        .expect("the table's declaration");
-    let end = start + text[start..].find(");\n").expect("the table's end") + 3;
-    format!(
-        "{}@group(0) @binding(2) var<storage, read> SHEEN_ALBEDO_TABLE: array<f32>;\n{}",
-        &text[..start],
-        &text[end..]
-    )
-}
-
-fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 32] {
+fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 36] {
     let l = &s.layers;
     let v = |x: f64| x as f32;
+    // (cos ρ, sin ρ) in f64, rounded once (gpu::layout::GpuGltfLayers).
+    let direction = l.anisotropy_direction();
     [
         v(s.wi.x),
         v(s.wi.y),
@@ -575,14 +567,18 @@ fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 32] {
         v(l.sheen_color.y),
         v(l.sheen_color.z),
         v(l.specular),
+        v(l.clearcoat_normal.x),
+        v(l.clearcoat_normal.y),
+        v(l.clearcoat_normal.z),
         v(l.clearcoat),
+        v(direction.x),
+        v(direction.y),
         v(l.clearcoat_roughness),
         v(l.sheen_roughness),
         v(l.iridescence),
         v(l.iridescence_ior),
         v(l.iridescence_thickness),
         v(l.anisotropy_strength),
-        v(l.anisotropy_rotation),
     ]
 }
 
@@ -594,7 +590,7 @@ fn gpu_eval(
 ) -> Vec<([f32; 3], f32)> {
     let src = compute_source();
     gonio::gpu::shader_gen::validate(&src).unwrap_or_else(|e| panic!("{e}"));
-    let data: Vec<[f32; 32]> = samples
+    let data: Vec<[f32; 36]> = samples
         .iter()
         .zip(table_at)
         .map(|(s, t)| pack(s, *t))
@@ -611,14 +607,14 @@ fn gpu_eval(
         .create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: None,
             contents: bytemuck::cast_slice(table_nodes()),
-            usage: wgpu::BufferUsages::STORAGE,
+            usage: wgpu::BufferUsages::UNIFORM,
         });
     let output = common::compute_output(ctx, (samples.len() * 16) as u64);
     let bytes = common::run_compute(
         ctx,
         "layer equivalence",
         &src,
-        &[(0, vec![(0, &input), (1, &output), (2, &table)])],
+        &[(0, vec![(0, &input), (1, &output), (4, &table)])],
         samples.len(),
         &output,
     );

@@ -86,8 +86,8 @@ fn buffer_entry(binding: u32, uniform: bool) -> wgpu::BindGroupLayoutEntry {
 }
 
 /// Group 0 of a scene pipeline: globals, the draw's material (dynamic
-/// offset), lights, and the measured tables if the scene has a measured
-/// material.
+/// offset), lights, the measured tables if the scene has a measured
+/// material, the sheen's albedo table if a material has a sheen.
 pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu::BindGroupLayout {
     let material = wgpu::BindGroupLayoutEntry {
         binding: 1,
@@ -106,6 +106,9 @@ pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu:
     ];
     if arrays.measured {
         entries.push(buffer_entry(3, false));
+    }
+    if arrays.sheen {
+        entries.push(buffer_entry(4, true));
     }
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio scene"),

@@ -52,6 +52,10 @@ pub struct UniformArrays {
     /// has the measured tables' storage buffer at binding 3
     /// (src/gpu/measured_tables.rs).
     pub measured: bool,
+    /// Not a scene array either: some material has a sheen (feature
+    /// `layer_sheen`), so group 0 has the sheen's albedo table, a uniform
+    /// buffer at binding 4 (shaders/brdf/gltf_layers/sheen_albedo.wgsl).
+    pub sheen: bool,
 }
 
 impl UniformArrays {
@@ -61,6 +65,7 @@ impl UniformArrays {
             lights: lights <= UNIFORM_LIGHTS,
             shadow_views: shadow_views <= UNIFORM_SHADOW_VIEWS,
             measured: false,
+            sheen: false,
         }
     }
 

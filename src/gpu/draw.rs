@@ -170,6 +170,8 @@ pub struct SceneDraw {
     lights_buffer: wgpu::Buffer,
     /// The measured tables (binding 3), when the scene has any.
     measured_buffer: Option<wgpu::Buffer>,
+    /// The sheen's albedo table (binding 4), when a material has a sheen.
+    sheen_buffer: Option<wgpu::Buffer>,
     bind_group: wgpu::BindGroup,
 }
 
@@ -215,6 +217,7 @@ impl SceneDraw {
             bindings::usage(arrays.lights) | dynamic,
         );
         let measured_buffer = measured_buffer(device, arrays, measured);
+        let sheen_buffer = sheen_buffer(device, arrays);
         let bind_group = scene_bind_group(
             device,
             layouts,
@@ -222,6 +225,7 @@ impl SceneDraw {
             &materials_buffer,
             &lights_buffer,
             measured_buffer.as_ref(),
+            sheen_buffer.as_ref(),
         );
         SceneDraw {
             layout: geometry.layout,
@@ -237,6 +241,7 @@ impl SceneDraw {
             materials_buffer,
             lights_buffer,
             measured_buffer,
+            sheen_buffer,
             bind_group,
         }
     }
@@ -312,6 +317,9 @@ impl SceneDraw {
             self.materials_buffer =
                 init("materials", &materials_bytes, wgpu::BufferUsages::UNIFORM);
             self.lights_buffer = init("lights", &lights_bytes, bindings::usage(arrays.lights));
+            if arrays.sheen != self.sheen_buffer.is_some() {
+                self.sheen_buffer = sheen_buffer(device, arrays);
+            }
             self.bind_group = scene_bind_group(
                 device,
                 layouts,
@@ -319,6 +327,7 @@ impl SceneDraw {
                 &self.materials_buffer,
                 &self.lights_buffer,
                 self.measured_buffer.as_ref(),
+                self.sheen_buffer.as_ref(),
             );
             self.arrays = arrays;
         } else {
@@ -399,6 +408,7 @@ fn scene_bind_group(
     materials: &wgpu::Buffer,
     lights: &wgpu::Buffer,
     measured: Option<&wgpu::Buffer>,
+    sheen: Option<&wgpu::Buffer>,
 ) -> wgpu::BindGroup {
     let mut entries = vec![
         wgpu::BindGroupEntry {
@@ -418,6 +428,12 @@ fn scene_bind_group(
         entries.push(wgpu::BindGroupEntry {
             binding: 3,
             resource: m.as_entire_binding(),
+        });
+    }
+    if let Some(t) = sheen {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 4,
+            resource: t.as_entire_binding(),
         });
     }
     device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -441,6 +457,19 @@ fn measured_buffer(
             label: Some("measured tables"),
             contents: &bytes,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        })
+    })
+}
+
+/// The sheen's albedo table as a uniform buffer, if `arrays` binds one
+/// (the stored nodes, `gltf_layers::sheen_albedo_nodes`).
+fn sheen_buffer(device: &wgpu::Device, arrays: UniformArrays) -> Option<wgpu::Buffer> {
+    use crate::material::brdf::gltf_layers::sheen_albedo_nodes::SHEEN_ALBEDO_NODES;
+    arrays.sheen.then(|| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("sheen albedo table"),
+            contents: bytemuck::cast_slice(&SHEEN_ALBEDO_NODES),
+            usage: wgpu::BufferUsages::UNIFORM,
         })
     })
 }

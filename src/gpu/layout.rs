@@ -35,7 +35,8 @@ pub struct GpuGlobals {
     pub albedo: [[f32; 4]; 256],
 }
 
-/// `Material` (storage buffer element, 144 bytes).
+/// `Material` (uniform buffer record, 224 bytes: 144 without the layers,
+/// which the WGSL declares only with feature `gltf_layers`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuMaterial {
@@ -72,6 +73,52 @@ pub struct GpuMaterial {
     /// The ambient occlusion (`Material::occlusion`; an occlusion
     /// texture's slot multiplies it per pixel).
     pub occlusion: f32,
+    /// gltf-pbr's layers (`ShaderParams::layers`); the WGSL `Material`
+    /// declares them only where a drawn material uses a layer (feature
+    /// `gltf_layers`), the bytes are always there.
+    pub layers: GpuGltfLayers,
+}
+
+/// `GltfLayers` of shaders/brdf/gltf_layers/mod.wgsl (80 bytes, same
+/// order): the layer parameters of `material::layers::GltfLayers` in
+/// `f32`, the anisotropy rotation as its direction `(cos ρ, sin ρ)`
+/// computed in `f64`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuGltfLayers {
+    pub specular_color: [f32; 3],
+    pub ior: f32,
+    pub sheen_color: [f32; 3],
+    pub specular: f32,
+    pub clearcoat_normal: [f32; 3],
+    pub clearcoat: f32,
+    pub anisotropy_direction: [f32; 2],
+    pub clearcoat_roughness: f32,
+    pub sheen_roughness: f32,
+    pub iridescence: f32,
+    pub iridescence_ior: f32,
+    pub iridescence_thickness: f32,
+    pub anisotropy_strength: f32,
+}
+
+impl From<&crate::material::layers::GltfLayers> for GpuGltfLayers {
+    fn from(l: &crate::material::layers::GltfLayers) -> Self {
+        GpuGltfLayers {
+            specular_color: f32x3(l.specular_color),
+            ior: l.ior as f32,
+            sheen_color: f32x3(l.sheen_color),
+            specular: l.specular as f32,
+            clearcoat_normal: f32x3(l.clearcoat_normal),
+            clearcoat: l.clearcoat as f32,
+            anisotropy_direction: l.anisotropy_direction().as_vec2().to_array(),
+            clearcoat_roughness: l.clearcoat_roughness as f32,
+            sheen_roughness: l.sheen_roughness as f32,
+            iridescence: l.iridescence as f32,
+            iridescence_ior: l.iridescence_ior as f32,
+            iridescence_thickness: l.iridescence_thickness as f32,
+            anisotropy_strength: l.anisotropy_strength as f32,
+        }
+    }
 }
 
 /// `Light` (storage buffer element, 128 bytes). The `shadow_*` fields are
@@ -182,6 +229,7 @@ impl GpuMaterial {
             alpha_cutoff: m.alpha_mode.cutoff() as f32,
             alpha_mode: m.alpha_mode.code(),
             occlusion: m.occlusion as f32,
+            layers: GpuGltfLayers::from(&p.layers),
         }
     }
 }
@@ -322,7 +370,9 @@ mod tests {
     #[test]
     fn rust_mirrors_match_the_wgsl_structs_field_by_field() {
         use crate::gpu::shader_gen::{Feature, common, preprocess, sources};
-        let common = common(&[Feature::UniformLights]);
+        // With the layers declared (feature `gltf_layers`), as the
+        // buffer always holds them.
+        let common = common(&[Feature::UniformLights, Feature::GltfLayers]);
         let module = naga::front::wgsl::parse_str(&common).unwrap();
         assert_mirrors(
             &module,
@@ -370,7 +420,28 @@ mod tests {
                 alpha,
                 alpha_cutoff,
                 alpha_mode,
-                occlusion
+                occlusion,
+                layers
+            }),
+        );
+        assert_mirrors(
+            &module,
+            "GltfLayers",
+            std::mem::size_of::<GpuGltfLayers>(),
+            offsets!(GpuGltfLayers {
+                specular_color,
+                ior,
+                sheen_color,
+                specular,
+                clearcoat_normal,
+                clearcoat,
+                anisotropy_direction,
+                clearcoat_roughness,
+                sheen_roughness,
+                iridescence,
+                iridescence_ior,
+                iridescence_thickness,
+                anisotropy_strength
             }),
         );
         assert_mirrors(

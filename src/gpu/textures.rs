@@ -65,6 +65,10 @@ pub struct GpuTextureSlot {
 
 /// `channel` of a normal-map slot (0–3: a scalar's channel, 4: RGB).
 pub const NORMAL_MAP_CHANNEL: u32 = 5;
+/// `channel` of the coat's normal map (`TextureTarget::ClearcoatNormal`).
+pub const CLEARCOAT_NORMAL_MAP_CHANNEL: u32 = 6;
+/// `channel` of the anisotropy map (`TextureTarget::Anisotropy`).
+pub const ANISOTROPY_MAP_CHANNEL: u32 = 7;
 
 /// Whether a material the scene draws has a normal map (feature
 /// `normal_map`: tangents and their signs in the vertex stream).
@@ -176,6 +180,10 @@ pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlo
                 (texture_fields::OCCLUSION_FIELD, 0, strength as f32)
             }
             TextureTarget::Normal { scale } => (0, NORMAL_MAP_CHANNEL, scale as f32),
+            TextureTarget::ClearcoatNormal { scale } => {
+                (0, CLEARCOAT_NORMAL_MAP_CHANNEL, scale as f32)
+            }
+            TextureTarget::Anisotropy => (0, ANISOTROPY_MAP_CHANNEL, 1.0),
         };
         *slot = GpuTextureSlot {
             row_u: row(0),

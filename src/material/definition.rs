@@ -202,6 +202,16 @@ impl Material {
                 .any(|t| matches!(t.target, texture::TextureTarget::Occlusion { .. }))
     }
 
+    /// Which glTF layers a `gltf-pbr` material uses (none for another
+    /// model): the GPU compiles each layer only where a drawn material
+    /// uses it (`MaterialsKey::layer_*`).
+    pub fn gltf_layers_used(&self) -> crate::material::layers::LayersUsed {
+        if self.model != crate::material::ReflectanceModel::GltfPbr {
+            return Default::default();
+        }
+        self.layers.used(|key| self.is_textured(key))
+    }
+
     /// This material as the renderers evaluate it for a given roughness
     /// floor (the pixel footprint, [`crate::scene::Scene::roughness_floor`]):
     /// `roughness`, `sigma_x`, `sigma_y` become `sqrt(r² + floor²)`, never

@@ -48,10 +48,28 @@ pub const ENERGY_COMPENSATION_KEY: &str = "energy_compensation";
 pub const TEXTURE_SUFFIX: &str = "_texture";
 
 /// Texture keys that scale no parameter: `normal_texture` (the
-/// contract's tangent-space normal map, glTF's encoding, scale 1) and
+/// contract's tangent-space normal map, glTF's encoding, scale 1),
 /// `occlusion_texture` (glTF's occlusion on the ambient and environment
-/// terms, R, strength 1).
-pub const MAP_TEXTURE_KEYS: [&str; 2] = ["normal_texture", "occlusion_texture"];
+/// terms, R, strength 1), `clearcoat_normal_texture` (the coat's own
+/// normal map, `gltf-pbr`) and `anisotropy_texture`
+/// (`KHR_materials_anisotropy`'s direction and strength, `gltf-pbr`).
+pub const MAP_TEXTURE_KEYS: [&str; 4] = [
+    "normal_texture",
+    "occlusion_texture",
+    "clearcoat_normal_texture",
+    "anisotropy_texture",
+];
+
+/// The parameter a map texture needs its model to have (it acts on that
+/// layer: none for the normal and occlusion maps, which every model
+/// takes).
+pub fn map_texture_layer(key: &str) -> Option<&'static str> {
+    match key {
+        "clearcoat_normal_texture" => Some("clearcoat"),
+        "anisotropy_texture" => Some("anisotropy_strength"),
+        _ => None,
+    }
+}
 
 /// Whether `key` is `PARAM_texture` for some parameter of the table, or
 /// one of [`MAP_TEXTURE_KEYS`].
@@ -233,13 +251,19 @@ pub fn keys_not_applying(e: &MaterialEntry) -> Vec<&str> {
             .any(|p| p.key == k)
     };
     // A texture on a parameter the model does not read is as ignored as
-    // the parameter (`k_e_texture` on `lambert`, issue 39).
-    let textured = e
-        .textures
-        .iter()
-        .map(|(k, _)| k.as_str())
-        .filter(|k| !MAP_TEXTURE_KEYS.contains(k))
-        .filter(|k| k.strip_suffix(TEXTURE_SUFFIX).is_some_and(|p| !applies(p)));
+    // the parameter (`k_e_texture` on `lambert`, issue 39); so is a map
+    // of a layer the model does not have (`anisotropy_texture` on `ward`).
+    let textured =
+        e.textures
+            .iter()
+            .map(|(k, _)| k.as_str())
+            .filter(|k| match map_texture_layer(k) {
+                Some(layer) => !applies(layer),
+                None => {
+                    !MAP_TEXTURE_KEYS.contains(k)
+                        && k.strip_suffix(TEXTURE_SUFFIX).is_some_and(|p| !applies(p))
+                }
+            });
     e.params
         .iter()
         .map(|(k, _)| k.as_str())

@@ -3,6 +3,7 @@
 //! value the material holds and its BRDF (`brdf::gltf_layers`) reads.
 
 use crate::base::Rgb;
+use glam::{DVec2, DVec3};
 
 /// The layer parameters of a `gltf-pbr` material (the contract's keys,
 /// with its defaults); the core's `base_color`, `metallic` and
@@ -32,8 +33,24 @@ pub struct GltfLayers {
     pub iridescence_thickness: f64,
     /// `KHR_materials_anisotropy.anisotropyStrength`, `s_a`.
     pub anisotropy_strength: f64,
-    /// `…anisotropyRotation`, `ρ` \[rad\] from `t` towards `b`.
+    /// `…anisotropyRotation`, `ρ` \[rad\] from `t` towards `b`. An
+    /// `anisotropy_texture` adds its direction's angle per point
+    /// (`material::texture::decode_anisotropy`).
     pub anisotropy_rotation: f64,
+    /// The coat's normal in the shading frame's coordinates `(t, b, n)`:
+    /// `(0, 0, 1)` (the shading normal) unless a `clearcoat_normal_texture`
+    /// gives the coat its own normal at a point (the reference's renderer
+    /// and the GPU's fragment stage write it there). Not a scene-file key.
+    pub clearcoat_normal: DVec3,
+}
+
+impl GltfLayers {
+    /// `(cos ρ, sin ρ)`: the anisotropy direction in the frame `(t, b)`
+    /// (what the GPU is given, computed here in `f64`).
+    pub fn anisotropy_direction(&self) -> DVec2 {
+        let (s, c) = self.anisotropy_rotation.sin_cos();
+        DVec2::new(c, s)
+    }
 }
 
 impl Default for GltfLayers {
@@ -52,6 +69,48 @@ impl Default for GltfLayers {
             iridescence_thickness: 400.0,
             anisotropy_strength: 0.0,
             anisotropy_rotation: 0.0,
+            clearcoat_normal: DVec3::Z,
+        }
+    }
+}
+
+/// Which layers a material's [`GltfLayers`] switch on (each layer's
+/// contract condition; a texture multiplies a constant, so a layer whose
+/// constant switches it off stays off, except the base's ior and
+/// specular, whose defaults are not zero).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LayersUsed {
+    /// `ior`, `specular` or `specular_color` off their defaults, or textured.
+    pub ior_specular: bool,
+    pub clearcoat: bool,
+    pub sheen: bool,
+    pub iridescence: bool,
+    pub anisotropy: bool,
+}
+
+impl LayersUsed {
+    /// No layer: the core BRDF.
+    pub fn is_empty(&self) -> bool {
+        *self == LayersUsed::default()
+    }
+}
+
+impl GltfLayers {
+    /// The layers these parameters switch on; `textured(key)` says whether
+    /// a texture multiplies the parameter of scene-file key `key`.
+    pub fn used(&self, textured: impl Fn(&str) -> bool) -> LayersUsed {
+        let d = GltfLayers::default();
+        LayersUsed {
+            ior_specular: self.ior != d.ior
+                || self.specular != d.specular
+                || self.specular_color != d.specular_color
+                || ["ior", "specular", "specular_color"]
+                    .into_iter()
+                    .any(textured),
+            clearcoat: self.clearcoat > 0.0,
+            sheen: self.sheen_color != Rgb::ZERO,
+            iridescence: self.iridescence > 0.0 && self.iridescence_thickness > 0.0,
+            anisotropy: self.anisotropy_strength > 0.0,
         }
     }
 }

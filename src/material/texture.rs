@@ -29,6 +29,19 @@ pub enum TextureTarget {
     /// texture value>, <occlusion strength>)`); `o` scales the ambient
     /// term and the environment's light, not direct light.
     Occlusion { strength: f64 },
+    /// The coat's own tangent-space normal map (`KHR_materials_clearcoat`'s
+    /// `clearcoatNormalTexture`, the scene file's
+    /// `clearcoat_normal_texture`): decoded as [`TextureTarget::Normal`]
+    /// (glTF's encoding with its `scale`) in the mesh's frame (T, B, N)
+    /// before any `normal_texture`, it gives the coat's normal, about which
+    /// the coat's lobe and Fresnel are evaluated (the base keeps its own
+    /// normal). Without it the coat's normal is the shading normal.
+    ClearcoatNormal { scale: f64 },
+    /// `KHR_materials_anisotropy`'s `anisotropyTexture` (the scene file's
+    /// `anisotropy_texture`): RG is the anisotropy direction in tangent
+    /// space, `[0, 1] → [−1, 1]`, turned by `anisotropy_rotation`; B
+    /// multiplies `anisotropy_strength` ([`decode_anisotropy`]).
+    Anisotropy,
 }
 
 impl TextureTarget {
@@ -52,6 +65,28 @@ impl TextureTarget {
 pub fn decode_normal(rgb: glam::DVec3, scale: f64) -> glam::DVec3 {
     let n = (2.0 * rgb - glam::DVec3::ONE) * glam::DVec3::new(scale, scale, 1.0);
     n.try_normalize().unwrap_or(glam::DVec3::Z)
+}
+
+/// `KHR_materials_anisotropy`'s texture decoding: the direction
+/// `d = 2·(R, G) − 1` as its angle from `t` towards `b`, `atan2(d_y, d_x)`
+/// (the extension rotates the normalized `d` by `anisotropyRotation`, so
+/// the angles add; 0 for a texel that decodes to zero length, where the
+/// extension's `normalize` is undefined), and the strength factor B.
+/// The angle is taken after the texture transform's rotation turns `d`
+/// as it turns a normal map's normal ([`rotated_normal`]). GPU twin:
+/// `anisotropy_texel` in shaders/textures.wgsl (which keeps the direction
+/// as a unit vector and multiplies it by `(cos ρ, sin ρ)`).
+pub fn decode_anisotropy(rgb: glam::DVec3, rotation: f64) -> (f64, f64) {
+    let d = rotated_normal(
+        glam::DVec3::new(2.0 * rgb.x - 1.0, 2.0 * rgb.y - 1.0, 0.0),
+        rotation,
+    );
+    let angle = if d.x == 0.0 && d.y == 0.0 {
+        0.0
+    } else {
+        d.y.atan2(d.x)
+    };
+    (angle, rgb.z)
 }
 
 /// A normal map's tangent-space normal `n` in the mesh's tangent frame
@@ -272,6 +307,26 @@ mod tests {
             "{n}"
         );
         assert_eq!(rotated_normal(glam::DVec3::ONE, 0.0), glam::DVec3::ONE);
+    }
+
+    /// RG is the direction in the frame (t, b), `[0, 1] → [−1, 1]`, as an
+    /// angle from t towards b; B the strength factor; a transform's
+    /// rotation turns the direction as it turns a normal map's normal;
+    /// a zero direction is t.
+    #[test]
+    fn anisotropy_texels_decode_to_an_angle_and_a_strength() {
+        use glam::DVec3;
+        use std::f64::consts::FRAC_PI_2;
+        let (a, s) = decode_anisotropy(DVec3::new(1.0, 0.5, 0.7), 0.0);
+        assert_eq!((a, s), (0.0, 0.7));
+        let (a, _) = decode_anisotropy(DVec3::new(0.5, 1.0, 1.0), 0.0);
+        assert!((a - FRAC_PI_2).abs() < 1e-15, "{a}");
+        let (a, _) = decode_anisotropy(DVec3::new(1.0, 0.5, 1.0), FRAC_PI_2);
+        assert!((a + FRAC_PI_2).abs() < 1e-15, "{a}");
+        assert_eq!(
+            decode_anisotropy(DVec3::new(0.5, 0.5, 1.0), 0.0),
+            (0.0, 1.0)
+        );
     }
 
     #[test]

@@ -34,6 +34,27 @@ pub fn gpu_field_values(m: &Material) -> Vec<(&'static str, Vec<f64>)> {
         ("metallic", vec![p.metallic]),
         ("emission", rgb(m.emission)),
         ("occlusion", vec![m.occlusion]),
+        ("ior", vec![p.layers.ior]),
+        ("specular", vec![p.layers.specular]),
+        ("specular_color", rgb(p.layers.specular_color)),
+        ("clearcoat", vec![p.layers.clearcoat]),
+        ("clearcoat_roughness", vec![p.layers.clearcoat_roughness]),
+        ("sheen_color", rgb(p.layers.sheen_color)),
+        ("sheen_roughness", vec![p.layers.sheen_roughness]),
+        ("iridescence", vec![p.layers.iridescence]),
+        ("iridescence_ior", vec![p.layers.iridescence_ior]),
+        (
+            "iridescence_thickness",
+            vec![p.layers.iridescence_thickness],
+        ),
+        ("anisotropy_strength", vec![p.layers.anisotropy_strength]),
+        // (cos ρ, sin ρ): not linear in ρ, so a texture on
+        // `anisotropy_rotation` is refused (`anisotropy_texture` turns the
+        // direction instead).
+        (
+            "anisotropy_direction",
+            p.layers.anisotropy_direction().to_array().to_vec(),
+        ),
     ]
 }
 
@@ -88,9 +109,20 @@ pub fn gpu_field_mask(m: &Material, key: &str) -> Result<u32, String> {
     Ok(mask)
 }
 
+/// The bits of a field mask: one per field of [`gpu_field_values`],
+/// which must fit a `u32` (`TextureSlot.fields` in shaders/textures.wgsl).
+pub const FIELD_COUNT: usize = 30;
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_field_has_a_bit_of_the_u32_mask() {
+        let m = crate::material::Material::new("m", crate::material::ReflectanceModel::GltfPbr);
+        assert_eq!(gpu_field_values(&m).len(), FIELD_COUNT);
+        assert!(FIELD_COUNT <= 32);
+    }
 
     #[test]
     fn occlusion_field_bit_is_its_place_in_the_field_order() {

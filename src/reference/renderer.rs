@@ -519,15 +519,22 @@ impl<'a> Shader<'a> {
             None => [Footprint::default(); 2],
         };
         let textured = texture::textured(material, &self.scene.images, uv, footprint);
+        let vertex_frame = frame;
         let frame = match textured.normal {
             Some(n_t) => texture::normal_mapped_frame(&frame, sign, n_t),
             None => frame,
         };
         // The pixel footprint's roughness floor on the textured widths
         // (the others had it in `effective_materials`).
-        let floored = textured
+        let mut floored = textured
             .material
             .with_textured_widths_floored(self.scene.roughness_floor());
+        // The coat's normal map, in the mesh's frame, written in the
+        // shading frame's coordinates.
+        if let Some(n_t) = textured.clearcoat_normal {
+            floored.layers.clearcoat_normal =
+                texture::clearcoat_normal_coords(&vertex_frame, sign, n_t, &frame);
+        }
         (std::borrow::Cow::Owned(floored), frame)
     }
 

@@ -110,10 +110,12 @@ pub fn wrap(mode: Wrap, i: i64, size: i64) -> i64 {
 }
 
 /// A material at a surface point: its textures applied, and the
-/// tangent-space normal of its normal map (`None` without one).
+/// tangent-space normals of its normal map and of its coat's normal map
+/// (`None` without one).
 pub struct Textured {
     pub material: crate::material::Material,
     pub normal: Option<DVec3>,
+    pub clearcoat_normal: Option<DVec3>,
 }
 
 /// `material` with its textures applied at a surface point whose UV sets
@@ -123,7 +125,10 @@ pub struct Textured {
 /// occlusion texture scales the occlusion `o` by `1 + strength·(R − 1)`
 /// (`Material::occlusion`); a normal texture gives the tangent-space
 /// normal (`decode_normal`, turned by its transform's rotation:
-/// `rotated_normal`) (GPU twin: `textured_surface` in
+/// `rotated_normal`), a coat normal texture the coat's (the same way);
+/// an anisotropy texture adds its direction's angle to
+/// `anisotropy_rotation` and multiplies `anisotropy_strength` by its B
+/// (`decode_anisotropy`) (GPU twin: `textured_surface` in
 /// shaders/textures.wgsl).
 pub fn textured(
     material: &crate::material::Material,
@@ -132,9 +137,12 @@ pub fn textured(
     footprint: [Footprint; 2],
 ) -> Textured {
     use crate::material::param::Value;
-    use crate::material::texture::{TextureTarget, decode_normal, rotated_normal};
+    use crate::material::texture::{
+        TextureTarget, decode_anisotropy, decode_normal, rotated_normal,
+    };
     let mut m = material.clone();
     let mut normal = None;
+    let mut clearcoat_normal = None;
     for t in &material.textures {
         let texel = texel_of(t, images, uv, footprint);
         if t.carries_alpha() {
@@ -158,11 +166,21 @@ pub fn textured(
                 let n = decode_normal(texel.truncate(), scale);
                 normal = Some(rotated_normal(n, t.transform.rotation));
             }
+            TextureTarget::ClearcoatNormal { scale } => {
+                let n = decode_normal(texel.truncate(), scale);
+                clearcoat_normal = Some(rotated_normal(n, t.transform.rotation));
+            }
+            TextureTarget::Anisotropy => {
+                let (angle, strength) = decode_anisotropy(texel.truncate(), t.transform.rotation);
+                m.layers.anisotropy_rotation += angle;
+                m.layers.anisotropy_strength *= strength;
+            }
         }
     }
     Textured {
         material: m,
         normal,
+        clearcoat_normal,
     }
 }
 
@@ -211,6 +229,23 @@ pub fn normal_mapped_frame(frame: &SurfaceFrame, sign: f64, n_t: DVec3) -> Surfa
     let b = sign * frame.n.cross(frame.t);
     let n = (frame.t * n_t.x + b * n_t.y + frame.n * n_t.z).normalize_or_zero();
     SurfaceFrame::new(n, frame.t)
+}
+
+/// The coat's normal map applied: its world normal
+/// `n_c = normalize(n_t.x·T + n_t.y·B + n_t.z·N)` in the mesh's frame
+/// `vertex_frame` (before any base normal map, as the Khronos Sample
+/// Renderer's `getClearcoatNormal` uses the vertex TBN), then written in
+/// the coordinates of the shading frame `shading` (what
+/// `GltfLayers::clearcoat_normal` holds). GPU twin:
+/// `clearcoat_normal_coords` in shaders/textures.wgsl.
+pub fn clearcoat_normal_coords(
+    vertex_frame: &SurfaceFrame,
+    sign: f64,
+    n_t: DVec3,
+    shading: &SurfaceFrame,
+) -> DVec3 {
+    let n_c = normal_mapped_frame(vertex_frame, sign, n_t).n;
+    DVec3::new(n_c.dot(shading.t), n_c.dot(shading.b), n_c.dot(shading.n))
 }
 
 #[cfg(test)]

@@ -21,11 +21,20 @@ use crate::material::texture::TextureTarget;
 use glam::DVec3;
 use std::collections::HashMap;
 
-/// The normal-map UV set of a material's textures, if it has a normal map.
+/// The normal-map UV set of a material's textures, if it has a normal map
+/// (or a map read in the tangent frame as one is: the coat's normal map,
+/// the anisotropy direction).
 pub fn normal_map_set(m: &crate::material::Material) -> Option<usize> {
     m.textures
         .iter()
-        .find(|t| matches!(t.target, TextureTarget::Normal { .. }))
+        .find(|t| {
+            matches!(
+                t.target,
+                TextureTarget::Normal { .. }
+                    | TextureTarget::ClearcoatNormal { .. }
+                    | TextureTarget::Anisotropy
+            )
+        })
         .map(|t| t.tex_coord)
 }
 

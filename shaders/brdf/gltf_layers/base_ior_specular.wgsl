@@ -20,10 +20,19 @@ fn dielectric_f0(ior: f32, specular_color: vec3<f32>) -> vec3<f32> {
     return min(vec3<f32>(f0_from_ior(ior)) * specular_color, vec3<f32>(1.0));
 }
 
-// T = cos ρ · t + sin ρ · b; B = N × T (pinned choice 8). Returns (T, B).
-fn anisotropy_frame(rotation: f32, n: vec3<f32>, t: vec3<f32>, b: vec3<f32>) -> array<vec3<f32>, 2> {
-    let dir = t * cos(rotation) + b * sin(rotation);
-    return array<vec3<f32>, 2>(dir, cross(n, dir));
+#if layer_anisotropy
+// The anisotropy's (T, B) (a struct, not an array: a pipeline with
+// overrides rejected the array's constant indexing).
+struct AnisotropyFrame {
+    t: vec3<f32>,
+    b: vec3<f32>,
+}
+
+// T = cos ρ · t + sin ρ · b from direction = (cos ρ, sin ρ); B = N × T
+// (pinned choice 8).
+fn anisotropy_frame(direction: vec2<f32>, n: vec3<f32>, t: vec3<f32>, b: vec3<f32>) -> AnisotropyFrame {
+    let dir = t * direction.x + b * direction.y;
+    return AnisotropyFrame(dir, cross(n, dir));
 }
 
 // α_t = α + (1 − α) s_a².
@@ -54,6 +63,7 @@ fn vis_ggx_anisotropic(alpha_t: f32, alpha_b: f32, cos_i: f32, cos_o: f32, cos_t
     let root_i = length(vec3<f32>(alpha_t * cos_ti, alpha_b * cos_bi, ci));
     return 0.5 / (max(ci, COS_FLOOR) * root_o + max(co, COS_FLOOR) * root_i);
 }
+#endif
 
 // S = D·Vis: the core's isotropic lobe at s_a = 0, the anisotropic one above.
 fn base_lobe(alpha: f32, layers: GltfLayers, n: vec3<f32>, t: vec3<f32>, b: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> f32 {
@@ -63,14 +73,16 @@ fn base_lobe(alpha: f32, layers: GltfLayers, n: vec3<f32>, t: vec3<f32>, b: vec3
     let cos_h = dot(n, h);
     let cos_ih = dot(wi, h);
     let cos_oh = dot(wo, h);
-    if !(layers.anisotropy_strength > 0.0) {
-        let sin2_h = sin2_between(n, h);
-        return d_ggx(alpha, cos_h, sin2_h) * vis_smith_ggx_correlated(alpha, cos_i, cos_o, cos_ih, cos_oh);
+    #if layer_anisotropy
+    if layers.anisotropy_strength > 0.0 {
+        let tb = anisotropy_frame(layers.anisotropy_direction, n, t, b);
+        let alpha_t = anisotropic_alpha_t(alpha, layers.anisotropy_strength);
+        return d_ggx_anisotropic(alpha_t, alpha, dot(tb.t, h), dot(tb.b, h), cos_h)
+            * vis_ggx_anisotropic(alpha_t, alpha, cos_i, cos_o, dot(tb.t, wi), dot(tb.b, wi), dot(tb.t, wo), dot(tb.b, wo), cos_ih, cos_oh);
     }
-    let tb = anisotropy_frame(layers.anisotropy_rotation, n, t, b);
-    let alpha_t = anisotropic_alpha_t(alpha, layers.anisotropy_strength);
-    return d_ggx_anisotropic(alpha_t, alpha, dot(tb[0], h), dot(tb[1], h), cos_h)
-        * vis_ggx_anisotropic(alpha_t, alpha, cos_i, cos_o, dot(tb[0], wi), dot(tb[1], wi), dot(tb[0], wo), dot(tb[1], wo), cos_ih, cos_oh);
+    #endif
+    let sin2_h = sin2_between(n, h);
+    return d_ggx(alpha, cos_h, sin2_h) * vis_smith_ggx_correlated(alpha, cos_i, cos_o, cos_ih, cos_oh);
 }
 
 // The base material for N·L > 0, N·V > 0; the film mixed into the Fresnel
@@ -82,6 +94,7 @@ fn gltf_base(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, laye
     let f0 = dielectric_f0(layers.ior, layers.specular_color);
     var f_dielectric = (f0 + (vec3<f32>(1.0) - f0) * w) * layers.specular;
     var f_metal = base_color + (vec3<f32>(1.0) - base_color) * w;
+    #if layer_iridescence
     if layers.iridescence > 0.0 && layers.iridescence_thickness > 0.0 {
         let iota = layers.iridescence;
         let cos_o = dot(n, wo);
@@ -89,6 +102,7 @@ fn gltf_base(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, laye
             + iridescence_fresnel(cos_o, layers.iridescence_ior, layers.iridescence_thickness, f0 * layers.specular) * iota;
         f_metal = f_metal * (1.0 - iota) + iridescence_fresnel(cos_o, layers.iridescence_ior, layers.iridescence_thickness, base_color) * iota;
     }
+    #endif
     let dielectric = base_color * ((1.0 - max(f_dielectric.x, max(f_dielectric.y, f_dielectric.z))) * FRAC_1_PI)
         + f_dielectric * specular * ms_factor(f0 * layers.specular, ms);
     let metal = f_metal * specular * ms_factor(base_color, ms);

@@ -24,8 +24,18 @@ fn clearcoat_lobe(clearcoat_roughness: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec
         * vis_smith_ggx_correlated(alpha, dot(n, wi), dot(n, wo), dot(wi, h), dot(wo, h));
 }
 
-// (1 − k F_c) · below + k F_c · G_{α_c}.
+// n_c = x·t + y·b + z·n from the coat normal's coordinates in the
+// shading frame; exactly n for (0, 0, 1).
+fn coat_normal(frame: SurfaceFrame, coords: vec3<f32>) -> vec3<f32> {
+    if all(coords == vec3<f32>(0.0, 0.0, 1.0)) {
+        return frame.n;
+    }
+    return frame.t * coords.x + frame.b * coords.y + frame.n * coords.z;
+}
+
+// (1 − k F_c) · below + k F_c · G_{α_c} about the coat normal n, F_c at
+// max(n·V, 0).
 fn clearcoat_over(below: vec3<f32>, clearcoat: f32, clearcoat_roughness: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
-    let weight = clearcoat * clearcoat_fresnel(dot(n, wo));
+    let weight = clearcoat * clearcoat_fresnel(max(dot(n, wo), 0.0));
     return below * (1.0 - weight) + vec3<f32>(weight * clearcoat_lobe(clearcoat_roughness, n, wi, wo));
 }

@@ -1,17 +1,22 @@
 // The layer parameters of a gltf-pbr material (contract: "Layered glTF
-// materials", keys), in an order that packs into 16 f32 (64 bytes).
-// f64 twin: src/material/brdf/gltf_layers/mod.rs (GltfLayers).
+// materials", keys), in an order that packs into 20 f32 (80 bytes); the
+// CPU mirror is gpu::layout::GpuGltfLayers (same order), filled from
+// src/material/layers.rs (GltfLayers): the anisotropy rotation ρ as its
+// direction (cos ρ, sin ρ), computed in f64, and the coat's normal.
+// Compiled when some material the scene draws has a layer (features
+// layer_*); `Material.layers` holds it.
 struct GltfLayers {
-    specular_color: vec3<f32>,   // c_s
-    ior: f32,                    // 0: specular-glossiness mode
-    sheen_color: vec3<f32>,      // c_sh
-    specular: f32,               // s_w
-    clearcoat: f32,              // k
-    clearcoat_roughness: f32,    // r_c (α_c = r_c²)
-    sheen_roughness: f32,        // r_sh
-    iridescence: f32,            // ι
-    iridescence_ior: f32,        // η_f
-    iridescence_thickness: f32,  // d [nm]
-    anisotropy_strength: f32,    // s_a
-    anisotropy_rotation: f32,    // ρ [rad]
+    specular_color: vec3<f32>,    // c_s
+    ior: f32,                     // 0: specular-glossiness mode
+    sheen_color: vec3<f32>,       // c_sh
+    specular: f32,                // s_w
+    clearcoat_normal: vec3<f32>,  // the coat's normal in the shading frame (t, b, n); (0, 0, 1): n
+    clearcoat: f32,               // k
+    anisotropy_direction: vec2<f32>, // (cos ρ, sin ρ) [an anisotropy texture turns it per pixel]
+    clearcoat_roughness: f32,     // r_c (α_c = r_c²)
+    sheen_roughness: f32,         // r_sh
+    iridescence: f32,             // ι
+    iridescence_ior: f32,         // η_f
+    iridescence_thickness: f32,   // d [nm]
+    anisotropy_strength: f32,     // s_a
 }

@@ -2,7 +2,12 @@
 // glTF materials", "Composition"), each layer skipped when off.
 // f64 twin: src/material/brdf/gltf_layers/stack.rs (same names, same order).
 // Uses base_ior_specular.wgsl, sheen.wgsl, sheen_albedo.wgsl, clearcoat.wgsl.
+// Each layer is compiled only where a material the scene draws has it
+// (features layer_*, src/gpu/shader_gen/key_groups.rs): without the base's
+// layers (ior/specular, iridescence, anisotropy) the base is the core
+// gltf_pbr, which the defaults give to the bit.
 
+#if layer_sheen
 // c_sh · D_sh · V_sh + σ · below, the sheen albedos E(μ_o), E(μ_i) given.
 fn sheen_over(below: vec3<f32>, layers: GltfLayers, albedo_o: f32, albedo_i: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let alpha = sheen_alpha(layers.sheen_roughness);
@@ -14,26 +19,38 @@ fn sheen_over(below: vec3<f32>, layers: GltfLayers, albedo_o: f32, albedo_i: f32
 fn has_sheen(layers: GltfLayers) -> bool {
     return any(layers.sheen_color != vec3<f32>(0.0));
 }
+#endif
 
 // f_r for N·L > 0, N·V > 0 with the sheen albedos given.
 fn gltf_layered_with_albedos(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, layers: GltfLayers, albedo_o: f32, albedo_i: f32, frame: SurfaceFrame, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let n = frame.n;
+    #if layer_ior_specular || layer_iridescence || layer_anisotropy
     var f = gltf_base(base_color, metallic, roughness, ms, layers, n, frame.t, frame.b, wi, wo);
+    #else
+    var f = gltf_pbr(base_color, metallic, roughness, ms, n, wi, wo);
+    #endif
+    #if layer_sheen
     if has_sheen(layers) {
         f = sheen_over(f, layers, albedo_o, albedo_i, n, wi, wo);
     }
+    #endif
+    #if layer_clearcoat
     if layers.clearcoat > 0.0 {
-        f = clearcoat_over(f, layers.clearcoat, layers.clearcoat_roughness, n, wi, wo);
+        let n_c = coat_normal(frame, layers.clearcoat_normal);
+        f = clearcoat_over(f, layers.clearcoat, layers.clearcoat_roughness, n_c, wi, wo);
     }
+    #endif
     return f;
 }
 
 // The sheen albedos (E(μ_o), E(μ_i)) from the table (0 without sheen).
 fn sheen_albedos(layers: GltfLayers, cos_i: f32, cos_o: f32) -> vec2<f32> {
-    if !has_sheen(layers) {
-        return vec2<f32>(0.0);
+    #if layer_sheen
+    if has_sheen(layers) {
+        return vec2<f32>(sheen_albedo_lookup(cos_o, layers.sheen_roughness), sheen_albedo_lookup(cos_i, layers.sheen_roughness));
     }
-    return vec2<f32>(sheen_albedo_lookup(cos_o, layers.sheen_roughness), sheen_albedo_lookup(cos_i, layers.sheen_roughness));
+    #endif
+    return vec2<f32>(0.0);
 }
 
 // f_r of the layered material, the sheen scaled by the table's albedos.

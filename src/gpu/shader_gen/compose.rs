@@ -27,6 +27,10 @@ fn file(path: &str, features: &[Feature]) -> String {
 pub fn common(features: &[Feature]) -> String {
     let mut out = UniformArrays::wgsl_capacities();
     out.push_str(&file("common.wgsl", features));
+    // `Material.layers`' struct, where the layers are declared.
+    if features.contains(&Feature::GltfLayers) {
+        out.push_str(&file("brdf/gltf_layers/mod.wgsl", features));
+    }
     out
 }
 
@@ -65,9 +69,52 @@ pub fn compose_brdf_library(variants: &BTreeSet<BrdfVariant>, features: &[Featur
         out.push_str(&file(path, &features));
         out.push('\n');
     }
+    for path in layer_files(&models, &features) {
+        out.push_str(&file(path, &features));
+        out.push('\n');
+    }
     out.push_str(&file("brdf/eval.wgsl", &features));
     out.push('\n');
     out
+}
+
+/// The files of gltf-pbr's layers (shaders/brdf/gltf_layers/) the
+/// features compile, in dependency order: each layer's only where a drawn
+/// material uses it (`MaterialsKey::layer_*`; their struct comes with
+/// `Material.layers`, [`common`]). Nothing without a layer.
+fn layer_files(models: &BTreeSet<ReflectanceModel>, features: &[Feature]) -> Vec<&'static str> {
+    let on = |f: Feature| features.contains(&f);
+    if !on(Feature::GltfLayers) || !models.contains(&ReflectanceModel::GltfPbr) {
+        return Vec::new();
+    }
+    let mut files = Vec::new();
+    let base = [
+        Feature::LayerIorSpecular,
+        Feature::LayerIridescence,
+        Feature::LayerAnisotropy,
+    ];
+    let layers = [
+        (
+            on(Feature::LayerIridescence),
+            "brdf/gltf_layers/iridescence.wgsl",
+        ),
+        (
+            base.into_iter().any(on),
+            "brdf/gltf_layers/base_ior_specular.wgsl",
+        ),
+        (on(Feature::LayerSheen), "brdf/gltf_layers/sheen.wgsl"),
+        (
+            on(Feature::LayerSheen),
+            "brdf/gltf_layers/sheen_albedo.wgsl",
+        ),
+        (
+            on(Feature::LayerClearcoat),
+            "brdf/gltf_layers/clearcoat.wgsl",
+        ),
+        (true, "brdf/gltf_layers/stack.wgsl"),
+    ];
+    files.extend(layers.into_iter().filter_map(|(o, path)| o.then_some(path)));
+    files
 }
 
 /// Every model's BRDF files in one order that respects each row's

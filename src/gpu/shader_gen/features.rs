@@ -170,6 +170,26 @@ features! {
         /// Some material's ambient occlusion is not 1: it multiplies the
         /// ambient and environment terms.
         Occlusion = "occlusion",
+        /// Some gltf-pbr material the scene draws has a layer (any of the
+        /// five below): `Material.layers`, the layer files
+        /// (shaders/brdf/gltf_layers/) and the layered stack in the
+        /// gltf-pbr arm.
+        GltfLayers = "gltf_layers",
+        /// Some gltf-pbr material has `KHR_materials_ior` or
+        /// `KHR_materials_specular` off their defaults (or a texture on
+        /// their keys): the layered base.
+        LayerIorSpecular = "layer_ior_specular",
+        /// Some gltf-pbr material has a clearcoat (`clearcoat > 0`).
+        LayerClearcoat = "layer_clearcoat",
+        /// Some gltf-pbr material has a sheen (`sheen_color ≠ 0`): the
+        /// sheen lobe and its albedo table (group 0, binding 4).
+        LayerSheen = "layer_sheen",
+        /// Some gltf-pbr material has a thin film (`iridescence > 0` and a
+        /// thickness > 0).
+        LayerIridescence = "layer_iridescence",
+        /// Some gltf-pbr material is anisotropic (`anisotropy_strength >
+        /// 0`): the anisotropic lobe, and tangents in the vertex stream.
+        LayerAnisotropy = "layer_anisotropy",
     }
 }
 

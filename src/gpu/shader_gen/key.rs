@@ -99,6 +99,7 @@ impl ShaderKey {
         key.arrays.measured = key.has_measured();
         key.materials.measured_network &= key.has_measured();
         key.materials.smith_beckmann_rational &= key.uses_beckmann_g1();
+        key.arrays.sheen = key.materials.layer_sheen;
         key
     }
 
@@ -124,9 +125,11 @@ impl ShaderKey {
     }
 
     /// Whether any variant needs a tangent frame in the vertex stream
-    /// (an anisotropic model, or a normal map).
+    /// (an anisotropic model or glTF layer, or a normal map).
     pub fn needs_tangents(&self) -> bool {
-        self.materials.normal_maps || self.variants.iter().any(|v| v.model.needs_tangents())
+        self.materials.normal_maps
+            || self.materials.layer_anisotropy
+            || self.variants.iter().any(|v| v.model.needs_tangents())
     }
 
     /// Whether the vertex shader computes the shadow-map coordinates

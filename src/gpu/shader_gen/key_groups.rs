@@ -243,6 +243,21 @@ key_group! {
         /// pixel). The two cost about 6 % of the bench's specialized
         /// Lambert frame on lavapipe (docs/bench/report.md).
         occlusion => Occlusion,
+        /// Some gltf-pbr material the scene draws has one of the layers
+        /// below ([`crate::material::layers::GltfLayers`]); without, the
+        /// gltf-pbr arm is the core BRDF and no layer code is compiled.
+        gltf_layers => GltfLayers,
+        /// ... with `ior`, `specular` or `specular_color` off their
+        /// defaults or textured.
+        layer_ior_specular => LayerIorSpecular,
+        /// ... with a clearcoat.
+        layer_clearcoat => LayerClearcoat,
+        /// ... with a sheen.
+        layer_sheen => LayerSheen,
+        /// ... with a thin film.
+        layer_iridescence => LayerIridescence,
+        /// ... anisotropic.
+        layer_anisotropy => LayerAnisotropy,
     }
 }
 
@@ -265,6 +280,12 @@ impl MaterialsKey {
             smith_beckmann_rational: scene.smith_beckmann == SmithBeckmann::Rational,
             emission: any(Material::emits),
             occlusion: any(Material::has_occlusion),
+            gltf_layers: any(|m| !m.gltf_layers_used().is_empty()),
+            layer_ior_specular: any(|m| m.gltf_layers_used().ior_specular),
+            layer_clearcoat: any(|m| m.gltf_layers_used().clearcoat),
+            layer_sheen: any(|m| m.gltf_layers_used().sheen),
+            layer_iridescence: any(|m| m.gltf_layers_used().iridescence),
+            layer_anisotropy: any(|m| m.gltf_layers_used().anisotropy),
         }
     }
 

@@ -88,6 +88,7 @@ pub fn representative_keys() -> Vec<ShaderKey> {
         lights: uniform,
         shadow_views: uniform,
         measured: false,
+        sheen: false,
     };
     let mut keys = Vec::new();
     for shading in ShadingMode::ALL {
@@ -260,6 +261,65 @@ mod tests {
             );
         }
         validate(&wgsl).unwrap();
+    }
+
+    /// gltf-pbr's layers are compiled one by one, only where a drawn
+    /// material uses them: a plain gltf-pbr scene has none of their code
+    /// (its module is the one it had before the layers existed), a coat
+    /// brings the coat alone, and the sheen its table's binding.
+    #[test]
+    fn gltf_layers_only_where_a_material_uses_them() {
+        use crate::scene::scene_file::{self, SceneSource};
+        let key_for = |sets: &[&str]| {
+            let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
+            all.extend(sets.iter().map(|s| format!("materials.ball.{s}")));
+            let scene = scene_file::load(&SceneSource::BuiltIn, &all).unwrap();
+            ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
+        };
+        let layer_code = [
+            ("layers", "fn gltf_layered"),
+            ("layers", "layers: GltfLayers"),
+            ("ior_specular", "fn gltf_base"),
+            ("clearcoat", "fn clearcoat_over"),
+            ("sheen", "fn sheen_over"),
+            ("sheen", "sheen_albedo_table"),
+            ("iridescence", "fn iridescence_fresnel"),
+            ("anisotropy", "fn d_ggx_anisotropic"),
+            ("anisotropy", "tangent: vec3"),
+        ];
+        let plain = compose(&key_for(&[]));
+        for (_, code) in layer_code {
+            assert!(!plain.contains(code), "`{code}` in a plain gltf-pbr shader");
+        }
+        validate(&plain).unwrap();
+        let cases: [(&[&str], &[&str]); 5] = [
+            (&["clearcoat=1"], &["layers", "clearcoat"]),
+            (&["sheen_color=[0.5, 0.5, 0.5]"], &["layers", "sheen"]),
+            (&["ior=1.7"], &["layers", "ior_specular"]),
+            (
+                &["iridescence=1"],
+                &["layers", "ior_specular", "iridescence"],
+            ),
+            (
+                &["anisotropy_strength=0.5"],
+                &["layers", "ior_specular", "anisotropy"],
+            ),
+        ];
+        for (sets, present) in cases {
+            let key = key_for(sets);
+            let wgsl = compose(&key);
+            for (layer, code) in layer_code {
+                // The base's file serves ior/specular, iridescence and
+                // anisotropy alike.
+                assert_eq!(
+                    wgsl.contains(code),
+                    present.contains(&layer),
+                    "{sets:?}: `{code}`"
+                );
+            }
+            assert_eq!(key.arrays.sheen, present.contains(&"sheen"), "{sets:?}");
+            validate(&wgsl).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
+        }
     }
 
     #[test]

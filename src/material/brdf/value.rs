@@ -331,6 +331,10 @@ pub struct ShaderParams {
     /// and vertex colours multiply them per pixel on the GPU.
     pub base_color: Rgb,
     pub metallic: f64,
+    /// gltf-pbr's layers (`gltf_layers`; the glTF defaults, all off, for
+    /// every other model): named fields too, because textures multiply
+    /// them per pixel.
+    pub layers: crate::material::layers::GltfLayers,
 }
 
 impl Brdf {
@@ -386,15 +390,16 @@ impl Brdf {
             // The table's place in the measured buffer is the GPU's
             // (`gpu::measured_tables`), written into `lobe` there.
             Specular::Measured(_) => {}
-            // The layers are not uploaded yet: the GPU's dispatch evaluates
-            // the core (the layers' WGSL twins are shaders/brdf/gltf_layers/).
+            // The layers' WGSL twins are shaders/brdf/gltf_layers/,
+            // compiled where a drawn material uses a layer.
             Specular::GltfPbr {
                 base_color,
                 metallic,
                 roughness,
-                layers: _,
+                layers,
             } => {
                 (p.base_color, p.metallic, p.roughness) = (base_color, metallic, roughness);
+                p.layers = layers;
                 p.lobe[0] = self.compensation_weight();
             }
             // The GPU's k_s is the lobe's whole weight k_s·A (a k_s texture

@@ -7,7 +7,10 @@
 //! scalar one its first channel. `normal_texture` is a tangent-space
 //! normal map (glTF's encoding, scale 1; the contract) and
 //! `occlusion_texture` glTF's occlusion on the ambient and environment
-//! terms (R, strength 1), both linear. Scene-file textures read UV set 0 with
+//! terms (R, strength 1), `clearcoat_normal_texture` the coat's own
+//! normal map (as `normal_texture`) and `anisotropy_texture`
+//! `KHR_materials_anisotropy`'s direction (RG) and strength (B), all
+//! linear. Scene-file textures read UV set 0 with
 //! glTF's default sampler (repeat, bilinear, trilinear mipmaps).
 
 use crate::material::param::Widget;
@@ -31,6 +34,8 @@ pub fn attach(
         let map = match key.as_str() {
             "normal_texture" => Some(TextureTarget::Normal { scale: 1.0 }),
             "occlusion_texture" => Some(TextureTarget::Occlusion { strength: 1.0 }),
+            "clearcoat_normal_texture" => Some(TextureTarget::ClearcoatNormal { scale: 1.0 }),
+            "anisotropy_texture" => Some(TextureTarget::Anisotropy),
             _ => None,
         };
         if let Some(target) = map {

@@ -159,6 +159,12 @@ pub fn texture_lines(m: &Material, images: &[&str]) -> Vec<String> {
                 TextureTarget::Occlusion { strength } => {
                     format!("occlusion map (R, strength {strength})")
                 }
+                TextureTarget::ClearcoatNormal { scale } => {
+                    format!("clearcoat normal map (scale {scale})")
+                }
+                TextureTarget::Anisotropy => {
+                    "anisotropy map (RG direction, B strength)".to_string()
+                }
             };
             let mut line = format!("{what}: {image}, UV {}", t.tex_coord);
             let tr = t.transform;

@@ -30,7 +30,7 @@ use crate::material::brdf::COS_FLOOR;
 use crate::material::brdf::energy::ms_factor;
 use crate::material::brdf::microfacet::{d_ggx, half_vector, sin2_between};
 use crate::material::brdf::microfacet::{schlick_weight, vis_smith_ggx_correlated};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_1_PI, PI};
 
 /// `KHR_materials_ior`'s normal-incidence reflectance from air,
@@ -49,10 +49,11 @@ pub fn dielectric_f0(ior: f64, specular_color: Rgb) -> Rgb {
 }
 
 /// The anisotropy direction `T = cos ρ · t + sin ρ · b` and `B = N × T`
+/// from `direction = (cos ρ, sin ρ)` ([`GltfLayers::anisotropy_direction`])
 /// (`KHR_materials_anisotropy`; pinned choice 8: ρ counter-clockwise from
 /// the tangent towards the bitangent).
-pub fn anisotropy_frame(rotation: f64, n: DVec3, t: DVec3, b: DVec3) -> (DVec3, DVec3) {
-    let dir = t * rotation.cos() + b * rotation.sin();
+pub fn anisotropy_frame(direction: DVec2, n: DVec3, t: DVec3, b: DVec3) -> (DVec3, DVec3) {
+    let dir = t * direction.x + b * direction.y;
     (dir, n.cross(dir))
 }
 
@@ -123,7 +124,7 @@ pub fn base_lobe(
         return d_ggx(alpha, cos_h, sin2_h)
             * vis_smith_ggx_correlated(alpha, cos_i, cos_o, cos_ih, cos_oh);
     }
-    let (at, bt) = anisotropy_frame(layers.anisotropy_rotation, n, t, b);
+    let (at, bt) = anisotropy_frame(layers.anisotropy_direction(), n, t, b);
     let alpha_t = anisotropic_alpha_t(alpha, layers.anisotropy_strength);
     d_ggx_anisotropic(alpha_t, alpha, at.dot(h), bt.dot(h), cos_h)
         * vis_ggx_anisotropic(

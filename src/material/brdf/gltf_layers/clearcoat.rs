@@ -15,10 +15,18 @@
 //!
 //! `F_c` depends on `V` alone: with a coat `f_r` is not reciprocal.
 //!
+//! The coat has its own normal `n_c` (`clearcoat_normal_texture`,
+//! glTF's `clearcoatNormalTexture`; [`coat_normal`]): the coat's lobe and
+//! `F_c` are evaluated about it, `F_c` at `max(n_c·V, 0)` (the Sample
+//! Renderer's `clampedDot`: a coat normal turned away from the viewer
+//! reflects everything, `F_c = 1`). Without the texture `n_c = N`, where
+//! `N·V > 0`, and nothing changes.
+//!
 //! WGSL twin: `shaders/brdf/gltf_layers/clearcoat.wgsl`.
 
 use crate::base::Rgb;
 use crate::material::ROUGHNESS_FLOOR;
+use crate::material::brdf::SurfaceFrame;
 use crate::material::brdf::gltf_pbr::DIELECTRIC_F0;
 use crate::material::brdf::microfacet::{d_ggx, half_vector, sin2_between};
 use crate::material::brdf::microfacet::{schlick_weight, vis_smith_ggx_correlated};
@@ -42,7 +50,18 @@ pub fn clearcoat_lobe(clearcoat_roughness: f64, n: DVec3, wi: DVec3, wo: DVec3) 
         * vis_smith_ggx_correlated(alpha, n.dot(wi), n.dot(wo), wi.dot(h), wo.dot(h))
 }
 
-/// The coat over `below`: `(1 − k F_c) · below + k F_c · G_{α_c}`.
+/// The coat's normal `n_c = x·t + y·b + z·n` from its coordinates
+/// `(x, y, z)` in the shading frame ([`super::GltfLayers::clearcoat_normal`]);
+/// exactly `n` for `(0, 0, 1)`.
+pub fn coat_normal(frame: &SurfaceFrame, coords: DVec3) -> DVec3 {
+    if coords == DVec3::Z {
+        return frame.n;
+    }
+    frame.t * coords.x + frame.b * coords.y + frame.n * coords.z
+}
+
+/// The coat over `below` about the coat normal `n`:
+/// `(1 − k F_c) · below + k F_c · G_{α_c}`.
 pub fn clearcoat_over(
     below: Rgb,
     clearcoat: f64,
@@ -51,6 +70,6 @@ pub fn clearcoat_over(
     wi: DVec3,
     wo: DVec3,
 ) -> Rgb {
-    let weight = clearcoat * clearcoat_fresnel(n.dot(wo));
+    let weight = clearcoat * clearcoat_fresnel(n.dot(wo).max(0.0));
     below * (1.0 - weight) + Rgb::splat(weight * clearcoat_lobe(clearcoat_roughness, n, wi, wo))
 }

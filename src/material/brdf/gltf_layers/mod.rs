@@ -27,6 +27,7 @@ pub mod clearcoat;
 pub mod iridescence;
 pub mod sheen;
 pub mod sheen_albedo;
+pub mod sheen_albedo_nodes;
 pub mod stack;
 
 use crate::base::Rgb;

@@ -218,15 +218,17 @@ pub fn sheen_albedo_fine(cos: f64, alpha: f64) -> f64 {
     albedo_with(cos, alpha, 4, TOLERANCE / 100.0)
 }
 
-/// Nodes per axis of the GPU's table of `E` (`SHEEN_ALBEDO_TABLE` in
+/// Nodes per axis of the GPU's table of `E` (stored in
+/// [`super::sheen_albedo_nodes`], bound as `sheen_albedo_table` in
 /// `shaders/brdf/gltf_layers/sheen_albedo.wgsl`): node `(i, j)` holds
 /// `E(μ = (i/(N − 1))², α_sh(r = j/(N − 1)))` rounded to `f32`, `i` the
 /// fast index; looked up bilinearly in `(√μ, r_sh)` as energy
 /// compensation's table is (`energy::ms_albedo`).
 pub const SHEEN_ALBEDO_TABLE_SIZE: usize = 32;
 
-/// The table's nodes, computed by the exact quadrature (what the WGSL
-/// file holds; the test `sheen_table_is_current` compares them).
+/// The table's nodes, computed by the exact quadrature (what
+/// [`super::sheen_albedo_nodes`] stores; the test `sheen_table_is_current`
+/// compares them).
 pub fn sheen_albedo_table() -> Vec<f32> {
     use rayon::prelude::*;
     let n = SHEEN_ALBEDO_TABLE_SIZE;

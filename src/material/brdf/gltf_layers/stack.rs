@@ -10,7 +10,7 @@
 
 use super::GltfLayers;
 use super::base_ior_specular::gltf_base;
-use super::clearcoat::clearcoat_over;
+use super::clearcoat::{clearcoat_over, coat_normal};
 use super::sheen::{sheen_alpha, sheen_lobe, sheen_scaling};
 use super::sheen_albedo::sheen_albedo;
 use crate::base::Rgb;
@@ -60,7 +60,8 @@ pub fn gltf_layered_with_albedos(
         f = sheen_over(f, layers, albedo_o, albedo_i, n, wi, wo);
     }
     if layers.has_clearcoat() {
-        f = clearcoat_over(f, layers.clearcoat, layers.clearcoat_roughness, n, wi, wo);
+        let n_c = coat_normal(frame, layers.clearcoat_normal);
+        f = clearcoat_over(f, layers.clearcoat, layers.clearcoat_roughness, n_c, wi, wo);
     }
     f
 }

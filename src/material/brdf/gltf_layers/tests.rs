@@ -241,28 +241,23 @@ fn sheen_scaling_is_clamped() {
     assert!((sheen_scaling(Rgb::new(0.5, 0.2, 0.1), 0.4, 0.2) - 0.8).abs() < 1e-15);
 }
 
-/// The WGSL file of the GPU's sheen albedo table holds exactly
-/// [`super::sheen_albedo::sheen_albedo_table`] (the exact quadrature at the
-/// nodes, rounded to f32). `GONIO_UPDATE_SHEEN_TABLE=1` writes it.
+/// The stored table of the GPU's sheen albedo (`sheen_albedo_nodes.rs`)
+/// holds exactly [`super::sheen_albedo::sheen_albedo_table`] (the exact
+/// quadrature at the nodes, rounded to f32).
+/// `GONIO_UPDATE_SHEEN_TABLE=1` writes it.
 #[test]
 fn sheen_table_is_current() {
     use super::sheen_albedo::{SHEEN_ALBEDO_TABLE_SIZE, sheen_albedo_table};
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("shaders/brdf/gltf_layers/sheen_albedo.wgsl");
+        .join("src/material/brdf/gltf_layers/sheen_albedo_nodes.rs");
     let nodes = sheen_albedo_table();
     let n = SHEEN_ALBEDO_TABLE_SIZE;
     let mut text = String::from(SHEEN_TABLE_HEADER);
-    text.push_str(&format!(
-        "const SHEEN_ALBEDO_TABLE_SIZE: i32 = {n};\n\n// E at (√μ, r_sh) = (i, j)/(N − 1), i the fast index.\nconst SHEEN_ALBEDO_TABLE: array<f32, {}> = array<f32, {}>(\n",
-        n * n,
-        n * n
-    ));
     for row in nodes.chunks(n) {
         let line: Vec<String> = row.iter().map(|v| format!("{v:e}")).collect();
         text.push_str(&format!("    {},\n", line.join(", ")));
     }
-    text.push_str(");\n");
-    text.push_str(SHEEN_TABLE_LOOKUP);
+    text.push_str("];\n");
     if std::env::var_os("GONIO_UPDATE_SHEEN_TABLE").is_some() {
         std::fs::write(&path, &text).unwrap();
     }
@@ -272,37 +267,64 @@ fn sheen_table_is_current() {
         "{} is not the current table: run with GONIO_UPDATE_SHEEN_TABLE=1",
         path.display()
     );
+    assert_eq!(
+        nodes.as_slice(),
+        super::sheen_albedo_nodes::SHEEN_ALBEDO_NODES.as_slice()
+    );
 }
 
-const SHEEN_TABLE_HEADER: &str =
-    "// The sheen's directional albedo E(μ, α_sh(r_sh)) for the albedo scaling of
-// KHR_materials_sheen, as a table the GPU interpolates: the nodes are the
-// exact quadrature of the f64 reference (src/material/brdf/gltf_layers/
-// sheen_albedo.rs, sheen_albedo_table), rounded to f32; the table's error
-// against the exact integral is measured by tests/layer_equivalence.rs.
-// Generated: GONIO_UPDATE_SHEEN_TABLE=1 cargo test --release --lib sheen_table_is_current
-// f64 twin: src/material/brdf/gltf_layers/sheen_albedo.rs (sheen_albedo_lookup).
+const SHEEN_TABLE_HEADER: &str = "//! The GPU's table of the sheen's directional albedo (see
+//! [`super::sheen_albedo::sheen_albedo_table`]): the exact quadrature at
+//! the nodes, rounded to `f32`, stored so no renderer computes it. The
+//! test `sheen_table_is_current` checks it;
+//! `GONIO_UPDATE_SHEEN_TABLE=1 cargo test --release --lib sheen_table_is_current`
+//! rewrites it.
 
+/// `E` at `(√μ, r_sh) = (i, j)/(N − 1)`, `i` the fast index.
+#[rustfmt::skip]
+pub const SHEEN_ALBEDO_NODES: [f32; 1024] = [
 ";
 
-const SHEEN_TABLE_LOOKUP: &str = "
-fn sheen_albedo_node(i: i32, j: i32) -> f32 {
-    return SHEEN_ALBEDO_TABLE[j * SHEEN_ALBEDO_TABLE_SIZE + i];
+/// The coat's own normal: `(0, 0, 1)` is the shading normal to the bit;
+/// a tilted one moves the coat's highlight to its mirror direction (the
+/// base keeps the shading normal), and a coat normal turned away from the
+/// viewer reflects with `F_c = 1` (nothing of the base shows through a
+/// full coat).
+#[test]
+fn the_coat_turns_with_its_own_normal() {
+    use super::clearcoat::coat_normal;
+    let f = frame();
+    assert_eq!(coat_normal(&f, DVec3::Z), f.n);
+    let coat = GltfLayers {
+        clearcoat: 1.0,
+        clearcoat_roughness: 0.05,
+        ..GltfLayers::default()
+    };
+    let tilt = 0.2f64;
+    let tilted = GltfLayers {
+        clearcoat_normal: DVec3::new(tilt.sin(), 0.0, tilt.cos()),
+        ..coat
+    };
+    let base = Rgb::splat(0.3);
+    // The mirror direction about the tilted normal, for a view at 30°.
+    let wo = dir(30.0, 180.0);
+    let n_c = tilted.clearcoat_normal;
+    let wi = (2.0 * n_c.dot(wo) * n_c - wo).normalize();
+    let eval = |l: &GltfLayers| gltf_layered(base, 0.0, 0.5, 0.0, l, &f, wi, wo);
+    let (flat, turned) = (eval(&coat), eval(&tilted));
+    assert!(
+        turned.x > 10.0 * flat.x,
+        "the coat's peak follows its normal: {turned:?} vs {flat:?}"
+    );
+    let away = GltfLayers {
+        clearcoat_normal: DVec3::new(-0.9, 0.0, 0.1).normalize(),
+        ..coat
+    };
+    let v = dir(60.0, 0.0);
+    let l = dir(40.0, 90.0);
+    let f_away = gltf_layered(base, 0.0, 0.5, 0.0, &away, &f, l, v);
+    assert!(
+        f_away.max_element() >= 0.0 && f_away.max_element() < 1e-9,
+        "{f_away:?}"
+    );
 }
-
-// E(μ, α_sh(r_sh)), bilinear in (√μ, r_sh) between the nodes.
-fn sheen_albedo_lookup(cos: f32, sheen_roughness: f32) -> f32 {
-    let last = f32(SHEEN_ALBEDO_TABLE_SIZE - 1);
-    let x = sqrt(clamp(cos, 0.0, 1.0)) * last;
-    let y = clamp(sheen_roughness, 0.0, 1.0) * last;
-    let x0 = min(floor(x), last - 1.0);
-    let y0 = min(floor(y), last - 1.0);
-    let fx = x - x0;
-    let fy = y - y0;
-    let i = i32(x0);
-    let j = i32(y0);
-    let lo = sheen_albedo_node(i, j) * (1.0 - fx) + sheen_albedo_node(i + 1, j) * fx;
-    let hi = sheen_albedo_node(i, j + 1) * (1.0 - fx) + sheen_albedo_node(i + 1, j + 1) * fx;
-    return lo * (1.0 - fy) + hi * fy;
-}
-";
