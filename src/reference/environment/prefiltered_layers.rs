@@ -17,7 +17,8 @@
 //!   `∫ F* S cos = (1 − ι) s_w (f0·A + B) + ι F_ir(s_w f0) (A + B)` and the
 //!   metal's `(1 − ι)(b·A + B) + ι F_ir(b) (A + B)`: exact within the split.
 //! * **clearcoat**: `F_c` depends on `V` alone, so the coat adds
-//!   `k F_c(μ_o) · L̃(R, α_c) · (A + B)(μ_o, α_c)` and scales everything
+//!   `k F_c(μ_c) · L̃(R_c, α_c) · (A + B)(μ_c, α_c)` (`μ_c`, `R_c` about the
+//!   coat's normal, which `clearcoat_normal_texture` may turn) and scales everything
 //!   below by `1 − k F_c(μ_o)`: exact within the split (at `r_c = 0` the
 //!   prefiltered level 0 is the map itself and `A + B = 1`: the mirror
 //!   coat's Dirac lobe).
@@ -34,12 +35,16 @@
 //!   the anisotropy frame) by `1 − (1 − s_a (1 − r))⁴`; `A`, `B` and `α`
 //!   stay isotropic. Approximate, measured.
 //!
-//! With every layer at its default this is [`super::prefiltered::estimate`]
-//! exactly but for the diffuse weight of the first bullet.
+//! `L̃` is read in the dominant direction of the lobe
+//! ([`super::prefiltered::dominant_direction`]), not the mirror direction.
 //!
-//! WGSL twin: `environment_prefiltered_layered` in
-//! shaders/environment_layers.wgsl.
+//! With every layer at its default this is the core's split,
+//! `(1 − max₃(0.04·A + B))(1 − m) b/π E_SH + (F0·A + B) L̃` with
+//! `F0 = mix(0.04, b, m)`.
+//!
+//! WGSL twin: `environment_prefiltered_gltf` in shaders/environment.wgsl.
 
+use super::prefiltered::dominant_direction;
 use crate::base::{Rgb, SurfaceFrame};
 use crate::environment::EnvironmentMap;
 use crate::environment::prefiltered::Prefiltered;
@@ -47,7 +52,7 @@ use crate::material::Material;
 use crate::material::brdf::dfg;
 use crate::material::brdf::energy::{ms_factor, ms_ratio};
 use crate::material::brdf::gltf_layers::base_ior_specular::{anisotropy_frame, dielectric_f0};
-use crate::material::brdf::gltf_layers::clearcoat::clearcoat_fresnel;
+use crate::material::brdf::gltf_layers::clearcoat::{clearcoat_fresnel, coat_normal};
 use crate::material::brdf::gltf_layers::iridescence::iridescence_fresnel;
 use crate::material::brdf::gltf_layers::sheen_albedo::{sheen_albedo_lookup, sheen_albedo_table};
 use crate::material::brdf::phong::mirror_direction;
@@ -70,7 +75,7 @@ pub fn bent_normal(material: &Material, frame: &SurfaceFrame, wo: DVec3) -> DVec
     if !layers.has_anisotropy() {
         return frame.n;
     }
-    let (_, b) = anisotropy_frame(layers.anisotropy_rotation, frame.n, frame.t, frame.b);
+    let (_, b) = anisotropy_frame(layers.anisotropy_direction(), frame.n, frame.t, frame.b);
     let grain = b.cross(wo).cross(b);
     let bend = 1.0 - layers.anisotropy_strength * (1.0 - material.roughness);
     let bend4 = (bend * bend) * (bend * bend);
@@ -113,7 +118,11 @@ pub fn estimate(
         metal = metal * (1.0 - iota) + film(b) * (iota * lobe_albedo);
     }
     let diffuse_weight = (1.0 - dielectric.max_element()).max(0.0);
-    let r = mirror_direction(wo, bent_normal(material, frame, wo));
+    let r = dominant_direction(
+        mirror_direction(wo, bent_normal(material, frame, wo)),
+        n,
+        alpha,
+    );
     let radiance =
         |dir: DVec3, alpha: f64| prefiltered.lookup(map.to_map(dir), alpha) * map.settings.scale;
     let ms = if material.energy_compensation {
@@ -131,10 +140,15 @@ pub fn estimate(
         l = layers.sheen_color * (e_o * FRAC_1_PI) * irradiance + l * scaling;
     }
     if layers.has_clearcoat() {
-        let weight = layers.clearcoat * clearcoat_fresnel(cos_o);
+        // About the coat's own normal (`clearcoat_normal_texture`), as
+        // `clearcoat_over` evaluates it.
+        let n_c = coat_normal(frame, layers.clearcoat_normal);
+        let cos_c = n_c.dot(wo).max(0.0);
+        let weight = layers.clearcoat * clearcoat_fresnel(cos_c);
         let alpha_c = layers.clearcoat_roughness * layers.clearcoat_roughness;
-        let [a_c, b_c] = dfg::table().lookup(cos_o, alpha_c);
-        let coat = radiance(mirror_direction(wo, n), alpha_c) * (weight * (a_c + b_c));
+        let [a_c, b_c] = dfg::table().lookup(cos_c, alpha_c);
+        let r_c = dominant_direction(mirror_direction(wo, n_c), n_c, alpha_c);
+        let coat = radiance(r_c, alpha_c) * (weight * (a_c + b_c));
         l = l * (1.0 - weight) + coat;
     }
     l
@@ -271,8 +285,8 @@ mod tests {
     }
 
     /// With every layer at its default the specular part is the core's
-    /// split (`prefiltered::specular_terms`); only the diffuse weight
-    /// `1 − max₃(0.04·A + B)` is new.
+    /// split `(F0·A + B) L̃`, `F0 = mix(0.04, b, m)`; the diffuse term is
+    /// weighted by `1 − max₃(0.04·A + B)`.
     #[test]
     fn the_defaults_give_the_cores_split_with_the_diffuse_weight() {
         let map = blobs();
@@ -284,7 +298,7 @@ mod tests {
                 let alpha = m.roughness * m.roughness;
                 let [a, b] = dfg::table().lookup(cos_o, alpha);
                 let f0 = Rgb::splat(0.04) * (1.0 - m.metallic) + m.base_color * m.metallic;
-                let r = mirror_direction(wo, frame.n);
+                let r = dominant_direction(mirror_direction(wo, frame.n), frame.n, alpha);
                 let l = prefiltered.lookup(map.to_map(r), alpha) * map.settings.scale;
                 let weight = 1.0 - (0.04 * a + b);
                 let expected = m.base_color
