@@ -1555,11 +1555,13 @@ fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
     return prefiltered_level_lookup(d, i32(k)) * (1.0 - t) + prefiltered_level_lookup(d, i32(k) + 1) * t;
 }
 
-// The direction L̃ is read in: normalize(mix(r, n, α)), the lobe's
-// dominant direction (Lagarde & de Rousiers 2014, §4.9.3; three.js's
-// weight). Twin: prefiltered::dominant_direction.
+// The direction L̃ is read in: normalize(mix(n, r, s (√s + α))),
+// s = 1 − α, the lobe's dominant direction (Lagarde & de Rousiers 2014,
+// §4.9.3). Twin: prefiltered::dominant_direction.
 fn prefiltered_direction(r: vec3<f32>, n: vec3<f32>, alpha: f32) -> vec3<f32> {
-    let d = r * (1.0 - alpha) + n * alpha;
+    let s = clamp(1.0 - alpha, 0.0, 1.0);
+    let w = s * (sqrt(s) + alpha);
+    let d = n * (1.0 - w) + r * w;
     let len2 = dot(d, d);
     return select(n, d * inverseSqrt(max(len2, 1e-30)), len2 > 0.0);
 }
