@@ -181,6 +181,17 @@ fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
     return prefiltered_level_lookup(d, i32(k)) * (1.0 - t) + prefiltered_level_lookup(d, i32(k) + 1) * t;
 }
 
+// The direction L̃ is read in: normalize(mix(n, r, s (√s + α))),
+// s = 1 − α, the lobe's dominant direction (Lagarde & de Rousiers 2014,
+// §4.9.3). Twin: prefiltered::dominant_direction.
+fn prefiltered_direction(r: vec3<f32>, n: vec3<f32>, alpha: f32) -> vec3<f32> {
+    let s = clamp(1.0 - alpha, 0.0, 1.0);
+    let w = s * (sqrt(s) + alpha);
+    let d = n * (1.0 - w) + r * w;
+    let len2 = dot(d, d);
+    return select(n, d * inverseSqrt(max(len2, 1e-30)), len2 > 0.0);
+}
+
 // [A, B] at (μ, α), bilinear in (√μ, √α) between the nodes. Twin:
 // DfgTable::lookup.
 fn environment_dfg(mu: f32, alpha: f32) -> vec2<f32> {
@@ -205,8 +216,7 @@ struct PrefilteredTerms {
     weight: vec3<f32>,
 }
 
-// (α, F0, weight) of the split for m: gltf-pbr (α = r², F0 = mix(0.04,
-// b, m)); Cook-Torrance as GGX of a matched α (prefiltered::ggx_alpha),
+// (α, F0, weight) of the split for m: Cook-Torrance as GGX of a matched α (prefiltered::ggx_alpha),
 // F0 = F(1), weight
 // k_s·4/c; 0 for the other models. Selects (UNIFORM_BRANCHES in
 // brdf/phong.wgsl). Twin: prefiltered::specular_terms.
@@ -222,31 +232,121 @@ fn prefiltered_terms(m: Material) -> PrefilteredTerms {
     t.f0 = select(t.f0, fresnel(m, 1.0), ct);
     t.weight = select(t.weight, m.k_s * (4.0 / denominator(m)), ct);
     #endif
-    #if gltf-pbr
-    let pbr = model == MODEL_GLTF_PBR;
-    t.alpha = select(t.alpha, m.roughness * m.roughness, pbr);
-    t.f0 = select(t.f0, vec3<f32>(0.04) * (1.0 - m.metallic) + m.base_color * m.metallic, pbr);
-    t.weight = select(t.weight, vec3<f32>(1.0), pbr);
-    #endif
     return t;
 }
+
+#if gltf-pbr
+#if layer_anisotropy
+// The normal the base lobe's L̃ is read about: Filament's bent normal,
+// towards (B × V) × B by 1 − (1 − s_a (1 − r))⁴, B the less rough
+// direction; n without anisotropy (a select: UNIFORM_BRANCHES in
+// brdf/phong.wgsl). Twin: prefiltered_layers::bent_normal.
+fn prefiltered_bent_normal(m: Material, frame: SurfaceFrame, wo: vec3<f32>) -> vec3<f32> {
+    let l = m.layers;
+    let af = anisotropy_frame(l.anisotropy_direction, frame.n, frame.t, frame.b);
+    let grain = cross(cross(af.b, wo), af.b);
+    let bend = 1.0 - l.anisotropy_strength * (1.0 - m.roughness);
+    let bend4 = (bend * bend) * (bend * bend);
+    let bent = grain * (1.0 - bend4) + frame.n * bend4;
+    let len2 = dot(bent, bent);
+    let usable = l.anisotropy_strength > 0.0 && len2 > 0.0;
+    return select(frame.n, bent * inverseSqrt(max(len2, 1e-30)), usable);
+}
+#endif
+
+// gltf-pbr and its layers by the split sum, for μ_o = n·wo > 0: the
+// dielectric's s_w (f0·A + B) and the metal's b·A + B, each mixed with the
+// thin film's F_ir (A + B); the diffuse term weighted by
+// 1 − max₃ of the dielectric's; the sheen's albedo E(μ_o) times the SH
+// irradiance / π over σ_o times the rest; the coat's k F_c L̃(R_c, α_c)
+// (A + B) over (1 − k F_c) times the rest. Layers absent from the scene
+// are not compiled; present ones are selects (UNIFORM_BRANCHES).
+// Twin: prefiltered_layers::estimate.
+fn environment_prefiltered_gltf(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    let n = frame.n;
+    let cos_o = dot(n, wo);
+    let b = m.base_color;
+    let metallic = m.metallic;
+    let alpha = m.roughness * m.roughness;
+    let ab = environment_dfg(cos_o, alpha);
+    let lobe_albedo = ab.x + ab.y;
+    var s_w = 1.0;
+    var f0 = vec3<f32>(0.04);
+    #if layer_ior_specular
+    s_w = m.layers.specular;
+    f0 = dielectric_f0(m.layers.ior, m.layers.specular_color) * s_w;
+    #endif
+    var dielectric = f0 * ab.x + s_w * ab.y;
+    var metal = b * ab.x + ab.y;
+    #if layer_iridescence
+    let film = m.layers.iridescence > 0.0 && m.layers.iridescence_thickness > 0.0;
+    let iota = m.layers.iridescence;
+    let film_d = iridescence_fresnel(cos_o, m.layers.iridescence_ior, m.layers.iridescence_thickness, f0);
+    let film_m = iridescence_fresnel(cos_o, m.layers.iridescence_ior, m.layers.iridescence_thickness, b);
+    dielectric = select(dielectric, dielectric * (1.0 - iota) + film_d * (iota * lobe_albedo), film);
+    metal = select(metal, metal * (1.0 - iota) + film_m * (iota * lobe_albedo), film);
+    #endif
+    let diffuse_weight = max(1.0 - max(dielectric.x, max(dielectric.y, dielectric.z)), 0.0);
+    var normal = n;
+    #if layer_anisotropy
+    normal = prefiltered_bent_normal(m, frame, wo);
+    #endif
+    let r = prefiltered_direction(mirror_direction(wo, normal), n, alpha);
+    let radiance = environment.scale * prefiltered_lookup(environment_to_map(r), alpha);
+    let f0_mix = f0 * (1.0 - metallic) + b * metallic;
+    var specular = (dielectric * (1.0 - metallic) + metal * metallic) * radiance;
+    #if energy_compensation
+    specular *= ms_factor(f0_mix, ms_ratio(m.lobe.x, alpha, cos_o));
+    #endif
+    let irradiance = sh_irradiance(n);
+    var l = b * ((1.0 - metallic) * diffuse_weight * FRAC_1_PI) * irradiance + specular;
+    #if layer_sheen
+    let c_sh = m.layers.sheen_color;
+    let e_o = sheen_albedo_lookup(cos_o, m.layers.sheen_roughness);
+    let scaling = max(1.0 - max(c_sh.x, max(c_sh.y, c_sh.z)) * e_o, 0.0);
+    l = select(l, c_sh * (e_o * FRAC_1_PI) * irradiance + l * scaling, any(c_sh != vec3<f32>(0.0)));
+    #endif
+    #if layer_clearcoat
+    let n_c = coat_normal(frame, m.layers.clearcoat_normal);
+    let cos_c = max(dot(n_c, wo), 0.0);
+    let weight = m.layers.clearcoat * clearcoat_fresnel(cos_c);
+    let alpha_c = m.layers.clearcoat_roughness * m.layers.clearcoat_roughness;
+    let ab_c = environment_dfg(cos_c, alpha_c);
+    let r_c = prefiltered_direction(mirror_direction(wo, n_c), n_c, alpha_c);
+    let coat = environment.scale * prefiltered_lookup(environment_to_map(r_c), alpha_c) * (weight * (ab_c.x + ab_c.y));
+    l = select(l, l * (1.0 - weight) + coat, m.layers.clearcoat > 0.0);
+    #endif
+    return l;
+}
+#endif
 
 // Diffuse by SH plus the prefiltered specular. Twin: prefiltered::estimate.
 fn environment_prefiltered(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     let n = frame.n;
     let diffuse = environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
     let cos_o = dot(n, wo);
+    #if gltf-pbr
+    // gltf-pbr (with or without layers) has its own split (a select:
+    // UNIFORM_BRANCHES). Twin: the GltfPbr arm of prefiltered::estimate.
+    let pbr = brdf_model(m) == MODEL_GLTF_PBR;
+    let pbr_l = select(diffuse, environment_prefiltered_gltf(m, wo, frame), cos_o > 0.0);
+    #endif
     let t = prefiltered_terms(m);
     let ab = environment_dfg(cos_o, t.alpha);
-    let r = mirror_direction(wo, n);
+    let r = prefiltered_direction(mirror_direction(wo, n), n, t.alpha);
     let l = environment.scale * prefiltered_lookup(environment_to_map(r), t.alpha);
     var specular = t.weight * (t.f0 * ab.x + ab.y) * l;
-    // Energy compensation (issue 16 item 5): the lobe times the factor of
-    // brdf/energy.wgsl, with the split's F0 (lobe.x is the material's
-    // weight: 0 for the models without it).
-    #if cook-torrance || gltf-pbr
+    // Energy compensation: the lobe times the factor of brdf/energy.wgsl,
+    // with the split's F0 (lobe.x is the material's weight: 0 for the
+    // models without it).
+    #if cook-torrance
     specular *= ms_factor(t.f0, ms_ratio(m.lobe.x, t.alpha, cos_o));
     #endif
-    return diffuse + select(vec3<f32>(0.0), specular, cos_o > 0.0);
+    let other = diffuse + select(vec3<f32>(0.0), specular, cos_o > 0.0);
+    #if gltf-pbr
+    return select(other, pbr_l, pbr);
+    #else
+    return other;
+    #endif
 }
 #endif

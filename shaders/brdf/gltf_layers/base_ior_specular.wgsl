@@ -21,11 +21,18 @@ fn dielectric_f0(ior: f32, specular_color: vec3<f32>) -> vec3<f32> {
 }
 
 #if layer_anisotropy
+// The anisotropy's (T, B) (a struct, not an array: a pipeline with
+// overrides rejected the array's constant indexing).
+struct AnisotropyFrame {
+    t: vec3<f32>,
+    b: vec3<f32>,
+}
+
 // T = cos ρ · t + sin ρ · b from direction = (cos ρ, sin ρ); B = N × T
-// (pinned choice 8). Returns (T, B).
-fn anisotropy_frame(direction: vec2<f32>, n: vec3<f32>, t: vec3<f32>, b: vec3<f32>) -> array<vec3<f32>, 2> {
+// (pinned choice 8).
+fn anisotropy_frame(direction: vec2<f32>, n: vec3<f32>, t: vec3<f32>, b: vec3<f32>) -> AnisotropyFrame {
     let dir = t * direction.x + b * direction.y;
-    return array<vec3<f32>, 2>(dir, cross(n, dir));
+    return AnisotropyFrame(dir, cross(n, dir));
 }
 
 // α_t = α + (1 − α) s_a².
@@ -70,8 +77,8 @@ fn base_lobe(alpha: f32, layers: GltfLayers, n: vec3<f32>, t: vec3<f32>, b: vec3
     if layers.anisotropy_strength > 0.0 {
         let tb = anisotropy_frame(layers.anisotropy_direction, n, t, b);
         let alpha_t = anisotropic_alpha_t(alpha, layers.anisotropy_strength);
-        return d_ggx_anisotropic(alpha_t, alpha, dot(tb[0], h), dot(tb[1], h), cos_h)
-            * vis_ggx_anisotropic(alpha_t, alpha, cos_i, cos_o, dot(tb[0], wi), dot(tb[1], wi), dot(tb[0], wo), dot(tb[1], wo), cos_ih, cos_oh);
+        return d_ggx_anisotropic(alpha_t, alpha, dot(tb.t, h), dot(tb.b, h), cos_h)
+            * vis_ggx_anisotropic(alpha_t, alpha, cos_i, cos_o, dot(tb.t, wi), dot(tb.b, wi), dot(tb.t, wo), dot(tb.b, wo), cos_ih, cos_oh);
     }
     #endif
     let sin2_h = sin2_between(n, h);

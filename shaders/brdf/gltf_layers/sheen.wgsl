@@ -34,13 +34,13 @@ fn d_charlie(alpha: f32, cos_h: f32, sin2_h: f32) -> f32 {
 // l(x) = a/(1 + b x^c) + d x + e, coefficients mixed by q = (1 − α)².
 fn sheen_lambda_fit(x: f32, alpha: f32) -> f32 {
     let q = (1.0 - alpha) * (1.0 - alpha);
-    let p0 = array<f32, 5>(25.3245, 3.32435, 0.16801, -1.27393, -4.85967);
-    let p1 = array<f32, 5>(21.5473, 3.82987, 0.19823, -1.97760, -4.32054);
-    let a = p1[0] * (1.0 - q) + p0[0] * q;
-    let b = p1[1] * (1.0 - q) + p0[1] * q;
-    let c = p1[2] * (1.0 - q) + p0[2] * q;
-    let d = p1[3] * (1.0 - q) + p0[3] * q;
-    let e = p1[4] * (1.0 - q) + p0[4] * q;
+    // (p₁ (1 − q) + p₀ q per coefficient; scalars, not `let` arrays: a
+    // pipeline with overrides rejected the arrays' constant indexing.)
+    let a = 21.5473 * (1.0 - q) + 25.3245 * q;
+    let b = 3.82987 * (1.0 - q) + 3.32435 * q;
+    let c = 0.19823 * (1.0 - q) + 0.16801 * q;
+    let d = -1.97760 * (1.0 - q) + -1.27393 * q;
+    let e = -4.32054 * (1.0 - q) + -4.85967 * q;
     let xc = select(0.0, pow(max(x, 1e-30), c), x > 0.0);
     return a / (1.0 + b * xc) + d * x + e;
 }

@@ -7,12 +7,13 @@
 //!   BRDF lobe, [`lobe`], by multiple importance sampling)
 //!   (`"sampled"`) and its quadrature truth.
 //! * [`prefiltered`]: glossy reflection by the split-sum approximation
-//!   (`"prefiltered"`).
+//!   (`"prefiltered"`), gltf-pbr's layers by [`prefiltered_layers`].
 //! * [`sh_phong`]: the lecture's Phong lobes by SH convolution (`"sh"`).
 //! * [`diffuse`]: the diffuse albedo SH irradiance lights.
 
 pub mod diffuse;
 pub mod lobe;
 pub mod prefiltered;
+pub mod prefiltered_layers;
 pub mod sampled;
 pub mod sh_phong;

@@ -42,18 +42,6 @@ pub fn warnings(scene: &Scene) -> Vec<String> {
     let mut used: Vec<usize> = scene.meshes.iter().map(|m| m.material).collect();
     used.sort_unstable();
     used.dedup();
-    let layered = used
-        .iter()
-        .filter_map(|&i| scene.materials.get(i))
-        .filter(|m| mode == Specular::Prefiltered && handles(mode, m.model))
-        .filter(|m| !m.gltf_layers_used().is_empty())
-        .map(|m| {
-            format!(
-                "material `{}` (model `gltf-pbr` with layers) under environment.specular = \"prefiltered\": the environment lights its core BRDF only (the split sum), without its layers (clearcoat, sheen, iridescence, anisotropy, ior/specular); the lights see them all, and \"sampled\" integrates them",
-                m.name
-            )
-        })
-        .collect::<Vec<_>>();
     used.into_iter()
         .filter_map(|i| scene.materials.get(i))
         .filter(|m| !handles(mode, m.model))
@@ -76,7 +64,6 @@ pub fn warnings(scene: &Scene) -> Vec<String> {
                 mode.name(),
             )
         })
-        .chain(layered)
         .collect()
 }
 

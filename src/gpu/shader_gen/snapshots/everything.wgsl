@@ -1187,6 +1187,8 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         case MODEL_MEASURED: { return measured_f_r(m, wi, wo, frame); }
         case MODEL_GLTF_PBR: {
             let ms = ms_ratio(m.lobe.x, m.roughness * m.roughness, dot(n, wo));
+            // The layers (shaders/brdf/gltf_layers/), where a drawn
+            // material has one; the core otherwise.
             return gltf_pbr(m.base_color, m.metallic, m.roughness, ms, n, wi, wo);
         }
         case MODEL_ABC: { return lambert(m.k_d) + m.k_s * abc_specular(m.lobe.x, m.lobe.y, m.eta_i, m.eta_t, n, wi, wo); }
@@ -1553,6 +1555,17 @@ fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
     return prefiltered_level_lookup(d, i32(k)) * (1.0 - t) + prefiltered_level_lookup(d, i32(k) + 1) * t;
 }
 
+// The direction L̃ is read in: normalize(mix(n, r, s (√s + α))),
+// s = 1 − α, the lobe's dominant direction (Lagarde & de Rousiers 2014,
+// §4.9.3). Twin: prefiltered::dominant_direction.
+fn prefiltered_direction(r: vec3<f32>, n: vec3<f32>, alpha: f32) -> vec3<f32> {
+    let s = clamp(1.0 - alpha, 0.0, 1.0);
+    let w = s * (sqrt(s) + alpha);
+    let d = n * (1.0 - w) + r * w;
+    let len2 = dot(d, d);
+    return select(n, d * inverseSqrt(max(len2, 1e-30)), len2 > 0.0);
+}
+
 // [A, B] at (μ, α), bilinear in (√μ, √α) between the nodes. Twin:
 // DfgTable::lookup.
 fn environment_dfg(mu: f32, alpha: f32) -> vec2<f32> {
@@ -1577,8 +1590,7 @@ struct PrefilteredTerms {
     weight: vec3<f32>,
 }
 
-// (α, F0, weight) of the split for m: gltf-pbr (α = r², F0 = mix(0.04,
-// b, m)); Cook-Torrance as GGX of a matched α (prefiltered::ggx_alpha),
+// (α, F0, weight) of the split for m: Cook-Torrance as GGX of a matched α (prefiltered::ggx_alpha),
 // F0 = F(1), weight
 // k_s·4/c; 0 for the other models. Selects (UNIFORM_BRANCHES in
 // brdf/phong.wgsl). Twin: prefiltered::specular_terms.
@@ -1592,11 +1604,40 @@ fn prefiltered_terms(m: Material) -> PrefilteredTerms {
     t.alpha = select(t.alpha, ct_alpha, ct);
     t.f0 = select(t.f0, fresnel(m, 1.0), ct);
     t.weight = select(t.weight, m.k_s * (4.0 / denominator(m)), ct);
-    let pbr = model == MODEL_GLTF_PBR;
-    t.alpha = select(t.alpha, m.roughness * m.roughness, pbr);
-    t.f0 = select(t.f0, vec3<f32>(0.04) * (1.0 - m.metallic) + m.base_color * m.metallic, pbr);
-    t.weight = select(t.weight, vec3<f32>(1.0), pbr);
     return t;
+}
+
+
+// gltf-pbr and its layers by the split sum, for μ_o = n·wo > 0: the
+// dielectric's s_w (f0·A + B) and the metal's b·A + B, each mixed with the
+// thin film's F_ir (A + B); the diffuse term weighted by
+// 1 − max₃ of the dielectric's; the sheen's albedo E(μ_o) times the SH
+// irradiance / π over σ_o times the rest; the coat's k F_c L̃(R_c, α_c)
+// (A + B) over (1 − k F_c) times the rest. Layers absent from the scene
+// are not compiled; present ones are selects (UNIFORM_BRANCHES).
+// Twin: prefiltered_layers::estimate.
+fn environment_prefiltered_gltf(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+    let n = frame.n;
+    let cos_o = dot(n, wo);
+    let b = m.base_color;
+    let metallic = m.metallic;
+    let alpha = m.roughness * m.roughness;
+    let ab = environment_dfg(cos_o, alpha);
+    let lobe_albedo = ab.x + ab.y;
+    var s_w = 1.0;
+    var f0 = vec3<f32>(0.04);
+    var dielectric = f0 * ab.x + s_w * ab.y;
+    var metal = b * ab.x + ab.y;
+    let diffuse_weight = max(1.0 - max(dielectric.x, max(dielectric.y, dielectric.z)), 0.0);
+    var normal = n;
+    let r = prefiltered_direction(mirror_direction(wo, normal), n, alpha);
+    let radiance = environment.scale * prefiltered_lookup(environment_to_map(r), alpha);
+    let f0_mix = f0 * (1.0 - metallic) + b * metallic;
+    var specular = (dielectric * (1.0 - metallic) + metal * metallic) * radiance;
+    specular *= ms_factor(f0_mix, ms_ratio(m.lobe.x, alpha, cos_o));
+    let irradiance = sh_irradiance(n);
+    var l = b * ((1.0 - metallic) * diffuse_weight * FRAC_1_PI) * irradiance + specular;
+    return l;
 }
 
 // Diffuse by SH plus the prefiltered specular. Twin: prefiltered::estimate.
@@ -1604,16 +1645,21 @@ fn environment_prefiltered(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> v
     let n = frame.n;
     let diffuse = environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n);
     let cos_o = dot(n, wo);
+    // gltf-pbr (with or without layers) has its own split (a select:
+    // UNIFORM_BRANCHES). Twin: the GltfPbr arm of prefiltered::estimate.
+    let pbr = brdf_model(m) == MODEL_GLTF_PBR;
+    let pbr_l = select(diffuse, environment_prefiltered_gltf(m, wo, frame), cos_o > 0.0);
     let t = prefiltered_terms(m);
     let ab = environment_dfg(cos_o, t.alpha);
-    let r = mirror_direction(wo, n);
+    let r = prefiltered_direction(mirror_direction(wo, n), n, t.alpha);
     let l = environment.scale * prefiltered_lookup(environment_to_map(r), t.alpha);
     var specular = t.weight * (t.f0 * ab.x + ab.y) * l;
-    // Energy compensation (issue 16 item 5): the lobe times the factor of
-    // brdf/energy.wgsl, with the split's F0 (lobe.x is the material's
-    // weight: 0 for the models without it).
+    // Energy compensation: the lobe times the factor of brdf/energy.wgsl,
+    // with the split's F0 (lobe.x is the material's weight: 0 for the
+    // models without it).
     specular *= ms_factor(t.f0, ms_ratio(m.lobe.x, t.alpha, cos_o));
-    return diffuse + select(vec3<f32>(0.0), specular, cos_o > 0.0);
+    let other = diffuse + select(vec3<f32>(0.0), specular, cos_o > 0.0);
+    return select(other, pbr_l, pbr);
 }
 
 // Glossy reflection of the lecture's Phong lobes by spherical-harmonic
