@@ -51,8 +51,8 @@ fn asset(name: &str) -> String {
 
 fn load(extra: &[String]) -> Scene {
     let mut sets = vec![
-        "image.width=200".to_string(),
-        "image.height=150".to_string(),
+        "image.width=120".to_string(),
+        "image.height=90".to_string(),
         "shading.mode=phong".to_string(),
         "materials.ball.model=gltf-pbr".to_string(),
         "materials.ball.base_color=[0.6, 0.25, 0.1]".to_string(),

@@ -57,9 +57,9 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         #if gltf-pbr
         case MODEL_GLTF_PBR: {
             let ms = ms_ratio(m.lobe.x, m.roughness * m.roughness, dot(n, wo));
+            #if gltf_layers
             // The layers (shaders/brdf/gltf_layers/), where a drawn
             // material has one; the core otherwise.
-            #if gltf_layers
             return gltf_layered(m.base_color, m.metallic, m.roughness, ms, m.layers, frame, wi, wo);
             #else
             return gltf_pbr(m.base_color, m.metallic, m.roughness, ms, n, wi, wo);
