@@ -73,16 +73,19 @@ fn base_lobe(alpha: f32, layers: GltfLayers, n: vec3<f32>, t: vec3<f32>, b: vec3
     let cos_h = dot(n, h);
     let cos_ih = dot(wi, h);
     let cos_oh = dot(wo, h);
-    #if layer_anisotropy
-    if layers.anisotropy_strength > 0.0 {
-        let tb = anisotropy_frame(layers.anisotropy_direction, n, t, b);
-        let alpha_t = anisotropic_alpha_t(alpha, layers.anisotropy_strength);
-        return d_ggx_anisotropic(alpha_t, alpha, dot(tb.t, h), dot(tb.b, h), cos_h)
-            * vis_ggx_anisotropic(alpha_t, alpha, cos_i, cos_o, dot(tb.t, wi), dot(tb.b, wi), dot(tb.t, wo), dot(tb.b, wo), cos_ih, cos_oh);
-    }
-    #endif
     let sin2_h = sin2_between(n, h);
-    return d_ggx(alpha, cos_h, sin2_h) * vis_smith_ggx_correlated(alpha, cos_i, cos_o, cos_ih, cos_oh);
+    let isotropic = d_ggx(alpha, cos_h, sin2_h) * vis_smith_ggx_correlated(alpha, cos_i, cos_o, cos_ih, cos_oh);
+    #if layer_anisotropy
+    // Both lobes and a select, not a branch on the material's value
+    // (UNIFORM_BRANCHES in brdf/phong.wgsl).
+    let tb = anisotropy_frame(layers.anisotropy_direction, n, t, b);
+    let alpha_t = anisotropic_alpha_t(alpha, layers.anisotropy_strength);
+    let anisotropic = d_ggx_anisotropic(alpha_t, alpha, dot(tb.t, h), dot(tb.b, h), cos_h)
+        * vis_ggx_anisotropic(alpha_t, alpha, cos_i, cos_o, dot(tb.t, wi), dot(tb.b, wi), dot(tb.t, wo), dot(tb.b, wo), cos_ih, cos_oh);
+    return select(isotropic, anisotropic, layers.anisotropy_strength > 0.0);
+    #else
+    return isotropic;
+    #endif
 }
 
 // The base material for N·L > 0, N·V > 0; the film mixed into the Fresnel
@@ -95,13 +98,15 @@ fn gltf_base(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, laye
     var f_dielectric = (f0 + (vec3<f32>(1.0) - f0) * w) * layers.specular;
     var f_metal = base_color + (vec3<f32>(1.0) - base_color) * w;
     #if layer_iridescence
-    if layers.iridescence > 0.0 && layers.iridescence_thickness > 0.0 {
-        let iota = layers.iridescence;
-        let cos_o = dot(n, wo);
-        f_dielectric = f_dielectric * (1.0 - iota)
-            + iridescence_fresnel(cos_o, layers.iridescence_ior, layers.iridescence_thickness, f0 * layers.specular) * iota;
-        f_metal = f_metal * (1.0 - iota) + iridescence_fresnel(cos_o, layers.iridescence_ior, layers.iridescence_thickness, base_color) * iota;
-    }
+    // A select, not a branch (UNIFORM_BRANCHES in brdf/phong.wgsl).
+    let film = layers.iridescence > 0.0 && layers.iridescence_thickness > 0.0;
+    let iota = layers.iridescence;
+    let cos_o = dot(n, wo);
+    let film_dielectric = f_dielectric * (1.0 - iota)
+        + iridescence_fresnel(cos_o, layers.iridescence_ior, layers.iridescence_thickness, f0 * layers.specular) * iota;
+    let film_metal = f_metal * (1.0 - iota) + iridescence_fresnel(cos_o, layers.iridescence_ior, layers.iridescence_thickness, base_color) * iota;
+    f_dielectric = select(f_dielectric, film_dielectric, film);
+    f_metal = select(f_metal, film_metal, film);
     #endif
     let dielectric = base_color * ((1.0 - max(f_dielectric.x, max(f_dielectric.y, f_dielectric.z))) * FRAC_1_PI)
         + f_dielectric * specular * ms_factor(f0 * layers.specular, ms);

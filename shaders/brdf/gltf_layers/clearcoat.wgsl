@@ -14,23 +14,21 @@ fn clearcoat_fresnel(cos_o: f32) -> f32 {
     return DIELECTRIC_F0 + (1.0 - DIELECTRIC_F0) * schlick_weight(cos_o);
 }
 
+// 0 at r_c = 0 by a select, not a branch (UNIFORM_BRANCHES in
+// brdf/phong.wgsl): the lobe at the floored α is finite there.
 fn clearcoat_lobe(clearcoat_roughness: f32, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> f32 {
-    if clearcoat_roughness <= 0.0 {
-        return 0.0;
-    }
     let alpha = max(clearcoat_roughness * clearcoat_roughness, CLEARCOAT_ALPHA_FLOOR);
     let h = half_vector(wi, wo);
-    return d_ggx(alpha, dot(n, h), sin2_between(n, h))
+    let lobe = d_ggx(alpha, dot(n, h), sin2_between(n, h))
         * vis_smith_ggx_correlated(alpha, dot(n, wi), dot(n, wo), dot(wi, h), dot(wo, h));
+    return select(lobe, 0.0, clearcoat_roughness <= 0.0);
 }
 
 // n_c = x·t + y·b + z·n from the coat normal's coordinates in the
 // shading frame; exactly n for (0, 0, 1).
 fn coat_normal(frame: SurfaceFrame, coords: vec3<f32>) -> vec3<f32> {
-    if all(coords == vec3<f32>(0.0, 0.0, 1.0)) {
-        return frame.n;
-    }
-    return frame.t * coords.x + frame.b * coords.y + frame.n * coords.z;
+    let turned = frame.t * coords.x + frame.b * coords.y + frame.n * coords.z;
+    return select(turned, frame.n, all(coords == vec3<f32>(0.0, 0.0, 1.0)));
 }
 
 // (1 − k F_c) · below + k F_c · G_{α_c} about the coat normal n, F_c at

@@ -29,16 +29,15 @@ fn gltf_layered_with_albedos(base_color: vec3<f32>, metallic: f32, roughness: f3
     #else
     var f = gltf_pbr(base_color, metallic, roughness, ms, n, wi, wo);
     #endif
+    // Each layer by a select, not a branch on the material's value
+    // (UNIFORM_BRANCHES in brdf/phong.wgsl).
     #if layer_sheen
-    if has_sheen(layers) {
-        f = sheen_over(f, layers, albedo_o, albedo_i, n, wi, wo);
-    }
+    f = select(f, sheen_over(f, layers, albedo_o, albedo_i, n, wi, wo), has_sheen(layers));
     #endif
     #if layer_clearcoat
-    if layers.clearcoat > 0.0 {
-        let n_c = coat_normal(frame, layers.clearcoat_normal);
-        f = clearcoat_over(f, layers.clearcoat, layers.clearcoat_roughness, n_c, wi, wo);
-    }
+    let n_c = coat_normal(frame, layers.clearcoat_normal);
+    let coated = clearcoat_over(f, layers.clearcoat, layers.clearcoat_roughness, n_c, wi, wo);
+    f = select(f, coated, layers.clearcoat > 0.0);
     #endif
     return f;
 }
@@ -46,11 +45,11 @@ fn gltf_layered_with_albedos(base_color: vec3<f32>, metallic: f32, roughness: f3
 // The sheen albedos (E(μ_o), E(μ_i)) from the table (0 without sheen).
 fn sheen_albedos(layers: GltfLayers, cos_i: f32, cos_o: f32) -> vec2<f32> {
     #if layer_sheen
-    if has_sheen(layers) {
-        return vec2<f32>(sheen_albedo_lookup(cos_o, layers.sheen_roughness), sheen_albedo_lookup(cos_i, layers.sheen_roughness));
-    }
-    #endif
+    let e = vec2<f32>(sheen_albedo_lookup(cos_o, layers.sheen_roughness), sheen_albedo_lookup(cos_i, layers.sheen_roughness));
+    return select(vec2<f32>(0.0), e, has_sheen(layers));
+    #else
     return vec2<f32>(0.0);
+    #endif
 }
 
 // f_r of the layered material, the sheen scaled by the table's albedos.
