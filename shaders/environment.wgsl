@@ -183,7 +183,7 @@ fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
 
 // The direction L̃ is read in: normalize(mix(n, r, s (√s + α))),
 // s = 1 − α, the lobe's dominant direction (Lagarde & de Rousiers 2014,
-// §4.9.3). Twin: prefiltered::dominant_direction.
+// §4.9.3). Twin: dominant::dominant_direction.
 fn prefiltered_direction(r: vec3<f32>, n: vec3<f32>, alpha: f32) -> vec3<f32> {
     let s = clamp(1.0 - alpha, 0.0, 1.0);
     let w = s * (sqrt(s) + alpha);

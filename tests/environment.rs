@@ -917,7 +917,7 @@ const SAMPLED_MEASURED: [[(f64, f64); 4]; 4] = [
 /// sky gltf-pbr, sky gold (the gold a bare conductor, `k_d = 0`, `k_s = 1`:
 /// its lobe through the split, with the Beckmann-as-GGX stand-in).
 /// Measured 2026-12-05 with `L̃` read in the dominant direction
-/// (`prefiltered::dominant_direction`); at the mirror direction they were
+/// (`dominant::dominant_direction`); at the mirror direction they were
 /// (0.0138, 0.111), (0.0262, 0.205), (0.0150, 0.117), (0.0243, 0.256):
 /// the mean falls on all four spheres, the 99th percentile under the sky's
 /// sun rises, since bending the read moves a small source's highlight.

@@ -12,6 +12,7 @@
 //! * [`diffuse`]: the diffuse albedo SH irradiance lights.
 
 pub mod diffuse;
+pub mod dominant;
 pub mod lobe;
 pub mod prefiltered;
 pub mod prefiltered_layers;

@@ -36,7 +36,7 @@
 //!   stay isotropic. Approximate, measured.
 //!
 //! `L̃` is read in the dominant direction of the lobe
-//! ([`super::prefiltered::dominant_direction`]), not the mirror direction.
+//! ([`super::dominant::dominant_direction`]), not the mirror direction.
 //!
 //! With every layer at its default this is the core's split,
 //! `(1 − max₃(0.04·A + B))(1 − m) b/π E_SH + (F0·A + B) L̃` with
@@ -44,7 +44,7 @@
 //!
 //! WGSL twin: `environment_prefiltered_gltf` in shaders/environment.wgsl.
 
-use super::prefiltered::dominant_direction;
+use super::dominant::dominant_direction;
 use crate::base::{Rgb, SurfaceFrame};
 use crate::environment::EnvironmentMap;
 use crate::environment::prefiltered::Prefiltered;

@@ -1,7 +1,7 @@
 //! Conductors as physics: the exact Fresnel reflectance of a metal's
 //! measured `n(λ) + i k(λ)` ([`super::metals`]) at every wavelength,
 //! integrated to a colour by [`super::cie`]; and the error of the
-//! three-channel presets ([`COLOURED_CONDUCTORS`], evaluated as the
+//! three-channel presets ([`crate::material::conductors::COLOURED_CONDUCTORS`], evaluated as the
 //! renderer does, [`fresnel_conductor`] per channel) against it.
 //!
 //! The presets were reduced from the same tables (`scripts/conductor_presets.py`,

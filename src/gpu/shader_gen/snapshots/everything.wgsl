@@ -1187,8 +1187,6 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         case MODEL_MEASURED: { return measured_f_r(m, wi, wo, frame); }
         case MODEL_GLTF_PBR: {
             let ms = ms_ratio(m.lobe.x, m.roughness * m.roughness, dot(n, wo));
-            // The layers (shaders/brdf/gltf_layers/), where a drawn
-            // material has one; the core otherwise.
             return gltf_pbr(m.base_color, m.metallic, m.roughness, ms, n, wi, wo);
         }
         case MODEL_ABC: { return lambert(m.k_d) + m.k_s * abc_specular(m.lobe.x, m.lobe.y, m.eta_i, m.eta_t, n, wi, wo); }
@@ -1557,7 +1555,7 @@ fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
 
 // The direction L̃ is read in: normalize(mix(n, r, s (√s + α))),
 // s = 1 − α, the lobe's dominant direction (Lagarde & de Rousiers 2014,
-// §4.9.3). Twin: prefiltered::dominant_direction.
+// §4.9.3). Twin: dominant::dominant_direction.
 fn prefiltered_direction(r: vec3<f32>, n: vec3<f32>, alpha: f32) -> vec3<f32> {
     let s = clamp(1.0 - alpha, 0.0, 1.0);
     let w = s * (sqrt(s) + alpha);
