@@ -409,10 +409,14 @@ fn gpu_eval(
         })
     };
     let input_buffer = init(bytemuck::cast_slice(&inputs), wgpu::BufferUsages::STORAGE);
-    let material_buffer = init(
-        bytemuck::cast_slice(&materials),
-        wgpu::BufferUsages::STORAGE,
-    );
+    // The shader's stride: these variants compile without gltf-pbr's
+    // layers, so WGSL's `Material` ends before them.
+    let stride = GpuMaterial::wgsl_size(false);
+    let packed: Vec<u8> = materials
+        .iter()
+        .flat_map(|m| bytemuck::bytes_of(m)[..stride].to_vec())
+        .collect();
+    let material_buffer = init(&packed, wgpu::BufferUsages::STORAGE);
     let output = common::compute_output(ctx, (samples.len() * 2 * 16) as u64);
     // The measured tables (group 0, binding 3), for a measured variant;
     // the globals (binding 0) with energy compensation's albedo table.

@@ -197,6 +197,18 @@ impl GpuGlobals {
 }
 
 impl GpuMaterial {
+    /// The size of WGSL's `Material` in a shader with or without the
+    /// feature `gltf_layers`: without it the struct ends before `layers`
+    /// (a uniform binding of the whole record reads the same fields; a
+    /// storage array of records needs this stride).
+    pub fn wgsl_size(layers: bool) -> usize {
+        if layers {
+            std::mem::size_of::<Self>()
+        } else {
+            std::mem::offset_of!(GpuMaterial, layers)
+        }
+    }
+
     /// `m` as the GPU sees it: `m` must be an effective material (roughness
     /// floor applied), `variant` its code in the scene's shader
     /// (`ShaderKey::variant_code`).
