@@ -173,9 +173,11 @@ fn decode_primitive(
 }
 
 /// The Draco mesh of `stream`; a panic in the decoder (a malformed stream
-/// it did not anticipate) is reported as corrupt data.
+/// it did not anticipate, e.g. an edgebreaker count past any capacity,
+/// found by fuzzing) is reported as corrupt data, its own text kept off
+/// stderr ([`super::hostile::guarded`]).
 fn decode_stream(stream: &[u8]) -> Result<draco_oxide_core::mesh::Mesh, String> {
-    let result = std::panic::catch_unwind(|| draco_oxide_decoder::decode_mesh(stream));
+    let result = super::hostile::guarded(|| draco_oxide_decoder::decode_mesh(stream));
     match result {
         Ok(Ok(mesh)) => Ok(mesh),
         Ok(Err(e)) => Err(format!("the Draco stream is corrupt or unsupported ({e})")),

@@ -12,8 +12,8 @@ pub(super) const WARNING: &str = "warning: ";
 pub(super) const PARSER_PANICKED: &str = "the glTF parser failed on malformed data";
 
 /// Runs `f`, turning a panic into the "malformed data" error. Only code of
-/// the `gltf` crate is expected to panic here, and only on inputs our own
-/// checks did not anticipate.
+/// the `gltf` crate (and the Draco decoder) is expected to panic here, and
+/// only on inputs our own checks did not anticipate.
 /// The panic's own message stays off stderr (the user gets the error,
 /// not "thread 'main' panicked at …gltf…"): the process's panic hook is
 /// wrapped once, and is quiet on this thread while `f` runs.
