@@ -5,6 +5,7 @@ pub mod color;
 pub mod frame;
 pub mod input;
 pub mod named;
+pub mod quiet_panic;
 pub mod range;
 
 pub use color::{ColorValue, Rgb, rgb_to_toml};

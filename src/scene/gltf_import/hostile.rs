@@ -3,7 +3,6 @@
 //! the file cut short for messages ([`abbreviate`]).
 
 use std::borrow::Cow;
-use std::panic::{self, AssertUnwindSafe};
 
 /// The prefix of a note that is a warning ([`crate::scene::scene_file::WARNING`]).
 pub(super) const WARNING: &str = "warning: ";
@@ -15,23 +14,9 @@ pub(super) const PARSER_PANICKED: &str = "the glTF parser failed on malformed da
 /// the `gltf` crate (and the Draco decoder) is expected to panic here, and
 /// only on inputs our own checks did not anticipate.
 /// The panic's own message stays off stderr (the user gets the error,
-/// not "thread 'main' panicked at …gltf…"): the process's panic hook is
-/// wrapped once, and is quiet on this thread while `f` runs.
+/// not "thread 'main' panicked at …gltf…": `base::quiet_panic`).
 pub(super) fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    thread_local!(static QUIET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) });
-    static WRAP_HOOK: std::sync::Once = std::sync::Once::new();
-    WRAP_HOOK.call_once(|| {
-        let previous = panic::take_hook();
-        panic::set_hook(Box::new(move |info| {
-            if !QUIET.with(|q| q.get()) {
-                previous(info);
-            }
-        }));
-    });
-    let was = QUIET.with(|q| q.replace(true));
-    let result = panic::catch_unwind(AssertUnwindSafe(f));
-    QUIET.with(|q| q.set(was));
-    result.map_err(|_| PARSER_PANICKED.to_string())
+    crate::base::quiet_panic::catch_quietly(f).ok_or_else(|| PARSER_PANICKED.to_string())
 }
 
 /// The first 80 characters of a text from the file, for messages (data:

@@ -25,10 +25,10 @@ fn transcoder(bytes: &[u8]) -> Result<basisu::Transcoder<'_>, String> {
 }
 
 /// Runs the transcoder, turning a panic in it (malformed data it did not
-/// anticipate; none is known) into an error.
+/// anticipate; none is known) into an error, its text kept off stderr.
 fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f))
-        .map_err(|_| "it is a corrupt KTX2 texture (the transcoder failed on it)".to_string())
+    crate::base::quiet_panic::catch_quietly(f)
+        .ok_or_else(|| "it is a corrupt KTX2 texture (the transcoder failed on it)".to_string())
 }
 
 /// The base level's size, from the header alone.
