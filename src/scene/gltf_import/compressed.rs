@@ -46,11 +46,12 @@ pub(super) fn use_extension_sources(root: &mut gltf::json::Root) -> Result<(), S
     Ok(())
 }
 
+/// A document with its buffers, the compressed parts decoded.
+type Decoded<'b> = (gltf::Document, Vec<Cow<'b, [u8]>>);
+
 /// Decodes the compressed buffer views and primitives of `document`;
 /// returns the document and buffers as if the file had been uncompressed.
 /// The decoded bytes count against `limits.bytes` with `used_bytes`.
-/// A document with its buffers, the compressed parts decoded.
-type Decoded<'b> = (gltf::Document, Vec<Cow<'b, [u8]>>);
 
 pub(super) fn decode<'b>(
     document: gltf::Document,
@@ -60,6 +61,6 @@ pub(super) fn decode<'b>(
 ) -> Result<Decoded<'b>, String> {
     let mut root = document.into_json();
     super::meshopt::decode_views(&mut root, &mut buffers, used_bytes, limits.bytes)?;
-    super::draco::decode_primitives(&mut root, &mut buffers, used_bytes, limits.bytes)?;
+    super::draco::decode_primitives(&mut root, &mut buffers, used_bytes, limits)?;
     Ok((gltf::Document::from_json_without_validation(root), buffers))
 }

@@ -53,8 +53,9 @@ pub(super) fn decode_primitives(
     root: &mut gltf::json::Root,
     buffers: &mut Vec<Cow<'_, [u8]>>,
     used_bytes: &mut u64,
-    limit: u64,
+    limits: &crate::scene::limits::Limits,
 ) -> Result<(), String> {
+    let limit = limits.bytes;
     let mut decoded = Vec::new();
     for (m, mesh) in root.meshes.iter().enumerate() {
         for (p, primitive) in mesh.primitives.iter().enumerate() {
@@ -66,7 +67,7 @@ pub(super) fn decode_primitives(
                 continue;
             };
             let at = |problem: String| format!("mesh {m} primitive {p}: {EXTENSION}: {problem}");
-            decoded.extend(decode_primitive(root, primitive, value, buffers).map_err(at)?);
+            decoded.extend(decode_primitive(root, primitive, value, buffers, limits).map_err(at)?);
         }
     }
     for Decoded { accessor, bytes } in decoded {
@@ -118,6 +119,7 @@ fn decode_primitive(
     primitive: &gltf::json::mesh::Primitive,
     value: &Value,
     buffers: &[Cow<'_, [u8]>],
+    limits: &crate::scene::limits::Limits,
 ) -> Result<Vec<Decoded>, String> {
     if !matches!(
         primitive.mode,
@@ -130,13 +132,24 @@ fn decode_primitive(
         .and_then(Value::as_u64)
         .ok_or("`bufferView` is missing or not an index")?;
     let stream = view_bytes(root, buffers, view_index)?;
-    let mesh = decode_stream(stream)?;
-
-    let mut decoded = Vec::new();
     let indices = primitive
         .indices
         .ok_or("the primitive has no `indices`, which must receive Draco's triangles")?
         .value();
+    let count = |a: usize| root.accessors.get(a).map_or(0, |a| a.count.0);
+    let declared = super::draco_counts::Declared {
+        indices: count(indices),
+        points: primitive
+            .attributes
+            .values()
+            .map(|a| count(a.value()))
+            .max()
+            .unwrap_or(0),
+    };
+    super::draco_counts::check(stream, &declared, limits)?;
+    let mesh = decode_stream(stream)?;
+
+    let mut decoded = Vec::new();
     decoded.push(Decoded {
         accessor: indices,
         bytes: index_bytes(root, indices, &mesh.faces)?,

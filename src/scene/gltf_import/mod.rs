@@ -125,6 +125,7 @@ mod compressed;
 mod container;
 mod convert;
 mod draco;
+mod draco_counts;
 mod gltf_scene;
 mod graph;
 mod hostile;
