@@ -52,7 +52,6 @@ type Decoded<'b> = (gltf::Document, Vec<Cow<'b, [u8]>>);
 /// Decodes the compressed buffer views and primitives of `document`;
 /// returns the document and buffers as if the file had been uncompressed.
 /// The decoded bytes count against `limits.bytes` with `used_bytes`.
-
 pub(super) fn decode<'b>(
     document: gltf::Document,
     mut buffers: Vec<Cow<'b, [u8]>>,
