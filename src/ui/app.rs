@@ -147,6 +147,12 @@ pub struct App {
     /// GPU time of the egui pass (sampled like `gpu_times`), ms.
     panel_gpu_times: Vec<f64>,
     last_frame: Option<Instant>,
+    /// When the window was created, and how long after it the first
+    /// frame was presented: the window is blank until then (the scene's
+    /// preparation, pipeline compilation, anything the first frame waits
+    /// for), which the frame-to-frame times do not include.
+    window_opened: Option<Instant>,
+    first_frame: Option<Duration>,
     last_reload_check: Instant,
     drag: Option<(MouseButton, f64, f64)>,
     cursor: (f64, f64),
@@ -183,6 +189,8 @@ impl App {
             ui_times: Vec::new(),
             panel_gpu_times: Vec::new(),
             last_frame: None,
+            window_opened: None,
+            first_frame: None,
             last_reload_check: Instant::now(),
             drag: None,
             cursor: (0.0, 0.0),
@@ -237,8 +245,15 @@ impl App {
                 gpu[n / 2]
             ),
         };
+        let first = match self.first_frame {
+            Some(d) => format!(
+                "; first frame {:.2} ms after the window opened",
+                d.as_secs_f64() * 1e3
+            ),
+            None => String::new(),
+        };
         format!(
-            "frame times over {} frames after {} warm-up, window {}x{}, 3D area {}x{}, vsync {}: median {:.2} ms, p10 {:.2} ms, p90 {:.2} ms, min {:.2} ms, max {:.2} ms{gpu}{panel_gpu}{ui}",
+            "frame times over {} frames after {} warm-up, window {}x{}, 3D area {}x{}, vsync {}: median {:.2} ms, p10 {:.2} ms, p90 {:.2} ms, min {:.2} ms, max {:.2} ms{first}{gpu}{panel_gpu}{ui}",
             sorted.len(),
             self.args.warmup,
             w,
@@ -271,6 +286,7 @@ impl App {
                 .create_window(attributes)
                 .map_err(|e| Error::NoDisplay(format!("cannot open a window: {e}")))?,
         );
+        self.window_opened = Some(Instant::now());
         let choice = AdapterChoice::from_flag_or_env(self.args.adapter.as_deref());
         let (ctx, surface) = GpuContext::with_window(&choice, window.clone())?;
         let caps = surface.get_capabilities(&ctx.adapter);
@@ -456,6 +472,8 @@ impl App {
             let mut ms: Vec<f64> = recent.iter().map(|d| d.as_secs_f64() * 1e3).collect();
             ms.sort_by(f64::total_cmp);
             self.state.frame_ms = ms[ms.len() / 2];
+        } else if let Some(opened) = self.window_opened {
+            self.first_frame = Some(now - opened);
         }
         self.last_frame = Some(now);
     }
