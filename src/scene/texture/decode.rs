@@ -37,10 +37,23 @@ pub struct Decoded {
 /// which gonio's device requests (larger images would not upload).
 pub const MAX_TEXTURE_SIDE: u32 = 8192;
 
-/// Bytes gonio holds per texel of a texture with its mip chain, for the
-/// budget: the decoder's RGBA at up to 16 bits per channel (8 B), the f32
-/// linear copy (16 B), and the f16 levels (8 B · 4/3 ≈ 11 B).
+/// Bytes per texel while one texture is decoded, for the budget: the
+/// decoder's RGBA at up to 16 bits per channel (8 B), the f32 linear copy
+/// (16 B), and the f16 levels being built (8 B · 4/3 ≈ 11 B). The first
+/// two are freed once the chain is built ([`super::mips::chain`]).
 pub const BYTES_PER_TEXEL: u64 = 8 + 16 + 11;
+
+/// Bytes per texel a loaded texture keeps: its f16 RGBA levels, the full
+/// chain 4/3 of the top level (8 B · 4/3, rounded up).
+pub const HELD_BYTES_PER_TEXEL: u64 = 11;
+
+/// What one texture takes of the byte budget: `peak` while it decodes
+/// (checked against what is left), `held` once loaded (charged).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureCost {
+    pub peak: u64,
+    pub held: u64,
+}
 
 /// The size the header of `bytes` declares, read without decoding pixels.
 pub fn dimensions(bytes: &[u8]) -> Result<(u32, u32), String> {
@@ -65,23 +78,27 @@ pub fn dimensions(bytes: &[u8]) -> Result<(u32, u32), String> {
 }
 
 /// Checks a declared size against the texture limits and `budget` (bytes
-/// left); returns the bytes it will take.
-pub fn check_size(width: u32, height: u32, budget: u64) -> Result<u64, String> {
+/// left) at the decode's peak; returns the bytes it takes then and after.
+pub fn check_size(width: u32, height: u32, budget: u64) -> Result<TextureCost, String> {
     if width == 0 || height == 0 || width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
         return Err(format!(
             "its size {width}×{height} is outside 1..={MAX_TEXTURE_SIDE} per side"
         ));
     }
-    let bytes = u64::from(width) * u64::from(height) * BYTES_PER_TEXEL;
-    if bytes > budget {
+    let texels = u64::from(width) * u64::from(height);
+    let peak = texels * BYTES_PER_TEXEL;
+    if peak > budget {
         return Err(crate::scene::limits::exceeded(
             &format!("decoding its {width}×{height} texels"),
-            format!("{bytes} bytes"),
+            format!("{peak} bytes"),
             "bytes",
             budget,
         ));
     }
-    Ok(bytes)
+    Ok(TextureCost {
+        peak,
+        held: texels * HELD_BYTES_PER_TEXEL,
+    })
 }
 
 /// Decodes `bytes` (PNG, JPEG, WebP or KTX2) to linear RGBA after

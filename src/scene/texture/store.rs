@@ -1,8 +1,11 @@
 //! The images of one scene, loaded once each and held to the scene's
 //! limits: every image counts against `--limit textures=N` and its
-//! decoded bytes (texels, the linear copy and the mip chain,
-//! [`decode::BYTES_PER_TEXEL`]) against `--limit bytes=N`, both checked
-//! from the image's header before its pixels are decoded.
+//! bytes against `--limit bytes=N`, both checked from the image's header
+//! before its pixels are decoded. A texture is checked at its decode's
+//! peak (texels, the linear copy and the mip chain,
+//! [`decode::BYTES_PER_TEXEL`]) and charged what it keeps (its f16 mip
+//! chain, [`decode::HELD_BYTES_PER_TEXEL`]): images decode one after
+//! another, so the transient copies of one are gone before the next.
 
 use super::Image;
 use super::decode::{self, Encoding};
@@ -107,11 +110,55 @@ impl ImageStore {
         let cost = decode::check_size(width, height, self.bytes_left)?;
         let mut decoded = decode::decode(bytes, encoding, self.bytes_left)?;
         decoded.rgba.iter_mut().for_each(map);
-        self.bytes_left -= cost;
+        self.bytes_left -= cost.held;
         self.count_left -= 1;
         self.images
             .push(Arc::new(Image::new(&name, encoding, decoded)));
         self.loaded.insert((name, encoding), self.images.len() - 1);
         Ok(self.images.len() - 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::texture::decode::{BYTES_PER_TEXEL, HELD_BYTES_PER_TEXEL};
+
+    fn png(side: u32, value: u8) -> Vec<u8> {
+        let image = image::RgbaImage::from_pixel(side, side, image::Rgba([value, 0, 0, 255]));
+        let mut bytes = Vec::new();
+        image
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+            .expect("encode");
+        bytes
+    }
+
+    /// Textures decode one after another: each needs its peak free, and
+    /// keeps only its f16 chain. A budget of one peak plus two chains
+    /// takes three textures; charging each its peak took one.
+    #[test]
+    fn a_texture_is_checked_at_its_peak_and_charged_what_it_keeps() {
+        let texels = 64 * 64;
+        let budget = texels * BYTES_PER_TEXEL + 2 * texels * HELD_BYTES_PER_TEXEL;
+        let mut store = ImageStore::new(&Limits {
+            bytes: budget,
+            ..Limits::default()
+        });
+        for value in 1..=3 {
+            store
+                .load_bytes(format!("t{value}"), &png(64, value), Encoding::Srgb)
+                .unwrap_or_else(|e| panic!("texture {value}: {e}"));
+        }
+        assert_eq!(
+            store.bytes_left(),
+            budget - 3 * texels * HELD_BYTES_PER_TEXEL
+        );
+        let e = store
+            .load_bytes("t4".into(), &png(64, 4), Encoding::Srgb)
+            .unwrap_err();
+        assert!(e.contains("--limit bytes="), "{e}");
     }
 }
