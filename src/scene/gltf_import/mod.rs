@@ -137,6 +137,7 @@ mod meshopt;
 mod spec_gloss;
 #[cfg(test)]
 mod tests;
+mod transmission;
 mod unlit;
 mod variants;
 
