@@ -359,15 +359,16 @@ pub fn render(args: &RenderArgs) -> Result<()> {
 /// yet: one line naming every such material (nothing the user typed is
 /// ignored without a word).
 pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
-    let names: Vec<String> = scene
-        .materials
-        .iter()
-        .filter(|m| {
-            m.model == crate::material::ReflectanceModel::GltfPbr
-                && m.layers.sets_transmission_keys()
-        })
-        .map(|m| format!("`{}`", m.name))
-        .collect();
+    let mut names: Vec<String> = Vec::new();
+    for m in &scene.materials {
+        let name = format!("`{}`", m.name);
+        if m.model == crate::material::ReflectanceModel::GltfPbr
+            && m.layers.sets_transmission_keys()
+            && !names.contains(&name)
+        {
+            names.push(name);
+        }
+    }
     if names.is_empty() {
         return None;
     }

@@ -372,12 +372,14 @@ fn a_prism_spreads_the_wavelengths_as_snells_law_says() {
 ///   `thin::STRAIGHT_ALPHA`: one ray straight on): `T = 1 − F(μ_o)` with
 ///   Schlick's F of the base, `0.04 + 0.96 (1 − μ_o)⁵`, to the f32
 ///   pixel's 10⁻⁷ (tolerance 10⁻⁶).
-/// * Rough (r = 0.5, 256 Hammersley points on the visible normals): `T`
-///   is the lobe's albedo `∫ (1 − F) D Vis |cos|`, by `dfg::integrate`
-///   (2¹⁶ samples) `T = E − R`, `E = A + B`, `R = F0 A + B` at
-///   F0 = 0.04, at the effective α; the tolerance 10⁻³ is the 256-point
-///   rule's error on this lobe (measured 3.5·10⁻⁵ to 4.4·10⁻⁴ at these
-///   nine views, μ from 0.26 to 1, on 2026-12-05).
+/// * Rough (r = 0.5, `thin::LOBE_SAMPLES` = 64 Hammersley points on the
+///   visible normals): `T` is the lobe's albedo `∫ (1 − F) D Vis |cos|`,
+///   by `dfg::integrate` (2¹⁶ samples) `T = E − R`, `E = A + B`,
+///   `R = F0 A + B` at F0 = 0.04, at the effective α. The tolerance
+///   4·10⁻³ is the 64-point rule's error on this lobe: measured on
+///   2026-12-05 at these nine views, 1.1·10⁻⁵ to 9.5·10⁻⁴ for μ ≥ 0.64
+///   and up to 3.1·10⁻³ at the grazing μ = 0.26 (256 points: at most
+///   4.4·10⁻⁴ at every view).
 #[test]
 fn thin_wall_furnace_through_the_renderer() {
     use gonio::material::brdf::dfg;
@@ -423,7 +425,7 @@ fn thin_wall_furnace_through_the_renderer() {
                     t.x,
                     (t.x - want).abs()
                 );
-                assert!((t.x - want).abs() < 1e-3, "{what}: {} vs {want}", t.x);
+                assert!((t.x - want).abs() < 4e-3, "{what}: {} vs {want}", t.x);
                 assert!(
                     t.x + reflected <= 1.0 + 1e-6,
                     "{what}: T {} R {reflected}",

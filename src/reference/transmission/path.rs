@@ -255,7 +255,6 @@ impl<S: Scenery> Tracer<'_, S> {
 
     /// A volume's boundary: refraction and internal reflection.
     fn boundary(&self, c: &Crossing, media: &Media, path: Path) -> Rgb {
-        let s = self.scenery;
         let m = &c.material;
         let medium = Medium::of(m, c.mesh);
         let leaving = leaves(c);

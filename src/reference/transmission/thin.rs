@@ -40,7 +40,7 @@ use std::f64::consts::{PI, TAU};
 pub const STRAIGHT_ALPHA: f64 = 1e-3;
 
 /// Points of the Hammersley set per lobe.
-pub const LOBE_SAMPLES: u32 = 256;
+pub const LOBE_SAMPLES: u32 = 64;
 
 /// A direction on the far side (pointing away from the wall) and its weight.
 #[derive(Clone, Copy, Debug, PartialEq)]
