@@ -111,7 +111,7 @@ pub(super) fn read(
             f64::INFINITY,
         )?;
         if let Some(d) = e.attenuation_distance {
-            if !(d > 0.0) {
+            if d.is_nan() || d <= 0.0 {
                 return Err(format!(
                     "{NAME}.attenuationDistance is {d}, not > 0 (leave it out for no attenuation)"
                 ));

@@ -301,8 +301,8 @@ mod tests {
                     diffuse_transmission: 0.5,
                     ..GltfLayers::default()
                 };
-                for to in [0.0, 1.0, 1.5707, FRAC_PI_2] {
-                    for ti in [0.0, 0.5, 1.5707, FRAC_PI_2] {
+                for to in [0.0, 1.0, FRAC_PI_2 - 1e-4, FRAC_PI_2] {
+                    for ti in [0.0, 0.5, FRAC_PI_2 - 1e-4, FRAC_PI_2] {
                         let (wo, wi) = (dir(to, 0.0), -dir(ti, 0.3));
                         let f = gltf_transmitted(Rgb::ONE, 0.0, r, &l, 0.0, 0.0, n, wi, wo);
                         assert!(
