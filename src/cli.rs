@@ -286,8 +286,16 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 rayon::current_num_threads()
             );
         }
-        timings.wall("reference render", || reference::render(&scene))
+        let (frame, lost) =
+            timings.wall("reference render", || reference::render_reporting(&scene));
+        if let Some(w) = untraced_transmission_warning(lost) {
+            eprintln!("gonio: {w}");
+        }
+        frame
     } else {
+        if let Some(w) = gpu_transmission_warning(&scene) {
+            eprintln!("gonio: {w}");
+        }
         let choice = AdapterChoice::from_flag_or_env(args.adapter.as_deref());
         let start = Instant::now();
         let context = GpuContext::new(&choice)?;
@@ -343,6 +351,51 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         eprintln!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// The warning of a GPU render of a scene whose materials use light
+/// through surfaces (`transmission`, `thickness`, `attenuation_*`,
+/// `dispersion`, `diffuse_transmission*`), which only the reference draws
+/// yet: one line naming every such material (nothing the user typed is
+/// ignored without a word).
+pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
+    let mut names: Vec<String> = Vec::new();
+    for m in &scene.materials {
+        let name = format!("`{}`", m.name);
+        if m.model == crate::material::ReflectanceModel::GltfPbr
+            && m.layers.sets_transmission_keys()
+            && !names.contains(&name)
+        {
+            names.push(name);
+        }
+    }
+    if names.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "warning: material{} {} use{} light through surfaces (transmission, volume, dispersion, diffuse transmission), which the GPU renderer does not draw yet: {} drawn as if opaque; render with --reference to see the light through {}",
+        if names.len() == 1 { "" } else { "s" },
+        names.join(", "),
+        if names.len() == 1 { "s" } else { "" },
+        if names.len() == 1 {
+            "it is"
+        } else {
+            "they are"
+        },
+        if names.len() == 1 { "it" } else { "them" },
+    ))
+}
+
+/// The warning of a reference render whose transmission paths were cut
+/// with more than 10⁻³ of a pixel's light untraced (`lost`, per unit
+/// radiance behind the surface).
+pub fn untraced_transmission_warning(lost: f64) -> Option<String> {
+    (lost > 1e-3).then(|| {
+        format!(
+            "warning: light through surfaces: up to {lost:.3} of a pixel's transmitted light (per unit radiance behind) was not traced: the paths end after {} crossings",
+            reference::transmission::path::MAX_DEPTH
+        )
+    })
 }
 
 /// Refuses a render whose renderer would allocate more than

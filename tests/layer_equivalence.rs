@@ -306,6 +306,8 @@ fn round_layers(l: &GltfLayers) -> GltfLayers {
         anisotropy_strength: r32(l.anisotropy_strength),
         anisotropy_rotation: r32(l.anisotropy_rotation),
         clearcoat_normal: r32v(l.clearcoat_normal),
+        // Light through surfaces: not in the GPU's material.
+        ..*l
     }
 }
 

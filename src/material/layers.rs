@@ -42,6 +42,25 @@ pub struct GltfLayers {
     /// gives the coat its own normal at a point (the reference's renderer
     /// and the GPU's fragment stage write it there). Not a scene-file key.
     pub clearcoat_normal: DVec3,
+    /// `KHR_materials_transmission.transmissionFactor`: the share of the
+    /// dielectric base's diffuse part replaced by the specular BTDF.
+    pub transmission: f64,
+    /// `KHR_materials_volume.thicknessFactor` (mesh space): 0 is a thin
+    /// wall, `> 0` makes the closed mesh bound a volume.
+    pub thickness: f64,
+    /// `…attenuationDistance`: the path length after which light keeps
+    /// `attenuation_color` (Beer–Lambert); `∞` is a clear medium.
+    pub attenuation_distance: f64,
+    /// `…attenuationColor`.
+    pub attenuation_color: Rgb,
+    /// `KHR_materials_dispersion.dispersion`, `20 / V_d` (Abbe number
+    /// `V_d`); 0 is no dispersion.
+    pub dispersion: f64,
+    /// `KHR_materials_diffuse_transmission.diffuseTransmissionFactor`: the
+    /// share of the diffuse part transmitted as Lambert on the far side.
+    pub diffuse_transmission: f64,
+    /// `…diffuseTransmissionColorFactor`.
+    pub diffuse_transmission_color: Rgb,
 }
 
 impl GltfLayers {
@@ -70,6 +89,13 @@ impl Default for GltfLayers {
             anisotropy_strength: 0.0,
             anisotropy_rotation: 0.0,
             clearcoat_normal: DVec3::Z,
+            transmission: 0.0,
+            thickness: 0.0,
+            attenuation_distance: f64::INFINITY,
+            attenuation_color: Rgb::ONE,
+            dispersion: 0.0,
+            diffuse_transmission: 0.0,
+            diffuse_transmission_color: Rgb::ONE,
         }
     }
 }
@@ -112,5 +138,38 @@ impl GltfLayers {
             iridescence: self.iridescence > 0.0 && self.iridescence_thickness > 0.0,
             anisotropy: self.anisotropy_strength > 0.0,
         }
+    }
+}
+
+impl GltfLayers {
+    /// Whether light passes through the surface: `transmission > 0` or
+    /// `diffuse_transmission > 0` (a texture multiplies the constant, so
+    /// a zero constant stays off). `thickness`, `attenuation_*` and
+    /// `dispersion` act only on transmitted light.
+    pub fn transmits(&self) -> bool {
+        self.transmission > 0.0 || self.diffuse_transmission > 0.0
+    }
+
+    /// Whether any key of light through surfaces is off its default
+    /// (`transmission`, `thickness`, `attenuation_distance`,
+    /// `attenuation_color`, `dispersion`, `diffuse_transmission`,
+    /// `diffuse_transmission_color`): what a renderer that does not draw
+    /// them must say it ignores.
+    pub fn sets_transmission_keys(&self) -> bool {
+        let d = GltfLayers::default();
+        self.transmission != d.transmission
+            || self.thickness != d.thickness
+            || self.attenuation_distance != d.attenuation_distance
+            || self.attenuation_color != d.attenuation_color
+            || self.dispersion != d.dispersion
+            || self.diffuse_transmission != d.diffuse_transmission
+            || self.diffuse_transmission_color != d.diffuse_transmission_color
+    }
+
+    /// Whether the surface bounds a volume (`thickness > 0` with
+    /// `transmission > 0`, `KHR_materials_volume`: the volume needs a
+    /// transmission to let light in).
+    pub fn is_volume(&self) -> bool {
+        self.thickness > 0.0 && self.transmission > 0.0
     }
 }

@@ -65,6 +65,9 @@ pub enum Range {
     Positive,
     /// Finite and `≥ 0`.
     NonNegative,
+    /// `> 0`, `∞` included (a distance where `∞` means "never", glTF's
+    /// `attenuationDistance`).
+    PositiveOrInfinite,
     /// Finite and `≥ min`; `text` as messages write it, e.g. `≥ 1`.
     AtLeast { min: f64, text: &'static str },
     /// Exactly 0, or finite and `≥ min` (glTF's `ior`: 0 or ≥ 1).
@@ -81,6 +84,7 @@ impl Range {
             Range::OpenClosed { min, max, .. } => v > min && v <= max,
             Range::Positive => v.is_finite() && v > 0.0,
             Range::NonNegative => v.is_finite() && v >= 0.0,
+            Range::PositiveOrInfinite => v > 0.0,
             Range::AtLeast { min, .. } => v.is_finite() && v >= min,
             Range::ZeroOrAtLeast { min, .. } => v == 0.0 || (v.is_finite() && v >= min),
             Range::Finite => v.is_finite(),
@@ -92,9 +96,10 @@ impl Range {
     pub fn bounds(self) -> (f64, f64) {
         match self {
             Range::Closed { min, max, .. } | Range::OpenClosed { min, max, .. } => (min, max),
-            Range::Positive | Range::NonNegative | Range::ZeroOrAtLeast { .. } => {
-                (0.0, f64::INFINITY)
-            }
+            Range::Positive
+            | Range::NonNegative
+            | Range::PositiveOrInfinite
+            | Range::ZeroOrAtLeast { .. } => (0.0, f64::INFINITY),
             Range::AtLeast { min, .. } => (min, f64::INFINITY),
             Range::Finite => (f64::NEG_INFINITY, f64::INFINITY),
         }
@@ -110,6 +115,7 @@ impl Range {
             }
             Range::Positive => "must be finite and > 0".into(),
             Range::NonNegative => "must be finite and ≥ 0".into(),
+            Range::PositiveOrInfinite => "must be > 0 (inf: no attenuation)".into(),
             Range::AtLeast { text, .. } => format!("must be finite and {text}"),
             Range::ZeroOrAtLeast { text, .. } => format!("must be 0 or finite and {text}"),
             Range::Finite => "must be finite".into(),
@@ -700,4 +706,107 @@ pub static ANISOTROPY_ROTATION: Param = Param {
     samples: &[0.0],
     get: |m| Value::Scalar(m.layers.anisotropy_rotation),
     set: |m, v| m.layers.anisotropy_rotation = v.scalar(),
+};
+
+// ---------------------------------------------------------------------
+// Light through surfaces (contract: "Layered glTF materials", "Light
+// through surfaces"): KHR_materials_transmission, _volume, _dispersion and
+// _diffuse_transmission. The reference renderer draws them
+// (`reference::transmission`); the GPU renderer does not yet and says so.
+
+/// `KHR_materials_transmission.transmissionFactor`.
+pub static TRANSMISSION: Param = Param {
+    key: "transmission",
+    label: "transmission",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: UNIT_SLIDER,
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.transmission),
+    set: |m, v| m.layers.transmission = v.scalar(),
+};
+/// `KHR_materials_volume.thicknessFactor` (mesh space; 0: thin-walled).
+pub static THICKNESS: Param = Param {
+    key: "thickness",
+    label: "volume thickness (0: thin-walled)",
+    kind: Kind::Scalar,
+    range: Range::NonNegative,
+    widget: Widget::Drag {
+        speed: 0.01,
+        min: 0.0,
+        max: 1e6,
+    },
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.thickness),
+    set: |m, v| m.layers.thickness = v.scalar(),
+};
+/// `KHR_materials_volume.attenuationDistance` (`inf`: a clear medium).
+pub static ATTENUATION_DISTANCE: Param = Param {
+    key: "attenuation_distance",
+    label: "attenuation distance (inf: none)",
+    kind: Kind::Scalar,
+    range: Range::PositiveOrInfinite,
+    widget: Widget::Drag {
+        speed: 0.01,
+        min: 1e-6,
+        max: f64::INFINITY,
+    },
+    stored: true,
+    samples: &[f64::INFINITY],
+    get: |m| Value::Scalar(m.layers.attenuation_distance),
+    set: |m, v| m.layers.attenuation_distance = v.scalar(),
+};
+/// `KHR_materials_volume.attenuationColor`.
+pub static ATTENUATION_COLOR: Param = Param {
+    key: "attenuation_color",
+    label: "attenuation colour",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[1.0],
+    get: |m| Value::Color(m.layers.attenuation_color),
+    set: |m, v| m.layers.attenuation_color = v.color(),
+};
+/// `KHR_materials_dispersion.dispersion`, `20 / V_d`.
+pub static DISPERSION: Param = Param {
+    key: "dispersion",
+    label: "dispersion (20 / Abbe number)",
+    kind: Kind::Scalar,
+    range: Range::NonNegative,
+    widget: Widget::Drag {
+        speed: 0.01,
+        min: 0.0,
+        max: 10.0,
+    },
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.dispersion),
+    set: |m, v| m.layers.dispersion = v.scalar(),
+};
+/// `KHR_materials_diffuse_transmission.diffuseTransmissionFactor`.
+pub static DIFFUSE_TRANSMISSION: Param = Param {
+    key: "diffuse_transmission",
+    label: "diffuse transmission",
+    kind: Kind::Scalar,
+    range: UNIT,
+    widget: UNIT_SLIDER,
+    stored: true,
+    samples: &[0.0],
+    get: |m| Value::Scalar(m.layers.diffuse_transmission),
+    set: |m, v| m.layers.diffuse_transmission = v.scalar(),
+};
+/// `KHR_materials_diffuse_transmission.diffuseTransmissionColorFactor`.
+pub static DIFFUSE_TRANSMISSION_COLOR: Param = Param {
+    key: "diffuse_transmission_color",
+    label: "diffuse transmission colour",
+    kind: Kind::Color,
+    range: UNIT,
+    widget: Widget::ColorPicker,
+    stored: true,
+    samples: &[1.0],
+    get: |m| Value::Color(m.layers.diffuse_transmission_color),
+    set: |m, v| m.layers.diffuse_transmission_color = v.color(),
 };

@@ -47,6 +47,10 @@ use super::param::{
     PERCEPTUAL_ROUGHNESS, Param, ROUGHNESS, SHEEN_COLOR, SHEEN_ROUGHNESS, SIGMA_X, SIGMA_Y,
     SPECULAR, SPECULAR_COLOR, WARD_SIGMA,
 };
+use super::param::{
+    ATTENUATION_COLOR, ATTENUATION_DISTANCE, DIFFUSE_TRANSMISSION, DIFFUSE_TRANSMISSION_COLOR,
+    DISPERSION, THICKNESS, TRANSMISSION,
+};
 use super::weights::{self, Weights};
 use super::{Material, ReflectanceModel};
 use crate::base::Rgb;
@@ -608,6 +612,13 @@ pub static ROWS: &[ModelRow] = &[
             &IRIDESCENCE_THICKNESS,
             &ANISOTROPY_STRENGTH,
             &ANISOTROPY_ROTATION,
+            &TRANSMISSION,
+            &THICKNESS,
+            &ATTENUATION_DISTANCE,
+            &ATTENUATION_COLOR,
+            &DISPERSION,
+            &DIFFUSE_TRANSMISSION,
+            &DIFFUSE_TRANSMISSION_COLOR,
         ],
         reciprocal: true,
         benched: false,

@@ -9,7 +9,9 @@
 //! environment's part by the estimators of [`environment`]); [`texture`]
 //! samples the material textures; [`area`] measures the error of
 //! rendering an area light by N point lights; [`spectral`] measures the
-//! three-channel thin film and conductors against their spectral truth.
+//! three-channel thin film and conductors against their spectral truth;
+//! [`transmission`] follows light through transmissive surfaces and
+//! volumes (refraction, attenuation, dispersion).
 
 pub mod area;
 pub mod environment;
@@ -17,8 +19,9 @@ pub mod renderer;
 pub mod shading;
 pub mod spectral;
 pub mod texture;
+pub mod transmission;
 
 pub use renderer::{
-    AreaLights, memory_estimate, render, render_offset, render_rows, render_with,
-    render_with_lod_bias, shadow_epsilon, visibility,
+    AreaLights, memory_estimate, refracted_path, render, render_offset, render_reporting,
+    render_rows, render_with, render_with_lod_bias, shadow_epsilon, visibility,
 };

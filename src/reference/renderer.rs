@@ -25,6 +25,7 @@ use crate::scene::camera::Ray;
 use crate::scene::{Light, Mesh, Rgb, Scene, ShadingMode, mesh};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// How the reference treats area lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -97,6 +98,15 @@ fn render_inner(
     render_rows_inner(scene, &rows, offset_x, offset_y, area, lod_bias)
 }
 
+/// [`render`] and the largest share of a pixel's transmitted light the
+/// paths through transmissive surfaces left untraced (bounce limit;
+/// `super::transmission::Traced::lost`, per unit radiance behind; 0
+/// without transmission).
+pub fn render_reporting(scene: &Scene) -> (Frame, f64) {
+    let rows: Vec<u32> = (0..scene.height).collect();
+    render_rows_reporting(scene, &rows, 0.0, 0.0, AreaLights::Samples, 0.0)
+}
+
 fn render_rows_inner(
     scene: &Scene,
     rows: &[u32],
@@ -105,10 +115,21 @@ fn render_rows_inner(
     area: AreaLights,
     lod_bias: f64,
 ) -> Frame {
+    render_rows_reporting(scene, rows, offset_x, offset_y, area, lod_bias).0
+}
+
+fn render_rows_reporting(
+    scene: &Scene,
+    rows: &[u32],
+    offset_x: f64,
+    offset_y: f64,
+    area: AreaLights,
+    lod_bias: f64,
+) -> (Frame, f64) {
     let (width, height) = (scene.width, scene.height);
     let mut frame = Frame::new(width, rows.len() as u32);
     if frame.is_empty() {
-        return frame;
+        return (frame, 0.0);
     }
     let bvh = Bvh::new(&scene.meshes);
     let mut shader = Shader::new(scene, &bvh, area);
@@ -142,7 +163,8 @@ fn render_rows_inner(
                 *covered = opacity > 0.5;
             }
         });
-    frame
+    let lost = f64::from_bits(shader.lost.load(Ordering::Relaxed));
+    (frame, lost)
 }
 
 /// The scene and what its shading mode needs, computed once before any
@@ -160,6 +182,10 @@ struct Shader<'a> {
     offset: (f64, f64),
     /// Multiplies every texture footprint (1; 2^bias for a LOD bias).
     footprint_scale: f64,
+    /// The largest share of a pixel's transmitted light left untraced
+    /// ([`super::transmission::Traced::lost`]), as `f64` bits (positive
+    /// floats order as their bits).
+    lost: AtomicU64,
 }
 
 enum Precomputed {
@@ -225,6 +251,14 @@ impl<'a> Shader<'a> {
             let face = mesh::face_normal(object.triangle(hit.id.triangle as usize));
             let back = ray.direction.dot(face) > 0.0;
             sum += transmittance * opacity * self.radiance(&hit, pixel, back);
+            if self.materials[object.material].layers.transmits() {
+                // Light through the surface (`super::transmission`).
+                let c = self.crossing(&hit, ray, Some(pixel));
+                let traced = super::transmission::through(self, &c);
+                sum += transmittance * opacity * traced.radiance;
+                self.lost
+                    .fetch_max(traced.lost.to_bits(), Ordering::Relaxed);
+            }
             transmittance *= 1.0 - opacity;
             if transmittance <= 0.0 {
                 break;
@@ -335,6 +369,7 @@ impl<'a> Shader<'a> {
             area,
             offset: (0.0, 0.0),
             footprint_scale: 1.0,
+            lost: AtomicU64::new(0),
         };
         shader.precomputed = match scene.shading {
             // Lecture: Shading Model: Flat. One evaluation of the reflection
@@ -589,6 +624,18 @@ impl<'a> Shader<'a> {
     /// seen from the camera, with ray-traced visibility; shadow rays leave
     /// from `x` offset along `n_offset` (see [`visibility`]).
     fn shade(&self, material: &Material, x: DVec3, frame: &SurfaceFrame, n_offset: DVec3) -> Rgb {
+        self.shade_from(material, x, frame, n_offset, self.scene.camera.position)
+    }
+
+    /// [`Self::shade`] seen from `eye` (a ray's origin).
+    fn shade_from(
+        &self,
+        material: &Material,
+        x: DVec3,
+        frame: &SurfaceFrame,
+        n_offset: DVec3,
+        eye: DVec3,
+    ) -> Rgb {
         let exact = self.area == AreaLights::ExactUnoccluded;
         let lights = &self.scene.lights;
         let mut radiance = reflected_radiance(
@@ -596,7 +643,7 @@ impl<'a> Shader<'a> {
             material,
             x,
             frame,
-            self.scene.camera.position,
+            eye,
             |l, x| {
                 if exact && matches!(lights[l], Light::AreaSample { .. }) {
                     return 0.0;
@@ -614,7 +661,7 @@ impl<'a> Shader<'a> {
         if exact {
             // f_r of a Lambertian receiver is the same for every direction
             // above the surface; any such direction evaluates it.
-            let wo = (self.scene.camera.position - x).normalize_or_zero();
+            let wo = (eye - x).normalize_or_zero();
             let f_r = material.f_r(frame.n, wo, frame);
             for area in &self.scene.area_lights {
                 radiance += f_r * area.exact_irradiance(x, frame.n);
@@ -622,6 +669,121 @@ impl<'a> Shader<'a> {
         }
         radiance
     }
+}
+
+impl Shader<'_> {
+    /// The crossing of `ray` at `hit` for the transmission paths: the
+    /// point, the Phong-interpolated shading frame (front side, normal map
+    /// applied), the face normal and the material at the point (textures
+    /// read with the pixel's footprint when `pixel` is given, else at
+    /// level 0).
+    fn crossing(
+        &self,
+        hit: &Hit,
+        ray: &Ray,
+        pixel: Option<(usize, usize)>,
+    ) -> super::transmission::Crossing<'_> {
+        let (m, t) = (hit.id.mesh as usize, hit.id.triangle as usize);
+        let object = &self.scene.meshes[m];
+        let idx = object.indices[t];
+        let w = [1.0 - hit.u - hit.v, hit.u, hit.v];
+        let point = interpolate(w, &object.positions, idx);
+        let n = interpolate(w, &object.normals, idx).normalize_or_zero();
+        let face = mesh::face_normal(object.triangle(t));
+        let n = if n == DVec3::ZERO { face } else { n };
+        let tangents = idx.map(|v| object.tangent(v as usize));
+        let tangent = w[0] * tangents[0] + w[1] * tangents[1] + w[2] * tangents[2];
+        let uv = [0, 1].map(|set| interpolate_uv(w, object, set, idx));
+        let sign = idx
+            .iter()
+            .zip(w)
+            .map(|(&v, w)| w * object.bitangent_sign(v as usize))
+            .sum::<f64>();
+        let colors = idx.map(|v| object.color(v as usize));
+        let color = w[0] * colors[0] + w[1] * colors[1] + w[2] * colors[2];
+        let (material, frame) = self.material_at(
+            object,
+            uv,
+            color,
+            pixel.map(|p| (t, p)),
+            SurfaceFrame::new(n, tangent),
+            if sign < 0.0 { -1.0 } else { 1.0 },
+        );
+        super::transmission::Crossing {
+            mesh: m,
+            ray: *ray,
+            t: hit.t,
+            point,
+            frame,
+            face,
+            material,
+        }
+    }
+}
+
+/// What the transmission paths see of the scene: the same hits, materials,
+/// lights and visibility as the primary rays (back faces of a volume's
+/// boundary kept, whatever its `doubleSided`: "The doubleSided property
+/// has no effect on volume boundaries", `KHR_materials_volume`).
+impl super::transmission::Scenery for Shader<'_> {
+    fn cross(&self, ray: &Ray, t_min: f64) -> Option<super::transmission::Crossing<'_>> {
+        let keeps_back = |id: crate::scene::bvh::TriangleId| {
+            let m = &self.materials[self.scene.meshes[id.mesh as usize].material];
+            m.sides != Sides::Front || m.layers.is_volume()
+        };
+        let mut t_from = t_min;
+        loop {
+            let hit = self
+                .bvh
+                .intersect_where(ray, t_from, f64::INFINITY, keeps_back)?;
+            if self.blocks(&hit) {
+                return Some(self.crossing(&hit, ray, None));
+            }
+            t_from = hit.t + self.epsilon;
+        }
+    }
+
+    fn surface_radiance(&self, c: &super::transmission::Crossing) -> Rgb {
+        let back = c.ray.direction.dot(c.face) > 0.0;
+        let flip = back && c.material.sides == Sides::Both;
+        let frame = flipped(&c.frame, if flip { -1.0 } else { 1.0 });
+        self.shade_from(&c.material, c.point, &frame, c.face, c.ray.origin)
+    }
+
+    fn background(&self, direction: DVec3) -> Rgb {
+        self.scene
+            .environment
+            .map
+            .as_ref()
+            .map_or(Rgb::ZERO, |map| map.radiance(direction))
+    }
+
+    fn epsilon(&self) -> f64 {
+        self.epsilon
+    }
+
+    fn lights(&self) -> &[Light] {
+        &self.scene.lights
+    }
+
+    fn light_visible(&self, l: usize, x: DVec3, face: DVec3) -> f64 {
+        let light = &self.scene.lights[l];
+        if self.area == AreaLights::ExactUnoccluded && matches!(light, Light::AreaSample { .. }) {
+            return 0.0;
+        }
+        visibility_where(self.bvh, light, x, face, self.epsilon, |hit| {
+            self.blocks(hit)
+        })
+    }
+}
+
+/// The refracted path of `ray` through the volumes of `scene`
+/// ([`super::transmission::path::refracted_path`]) at wavelength `lambda`
+/// (`None`: each medium's `n_d`).
+pub fn refracted_path(scene: &Scene, ray: Ray, lambda: Option<f64>) -> Vec<Ray> {
+    let bvh = Bvh::new(&scene.meshes);
+    let shader = Shader::new(scene, &bvh, AreaLights::Samples);
+    super::transmission::path::refracted_path(&shader, ray, lambda)
 }
 
 /// The shadow-ray offset of `scene`: 10⁻⁷ of its bounding-box diagonal

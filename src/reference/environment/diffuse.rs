@@ -16,7 +16,14 @@ use crate::material::{Material, ReflectanceModel};
 /// shaders/shading.wgsl.
 pub fn environment_diffuse_albedo(material: &Material) -> Rgb {
     match material.model {
-        ReflectanceModel::GltfPbr => material.base_color * (1.0 - material.metallic),
+        // Transmission takes its share of the diffuse part (1 without).
+        ReflectanceModel::GltfPbr => {
+            material.base_color
+                * ((1.0 - material.metallic)
+                    * crate::material::brdf::gltf_layers::transmission::reflected_diffuse_weight(
+                        &material.layers,
+                    ))
+        }
         ReflectanceModel::Measured => Rgb::ZERO,
         _ => material.brdf().k_d,
     }

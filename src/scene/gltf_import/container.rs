@@ -16,14 +16,18 @@ pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
     "KHR_materials_anisotropy",
     "KHR_materials_clearcoat",
+    "KHR_materials_diffuse_transmission",
+    "KHR_materials_dispersion",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
     "KHR_materials_iridescence",
     "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_sheen",
     "KHR_materials_specular",
+    "KHR_materials_transmission",
     "KHR_materials_unlit",
     "KHR_materials_variants",
+    "KHR_materials_volume",
     "KHR_mesh_quantization",
     "KHR_meshopt_compression",
     "KHR_texture_basisu",
@@ -35,13 +39,6 @@ pub(super) const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &[
 const KNOWN_UNSUPPORTED: &[(&str, &str)] = &[
     ("EXT_mesh_gpu_instancing", "GPU instancing"),
     ("EXT_texture_avif", "AVIF textures"),
-    ("KHR_materials_transmission", "light through the surface"),
-    ("KHR_materials_volume", "a volume under the surface"),
-    ("KHR_materials_dispersion", "dispersion"),
-    (
-        "KHR_materials_diffuse_transmission",
-        "diffuse light through the surface",
-    ),
 ];
 
 /// The GLB header: magic, version, total length.

@@ -145,6 +145,7 @@ impl<'a> Importer<'a> {
             return Ok(converted);
         }
         super::layers::read(material, self.document, &mut self.images, &mut converted)?;
+        super::transmission::read(material, self.document, &mut self.images, &mut converted)?;
         let spec_gloss =
             super::spec_gloss::convert(material, self.document, &mut self.images, &mut converted)?;
         if !spec_gloss {

@@ -391,8 +391,8 @@ fn variants_load_and_one_is_chosen_by_name() {
 
 #[test]
 fn ignored_extensions_are_named_in_one_warning() {
-    let top = r#""extensionsUsed": ["KHR_materials_transmission", "KHR_materials_clearcoat",
-        "KHR_materials_volume", "KHR_materials_sheen"],
+    let top = r#""extensionsUsed": ["EXT_mesh_gpu_instancing", "KHR_materials_clearcoat",
+        "KHR_animation_pointer", "KHR_materials_sheen"],
         "extensionsRequired": ["KHR_materials_clearcoat", "KHR_materials_sheen"],"#;
     let scene = load_json(&file_with(&["{}"], top)).unwrap();
     let warnings: Vec<&String> = scene
@@ -404,7 +404,7 @@ fn ignored_extensions_are_named_in_one_warning() {
     let w = warnings[0];
     assert!(w.starts_with(hostile::WARNING), "{w}");
     assert!(
-        w.contains("KHR_materials_transmission") && w.contains("KHR_materials_volume"),
+        w.contains("EXT_mesh_gpu_instancing") && w.contains("KHR_animation_pointer"),
         "{w}"
     );
     assert!(!w.contains("clearcoat") && !w.contains("sheen"), "{w}");
@@ -423,14 +423,18 @@ fn ignored_extensions_are_named_in_one_warning() {
         "KHR_materials_unlit",
         "KHR_materials_pbrSpecularGlossiness",
         "KHR_materials_variants",
+        "KHR_materials_transmission",
+        "KHR_materials_volume",
+        "KHR_materials_dispersion",
+        "KHR_materials_diffuse_transmission",
     ] {
         let top = format!(r#""extensionsUsed": ["{name}"], "extensionsRequired": ["{name}"],"#);
         load_json(&file_with(&["{}"], &top)).unwrap_or_else(|e| panic!("{name}: {e}"));
     }
     // A required one it does not read is refused by name.
-    let top = r#""extensionsUsed": ["KHR_materials_transmission"], "extensionsRequired": ["KHR_materials_transmission"],"#;
+    let top = r#""extensionsUsed": ["EXT_mesh_gpu_instancing"], "extensionsRequired": ["EXT_mesh_gpu_instancing"],"#;
     let err = load_json(&file_with(&["{}"], top)).unwrap_err().to_string();
-    assert!(err.contains("KHR_materials_transmission"), "{err}");
+    assert!(err.contains("EXT_mesh_gpu_instancing"), "{err}");
 }
 
 /// A Khronos sample the repository ships (assets/gltf-pbr-next, with its
@@ -479,8 +483,10 @@ fn khronos_samples_read_their_extensions() {
     assert_eq!(slot(named(&s, "M2_SpecTex"), "specular").channel, 3);
     let s = sample("IridescenceSuzanne/IridescenceSuzanne.glb");
     assert!(s.materials.iter().any(|m| m.layers.iridescence == 1.0));
+    // Its transmission is read, not ignored.
+    assert!(s.materials.iter().any(|m| m.layers.transmission > 0.0));
     assert!(
-        s.notes
+        !s.notes
             .iter()
             .any(|n| n.contains("KHR_materials_transmission")),
         "{:?}",
@@ -494,4 +500,88 @@ fn khronos_samples_read_their_extensions() {
             .iter()
             .any(|m| m.layers.anisotropy_strength > 0.0)
     );
+}
+
+#[test]
+fn transmission_extensions_set_the_keys_and_their_textures() {
+    let materials = [
+        r#"{"name": "glass", "extensions": {
+            "KHR_materials_transmission": {"transmissionFactor": 0.75,
+                "transmissionTexture": {"index": 0}},
+            "KHR_materials_volume": {"thicknessFactor": 2.0,
+                "thicknessTexture": {"index": 1},
+                "attenuationDistance": 0.5, "attenuationColor": [0.9, 0.5, 0.25]},
+            "KHR_materials_dispersion": {"dispersion": 0.4}}}"#,
+        r#"{"name": "leaf", "extensions": {"KHR_materials_diffuse_transmission": {
+            "diffuseTransmissionFactor": 0.5, "diffuseTransmissionTexture": {"index": 0},
+            "diffuseTransmissionColorFactor": [0.2, 0.8, 0.1],
+            "diffuseTransmissionColorTexture": {"index": 0}}}}"#,
+        r#"{"name": "clear", "extensions": {"KHR_materials_volume": {"thicknessFactor": 1.0}}}"#,
+    ];
+    let scene = load_json(&file_with(&materials, "")).unwrap();
+    let glass = named(&scene, "glass");
+    assert_eq!(glass.layers.transmission, 0.75);
+    assert_eq!(glass.layers.thickness, 2.0);
+    assert_eq!(glass.layers.attenuation_distance, 0.5);
+    assert_eq!(glass.layers.attenuation_color, Rgb::new(0.9, 0.5, 0.25));
+    assert_eq!(glass.layers.dispersion, 0.4);
+    assert_eq!(slot(glass, "transmission").channel, 0, "R");
+    assert_eq!(slot(glass, "thickness").channel, 1, "G");
+    let leaf = named(&scene, "leaf");
+    assert_eq!(leaf.layers.diffuse_transmission, 0.5);
+    assert_eq!(
+        leaf.layers.diffuse_transmission_color,
+        Rgb::new(0.2, 0.8, 0.1)
+    );
+    assert_eq!(slot(leaf, "diffuse_transmission").channel, 3, "A");
+    assert_eq!(
+        scene.images[slot(leaf, "diffuse_transmission_color").image].encoding,
+        crate::scene::texture::Encoding::Srgb
+    );
+    // Absent attenuationDistance is the extension's +Infinity.
+    let clear = named(&scene, "clear");
+    assert_eq!(clear.layers.attenuation_distance, f64::INFINITY);
+    assert_eq!(clear.layers.transmission, 0.0);
+    // Out of range: an error naming the extension and the property.
+    for (bad, needle) in [
+        (
+            r#"{"KHR_materials_transmission": {"transmissionFactor": 1.5}}"#,
+            "KHR_materials_transmission.transmissionFactor",
+        ),
+        (
+            r#"{"KHR_materials_volume": {"attenuationDistance": 0}}"#,
+            "KHR_materials_volume.attenuationDistance",
+        ),
+        (
+            r#"{"KHR_materials_volume": {"thicknessFactor": -1}}"#,
+            "KHR_materials_volume.thicknessFactor",
+        ),
+        (
+            r#"{"KHR_materials_dispersion": {"dispersion": -0.1}}"#,
+            "KHR_materials_dispersion.dispersion",
+        ),
+        (
+            r#"{"KHR_materials_diffuse_transmission": {"diffuseTransmissionColorFactor": [2, 0, 0]}}"#,
+            "KHR_materials_diffuse_transmission.diffuseTransmissionColorFactor",
+        ),
+    ] {
+        let m = format!(r#"{{"name": "bad", "extensions": {bad}}}"#);
+        let err = load_json(&file_with(&[&m], "")).unwrap_err().to_string();
+        assert!(err.contains(needle), "{err}");
+    }
+}
+
+#[test]
+fn khronos_transmission_samples_read_their_extensions() {
+    let s = sample("TransmissionTest/TransmissionTest.glb");
+    assert!(s.materials.iter().any(|m| m.layers.transmission == 1.0));
+    assert!(
+        s.notes.iter().all(|n| !n.contains("KHR_materials_")),
+        "{:?}",
+        s.notes
+    );
+    let s = sample("AttenuationTest/AttenuationTest.glb");
+    assert!(s.materials.iter().any(|m| m.layers.thickness > 0.0
+        && m.layers.attenuation_distance.is_finite()
+        && m.layers.attenuation_color != Rgb::ONE));
 }

@@ -154,7 +154,7 @@ pub(super) fn extension<T: DeserializeOwned>(
 }
 
 /// `value` of `what` if it lies in `[min, max]`, else the error.
-fn within(what: &str, value: f64, min: f64, max: f64) -> Result<f64, String> {
+pub(super) fn within(what: &str, value: f64, min: f64, max: f64) -> Result<f64, String> {
     if (min..=max).contains(&value) {
         Ok(value)
     } else {
@@ -167,11 +167,11 @@ fn within(what: &str, value: f64, min: f64, max: f64) -> Result<f64, String> {
     }
 }
 
-fn unit(what: &str, value: f64) -> Result<f64, String> {
+pub(super) fn unit(what: &str, value: f64) -> Result<f64, String> {
     within(what, value, 0.0, 1.0)
 }
 
-fn colour(what: &str, c: [f64; 3], max: f64) -> Result<Rgb, String> {
+pub(super) fn colour(what: &str, c: [f64; 3], max: f64) -> Result<Rgb, String> {
     for v in c {
         within(what, v, 0.0, max)?;
     }

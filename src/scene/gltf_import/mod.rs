@@ -138,6 +138,7 @@ mod meshopt;
 mod spec_gloss;
 #[cfg(test)]
 mod tests;
+mod transmission;
 mod unlit;
 mod variants;
 

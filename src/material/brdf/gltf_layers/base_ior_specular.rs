@@ -178,7 +178,9 @@ pub fn gltf_base(
             + iridescence_fresnel(cos_o, eta_f, d, f0 * layers.specular) * iota;
         f_metal = f_metal * (1.0 - iota) + iridescence_fresnel(cos_o, eta_f, d, base_color) * iota;
     }
-    let dielectric = base_color * ((1.0 - f_dielectric.max_element()) * FRAC_1_PI)
+    // Transmission takes its share of the diffuse part (exactly 1 without).
+    let diffuse_weight = super::transmission::reflected_diffuse_weight(layers);
+    let dielectric = base_color * ((1.0 - f_dielectric.max_element()) * FRAC_1_PI * diffuse_weight)
         + f_dielectric * specular * ms_factor(f0 * layers.specular, ms);
     let metal = f_metal * specular * ms_factor(base_color, ms);
     dielectric * (1.0 - metallic) + metal * metallic

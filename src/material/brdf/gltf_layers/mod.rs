@@ -13,7 +13,11 @@
 //!   albedo `E(μ, α_sh)` its albedo scaling uses (Kulla & Conty 2017);
 //! * [`clearcoat`]: `KHR_materials_clearcoat`'s coat, a GGX lobe of IOR 1.5
 //!   over everything below;
-//! * [`stack`]: base → sheen → clearcoat.
+//! * [`stack`]: base → sheen → clearcoat;
+//! * [`transmission`] and [`volume_btdf`]: light through the surface
+//!   (`KHR_materials_transmission`, `_diffuse_transmission`, `_volume`,
+//!   `_dispersion`): the thin-walled and diffuse BTDFs, the rough
+//!   dielectric BTDF of Walter et al. 2007, and `n(λ)`.
 //!
 //! Every layer at its default leaves the core BRDF exactly as
 //! [`super::gltf_pbr::gltf_pbr`] computes it (each layer is switched off by
@@ -29,6 +33,8 @@ pub mod sheen;
 pub mod sheen_albedo;
 pub mod sheen_albedo_nodes;
 pub mod stack;
+pub mod transmission;
+pub mod volume_btdf;
 
 use crate::base::Rgb;
 
