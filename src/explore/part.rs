@@ -166,6 +166,7 @@ mod tests {
         let m = layered();
         let f = frame();
         let mut checked = 0;
+        let mut nonzero = [false; 3];
         for (ti, pi, to, po) in [
             (30.0, 0.0, 30.0, 180.0),
             (60.0, 20.0, 10.0, 250.0),
@@ -179,7 +180,9 @@ mod tests {
                 .into_iter()
                 .map(|t| m.f_r_term(t, wi, wo, &f))
                 .collect();
-            assert!(terms.iter().all(|t| t.min_element() > 0.0), "{terms:?}");
+            for (seen, t) in nonzero.iter_mut().zip(&terms) {
+                *seen |= t.min_element() > 0.0;
+            }
             let sum = terms[0] + terms[1] + terms[2];
             // Rounding only: three products in another order, ~4 ulps.
             assert!(
@@ -190,6 +193,7 @@ mod tests {
             checked += 1;
         }
         assert_eq!(checked, 4);
+        assert_eq!(nonzero, [true; 3], "every term drawn somewhere");
     }
 
     #[test]
@@ -210,6 +214,41 @@ mod tests {
                 LayerTerm::Clearcoat
             ]
         );
+    }
+
+    /// The clearcoat term's directional albedo is the albedo of the coat
+    /// alone computed as a whole material (a black base without its
+    /// specular lobe: `f_r = (1 − k F_c)·0 + k F_c G`, the same numbers),
+    /// and with the base's term it sums to the whole's within the
+    /// quadrature's error bounds.
+    #[test]
+    fn the_clearcoat_terms_albedo_is_the_coats_own() {
+        use crate::explore::albedo::albedo_towards;
+        let mut m = layered();
+        m.layers.sheen_color = Rgb::ZERO;
+        let mut alone = m.clone();
+        // No base lobe: black, no specular lobe, no thin film (whose
+        // Fresnel is not 0 over a black base).
+        (alone.base_color, alone.layers.specular) = (Rgb::ZERO, 0.0);
+        alone.layers.iridescence = 0.0;
+        let f = frame();
+        for theta in [0.0, 40.0, 75.0_f64] {
+            let wi = direction(theta.to_radians(), 0.3);
+            let part = |term| MaterialPart { material: &m, term };
+            let coat = albedo_towards(part(LayerTerm::Clearcoat), wi, &f);
+            let direct = albedo_towards(&alone, wi, &f);
+            assert_eq!(coat.value, direct.value, "θ_i = {theta}°");
+            // At least k·F_c(1) = 0.7 · 0.04 (more towards grazing).
+            assert!(coat.value.x >= 0.7 * 0.04 * 0.99, "{coat:?}");
+            let base = albedo_towards(part(LayerTerm::Base), wi, &f);
+            let whole = albedo_towards(&m, wi, &f);
+            let bound = base.error_bound + coat.error_bound + whole.error_bound;
+            let gap = (base.value + coat.value - whole.value).abs();
+            assert!(
+                gap.cmple(bound + Rgb::splat(1e-14)).all(),
+                "θ_i = {theta}°: {gap:?} > {bound:?}"
+            );
+        }
     }
 
     #[test]
