@@ -544,6 +544,9 @@ fn a_layer_no_material_has_is_refused() {
     assert_eq!(f_r(&text, "lambert [clearcoat]"), [0.0; 3]);
     // k F_c G at the mirror direction, θ_i = 30°: 0.04 · D·Vis of α = 0.09,
     // about 0.5.
-    let coat = f_r(&text, "gltf-pbr clearcoat=1 clearcoat_roughness=0.3 [clearcoat]");
+    let coat = f_r(
+        &text,
+        "gltf-pbr clearcoat=1 clearcoat_roughness=0.3 [clearcoat]",
+    );
     assert!(coat[0] > 0.3, "{text}");
 }
