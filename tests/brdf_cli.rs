@@ -402,3 +402,151 @@ fn halfdiff_image_follows_phi_d() {
         "{stderr}"
     );
 }
+
+/// The albedo after `LABEL: albedo ρ(θ_i = …°) = ` and its bound.
+fn albedo(text: &str, label: &str) -> ([f64; 3], [f64; 3]) {
+    numbers_after(text, &format!("{label}: albedo"))
+}
+
+/// The `[r, g, b] ± [r, g, b]` of the line starting with `prefix`.
+fn numbers_after(text: &str, prefix: &str) -> ([f64; 3], [f64; 3]) {
+    let line = text
+        .lines()
+        .find_map(|l| l.strip_prefix(prefix))
+        .unwrap_or_else(|| panic!("no `{prefix}` in {text}"));
+    let numbers: Vec<f64> = line
+        .split('=')
+        .next_back()
+        .unwrap()
+        .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == '-'))
+        .filter(|s| !s.is_empty() && *s != "e")
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert_eq!(numbers.len(), 6, "{line}");
+    (
+        [numbers[0], numbers[1], numbers[2]],
+        [numbers[3], numbers[4], numbers[5]],
+    )
+}
+
+/// `--layer`: the layer keys reach `gonio brdf` (`--set clearcoat=…`), and
+/// each layer's term is shown apart. The clearcoat term's albedo equals
+/// the albedo of a material that is the coat alone (a black base with no
+/// specular lobe: `f_r = (1 − k F_c)·0 + k F_c G`, computed by the whole
+/// BRDF), and the terms' albedos sum to the whole's, within the rounding
+/// of the printout.
+#[test]
+fn each_layer_term_is_shown_apart_and_the_terms_sum_to_the_whole() {
+    let coat = ["--set", "clearcoat=0.8", "--set", "clearcoat_roughness=0.2"];
+    let base = [
+        "--model",
+        "gltf-pbr",
+        "--set",
+        "base_color=[0.8, 0.05, 0.05]",
+        "--set",
+        "roughness=0.6",
+        "--theta-i",
+        "40",
+        "--albedo",
+    ];
+    let args: Vec<&str> = base
+        .iter()
+        .chain(&coat)
+        .copied()
+        .chain(["--layer", "each"])
+        .collect();
+    let text = stdout(&brdf(&args));
+    let (whole, _) = albedo(&text, "gltf-pbr");
+    let (under, _) = albedo(&text, "gltf-pbr [base]");
+    let (coat_term, _) = albedo(&text, "gltf-pbr [clearcoat]");
+    let (sum, _) = numbers_after(&text, "gltf-pbr: sum of the terms");
+    assert!(!text.contains("[sheen]"), "no sheen on: {text}");
+    // Each printed number is rounded to 4 significant digits: off by up
+    // to 5·10⁻⁴ of itself (the quadrature's bounds, ~10⁻¹¹, are far below).
+    let rounding = |v: &[f64]| 5e-4 * v.iter().map(|x| x.abs()).sum::<f64>();
+    let close = |a: f64, b: f64| (a - b).abs() <= rounding(&[a, b]);
+    for c in 0..3 {
+        let terms = [under[c], coat_term[c], whole[c]];
+        assert!(
+            (under[c] + coat_term[c] - whole[c]).abs() <= rounding(&terms),
+            "{text}"
+        );
+        assert!(close(sum[c], whole[c]), "{text}");
+        assert!(
+            coat_term[c] > 0.02 && under[c] > coat_term[c] * 0.5,
+            "{text}"
+        );
+    }
+    // The coat alone, as a whole material.
+    let alone: Vec<&str> = [
+        "--model",
+        "gltf-pbr",
+        "--set",
+        "base_color=[0, 0, 0]",
+        "--set",
+        "specular=0",
+        "--theta-i",
+        "40",
+        "--albedo",
+    ]
+    .iter()
+    .chain(&coat)
+    .copied()
+    .collect();
+    let (direct, _) = albedo(&stdout(&brdf(&alone)), "gltf-pbr");
+    for c in 0..3 {
+        assert!(
+            close(direct[c], coat_term[c]),
+            "{direct:?} vs {coat_term:?}"
+        );
+    }
+    // One term alone, and its f_r at the mirror direction.
+    let one: Vec<&str> = base
+        .iter()
+        .chain(&coat)
+        .copied()
+        .chain(["--layer", "clearcoat"])
+        .collect();
+    let text = stdout(&brdf(&one));
+    let (alone_term, _) = albedo(&text, "gltf-pbr [clearcoat]");
+    assert_eq!(alone_term, coat_term);
+    assert!(!text.contains("gltf-pbr: "), "only the term: {text}");
+}
+
+/// `--layer` naming a layer no material has is refused (nothing but
+/// zeros would be shown), naming the key that switches it on; a material
+/// without the layer among others that have it gets a note.
+#[test]
+fn a_layer_no_material_has_is_refused() {
+    let out = brdf(&["--model", "gltf-pbr", "--layer", "sheen"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--layer sheen") && stderr.contains("sheen_color"),
+        "{stderr}"
+    );
+    let out = brdf(&["--model", "phong", "--layer", "clearcot"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("clearcoat"));
+    let out = brdf(&[
+        "--model",
+        "lambert",
+        "--compare",
+        "gltf-pbr,clearcoat=1,clearcoat_roughness=0.3",
+        "--layer",
+        "clearcoat",
+    ]);
+    let text = stdout(&out);
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("lambert has no clearcoat layer"),
+        "{text}"
+    );
+    assert_eq!(f_r(&text, "lambert [clearcoat]"), [0.0; 3]);
+    // k F_c G at the mirror direction, θ_i = 30°: 0.04 · D·Vis of α = 0.09,
+    // about 0.5.
+    let coat = f_r(
+        &text,
+        "gltf-pbr clearcoat=1 clearcoat_roughness=0.3 [clearcoat]",
+    );
+    assert!(coat[0] > 0.3, "{text}");
+}

@@ -1006,3 +1006,58 @@ fn the_halfdiff_image_reads_out_f_r_where_the_parameterization_says() {
     }
     assert!(stdout.contains("halfdiff probe 0:"), "{stdout}");
 }
+
+/// The material variant chosen in the viewer (`--edit N:gltf.variant=NAME`,
+/// the panel's combo box: the scene loaded again in that variant) is drawn
+/// as `gonio render --set gltf.variant=NAME` draws it, and not as the
+/// file's own material; a variant the file does not have is refused with
+/// exit 2, naming the file's variants.
+#[test]
+fn a_material_variant_chosen_in_the_viewer_is_drawn() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/variants/variants.toml"
+    );
+    let shot = dir.path().join("variant.png");
+    let choice = "gltf.variant=\"red coat\"";
+    let edit = format!("3:{choice}");
+    let area = view(
+        &[
+            scene,
+            "--size",
+            "320x240",
+            "--no-panel",
+            "--no-overlay",
+            "--frames",
+            "6",
+            "--edit",
+            &edit,
+        ],
+        &shot,
+    );
+    let chosen = dir.path().join("chosen-render.png");
+    render(&[scene, "--set", choice], area.2, area.3, &chosen);
+    assert_matches(&shot, area, &chosen, "variant");
+    let own = dir.path().join("own-render.png");
+    render(&[scene], area.2, area.3, &own);
+    let (max, fraction) = difference(&shot, area, &own);
+    assert!(
+        max > 50 && fraction > 0.2,
+        "the variant changed too little: {max} levels in {:.1} % of the pixels",
+        100.0 * fraction
+    );
+    let out = xvfb()
+        .arg(common::gonio().get_program())
+        .arg("view")
+        .args([scene, "--frames", "3", "--edit", "1:gltf.variant=green"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("\"green\"") && stderr.contains("\"red coat\", \"blue\""),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

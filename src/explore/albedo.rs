@@ -55,6 +55,7 @@
 //! The ideal mirror's Dirac lobe is not a function: its albedo
 //! `k_s · F(cos θ_i)` is added in closed form (no error).
 
+use super::part::MaterialPart;
 use super::quadrature::{Tolerance, graded, insert_break, integrate as integrate_panels};
 use crate::material::Material;
 use crate::material::brdf::{self, CookTorrance, GeometryTerm, Specular, SurfaceFrame};
@@ -85,7 +86,10 @@ const HORIZON_PANEL: f64 = 1.0 / 256.0;
 /// `theta_i` (radians from the normal) in the plane `φ_i = 0` (along the
 /// tangent), in the frame of [`super::frame`]. Zero for `θ_i ≥ π/2`
 /// (one-sided).
-pub fn directional_albedo(material: &Material, theta_i: f64) -> AlbedoEstimate {
+pub fn directional_albedo<'a>(
+    material: impl Into<MaterialPart<'a>>,
+    theta_i: f64,
+) -> AlbedoEstimate {
     albedo_towards(material, super::direction(theta_i, 0.0), &super::frame())
 }
 
@@ -93,18 +97,23 @@ pub fn directional_albedo(material: &Material, theta_i: f64) -> AlbedoEstimate {
 /// `φ_i = phi_i` (radians), in parallel. (`gonio brdf --plot-albedo` once
 /// ignored `--phi-i`, giving 0.626 where `--albedo` gave 0.6371 for an
 /// anisotropic Ward material: issue 17.)
-pub fn albedo_curve(material: &Material, thetas: &[f64], phi_i: f64) -> Vec<AlbedoEstimate> {
+pub fn albedo_curve<'a>(
+    material: impl Into<MaterialPart<'a>>,
+    thetas: &[f64],
+    phi_i: f64,
+) -> Vec<AlbedoEstimate> {
     albedo_curve_with(material, thetas, phi_i, &|| {})
 }
 
 /// [`albedo_curve`], calling `done` after each angle (a progress bar: a
 /// measured network's curve takes a minute on 2 cores).
-pub fn albedo_curve_with(
-    material: &Material,
+pub fn albedo_curve_with<'a>(
+    material: impl Into<MaterialPart<'a>>,
     thetas: &[f64],
     phi_i: f64,
     done: &(dyn Fn() + Sync),
 ) -> Vec<AlbedoEstimate> {
+    let material = material.into();
     let frame = super::frame();
     thetas
         .par_iter()
@@ -118,7 +127,13 @@ pub fn albedo_curve_with(
 
 /// The directional albedo for the unit direction `wi` (towards the light)
 /// in an arbitrary shading frame.
-pub fn albedo_towards(material: &Material, wi: DVec3, frame: &SurfaceFrame) -> AlbedoEstimate {
+/// A `&Material` is its whole `f_r`; a [`MaterialPart`] one layer's term.
+pub fn albedo_towards<'a>(
+    material: impl Into<MaterialPart<'a>>,
+    wi: DVec3,
+    frame: &SurfaceFrame,
+) -> AlbedoEstimate {
+    let material = material.into();
     let local = DVec3::new(wi.dot(frame.t), wi.dot(frame.b), wi.dot(frame.n));
     if local.z <= 0.0 {
         return AlbedoEstimate {
@@ -129,7 +144,7 @@ pub fn albedo_towards(material: &Material, wi: DVec3, frame: &SurfaceFrame) -> A
     let geometry = MirrorFrame::new(local);
     let (q, error) = integrate(material, wi, frame, &geometry);
     // Zero but for a Dirac lobe (the mirror).
-    let dirac = brdf::mirror_reflectance(material, local.z);
+    let dirac = material.dirac(local.z);
     AlbedoEstimate {
         value: q + dirac,
         error_bound: error + 1e-12 * q.abs(),
@@ -192,7 +207,8 @@ const OUTER: Tolerance = Tolerance {
 };
 
 /// `(∫ f_r cos θ_o dω_o, error bound)` over the upper hemisphere.
-fn integrate(material: &Material, wi: DVec3, frame: &SurfaceFrame, g: &MirrorFrame) -> (Rgb, Rgb) {
+fn integrate(part: MaterialPart, wi: DVec3, frame: &SurfaceFrame, g: &MirrorFrame) -> (Rgb, Rgb) {
+    let material = part.material;
     // gltf-pbr's anisotropy layer turns its lobe out of the plane of
     // incidence: no mirror symmetry then.
     let isotropic = !material.model.needs_tangents() && material.layers.anisotropy_strength == 0.0;
@@ -230,7 +246,7 @@ fn integrate(material: &Material, wi: DVec3, frame: &SurfaceFrame, g: &MirrorFra
                 return (Rgb::ZERO, Rgb::ZERO);
             }
             let wo = (frame.t * local.x + frame.b * local.y + frame.n * local.z).normalize();
-            let value = material.f_r(wi, wo, frame) * (local.z * alpha.sin());
+            let value = part.f_r(wi, wo, frame) * (local.z * alpha.sin());
             (value, Rgb::ZERO)
         })
     };

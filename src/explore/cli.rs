@@ -3,11 +3,12 @@
 
 use super::albedo::albedo_curve_with;
 use super::gloss::{GEOMETRIES, gloss_at};
+use super::part::term_label;
 use super::plot::{AlbedoPlot, SlicePlot};
 use super::slice::{Quantity, slice};
-use super::{Channel, Labelled, direction, frame, spec, table};
+use super::{Channel, Labelled, LayerChoice, MaterialPart, direction, frame, spec, table};
 use crate::material::ReflectanceModel;
-use crate::material::brdf::mirror_reflectance;
+use crate::material::layers::LayerTerm;
 use crate::output::plot::{PlotFile, number};
 use crate::{Error, Result};
 use std::path::PathBuf;
@@ -85,6 +86,14 @@ pub struct BrdfArgs {
     /// What the plots draw of RGB: mean (default), luminance, r, g, b.
     #[arg(long, value_name = "C", default_value = "mean")]
     pub channel: Channel,
+    /// Which term of a layered gltf-pbr material the values, albedo,
+    /// gloss and plots show: all (the whole f_r, default), base, sheen,
+    /// clearcoat (each layer's lobe times what the layers above let
+    /// through: the terms sum to the whole), or each (the whole and every
+    /// term the material has, overlaid; --albedo then prints the terms'
+    /// sum too).
+    #[arg(long, value_name = "L", default_value = "all")]
+    pub layer: LayerChoice,
     /// Print the Markdown albedo table of docs/brdf-models.md (all models).
     #[arg(long)]
     pub albedo_table: bool,
@@ -122,6 +131,8 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         }
     }
     let materials = materials(args)?;
+    check_layer(args.layer, &materials)?;
+    let parts = parts(&materials, args.layer);
     let angles = Angles::from_args(args)?;
     // Claim the outputs first: a bad path fails before any work.
     let slice_file = args
@@ -162,12 +173,12 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         ));
     }
 
-    print_values(&materials, &angles);
+    print_values(&parts, &angles);
     if args.albedo {
-        print_albedo(&materials, &angles);
+        print_albedo(&materials, args.layer, &angles);
     }
     if args.gloss {
-        print_gloss(&materials, angles.phi_i);
+        print_gloss(&parts, angles.phi_i);
     }
     let note = shared_note(&args.set);
     let mut written = Vec::new();
@@ -185,11 +196,11 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
             phi_i,
             quantity: args.quantity,
             channel: args.channel,
-            series: materials
+            series: parts
                 .iter()
-                .map(|m| {
-                    let s = slice(&m.material, theta_i, phi_i, args.quantity, args.channel);
-                    (m.label.clone(), s)
+                .map(|(label, part)| {
+                    let s = slice(*part, theta_i, phi_i, args.quantity, args.channel);
+                    (label.clone(), s)
                 })
                 .collect(),
             max: args.slice_max,
@@ -200,8 +211,7 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
     }
     if let Some(file) = halfdiff_file {
         let phi_d = args.phi_d.unwrap_or(90.0);
-        let bytes =
-            super::halfdiff_plot::encode(&file, &materials, args.channel, phi_d, note.clone())?;
+        let bytes = super::halfdiff_plot::encode(&file, &parts, args.channel, phi_d, note.clone())?;
         written.push((file.into_file(), bytes));
     }
     if let Some(file) = albedo_file {
@@ -217,7 +227,7 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         let progress = long.then(|| {
             std::sync::Mutex::new(crate::output::progress::Progress::new(
                 "albedo",
-                (materials.len() * thetas.len()) as u64,
+                (parts.len() * thetas.len()) as u64,
             ))
         });
         let with_progress = |f: &dyn Fn(&mut crate::output::progress::Progress)| {
@@ -226,12 +236,12 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
             }
         };
         let step = || with_progress(&|p| p.inc(1));
-        let series = materials
+        let series = parts
             .iter()
-            .map(|m| {
-                with_progress(&|p| p.set_message(m.label.clone()));
-                let curve = albedo_curve_with(&m.material, &thetas, phi_i, &step);
-                (m.label.clone(), curve)
+            .map(|(label, part)| {
+                with_progress(&|p| p.set_message(label.clone()));
+                let curve = albedo_curve_with(*part, &thetas, phi_i, &step);
+                (label.clone(), curve)
             })
             .collect();
         with_progress(&|p| p.finish());
@@ -325,7 +335,64 @@ impl Angles {
     }
 }
 
-fn print_values(materials: &[Labelled], a: &Angles) {
+/// `--layer` names a term no material has: an error (nothing would be
+/// shown but zeros); a material without the term: a note.
+fn check_layer(choice: LayerChoice, materials: &[Labelled]) -> Result<()> {
+    let LayerChoice::One(term @ (LayerTerm::Sheen | LayerTerm::Clearcoat | LayerTerm::Base)) =
+        choice
+    else {
+        return Ok(());
+    };
+    let has = |m: &Labelled| {
+        let l = &m.material.layers;
+        m.material.model == ReflectanceModel::GltfPbr
+            && match term {
+                LayerTerm::Sheen => l.has_sheen(),
+                LayerTerm::Clearcoat => l.has_clearcoat(),
+                _ => true,
+            }
+    };
+    if !materials.iter().any(has) {
+        let key = match term {
+            LayerTerm::Sheen => {
+                "a gltf-pbr material with sheen_color ≠ 0, e.g. `--model gltf-pbr --set sheen_color=[0.5,0.5,0.5]`"
+            }
+            LayerTerm::Clearcoat => {
+                "a gltf-pbr material with clearcoat > 0, e.g. `--model gltf-pbr --set clearcoat=1`"
+            }
+            _ => "a gltf-pbr material (`--model gltf-pbr`)",
+        };
+        return Err(Error::argument(
+            format!("--layer {term}"),
+            format!("no material has that layer: it needs {key}"),
+        ));
+    }
+    for m in materials.iter().filter(|m| !has(m)) {
+        eprintln!(
+            "gonio: note: --layer {term}: {} has no {term} layer; its term is 0",
+            m.label
+        );
+    }
+    Ok(())
+}
+
+/// Every material's terms `choice` shows, each with its label.
+fn parts(materials: &[Labelled], choice: LayerChoice) -> Vec<(String, MaterialPart<'_>)> {
+    materials
+        .iter()
+        .flat_map(|m| {
+            choice.terms(&m.material).into_iter().map(|term| {
+                let part = MaterialPart {
+                    material: &m.material,
+                    term,
+                };
+                (term_label(&m.label, term), part)
+            })
+        })
+        .collect()
+}
+
+fn print_values(parts: &[(String, MaterialPart)], a: &Angles) {
     let wi = direction(a.theta_i.to_radians(), a.phi_i.to_radians());
     let wo = direction(a.theta_o.to_radians(), a.phi_o.to_radians());
     println!(
@@ -339,11 +406,11 @@ fn print_values(materials: &[Labelled], a: &Angles) {
     if wi.z <= 0.0 || wo.z <= 0.0 {
         println!("a direction is at or below the horizon: f_r = 0 (every model is one-sided)");
     }
-    for m in materials {
-        let f = m.material.f_r(wi, wo, &frame());
-        println!("{}: f_r = [{}, {}, {}] 1/sr", m.label, f.x, f.y, f.z);
-        if m.material.brdf().is_dirac() {
-            let rho = mirror_reflectance(&m.material, wi.z);
+    for (label, part) in parts {
+        let f = part.f_r(wi, wo, &frame());
+        println!("{label}: f_r = [{}, {}, {}] 1/sr", f.x, f.y, f.z);
+        if part.is_dirac() {
+            let rho = part.dirac(wi.z);
             println!(
                 "  plus a Dirac δ lobe in the mirror direction of reflectance k_s·F(cos θ_i) = [{}, {}, {}]",
                 rho.x, rho.y, rho.z
@@ -352,41 +419,64 @@ fn print_values(materials: &[Labelled], a: &Angles) {
     }
 }
 
-fn print_albedo(materials: &[Labelled], a: &Angles) {
+/// The albedo of each material at θ_i, of the terms `--layer` chooses;
+/// with `each`, of the whole and of each term, then the terms' sum (equal
+/// to the whole's within the error bounds: the terms are additive).
+fn print_albedo(materials: &[Labelled], choice: LayerChoice, a: &Angles) {
+    let wi = direction(a.theta_i.to_radians(), a.phi_i.to_radians());
     for m in materials {
-        let e = super::albedo::albedo_towards(
-            &m.material,
-            direction(a.theta_i.to_radians(), a.phi_i.to_radians()),
-            &frame(),
-        );
-        println!(
-            "{}: albedo ρ(θ_i = {}°) = [{}, {}, {}] ± [{}, {}, {}]",
-            m.label,
-            a.theta_i,
-            number(e.value.x),
-            number(e.value.y),
-            number(e.value.z),
-            number(e.error_bound.x),
-            number(e.error_bound.y),
-            number(e.error_bound.z)
-        );
+        let terms = choice.terms(&m.material);
+        let mut sum = None;
+        for &term in &terms {
+            let part = MaterialPart {
+                material: &m.material,
+                term,
+            };
+            let e = super::albedo::albedo_towards(part, wi, &frame());
+            println!(
+                "{}: albedo ρ(θ_i = {}°) = {}",
+                term_label(&m.label, term),
+                a.theta_i,
+                with_bound(e.value, e.error_bound)
+            );
+            if term != LayerTerm::All {
+                let (v, b) = sum.unwrap_or_default();
+                sum = Some((v + e.value, b + e.error_bound));
+            }
+        }
+        if let Some((v, b)) = sum.filter(|_| terms.len() > 2) {
+            println!("{}: sum of the terms = {}", m.label, with_bound(v, b));
+        }
     }
 }
 
-fn print_gloss(materials: &[Labelled], phi_i: f64) {
+/// `[r, g, b] ± [r, g, b]`.
+fn with_bound(v: crate::scene::Rgb, b: crate::scene::Rgb) -> String {
+    format!(
+        "[{}, {}, {}] ± [{}, {}, {}]",
+        number(v.x),
+        number(v.y),
+        number(v.z),
+        number(b.x),
+        number(b.y),
+        number(b.z)
+    )
+}
+
+fn print_gloss(parts: &[(String, MaterialPart)], phi_i: f64) {
     println!(
         "specular gloss (ISO 2813 / ASTM D523) at φ_i = {phi_i}°: 100 · Y(∫_aperture f_r cos θ_o dω_o) / F(black glass, η = {})",
         super::gloss::STANDARD_ETA
     );
-    for m in materials {
+    for (label, part) in parts {
         let readings: Vec<String> = GEOMETRIES
             .iter()
             .map(|&g| {
-                let r = gloss_at(&m.material, g, phi_i.to_radians());
+                let r = gloss_at(*part, g, phi_i.to_radians());
                 format!("{}°: {} GU", g.angle_deg, number(r.gloss_units))
             })
             .collect();
-        println!("{}: {}", m.label, readings.join(", "));
+        println!("{label}: {}", readings.join(", "));
     }
 }
 

@@ -42,9 +42,9 @@
 //! panels' `|K15 − G7|`, as in [`super::albedo`].
 
 use super::Channel;
+use super::part::MaterialPart;
 use super::quadrature::{Tolerance, graded, integrate};
-use crate::material::Material;
-use crate::material::brdf::{self, SurfaceFrame, fresnel::fresnel_dielectric};
+use crate::material::brdf::{SurfaceFrame, fresnel::fresnel_dielectric};
 use crate::scene::Rgb;
 use glam::DVec3;
 
@@ -99,7 +99,7 @@ pub struct GlossReading {
 }
 
 /// The gloss of `material` in `geometry`, light at azimuth `φ_i = 0`.
-pub fn gloss(material: &Material, geometry: GlossGeometry) -> GlossReading {
+pub fn gloss<'a>(material: impl Into<MaterialPart<'a>>, geometry: GlossGeometry) -> GlossReading {
     gloss_at(material, geometry, 0.0)
 }
 
@@ -108,7 +108,12 @@ pub fn gloss(material: &Material, geometry: GlossGeometry) -> GlossReading {
 /// meter. The meter's geometry stays in the plane `y = 0`; the sample's
 /// tangent is turned to `(cos φ_i, −sin φ_i, 0)`, so the light's azimuth
 /// seen from the tangent is `+φ_i` (only anisotropic models change).
-pub fn gloss_at(material: &Material, geometry: GlossGeometry, phi_i: f64) -> GlossReading {
+pub fn gloss_at<'a>(
+    material: impl Into<MaterialPart<'a>>,
+    geometry: GlossGeometry,
+    phi_i: f64,
+) -> GlossReading {
+    let material = material.into();
     let theta = geometry.angle_deg.to_radians();
     let wi = super::direction(theta, 0.0);
     let half_a = 0.5 * geometry.in_plane_deg.to_radians();
@@ -117,7 +122,7 @@ pub fn gloss_at(material: &Material, geometry: GlossGeometry, phi_i: f64) -> Glo
     let frame = SurfaceFrame::new(DVec3::Z, DVec3::new(cos_p, -sin_p, 0.0));
     let (q, error) = aperture_integral(material, wi, theta, half_a, half_b, &frame);
     // Zero but for a Dirac lobe (the mirror).
-    let dirac = brdf::mirror_reflectance(material, theta.cos());
+    let dirac = material.dirac(theta.cos());
     let aperture_reflectance = q + dirac;
     let standard_reflectance = fresnel_dielectric(theta.cos(), 1.0, STANDARD_ETA);
     GlossReading {
@@ -139,7 +144,7 @@ const TOLERANCE: Tolerance = Tolerance {
 /// `(∫_A f_r cos θ_o dω_o, error bound)` over the aperture `|a| ≤ half_a`,
 /// `|b| ≤ half_b`.
 fn aperture_integral(
-    material: &Material,
+    material: MaterialPart,
     wi: DVec3,
     theta: f64,
     half_a: f64,
@@ -170,7 +175,7 @@ fn aperture_integral(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::ReflectanceModel;
+    use crate::material::{Material, ReflectanceModel};
 
     #[test]
     fn black_glass_reads_100() {

@@ -15,8 +15,8 @@
 //! every θ_h, θ_d < 90°. Specular peaks sit at θ_h = 0 (the left column);
 //! Fresnel's rise at θ_d → 90° (the top rows).
 
+use super::part::MaterialPart;
 use super::{Channel, frame};
-use crate::material::Material;
 use crate::scene::Rgb;
 use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
@@ -53,14 +53,16 @@ pub fn directions(theta_h: f64, theta_d: f64, phi_d: f64) -> (DVec3, DVec3) {
 /// f_r of `m` at half angle `theta_h` and difference angles `theta_d`,
 /// `phi_d` (radians, φ_h = 0): the one evaluation behind every cell of
 /// the image, in `gonio brdf` and in the viewer.
-pub fn f_r_at(m: &Material, theta_h: f64, theta_d: f64, phi_d: f64) -> Rgb {
+pub fn f_r_at<'a>(m: impl Into<MaterialPart<'a>>, theta_h: f64, theta_d: f64, phi_d: f64) -> Rgb {
+    let m = m.into();
     let (wi, wo) = directions(theta_h, theta_d, phi_d);
     m.f_r(wi, wo, &frame())
 }
 
 /// f_r (RGB) of `m` at the centre of every cell for the difference
 /// azimuth `phi_d` (radians): `rows[j][i]`, i along θ_h, j along θ_d.
-pub fn half_diff_rgb(m: &Material, phi_d: f64) -> Vec<Vec<Rgb>> {
+pub fn half_diff_rgb<'a>(m: impl Into<MaterialPart<'a>>, phi_d: f64) -> Vec<Vec<Rgb>> {
+    let m = m.into();
     (0..CELLS)
         .map(|j| {
             (0..CELLS)
@@ -71,13 +73,17 @@ pub fn half_diff_rgb(m: &Material, phi_d: f64) -> Vec<Vec<Rgb>> {
 }
 
 /// The image of `m` at φ_d = 90°.
-pub fn half_diff_image(m: &Material, channel: Channel) -> HalfDiffImage {
+pub fn half_diff_image<'a>(m: impl Into<MaterialPart<'a>>, channel: Channel) -> HalfDiffImage {
     half_diff_image_at(m, channel, FRAC_PI_2)
 }
 
 /// [`half_diff_image`] at the difference azimuth `phi_d` (radians):
 /// `gonio brdf --plot-halfdiff --phi-d`.
-pub fn half_diff_image_at(m: &Material, channel: Channel, phi_d: f64) -> HalfDiffImage {
+pub fn half_diff_image_at<'a>(
+    m: impl Into<MaterialPart<'a>>,
+    channel: Channel,
+    phi_d: f64,
+) -> HalfDiffImage {
     let values = half_diff_rgb(m, phi_d)
         .into_iter()
         .map(|row| row.into_iter().map(|c| channel.of(c)).collect())
@@ -89,6 +95,7 @@ pub fn half_diff_image_at(m: &Material, channel: Channel, phi_d: f64) -> HalfDif
 mod tests {
     use super::*;
     use crate::explore::spec::compare_spec;
+    use crate::material::Material;
 
     fn material(spec: &str) -> Material {
         compare_spec(spec, &[]).unwrap().material

@@ -4,7 +4,7 @@
 //! [`layout`], so a test can find cell (θ_h, θ_d) in the written image.
 
 use super::halfdiff::{CELLS, HalfDiffImage, half_diff_image_at};
-use super::{Channel, Labelled};
+use super::{Channel, MaterialPart};
 use crate::Result;
 use crate::output::plot::{Plot, PlotFile, err, number};
 use plotters::coord::Shift;
@@ -100,10 +100,11 @@ pub fn viridis(t: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-/// `gonio brdf --plot-halfdiff`: the image of every material into `file`.
+/// `gonio brdf --plot-halfdiff`: the image of every material (or layer
+/// term of one, `--layer`) into `file`.
 pub fn encode(
     file: &PlotFile,
-    materials: &[Labelled],
+    materials: &[(String, MaterialPart)],
     channel: Channel,
     phi_d_deg: f64,
     note: String,
@@ -113,9 +114,9 @@ pub fn encode(
         phi_d_deg,
         series: materials
             .iter()
-            .map(|m| {
-                let image = half_diff_image_at(&m.material, channel, phi_d_deg.to_radians());
-                (m.label.clone(), image)
+            .map(|(label, part)| {
+                let image = half_diff_image_at(*part, channel, phi_d_deg.to_radians());
+                (label.clone(), image)
             })
             .collect(),
         note,

@@ -22,6 +22,7 @@ pub mod geometry;
 pub mod gloss;
 pub mod halfdiff;
 pub mod halfdiff_plot;
+pub mod part;
 pub mod plot;
 pub mod quadrature;
 pub mod slice;
@@ -30,6 +31,7 @@ pub mod table;
 
 pub use albedo::{AlbedoEstimate, directional_albedo};
 pub use geometry::{direction, frame};
+pub use part::{LayerChoice, MaterialPart};
 
 use crate::material::Material;
 use crate::scene::Rgb;

@@ -7,9 +7,8 @@
 //! (`φ_o = φ_i`), negative on the mirror side (`φ_o = φ_i + π`), so the
 //! mirror direction is `θ_o = −θ_i`.
 
+use super::part::MaterialPart;
 use super::{Channel, direction, frame};
-use crate::material::Material;
-use crate::material::brdf::mirror_reflectance;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::fmt;
 use std::str::FromStr;
@@ -105,13 +104,14 @@ impl Slice {
 
 /// The slice of `material` for light at `theta_i` (radians) in the plane
 /// `φ = phi_i`.
-pub fn slice(
-    material: &Material,
+pub fn slice<'a>(
+    material: impl Into<MaterialPart<'a>>,
     theta_i: f64,
     phi_i: f64,
     quantity: Quantity,
     channel: Channel,
 ) -> Slice {
+    let material = material.into();
     let wi = direction(theta_i, phi_i);
     let f = frame();
     let points = sample_angles(theta_i)
@@ -126,9 +126,8 @@ pub fn slice(
         })
         .collect();
     let dirac = material
-        .brdf()
         .is_dirac()
-        .then(|| channel.of(mirror_reflectance(material, theta_i.cos())));
+        .then(|| channel.of(material.dirac(theta_i.cos())));
     Slice { points, dirac }
 }
 
@@ -156,7 +155,7 @@ pub fn sample_angles(theta_i: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::ReflectanceModel;
+    use crate::material::{Material, ReflectanceModel};
 
     #[test]
     fn lambert_slice_is_a_circle() {

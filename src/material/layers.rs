@@ -2,8 +2,30 @@
 //! glTF material extensions (contract, "Layered glTF materials"), a plain
 //! value the material holds and its BRDF (`brdf::gltf_layers`) reads.
 
-use crate::base::Rgb;
+use crate::base::{Rgb, named_enum};
 use glam::{DVec2, DVec3};
+
+named_enum!(
+    /// One additive term of a `gltf-pbr` material's layered `f_r`, as the
+    /// explorer shows it apart (`gonio brdf --layer`, the viewer's
+    /// `plots.layer`): the composition (contract, "Composition")
+    /// `f_r = (1 − k F_c)(c_sh D_sh V_sh + σ · material) + k F_c G_{α_c}`
+    /// is a sum of three terms, each layer's lobe weighted by what the
+    /// layers above let through. `brdf::gltf_layers::stack::gltf_layer_term`
+    /// evaluates them; their sum is `f_r`.
+    LayerTerm, "layer" {
+        /// The whole `f_r`.
+        All = "all",
+        /// The base `material` (with ior, specular, iridescence and
+        /// anisotropy inside it) times `σ (1 − k F_c)`; the whole `f_r` of
+        /// a model without layers.
+        Base = "base",
+        /// The sheen lobe `c_sh D_sh V_sh` times `1 − k F_c`.
+        Sheen = "sheen",
+        /// The coat's lobe `k F_c G_{α_c}`.
+        Clearcoat = "clearcoat",
+    }
+);
 
 /// The layer parameters of a `gltf-pbr` material (the contract's keys,
 /// with its defaults); the core's `base_color`, `metallic` and

@@ -147,6 +147,21 @@ impl Material {
         brdf::eval(&self.brdf(), wi, wo, frame)
     }
 
+    /// One term of `f_r` ([`layers::LayerTerm`]: a `gltf-pbr` layer's
+    /// contribution apart, [`brdf::eval_term`]); one-sided as [`Self::f_r`].
+    pub fn f_r_term(
+        &self,
+        term: layers::LayerTerm,
+        wi: DVec3,
+        wo: DVec3,
+        frame: &SurfaceFrame,
+    ) -> Rgb {
+        if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
+            return Rgb::ZERO;
+        }
+        brdf::eval_term(&self.brdf(), term, wi, wo, frame)
+    }
+
     /// The part of the material that decides which shader code runs: the
     /// model and, where the model has them, its terms.
     pub fn variant(&self) -> BrdfVariant {

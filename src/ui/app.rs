@@ -494,6 +494,16 @@ impl App {
                     .map_err(|p| Error::argument(format!("--edit {kv}"), p))?;
                 continue;
             }
+            // A variant reloads the scene (its meshes draw other
+            // materials): a new document, as the panel's combo makes.
+            if let Some((key, value)) = kv.split_once('=')
+                && key.trim() == super::document::VARIANT_KEY
+            {
+                let name: String = super::edit_values::toml_value(value)
+                    .map_err(|p| Error::argument(format!("--edit {kv}"), p))?;
+                self.state.choose_variant(&name)?;
+                continue;
+            }
             if let Some((key, value)) = kv
                 .strip_prefix("panel.")
                 .and_then(|rest| rest.split_once('='))

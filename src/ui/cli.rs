@@ -75,10 +75,14 @@ pub struct ViewArgs {
     /// `compare.split`, `compare.shown`) and the plots' settings
     /// (`plots.theta_i`, `plots.phi_i`, `plots.phi_d`,
     /// `plots.quantity=f_r|f_r-cos`, `plots.channel`, `plots.log`,
-    /// `plots.decades`, `plots.probe=TH,TD`, and the views `plots.slice`,
+    /// `plots.decades`, `plots.probe=TH,TD`,
+    /// `plots.layer=all|base|sheen|clearcoat|each` (a layered gltf-pbr
+    /// material's whole, one layer's term, or each apart), the views `plots.slice`,
     /// `plots.albedo`, `plots.halfdiff`, `plots.lobe`); the panel's
     /// sections with `panel.show=SECTION` (open it and scroll it to the
-    /// top: `--edit 1:panel.show=Plots`) and `panel.hide=SECTION`.
+    /// top: `--edit 1:panel.show=Plots`) and `panel.hide=SECTION`; the
+    /// material variant of the glTF files (`gltf.variant=NAME`,
+    /// KHR_materials_variants: the scene is loaded again in it).
     /// Repeatable.
     #[arg(long = "edit", value_name = "FRAME:KEY=VALUE", value_parser = parse_edit)]
     pub edits: Vec<(u32, String)>,

@@ -66,6 +66,9 @@ pub struct Document {
     /// Materials compared with the selected one (not part of the scene
     /// file; [`super::compare`]).
     pub compare: super::compare::Compare,
+    /// The glTF files' material variants (`KHR_materials_variants`), each
+    /// once: the panel's variant choice ([`Document::with_variant`]).
+    pub variants: Vec<String>,
 }
 
 impl Document {
@@ -108,7 +111,14 @@ impl Document {
             loaded_environment: map_keys(&loaded.table),
             table: loaded.table,
             compare: Default::default(),
+            variants: loaded.variants,
         })
+    }
+
+    /// The chosen material variant (`gltf.variant` of the file or of an
+    /// override), `None` for the files' own materials.
+    pub fn variant(&self) -> Option<&str> {
+        self.table.get("gltf")?.get("variant")?.as_str()
     }
 
     /// The path of the scene file, if it is one.
@@ -185,6 +195,9 @@ impl Document {
         }
     }
 }
+
+/// The scene key of the material variant.
+pub const VARIANT_KEY: &str = "gltf.variant";
 
 fn modified_time(source: &SceneSource) -> Option<SystemTime> {
     match source {

@@ -217,4 +217,93 @@ mod tests {
             assert_eq!(tables(&saved), tables(&doc));
         }
     }
+
+    /// Every parameter of a layered gltf-pbr material (the table of
+    /// models' row, so a future layer key is covered without a new line
+    /// here), edited as the panel and `--edit` edit it, is saved and reads
+    /// back the same with no warning (a key the model does not read would
+    /// be one).
+    #[test]
+    fn layer_edits_are_saved_and_read_back_without_a_warning() {
+        use crate::material::param::{Kind, Widget};
+        use crate::material::{ReflectanceModel, table};
+        let mut doc = Document::load(SceneSource::BuiltIn, vec![], Limits::default()).unwrap();
+        doc.edit("materials.ball.model=\"gltf-pbr\"").unwrap();
+        let params = ReflectanceModel::GltfPbr.row().params;
+        assert!(params.iter().any(|p| p.key == "sheen_roughness"));
+        for p in table::COMMON.iter().chain(params) {
+            // A value inside the widget's range, off every default.
+            let (min, max) = match p.widget {
+                Widget::Slider { min, max, .. } | Widget::Drag { min, max, .. } => (min, max),
+                Widget::ColorPicker => (0.0, 1.0),
+            };
+            let v = min + 0.37 * (max.min(1e3) - min);
+            let value = match p.kind {
+                Kind::Scalar => format!("{v}"),
+                Kind::Color => format!("[{v}, {}, {}]", v * 0.5, v * 0.25),
+            };
+            doc.edit(&format!("materials.ball.{}={value}", p.key))
+                .unwrap_or_else(|e| panic!("{}: {e}", p.key));
+        }
+        let edited = doc.scene.materials.clone();
+        let ball = edited.iter().find(|m| m.name == "ball").unwrap();
+        assert!(ball.layers.has_clearcoat() && ball.layers.has_sheen());
+        assert!(ball.layers.has_iridescence() && ball.layers.has_anisotropy());
+        let text = scene_file_text(&doc).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("saved.toml");
+        std::fs::write(&path, &text).unwrap();
+        let loaded = crate::scene::scene_file::load_for_editing(
+            &SceneSource::File(path),
+            &[],
+            Limits::default(),
+        )
+        .unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let warnings: Vec<&String> = loaded
+            .notes
+            .iter()
+            .filter(|n| n.starts_with(crate::scene::scene_file::WARNING))
+            .collect();
+        assert!(warnings.is_empty(), "{warnings:?}\n{text}");
+        // What the model reads (the fields of the earlier model, k_d and
+        // k_e, are not saved and not read).
+        for (saved, m) in loaded.scene.materials.iter().zip(&edited) {
+            assert_eq!(saved.brdf().specular, m.brdf().specular, "{}", m.name);
+            for p in table::COMMON.iter().chain(m.model.row().params) {
+                assert_eq!(p.read(saved), p.read(m), "{}.{}", m.name, p.key);
+            }
+        }
+    }
+
+    /// A material variant chosen in the viewer is saved as `[gltf]
+    /// variant` and drawn again in it.
+    #[test]
+    fn the_chosen_variant_is_saved() {
+        let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("assets/scenes/variants/variants.toml");
+        let doc = Document::load(SceneSource::File(scene), vec![], Limits::default()).unwrap();
+        assert_eq!(doc.variants, ["red coat", "blue"]);
+        assert_eq!(doc.variant(), None);
+        let drawn = |d: &Document| d.scene.materials[d.scene.meshes[0].material].name.clone();
+        assert_eq!(drawn(&doc), "grey");
+        let err = doc.with_variant("green").err().unwrap().to_string();
+        assert!(err.contains("\"red coat\", \"blue\""), "{err}");
+        let mut coated = doc.with_variant("red coat").unwrap();
+        assert_eq!(coated.variant(), Some("red coat"));
+        assert_eq!(drawn(&coated), "red coat");
+        // Edits are kept across the switch, as across a reload.
+        coated.edit("materials.blue.roughness=0.9").unwrap();
+        let blue = coated.with_variant("blue").unwrap();
+        assert_eq!(drawn(&blue), "blue");
+        let m = &blue.scene.materials[blue.scene.meshes[0].material];
+        assert_eq!(m.roughness, 0.9);
+        let text = scene_file_text(&blue).unwrap();
+        assert!(text.contains("variant = \"blue\""), "{text}");
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("saved.toml");
+        std::fs::write(&path, &text).unwrap();
+        let saved = Document::load(SceneSource::File(path), vec![], Limits::default()).unwrap();
+        assert_eq!(drawn(&saved), "blue");
+        assert_eq!(saved.scene.materials, blue.scene.materials);
+    }
 }

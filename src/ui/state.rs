@@ -164,6 +164,15 @@ impl ViewerState {
         }
     }
 
+    /// Draws the glTF files in material variant `name`
+    /// ([`Document::with_variant`]): the document reloaded with it
+    /// replaces the current one at the next frame (its meshes draw other
+    /// materials).
+    pub fn choose_variant(&mut self, name: &str) -> crate::Result<()> {
+        self.replace = Some(self.doc.with_variant(name)?);
+        Ok(())
+    }
+
     /// Opens `path` as the new document; a bad file leaves the current
     /// scene on screen and shows why.
     pub fn open(&mut self, path: PathBuf) {

@@ -215,6 +215,7 @@ fn view_section(ui: &mut egui::Ui, state: &mut ViewerState) {
 }
 
 fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
+    variant_choice(ui, state);
     let materials = &mut state.doc.scene.materials;
     if materials.is_empty() {
         ui.label("no materials");
@@ -252,6 +253,36 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
             }
             Err(problem) => state.message = Some(format!("not applied: {problem}")),
         }
+    }
+}
+
+/// The material variant (`KHR_materials_variants`) the glTF files are
+/// drawn in, where they have variants: the file's own materials until
+/// one is picked (the scene key `gltf.variant`, which Save scene writes).
+fn variant_choice(ui: &mut egui::Ui, state: &mut ViewerState) {
+    if state.doc.variants.is_empty() {
+        return;
+    }
+    let current = state.doc.variant().map(str::to_string);
+    let mut picked = None;
+    ui.horizontal(|ui| {
+        ui.label("variant")
+            .on_hover_text("KHR_materials_variants: the material variant the glTF files are drawn in (gltf.variant)");
+        egui::ComboBox::from_id_salt("variant")
+            .selected_text(current.as_deref().unwrap_or("(the file's own)"))
+            .show_ui(ui, |ui| {
+                for v in &state.doc.variants {
+                    let chosen = current.as_deref() == Some(v.as_str());
+                    if ui.selectable_label(chosen, v).clicked() && !chosen {
+                        picked = Some(v.clone());
+                    }
+                }
+            });
+    });
+    if let Some(name) = picked
+        && let Err(e) = state.choose_variant(&name)
+    {
+        state.message = Some(format!("not applied: {e}"));
     }
 }
 
@@ -323,10 +354,7 @@ fn panels_series(m: &crate::material::Material) -> (super::plots::Series, bool) 
     let floored = m.with_roughness_floor(0.0);
     let changed = floored != *m;
     (
-        super::plots::Series {
-            label: m.name.clone(),
-            material: floored,
-        },
+        super::plots::Series::whole(m.name.clone(), floored),
         changed,
     )
 }

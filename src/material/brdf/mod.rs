@@ -25,6 +25,7 @@ pub use value::{
 };
 
 use super::Material;
+use super::layers::LayerTerm;
 use crate::base::Rgb;
 pub use crate::base::frame::{SurfaceFrame, any_tangent};
 use glam::DVec3;
@@ -89,6 +90,42 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
         } => a * abc::abc_specular(b, c, eta_i, eta_t, n, wi, wo),
     };
     diffuse + brdf.k_s * specular
+}
+
+/// One term of `brdf`'s `f_r` ([`LayerTerm`]) for `N·I > 0`, `N·V > 0`:
+/// a `gltf-pbr` material's layer apart
+/// ([`gltf_layers::stack::gltf_layer_term`], the sheen scaled by the exact
+/// albedos as in [`eval`]); every other model has no layers, so its base
+/// is the whole and its sheen and clearcoat terms are 0. The explorer's
+/// plots and albedo per layer (`crate::explore`).
+pub fn eval_term(brdf: &Brdf, term: LayerTerm, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
+    match (brdf.specular, term) {
+        (
+            Specular::GltfPbr {
+                base_color,
+                metallic,
+                roughness,
+                layers,
+            },
+            _,
+        ) => {
+            let n = frame.n;
+            let ms = compensation_ratio(brdf, roughness * roughness, n.dot(wo));
+            // Only the whole and the base read the sheen's albedos (its
+            // scaling of the base): each is an integral.
+            let (e_o, e_i) = match term {
+                LayerTerm::All | LayerTerm::Base => {
+                    gltf_layers::stack::sheen_albedos(&layers, n.dot(wi), n.dot(wo))
+                }
+                LayerTerm::Sheen | LayerTerm::Clearcoat => (0.0, 0.0),
+            };
+            gltf_layers::stack::gltf_layer_term(
+                term, base_color, metallic, roughness, ms, &layers, e_o, e_i, frame, wi, wo,
+            )
+        }
+        (_, LayerTerm::All | LayerTerm::Base) => eval(brdf, wi, wo, frame),
+        (_, LayerTerm::Sheen | LayerTerm::Clearcoat) => Rgb::ZERO,
+    }
 }
 
 /// `(1 − E)/E` of energy compensation at the lobe's GGX α and `N·V`

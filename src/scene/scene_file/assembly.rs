@@ -21,7 +21,8 @@ use std::path::Path;
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 /// Validated assembly of the scene; also returns what its lights were
-/// made from (for [`LightSetup::assemble`] after a viewer edit). The steps
+/// made from (for [`LightSetup::assemble`] after a viewer edit) and the
+/// glTF files' material variants (`KHR_materials_variants`). The steps
 /// run in the file's order (image, shading, materials, objects, lights,
 /// ambient, camera), so of several problems the first is reported.
 pub fn assemble(
@@ -29,7 +30,7 @@ pub fn assemble(
     base_dir: &Path,
     file: SceneFile,
     gltf_files: &mut gltf_import::GltfLoader,
-) -> Result<(Scene, LightSetup)> {
+) -> Result<(Scene, LightSetup, Vec<String>)> {
     let bad = |problem: String| Error::input(origin, problem);
     let (width, height, msaa) = image_size(&file).map_err(bad)?;
     let shading = match &file.shading.mode {
@@ -148,7 +149,7 @@ pub fn assemble(
     // A scene-file normal map on a mesh without tangents (a glTF mesh
     // given a scene-file material): MikkTSpace, in world space.
     crate::scene::tangents::generate_where_needed(&mut scene);
-    Ok((scene, light_setup))
+    Ok((scene, light_setup, objects.variants))
 }
 
 /// `shading.measured_mode`: "table" (the default) or "network" (the GPU
@@ -229,6 +230,8 @@ struct Objects {
     lights: Vec<Light>,
     /// The first glTF camera.
     camera: Option<Camera>,
+    /// The glTF files' material variants, each once.
+    variants: Vec<String>,
 }
 
 /// The meshes of every `[[objects]]` entry: glTF files (their materials
@@ -249,6 +252,7 @@ fn objects(
         meshes: Vec::new(),
         lights: Vec::new(),
         camera: None,
+        variants: Vec::new(),
     };
     for (k, object) in file.objects.iter().enumerate() {
         let forced_material = match &object.material {
@@ -307,6 +311,7 @@ fn objects(
         }
     }
     variant.finish().map_err(bad)?;
+    out.variants = variant.names;
     Ok(out)
 }
 

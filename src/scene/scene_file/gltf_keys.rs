@@ -45,6 +45,9 @@ impl DefaultLight {
 pub struct VariantChoice {
     name: Option<String>,
     found: bool,
+    /// Every variant name of the files seen, in file order, each once
+    /// (the viewer's variant choice).
+    pub names: Vec<String>,
 }
 
 impl VariantChoice {
@@ -52,11 +55,17 @@ impl VariantChoice {
         VariantChoice {
             name: section.variant.clone(),
             found: false,
+            names: Vec::new(),
         }
     }
 
     /// Draws `imported` (read from `path`) in the chosen variant.
     pub fn apply(&mut self, path: &Path, imported: &mut GltfScene) -> crate::Result<()> {
+        for v in &imported.variants {
+            if !self.names.contains(v) {
+                self.names.push(v.clone());
+            }
+        }
         let Some(name) = &self.name else {
             return Ok(());
         };

@@ -80,6 +80,9 @@ pub struct Loaded {
     pub lights: LightSetup,
     /// Notes of the glTF import (see [`load_with_limits`]).
     pub notes: Vec<String>,
+    /// The glTF files' material variants (`KHR_materials_variants`), each
+    /// once; `gltf.variant` picks one.
+    pub variants: Vec<String>,
 }
 
 /// [`load_with_limits`], keeping what the viewer edits and saves.
@@ -130,7 +133,8 @@ pub fn load_for_editing(
     let mut gltf_files = gltf_import::GltfLoader::new(limits);
     let gltf_edits = std::mem::take(&mut file.gltf_materials);
     let file_materials: Vec<String> = file.materials.keys().cloned().collect();
-    let (mut scene, lights) = assembly::assemble(&origin, &base_dir, file, &mut gltf_files)?;
+    let (mut scene, lights, variants) =
+        assembly::assemble(&origin, &base_dir, file, &mut gltf_files)?;
     let file_names: Vec<&str> = file_materials.iter().map(String::as_str).collect();
     let edit_warnings = gltf_material_edits::apply(&mut scene, &file_names, &gltf_edits, |name| {
         edit_origins.get(name).cloned().unwrap_or_else(|| {
@@ -156,6 +160,7 @@ pub fn load_for_editing(
         base_dir,
         lights,
         notes,
+        variants,
     })
 }
 /// A warning per material with keys its model does not read.

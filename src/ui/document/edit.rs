@@ -24,6 +24,45 @@ impl Document {
         Ok(fresh)
     }
 
+    /// The document with the glTF files drawn in variant `name`: loaded
+    /// again with the override `gltf.variant = "name"` (replacing an
+    /// earlier one), keeping the edits as a reload does; "Save scene"
+    /// writes the key. An error naming the variants there are if none is
+    /// called `name`.
+    pub fn with_variant(&self, name: &str) -> Result<Document> {
+        if !self.variants.iter().any(|v| v == name) {
+            let problem = if self.variants.is_empty() {
+                "the scene's glTF files have no material variants (KHR_materials_variants)"
+                    .to_string()
+            } else {
+                let listed: Vec<String> =
+                    self.variants.iter().map(|v| format!("\"{v}\"")).collect();
+                format!("the variants are {}", listed.join(", "))
+            };
+            return Err(Error::argument(
+                format!("gltf.variant = \"{name}\""),
+                problem,
+            ));
+        }
+        let mut overrides: Vec<String> = self
+            .overrides
+            .iter()
+            .filter(|kv| {
+                let key = kv.split_once('=').map_or(kv.as_str(), |(k, _)| k);
+                key.trim() != super::VARIANT_KEY
+            })
+            .cloned()
+            .collect();
+        overrides.push(format!(
+            "{}={}",
+            super::VARIANT_KEY,
+            toml::Value::String(name.to_string())
+        ));
+        let mut fresh = Document::load(self.source.clone(), overrides, self.limits)?;
+        fresh.keep_edits_of(self);
+        Ok(fresh)
+    }
+
     /// Applies one `KEY=VALUE` edit as the panel would: materials, the
     /// shading mode, the ambient radiance, `[[lights]]` entries
     /// (`lights.N.KEY`) and the environment map's keys

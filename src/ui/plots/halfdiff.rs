@@ -20,10 +20,9 @@
 
 use super::radius::Radius;
 use super::{Series, Settings, colour};
-use crate::explore::Channel;
 use crate::explore::halfdiff::{CELLS, f_r_at, half_diff_rgb};
 use crate::explore::halfdiff_plot::{NO_DATA, viridis};
-use crate::material::Material;
+use crate::explore::{Channel, MaterialPart};
 use crate::scene::Rgb;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -36,7 +35,7 @@ pub struct Image {
 }
 
 /// The image of `m` at difference azimuth `phi_d_deg`.
-pub fn image(m: &Material, phi_d_deg: f64) -> Image {
+pub fn image<'a>(m: impl Into<MaterialPart<'a>>, phi_d_deg: f64) -> Image {
     static NEXT: AtomicU64 = AtomicU64::new(0);
     Image {
         id: NEXT.fetch_add(1, Ordering::Relaxed),
@@ -241,7 +240,7 @@ pub fn show(
     let mut report = String::new();
     for (k, one) in series.iter().enumerate() {
         let f = f_r_at(
-            &one.material,
+            one.part(),
             th.to_radians(),
             td.to_radians(),
             pd.to_radians(),
@@ -380,6 +379,7 @@ mod tests {
     use crate::explore::halfdiff::{cell_centre, directions};
     use crate::explore::spec::compare_spec;
     use crate::explore::{frame, halfdiff};
+    use crate::material::Material;
 
     fn material(spec: &str) -> Material {
         compare_spec(spec, &[]).unwrap().material

@@ -18,8 +18,7 @@
 use super::radius::Radius;
 use super::{Settings, colour};
 use crate::explore::slice::Quantity;
-use crate::explore::{direction, frame};
-use crate::material::Material;
+use crate::explore::{MaterialPart, direction, frame};
 use glam::DVec3;
 
 /// Rings (θ_o from 0 to 90°) and meridians (φ_o around) of the mesh.
@@ -33,7 +32,8 @@ pub struct Mesh {
 }
 
 /// The values of `m`'s lobe for `s`'s ω_i, quantity and channel.
-pub fn mesh(m: &Material, s: &Settings) -> Mesh {
+pub fn mesh<'a>(m: impl Into<MaterialPart<'a>>, s: &Settings) -> Mesh {
+    let m = m.into();
     let wi = direction(s.theta_i_deg.to_radians(), s.phi_i_deg.to_radians());
     let f = frame();
     let values = (0..RINGS)
@@ -267,7 +267,7 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, turn: &mut Turn, meshes: &[Option<(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::ReflectanceModel;
+    use crate::material::{Material, ReflectanceModel};
 
     /// Lambert's f_r·cos θ_o is (k_d/π) cos θ_o on every meridian; the
     /// mesh's first ring is the normal.

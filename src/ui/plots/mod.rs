@@ -33,18 +33,21 @@ use crate::explore::Channel;
 use crate::explore::albedo::{AlbedoEstimate, albedo_curve, albedo_towards};
 use crate::explore::gloss::{GEOMETRIES, gloss_at};
 use crate::explore::slice::{Quantity, Slice, slice};
-use crate::explore::{direction, frame};
+use crate::explore::{LayerChoice, MaterialPart, direction, frame};
 use crate::material::Material;
+use crate::material::layers::LayerTerm;
 use worker::Slot;
 
 /// Incidence angles of the albedo curve, degrees.
 const ALBEDO_ANGLES: usize = 31;
 
-type CurveKey = (Material, u64);
-type PointKey = (Material, u64, u64);
-type SliceKey = (Material, Settings);
-type LobeKey = (Material, u64, u64, Quantity, Channel);
-type HalfDiffKey = (Material, u64);
+/// A plotted material and the term of its `f_r` drawn.
+type Term = (Material, LayerTerm);
+type CurveKey = (Term, u64);
+type PointKey = (Term, u64, u64);
+type SliceKey = (Term, Settings);
+type LobeKey = (Term, u64, u64, Quantity, Channel);
+type HalfDiffKey = (Term, u64);
 
 /// The cached results of one series.
 #[derive(Default)]
@@ -89,7 +92,11 @@ impl Plots {
     /// Draws the controls, the views shown and the table of `series`
     /// into `ui`.
     pub fn show(&mut self, ui: &mut egui::Ui, series: &[Series]) {
-        controls(ui, &mut self.settings);
+        let layered = series
+            .iter()
+            .any(|one| one.material.model == crate::material::ReflectanceModel::GltfPbr);
+        controls(ui, &mut self.settings, layered);
+        let series = &Series::terms(series, self.settings.layer);
         ui.horizontal_wrapped(|ui| {
             ui.label("views");
             ui.checkbox(&mut self.show_slice, "slice");
@@ -100,12 +107,12 @@ impl Plots {
         self.caches.resize_with(series.len(), SeriesCache::default);
         let s = self.settings;
         for (cache, one) in self.caches.iter_mut().zip(series) {
-            cache.refresh(&one.material, &s, self.show_lobe, ui.ctx());
+            cache.refresh(one, &s, self.show_lobe, ui.ctx());
             if self.show_halfdiff {
                 cache
                     .halfdiff
-                    .request(&halfdiff_key(&one.material, &s), ui.ctx(), |(m, phi_d)| {
-                        halfdiff::image(&m, f64::from_bits(phi_d))
+                    .request(&halfdiff_key(one, &s), ui.ctx(), |((m, t), phi_d)| {
+                        halfdiff::image(part(&m, t), f64::from_bits(phi_d))
                     });
             }
         }
@@ -121,7 +128,7 @@ impl Plots {
             .caches
             .iter()
             .zip(series)
-            .map(|(c, one)| c.curve.latest(&curve_key(&one.material, &s)))
+            .map(|(c, one)| c.curve.latest(&curve_key(one, &s)))
             .collect();
         if self.show_albedo {
             albedo::show(ui, &s, &curves);
@@ -131,7 +138,7 @@ impl Plots {
                 .caches
                 .iter()
                 .zip(series)
-                .map(|(c, one)| c.halfdiff.latest(&halfdiff_key(&one.material, &s)))
+                .map(|(c, one)| c.halfdiff.latest(&halfdiff_key(one, &s)))
                 .collect();
             halfdiff::show(ui, &s, &mut self.halfdiff_view, series, &images);
         }
@@ -139,7 +146,7 @@ impl Plots {
             .caches
             .iter()
             .zip(series)
-            .map(|(c, one)| c.point.latest(&point_key(&one.material, &s)))
+            .map(|(c, one)| c.point.latest(&point_key(one, &s)))
             .collect();
         readout::show(ui, &s, series, &slices, &points, &curves);
         if self.show_lobe {
@@ -147,7 +154,7 @@ impl Plots {
                 .caches
                 .iter()
                 .zip(series)
-                .map(|(c, one)| c.lobe.latest(&lobe_key(&one.material, &s)))
+                .map(|(c, one)| c.lobe.latest(&lobe_key(one, &s)))
                 .collect();
             lobe::show(ui, &s, &mut self.turn, &meshes);
         }
@@ -156,7 +163,9 @@ impl Plots {
     /// A scripted `--edit FRAME:plots.KEY=VALUE` (`key` without
     /// `plots.`): `theta_i`, `phi_i`, `phi_d` (degrees), `quantity`
     /// (`f_r-cos` or `f_r`), `channel` (`mean`, `luminance`, `r`, `g`,
-    /// `b`), `log` (bool), `decades` (1 to 10), the views shown `slice`,
+    /// `b`), `log` (bool), `decades` (1 to 10), `layer` (`all`, `base`,
+    /// `sheen`, `clearcoat` or `each`: a layered material's whole, one
+    /// layer's term or all apart), the views shown `slice`,
     /// `albedo`, `halfdiff`, `lobe` (bool), and `probe` (`TH,TD`: the θ_h ×
     /// θ_d image's readout point in degrees, or `none`).
     pub fn edit(&mut self, key: &str, value: &str) -> Result<(), String> {
@@ -186,6 +195,7 @@ impl Plots {
             "phi_d" => s.phi_d_deg = number()?,
             "quantity" => s.quantity = text.parse()?,
             "channel" => s.channel = text.parse()?,
+            "layer" => s.layer = text.parse().map_err(|e| format!("plots.layer: {e}"))?,
             "log" => s.log = boolean()?,
             "decades" => {
                 let v = number()?;
@@ -203,7 +213,7 @@ impl Plots {
             "probe" => self.halfdiff_view.probe = probe(key, text)?,
             _ => {
                 return Err(format!(
-                    "unknown plot setting `plots.{key}`; the plots take theta_i, phi_i, phi_d, quantity, channel, log, decades, slice, albedo, halfdiff, lobe, probe"
+                    "unknown plot setting `plots.{key}`; the plots take theta_i, phi_i, phi_d, quantity, channel, log, decades, layer, slice, albedo, halfdiff, lobe, probe"
                 ));
             }
         }
@@ -241,21 +251,30 @@ fn probe(key: &str, text: &str) -> Result<Option<(f64, f64)>, String> {
     }
 }
 
-fn halfdiff_key(m: &Material, s: &Settings) -> HalfDiffKey {
-    (m.clone(), s.phi_d_deg.to_bits())
+/// The explorer's view of a cached term.
+fn part(m: &Material, term: LayerTerm) -> MaterialPart<'_> {
+    MaterialPart { material: m, term }
 }
 
-fn curve_key(m: &Material, s: &Settings) -> CurveKey {
-    (m.clone(), s.phi_i_deg.to_bits())
+fn term(one: &Series) -> Term {
+    (one.material.clone(), one.term)
 }
 
-fn point_key(m: &Material, s: &Settings) -> PointKey {
-    (m.clone(), s.theta_i_deg.to_bits(), s.phi_i_deg.to_bits())
+fn halfdiff_key(one: &Series, s: &Settings) -> HalfDiffKey {
+    (term(one), s.phi_d_deg.to_bits())
 }
 
-fn lobe_key(m: &Material, s: &Settings) -> LobeKey {
+fn curve_key(one: &Series, s: &Settings) -> CurveKey {
+    (term(one), s.phi_i_deg.to_bits())
+}
+
+fn point_key(one: &Series, s: &Settings) -> PointKey {
+    (term(one), s.theta_i_deg.to_bits(), s.phi_i_deg.to_bits())
+}
+
+fn lobe_key(one: &Series, s: &Settings) -> LobeKey {
     (
-        m.clone(),
+        term(one),
         s.theta_i_deg.to_bits(),
         s.phi_i_deg.to_bits(),
         s.quantity,
@@ -266,43 +285,47 @@ fn lobe_key(m: &Material, s: &Settings) -> LobeKey {
 impl SeriesCache {
     /// The slice now (if its inputs changed); the integrals (and the 3D
     /// lobe, if shown) requested.
-    fn refresh(&mut self, m: &Material, s: &Settings, lobe: bool, ctx: &egui::Context) {
+    fn refresh(&mut self, one: &Series, s: &Settings, lobe: bool, ctx: &egui::Context) {
         if lobe {
             let settings = *s;
-            self.lobe.request(&lobe_key(m, s), ctx, move |(m, ..)| {
-                lobe::mesh(&m, &settings)
-            });
+            self.lobe
+                .request(&lobe_key(one, s), ctx, move |((m, t), ..)| {
+                    lobe::mesh(part(&m, t), &settings)
+                });
         }
-        let key = (m.clone(), *s);
+        let key = (term(one), *s);
         if self.slice.as_ref().map(|(k, _)| k) != Some(&key) {
             let (t, p) = (s.theta_i_deg.to_radians(), s.phi_i_deg.to_radians());
-            let computed = slice(m, t, p, s.quantity, s.channel);
+            let computed = slice(one.part(), t, p, s.quantity, s.channel);
             self.slice = Some((key, computed));
         }
-        self.curve.request(&curve_key(m, s), ctx, |(m, phi)| {
-            let phi = f64::from_bits(phi).to_radians();
-            let thetas: Vec<f64> = (0..ALBEDO_ANGLES)
-                .map(|k| (k as f64 * 89.0 / (ALBEDO_ANGLES - 1) as f64).to_radians())
-                .collect();
-            let albedo = albedo_curve(&m, &thetas, phi);
-            Integrals {
-                albedo: thetas.iter().map(|t| t.to_degrees()).zip(albedo).collect(),
-                gloss: GEOMETRIES.iter().map(|g| gloss_at(&m, *g, phi)).collect(),
-            }
-        });
+        self.curve
+            .request(&curve_key(one, s), ctx, |((m, t), phi)| {
+                let m = part(&m, t);
+                let phi = f64::from_bits(phi).to_radians();
+                let thetas: Vec<f64> = (0..ALBEDO_ANGLES)
+                    .map(|k| (k as f64 * 89.0 / (ALBEDO_ANGLES - 1) as f64).to_radians())
+                    .collect();
+                let albedo = albedo_curve(m, &thetas, phi);
+                Integrals {
+                    albedo: thetas.iter().map(|t| t.to_degrees()).zip(albedo).collect(),
+                    gloss: GEOMETRIES.iter().map(|g| gloss_at(m, *g, phi)).collect(),
+                }
+            });
         self.point
-            .request(&point_key(m, s), ctx, |(m, theta, phi)| {
+            .request(&point_key(one, s), ctx, |((m, t), theta, phi)| {
                 let wi = direction(
                     f64::from_bits(theta).to_radians(),
                     f64::from_bits(phi).to_radians(),
                 );
-                albedo_towards(&m, wi, &frame())
+                albedo_towards(part(&m, t), wi, &frame())
             });
     }
 }
 
-/// θ_i, φ_i, the radius quantity, channel and scale.
-fn controls(ui: &mut egui::Ui, s: &mut Settings) {
+/// θ_i, φ_i, the radius quantity, channel and scale; the layer choice
+/// where a plotted material is `gltf-pbr` (`layered`).
+fn controls(ui: &mut egui::Ui, s: &mut Settings, layered: bool) {
     egui::Grid::new("plot settings")
         .num_columns(2)
         .show(ui, |ui| {
@@ -338,6 +361,17 @@ fn controls(ui: &mut egui::Ui, s: &mut Settings) {
                 }
             });
             ui.end_row();
+            if layered {
+                ui.label("layer").on_hover_text(
+                    "a gltf-pbr material's whole f_r, one layer's term (its lobe times what the layers above let through: the terms sum to the whole), or each apart",
+                );
+                ui.horizontal_wrapped(|ui| {
+                    for c in LayerChoice::ALL {
+                        ui.selectable_value(&mut s.layer, c, c.name());
+                    }
+                });
+                ui.end_row();
+            }
             ui.label("scale");
             ui.horizontal(|ui| {
                 ui.selectable_value(&mut s.log, false, "linear");

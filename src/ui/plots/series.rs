@@ -2,17 +2,55 @@
 //! with its [`colour`]), the settings all views share ([`Settings`]) and a
 //! material's integrals ([`Integrals`]).
 
-use crate::explore::Channel;
 use crate::explore::albedo::AlbedoEstimate;
 use crate::explore::gloss::GlossReading;
 use crate::explore::slice::Quantity;
+use crate::explore::{Channel, LayerChoice, MaterialPart};
 use crate::material::Material;
+use crate::material::layers::LayerTerm;
 
-/// One plotted material: its name in the table and the material.
+/// One plotted material: its name in the table, the material and the
+/// term of its `f_r` drawn (the whole, or one layer's: `plots.layer`).
 #[derive(Clone, Debug)]
 pub struct Series {
     pub label: String,
     pub material: Material,
+    pub term: LayerTerm,
+}
+
+impl Series {
+    /// The whole of `material`.
+    pub fn whole(label: String, material: Material) -> Series {
+        Series {
+            label,
+            material,
+            term: LayerTerm::All,
+        }
+    }
+
+    /// What the explorer evaluates.
+    pub fn part(&self) -> MaterialPart<'_> {
+        MaterialPart {
+            material: &self.material,
+            term: self.term,
+        }
+    }
+
+    /// The series `layer` makes of the materials `series`: each
+    /// material's chosen term, or (`each`) its whole and every term it
+    /// has, labelled `name [term]`.
+    pub fn terms(series: &[Series], layer: LayerChoice) -> Vec<Series> {
+        series
+            .iter()
+            .flat_map(|one| {
+                layer.terms(&one.material).into_iter().map(|term| Series {
+                    label: crate::explore::part::term_label(&one.label, term),
+                    material: one.material.clone(),
+                    term,
+                })
+            })
+            .collect()
+    }
 }
 
 /// What the plots show: the incidence direction and how values are drawn.
@@ -31,6 +69,9 @@ pub struct Settings {
     pub decades: u32,
     /// The θ_h × θ_d image's difference azimuth, degrees.
     pub phi_d_deg: f64,
+    /// Which term of a layered material is drawn: the whole, one layer's
+    /// term, or each apart.
+    pub layer: LayerChoice,
 }
 
 impl Default for Settings {
@@ -43,6 +84,7 @@ impl Default for Settings {
             log: false,
             decades: 6,
             phi_d_deg: 90.0,
+            layer: LayerChoice::default(),
         }
     }
 }

@@ -60,6 +60,25 @@ pub fn coat_normal(frame: &SurfaceFrame, coords: DVec3) -> DVec3 {
     frame.t * coords.x + frame.b * coords.y + frame.n * coords.z
 }
 
+/// The coat's weight `k F_c` about the coat normal `n`: what the coat
+/// reflects of its own lobe; `1 − k F_c` is what it lets through.
+pub fn clearcoat_weight(clearcoat: f64, n: DVec3, wo: DVec3) -> f64 {
+    clearcoat * clearcoat_fresnel(n.dot(wo).max(0.0))
+}
+
+/// The coat's own term `k F_c · G_{α_c}` (the explorer's
+/// [`LayerTerm::Clearcoat`](crate::material::layers::LayerTerm)).
+pub fn clearcoat_term(
+    clearcoat: f64,
+    clearcoat_roughness: f64,
+    n: DVec3,
+    wi: DVec3,
+    wo: DVec3,
+) -> Rgb {
+    let weight = clearcoat_weight(clearcoat, n, wo);
+    Rgb::splat(weight * clearcoat_lobe(clearcoat_roughness, n, wi, wo))
+}
+
 /// The coat over `below` about the coat normal `n`:
 /// `(1 − k F_c) · below + k F_c · G_{α_c}`.
 pub fn clearcoat_over(
@@ -70,6 +89,6 @@ pub fn clearcoat_over(
     wi: DVec3,
     wo: DVec3,
 ) -> Rgb {
-    let weight = clearcoat * clearcoat_fresnel(n.dot(wo).max(0.0));
-    below * (1.0 - weight) + Rgb::splat(weight * clearcoat_lobe(clearcoat_roughness, n, wi, wo))
+    let weight = clearcoat_weight(clearcoat, n, wo);
+    below * (1.0 - weight) + clearcoat_term(clearcoat, clearcoat_roughness, n, wi, wo)
 }

@@ -1,0 +1,262 @@
+//! What the explorer evaluates of a material: its whole `f_r`, or one
+//! additive term of a layered `gltf-pbr` material apart ([`LayerTerm`]:
+//! the base, the sheen, the clearcoat, each weighted by what the layers
+//! above let through, so the terms sum to the whole). Every quantity of
+//! the explorer (values, slices, the 3D lobe, the θ_h × θ_d image,
+//! albedo, gloss) takes a [`MaterialPart`]; a `&Material` is its whole.
+
+use crate::material::Material;
+use crate::material::brdf::{SurfaceFrame, mirror_reflectance};
+use crate::material::layers::LayerTerm;
+use crate::scene::Rgb;
+use glam::DVec3;
+use std::fmt;
+use std::str::FromStr;
+
+/// A material and the term of its `f_r` evaluated.
+#[derive(Clone, Copy, Debug)]
+pub struct MaterialPart<'a> {
+    pub material: &'a Material,
+    pub term: LayerTerm,
+}
+
+impl<'a> From<&'a Material> for MaterialPart<'a> {
+    /// The whole material.
+    fn from(material: &'a Material) -> Self {
+        MaterialPart {
+            material,
+            term: LayerTerm::All,
+        }
+    }
+}
+
+impl MaterialPart<'_> {
+    /// The term's `f_r` (one-sided, as `Material::f_r`).
+    pub fn f_r(&self, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
+        match self.term {
+            LayerTerm::All => self.material.f_r(wi, wo, frame),
+            term => self.material.f_r_term(term, wi, wo, frame),
+        }
+    }
+
+    /// The reflectance of a Dirac lobe in the mirror direction (the
+    /// mirror model's, [`mirror_reflectance`]): a base's, so in the
+    /// whole and the base term, 0 in the others.
+    pub fn dirac(&self, cos_theta: f64) -> Rgb {
+        match self.term {
+            LayerTerm::All | LayerTerm::Base => mirror_reflectance(self.material, cos_theta),
+            LayerTerm::Sheen | LayerTerm::Clearcoat => Rgb::ZERO,
+        }
+    }
+
+    /// Whether the part has a Dirac lobe beside its function value.
+    pub fn is_dirac(&self) -> bool {
+        matches!(self.term, LayerTerm::All | LayerTerm::Base) && self.material.brdf().is_dirac()
+    }
+}
+
+/// Which terms the explorer shows: one, or the whole and each term apart
+/// (`each`), overlaid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LayerChoice {
+    One(LayerTerm),
+    Each,
+}
+
+impl Default for LayerChoice {
+    /// The whole `f_r`.
+    fn default() -> Self {
+        LayerChoice::One(LayerTerm::All)
+    }
+}
+
+impl LayerChoice {
+    /// Every choice, in the order `--layer` lists them.
+    pub const ALL: [LayerChoice; 5] = [
+        LayerChoice::One(LayerTerm::All),
+        LayerChoice::One(LayerTerm::Base),
+        LayerChoice::One(LayerTerm::Sheen),
+        LayerChoice::One(LayerTerm::Clearcoat),
+        LayerChoice::Each,
+    ];
+
+    /// The name `--layer` and `plots.layer` take.
+    pub fn name(self) -> &'static str {
+        match self {
+            LayerChoice::One(t) => t.name(),
+            LayerChoice::Each => "each",
+        }
+    }
+
+    /// The terms of `m` shown: the chosen one; or, for `each`, the whole
+    /// and then every term `m` has (the base, and the sheen and the
+    /// clearcoat where they are on): only the whole for a material
+    /// without layers on.
+    pub fn terms(self, m: &Material) -> Vec<LayerTerm> {
+        match self {
+            LayerChoice::One(t) => vec![t],
+            LayerChoice::Each => {
+                let mut terms = vec![LayerTerm::All];
+                let layered = m.model == crate::material::ReflectanceModel::GltfPbr
+                    && (m.layers.has_sheen() || m.layers.has_clearcoat());
+                if layered {
+                    terms.push(LayerTerm::Base);
+                    terms.extend(m.layers.has_sheen().then_some(LayerTerm::Sheen));
+                    terms.extend(m.layers.has_clearcoat().then_some(LayerTerm::Clearcoat));
+                }
+                terms
+            }
+        }
+    }
+}
+
+impl fmt::Display for LayerChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for LayerChoice {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<&str> = Self::ALL.iter().map(|c| c.name()).collect();
+                format!(
+                    "unknown layer `{s}`{}; expected one of {}",
+                    crate::base::did_you_mean(s, names.iter().copied()),
+                    names.join(", ")
+                )
+            })
+    }
+}
+
+/// The label of `term` of a material labelled `label`: the label itself
+/// for the whole, else `label [term]`.
+pub fn term_label(label: &str, term: LayerTerm) -> String {
+    match term {
+        LayerTerm::All => label.to_string(),
+        t => format!("{label} [{t}]"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::explore::{direction, frame};
+    use crate::material::ReflectanceModel;
+
+    fn layered() -> Material {
+        let mut m = Material::new("m", ReflectanceModel::GltfPbr);
+        m.base_color = Rgb::new(0.8, 0.1, 0.1);
+        m.roughness = 0.5;
+        m.layers.clearcoat = 0.7;
+        m.layers.clearcoat_roughness = 0.2;
+        m.layers.sheen_color = Rgb::new(0.3, 0.5, 0.9);
+        m.layers.sheen_roughness = 0.4;
+        m.layers.iridescence = 0.5;
+        m.layers.anisotropy_strength = 0.3;
+        m
+    }
+
+    #[test]
+    fn the_terms_sum_to_the_whole() {
+        let m = layered();
+        let f = frame();
+        let mut checked = 0;
+        let mut nonzero = [false; 3];
+        for (ti, pi, to, po) in [
+            (30.0, 0.0, 30.0, 180.0),
+            (60.0, 20.0, 10.0, 250.0),
+            (5.0, 0.0, 80.0, 90.0),
+            (85.0, 10.0, 85.0, 190.0),
+        ] {
+            let rad = |d: f64| f64::to_radians(d);
+            let (wi, wo) = (direction(rad(ti), rad(pi)), direction(rad(to), rad(po)));
+            let whole = m.f_r(wi, wo, &f);
+            let terms: Vec<Rgb> = [LayerTerm::Base, LayerTerm::Sheen, LayerTerm::Clearcoat]
+                .into_iter()
+                .map(|t| m.f_r_term(t, wi, wo, &f))
+                .collect();
+            for (seen, t) in nonzero.iter_mut().zip(&terms) {
+                *seen |= t.min_element() > 0.0;
+            }
+            let sum = terms[0] + terms[1] + terms[2];
+            // Rounding only: three products in another order, ~4 ulps.
+            assert!(
+                (sum - whole).abs().max_element() <= 1e-14 * whole.max_element(),
+                "{sum:?} vs {whole:?}"
+            );
+            assert_eq!(m.f_r_term(LayerTerm::All, wi, wo, &f), whole);
+            checked += 1;
+        }
+        assert_eq!(checked, 4);
+        assert_eq!(nonzero, [true; 3], "every term drawn somewhere");
+    }
+
+    #[test]
+    fn a_model_without_layers_is_all_base() {
+        let m = Material::new("p", ReflectanceModel::PhongNormalized);
+        let f = frame();
+        let (wi, wo) = (direction(0.5, 0.0), direction(0.6, 3.0));
+        assert_eq!(m.f_r_term(LayerTerm::Base, wi, wo, &f), m.f_r(wi, wo, &f));
+        assert_eq!(m.f_r_term(LayerTerm::Clearcoat, wi, wo, &f), Rgb::ZERO);
+        assert_eq!(LayerChoice::Each.terms(&m), vec![LayerTerm::All]);
+        let l = layered();
+        assert_eq!(
+            LayerChoice::Each.terms(&l),
+            vec![
+                LayerTerm::All,
+                LayerTerm::Base,
+                LayerTerm::Sheen,
+                LayerTerm::Clearcoat
+            ]
+        );
+    }
+
+    /// The clearcoat term's directional albedo is the albedo of the coat
+    /// alone computed as a whole material (a black base without its
+    /// specular lobe: `f_r = (1 − k F_c)·0 + k F_c G`, the same numbers),
+    /// and with the base's term it sums to the whole's within the
+    /// quadrature's error bounds.
+    #[test]
+    fn the_clearcoat_terms_albedo_is_the_coats_own() {
+        use crate::explore::albedo::albedo_towards;
+        let mut m = layered();
+        m.layers.sheen_color = Rgb::ZERO;
+        let mut alone = m.clone();
+        // No base lobe: black, no specular lobe, no thin film (whose
+        // Fresnel is not 0 over a black base).
+        (alone.base_color, alone.layers.specular) = (Rgb::ZERO, 0.0);
+        alone.layers.iridescence = 0.0;
+        let f = frame();
+        for theta in [0.0, 40.0, 75.0_f64] {
+            let wi = direction(theta.to_radians(), 0.3);
+            let part = |term| MaterialPart { material: &m, term };
+            let coat = albedo_towards(part(LayerTerm::Clearcoat), wi, &f);
+            let direct = albedo_towards(&alone, wi, &f);
+            assert_eq!(coat.value, direct.value, "θ_i = {theta}°");
+            // At least k·F_c(1) = 0.7 · 0.04 (more towards grazing).
+            assert!(coat.value.x >= 0.7 * 0.04 * 0.99, "{coat:?}");
+            let base = albedo_towards(part(LayerTerm::Base), wi, &f);
+            let whole = albedo_towards(&m, wi, &f);
+            let bound = base.error_bound + coat.error_bound + whole.error_bound;
+            let gap = (base.value + coat.value - whole.value).abs();
+            assert!(
+                gap.cmple(bound + Rgb::splat(1e-14)).all(),
+                "θ_i = {theta}°: {gap:?} > {bound:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn choices_parse_by_name() {
+        for c in LayerChoice::ALL {
+            assert_eq!(c.name().parse::<LayerChoice>(), Ok(c));
+        }
+        let err = "clearcot".parse::<LayerChoice>().unwrap_err();
+        assert!(err.contains("clearcoat"), "{err}");
+    }
+}
