@@ -5,6 +5,7 @@
 // every model lit by it, k_d/π · E(n), E by spherical harmonics
 // (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
 // BRDF integrated over the map with N directions.
+// An unlit material shows L_e + k_a·L_a + b (#if unlit, brdf/unlit.wgsl).
 // The ambient occlusion m.occlusion multiplies the ambient term and every
 // environment term (diffuse, specular, the mirror's), never direct light.
 // f64 twin: reflected_radiance in src/reference/shading.rs.
@@ -63,6 +64,12 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     #else
     var radiance = m.k_a * globals.ambient * occlusion;
     #endif
+    #if unlit
+    // An unlit material (brdf/unlit.wgsl) shows its base colour over its
+    // own terms; lights and environment add nothing (selected at the end:
+    // UNIFORM_BRANCHES).
+    let unlit = radiance + unlit_radiance(m.base_color);
+    #endif
     // With shadows: V of every shadow map first, once each (the samples of
     // an area light share one map), in a loop of its own: a software
     // rasterizer runs both sides of every branch, so a lookup inside the
@@ -115,7 +122,11 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     let reflected = mirror_direction(wo, n);
     radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected) * occlusion;
     #endif
+    #if unlit
+    return select(radiance, unlit, brdf_model(m) == MODEL_UNLIT);
+    #else
     return radiance;
+    #endif
 }
 
 #if environment

@@ -90,6 +90,13 @@ fn smoke_bench_writes_a_well_formed_report() {
         "shadow_filter",
         "area_samples",
         "resolution",
+        "layer core",
+        "layer ior/specular",
+        "layer clearcoat",
+        "layer sheen",
+        "layer iridescence",
+        "layer anisotropy",
+        "layer all",
     ] {
         assert!(knobs.contains(k), "knob {k} not measured: {csv}");
     }
@@ -112,6 +119,7 @@ fn smoke_bench_writes_a_well_formed_report() {
         "## Targets",
         "## Uber shader vs specialized",
         "## Configurations",
+        "### Layers of the glTF material",
         "## The Pareto front",
         "## Auto quality",
         "## Scale",

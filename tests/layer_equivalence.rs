@@ -42,7 +42,8 @@ use gonio::material::brdf::gltf_layers::iridescence::{
 };
 use gonio::material::brdf::gltf_layers::sheen::{sheen_alpha, sheen_lobe};
 use gonio::material::brdf::gltf_layers::sheen_albedo::{
-    SHEEN_ALBEDO_TABLE_SIZE, sheen_albedo, sheen_albedo_lookup, sheen_albedo_table,
+    SHEEN_ALBEDO_COS_MIN, SHEEN_ALBEDO_TABLE_SIZE, sheen_albedo, sheen_albedo_lookup,
+    sheen_table_error_bound,
 };
 use gonio::material::brdf::gltf_layers::stack::gltf_layered_with_albedos;
 use gonio::material::brdf::microfacet::{half_vector, sin2_between};
@@ -50,7 +51,6 @@ use gonio::material::{Material, ReflectanceModel};
 use gonio::scene::Rgb;
 use std::collections::BTreeSet;
 use std::f64::consts::{PI, TAU};
-use std::sync::OnceLock;
 use wgpu::util::DeviceExt;
 
 const SAMPLES_PER_CASE: usize = 100_000;
@@ -194,9 +194,10 @@ const COAT_NORMAL: &[[f64; 3]] = &[
     [0.9, 0.0, 0.44],
 ];
 
+/// The GPU's table (the stored nodes, which the lib test
+/// `sheen_table_is_current` checks against the quadrature).
 fn table_nodes() -> &'static [f32] {
-    static NODES: OnceLock<Vec<f32>> = OnceLock::new();
-    NODES.get_or_init(sheen_albedo_table)
+    &gonio::material::brdf::gltf_layers::sheen_albedo_nodes::SHEEN_ALBEDO_NODES
 }
 
 fn samples(case: Case) -> Vec<Sample> {
@@ -725,25 +726,29 @@ fn every_layer_matches_its_f64_reference() {
 }
 
 /// The GPU's table of the sheen albedo against the exact quadrature, on a
-/// grid through the nodes and the cell centres (√μ in steps of 1/124, r_sh
-/// of 1/62): the GPU lookup equals its f64 twin (`sheen_albedo_lookup`, the
-/// same f32 nodes) to f32 rounding, and the table's own error
-/// `|E_table − E|` is reported per band of `sheen_roughness`. Through the
-/// albedo scaling it moves `f_r` by at most `max₃(c_sh) |ΔE| · f_below`
-/// (while σ > 0).
+/// grid through the nodes and the cell centres of both axes
+/// (`SHEEN_ALBEDO_TABLE_SIZE`: `u = ((μ − μ_min)/(1 − μ_min))^¼` and
+/// `r_sh` in steps of 1/126, from `r_sh = 1/63`, the table's domain): the
+/// GPU lookup equals its f64 twin (`sheen_albedo_lookup`, the same f32
+/// nodes) to f32 rounding, and the table's own error `|E_table − E|` is
+/// within its documented bound (`sheen_table_error_bound`) everywhere on
+/// the grid, reported per band of `sheen_roughness`. Through the albedo
+/// scaling it moves `f_r` by at most `max₃(c_sh) |ΔE| · f_below` (while
+/// σ > 0).
 #[test]
 fn sheen_albedo_table_error() {
     use rayon::prelude::*;
     let renderer = common::gpu_renderer();
     let ctx = renderer.context();
     let n = SHEEN_ALBEDO_TABLE_SIZE;
-    let steps_x = 4 * (n - 1);
-    let steps_r = 2 * (n - 1);
-    let grid: Vec<(f64, f64)> = (0..=steps_r)
+    let last = (n - 1) as f64;
+    let steps = 2 * (n - 1);
+    let grid: Vec<(f64, f64)> = (2..=steps)
         .flat_map(|j| {
-            (0..=steps_x).map(move |i| {
-                let x = i as f64 / steps_x as f64;
-                (r32(x * x), r32(j as f64 / steps_r as f64))
+            (0..=steps).map(move |i| {
+                let u = i as f64 / steps as f64;
+                let mu = SHEEN_ALBEDO_COS_MIN + (1.0 - SHEEN_ALBEDO_COS_MIN) * u.powi(4);
+                (r32(mu), r32(j as f64 / steps as f64))
             })
         })
         .collect();
@@ -768,17 +773,19 @@ fn sheen_albedo_table_error() {
     let samples = vec![dummy; grid.len()];
     let gpu = gpu_eval(ctx, &samples, &grid);
     let nodes = table_nodes();
-    let last = (n - 1) as f64;
-    let results: Vec<(f64, f64, f64, f64)> = grid
+    let results: Vec<(f64, f64, f64, f64, f64)> = grid
         .par_iter()
         .zip(&gpu)
         .map(|(&(mu, r), (_, g))| {
             let twin = sheen_albedo_lookup(mu, r, nodes);
             let exact = sheen_albedo(mu, sheen_alpha(r));
-            // f32 rounding of the lookup: 64 roundings of the largest node
-            // of the cell, and the position x = 31√μ off by sqrt's 3 ulp
-            // and 64 roundings, times the cell's largest node step.
-            let (x, y) = (mu.sqrt() * last, r * last);
+            // f32 rounding of the lookup of g: 64 roundings of the
+            // largest node of the cell, and the position x = 63 u off by
+            // two sqrt's 3 ulp and 64 roundings, times the cell's largest
+            // node step; over r_sh (its rounding and the division's, 2U
+            // of the result).
+            let t = (mu - SHEEN_ALBEDO_COS_MIN) / (1.0 - SHEEN_ALBEDO_COS_MIN);
+            let (x, y) = (t.max(0.0).sqrt().sqrt() * last, r * last);
             let (i, j) = (
                 (x.floor().min(last - 1.0)) as usize,
                 (y.floor().min(last - 1.0)) as usize,
@@ -793,18 +800,22 @@ fn sheen_albedo_table_error() {
             let big = cell.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             let step = cell.iter().fold(0.0f64, |a, v| a.max(*v))
                 - cell.iter().fold(f64::INFINITY, |a, v| a.min(*v));
-            let tol = 64.0 * U * big + step * (3.0 + 64.0) * U * x.max(1.0) + 1e-37;
+            let tol_g = 64.0 * U * big + step * (6.0 + 64.0) * U * x.max(1.0) + 1e-37;
+            let tol = tol_g / r + 4.0 * U * twin.abs();
             (
                 r,
                 (*g as f64 - twin).abs() / tol,
                 (twin - exact).abs(),
                 exact,
+                (twin - exact).abs() / sheen_table_error_bound(r),
             )
         })
         .collect();
     let worst_twin = results.iter().map(|r| r.1).fold(0.0, f64::max);
     eprintln!("sheen table: GPU lookup vs its f64 twin, max err/tol {worst_twin:.4}");
-    eprintln!("| sheen_roughness | max |E_table − E| | max E |\n|---|---|---|");
+    eprintln!(
+        "| sheen_roughness | max |E_table − E| | max E | bound | max error/bound |\n|---|---|---|---|---|"
+    );
     for (lo, hi) in [
         (0.0, 0.05),
         (0.05, 0.1),
@@ -812,9 +823,19 @@ fn sheen_albedo_table_error() {
         (0.23, 0.5),
         (0.5, 1.01),
     ] {
-        let band = results.iter().filter(|r| r.0 >= lo && r.0 < hi);
-        let (err, e_max) = band.fold((0.0f64, 0.0f64), |a, r| (a.0.max(r.2), a.1.max(r.3)));
-        eprintln!("| [{lo}, {hi}) | {err:.3e} | {e_max:.4} |");
+        let band: Vec<_> = results.iter().filter(|r| r.0 >= lo && r.0 < hi).collect();
+        let (err, e_max, ratio) = band.iter().fold((0.0f64, 0.0f64, 0.0f64), |a, r| {
+            (a.0.max(r.2), a.1.max(r.3), a.2.max(r.4))
+        });
+        eprintln!(
+            "| [{lo}, {hi}) | {err:.3e} | {e_max:.4} | {:.1e} | {ratio:.3} |",
+            sheen_table_error_bound(lo.max(1.0 / last))
+        );
     }
     assert!(worst_twin <= 1.0, "{worst_twin}");
+    let worst_bound = results.iter().map(|r| r.4).fold(0.0, f64::max);
+    assert!(
+        worst_bound <= 1.0,
+        "the sheen table's error exceeds its documented bound by {worst_bound}"
+    );
 }

@@ -35,7 +35,9 @@ use gonio::material::brdf::gltf_layers::iridescence::{
     XYZ_TO_REC709, iridescence_fresnel,
 };
 use gonio::material::brdf::gltf_layers::sheen::sheen_alpha;
-use gonio::material::brdf::gltf_layers::sheen_albedo::{sheen_albedo, sheen_albedo_lookup};
+use gonio::material::brdf::gltf_layers::sheen_albedo::{
+    sheen_albedo_lookup, sheen_table_error_bound,
+};
 use gonio::material::brdf::gltf_layers::sheen_albedo_nodes::SHEEN_ALBEDO_NODES;
 use gonio::material::{Material, ReflectanceModel};
 use gonio::output::compare::{Comparison, Tolerance, compare_with_jitter, compare_with_spreads};
@@ -63,17 +65,17 @@ fn load(extra: &[String]) -> Scene {
     scene_file::load(&SceneSource::BuiltIn, &sets).expect("scene loads")
 }
 
-/// The sheen table's largest error at `r` over `μ` (√μ in steps of 1/124:
-/// the nodes and three points between each pair) and the largest `E`.
+/// The sheen table's error bound at `r` (its documented bound,
+/// `sheen_table_error_bound`, measured by tests/layer_equivalence.rs)
+/// and the largest `E` at `r`: the table's largest value over `μ` plus
+/// that bound.
 fn sheen_table_error(r: f64) -> (f64, f64) {
-    let alpha = sheen_alpha(r);
-    (0..=124).fold((0.0f64, 0.0f64), |(err, e_max), i| {
-        let x = i as f64 / 124.0;
-        let mu = x * x;
-        let exact = sheen_albedo(mu, alpha);
-        let table = sheen_albedo_lookup(mu, r, &SHEEN_ALBEDO_NODES);
-        (err.max((table - exact).abs()), e_max.max(exact).max(table))
-    })
+    let bound = sheen_table_error_bound(r);
+    let table_max = (0..=1000).fold(0.0f64, |e, i| {
+        let mu = f64::from(i) / 1000.0;
+        e.max(sheen_albedo_lookup(mu, r, &SHEEN_ALBEDO_NODES))
+    });
+    (bound, table_max + bound)
 }
 
 /// `|ΔF_ir|` from the f32 phases: each `cos(m·p_k ψ + m φ_k)` of the
@@ -135,20 +137,59 @@ fn layer_rel(m: &Material) -> f64 {
             l.ior,
             l.specular_color,
         ) * l.specular;
-        let (mut f_min, mut f_max) = (f64::INFINITY, 0.0f64);
-        for i in 0..=200 {
+        let f_max = (0..=200).fold(0.0f64, |f_max, i| {
             let cos = (i as f64 / 200.0).max(1e-3);
             let film = iridescence_fresnel(cos, l.iridescence_ior, l.iridescence_thickness, f0);
-            let w = (1.0 - cos).powi(5);
-            let fd = (f0 + (Rgb::ONE - f0) * w) * l.specular;
-            let f = fd * (1.0 - l.iridescence) + film * l.iridescence;
-            f_min = f_min.min(f.min_element());
-            f_max = f_max.max(film.max_element()).max(f.max_element());
-        }
-        let delta = film_phase_bound(m, f_max);
-        rel += l.iridescence * delta * (1.0 / f_min.max(1e-6)).max(1.0 / (1.0 - f_max).max(1e-6));
+            let metal = iridescence_fresnel(cos, l.iridescence_ior, l.iridescence_thickness, m.base_color);
+            f_max.max(film.max_element()).max(metal.max_element())
+        });
+        rel += l.iridescence * film_phase_bound(m, f_max) * film_gain(m);
     }
     rel
+}
+
+/// How much an error `ΔF` of the film's Fresnel term moves `f_r`,
+/// relative to `f_r`, at its largest over a grid of directions (θ_i, θ_o
+/// to 88°, Δφ over [0, π]): the dielectric's `(1 − max₃ F*) b/π + F* S`
+/// and the metal's `F_metal S` move by at most `ΔF ((1 − m) b/π + S)` per
+/// channel (through the sheen's and the coat's scalings, which are ≤ 1),
+/// against the material's own `f_r` in the same directions. `S` is the
+/// base lobe `D·Vis` (with the anisotropy), the `f_r` of a white metal
+/// of the same roughness. This replaces `ΔF · max(1/F*_min, 1/(1 − F_max))`,
+/// which a film's near-zero `F*` (destructive interference) made 10³.
+fn film_gain(m: &Material) -> f64 {
+    let frame = gonio::material::brdf::SurfaceFrame {
+        n: glam::DVec3::Z,
+        t: glam::DVec3::X,
+        b: glam::DVec3::Y,
+    };
+    let mut lobe = Material::new("lobe", ReflectanceModel::GltfPbr);
+    lobe.base_color = Rgb::ONE;
+    lobe.metallic = 1.0;
+    lobe.roughness = m.roughness;
+    lobe.energy_compensation = false;
+    lobe.layers.anisotropy_strength = m.layers.anisotropy_strength;
+    lobe.layers.anisotropy_rotation = m.layers.anisotropy_rotation;
+    let dir = |theta: f64, phi: f64| {
+        glam::DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
+    };
+    let mut gain = 0.0f64;
+    for i in 0..=22 {
+        for o in 0..=22 {
+            for k in 0..=8 {
+                let deg = std::f64::consts::PI / 180.0;
+                let wi = dir(f64::from(i) * 4.0 * deg, 0.0);
+                let wo = dir(f64::from(o) * 4.0 * deg, f64::from(k) * PI / 8.0);
+                let f = m.f_r(wi, wo, &frame);
+                let s = lobe.f_r(wi, wo, &frame);
+                for c in 0..3 {
+                    let moved = (1.0 - m.metallic) * m.base_color[c] / PI + s[c];
+                    gain = gain.max(moved / f[c].max(1e-300));
+                }
+            }
+        }
+    }
+    gain
 }
 
 /// Renders both sides and compares under the tolerance with the layers'

@@ -69,6 +69,9 @@ fn eval_brdf(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> 
         #if abc
         case MODEL_ABC: { return lambert(m.k_d) + m.k_s * abc_specular(m.lobe.x, m.lobe.y, m.eta_i, m.eta_t, n, wi, wo); }
         #endif
+        #if unlit
+        case MODEL_UNLIT: { return unlit_f_r(); }
+        #endif
         default: { return vec3<f32>(0.0); }
     }
 }

@@ -101,7 +101,12 @@ pub fn choose(rows: &[Measured], scene: &str, max_error: f64, path: &Path) -> Re
             "the error budget must be a finite number ≥ 0 (a relative RMS error, e.g. 0.05 for 5%)",
         ));
     }
-    let here: Vec<&Measured> = rows.iter().filter(|r| r.scene == scene).collect();
+    // The layer knobs draw another material (their error is against
+    // their own reference, `Config::own_truth`): never a pick.
+    let here: Vec<&Measured> = rows
+        .iter()
+        .filter(|r| r.scene == scene && !r.label.starts_with(super::configs::LAYER_KNOB))
+        .collect();
     if here.is_empty() {
         let measured: std::collections::BTreeSet<&str> =
             rows.iter().map(|r| r.scene.as_str()).collect();

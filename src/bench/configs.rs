@@ -32,6 +32,74 @@ pub const BUILTIN_BASE: &[&str] = &[
 tangent=[0.0, 0.0, 1.0], radiance=[6.0, 6.0, 6.0], samples=16}]",
 ];
 
+/// The gltf-pbr material every layer knob starts from (keys of the
+/// bench's target material): a rough dielectric, as tests/layers_gpu.rs
+/// draws the layers.
+pub const LAYER_CORE: &[&str] = &[
+    "model=gltf-pbr",
+    "base_color=[0.6, 0.25, 0.1]",
+    "metallic=0",
+    "roughness=0.4",
+];
+
+/// The start of the layer knobs' names (`layer clearcoat`).
+pub const LAYER_KNOB: &str = "layer ";
+
+/// The layer knobs: each glTF layer (contract "Layered glTF materials")
+/// on over [`LAYER_CORE`], by its keys; `core` is the core alone, which
+/// the others' cost is a ratio to, and `all` every layer at once.
+pub const LAYERS: &[(&str, &[&str])] = &[
+    ("core", &[]),
+    (
+        "ior/specular",
+        &["ior=1.7", "specular_color=[1.0, 0.8, 0.6]"],
+    ),
+    ("clearcoat", &["clearcoat=1", "clearcoat_roughness=0.1"]),
+    (
+        "sheen",
+        &["sheen_color=[0.8, 0.8, 0.8]", "sheen_roughness=0.5"],
+    ),
+    (
+        "iridescence",
+        &["iridescence=1", "iridescence_thickness=400"],
+    ),
+    ("anisotropy", &["anisotropy_strength=0.6"]),
+    (
+        "all",
+        &[
+            "ior=1.7",
+            "specular_color=[1.0, 0.8, 0.6]",
+            "clearcoat=1",
+            "clearcoat_roughness=0.1",
+            "sheen_color=[0.8, 0.8, 0.8]",
+            "sheen_roughness=0.5",
+            "iridescence=1",
+            "iridescence_thickness=400",
+            "anisotropy_strength=0.6",
+        ],
+    ),
+];
+
+/// Each layer of the glTF material on material `name`
+/// as a gltf-pbr material ([`LAYERS`]): its cost against the core
+/// gltf-pbr ([`LAYER_CORE`]), its error against its own scene's
+/// reference.
+fn layer_configs(name: &str) -> Vec<Config> {
+    LAYERS
+        .iter()
+        .map(|(layer, keys)| Config {
+            knob: format!("{LAYER_KNOB}{layer}"),
+            value: "on".into(),
+            overrides: LAYER_CORE
+                .iter()
+                .chain(keys.iter())
+                .map(|kv| format!("materials.{name}.{kv}"))
+                .collect(),
+            own_truth: true,
+        })
+        .collect()
+}
+
 /// Samples per area light of the truth image.
 pub const TRUTH_AREA_SAMPLES: u32 = 256;
 
@@ -44,6 +112,12 @@ pub struct Config {
     pub value: String,
     /// `--set` overrides on top of the base scene's.
     pub overrides: Vec<String>,
+    /// Its error is measured against the reference of its own scene, not
+    /// the base's truth: a knob that changes what is drawn (a glTF
+    /// layer, [`LAYERS`]), whose error is then what the GPU gets wrong
+    /// about it. `--max-error` never picks it (`results.csv` leaves it
+    /// out).
+    pub own_truth: bool,
 }
 
 impl Config {
@@ -53,6 +127,7 @@ impl Config {
             knob: "base".into(),
             value: "as loaded".into(),
             overrides: Vec::new(),
+            own_truth: false,
         }
     }
 
@@ -99,6 +174,7 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
                 knob: name.into(),
                 value,
                 overrides,
+                own_truth: false,
             });
         }
     };
@@ -260,6 +336,8 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         compensation,
         "no gltf-pbr or Cook-Torrance material in the base scene",
     );
+
+    let layers = first.map(|m| layer_configs(&m.name));
 
     // Shadow knobs go through `[shadows]`, the defaults of every light
     // that does not set its own.
@@ -512,6 +590,13 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         tables,
         "no measured material looked up in a table in the base scene",
     );
+    match layers {
+        Some(layers) => out.extend(layers),
+        None => skipped.push(Skipped {
+            knob: LAYER_KNOB.trim().into(),
+            reason: "the scene has no materials".into(),
+        }),
+    }
     (out, skipped)
 }
 
@@ -658,6 +743,14 @@ mod tests {
     fn builtin_base_has_something_for_every_knob() {
         let base = builtin_base();
         let (configs, skipped) = configs(&base, false);
+        // Every layer knob, each against its own reference.
+        let layers: Vec<&Config> = configs
+            .iter()
+            .filter(|c| c.knob.starts_with(LAYER_KNOB))
+            .collect();
+        assert_eq!(layers.len(), LAYERS.len());
+        assert!(layers.iter().all(|c| c.own_truth));
+        assert!(configs.iter().filter(|c| !c.knob.starts_with(LAYER_KNOB)).all(|c| !c.own_truth));
         // The built-in base has no environment map (its truth would
         // integrate the map per pixel): environment_specular_is_a_knob;
         // and no measured material: measured_knobs_with_a_measured_base.

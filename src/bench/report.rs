@@ -398,6 +398,7 @@ pub fn markdown(r: &BenchReport) -> String {
         );
     }
     o.push('\n');
+    layers(&mut o, r);
     if !r.not_measured.is_empty() {
         let _ = writeln!(o, "Not measured:\n");
         for s in &r.not_measured {
@@ -544,6 +545,49 @@ pub fn markdown(r: &BenchReport) -> String {
         "`cargo bench --bench brdf` times the f64 reference `f_r` of every model; `cargo bench --bench reference` the reference renderer on a small built-in scene (criterion; not part of this report)."
     );
     o
+}
+
+/// The layer knobs (`configs::LAYERS`): each glTF layer's cost as a ratio
+/// to the core gltf-pbr material, and its error against its own scene's
+/// reference (`Config::own_truth`).
+fn layers(o: &mut String, r: &BenchReport) {
+    use super::configs::LAYER_KNOB;
+    let rows: Vec<&super::Row> = r
+        .rows
+        .iter()
+        .filter(|row| row.config.own_truth && row.config.knob.starts_with(LAYER_KNOB))
+        .collect();
+    let Some(core) = rows
+        .iter()
+        .find(|row| row.config.knob == format!("{LAYER_KNOB}core"))
+    else {
+        return;
+    };
+    let _ = writeln!(o, "### Layers of the glTF material\n");
+    let _ = writeln!(
+        o,
+        "The bench's material as `gltf-pbr` ({}) with one layer of the contract's \"Layered glTF materials\" on (its keys: `configs::LAYERS`), or all of them. Time: over the core alone (`layer core`). Error: against the CPU reference of the same scene, made as the truth is (these configurations draw another material than the base, so the base's truth does not apply, and `--max-error` never picks them): what the GPU gets wrong about the layer (f32, the sheen's albedo table, the area light's samples as in the base).\n",
+        super::configs::LAYER_CORE.join(", ")
+    );
+    let _ = writeln!(
+        o,
+        "| layer | GPU time [ms] | × core | error (rel. RMS) | max rel. error | front |\n| --- | --- | --- | --- | --- | --- |"
+    );
+    for row in rows.iter() {
+        let _ = writeln!(
+            o,
+            "| {} | {} [{}–{}] | {:.2} | {} | {} | {} |",
+            row.config.knob.trim_start_matches(LAYER_KNOB),
+            ms(row.time.median),
+            ms(row.time.q1),
+            ms(row.time.q3),
+            row.time.median / core.time.median,
+            number(row.error),
+            number(row.max_rel),
+            if row.on_front { "★" } else { "" }
+        );
+    }
+    o.push('\n');
 }
 
 #[cfg(test)]

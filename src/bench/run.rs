@@ -296,6 +296,17 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let start = Instant::now();
     let truth = measure::truth(&base, budget.truth_samples);
     let truth_ms = start.elapsed().as_secs_f64() * 1e3;
+    // The configurations that draw another scene (the layer knobs) have
+    // their own reference, made the same way.
+    let own_truths: Vec<Option<crate::frame::Frame>> = measured
+        .iter()
+        .map(|(config, scene)| {
+            config.own_truth.then(|| {
+                bar.set_message(format!("truth image of {}", config.label()));
+                measure::truth(scene, budget.truth_samples)
+            })
+        })
+        .collect();
     bar.inc(1);
 
     // Round-robin: every round renders every configuration once, so a
@@ -333,7 +344,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             let (ms, c) = measure::frame_ms(&timings);
             clock = c;
             if round == budget.warmup {
-                errors[k] = measure::error(&frame, &truth);
+                errors[k] = measure::error(&frame, own_truths[k].as_ref().unwrap_or(&truth));
             }
             if round >= budget.warmup {
                 times[(round - budget.warmup) % 2][k].push(ms);

@@ -51,5 +51,10 @@ named_enum!(
         /// `D = A / (1 + B(1 − cos θ_h))^C`, the V-groove G and the exact
         /// dielectric F, the form of the published fits of the MERL materials.
         Abc = "abc",
+        /// No reflection: the surface shows its base colour (× texture ×
+        /// `COLOR_0`) as radiance, whatever lights it (glTF
+        /// `KHR_materials_unlit`; contract "Other glTF material
+        /// extensions"). `f_r = 0`.
+        Unlit = "unlit",
     }
 );

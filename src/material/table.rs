@@ -680,6 +680,27 @@ pub static ROWS: &[ModelRow] = &[
             ),
         ],
     },
+    ModelRow {
+        model: ReflectanceModel::Unlit,
+        summary: "unlit (glTF KHR_materials_unlit): the surface shows its base colour as radiance, f_r = 0",
+        form: Form::Paper,
+        wgsl: &["brdf/unlit.wgsl"],
+        needs_tangents: false,
+        terms: Terms::NONE,
+        params: &[&BASE_COLOR],
+        reciprocal: true,
+        benched: false,
+        energy_compensation: false,
+        defaults: |_| {},
+        weights: weights::none,
+        specular: |m| Specular::Unlit {
+            base_color: m.base_color,
+        },
+        // L = b is a copy: no arithmetic beyond the renderers' own.
+        f32_error: no_error,
+        transcendental_error: |_| 0.0,
+        albedo_table: &[("base_color=1", "f_r = 0: reflects nothing")],
+    },
 ];
 
 /// abc's `(1 + B x)^−C` is `e^(−C ln(1 + B x))`: `C` times the error of

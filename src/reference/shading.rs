@@ -1,6 +1,7 @@
 //! The reflection equation for punctual lights, summed (contract):
 //! `L_o = L_e + k_a·L_a + Σ_l f_r(ω_l, ω_o) · E_l · cosθ_l · V_l`
 //! (`L_e` the material's emission, the contract's extension),
+//! (an unlit material: `L_e + k_a·L_a·o + b` alone, `brdf::unlit`),
 //! plus, for the ideal mirror, `ρ_s(θ_o) · L_env(R(V))` (lecture: "Mirror
 //! BRDF": `L_o = ρ_s(θ_o) L_i(θ_o, φ_o ± π)`),
 //! plus, with an environment map, the diffuse term of every model lit by
@@ -43,6 +44,10 @@ pub fn reflected_radiance(
     let wo = (eye - x).normalize_or_zero();
     let occlusion = material.occlusion;
     let mut radiance = material.emission + material.k_a * scene.ambient * occlusion;
+    if material.model == ReflectanceModel::Unlit {
+        // Its own terms and its base colour; no light, no environment.
+        return radiance + brdf::unlit::unlit_radiance(material.base_color);
+    }
     for (l, light) in scene.lights.iter().enumerate() {
         let incidence = light.incidence(x);
         let cos_theta_i = n.dot(incidence.wi);

@@ -254,6 +254,7 @@ mod tests {
             "textureSampleCompare",
             "area_sample",
             "dpdx",
+            "unlit_radiance",
         ] {
             assert!(
                 !wgsl.contains(absent),
@@ -320,6 +321,32 @@ mod tests {
             assert_eq!(key.arrays.sheen, present.contains(&"sheen"), "{sets:?}");
             validate(&wgsl).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
         }
+    }
+
+    /// The unlit model's code (its file, its arm, its radiance in the
+    /// reflection equation) only where a drawn material is unlit.
+    #[test]
+    fn unlit_only_where_a_material_uses_it() {
+        use crate::scene::scene_file::{self, SceneSource};
+        let key_for = |sets: &[&str]| {
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            let scene = scene_file::load(&SceneSource::BuiltIn, &sets).unwrap();
+            ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
+        };
+        let code = [
+            "fn unlit_radiance",
+            "case MODEL_UNLIT",
+            "unlit_radiance(m.base_color)",
+        ];
+        let plain = compose(&key_for(&[]));
+        for c in code {
+            assert!(!plain.contains(c), "`{c}` in a shader without unlit");
+        }
+        let unlit = compose(&key_for(&["materials.ball.model=unlit"]));
+        for c in code {
+            assert!(unlit.contains(c), "`{c}` missing from an unlit shader");
+        }
+        validate(&unlit).unwrap();
     }
 
     #[test]

@@ -15,6 +15,7 @@ pub mod lambert;
 pub mod microfacet;
 pub mod oren_nayar;
 pub mod phong;
+pub mod unlit;
 mod value;
 pub mod ward;
 
@@ -88,6 +89,7 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
             eta_i,
             eta_t,
         } => a * abc::abc_specular(b, c, eta_i, eta_t, n, wi, wo),
+        Specular::Unlit { .. } => return unlit::unlit_f_r(),
     };
     diffuse + brdf.k_s * specular
 }

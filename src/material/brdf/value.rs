@@ -82,6 +82,9 @@ pub enum Specular {
         eta_i: f64,
         eta_t: f64,
     },
+    /// Unlit (`unlit::unlit_radiance`): no reflection (`f_r = 0`), the
+    /// surface shows `base_color` as radiance.
+    Unlit { base_color: Rgb },
 }
 
 /// Cook-Torrance's `D·G·F / (denominator (N·V)(N·I))` (lecture:
@@ -416,6 +419,9 @@ impl Brdf {
                 p.lobe = [b, c, 0.0, 0.0];
                 (p.eta_i, p.eta_t) = (eta_i, eta_t);
             }
+            // A named field: textures and vertex colours multiply it per
+            // pixel, as gltf-pbr's.
+            Specular::Unlit { base_color } => p.base_color = base_color,
         }
         p
     }

@@ -54,18 +54,15 @@ use crate::material::brdf::energy::{ms_factor, ms_ratio};
 use crate::material::brdf::gltf_layers::base_ior_specular::{anisotropy_frame, dielectric_f0};
 use crate::material::brdf::gltf_layers::clearcoat::{clearcoat_fresnel, coat_normal};
 use crate::material::brdf::gltf_layers::iridescence::iridescence_fresnel;
-use crate::material::brdf::gltf_layers::sheen_albedo::{sheen_albedo_lookup, sheen_albedo_table};
+use crate::material::brdf::gltf_layers::sheen_albedo::sheen_albedo_lookup;
+use crate::material::brdf::gltf_layers::sheen_albedo_nodes::SHEEN_ALBEDO_NODES;
 use crate::material::brdf::phong::mirror_direction;
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
-use std::sync::LazyLock;
-
-/// The sheen albedo table the GPU reads (its nodes, made once).
-static SHEEN_TABLE: LazyLock<Vec<f32>> = LazyLock::new(sheen_albedo_table);
 
 /// `E(μ, r_sh)` from the table both renderers read.
 fn sheen_albedo(cos: f64, sheen_roughness: f64) -> f64 {
-    sheen_albedo_lookup(cos, sheen_roughness, &SHEEN_TABLE)
+    sheen_albedo_lookup(cos, sheen_roughness, &SHEEN_ALBEDO_NODES)
 }
 
 /// The normal the base lobe's prefiltered radiance is read about: `n`, or

@@ -32,9 +32,6 @@ pub(super) struct Importer<'a> {
     /// The file uses `KHR_mesh_quantization`: integer vertex attributes
     /// are allowed (`accessors::Usage::accepts`).
     quantized: bool,
-    /// Indices of the unlit materials (`unlit`), whose emission vertex
-    /// colours do not multiply.
-    unlit: std::collections::BTreeSet<usize>,
 }
 
 impl<'a> Importer<'a> {
@@ -71,7 +68,6 @@ impl<'a> Importer<'a> {
             quantized: document
                 .extensions_used()
                 .any(|e| e == "KHR_mesh_quantization"),
-            unlit: Default::default(),
         }
     }
 
@@ -128,8 +124,8 @@ impl<'a> Importer<'a> {
         Ok(self.scene)
     }
 
-    /// glTF material `material` as a gltf-pbr material: unlit
-    /// (`unlit`), specular-glossiness (`spec_gloss`) or
+    /// glTF material `material` as a gonio material: `unlit` (the
+    /// `unlit` module), or `gltf-pbr`: specular-glossiness (`spec_gloss`) or
     /// metallic-roughness, with the layer extensions (`layers`) and the
     /// core's textures.
     fn material(
@@ -140,7 +136,6 @@ impl<'a> Importer<'a> {
         let mut converted = material_from_pbr(name, material)?;
         if super::unlit::is_unlit(material) {
             super::unlit::convert(material, &mut self.images, &mut converted)?;
-            self.unlit.insert(self.scene.materials.len());
             converted.validate()?;
             return Ok(converted);
         }
@@ -340,12 +335,6 @@ impl<'a> Importer<'a> {
                 ));
             }
             mesh.colors = raw.colors.unwrap_or_default();
-            if !mesh.colors.is_empty() && self.unlit.contains(&material) {
-                self.scene.notes.push(format!(
-                    "{WARNING}{}: material {material} is unlit (KHR_materials_unlit) and its COLOR_0 is not applied (gonio shows an unlit base colour as emission, which vertex colours do not multiply)",
-                    context()
-                ));
-            }
             // A normal map without TANGENT: MikkTSpace in object space,
             // as glTF asks (`scene::tangents`).
             if mesh.tangents.is_empty()

@@ -243,30 +243,31 @@ fn out_of_range_values_and_textures_are_named() {
 }
 
 #[test]
-fn unlit_emits_its_base_colour_and_reflects_nothing() {
+fn unlit_becomes_the_unlit_model_and_reflects_nothing() {
     let materials = [
         r#"{"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.8, 0.5],
             "baseColorTexture": {"index": 0}, "metallicFactor": 1},
             "emissiveFactor": [1, 1, 1], "alphaMode": "BLEND",
             "extensions": {"KHR_materials_unlit": {}}}"#,
-        r#"{"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.8, 1]},
+        r#"{"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.8, 1],
+            "baseColorTexture": {"index": 0}},
             "extensions": {"KHR_materials_unlit": {}}}"#,
     ];
     let scene = load_json(&file_with(&materials, "")).unwrap();
     let m = &scene.materials[0];
+    assert_eq!(m.model, crate::material::ReflectanceModel::Unlit);
     // The crate's f32 base colour, widened.
-    assert_eq!(m.emission, Rgb::new(0.2f32.into(), 0.5, 0.8f32.into()));
+    assert_eq!(m.base_color, Rgb::new(0.2f32.into(), 0.5, 0.8f32.into()));
     assert_eq!(m.alpha, 0.5);
+    // The emissive factor is ignored, as the extension says.
+    assert_eq!((m.emission, m.k_a), (Rgb::ZERO, Rgb::ZERO));
     assert_eq!(
-        (m.base_color, m.k_a, m.metallic, m.layers.specular),
-        (Rgb::ZERO, Rgb::ZERO, 0.0, 0.0)
-    );
-    assert_eq!(
-        scene.images[slot(m, "emission").image].encoding,
+        scene.images[slot(m, "base_color").image].encoding,
         Encoding::Srgb
     );
-    // Blended: the texture's A still reaches the alpha.
+    // Blended: the texture's A reaches the alpha.
     assert!(slot(m, "base_color").carries_alpha());
+    assert_eq!(m.textures.len(), 1);
     // The BRDF is zero everywhere: f_r at a few pairs of directions.
     let frame = crate::material::brdf::SurfaceFrame::new(glam::DVec3::Z, glam::DVec3::X);
     for (wi, wo) in [
@@ -283,8 +284,11 @@ fn unlit_emits_its_base_colour_and_reflects_nothing() {
         let f = m.f_r(wi.normalize(), wo.normalize(), &frame);
         assert_eq!(f, Rgb::ZERO, "{wi} {wo}");
     }
-    // Opaque: one texture (emission) only.
-    assert!(scene.materials[1].textures.is_empty());
+    // Opaque: the same one texture on the colour (its A unread, as the
+    // alpha mode says).
+    let opaque = &scene.materials[1];
+    assert_eq!(opaque.model, crate::material::ReflectanceModel::Unlit);
+    assert_eq!(opaque.textures.len(), 1);
 }
 
 #[test]
@@ -493,7 +497,11 @@ fn khronos_samples_read_their_extensions() {
         s.notes
     );
     let s = sample("UnlitTest/UnlitTest.glb");
-    assert!(s.materials.iter().all(|m| m.emission != Rgb::ZERO));
+    assert!(
+        s.materials
+            .iter()
+            .all(|m| m.model == crate::material::ReflectanceModel::Unlit && m.emission == Rgb::ZERO)
+    );
     let s = sample("AnisotropyStrengthTest/AnisotropyStrengthTest.glb");
     assert!(
         s.materials

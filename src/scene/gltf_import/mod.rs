@@ -83,8 +83,8 @@
 //! The material extensions that layer this BRDF (`KHR_materials_ior`,
 //! `_specular`, `_clearcoat`, `_sheen`, `_iridescence`, `_anisotropy`) set
 //! [`crate::material::Material::layers`] and put their textures on the
-//! layer keys (`layers`); `KHR_materials_unlit` becomes an emitting
-//! material that reflects nothing (`unlit`); the archived
+//! layer keys (`layers`); `KHR_materials_unlit` becomes a material of
+//! model `unlit`, which shows its base colour (`unlit`); the archived
 //! `KHR_materials_pbrSpecularGlossiness` is converted into `gltf-pbr` with
 //! `ior = 0` (`spec_gloss`); `KHR_materials_variants` loads every
 //! variant's materials and draws the file's default ones until one is

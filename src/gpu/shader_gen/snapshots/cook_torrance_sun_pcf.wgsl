@@ -158,6 +158,7 @@ const MODEL_OREN_NAYAR_FULL: u32 = 10u;
 const MODEL_MEASURED: u32 = 11u;
 const MODEL_GLTF_PBR: u32 = 12u;
 const MODEL_ABC: u32 = 13u;
+const MODEL_UNLIT: u32 = 14u;
 const DISTRIBUTION_BECKMANN: u32 = 0u;
 const DISTRIBUTION_BLINN: u32 = 1u;
 const DISTRIBUTION_BLINN_NORMALIZED: u32 = 2u;
@@ -1017,6 +1018,7 @@ fn shadow_visibility(light: Light, x: vec3<f32>, n_g: vec3<f32>) -> f32 {
 // every model lit by it, k_d/π · E(n), E by spherical harmonics
 // (shaders/environment.wgsl), or (`#if environment_sampled`) the whole
 // BRDF integrated over the map with N directions.
+// An unlit material shows L_e + k_a·L_a + b (#if unlit, brdf/unlit.wgsl).
 // The ambient occlusion m.occlusion multiplies the ambient term and every
 // environment term (diffuse, specular, the mirror's), never direct light.
 // f64 twin: reflected_radiance in src/reference/shading.rs.

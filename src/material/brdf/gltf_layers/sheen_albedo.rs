@@ -21,9 +21,9 @@
 //! two albedos of an evaluation are often asked again (the light's
 //! direction over a quadrature of the view, or a scene's few `α`).
 //!
-//! The GPU reads a table of it (`shaders/brdf/gltf_layers/sheen.wgsl`,
-//! [`SHEEN_ALBEDO_TABLE_SIZE`]): its error is measured in the test
-//! `table_error_is_below_its_bound`.
+//! The GPU reads a table of it (`shaders/brdf/gltf_layers/sheen_albedo.wgsl`,
+//! [`SHEEN_ALBEDO_TABLE_SIZE`]): its error is bounded by
+//! [`SHEEN_ALBEDO_TABLE_ERROR`], measured in `tests/layer_equivalence.rs`.
 
 use super::sheen::{d_charlie, v_sheen};
 use glam::DVec3;
@@ -220,11 +220,73 @@ pub fn sheen_albedo_fine(cos: f64, alpha: f64) -> f64 {
 
 /// Nodes per axis of the GPU's table of `E` (stored in
 /// [`super::sheen_albedo_nodes`], bound as `sheen_albedo_table` in
-/// `shaders/brdf/gltf_layers/sheen_albedo.wgsl`): node `(i, j)` holds
-/// `E(μ = (i/(N − 1))², α_sh(r = j/(N − 1)))` rounded to `f32`, `i` the
-/// fast index; looked up bilinearly in `(√μ, r_sh)` as energy
-/// compensation's table is (`energy::ms_albedo`).
-pub const SHEEN_ALBEDO_TABLE_SIZE: usize = 32;
+/// `shaders/brdf/gltf_layers/sheen_albedo.wgsl`).
+///
+/// The table holds `g = r_sh · E(μ, α_sh(r_sh))` at node `(i, j)`, `i`
+/// the fast index, with `μ_i = μ_min + (1 − μ_min) (i/(N − 1))⁴` and
+/// `r_j = j/(N − 1)`, rounded to `f32`; the lookup
+/// ([`sheen_albedo_lookup`]) is bilinear in `(u, r_sh)`,
+/// `u = ((μ − μ_min)/(1 − μ_min))^¼`, and returns `g / r_sh`. Why this
+/// form: near grazing `E` varies with `log μ` (it rises from 0.03 at
+/// `μ = 1` to its peak within `μ < 10⁻³`), which the fourth root spreads
+/// over a quarter of the nodes; and for a narrow sheen `E ∝ 1/r_sh` near
+/// grazing (`r_sh E ≈ 0.18` for every `r_sh ≤ 0.1` at `μ = 10⁻⁴`), which
+/// `g` makes nearly linear. The table of `E` itself in `(√μ, r_sh)`,
+/// 32², that this replaces was off by up to 0.6 in its first column
+/// (`μ < 10⁻³`, interpolated towards `E = 0` at `μ = 0`).
+///
+/// Its domain: `μ ≥ μ_min` ([`SHEEN_ALBEDO_COS_MIN`], θ ≤ 89.994°;
+/// below, `E(μ_min)`: the exact `E` of the specified `V_sh` is not even
+/// monotone there, and rises again towards `μ ≈ 10⁻⁶`) and `r_sh = 0` or
+/// `r_sh ≥ 1/(N − 1)` (between, `g` runs linearly from 0 and the lookup
+/// returns `E(1/(N − 1))`, which underestimates a sheen narrower than the
+/// table resolves); at `r_sh = 0` it returns 0, the exact `E` of the
+/// roughness floor for θ ≤ 89° (contract, pinned choice 5). Its error
+/// over that domain is [`SHEEN_ALBEDO_TABLE_ERROR`].
+pub const SHEEN_ALBEDO_TABLE_SIZE: usize = 64;
+
+/// The smallest `μ = cos θ` of the table (θ = 89.994°).
+pub const SHEEN_ALBEDO_COS_MIN: f64 = 1e-4;
+
+/// The table's largest error over its domain ([`SHEEN_ALBEDO_TABLE_SIZE`])
+/// by band of `r_sh`: `(from, bound)`, `|E_table − E| ≤ bound` for
+/// `r_sh ≥ from` (up to the next band), measured against the exact
+/// quadrature on the nodes and the cell centres of both axes by
+/// `sheen_albedo_table_error` (tests/layer_equivalence.rs; 2026-12-05):
+/// 0.209 (at E = 5.4: 4 %) for `r_sh < 0.1`, where a narrow sheen's `E`
+/// peaks within `μ < 10⁻²`; 2.39·10⁻³ for `0.1 ≤ r_sh < 0.23`;
+/// 7.39·10⁻⁴ for `r_sh ≥ 0.23`, where `E ≤ 1` (the 32² table in
+/// `(√μ, r_sh)` it replaces was off by 0.6 there). Rounded up.
+pub const SHEEN_ALBEDO_TABLE_ERROR: &[(f64, f64)] = &[
+    (1.0 / (SHEEN_ALBEDO_TABLE_SIZE - 1) as f64, 0.22),
+    (0.1, 2.5e-3),
+    (0.23, 8e-4),
+];
+
+/// The bound of [`SHEEN_ALBEDO_TABLE_ERROR`] at `r_sh`: 0 at `r_sh = 0`
+/// (both are 0), infinite between 0 and the first row (outside the
+/// domain).
+pub fn sheen_table_error_bound(sheen_roughness: f64) -> f64 {
+    if sheen_roughness <= 0.0 {
+        return 0.0;
+    }
+    SHEEN_ALBEDO_TABLE_ERROR
+        .iter()
+        .rev()
+        .find(|(from, _)| sheen_roughness >= *from)
+        .map_or(f64::INFINITY, |&(_, bound)| bound)
+}
+
+/// `μ` of the table's column `i`.
+pub fn sheen_table_cos(i: usize) -> f64 {
+    let u = i as f64 / (SHEEN_ALBEDO_TABLE_SIZE - 1) as f64;
+    SHEEN_ALBEDO_COS_MIN + (1.0 - SHEEN_ALBEDO_COS_MIN) * u.powi(4)
+}
+
+/// `r_sh` of the table's row `j`.
+pub fn sheen_table_roughness(j: usize) -> f64 {
+    j as f64 / (SHEEN_ALBEDO_TABLE_SIZE - 1) as f64
+}
 
 /// The table's nodes, computed by the exact quadrature (what
 /// [`super::sheen_albedo_nodes`] stores; the test `sheen_table_is_current`
@@ -232,30 +294,33 @@ pub const SHEEN_ALBEDO_TABLE_SIZE: usize = 32;
 pub fn sheen_albedo_table() -> Vec<f32> {
     use rayon::prelude::*;
     let n = SHEEN_ALBEDO_TABLE_SIZE;
-    let last = (n - 1) as f64;
     (0..n * n)
         .into_par_iter()
         .map(|k| {
             let (i, j) = (k % n, k / n);
-            let x = i as f64 / last;
-            let r = j as f64 / last;
-            sheen_albedo(x * x, super::sheen::sheen_alpha(r)) as f32
+            let r = sheen_table_roughness(j);
+            (r * sheen_albedo(sheen_table_cos(i), super::sheen::sheen_alpha(r))) as f32
         })
         .collect()
 }
 
-/// `E(μ, α_sh(r_sh))` bilinear in `(√μ, r_sh)` between `nodes` (the f64
-/// twin of the GPU's `sheen_albedo_lookup`, for measuring the table).
+/// `E(μ, α_sh(r_sh))` from the table `nodes` (see
+/// [`SHEEN_ALBEDO_TABLE_SIZE`]): `g` bilinear in `(u, r_sh)`, over
+/// `r_sh`. The f64 twin of the GPU's `sheen_albedo_lookup`.
 pub fn sheen_albedo_lookup(cos: f64, sheen_roughness: f64, nodes: &[f32]) -> f64 {
     let n = SHEEN_ALBEDO_TABLE_SIZE;
     let last = (n - 1) as f64;
-    let x = cos.clamp(0.0, 1.0).sqrt() * last;
-    let y = sheen_roughness.clamp(0.0, 1.0) * last;
+    let t = (cos.clamp(SHEEN_ALBEDO_COS_MIN, 1.0) - SHEEN_ALBEDO_COS_MIN)
+        / (1.0 - SHEEN_ALBEDO_COS_MIN);
+    let x = t.sqrt().sqrt() * last;
+    let r = sheen_roughness.clamp(0.0, 1.0);
+    let y = r * last;
     let (x0, y0) = (x.floor().min(last - 1.0), y.floor().min(last - 1.0));
     let (fx, fy) = (x - x0, y - y0);
     let (i, j) = (x0 as usize, y0 as usize);
     let node = |i: usize, j: usize| nodes[j * n + i] as f64;
     let lo = node(i, j) * (1.0 - fx) + node(i + 1, j) * fx;
     let hi = node(i, j + 1) * (1.0 - fx) + node(i + 1, j + 1) * fx;
-    lo * (1.0 - fy) + hi * fy
+    let g = lo * (1.0 - fy) + hi * fy;
+    if r > 0.0 { g / r } else { 0.0 }
 }

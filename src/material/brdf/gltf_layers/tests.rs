@@ -280,9 +280,10 @@ const SHEEN_TABLE_HEADER: &str = "//! The GPU's table of the sheen's directional
 //! `GONIO_UPDATE_SHEEN_TABLE=1 cargo test --release --lib sheen_table_is_current`
 //! rewrites it.
 
-/// `E` at `(√μ, r_sh) = (i, j)/(N − 1)`, `i` the fast index.
+/// `g = r_sh · E` at `(u, r_sh) = (i, j)/(N − 1)`, `i` the fast index
+/// (`super::sheen_albedo::SHEEN_ALBEDO_TABLE_SIZE` says why this form).
 #[rustfmt::skip]
-pub const SHEEN_ALBEDO_NODES: [f32; 1024] = [
+pub const SHEEN_ALBEDO_NODES: [f32; 4096] = [
 ";
 
 /// The coat's own normal: `(0, 0, 1)` is the shading normal to the bit;
