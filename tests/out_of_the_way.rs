@@ -451,3 +451,229 @@ fn the_readme_fit_example_is_the_real_fit() {
         }
     }
 }
+
+/// A `<text>` of a plotters SVG: its estimated box (left, top, right,
+/// bottom) in pixels, its font size and its text. The width is 0.6 em
+/// per character (generous for sans-serif digits, about 0.55 em), the
+/// height 1 em, placed by `text-anchor` and plotters' `dy` (0.76em: the
+/// top at y; -0.5ex: the bottom at y; 0.5ex: centred on y).
+fn svg_texts(svg: &str) -> Vec<([f64; 4], f64, String)> {
+    let attr = |tag: &str, name: &str| -> Option<String> {
+        let start = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+        Some(tag[start..].split('"').next()?.to_string())
+    };
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|rest| {
+            let (tag, after) = rest.split_once('>')?;
+            let text = after.split("</text>").next()?.trim().to_string();
+            let x: f64 = attr(tag, "x")?.parse().ok()?;
+            let y: f64 = attr(tag, "y")?.parse().ok()?;
+            let size: f64 = attr(tag, "font-size")?.parse().ok()?;
+            let w = text.chars().count() as f64 * 0.6 * size;
+            let (left, right) = match attr(tag, "text-anchor").as_deref() {
+                Some("middle") => (x - w / 2.0, x + w / 2.0),
+                Some("end") => (x - w, x),
+                _ => (x, x + w),
+            };
+            let (top, bottom) = match attr(tag, "dy").as_deref() {
+                Some("0.76em") => (y, y + size),
+                Some("-0.5ex") => (y - size, y),
+                Some("0.5ex") => (y - size / 2.0, y + size / 2.0),
+                _ => (y - 0.8 * size, y + 0.2 * size),
+            };
+            Some(([left, top, right, bottom], size, text))
+        })
+        .collect()
+}
+
+/// Runs `gonio brdf ARGS` and returns the SVG it wrote to `out`.
+fn brdf_svg(args: &[&str], out: &Path) -> String {
+    let o = common::gonio()
+        .arg("brdf")
+        .args(args)
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "gonio brdf {args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    std::fs::read_to_string(out).unwrap()
+}
+
+/// Item 8: in `--plot-halfdiff` with images side by side, no two labels
+/// touch: boxes on a common row keep a quarter em between them, so one
+/// image's 90° and the next one's labels (or the corner's two 0°) do not
+/// read as one number ("900").
+#[test]
+fn halfdiff_plot_labels_keep_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    for compares in [
+        &["phong", "ward"][..],
+        &["phong", "ward", "cook-torrance", "blinn-phong"][..],
+    ] {
+        let mut args = vec!["--model", "lambert"];
+        for c in compares {
+            args.extend(["--compare", c]);
+        }
+        args.push("--plot-halfdiff");
+        let svg = brdf_svg(&args, &dir.path().join("hd.svg"));
+        let texts = svg_texts(&svg);
+        let degrees = texts.iter().filter(|t| t.2.ends_with('°')).count();
+        assert!(
+            degrees >= 6 * (compares.len() + 1),
+            "{degrees} degree labels: {texts:?}"
+        );
+        for (i, (a, size, ta)) in texts.iter().enumerate() {
+            for (b, _, tb) in &texts[i + 1..] {
+                let space = 0.25 * size;
+                let rows_meet = a[1] < b[3] && b[1] < a[3];
+                let columns_meet = a[0] < b[2] + space && b[0] < a[2] + space;
+                assert!(
+                    !(rows_meet && columns_meet),
+                    "{compares:?}: `{ta}` at {a:?} and `{tb}` at {b:?}"
+                );
+            }
+        }
+    }
+}
+
+/// The points of every `<polyline>` of a plotters SVG with its stroke
+/// width.
+fn svg_polylines(svg: &str) -> Vec<(String, Vec<(f64, f64)>)> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter_map(|rest| {
+            let tag = rest.split("/>").next()?;
+            let width = tag
+                .split("stroke-width=\"")
+                .nth(1)?
+                .split('"')
+                .next()?
+                .to_string();
+            let points = tag
+                .split("points=\"")
+                .nth(1)?
+                .split('"')
+                .next()?
+                .split_whitespace()
+                .filter_map(|p| {
+                    let (x, y) = p.split_once(',')?;
+                    Some((x.parse().ok()?, y.parse().ok()?))
+                })
+                .collect();
+            Some((width, points))
+        })
+        .collect()
+}
+
+/// Item 8: `brdf --plot-albedo`'s legend covers no curve and not the
+/// ρ = 1 line, with curves near the top (a white Lambertian) and below
+/// (it was fixed in the upper left, over the highest curve).
+#[test]
+fn the_albedo_legend_covers_no_curve() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = brdf_svg(
+        &[
+            "--model",
+            "lambert",
+            "--set",
+            "k_d=[0.95,0.95,0.95]",
+            "--compare",
+            "phong",
+            "--compare",
+            "ward",
+            "--compare",
+            "cook-torrance",
+            "--plot-albedo",
+        ],
+        &dir.path().join("albedo.svg"),
+    );
+    // The legend: the translucent white box.
+    let legend = svg
+        .split("<rect")
+        .skip(1)
+        .find(|r| r.contains("opacity=\"0.85\"") && r.contains("fill=\"#FFFFFF\""))
+        .map(|r| {
+            let n = |name: &str| -> f64 {
+                r.split(&format!(" {name}=\""))
+                    .nth(1)
+                    .and_then(|v| v.split('"').next())
+                    .and_then(|v| v.parse().ok())
+                    .unwrap()
+            };
+            (n("x"), n("y"), n("x") + n("width"), n("y") + n("height"))
+        })
+        .expect("the plot has a legend box");
+    let inside =
+        |&(x, y): &(f64, f64)| x > legend.0 && x < legend.2 && y > legend.1 && y < legend.3;
+    let lines = svg_polylines(&svg);
+    // The curves: the wide strokes with a point per degree.
+    let curves: Vec<&Vec<(f64, f64)>> = lines
+        .iter()
+        .filter(|(w, p)| w == "3" && p.len() > 10)
+        .map(|(_, p)| p)
+        .collect();
+    assert_eq!(curves.len(), 4, "{lines:?}");
+    for curve in curves {
+        assert!(
+            !curve.iter().any(inside),
+            "the legend {legend:?} covers a curve: {curve:?}"
+        );
+    }
+    // The ρ = 1 line: dashes of width 2 at one height, across the plot.
+    let dashes: Vec<f64> = lines
+        .iter()
+        .filter(|(w, p)| w == "2" && p.len() == 2 && p[0].1 == p[1].1)
+        .map(|(_, p)| p[0].1)
+        .collect();
+    let rho_1 = dashes
+        .iter()
+        .copied()
+        .max_by_key(|y| dashes.iter().filter(|d| *d == y).count())
+        .expect("the ρ = 1 line is drawn");
+    assert!(
+        !(rho_1 > legend.1 && rho_1 < legend.3),
+        "the legend {legend:?} covers the ρ = 1 line at y = {rho_1}"
+    );
+}
+
+/// Item 8: every knob of the bench on the built-in base (those measured
+/// and those skipped, which other bases measure) has its own colour and
+/// marker in the Pareto plot (13 knobs had 10 colours: `base` and
+/// `area_samples` were both blue dots).
+#[test]
+fn every_bench_knob_has_its_own_pareto_style() {
+    use gonio::bench::configs::{BUILTIN_BASE, configs};
+    let overrides: Vec<String> = BUILTIN_BASE.iter().map(|s| s.to_string()).collect();
+    let base = scene_file::load(&SceneSource::BuiltIn, &overrides).unwrap();
+    let (measured, skipped) = configs(&base, false);
+    let mut knobs: Vec<&str> = Vec::new();
+    for k in measured
+        .iter()
+        .map(|c| c.knob.as_str())
+        .chain(skipped.iter().map(|s| s.knob.as_str()))
+    {
+        if !knobs.contains(&k) {
+            knobs.push(k);
+        }
+    }
+    assert!(knobs.len() >= 13, "{knobs:?}");
+    let styles: Vec<_> = (0..knobs.len())
+        .map(|k| {
+            let (c, triangle) = gonio::bench::plot::knob_style(k);
+            (c.0, c.1, c.2, triangle)
+        })
+        .collect();
+    for (i, a) in styles.iter().enumerate() {
+        if let Some(j) = styles[i + 1..].iter().position(|b| b == a) {
+            panic!(
+                "`{}` and `{}` share a colour and marker",
+                knobs[i],
+                knobs[i + 1 + j]
+            );
+        }
+    }
+}

@@ -12,13 +12,39 @@ use std::sync::OnceLock;
 /// Niceness of the background threads (0 is the window's, 19 the lowest).
 const NICE: i32 = 10;
 
+/// The environment variable that holds the background: with it set (to
+/// anything but empty or `0`), every job first occupies every thread of
+/// [`pool`] and never finishes, as a measured material's albedo curve
+/// occupies them for a minute. A scripted viewer run must still draw its
+/// frames and exit (`tests/viewer_out_of_the_way.rs`); were the pool
+/// rayon's global one, the first frame's parallel loops would wait
+/// forever. Each held job says so on stderr.
+pub const HOLD_ENV: &str = "GONIO_HOLD_BACKGROUND";
+
 /// Runs `job` on a new low-priority thread, its parallel loops on
 /// [`pool`].
 pub fn spawn(job: impl FnOnce() + Send + 'static) {
+    let hold = std::env::var(HOLD_ENV).is_ok_and(|v| !v.is_empty() && v != "0");
+    if hold {
+        eprintln!("gonio view: a background job is held ({HOLD_ENV} is set); it will not finish");
+    }
     std::thread::spawn(move || {
         lower_priority();
-        pool().install(job);
+        pool().install(|| {
+            if hold {
+                // Every thread of the pool parks for good.
+                let _ = rayon::broadcast(|_| park_for_good());
+            }
+            job()
+        });
     });
+}
+
+/// Parks the calling thread and never returns ([`HOLD_ENV`]).
+fn park_for_good() {
+    loop {
+        std::thread::park();
+    }
 }
 
 /// The background pool: one thread fewer than the machine has cores (at

@@ -155,24 +155,14 @@ pub fn show(
         if stale { " (updating…)" } else { "" }
     ));
     let n = series.len().max(1);
-    let cols = n.min(3);
-    let rows = n.div_ceil(cols);
     let width = ui.available_width() - 8.0;
-    let side = ((width - LEFT - BAR - GAP * (cols - 1) as f32) / cols as f32).clamp(40.0, 420.0);
+    let (cols, rows, side) = grid(width, n);
     let (rect, response) = ui.allocate_exact_size(
         egui::vec2(width, rows as f32 * (ABOVE + side + BELOW)),
         egui::Sense::hover(),
     );
     let painter = ui.painter_at(rect);
-    let rects: Vec<egui::Rect> = (0..n)
-        .map(|k| {
-            let (r, c) = ((k / cols) as f32, (k % cols) as f32);
-            egui::Rect::from_min_size(
-                rect.min + egui::vec2(LEFT + c * (side + GAP), r * (ABOVE + side + BELOW) + ABOVE),
-                egui::vec2(side, side),
-            )
-        })
-        .collect();
+    let rects = image_rects(rect.min, width, n);
     view.textures.resize_with(n, || None);
     for (k, r) in rects.iter().enumerate() {
         let name = series.get(k).map(|one| one.label.as_str()).unwrap_or("");
@@ -266,19 +256,63 @@ pub fn show(
     }
 }
 
-/// Ticks every 30° with labels: θ_h under the image, θ_d left of the
-/// first column's image.
-fn axes(painter: &egui::Painter, r: egui::Rect, left_labels: bool) {
-    let font = egui::FontId::proportional(10.0);
-    let stroke = (1.0, FRAME);
+/// Columns, rows and the side of each image for `n` images in a `width`
+/// points wide area: up to three side by side, then another row.
+pub fn grid(width: f32, n: usize) -> (usize, usize, f32) {
+    let n = n.max(1);
+    let cols = n.min(3);
+    let rows = n.div_ceil(cols);
+    let side = ((width - LEFT - BAR - GAP * (cols - 1) as f32) / cols as f32).clamp(40.0, 420.0);
+    (cols, rows, side)
+}
+
+/// The squares of `n` images laid out by [`grid`] in an area of `width`
+/// points whose top left is `origin`.
+pub fn image_rects(origin: egui::Pos2, width: f32, n: usize) -> Vec<egui::Rect> {
+    let (cols, _, side) = grid(width, n);
+    (0..n.max(1))
+        .map(|k| {
+            let (r, c) = ((k / cols) as f32, (k % cols) as f32);
+            egui::Rect::from_min_size(
+                origin + egui::vec2(LEFT + c * (side + GAP), r * (ABOVE + side + BELOW) + ABOVE),
+                egui::vec2(side, side),
+            )
+        })
+        .collect()
+}
+
+/// Font size of the axes' labels, in points.
+pub const AXIS_FONT: f32 = 10.0;
+
+/// The side below which an image's inner ticks (30°, 60°) go unlabelled:
+/// two-digit labels (about 2 × 0.6 em = 12 points wide and 1.2 em high)
+/// a third of the side apart need a third of the side to hold one and a
+/// half labels and a space (18 + 3 points). At the narrowest panel three
+/// images are 51 points wide, and the labels "60" and "90" touched.
+pub const INNER_LABELS_FROM: f32 = 63.0;
+
+/// One label of an image's axes: where it is anchored, how, and its text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AxisLabel {
+    pub at: egui::Pos2,
+    pub align: egui::Align2,
+    pub text: String,
+}
+
+/// The labels of the image at `r`: θ_h's ticks and title under it, θ_d's
+/// left of it when `left_labels` (the first column). The end labels stay
+/// within their image's extent, so that one image's 90 and the next one's
+/// 0 do not read as "900", and the top 90 stays under the θ_d
+/// title; the corner's 0 is the θ_h axis' only.
+pub fn axis_labels(r: egui::Rect, left_labels: bool) -> Vec<AxisLabel> {
+    let inner = r.width() >= INNER_LABELS_FROM;
+    let mut labels = Vec::new();
     for deg in [0.0, 30.0, 60.0, 90.0] {
+        let end = deg == 0.0 || deg == 90.0;
+        if !end && !inner {
+            continue;
+        }
         let x = position_of(r, deg, 0.0).x;
-        painter.line_segment(
-            [egui::pos2(x, r.max.y), egui::pos2(x, r.max.y + 4.0)],
-            stroke,
-        );
-        // The end labels stay within their image's width: centred, one
-        // image's 90 and the next one's 0 read as "900" (issue 38).
         let align = if deg == 0.0 {
             egui::Align2::LEFT_TOP
         } else if deg == 90.0 {
@@ -286,44 +320,59 @@ fn axes(painter: &egui::Painter, r: egui::Rect, left_labels: bool) {
         } else {
             egui::Align2::CENTER_TOP
         };
-        painter.text(
-            egui::pos2(x, r.max.y + 4.0),
+        labels.push(AxisLabel {
+            at: egui::pos2(x, r.max.y + 4.0),
             align,
-            format!("{deg:.0}"),
-            font.clone(),
-            LABEL,
+            text: format!("{deg:.0}"),
+        });
+        if left_labels && deg > 0.0 {
+            let y = position_of(r, 0.0, deg).y;
+            labels.push(AxisLabel {
+                at: egui::pos2(r.min.x - 6.0, y),
+                align: if deg == 90.0 {
+                    egui::Align2::RIGHT_TOP
+                } else {
+                    egui::Align2::RIGHT_CENTER
+                },
+                text: format!("{deg:.0}"),
+            });
+        }
+    }
+    labels.push(AxisLabel {
+        at: egui::pos2(r.center().x, r.max.y + 16.0),
+        align: egui::Align2::CENTER_TOP,
+        text: "θ_h (°)".into(),
+    });
+    if left_labels {
+        labels.push(AxisLabel {
+            at: egui::pos2(r.min.x - LEFT, r.min.y - 2.0),
+            align: egui::Align2::LEFT_BOTTOM,
+            text: "θ_d (°)".into(),
+        });
+    }
+    labels
+}
+
+/// Ticks every 30° and the [`axis_labels`] of the image at `r`.
+fn axes(painter: &egui::Painter, r: egui::Rect, left_labels: bool) {
+    let font = egui::FontId::proportional(AXIS_FONT);
+    let stroke = (1.0, FRAME);
+    for deg in [0.0, 30.0, 60.0, 90.0] {
+        let x = position_of(r, deg, 0.0).x;
+        painter.line_segment(
+            [egui::pos2(x, r.max.y), egui::pos2(x, r.max.y + 4.0)],
+            stroke,
         );
-        // The corner's 0 is the θ_h axis' label.
         if left_labels && deg > 0.0 {
             let y = position_of(r, 0.0, deg).y;
             painter.line_segment(
                 [egui::pos2(r.min.x - 4.0, y), egui::pos2(r.min.x, y)],
                 stroke,
             );
-            painter.text(
-                egui::pos2(r.min.x - 6.0, y),
-                egui::Align2::RIGHT_CENTER,
-                format!("{deg:.0}"),
-                font.clone(),
-                LABEL,
-            );
         }
     }
-    painter.text(
-        egui::pos2(r.center().x, r.max.y + 16.0),
-        egui::Align2::CENTER_TOP,
-        "θ_h (°)",
-        font.clone(),
-        LABEL,
-    );
-    if left_labels {
-        painter.text(
-            egui::pos2(r.min.x - LEFT, r.min.y - 2.0),
-            egui::Align2::LEFT_BOTTOM,
-            "θ_d (°)",
-            font,
-            LABEL,
-        );
+    for label in axis_labels(r, left_labels) {
+        painter.text(label.at, label.align, label.text, font.clone(), LABEL);
     }
 }
 
