@@ -132,29 +132,44 @@ impl Plot for ParetoPlot<'_> {
             }
         }
         for (k, knob) in knobs.iter().enumerate() {
-            let (c, triangle) = knob_style(k);
+            let (c, marker) = knob_style(k);
             let points: Vec<(f64, f64)> = self
                 .rows
                 .iter()
                 .filter(|r| r.config.knob == *knob)
                 .map(|r| self.xy(r))
                 .collect();
-            if triangle {
-                chart
-                    .draw_series(
-                        points
-                            .iter()
-                            .map(|&p| TriangleMarker::new(p, 8, c.filled())),
-                    )
-                    .map_err(err)?
-                    .label(knob.to_string())
-                    .legend(move |(x, y)| TriangleMarker::new((x + 12, y), 8, c.filled()));
-            } else {
-                chart
-                    .draw_series(points.iter().map(|&p| Circle::new(p, 6, c.filled())))
-                    .map_err(err)?
-                    .label(knob.to_string())
-                    .legend(move |(x, y)| Circle::new((x + 12, y), 6, c.filled()));
+            match marker {
+                Marker::Triangle => {
+                    chart
+                        .draw_series(
+                            points
+                                .iter()
+                                .map(|&p| TriangleMarker::new(p, 8, c.filled())),
+                        )
+                        .map_err(err)?
+                        .label(knob.to_string())
+                        .legend(move |(x, y)| TriangleMarker::new((x + 12, y), 8, c.filled()));
+                }
+                Marker::Square => {
+                    let square = move |(x, y): (i32, i32)| {
+                        Rectangle::new([(x - 5, y - 5), (x + 5, y + 5)], c.filled())
+                    };
+                    chart
+                        .draw_series(points.iter().map(|&p| {
+                            EmptyElement::at(p) + Rectangle::new([(-5, -5), (5, 5)], c.filled())
+                        }))
+                        .map_err(err)?
+                        .label(knob.to_string())
+                        .legend(move |(x, y)| square((x + 12, y)));
+                }
+                Marker::Dot => {
+                    chart
+                        .draw_series(points.iter().map(|&p| Circle::new(p, 6, c.filled())))
+                        .map_err(err)?
+                        .label(knob.to_string())
+                        .legend(move |(x, y)| Circle::new((x + 12, y), 6, c.filled()));
+                }
             }
         }
         // Front points: ringed and labelled, each label beside its ring
@@ -217,12 +232,25 @@ impl Plot for ParetoPlot<'_> {
     }
 }
 
+/// The marker of a knob's points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marker {
+    Dot,
+    Triangle,
+    Square,
+}
+
 /// The colour and marker of the `k`-th knob: the ten colours of
-/// [`COLORS`] as dots, then again as triangles, so every knob of the
-/// bench's 13 (and up to 20) is told apart (issue 38: 13 knobs had 10
-/// colours, `base` and `area_samples` both blue dots).
-pub fn knob_style(k: usize) -> (RGBColor, bool) {
-    (COLORS[k % COLORS.len()], (k / COLORS.len()) % 2 == 1)
+/// [`COLORS`] as dots, then again as triangles, then as squares, so every
+/// knob of the bench (22 with the layer knobs, up to 30) is told apart
+/// (with one marker, `base` and `area_samples` were both blue dots).
+pub fn knob_style(k: usize) -> (RGBColor, Marker) {
+    let marker = match (k / COLORS.len()) % 3 {
+        0 => Marker::Dot,
+        1 => Marker::Triangle,
+        _ => Marker::Square,
+    };
+    (COLORS[k % COLORS.len()], marker)
 }
 
 /// Height of a 13 px label's box, and the width per character assumed for
@@ -283,10 +311,10 @@ mod label_tests {
 
     #[test]
     fn every_knob_has_its_own_style() {
-        let styles: Vec<_> = (0..20)
+        let styles: Vec<_> = (0..30)
             .map(|k| {
-                let (c, triangle) = knob_style(k);
-                (c.0, c.1, c.2, triangle)
+                let (c, marker) = knob_style(k);
+                (c.0, c.1, c.2, marker)
             })
             .collect();
         for (i, a) in styles.iter().enumerate() {

@@ -19,10 +19,7 @@ pub fn environment_diffuse_albedo(material: &Material) -> Rgb {
         // Transmission takes its share of the diffuse part (1 without).
         ReflectanceModel::GltfPbr => {
             material.base_color
-                * ((1.0 - material.metallic)
-                    * crate::material::brdf::gltf_layers::transmission::reflected_diffuse_weight(
-                        &material.layers,
-                    ))
+                * ((1.0 - material.metallic) * material.layers.reflected_diffuse_weight())
         }
         ReflectanceModel::Measured => Rgb::ZERO,
         _ => material.brdf().k_d,

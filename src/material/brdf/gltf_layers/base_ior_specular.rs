@@ -179,7 +179,7 @@ pub fn gltf_base(
         f_metal = f_metal * (1.0 - iota) + iridescence_fresnel(cos_o, eta_f, d, base_color) * iota;
     }
     // Transmission takes its share of the diffuse part (exactly 1 without).
-    let diffuse_weight = super::transmission::reflected_diffuse_weight(layers);
+    let diffuse_weight = layers.reflected_diffuse_weight();
     let dielectric = base_color * ((1.0 - f_dielectric.max_element()) * FRAC_1_PI * diffuse_weight)
         + f_dielectric * specular * ms_factor(f0 * layers.specular, ms);
     let metal = f_metal * specular * ms_factor(base_color, ms);
