@@ -750,7 +750,12 @@ mod tests {
             .collect();
         assert_eq!(layers.len(), LAYERS.len());
         assert!(layers.iter().all(|c| c.own_truth));
-        assert!(configs.iter().filter(|c| !c.knob.starts_with(LAYER_KNOB)).all(|c| !c.own_truth));
+        assert!(
+            configs
+                .iter()
+                .filter(|c| !c.knob.starts_with(LAYER_KNOB))
+                .all(|c| !c.own_truth)
+        );
         // The built-in base has no environment map (its truth would
         // integrate the map per pixel): environment_specular_is_a_knob;
         // and no measured material: measured_knobs_with_a_measured_base.

@@ -60,7 +60,8 @@ pub struct ViewArgs {
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
     /// Print frame-time statistics (median, quartiles) at exit, over the
-    /// frames after the first `--warmup`.
+    /// frames after the first `--warmup`, and what was sent to the GPU
+    /// by kind (calls and bytes) in the first frame and in the later ones.
     #[arg(long)]
     pub frame_times: bool,
     /// Frames excluded from `--frame-times` (pipeline compilation, shadow

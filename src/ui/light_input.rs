@@ -44,7 +44,7 @@ pub fn on_input(
             let drag = state.lights_view.drag?;
             let c = DVec2::new(position.x, position.y);
             match drag.drag_to(&mut state.doc, &camera, &proj, c) {
-                Ok(()) => state.dirty = true,
+                Ok(()) => state.changes.mark(crate::scene::change::Change::Lights),
                 Err(e) => state.message = Some(format!("not moved: {e}")),
             }
             Some(true)

@@ -34,7 +34,7 @@ pub fn lights_section(ui: &mut egui::Ui, state: &mut ViewerState) {
             LightAction::Add(kind) => doc.add_light_of_kind(kind).map(|_| ()),
         };
         match result {
-            Ok(()) => state.dirty = true,
+            Ok(()) => state.changes.mark(crate::scene::change::Change::Lights),
             Err(e) => state.message = Some(format!("not applied: {e}")),
         }
     }

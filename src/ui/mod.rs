@@ -123,6 +123,7 @@ pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
         .map_err(|e| Error::NoDisplay(format!("the window loop failed: {e}")))?;
     if report {
         println!("{}", app.frame_time_report());
+        println!("{}", app.upload_report());
     }
     app.result
 }

@@ -7,6 +7,7 @@ use super::cli::ViewArgs;
 use super::document::Document;
 use super::orbit::Orbit;
 use super::plots::Plots;
+use crate::scene::change::{Change, Changes};
 use crate::scene::scene_file::SceneSource;
 use std::path::PathBuf;
 
@@ -26,10 +27,9 @@ pub struct ViewerState {
     pub message: Option<String>,
     /// A new document to switch to (opened, dropped, reloaded).
     pub replace: Option<Document>,
-    /// Something changed that the GPU must see.
-    pub dirty: bool,
-    /// Only the view changed (camera, size, exposure): globals only.
-    pub view_dirty: bool,
+    /// What changed since the GPU last saw the scene: each edit names
+    /// its kind, and the GPU rewrites only that.
+    pub changes: Changes,
     pub screenshot_path: PathBuf,
     pub screenshot_requested: bool,
     pub save_path: String,
@@ -68,8 +68,7 @@ impl ViewerState {
             lights_view: Default::default(),
             message: None,
             replace: None,
-            dirty: true,
-            view_dirty: true,
+            changes: Changes::everything(),
             screenshot_path: args
                 .screenshot
                 .clone()
@@ -108,7 +107,7 @@ impl ViewerState {
         };
         if let Some(m) = super::fitted::stored(&brdf.name, &model) {
             self.doc.compare.add(m);
-            self.dirty = true;
+            self.changes.mark(Change::Compared);
             return;
         }
         let label = format!("{} to {}", model.label(), brdf.name);
@@ -129,7 +128,7 @@ impl ViewerState {
         match rx.try_recv() {
             Ok(Ok(m)) => {
                 self.doc.compare.add(m);
-                self.dirty = true;
+                self.changes.mark(Change::Compared);
                 self.fitting = None;
             }
             Ok(Err(p)) => {
@@ -159,7 +158,7 @@ impl ViewerState {
     /// if it applies, else the reason is shown and nothing changes.
     pub fn edit(&mut self, assignment: &str) {
         match self.doc.edit(assignment) {
-            Ok(()) => self.dirty = true,
+            Ok(change) => self.changes.mark(change),
             Err(e) => self.message = Some(format!("not applied: {e}")),
         }
     }

@@ -5,6 +5,7 @@
 use super::panels;
 use super::state::ViewerState;
 use crate::material::ROUGHNESS_FLOOR;
+use crate::scene::change::Change;
 use crate::scene::scene_file::SceneSource;
 use std::path::{Path, PathBuf};
 
@@ -174,7 +175,7 @@ fn view_section(ui: &mut egui::Ui, state: &mut ViewerState) {
     egui::Grid::new("view").num_columns(2).show(ui, |ui| {
         ui.label("shading");
         if panels::shading_mode(ui, &mut state.doc.scene.shading) {
-            state.dirty = true;
+            state.changes.mark(Change::Scene);
         }
         ui.end_row();
         ui.label("exposure (stops)");
@@ -191,12 +192,13 @@ fn view_section(ui: &mut egui::Ui, state: &mut ViewerState) {
                 }
             });
         if *tone_map != before {
-            state.view_dirty = true;
+            // Compiled into the background's module: compared in full.
+            state.changes.mark(Change::Scene);
         }
         ui.end_row();
         ui.label("ambient L_a");
         if panels::radiance(ui, &mut state.doc.scene.ambient) {
-            state.dirty = true;
+            state.changes.mark(Change::View);
         }
         ui.end_row();
         ui.label("vsync");
@@ -231,8 +233,10 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
             }
         });
     if state.selected_material != before && state.doc.compare.right_half().is_some() {
-        // The split view's right half replaces the selected material.
-        state.dirty = true;
+        // The split view's right half replaces the selected material:
+        // the one selected before is its own again.
+        state.changes.mark(Change::Material(before));
+        state.changes.mark(Change::Compared);
     }
     let mut edited = materials[state.selected_material].clone();
     let changed = panels::material_editor(ui, &mut edited);
@@ -249,7 +253,9 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         match edited.validate() {
             Ok(()) => {
                 materials[state.selected_material] = edited;
-                state.dirty = true;
+                state
+                    .changes
+                    .mark(Change::Material(state.selected_material));
             }
             Err(problem) => state.message = Some(format!("not applied: {problem}")),
         }
@@ -306,7 +312,7 @@ fn compare_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         fitting.as_deref(),
     );
     if changed {
-        state.dirty = true;
+        state.changes.mark(Change::Compared);
     }
     if problem.is_some() {
         state.message = problem;
@@ -316,7 +322,7 @@ fn compare_section(ui: &mut egui::Ui, state: &mut ViewerState) {
             if let Some(mut m) = selected {
                 m.name = format!("{} (copy)", m.name);
                 state.doc.compare.add(m);
-                state.dirty = true;
+                state.changes.mark(Change::Compared);
             }
         }
         Some(panels::CompareRequest::AddFit(model)) => {
