@@ -632,7 +632,7 @@ fn environment_edits_and_drops_reach_the_shader() {
 #[test]
 fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
     use glam::{DVec2, DVec3};
-    use gonio::ui::screen_projection::ScreenProjection;
+    use gonio::ui::lights::projection::ScreenProjection;
     let dir = tempfile::tempdir().unwrap();
     let (position, aim) = (DVec3::new(-2.0, 2.5, 2.5), DVec3::new(-1.5, 0.0, 1.5));
     let outside = DVec3::new(1.5, 0.0, 1.5);

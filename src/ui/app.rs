@@ -660,8 +660,11 @@ impl App {
         }
         if self.args.spin_lights != 0.0 {
             let target = self.state.orbit.camera().target;
-            match super::light_spin::spin_lights(&mut self.state.doc, target, self.args.spin_lights)
-            {
+            match super::lights::spin::spin_lights(
+                &mut self.state.doc,
+                target,
+                self.args.spin_lights,
+            ) {
                 Ok(()) => self.state.changes.mark(Change::Lights),
                 Err(e) => self.state.message = Some(e),
             }
@@ -983,10 +986,15 @@ impl App {
     /// The 3D view's mouse and keys; returns whether the event may have
     /// changed what is drawn.
     fn on_view_input(&mut self, event: &WindowEvent) -> bool {
-        // The light handles take the mouse first (super::light_drag).
+        // The light handles take the mouse first (super::lights::drag).
         let ppp = self.window.as_ref().map_or(1.0, |w| w.scale_factor());
-        let lights =
-            super::light_input::on_input(&mut self.state, self.view_rect, self.cursor, ppp, event);
+        let lights = super::lights::input::on_input(
+            &mut self.state,
+            self.view_rect,
+            self.cursor,
+            ppp,
+            event,
+        );
         if let Some(acted) = lights {
             if let WindowEvent::CursorMoved { position, .. } = event {
                 self.cursor = (position.x, position.y);

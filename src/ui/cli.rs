@@ -108,7 +108,7 @@ pub struct ViewArgs {
     /// Orbit every `[[lights]]` entry about the vertical axis through the
     /// camera's target by this many degrees per frame, so the shadow maps
     /// are drawn anew every frame (scripted runs that measure a moving
-    /// light; src/ui/light_spin.rs).
+    /// light; src/ui/lights/spin.rs).
     #[arg(
         long,
         default_value_t = 0.0,

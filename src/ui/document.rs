@@ -11,7 +11,7 @@
 //!
 //! Saving writes the file's table with every edit applied, so
 //! `gonio render saved.toml` draws what the viewer shows. Lights can also
-//! be added, removed and retyped (`document/lights.rs`); the environment
+//! be added, removed and retyped (`ui/lights/document.rs`); the environment
 //! map's keys are edited by [`environment`]. Applying an edit by its key
 //! and keeping the edits across a reload (`document/edit.rs`) sit above
 //! those, so this file holds the document and what was loaded, and uses
@@ -19,7 +19,6 @@
 
 mod edit;
 pub mod environment;
-mod lights;
 
 use crate::material::Material;
 use crate::scene::Scene;
@@ -54,7 +53,7 @@ pub struct Document {
     pub lights: LightSetup,
     /// The `[[lights]]` entries as loaded, written out (to tell which ones
     /// were edited).
-    loaded_lights: Vec<toml::Table>,
+    pub(in crate::ui) loaded_lights: Vec<toml::Table>,
     /// Modification time of the scene file when loaded (reload on change).
     modified: Option<SystemTime>,
     /// The `[environment]` map keys while the map is switched off in the

@@ -8,11 +8,9 @@
 //! as a scene file; [`document::environment`] edits its map; an edit's
 //! value is read by [`edit_values`]; [`compare`] holds the materials
 //! compared with the selected one), [`orbit`] moves the camera,
-//! [`surface`] owns the swapchain and screenshots. Lights are listed and
-//! edited by [`lights_section`] (new ones and kinds from [`light_kinds`]),
-//! drawn over the 3D view by [`light_overlay`] and dragged by
-//! [`light_drag`] (the mouse reaches it through [`light_input`]), both
-//! through [`screen_projection`].
+//! [`surface`] owns the swapchain and screenshots. Everything about
+//! lights (their section, kinds, overlay, handles, spin and the
+//! document's list edits) is in [`lights`].
 
 pub mod app;
 pub mod background;
@@ -21,12 +19,7 @@ pub mod compare;
 pub mod document;
 pub mod edit_values;
 pub mod fitted;
-pub mod light_drag;
-pub mod light_input;
-pub mod light_kinds;
-pub mod light_overlay;
-pub mod light_spin;
-pub mod lights_section;
+pub mod lights;
 pub mod memory;
 pub mod orbit;
 pub mod pacing;
@@ -34,7 +27,6 @@ pub mod panel_cache;
 pub mod panels;
 pub mod plots;
 pub mod save;
-pub mod screen_projection;
 pub mod state;
 pub mod surface;
 pub mod view;

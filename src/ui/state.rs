@@ -22,7 +22,7 @@ pub struct ViewerState {
     pub show_panel: bool,
     pub show_overlay: bool,
     /// The lights drawn over the 3D view, and the one being dragged.
-    pub lights_view: super::light_drag::LightsView,
+    pub lights_view: super::lights::drag::LightsView,
     /// The last problem (rejected value, bad file), shown until dismissed.
     pub message: Option<String>,
     /// A new document to switch to (opened, dropped, reloaded).

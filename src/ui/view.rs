@@ -65,7 +65,7 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
             "Material" => material_section(ui, state),
             "Compare" => compare_section(ui, state),
             "Plots" => plots_section(ui, state),
-            _ => super::lights_section::lights_section(ui, state),
+            _ => super::lights::section::lights_section(ui, state),
         });
         if request == Some(true) {
             shown.header_response.scroll_to_me(Some(egui::Align::Min));
@@ -371,7 +371,7 @@ fn overlay(ui: &mut egui::Ui, state: &ViewerState, area: egui::Rect) {
         let camera = state.orbit.camera();
         let active = state.lights_view.drag.map(|d| d.index);
         let pointer = ui.ctx().pointer_hover_pos();
-        super::light_overlay::draw(ui.painter(), &state.doc, &camera, area, active, pointer);
+        super::lights::overlay::draw(ui.painter(), &state.doc, &camera, area, active, pointer);
     }
     let gpu = state
         .gpu_ms

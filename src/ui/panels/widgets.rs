@@ -83,7 +83,7 @@ pub(super) fn triple(
     changed
 }
 
-pub(super) fn triple_array(ui: &mut egui::Ui, value: &mut [f64; 3], speed: f64) -> bool {
+pub fn triple_array(ui: &mut egui::Ui, value: &mut [f64; 3], speed: f64) -> bool {
     let mut changed = false;
     ui.horizontal(|ui| {
         for c in value.iter_mut() {

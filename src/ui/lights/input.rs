@@ -1,11 +1,11 @@
-//! The window's mouse for the light handles (`super::light_drag`): a
+//! The window's mouse for the light handles (`super::drag`): a
 //! press on a handle grabs it, a move drags it, a release lets go, before
 //! the orbit sees the event.
 
-use super::light_drag::pick;
-use super::light_overlay::HANDLE_RADIUS;
-use super::screen_projection::ScreenProjection;
-use super::state::ViewerState;
+use super::drag::pick;
+use super::overlay::HANDLE_RADIUS;
+use super::projection::ScreenProjection;
+use crate::ui::state::ViewerState;
 use glam::DVec2;
 use winit::event::{ElementState, MouseButton, WindowEvent};
 

@@ -1,10 +1,10 @@
 //! The side panel's Lights section: the overlay switch, the `[[lights]]`
-//! list ([`panels::light_list`]) and what it asks for applied to the
+//! list ([`super::list`]) and what it asks for applied to the
 //! document, each validated as the scene file is (a refused value is a
 //! message and nothing changes).
 
-use super::panels::{self, LightAction};
-use super::state::ViewerState;
+use super::list::{LightAction, light_list};
+use crate::ui::state::ViewerState;
 
 pub fn lights_section(ui: &mut egui::Ui, state: &mut ViewerState) {
     ui.horizontal(|ui| {
@@ -14,7 +14,7 @@ pub fn lights_section(ui: &mut egui::Ui, state: &mut ViewerState) {
     let doc = &state.doc;
     let effective = |i: usize| doc.lights.shadow_settings(i);
     let dragged = state.lights_view.drag.map(|d| d.index);
-    let actions = panels::light_list(ui, &doc.lights.entries, &effective, dragged);
+    let actions = light_list(ui, &doc.lights.entries, &effective, dragged);
     if !doc.lights.imported.is_empty() || doc.lights.gets_default_light() {
         let what = if doc.lights.imported.is_empty() {
             "the default light (the scene has no other)".to_string()
