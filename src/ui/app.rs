@@ -988,13 +988,20 @@ impl App {
     fn on_view_input(&mut self, event: &WindowEvent) -> bool {
         // The light handles take the mouse first (super::lights::drag).
         let ppp = self.window.as_ref().map_or(1.0, |w| w.scale_factor());
-        let lights = super::lights::input::on_input(
-            &mut self.state,
-            self.view_rect,
-            self.cursor,
-            ppp,
-            event,
-        );
+        let state = &mut self.state;
+        let pointer = super::lights::input::Pointer {
+            view_rect: self.view_rect,
+            cursor: self.cursor,
+            pixels_per_point: ppp,
+            overlay_shown: state.show_overlay,
+        };
+        let mut shared = super::shared::Shared {
+            doc: &mut state.doc,
+            changes: &mut state.changes,
+            message: &mut state.message,
+        };
+        let camera = state.orbit.camera();
+        let lights = state.lights.on_input(&mut shared, &camera, pointer, event);
         if let Some(acted) = lights {
             if let WindowEvent::CursorMoved { position, .. } = event {
                 self.cursor = (position.x, position.y);
@@ -1048,7 +1055,7 @@ impl App {
                         "+" | "=" => self.state.orbit.zoom(1.0),
                         "-" => self.state.orbit.zoom(-1.0),
                         "p" | "P" => self.state.show_panel = !self.state.show_panel,
-                        "l" | "L" => self.state.lights_view.visible ^= true,
+                        "l" | "L" => self.state.lights.visible ^= true,
                         _ => {}
                     },
                     _ => {}

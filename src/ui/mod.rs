@@ -27,6 +27,7 @@ pub mod panel_cache;
 pub mod panels;
 pub mod plots;
 pub mod save;
+pub mod shared;
 pub mod state;
 pub mod surface;
 pub mod view;

@@ -21,8 +21,9 @@ pub struct ViewerState {
     pub vsync: bool,
     pub show_panel: bool,
     pub show_overlay: bool,
-    /// The lights drawn over the 3D view, and the one being dragged.
-    pub lights_view: super::lights::drag::LightsView,
+    /// The Lights section: the lights drawn over the 3D view, and the one
+    /// being dragged.
+    pub lights: super::lights::section::LightsSection,
     /// The last problem (rejected value, bad file), shown until dismissed.
     pub message: Option<String>,
     /// A new document to switch to (opened, dropped, reloaded).
@@ -65,7 +66,7 @@ impl ViewerState {
             vsync: !args.no_vsync,
             show_panel: !args.no_panel,
             show_overlay: !args.no_overlay,
-            lights_view: Default::default(),
+            lights: Default::default(),
             message: None,
             replace: None,
             changes: Changes::everything(),

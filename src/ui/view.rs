@@ -3,6 +3,7 @@
 //! Returns the 3D area (what the panel leaves), which the scene fills.
 
 use super::panels;
+use super::shared::Shared;
 use super::state::ViewerState;
 use crate::material::ROUGHNESS_FLOOR;
 use crate::scene::change::Change;
@@ -65,7 +66,14 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
             "Material" => material_section(ui, state),
             "Compare" => compare_section(ui, state),
             "Plots" => plots_section(ui, state),
-            _ => super::lights::section::lights_section(ui, state),
+            _ => {
+                let mut shared = Shared {
+                    doc: &mut state.doc,
+                    changes: &mut state.changes,
+                    message: &mut state.message,
+                };
+                state.lights.ui(ui, &mut shared)
+            }
         });
         if request == Some(true) {
             shown.header_response.scroll_to_me(Some(egui::Align::Min));
@@ -366,10 +374,10 @@ fn panels_series(m: &crate::material::Material) -> (super::plots::Series, bool) 
 }
 
 fn overlay(ui: &mut egui::Ui, state: &ViewerState, area: egui::Rect) {
-    if state.lights_view.visible {
+    if state.lights.visible {
         // The orbit's camera: the scene's is set from it after the panel.
         let camera = state.orbit.camera();
-        let active = state.lights_view.drag.map(|d| d.index);
+        let active = state.lights.drag.map(|d| d.index);
         let pointer = ui.ctx().pointer_hover_pos();
         super::lights::overlay::draw(ui.painter(), &state.doc, &camera, area, active, pointer);
     }

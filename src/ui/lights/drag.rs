@@ -21,22 +21,6 @@ use crate::scene::scene_file::LightEntry;
 use crate::ui::document::Document;
 use glam::{DVec2, DVec3};
 
-/// The overlay's state: shown or not, and the handle being dragged.
-#[derive(Debug)]
-pub struct LightsView {
-    pub visible: bool,
-    pub drag: Option<LightDrag>,
-}
-
-impl Default for LightsView {
-    fn default() -> Self {
-        LightsView {
-            visible: true,
-            drag: None,
-        }
-    }
-}
-
 /// A handle being dragged.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightDrag {

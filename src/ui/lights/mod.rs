@@ -1,6 +1,6 @@
 //! The lights as objects of the viewer, every part in one place: the
-//! panel's Lights section ([`section`], its list [`list`] and one entry's
-//! editor [`editor`]), new lights and changes of kind ([`kinds`]; the
+//! panel's Lights section ([`section`], a state struct with its `ui`; its
+//! list [`list`] and one entry's editor [`editor`]), new lights and changes of kind ([`kinds`]; the
 //! document's list edits, [`document`]), the lights drawn over the 3D view
 //! ([`overlay`]) and dragged by their handles ([`drag`], reached by the
 //! mouse through [`input`]), both placed with the scene's camera
@@ -9,8 +9,8 @@
 //! Inside the folder (`a -> b`: `a` uses `b`):
 //!
 //! ```text
-//! section  -> list editor
-//! input    -> drag overlay projection
+//! input    -> section drag overlay projection
+//! section  -> list drag
 //! drag     -> overlay kinds projection
 //! overlay  -> kinds projection
 //! list     -> editor kinds
