@@ -17,9 +17,6 @@
 //! those, so this file holds the document and what was loaded, and uses
 //! none of them.
 
-mod edit;
-pub mod environment;
-
 use crate::material::Material;
 use crate::scene::Scene;
 use crate::scene::limits::Limits;
@@ -38,7 +35,7 @@ pub struct Document {
     /// The scene as loaded, with edits applied.
     pub scene: Scene,
     /// Materials as loaded (to tell which ones were edited).
-    loaded_materials: Vec<Material>,
+    pub(in crate::ui) loaded_materials: Vec<Material>,
     /// The camera as loaded (the viewer's orbit starts and resets there).
     pub loaded_camera: crate::scene::Camera,
     /// Names of the scene file's own `[materials]` (those a saved file can
@@ -57,11 +54,11 @@ pub struct Document {
     /// Modification time of the scene file when loaded (reload on change).
     modified: Option<SystemTime>,
     /// The `[environment]` map keys while the map is switched off in the
-    /// viewer (`super::environment`); `None` while it is on.
+    /// viewer ([`super::environment`]); `None` while it is on.
     pub parked_environment: Option<toml::Table>,
     /// The `[environment]` map keys as loaded (to tell whether the
-    /// environment was edited: `super::environment::edited`).
-    pub(super) loaded_environment: toml::Table,
+    /// environment was edited: `super::environment::document::edited`).
+    pub(in crate::ui) loaded_environment: toml::Table,
     /// Materials compared with the selected one (not part of the scene
     /// file; [`super::compare`]).
     pub compare: super::compare::Compare,

@@ -18,6 +18,16 @@ pub struct Shared<'a> {
 }
 
 impl Shared<'_> {
+    /// Applies one `KEY=VALUE` edit to the document (`Document::edit`,
+    /// the path of `--edit`): its change marked if it applies, else the
+    /// reason shown and nothing changed.
+    pub fn edit(&mut self, assignment: &str) {
+        match self.doc.edit(assignment) {
+            Ok(change) => self.changes.mark(change),
+            Err(e) => *self.message = Some(format!("not applied: {e}")),
+        }
+    }
+
     /// An edit's outcome: `change` marked if it applied, else the reason
     /// shown after `refusal` ("not applied", "not moved").
     pub fn outcome(&mut self, result: Result<(), String>, change: Change, refusal: &str) {

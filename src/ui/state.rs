@@ -36,8 +36,8 @@ pub struct ViewerState {
     pub save_path: String,
     pub open_path: String,
     pub open_dialog: bool,
-    /// The environment map path field of the panel.
-    pub environment_path: String,
+    /// The Environment section (its map path field).
+    pub environment: super::environment::section::EnvironmentSection,
     /// Frame-time statistics shown in the overlay.
     pub frame_ms: f64,
     pub gpu_ms: Option<f64>,
@@ -78,7 +78,7 @@ impl ViewerState {
             save_path: "gonio-view.toml".into(),
             open_path: String::new(),
             open_dialog: false,
-            environment_path: String::new(),
+            environment: Default::default(),
             frame_ms: 0.0,
             gpu_ms: None,
             adapter: String::new(),
@@ -147,9 +147,9 @@ impl ViewerState {
     /// A file dropped on the window: a `.hdr` or `.exr` becomes the
     /// environment map, anything else is opened as a scene.
     pub fn drop_file(&mut self, path: PathBuf) {
-        if super::document::environment::is_map_file(&path) {
-            self.environment_path = path.display().to_string();
-            self.edit(&super::document::environment::map_assignment(&path));
+        if super::environment::document::is_map_file(&path) {
+            self.environment.path = path.display().to_string();
+            self.edit(&super::environment::document::map_assignment(&path));
         } else {
             self.open(path);
         }

@@ -10,6 +10,18 @@ use crate::scene::change::Change;
 use crate::scene::scene_file::SceneSource;
 use std::path::{Path, PathBuf};
 
+/// The [`Shared`] part of `state` (its fields borrowed one by one, so a
+/// section of `state` can be borrowed beside it).
+macro_rules! shared {
+    ($state:expr) => {
+        Shared {
+            doc: &mut $state.doc,
+            changes: &mut $state.changes,
+            message: &mut $state.message,
+        }
+    };
+}
+
 /// Lays out one frame of the UI; returns the 3D area in points.
 pub fn ui(ui: &mut egui::Ui, state: &mut ViewerState, panel_width: f32) -> egui::Rect {
     let mut area = ui.available_rect_before_wrap();
@@ -62,18 +74,11 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
         let shown = header.show(ui, |ui| match name {
             "File" => file_section(ui, state),
             "View" => view_section(ui, state),
-            "Environment" => environment_section(ui, state),
+            "Environment" => state.environment.ui(ui, &mut shared!(state)),
             "Material" => material_section(ui, state),
             "Compare" => compare_section(ui, state),
             "Plots" => plots_section(ui, state),
-            _ => {
-                let mut shared = Shared {
-                    doc: &mut state.doc,
-                    changes: &mut state.changes,
-                    message: &mut state.message,
-                };
-                state.lights.ui(ui, &mut shared)
-            }
+            _ => state.lights.ui(ui, &mut shared!(state)),
         });
         if request == Some(true) {
             shown.header_response.scroll_to_me(Some(egui::Align::Min));
@@ -118,21 +123,6 @@ pub fn section_request(key: &str, value: &str) -> Result<(&'static str, bool), S
                 SECTIONS.join(", ")
             )
         })
-}
-
-fn environment_section(ui: &mut egui::Ui, state: &mut ViewerState) {
-    let doc = &state.doc;
-    let off = super::document::environment::is_off(doc);
-    let settings = doc.scene.environment.map.as_ref().map(|m| m.settings);
-    if let Some(m) = &doc.scene.environment.map
-        && state.environment_path.is_empty()
-    {
-        state.environment_path = m.data.name.clone();
-    }
-    let edits = panels::environment_editor(ui, settings, off, &mut state.environment_path);
-    for edit in edits {
-        state.edit(&edit);
-    }
 }
 
 fn file_section(ui: &mut egui::Ui, state: &mut ViewerState) {

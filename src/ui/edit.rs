@@ -4,7 +4,7 @@
 //! keeping the edits across a reload ([`Document::reload`]). Above the
 //! features it dispatches to (`environment.rs`, `lights.rs`, `ui::compare`).
 
-use super::Document;
+use super::document::{Document, VARIANT_KEY};
 use crate::scene::change::Change;
 use crate::scene::scene_file::{self, LightEntry};
 use crate::ui::edit_values::{edit_material, toml_value};
@@ -50,13 +50,13 @@ impl Document {
             .iter()
             .filter(|kv| {
                 let key = kv.split_once('=').map_or(kv.as_str(), |(k, _)| k);
-                key.trim() != super::VARIANT_KEY
+                key.trim() != VARIANT_KEY
             })
             .cloned()
             .collect();
         overrides.push(format!(
             "{}={}",
-            super::VARIANT_KEY,
+            VARIANT_KEY,
             toml::Value::String(name.to_string())
         ));
         let mut fresh = Document::load(self.source.clone(), overrides, self.limits)?;
@@ -67,7 +67,7 @@ impl Document {
     /// Applies one `KEY=VALUE` edit as the panel would: materials, the
     /// shading mode, the ambient radiance, `[[lights]]` entries
     /// (`lights.N.KEY`) and the environment map's keys
-    /// (`environment.KEY`, [`super::environment`]), each validated like
+    /// (`environment.KEY`, [`super::environment::document`]), each validated like
     /// the scene file. Returns what the edit changed, for the GPU to
     /// rewrite only that.
     pub fn edit(&mut self, assignment: &str) -> Result<Change> {
@@ -114,7 +114,7 @@ impl Document {
                 Ok(Change::View)
             }
             ["environment", key] => {
-                super::environment::edit(self, key, assignment).map(|()| Change::Environment)
+                super::environment::document::edit(self, key, assignment).map(|()| Change::Environment)
             }
             ["compare", rest @ ..] => self
                 .compare
@@ -191,6 +191,6 @@ impl Document {
             assembled.install(&mut self.scene);
             self.lights = lights;
         }
-        super::environment::keep_edits(self, old);
+        super::environment::document::keep_edits(self, old);
     }
 }
