@@ -698,7 +698,7 @@ impl App {
             verbose,
         )?;
         // The split view's right half: the same scene with the selected
-        // material replaced (src/ui/compare.rs).
+        // material replaced (src/ui/compare/materials.rs).
         let right = self.state.doc.compare.right_half().cloned();
         let selected = self.state.selected_material;
         // Its changes: the scene's, and the compared material in place
@@ -709,7 +709,7 @@ impl App {
         }
         let right_message = match right {
             Some(other) if selected < scene.materials.len() => {
-                super::compare::with_material(scene, selected, &other, |scene| {
+                super::compare::materials::with_material(scene, selected, &other, |scene| {
                     bring_up_to_date(
                         &mut gfx.renderer,
                         &mut gfx.prepared_right,

@@ -60,8 +60,8 @@ pub struct Document {
     /// environment was edited: `super::environment::document::edited`).
     pub(in crate::ui) loaded_environment: toml::Table,
     /// Materials compared with the selected one (not part of the scene
-    /// file; [`super::compare`]).
-    pub compare: super::compare::Compare,
+    /// file, kept across a reload; [`super::compare`]).
+    pub compare: super::compare::materials::Compare,
     /// The glTF files' material variants (`KHR_materials_variants`), each
     /// once: the panel's variant choice ([`Document::with_variant`]).
     pub variants: Vec<String>,

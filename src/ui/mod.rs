@@ -20,7 +20,6 @@ pub mod document;
 pub mod edit;
 pub mod edit_values;
 pub mod environment;
-pub mod fitted;
 pub mod lights;
 pub mod memory;
 pub mod orbit;
@@ -134,7 +133,7 @@ fn add_compared(doc: &mut document::Document, args: &ViewArgs) -> Result<()> {
     }
     if let Some(text) = &args.compare_fit {
         let flag = format!("--compare-fit {text}");
-        let model = fitted::model(text).map_err(|p| Error::argument(&flag, p))?;
+        let model = compare::fitted::model(text).map_err(|p| Error::argument(&flag, p))?;
         let Some(first) = doc.scene.materials.first() else {
             return Err(Error::argument(flag, "the scene has no material"));
         };
@@ -151,8 +150,8 @@ fn add_compared(doc: &mut document::Document, args: &ViewArgs) -> Result<()> {
             }
         };
         let start = std::time::Instant::now();
-        let stored = fitted::stored(&brdf.name, &model).is_some();
-        let m = fitted::fit(brdf, &model).map_err(|p| Error::argument(&flag, p))?;
+        let stored = compare::fitted::stored(&brdf.name, &model).is_some();
+        let m = compare::fitted::fit(brdf, &model).map_err(|p| Error::argument(&flag, p))?;
         if !stored {
             eprintln!(
                 "gonio view: {} is not in docs/fit/fits.toml; fitted now in {:.1} s",

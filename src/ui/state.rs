@@ -7,7 +7,7 @@ use super::cli::ViewArgs;
 use super::document::Document;
 use super::orbit::Orbit;
 use super::plots::Plots;
-use crate::scene::change::{Change, Changes};
+use crate::scene::change::Changes;
 use crate::scene::scene_file::SceneSource;
 use std::path::PathBuf;
 
@@ -42,17 +42,12 @@ pub struct ViewerState {
     pub frame_ms: f64,
     pub gpu_ms: Option<f64>,
     pub adapter: String,
-    /// The fit model the compare section's combo shows.
     /// Sections of the panel a script opens (and scrolls to the top) or
     /// closes at the next frame: `--edit N:panel.show=Plots`,
     /// `panel.hide=Lights` ([`super::view::SECTIONS`]).
     pub section_requests: Vec<(&'static str, bool)>,
-    pub fit_choice: String,
-    /// A fit under way in the background: its label and result.
-    pub fitting: Option<(
-        String,
-        std::sync::mpsc::Receiver<Result<crate::material::Material, String>>,
-    )>,
+    /// The Compare section (the fit model's choice, a fit under way).
+    pub compare: super::compare::section::CompareSection,
 }
 
 impl ViewerState {
@@ -82,8 +77,7 @@ impl ViewerState {
             frame_ms: 0.0,
             gpu_ms: None,
             adapter: String::new(),
-            fit_choice: "ct-ggx-conductor".into(),
-            fitting: None,
+            compare: Default::default(),
             section_requests: Vec::new(),
         }
     }
@@ -91,57 +85,7 @@ impl ViewerState {
     /// Whether work is under way in the background (plots' integrals, a
     /// fit) whose result the window will show.
     pub fn busy(&self) -> bool {
-        self.plots.busy() || self.fitting.is_some()
-    }
-
-    /// Starts fitting `model` to the selected material (measured) in the
-    /// background, or adds the stored fit at once.
-    pub fn add_fit(&mut self, ctx: &egui::Context, model: &str) {
-        let fitted = super::fitted::model(model);
-        let selected = self.doc.scene.materials.get(self.selected_material);
-        let (model, brdf) = match (fitted, selected.and_then(|m| m.measured_brdf())) {
-            (Ok(model), Some(brdf)) => (model, brdf),
-            (Err(p), _) => return self.message = Some(p),
-            (_, None) => {
-                return self.message = Some("the selected material is not measured".into());
-            }
-        };
-        if let Some(m) = super::fitted::stored(&brdf.name, &model) {
-            self.doc.compare.add(m);
-            self.changes.mark(Change::Compared);
-            return;
-        }
-        let label = format!("{} to {}", model.label(), brdf.name);
-        let (tx, rx) = std::sync::mpsc::channel();
-        let ctx = ctx.clone();
-        super::background::spawn(move || {
-            let _ = tx.send(super::fitted::fit_now(brdf, &model));
-            ctx.request_repaint();
-        });
-        self.fitting = Some((label, rx));
-    }
-
-    /// A finished background fit joins the compared materials.
-    pub fn collect_fit(&mut self) {
-        let Some((_, rx)) = &self.fitting else {
-            return;
-        };
-        match rx.try_recv() {
-            Ok(Ok(m)) => {
-                self.doc.compare.add(m);
-                self.changes.mark(Change::Compared);
-                self.fitting = None;
-            }
-            Ok(Err(p)) => {
-                self.message = Some(format!("no fit: {p}"));
-                self.fitting = None;
-            }
-            Err(std::sync::mpsc::TryRecvError::Empty) => {}
-            Err(std::sync::mpsc::TryRecvError::Disconnected) => {
-                self.message = Some("the fit stopped without a result".into());
-                self.fitting = None;
-            }
-        }
+        self.plots.busy() || self.compare.busy()
     }
 
     /// A file dropped on the window: a `.hdr` or `.exr` becomes the

@@ -76,7 +76,15 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
             "View" => view_section(ui, state),
             "Environment" => state.environment.ui(ui, &mut shared!(state)),
             "Material" => material_section(ui, state),
-            "Compare" => compare_section(ui, state),
+            "Compare" => {
+                let mut cx = super::compare::section::CompareContext {
+                    compare: &mut state.doc.compare,
+                    selected: state.doc.scene.materials.get(state.selected_material),
+                    changes: &mut state.changes,
+                    message: &mut state.message,
+                };
+                state.compare.ui(ui, &mut cx)
+            }
             "Plots" => plots_section(ui, state),
             _ => state.lights.ui(ui, &mut shared!(state)),
         });
@@ -287,50 +295,6 @@ fn variant_choice(ui: &mut egui::Ui, state: &mut ViewerState) {
         && let Err(e) = state.choose_variant(&name)
     {
         state.message = Some(format!("not applied: {e}"));
-    }
-}
-
-fn compare_section(ui: &mut egui::Ui, state: &mut ViewerState) {
-    state.collect_fit();
-    let selected = state
-        .doc
-        .scene
-        .materials
-        .get(state.selected_material)
-        .cloned();
-    let measured = selected
-        .as_ref()
-        .is_some_and(|m| m.model == crate::material::ReflectanceModel::Measured);
-    let fitting = state.fitting.as_ref().map(|(label, _)| label.clone());
-    let (changed, request, problem) = panels::compare_editor(
-        ui,
-        &mut state.doc.compare,
-        measured,
-        &mut state.fit_choice,
-        fitting.as_deref(),
-    );
-    if changed {
-        state.changes.mark(Change::Compared);
-    }
-    if problem.is_some() {
-        state.message = problem;
-    }
-    match request {
-        Some(panels::CompareRequest::AddCopy) => {
-            if let Some(mut m) = selected {
-                m.name = format!("{} (copy)", m.name);
-                state.doc.compare.add(m);
-                state.changes.mark(Change::Compared);
-            }
-        }
-        Some(panels::CompareRequest::AddFit(model)) => {
-            let ctx = ui.ctx().clone();
-            state.add_fit(&ctx, &model);
-        }
-        None => {}
-    }
-    if state.doc.compare.materials.is_empty() {
-        ui.small("Compare the selected material with others: every plot overlays them, and the 3D view splits (left: as it is, right: the compared material in its place).");
     }
 }
 
