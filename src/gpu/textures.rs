@@ -275,6 +275,14 @@ fn upload(ctx: &GpuContext, image: &Image) -> wgpu::Texture {
     )
 }
 
+/// One material's slots on the GPU, what they hold, and the bindings its
+/// group was made with.
+struct MaterialSlots {
+    buffer: wgpu::Buffer,
+    held: Vec<GpuTextureSlot>,
+    bindings: Vec<(usize, Sampler)>,
+}
+
 /// A scene's textures on the GPU and each material's group 2.
 pub struct SceneTextures {
     /// One bind group per scene material (index for index).
@@ -283,7 +291,7 @@ pub struct SceneTextures {
     /// and the bindings its group was made with: an edit of the material
     /// rewrites the slots in place ([`Self::write_slots`]) while the
     /// bindings stay.
-    slots: Vec<(wgpu::Buffer, Vec<GpuTextureSlot>, Vec<(usize, Sampler)>)>,
+    slots: Vec<MaterialSlots>,
     /// Per scene material, the view and sampler of its texture that
     /// carries alpha (the base colour's), for the masked shadow pass
     /// (src/gpu/shadow_masks.rs).
@@ -396,7 +404,11 @@ impl SceneTextures {
                 layout,
                 entries: &entries,
             }));
-            slot_buffers.push((buffer, slots, bindings));
+            slot_buffers.push(MaterialSlots {
+                buffer,
+                held: slots,
+                bindings,
+            });
         }
         Ok(SceneTextures {
             groups,
@@ -417,7 +429,12 @@ impl SceneTextures {
         m: usize,
         material: &crate::material::Material,
     ) -> Result<Option<u64>> {
-        let Some((buffer, held, bindings)) = self.slots.get_mut(m) else {
+        let Some(MaterialSlots {
+            buffer,
+            held,
+            bindings,
+        }) = self.slots.get_mut(m)
+        else {
             return Ok(None);
         };
         if material_bindings(material) != *bindings {

@@ -2,15 +2,19 @@
 //! panel, drawn by the same [`crate::gpu::GpuRenderer`] as `gonio render`
 //! (through a [`crate::gpu::PreparedScene`] that lives across frames).
 //!
-//! [`app`] runs the window loop, [`view`] lays out the panel whose
-//! sections are in [`panels`] and [`plots`], [`state`] is what the panel
-//! edits, [`document`] holds the scene and its edits ([`save`] writes them
-//! as a scene file; [`document::environment`] edits its map; an edit's
-//! value is read by [`edit_values`]; [`compare`] holds the materials
-//! compared with the selected one), [`orbit`] moves the camera,
-//! [`surface`] owns the swapchain and screenshots. Everything about
-//! lights (their section, kinds, overlay, handles, spin and the
-//! document's list edits) is in [`lights`].
+//! Arranged by feature. [`app`] runs the window loop, [`view`] lays out
+//! the panel, [`state`] holds what the viewer keeps between frames (the
+//! document, the camera's [`orbit`], the sections), [`shared`] is what
+//! every section edits besides its own state. [`document`] holds the
+//! scene as loaded and its edits, [`edit`] applies one `KEY=VALUE` edit
+//! and keeps the edits across a reload ([`edit_values`] reads a value,
+//! [`save`] writes the scene file). Each feature is a folder whose panel
+//! section is a state struct with its own `ui`: [`lights`] (the section,
+//! kinds, overlay, handles, spin, the document's list edits),
+//! [`environment`] (the map's section and edits), [`compare`] (compared
+//! materials, the split view, fits); the material and view sections'
+//! widgets are in [`panels`], the plots in [`plots`]. [`surface`] owns
+//! the swapchain and screenshots.
 
 pub mod app;
 pub mod background;

@@ -1,7 +1,10 @@
-//! The viewer's state apart from the GPU: the document, the camera orbit,
-//! the panel's settings and requests, and the frame statistics it shows.
-//! The panel ([`super::view`]) edits it; the window loop
-//! ([`super::app`]) acts on it.
+//! The viewer's state apart from the GPU: what is shared (the document,
+//! the changes the GPU must see, the message line, the camera orbit, the
+//! selected material, the window's switches and requests, the frame
+//! statistics) and the sections that keep their own state (lights,
+//! environment, compare, plots), each laid out by its own `ui`. The panel
+//! ([`super::view`]) edits it; the window loop ([`super::app`]) acts on
+//! it.
 
 use super::cli::ViewArgs;
 use super::document::Document;
@@ -102,9 +105,15 @@ impl ViewerState {
     /// Applies one panel edit to the document (`Document::edit`): redrawn
     /// if it applies, else the reason is shown and nothing changes.
     pub fn edit(&mut self, assignment: &str) {
-        match self.doc.edit(assignment) {
-            Ok(change) => self.changes.mark(change),
-            Err(e) => self.message = Some(format!("not applied: {e}")),
+        self.shared().edit(assignment);
+    }
+
+    /// What every section edits: the document, the changes, the message.
+    pub fn shared(&mut self) -> super::shared::Shared<'_> {
+        super::shared::Shared {
+            doc: &mut self.doc,
+            changes: &mut self.changes,
+            message: &mut self.message,
         }
     }
 
