@@ -18,7 +18,7 @@ use gonio::scene::scene_file::{self, SceneSource};
 fn culled(scene: &Scene) -> (usize, usize) {
     let plan = ShadowPlan::new(scene);
     let objects = GeometryData::new(scene, false, false).objects;
-    let casters = LayerCasters::new(&plan, &object_bounds(&objects));
+    let casters = LayerCasters::new(&plan, &object_bounds(&objects), true, &[]);
     (casters.culled, plan.layers.len() * objects.len())
 }
 
@@ -81,7 +81,7 @@ fn four_point_lights_on_the_built_in_scene_render_the_same_culled() {
     // culled render skips them.
     let plan = ShadowPlan::new(&scene);
     let objects = GeometryData::new(&scene, false, false).objects;
-    let casters = LayerCasters::new(&plan, &object_bounds(&objects));
+    let casters = LayerCasters::new(&plan, &object_bounds(&objects), true, &[]);
     let empty = casters.layers.iter().filter(|l| l.is_empty()).count();
     assert!(
         empty > 0,

@@ -21,6 +21,8 @@
 //!   the render tolerance, shadowed pixels included;
 //! * (d) area lights: error vs N against the exact image, GPU and
 //!   reference, decreasing; and the error of the GPU's shared shadow map.
+//! * (f) alpha MASK cuts shadows; (g) a light's markers (emissive or
+//!   BLEND geometry around it) cast none of its shadow.
 
 mod common;
 
@@ -1056,4 +1058,143 @@ fn f_alpha_mask_cuts_shadows() {
         r.outside_band, 0,
         "mismatches outside the derived band: {r:?}"
     );
+}
+
+// ---------------------------------------------------------------------
+// (g) A light's markers let its light through.
+
+/// A glTF (written to `dir`) of a 6 m floor (y = 0, grey) and a closed
+/// 0.5 m cube centred 1.5 m above it, emissive and alpha BLEND, around a
+/// `KHR_lights_punctual` light of `kind` ("point", or "spot" pointing
+/// down) at the cube's centre: a light's marker, as KHR's ShadowsSpot
+/// sample draws its spot light.
+fn lamp(dir: &std::path::Path, kind: &str) -> std::path::PathBuf {
+    use base64::Engine;
+    let b64 = |bytes: &[u8]| base64::engine::general_purpose::STANDARD.encode(bytes);
+    let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    // Floor: 4 positions, 4 normals, 6 indices.
+    let mut positions = vec![
+        -3.0, 0.0, 3.0, 3.0, 0.0, 3.0, 3.0, 0.0, -3.0, -3.0, 0.0, -3.0,
+    ];
+    let mut normals = [0.0, 1.0, 0.0].repeat(4);
+    let mut indices: Vec<u16> = vec![0, 1, 2, 0, 2, 3];
+    // Cube: 6 outward faces of 4 vertices each, counter-clockwise.
+    let (c, h) = ([0.0f32, 1.5, 0.0], 0.25f32);
+    for axis in 0..3 {
+        for sign in [-1.0f32, 1.0] {
+            let n: [f32; 3] = std::array::from_fn(|k| if k == axis { sign } else { 0.0 });
+            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+            let base = (positions.len() / 3) as u16;
+            for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                let mut p = c;
+                p[axis] += sign * h;
+                p[u] += a * h;
+                p[v] += b * h * sign;
+                positions.extend(p);
+                normals.extend(n);
+            }
+            indices.extend([0, 1, 2, 0, 2, 3].map(|i| base + i));
+        }
+    }
+    let floor_indices = 6;
+    let mut bin = floats(&positions);
+    let normals_at = bin.len();
+    bin.extend(floats(&normals));
+    let indices_at = bin.len();
+    bin.extend(indices.iter().flat_map(|i| i.to_le_bytes()));
+    let vertices = positions.len() / 3;
+    let light = match kind {
+        "spot" => {
+            r#"{"type":"spot","intensity":200,"spot":{"innerConeAngle":0.6,"outerConeAngle":1.0}}"#
+        }
+        _ => r#"{"type":"point","intensity":200}"#,
+    };
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"extensionsUsed":["KHR_lights_punctual"],
+"extensions":{{"KHR_lights_punctual":{{"lights":[{light}]}}}},
+"scene":0,"scenes":[{{"nodes":[0,1,2]}}],
+"nodes":[{{"mesh":0}},{{"mesh":1}},{{"translation":[0.0,1.5,0.0],"rotation":[-0.70710678,0.0,0.0,0.70710678],"extensions":{{"KHR_lights_punctual":{{"light":0}}}}}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1}},"indices":2,"material":0}}]}},{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1}},"indices":3,"material":1}}]}}],
+"materials":[{{"pbrMetallicRoughness":{{"baseColorFactor":[0.8,0.8,0.8,1.0],"metallicFactor":0.0,"roughnessFactor":1.0}}}},
+{{"alphaMode":"BLEND","emissiveFactor":[0.1,0.09,0.06],"pbrMetallicRoughness":{{"baseColorFactor":[1.0,1.0,1.0,0.5],"metallicFactor":0.0,"roughnessFactor":1.0}}}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":{vertices},"type":"VEC3","min":[-3.0,0.0,-3.0],"max":[3.0,1.75,3.0]}},
+{{"bufferView":1,"componentType":5126,"count":{vertices},"type":"VEC3"}},
+{{"bufferView":2,"componentType":5123,"count":{floor_indices},"type":"SCALAR"}},
+{{"bufferView":2,"byteOffset":{},"componentType":5123,"count":{},"type":"SCALAR"}}],
+"bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":{normals_at}}},{{"buffer":0,"byteOffset":{normals_at},"byteLength":{normals_at}}},{{"buffer":0,"byteOffset":{indices_at},"byteLength":{}}}],
+"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}]}}"#,
+        floor_indices * 2,
+        indices.len() - floor_indices,
+        indices.len() * 2,
+        bin.len(),
+        b64(&bin)
+    );
+    let path = dir.join(format!("lamp-{kind}.gltf"));
+    std::fs::write(&path, json).unwrap();
+    path
+}
+
+/// A light's marker (emissive, BLEND, around the light) casts none of its
+/// light's shadow by default, in both renderers: every floor pixel the
+/// light reaches is lit, and the GPU's mask matches the ray-traced one
+/// outside the derived band. With `shadows.markers = "cast"` the closed
+/// marker shadows the whole floor in both, as it did before the rule.
+#[test]
+fn g_a_lights_marker_casts_none_of_its_shadow() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut renderer = common::gpu_renderer();
+    for kind in ["point", "spot"] {
+        let sets = [
+            "image.width=192".to_string(),
+            "image.height=144".into(),
+            "camera={position = [0.0, 3.0, 5.0], target = [0.0, 0.0, 0.0], up = [0.0, 1.0, 0.0], fov_y_deg = 50.0}".into(),
+            "ambient.radiance=0.0".into(),
+        ];
+        let path = lamp(dir.path(), kind);
+        let load = |extra: &[&str]| {
+            let mut all = sets.to_vec();
+            all.extend(extra.iter().map(|s| s.to_string()));
+            scene_file::load(&SceneSource::File(path.clone()), &all).expect("lamp loads")
+        };
+        let (pass, cast) = (load(&[]), load(&["shadows.markers=cast"]));
+        assert_eq!(pass.lights.len(), 1, "{kind}: the file's light");
+        assert!(
+            pass.lights[0].casts_shadows(),
+            "{kind}: imported lights cast shadows"
+        );
+        let view = View::new(&pass);
+        let off = without_shadows(&pass);
+        let ref_off = reference::render(&off);
+        let gpu_off = gpu(&mut renderer, &off);
+        let on_floor = |v: Vec<Option<f64>>| -> Vec<Option<f64>> {
+            v.into_iter()
+                .zip(&view.center)
+                .map(|(v, s)| v.filter(|_| s.is_some_and(|s| s.mesh == 0)))
+                .collect()
+        };
+        let ref_v = on_floor(visibility(&reference::render(&pass), &ref_off));
+        let gpu_v = on_floor(visibility(&gpu(&mut renderer, &pass), &gpu_off));
+        let ref_cast = on_floor(visibility(&reference::render(&cast), &ref_off));
+        let gpu_cast = on_floor(visibility(&gpu(&mut renderer, &cast), &gpu_off));
+        for (name, v, v_cast) in [("reference", &ref_v, &ref_cast), ("GPU", &gpu_v, &gpu_cast)] {
+            let floor = v.iter().flatten().count();
+            let lit = v.iter().flatten().filter(|&&a| a >= 0.5).count();
+            let lit_cast = v_cast.iter().flatten().filter(|&&a| a >= 0.5).count();
+            eprintln!(
+                "(g) {kind}, {name}: {lit} of {floor} floor px lit with markers passing, {lit_cast} with markers casting"
+            );
+            assert!(floor > 5_000, "{kind}, {name}: too few floor pixels");
+            assert_eq!(lit, floor, "{kind}, {name}: the marker shadows its light");
+            assert_eq!(
+                lit_cast, 0,
+                "{kind}, {name}: a closed caster around the light let it through"
+            );
+        }
+        let r = mask_report(&pass, 0, &view, &gpu_v, &ref_v);
+        eprintln!("(g) {kind}: GPU vs reference mask: {r:?}");
+        assert_eq!(
+            r.outside_band, 0,
+            "{kind}: mismatches outside the band: {r:?}"
+        );
+    }
 }

@@ -69,6 +69,9 @@ pub struct PreparedScene {
     /// frustum (src/gpu/shadow_culling.rs); default true. Off draws every
     /// caster into every layer: the same maps, for tests and A/B timing.
     pub cull_shadow_casters: bool,
+    /// Per shadow-map layer, the objects it leaves out as markers of its
+    /// light (`shadow_culling::markers`); empty for none.
+    shadow_markers: Vec<Vec<u32>>,
     /// The shadow maps must be drawn before the next scene pass.
     shadows_stale: bool,
     /// The environment map, its uniform and the background pipeline.
@@ -221,6 +224,7 @@ impl PreparedScene {
         } else {
             Vec::new()
         };
+        let shadow_markers = shadow_culling::markers(&plan, scene, draw.objects());
         let order = draw_order(draw.batches().len(), &blend_centers, scene);
         let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
         let textures = if key.materials.texture_slots > 0 {
@@ -274,6 +278,7 @@ impl PreparedScene {
             shadow_masks,
             caster_bounds,
             cull_shadow_casters: true,
+            shadow_markers,
             environment,
             textures,
             uploads,
@@ -367,6 +372,7 @@ impl PreparedScene {
                 )
             }));
         self.refresh_shadows(ctx, cache, scene, plan, arrays, masks_changed);
+        self.refresh_markers(scene);
         self.batch_pipelines = batch_pipelines(
             cache,
             &key,
@@ -423,6 +429,16 @@ impl PreparedScene {
                 self.caster_bounds = shadow_culling::object_bounds(self.draw.objects());
             }
             self.plan = plan;
+        }
+    }
+
+    /// An edit can make or unmake a marker (a light moved into a lamp, a
+    /// material's emission): its light's layers are drawn again.
+    fn refresh_markers(&mut self, scene: &Scene) {
+        let markers = shadow_culling::markers(&self.plan, scene, self.draw.objects());
+        if markers != self.shadow_markers {
+            self.shadow_markers = markers;
+            self.shadows_stale = self.shadows.is_some();
         }
     }
 
@@ -488,9 +504,15 @@ impl PreparedScene {
     ) -> Drawn {
         let mut drawn = Drawn::default();
         if let (Some(shadows), true) = (&self.shadows, self.shadows_stale) {
-            let casters = self
-                .cull_shadow_casters
-                .then(|| LayerCasters::new(&self.plan, &self.caster_bounds));
+            let casters =
+                (self.cull_shadow_casters || !self.shadow_markers.is_empty()).then(|| {
+                    LayerCasters::new(
+                        &self.plan,
+                        &self.caster_bounds,
+                        self.cull_shadow_casters,
+                        &self.shadow_markers,
+                    )
+                });
             drawn.shadow_layers = shadows.encode(
                 encoder,
                 &self.plan,

@@ -14,9 +14,14 @@
 //! drawn) and leaves a relative slack far above f32 rounding, so that a
 //! vertex the f64 test finds just outside but the GPU's f32 transform puts
 //! just inside is still drawn.
+//!
+//! A light's markers (`crate::scene::light_markers`: emissive or BLEND
+//! geometry around the light) are left out of that light's layers, as the
+//! reference's shadow rays pass through them.
 
 use super::geometry::ObjectRange;
 use super::shadows::ShadowPlan;
+use crate::scene::{LightMarkers, Scene, light_markers};
 use glam::{DMat4, DVec3, DVec4};
 
 /// Relative slack of the plane test: a corner counts as outside only
@@ -42,17 +47,28 @@ pub struct LayerCasters {
 }
 
 impl LayerCasters {
-    /// The objects with `bounds` each layer of `plan` must draw.
-    pub fn new(plan: &ShadowPlan, bounds: &[(DVec3, DVec3)]) -> Self {
+    /// The objects with `bounds` each layer of `plan` must draw: those
+    /// whose boxes reach the layer's frustum (all of them unless `cull`),
+    /// but for the layer's [`markers`] (`markers[layer]`, ascending; an
+    /// empty list for none).
+    pub fn new(
+        plan: &ShadowPlan,
+        bounds: &[(DVec3, DVec3)],
+        cull: bool,
+        markers: &[Vec<u32>],
+    ) -> Self {
         let mut culled = 0;
         let layers = plan
             .layers
             .iter()
-            .map(|layer| {
+            .enumerate()
+            .map(|(i, layer)| {
+                let passing = markers.get(i).map_or(&[][..], Vec::as_slice);
                 let kept: Vec<u32> = (0..bounds.len() as u32)
                     .filter(|&o| {
                         let (lo, hi) = bounds[o as usize];
-                        !outside(layer.clip_from_world, lo, hi)
+                        !(cull && outside(layer.clip_from_world, lo, hi))
+                            && passing.binary_search(&o).is_err()
                     })
                     .collect();
                 culled += bounds.len() - kept.len();
@@ -60,6 +76,38 @@ impl LayerCasters {
             })
             .collect();
         LayerCasters { layers, culled }
+    }
+}
+
+/// Per layer of `plan`, the objects (ascending) that are markers of the
+/// layer's light (`crate::scene::light_markers::marks` on the object's box
+/// and material, at the map's position: an area light's centre); empty
+/// when no layer has any, the common case.
+pub fn markers(plan: &ShadowPlan, scene: &Scene, objects: &[ObjectRange]) -> Vec<Vec<u32>> {
+    let mut layers = vec![Vec::new(); plan.layers.len()];
+    for (light, shadow) in scene.lights.iter().zip(&plan.lights) {
+        let (Some(shadow), Some(position)) = (shadow, light_markers::map_position(light)) else {
+            continue;
+        };
+        if shadow.settings.markers != LightMarkers::Pass {
+            continue;
+        }
+        let list: Vec<u32> = (0..objects.len() as u32)
+            .filter(|&o| {
+                let object = &objects[o as usize];
+                let material = &scene.materials[object.material as usize];
+                light_markers::marks(position, material, object.bounds)
+            })
+            .collect();
+        let first = shadow.first_layer as usize;
+        for layer in &mut layers[first..first + shadow.projection.layers() as usize] {
+            layer.clone_from(&list);
+        }
+    }
+    if layers.iter().all(Vec::is_empty) {
+        Vec::new()
+    } else {
+        layers
     }
 }
 

@@ -177,6 +177,9 @@ struct Shader<'a> {
     precomputed: Precomputed,
     /// Shadow-ray origin offset (see [`shadow_epsilon`]).
     epsilon: f64,
+    /// Per light, per mesh: whether the mesh lets the light through as
+    /// its marker (`crate::scene::light_markers::passing`).
+    markers: Vec<Vec<bool>>,
     area: AreaLights,
     /// The sample offset of every pixel (for the texture footprint).
     offset: (f64, f64),
@@ -327,13 +330,27 @@ impl<'a> Shader<'a> {
         }
     }
 
+    /// Whether a shadow ray's `hit` occludes light `l`: as [`Self::blocks`],
+    /// but a marker of the light lets it through
+    /// (`crate::scene::light_markers`).
+    fn blocks_light(&self, l: usize, hit: &Hit) -> bool {
+        let marker = self
+            .markers
+            .get(l)
+            .and_then(|m| m.get(hit.id.mesh as usize))
+            .copied()
+            .unwrap_or(false);
+        !marker && self.blocks(hit)
+    }
+
     /// Whether a shadow ray's `hit` occludes: everywhere but where alpha
     /// MASK cuts the surface out. The alpha there is what the GPU's
     /// masked shadow pass reads (shaders/shadow_pass.wgsl): the factor
     /// times `COLOR_0`'s A and the base colour texture's A at the hit's
     /// interpolated UVs, at level 0 with the magnification filter (a
     /// zero footprint: the pass samples with `textureSampleLevel(…, 0)`).
-    /// BLEND surfaces occlude as opaque ones (docs/gltf-surfaces.md).
+    /// BLEND surfaces occlude as opaque ones (docs/gltf-surfaces.md), but for
+    /// a light's markers ([`Self::blocks_light`]).
     fn blocks(&self, hit: &Hit) -> bool {
         let object = &self.scene.meshes[hit.id.mesh as usize];
         let base = &self.materials[object.material];
@@ -366,6 +383,7 @@ impl<'a> Shader<'a> {
             materials: scene.effective_materials(),
             precomputed: Precomputed::Phong,
             epsilon: shadow_epsilon(scene),
+            markers: crate::scene::light_markers::passing(scene),
             area,
             offset: (0.0, 0.0),
             footprint_scale: 1.0,
@@ -649,7 +667,7 @@ impl<'a> Shader<'a> {
                     return 0.0;
                 }
                 visibility_where(self.bvh, &lights[l], x, n_offset, self.epsilon, |hit| {
-                    self.blocks(hit)
+                    self.blocks_light(l, hit)
                 })
             },
             |wi| {
@@ -772,7 +790,7 @@ impl super::transmission::Scenery for Shader<'_> {
             return 0.0;
         }
         visibility_where(self.bvh, light, x, face, self.epsilon, |hit| {
-            self.blocks(hit)
+            self.blocks_light(l, hit)
         })
     }
 }

@@ -195,7 +195,25 @@ pub struct ShadowSettings {
     /// Whether `map_size` is the side or the upper bound of a side fitted
     /// to the screen (`src/gpu/shadow_fit.rs`).
     pub resolution: MapResolution,
+    /// Whether the light's markers (`crate::scene::light_markers`) cast
+    /// its shadow.
+    pub markers: LightMarkers,
 }
+
+crate::base::named_enum!(
+    /// What a light's markers do to its shadow (`shadow_markers`): the
+    /// emissive or alpha-blended geometry whose box holds the light (a
+    /// bulb, a lamp's glowing shade, an exporter's light gizmo), which
+    /// would otherwise shadow everything the light reaches.
+    #[derive(Default)]
+    LightMarkers, "light-marker rule" {
+        /// They let the light through (the default).
+        #[default]
+        Pass = "pass",
+        /// They cast its shadow like any other surface.
+        Cast = "cast",
+    }
+);
 
 /// How a shadow map's side is chosen (`shadow_resolution`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -284,6 +302,7 @@ impl Default for ShadowSettings {
             normal_offset: Self::default_normal_offset(filter),
             filter,
             resolution: MapResolution::Fixed,
+            markers: LightMarkers::Pass,
         }
     }
 }

@@ -14,6 +14,7 @@ pub mod environment;
 pub mod environment_mode;
 pub mod gltf_import;
 pub mod light;
+pub mod light_markers;
 pub mod limits;
 pub mod mesh;
 pub mod primitives;
@@ -25,7 +26,7 @@ pub mod texture;
 pub use area_light::AreaLight;
 pub use camera::Camera;
 pub use environment::Environment;
-pub use light::{Light, LightKind, MapResolution, ShadowFilter, ShadowSettings};
+pub use light::{Light, LightKind, LightMarkers, MapResolution, ShadowFilter, ShadowSettings};
 pub use mesh::Mesh;
 pub use shadow_coords::ShadowCoords;
 

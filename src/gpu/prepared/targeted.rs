@@ -75,6 +75,11 @@ impl PreparedScene {
             self.uploads.lights.add(bytes);
             self.refresh_shadows(ctx, cache, scene, plan, key.arrays, false);
         }
+        // A moved light or a material's emission can make or unmake a
+        // marker of a light (its layers are then drawn again).
+        if changes.lights || !edited.is_empty() {
+            self.refresh_markers(scene);
+        }
         // The globals hold the light count and the ambient radiance, the
         // environment's uniform its settings.
         if changes.view || changes.lights || changes.environment {

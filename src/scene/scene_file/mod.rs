@@ -646,10 +646,11 @@ mod tests {
             pcf_kernel: Some(3),
             resolution: Some("fit".into()),
             texels_per_pixel: Some(0.5),
+            markers: Some("cast".into()),
         };
         let section: Vec<_> = keys.to_toml(false);
         let entry: Vec<_> = keys.to_toml(true);
-        assert_eq!(section.len(), 8);
+        assert_eq!(section.len(), 9);
         for ((short, a), (long, b)) in section.iter().zip(&entry) {
             assert_eq!(format!("shadow_{short}"), *long);
             assert_eq!(a, b);

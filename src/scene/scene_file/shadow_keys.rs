@@ -1,7 +1,7 @@
 //! The shadow-map keys, defined once.
 //!
-//! Every `[[lights]]` entry takes `shadows` and eight shadow-map keys
-//! (`shadow_map_size`, ...); `[shadows]` takes the same eight without the
+//! Every `[[lights]]` entry takes `shadows` and nine shadow-map keys
+//! (`shadow_map_size`, ...); `[shadows]` takes the same nine without the
 //! prefix as the defaults of every entry that does not set its own. The
 //! one list below (`with_shadow_keys!`) generates the entries' fields,
 //! the `[shadows]` section, [`ShadowKeys`] (the six as one value, which
@@ -10,7 +10,7 @@
 //! derivations of the defaults: `docs/shadows.md`.
 
 use super::toml_value::TomlValue;
-use crate::scene::{MapResolution, ShadowFilter, ShadowSettings};
+use crate::scene::{LightMarkers, MapResolution, ShadowFilter, ShadowSettings};
 use serde::Deserialize;
 
 /// Calls `$then! { { $args } rows }` with the one list of shadow-map keys;
@@ -29,6 +29,7 @@ macro_rules! with_shadow_keys {
             pcf_kernel shadow_pcf_kernel: u32,
             resolution shadow_resolution: String,
             texels_per_pixel shadow_texels_per_pixel: f64,
+            markers shadow_markers: String,
         }
     };
 }
@@ -187,5 +188,11 @@ pub fn shadow_settings(
         )?,
         filter,
         resolution,
+        markers: match keys.markers.as_deref() {
+            None => LightMarkers::Pass,
+            Some(text) => text
+                .parse::<LightMarkers>()
+                .map_err(|e| format!("{}: {e} (pass: the light's markers let its light through; cast: they shadow it)", name("markers")))?,
+        },
     })
 }
