@@ -3,7 +3,9 @@
 //!
 //! Every edit is a typed value applied to the loaded [`Scene`]:
 //! - material, camera, shading and ambient edits change it in place (a
-//!   slider drag redraws at frame rate; the GPU side writes one buffer);
+//!   slider drag redraws at frame rate; each edit names what it changed,
+//!   `crate::scene::change`, and the GPU rewrites that: one material
+//!   record for a material's value);
 //! - a light edit changes one typed `[[lights]]` entry and runs the
 //!   loader's light step again ([`LightSetup::assemble`]: area lights
 //!   expanded into samples, shadow settings merged with `[shadows]`),
@@ -11,11 +13,11 @@
 //!
 //! Saving writes the file's table with every edit applied, so
 //! `gonio render saved.toml` draws what the viewer shows. Lights can also
-//! be added, removed and retyped (`ui/lights/document.rs`); the environment
-//! map's keys are edited by [`environment`]. Applying an edit by its key
-//! and keeping the edits across a reload (`document/edit.rs`) sit above
-//! those, so this file holds the document and what was loaded, and uses
-//! none of them.
+//! be added, removed and retyped ([`super::lights::document`]); the
+//! environment map's keys are edited by [`super::environment::document`].
+//! Applying an edit by its key and keeping the edits across a reload
+//! ([`super::edit`]) sit above those, so this file holds the document and
+//! what was loaded, and uses none of them.
 
 use crate::material::Material;
 use crate::scene::Scene;

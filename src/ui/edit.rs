@@ -2,7 +2,8 @@
 //! dispatcher over every feature's edits: materials, lights, the
 //! environment, compared materials, shading, tone map, ambient) and
 //! keeping the edits across a reload ([`Document::reload`]). Above the
-//! features it dispatches to (`environment.rs`, `lights.rs`, `ui::compare`).
+//! features it dispatches to ([`super::environment::document`],
+//! [`super::lights::document`], [`super::compare::materials`]).
 
 use super::document::{Document, VARIANT_KEY};
 use crate::scene::change::Change;
