@@ -37,6 +37,11 @@ fn xvfb() -> Command {
 /// Runs `gonio view ARGS --screenshot PATH`; returns the 3D area
 /// `(x, y, w, h)` it reports.
 fn view(args: &[&str], screenshot: &Path) -> (u32, u32, u32, u32) {
+    view_with_output(args, screenshot).0
+}
+
+/// [`view`], with what it printed.
+fn view_with_output(args: &[&str], screenshot: &Path) -> ((u32, u32, u32, u32), String) {
     let gonio = common::gonio();
     let out = xvfb()
         .arg(gonio.get_program())
@@ -65,7 +70,7 @@ fn view(args: &[&str], screenshot: &Path) -> (u32, u32, u32, u32) {
         .filter(|s| !s.is_empty())
         .map(|s| s.parse().unwrap())
         .collect();
-    (nums[0], nums[1], nums[2], nums[3])
+    ((nums[0], nums[1], nums[2], nums[3]), stdout.into_owned())
 }
 
 fn render(args: &[&str], width: u32, height: u32, out: &Path) {
@@ -627,7 +632,7 @@ fn environment_edits_and_drops_reach_the_shader() {
 #[test]
 fn lights_added_and_retyped_in_the_viewer_reach_the_shader() {
     use glam::{DVec2, DVec3};
-    use gonio::ui::screen_projection::ScreenProjection;
+    use gonio::ui::lights::projection::ScreenProjection;
     let dir = tempfile::tempdir().unwrap();
     let (position, aim) = (DVec3::new(-2.0, 2.5, 2.5), DVec3::new(-1.5, 0.0, 1.5));
     let outside = DVec3::new(1.5, 0.0, 1.5);
@@ -1060,4 +1065,97 @@ fn a_material_variant_chosen_in_the_viewer_is_drawn() {
         "{stderr}"
     );
     assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+/// `(calls, bytes)` of kind `kind` in the later frames' uploads that
+/// `gonio view --frame-times` prints (`uploads: … later frames …: geometry
+/// 0 (0 B), …`), and the later frames' total calls.
+fn later_uploads(stdout: &str, kind: &str) -> ((u64, u64), u64) {
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("uploads:"))
+        .unwrap_or_else(|| panic!("no uploads line: {stdout}"));
+    let later = line.split("later frames ").nth(1).unwrap();
+    let total: u64 = later.split(' ').next().unwrap().parse().unwrap();
+    let kinds = later.split_once(": ").unwrap().1;
+    let entry = kinds
+        .split(", ")
+        .find(|e| e.starts_with(&format!("{kind} ")))
+        .unwrap_or_else(|| panic!("no kind `{kind}` in {line}"));
+    let numbers: Vec<u64> = entry
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|t| !t.is_empty())
+        .map(|t| t.parse().unwrap())
+        .collect();
+    ((numbers[0], numbers[1]), total)
+}
+
+/// A material slider on a textured glTF with a shadowed light writes that
+/// material's record (one call, under a kilobyte) and nothing else: not
+/// the vertex stream, not the 2048² textures (134 MB as half floats), no
+/// shadow map drawn again; and the image is `gonio render`'s with the same
+/// value. A light move writes the lights and the shadow views and draws
+/// the map again, nothing of the geometry or the textures; a shading-mode
+/// switch (another vertex stream) does upload the geometry, so the count
+/// is not blind.
+#[test]
+fn a_material_edit_on_a_textured_gltf_uploads_only_its_record() {
+    let dir = tempfile::tempdir().unwrap();
+    let avocado = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/gltf/Avocado/Avocado.gltf"
+    );
+    let light = "lights=[{kind = \"directional\", direction = [-0.4, -1.0, -0.3], irradiance = [3.0, 3.0, 3.0], shadows = true}]";
+    let run = |edit: &str, shot: &Path| {
+        let scripted = format!("3:{edit}");
+        view_with_output(
+            &[
+                avocado,
+                "--set",
+                light,
+                "--size",
+                "320x240",
+                "--no-panel",
+                "--no-overlay",
+                "--frames",
+                "6",
+                "--warmup",
+                "1",
+                "--frame-times",
+                "--edit",
+                &scripted,
+            ],
+            shot,
+        )
+    };
+    let roughness = "materials.2256_Avocado_d.roughness=0.35";
+    let shot = dir.path().join("material.png");
+    let (area, out) = run(roughness, &shot);
+    let ((calls, bytes), total) = later_uploads(&out, "materials");
+    assert_eq!((calls, total), (1, 1), "{out}");
+    assert!(bytes > 0 && bytes < 1024, "{out}");
+    for kind in ["geometry", "textures", "shadow layers drawn", "lights"] {
+        assert_eq!(later_uploads(&out, kind).0, (0, 0), "{kind}: {out}");
+    }
+    let rendered = dir.path().join("material-render.png");
+    render(
+        &[avocado, "--set", light, "--set", roughness],
+        area.2,
+        area.3,
+        &rendered,
+    );
+    assert_matches(&shot, area, &rendered, "avocado-roughness");
+
+    let (_, out) = run(
+        "lights.0.direction=[-0.3, -1.0, -0.4]",
+        &dir.path().join("light.png"),
+    );
+    assert_eq!(later_uploads(&out, "shadow layers drawn").0.0, 1, "{out}");
+    assert_eq!(later_uploads(&out, "lights").0.0, 1, "{out}");
+    for kind in ["geometry", "textures", "materials"] {
+        assert_eq!(later_uploads(&out, kind).0, (0, 0), "{kind}: {out}");
+    }
+
+    let (_, out) = run("shading.mode=flat", &dir.path().join("flat.png"));
+    assert!(later_uploads(&out, "geometry").0.1 > 0, "{out}");
 }

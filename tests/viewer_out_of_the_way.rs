@@ -144,12 +144,15 @@ fn frames_are_drawn_while_the_panels_background_jobs_are_held() {
             stderr.contains("a background job is held"),
             "{case}: no background job was started, so none was held: {stderr}"
         );
-        // Four frames are three intervals, and the first frame's time
-        // after the window opened.
-        assert!(
-            stdout.contains("frame times over 3 frames") && stdout.contains("first frame"),
-            "{case}: {stdout}"
-        );
+        // Frame times are the intervals between frames: 4 frames give 3,
+        // one more for each try whose surface was not ready.
+        let intervals: usize = stdout
+            .split("frame times over ")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("{case}: no frame times: {stdout}"));
+        assert!(intervals >= 3 && stdout.contains("first frame"), "{case}: {stdout}");
     }
 }
 

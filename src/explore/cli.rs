@@ -382,10 +382,7 @@ fn parts(materials: &[Labelled], choice: LayerChoice) -> Vec<(String, MaterialPa
         .iter()
         .flat_map(|m| {
             choice.terms(&m.material).into_iter().map(|term| {
-                let part = MaterialPart {
-                    material: &m.material,
-                    term,
-                };
+                let part = MaterialPart::new(&m.material, term);
                 (term_label(&m.label, term), part)
             })
         })
@@ -428,10 +425,7 @@ fn print_albedo(materials: &[Labelled], choice: LayerChoice, a: &Angles) {
         let terms = choice.terms(&m.material);
         let mut sum = None;
         for &term in &terms {
-            let part = MaterialPart {
-                material: &m.material,
-                term,
-            };
+            let part = MaterialPart::new(&m.material, term);
             let e = super::albedo::albedo_towards(part, wi, &frame());
             println!(
                 "{}: albedo ρ(θ_i = {}°) = {}",

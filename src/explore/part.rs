@@ -6,26 +6,38 @@
 //! albedo, gloss) takes a [`MaterialPart`]; a `&Material` is its whole.
 
 use crate::material::Material;
-use crate::material::brdf::{SurfaceFrame, mirror_reflectance};
+use crate::material::brdf::{Brdf, SurfaceFrame, mirror_reflectance};
 use crate::material::layers::LayerTerm;
 use crate::scene::Rgb;
 use glam::DVec3;
 use std::fmt;
 use std::str::FromStr;
 
-/// A material and the term of its `f_r` evaluated.
+/// A material and the term of its `f_r` evaluated, with the material's
+/// [`Brdf`] built once: every quantity evaluates `f_r` thousands of times,
+/// and building the value is not free (a normalized Gaussian sums a
+/// 1000-term series).
 #[derive(Clone, Copy, Debug)]
 pub struct MaterialPart<'a> {
     pub material: &'a Material,
     pub term: LayerTerm,
+    brdf: Brdf,
 }
 
 impl<'a> From<&'a Material> for MaterialPart<'a> {
     /// The whole material.
     fn from(material: &'a Material) -> Self {
+        MaterialPart::new(material, LayerTerm::All)
+    }
+}
+
+impl<'a> MaterialPart<'a> {
+    /// Term `term` of `material`.
+    pub fn new(material: &'a Material, term: LayerTerm) -> Self {
         MaterialPart {
             material,
-            term: LayerTerm::All,
+            term,
+            brdf: material.brdf(),
         }
     }
 }
@@ -34,8 +46,8 @@ impl MaterialPart<'_> {
     /// The term's `f_r` (one-sided, as `Material::f_r`).
     pub fn f_r(&self, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
         match self.term {
-            LayerTerm::All => self.material.f_r(wi, wo, frame),
-            term => self.material.f_r_term(term, wi, wo, frame),
+            LayerTerm::All => self.brdf.f_r(wi, wo, frame),
+            term => self.brdf.f_r_term(term, wi, wo, frame),
         }
     }
 
@@ -51,7 +63,7 @@ impl MaterialPart<'_> {
 
     /// Whether the part has a Dirac lobe beside its function value.
     pub fn is_dirac(&self) -> bool {
-        matches!(self.term, LayerTerm::All | LayerTerm::Base) && self.material.brdf().is_dirac()
+        matches!(self.term, LayerTerm::All | LayerTerm::Base) && self.brdf.is_dirac()
     }
 }
 
@@ -234,7 +246,7 @@ mod tests {
         let f = frame();
         for theta in [0.0, 40.0, 75.0_f64] {
             let wi = direction(theta.to_radians(), 0.3);
-            let part = |term| MaterialPart { material: &m, term };
+            let part = |term| MaterialPart::new(&m, term);
             let coat = albedo_towards(part(LayerTerm::Clearcoat), wi, &f);
             let direct = albedo_towards(&alone, wi, &f);
             assert_eq!(coat.value, direct.value, "θ_i = {theta}°");

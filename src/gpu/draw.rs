@@ -266,6 +266,25 @@ impl SceneDraw {
         self.arrays
     }
 
+    /// Writes material `index`'s record in place (its slot of the
+    /// materials buffer): what an edit of one material's values changes.
+    /// Returns the bytes written.
+    pub fn write_material(&self, queue: &wgpu::Queue, index: usize, record: &GpuMaterial) -> u64 {
+        let offset = bind_groups::material_offset(index as u32, self.material_stride);
+        let bytes = bytemuck::bytes_of(record);
+        queue.write_buffer(&self.materials_buffer, u64::from(offset), bytes);
+        bytes.len() as u64
+    }
+
+    /// Writes the lights in place, as many as the buffer was made for
+    /// (the same light count and binding). Returns the bytes written.
+    pub fn write_lights(&self, queue: &wgpu::Queue, lights: &[GpuLight]) -> u64 {
+        let bytes = bind_groups::light_bytes(lights, self.arrays.lights);
+        debug_assert_eq!(bytes.len() as u64, self.lights_buffer.size());
+        queue.write_buffer(&self.lights_buffer, 0, &bytes);
+        bytes.len() as u64
+    }
+
     /// Writes the per-view values.
     pub fn write_globals(&self, queue: &wgpu::Queue, globals: &GpuGlobals) {
         queue.write_buffer(&self.globals_buffer, 0, bytemuck::bytes_of(globals));

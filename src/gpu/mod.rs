@@ -24,7 +24,8 @@
 //!   bounded size); [`shadow_maps`] holds a shadow plan's maps and records
 //!   their passes, [`shadow_masks`] the pass of alpha MASK casters;
 //!   [`prepared`] is a scene uploaded once and drawn many
-//!   times (update by what changed, encode a frame);
+//!   times (update by what changed, encode a frame), counting what it
+//!   sends by kind in an [`upload_tally`];
 //! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
 //!   and reads the timestamp queries; [`timing`] names the durations;
 //! * [`offscreen`] is the one-shot render (`scene -> Frame`);
@@ -47,8 +48,9 @@
 //! offscreen   -> prepared pipelines draw scene_parts readback timing
 //!                context texture_pool formats
 //! prepared    -> shadow_maps shadow_culling shadow_masks pipelines
-//!                environment draw scene_parts upload geometry layout
-//!                textures shader_gen shadows context
+//!                environment draw scene_parts upload upload_tally
+//!                geometry bind_groups bindings layout textures
+//!                shader_gen shadows context
 //! shadow_maps -> shadow_culling shadow_masks pipelines draw scene_parts
 //!                bind_groups bindings layout shadows context texture_pool
 //! shadow_masks -> pipelines textures geometry shader_gen
@@ -68,7 +70,7 @@
 //! textures    -> context
 //! context     -> formats texture_pool
 //! layout, bindings, measured_tables, timing, texture_pool, shadow_fit,
-//! formats     -> nothing in gpu/
+//! upload_tally, formats -> nothing in gpu/
 //! ```
 //!
 //! Every edge points down, so there is no circle (`GpuMaterial::new`
@@ -101,9 +103,11 @@ pub mod texture_pool;
 pub mod textures;
 pub mod timing;
 pub mod upload;
+pub mod upload_tally;
 
 pub use context::{AdapterChoice, GpuContext};
 pub use draw::FrameTarget;
 pub use formats::DEPTH_FORMAT;
 pub use prepared::PreparedScene;
 pub use renderer::GpuRenderer;
+pub use upload_tally::UploadTally;

@@ -25,8 +25,11 @@ use super::shadow_maps::{self, ShadowMaps};
 use super::shadow_masks::ShadowMasks;
 use super::shadows::ShadowPlan;
 use super::upload::GpuGeometry;
+use super::upload_tally::UploadTally;
 use crate::scene::Scene;
 use crate::{Error, Result};
+
+mod targeted;
 
 /// A scene's GPU resources, ready to draw into a colour target of
 /// `format`.
@@ -75,6 +78,8 @@ pub struct PreparedScene {
     environment: Option<GpuEnvironment>,
     /// The materials' textures (group 2), when the scene has any.
     textures: Option<super::textures::SceneTextures>,
+    /// What was sent to the GPU since the last [`Self::take_uploads`].
+    uploads: UploadTally,
 }
 
 /// The scene a [`PreparedScene`] is built from, and whether its meshes
@@ -238,6 +243,24 @@ impl PreparedScene {
                 textures.as_ref(),
             )
         });
+        let mut uploads = UploadTally::default();
+        uploads.geometry.add(draw.geometry_bytes);
+        uploads.globals.add(size_of::<GpuGlobals>() as u64);
+        count_parameters(
+            &mut uploads,
+            ctx,
+            arrays,
+            &materials,
+            &measured.data,
+            &lights,
+        );
+        if let Some(t) = &textures {
+            uploads.textures.add(t.bytes);
+            count_slots(&mut uploads, scene);
+        }
+        if environment.is_some() {
+            count_environment(&mut uploads, scene);
+        }
         Ok(PreparedScene {
             key,
             format,
@@ -258,6 +281,7 @@ impl PreparedScene {
             shadow_markers,
             environment,
             textures,
+            uploads,
         })
     }
 
@@ -287,6 +311,7 @@ impl PreparedScene {
             || self.key.materials.alpha_blend
         {
             let (display_scale, cull) = (self.display_scale, self.cull_shadow_casters);
+            let uploads = self.uploads;
             *self = Self::new(
                 ctx,
                 cache,
@@ -297,6 +322,7 @@ impl PreparedScene {
             )?;
             self.display_scale = display_scale;
             self.cull_shadow_casters = cull;
+            self.uploads += uploads;
             return Ok(());
         }
         cache.compile_scene(&key, layout, self.format, self.samples)?;
@@ -306,6 +332,9 @@ impl PreparedScene {
         {
             self.environment =
                 prepare_environment(ctx, cache, &key, scene, self.format, self.samples)?;
+            if self.environment.is_some() {
+                count_environment(&mut self.uploads, scene);
+            }
         }
         self.update_view(ctx, scene);
 
@@ -324,6 +353,14 @@ impl PreparedScene {
             },
             &lights,
         );
+        count_parameters(
+            &mut self.uploads,
+            ctx,
+            arrays,
+            &materials,
+            &measured.data,
+            &lights,
+        );
         let masks_changed = self.shadow_masks.as_ref().is_some_and(|m| {
             m.records() != super::shadow_masks::records(&scene.effective_materials())
         }) || (self.shadows.is_some()
@@ -334,47 +371,8 @@ impl PreparedScene {
                     crate::material::AlphaMode::Mask { .. }
                 )
             }));
-        // A moved light with maps of the same shape rewrites their views
-        // (a light dragged or spinning in the viewer); anything else that
-        // changes the plan makes new maps. Either way they are drawn again;
-        // a change that leaves the plan as it was (a light's colour) does
-        // not touch them.
-        let reusable = self
-            .shadows
-            .as_ref()
-            .filter(|s| !masks_changed && s.holds(&plan, arrays, layout.stride()));
-        if let Some(shadows) = reusable {
-            if plan != self.plan {
-                shadows.write_plan(&ctx.queue, &plan);
-                self.shadows_stale = true;
-                self.plan = plan;
-            }
-        } else if plan != self.plan || masks_changed || arrays != self.key.arrays {
-            self.shadows = ShadowMaps::new(ctx, cache, &plan, arrays, layout.stride());
-            // Textured scenes are prepared anew above: no textures here.
-            self.shadow_masks = self.shadows.as_ref().and_then(|_| {
-                ShadowMasks::new(
-                    &ctx.device,
-                    &ctx.queue,
-                    cache.shadow_pass_group_layout(),
-                    layout,
-                    scene,
-                    None,
-                )
-            });
-            self.shadows_stale = self.shadows.is_some();
-            if self.shadows.is_some() && self.caster_bounds.is_empty() {
-                self.caster_bounds = shadow_culling::object_bounds(self.draw.objects());
-            }
-            self.plan = plan;
-        }
-        // An edit can make or unmake a marker (a light moved into a lamp, a
-        // material's emission): its light's layers are drawn again.
-        let markers = shadow_culling::markers(&self.plan, scene, self.draw.objects());
-        if markers != self.shadow_markers {
-            self.shadow_markers = markers;
-            self.shadows_stale = self.shadows.is_some();
-        }
+        self.refresh_shadows(ctx, cache, scene, plan, arrays, masks_changed);
+        self.refresh_markers(scene);
         self.batch_pipelines = batch_pipelines(
             cache,
             &key,
@@ -385,6 +383,63 @@ impl PreparedScene {
         );
         self.key = key;
         Ok(())
+    }
+
+    /// Brings the shadow maps up to `plan` (bound as `arrays`): a moved
+    /// light with maps of the same shape rewrites their views (a light
+    /// dragged or spinning in the viewer); anything else that changes the
+    /// plan, or the alpha MASK casters (`masks_changed`), makes new maps.
+    /// Either way they are drawn again; a change that leaves the plan as
+    /// it was (a light's colour) does not touch them.
+    fn refresh_shadows(
+        &mut self,
+        ctx: &GpuContext,
+        cache: &mut PipelineCache,
+        scene: &Scene,
+        plan: ShadowPlan,
+        arrays: super::bindings::UniformArrays,
+        masks_changed: bool,
+    ) {
+        let layout = self.draw.layout;
+        let reusable = self
+            .shadows
+            .as_ref()
+            .filter(|s| !masks_changed && s.holds(&plan, arrays, layout.stride()));
+        if let Some(shadows) = reusable {
+            if plan != self.plan {
+                shadows.write_plan(&ctx.queue, &plan);
+                count_shadow_views(&mut self.uploads, &plan, arrays);
+                self.shadows_stale = true;
+                self.plan = plan;
+            }
+        } else if plan != self.plan || masks_changed || arrays != self.key.arrays {
+            self.shadows = ShadowMaps::new(ctx, cache, &plan, arrays, layout.stride());
+            self.shadow_masks = self.shadows.as_ref().and_then(|_| {
+                ShadowMasks::new(
+                    &ctx.device,
+                    &ctx.queue,
+                    cache.shadow_pass_group_layout(),
+                    layout,
+                    scene,
+                    self.textures.as_ref(),
+                )
+            });
+            self.shadows_stale = self.shadows.is_some();
+            if self.shadows.is_some() && self.caster_bounds.is_empty() {
+                self.caster_bounds = shadow_culling::object_bounds(self.draw.objects());
+            }
+            self.plan = plan;
+        }
+    }
+
+    /// An edit can make or unmake a marker (a light moved into a lamp, a
+    /// material's emission): its light's layers are drawn again.
+    fn refresh_markers(&mut self, scene: &Scene) {
+        let markers = shadow_culling::markers(&self.plan, scene, self.draw.objects());
+        if markers != self.shadow_markers {
+            self.shadow_markers = markers;
+            self.shadows_stale = self.shadows.is_some();
+        }
     }
 
     /// Gives this scene's shadow-map array back to `ctx`'s texture pool
@@ -404,9 +459,19 @@ impl PreparedScene {
         let mut globals = GpuGlobals::new(scene);
         globals.display_scale = self.display_scale;
         self.draw.write_globals(&ctx.queue, &globals);
+        self.uploads.globals.add(size_of::<GpuGlobals>() as u64);
         if let Some(environment) = &self.environment {
             environment.write(&ctx.queue, scene);
+            self.uploads
+                .globals
+                .add(size_of::<super::environment::GpuEnvironmentUniform>() as u64);
         }
+    }
+
+    /// What was sent to the GPU since the last call (or since it was
+    /// prepared), by kind; the count starts again at zero.
+    pub fn take_uploads(&mut self) -> UploadTally {
+        std::mem::take(&mut self.uploads)
     }
 
     /// Records the shadow passes (if the maps are stale) and the scene
@@ -459,6 +524,7 @@ impl PreparedScene {
             drawn.shadow_draws_total = self.plan.layers.len() * self.draw.objects().len();
             drawn.shadow_draws_culled = casters.map_or(0, |c| c.culled);
             self.shadows_stale = false;
+            self.uploads.shadow_layers.calls += drawn.shadow_layers as u64;
         }
         drawn
     }
@@ -703,4 +769,53 @@ fn draw_order(batches: usize, blend: &[(usize, glam::DVec3)], scene: &Scene) -> 
     sorted.sort_by(|(_, a), (_, b)| b.distance_squared(eye).total_cmp(&a.distance_squared(eye)));
     order.extend(sorted.into_iter().map(|(i, _)| i));
     order
+}
+
+/// Counts the parameter buffers written whole: every material record (at
+/// the device's stride), the lights, the measured tables if bound.
+fn count_parameters(
+    uploads: &mut UploadTally,
+    ctx: &GpuContext,
+    arrays: super::bindings::UniformArrays,
+    materials: &[super::layout::GpuMaterial],
+    measured: &[f32],
+    lights: &[GpuLight],
+) {
+    let stride = super::bind_groups::material_stride(&ctx.device);
+    uploads.materials.add(materials.len() as u64 * stride);
+    let light_bytes = super::bind_groups::light_bytes(lights, arrays.lights);
+    uploads.lights.add(light_bytes.len() as u64);
+    if arrays.measured && !measured.is_empty() {
+        uploads.measured.add(4 * measured.len() as u64);
+    }
+}
+
+/// Counts every material's texture slots (one uniform buffer each).
+fn count_slots(uploads: &mut UploadTally, scene: &Scene) {
+    let slots = super::textures::MAX_TEXTURE_SLOTS * size_of::<super::textures::GpuTextureSlot>();
+    for _ in &scene.materials {
+        uploads.texture_slots.add(slots as u64);
+    }
+}
+
+/// Counts the environment map's texels (RGBA `f32`) uploaded anew.
+fn count_environment(uploads: &mut UploadTally, scene: &Scene) {
+    if let Some(map) = &scene.environment.map {
+        uploads
+            .environment
+            .add(16 * u64::from(map.data.width) * u64::from(map.data.height));
+    }
+}
+
+/// Counts the layer views and casters of `plan` written in place.
+fn count_shadow_views(
+    uploads: &mut UploadTally,
+    plan: &ShadowPlan,
+    arrays: super::bindings::UniformArrays,
+) {
+    let views = super::bind_groups::shadow_view_bytes(&plan.gpu_views(), arrays.shadow_views);
+    let casters = super::bind_groups::caster_bytes(&plan.casters);
+    uploads
+        .shadow_views
+        .add((views.len() + casters.len()) as u64);
 }

@@ -124,6 +124,23 @@ impl GpuRenderer {
         )
     }
 
+    /// Brings `prepared` up to date with `scene` after `changes`, writing
+    /// only what they reach ([`PreparedScene::apply`]).
+    pub fn apply(
+        &mut self,
+        prepared: &mut PreparedScene,
+        scene: &Scene,
+        changes: &crate::scene::change::Changes,
+    ) -> Result<()> {
+        prepared.apply(
+            &self.ctx,
+            &mut self.pipelines,
+            self.vertex_shadow_coords,
+            scene,
+            changes,
+        )
+    }
+
     /// Writes only the per-view values of `scene`
     /// ([`PreparedScene::update_view`]).
     pub fn update_view(&self, prepared: &mut PreparedScene, scene: &Scene) {

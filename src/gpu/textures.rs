@@ -275,10 +275,23 @@ fn upload(ctx: &GpuContext, image: &Image) -> wgpu::Texture {
     )
 }
 
+/// One material's slots on the GPU, what they hold, and the bindings its
+/// group was made with.
+struct MaterialSlots {
+    buffer: wgpu::Buffer,
+    held: Vec<GpuTextureSlot>,
+    bindings: Vec<(usize, Sampler)>,
+}
+
 /// A scene's textures on the GPU and each material's group 2.
 pub struct SceneTextures {
     /// One bind group per scene material (index for index).
     groups: Vec<wgpu::BindGroup>,
+    /// Per scene material, its slots' uniform buffer and what it holds,
+    /// and the bindings its group was made with: an edit of the material
+    /// rewrites the slots in place ([`Self::write_slots`]) while the
+    /// bindings stay.
+    slots: Vec<MaterialSlots>,
     /// Per scene material, the view and sampler of its texture that
     /// carries alpha (the base colour's), for the masked shadow pass
     /// (src/gpu/shadow_masks.rs).
@@ -340,6 +353,7 @@ impl SceneTextures {
         let default_sampler = device.create_sampler(&sampler_descriptor(&Sampler::default()));
         let materials = scene.effective_materials();
         let mut groups = Vec::with_capacity(materials.len());
+        let mut slot_buffers = Vec::with_capacity(materials.len());
         let mut alpha_textures = Vec::with_capacity(materials.len());
         for m in &materials {
             let slots = material_slots(m)?;
@@ -357,7 +371,7 @@ impl SceneTextures {
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("gonio texture slots"),
                 contents: bytemuck::cast_slice(&slots),
-                usage: wgpu::BufferUsages::UNIFORM,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
             let mut entries = vec![wgpu::BindGroupEntry {
                 binding: 0,
@@ -390,12 +404,49 @@ impl SceneTextures {
                 layout,
                 entries: &entries,
             }));
+            slot_buffers.push(MaterialSlots {
+                buffer,
+                held: slots,
+                bindings,
+            });
         }
         Ok(SceneTextures {
             groups,
+            slots: slot_buffers,
             alpha_textures,
             bytes: scene.images.iter().map(|i| i.gpu_bytes()).sum(),
         })
+    }
+
+    /// Rewrites the slots of material `m` (as rendered: roughness floor
+    /// applied) after an edit, if they changed: returns the bytes written
+    /// (0 when they are as they were), or `None` when the edit changed
+    /// which images or samplers the material reads, which its bind group
+    /// holds (the textures are then made anew).
+    pub fn write_slots(
+        &mut self,
+        queue: &wgpu::Queue,
+        m: usize,
+        material: &crate::material::Material,
+    ) -> Result<Option<u64>> {
+        let Some(MaterialSlots {
+            buffer,
+            held,
+            bindings,
+        }) = self.slots.get_mut(m)
+        else {
+            return Ok(None);
+        };
+        if material_bindings(material) != *bindings {
+            return Ok(None);
+        }
+        let slots = material_slots(material)?;
+        if bytemuck::cast_slice::<_, u8>(&slots) == bytemuck::cast_slice::<_, u8>(held) {
+            return Ok(Some(0));
+        }
+        queue.write_buffer(buffer, 0, bytemuck::cast_slice(&slots));
+        *held = slots;
+        Ok(Some(size_of_val(held.as_slice()) as u64))
     }
 
     /// Group 2 of material `m`.

@@ -140,11 +140,10 @@ impl Material {
     /// points to the light, `wo` to the viewer (both unit).
     ///
     /// One-sided, as the contract says: zero where `N·I ≤ 0` or `N·V ≤ 0`.
+    /// It builds the material's [`Brdf`] on every call: a loop over
+    /// directions builds it once ([`Self::brdf`]) and calls [`Brdf::f_r`].
     pub fn f_r(&self, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
-        if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
-            return Rgb::ZERO;
-        }
-        brdf::eval(&self.brdf(), wi, wo, frame)
+        self.brdf().f_r(wi, wo, frame)
     }
 
     /// One term of `f_r` ([`layers::LayerTerm`]: a `gltf-pbr` layer's
@@ -156,10 +155,7 @@ impl Material {
         wo: DVec3,
         frame: &SurfaceFrame,
     ) -> Rgb {
-        if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
-            return Rgb::ZERO;
-        }
-        brdf::eval_term(&self.brdf(), term, wi, wo, frame)
+        self.brdf().f_r_term(term, wi, wo, frame)
     }
 
     /// The part of the material that decides which shader code runs: the

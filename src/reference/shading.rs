@@ -48,6 +48,8 @@ pub fn reflected_radiance(
         // Its own terms and its base colour; no light, no environment.
         return radiance + brdf::unlit::unlit_radiance(material.base_color);
     }
+    // Built once for every light and direction below.
+    let f = material.brdf();
     for (l, light) in scene.lights.iter().enumerate() {
         let incidence = light.incidence(x);
         let cos_theta_i = n.dot(incidence.wi);
@@ -58,8 +60,7 @@ pub fn reflected_radiance(
         if v <= 0.0 {
             continue;
         }
-        radiance +=
-            material.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
+        radiance += f.f_r(incidence.wi, wo, frame) * incidence.irradiance * (cos_theta_i * v);
     }
     if let Some(map) = &scene.environment.map {
         use super::environment::sampled;
@@ -99,11 +100,7 @@ pub fn reflected_radiance(
                 &map.data.nodes,
                 frame,
                 |wi| {
-                    if whole {
-                        material.f_r(wi, wo, frame)
-                    } else {
-                        diffuse
-                    }
+                    if whole { f.f_r(wi, wo, frame) } else { diffuse }
                 },
                 &environment_visible,
             );

@@ -8,6 +8,7 @@
 pub mod area_light;
 pub mod bvh;
 pub mod camera;
+pub mod change;
 pub mod default_scene;
 pub mod environment;
 pub mod environment_mode;

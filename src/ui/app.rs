@@ -20,6 +20,7 @@ use super::pacing::{Pacing, Wake};
 use super::state::ViewerState;
 use super::surface::{PendingScreenshot, WindowSurface};
 use crate::gpu::{AdapterChoice, FrameTarget, GpuContext, GpuRenderer, PreparedScene};
+use crate::scene::change::Change;
 use crate::{Error, Result};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -168,6 +169,11 @@ pub struct App {
     previous: Option<(Document, Orbit, usize)>,
     /// Wakes the loop from egui's repaint callback (any thread).
     proxy: EventLoopProxy<Wake>,
+    /// What the first frame sent to the GPU (the scene's preparation),
+    /// and what every later frame sent (edits, camera moves, shadow maps
+    /// drawn again): `--frame-times` prints both.
+    first_uploads: Option<crate::gpu::UploadTally>,
+    uploads: crate::gpu::UploadTally,
 }
 
 impl App {
@@ -196,6 +202,41 @@ impl App {
             cursor: (0.0, 0.0),
             last_message: None,
             view_rect: [0, 0, 1, 1],
+            first_uploads: None,
+            uploads: Default::default(),
+        }
+    }
+
+    /// What was sent to the GPU after the first frame, by kind
+    /// ([`crate::gpu::UploadTally`]): a scripted edit's cost.
+    pub fn upload_report(&self) -> String {
+        let first = self.first_uploads.unwrap_or_default();
+        format!(
+            "uploads: first frame {} calls, {} bytes; later frames {} calls, {} bytes: {}",
+            first.calls(),
+            first.bytes(),
+            self.uploads.calls(),
+            self.uploads.bytes(),
+            self.uploads
+        )
+    }
+
+    /// Adds what the prepared scenes sent since the last frame to the
+    /// first frame's count or to the later frames'.
+    fn count_uploads(&mut self) {
+        let Some(gfx) = self.gfx.as_mut() else {
+            return;
+        };
+        let mut sent = crate::gpu::UploadTally::default();
+        for p in [&mut gfx.prepared, &mut gfx.prepared_right]
+            .into_iter()
+            .flatten()
+        {
+            sent += p.take_uploads();
+        }
+        match &mut self.first_uploads {
+            None => self.first_uploads = Some(sent),
+            Some(_) => self.uploads += sent,
         }
     }
 
@@ -400,7 +441,7 @@ impl App {
             self.state.doc = doc;
             self.state.orbit = orbit;
             self.state.selected_material = selected;
-            self.state.dirty = true;
+            self.state.changes.mark(Change::Scene);
             if let Some(gfx) = &mut self.gfx {
                 gfx.prepared = None;
                 gfx.prepared_right = None;
@@ -425,6 +466,7 @@ impl App {
         let measure_gpu = gfx.timestamps.is_some() && self.frames % 10 == 5;
         let view = frame.texture.create_view(&Default::default());
         self.draw_scene(&view, &mut encoder, measure_gpu);
+        self.count_uploads();
         let extra = self.draw_panel(panel, &frame.texture, &view, &mut encoder, measure_gpu);
         self.frames += 1;
         let scripted_last = self.args.frames == Some(self.frames);
@@ -513,8 +555,8 @@ impl App {
                 self.state.section_requests.push(request);
                 continue;
             }
-            self.state.doc.edit(kv)?;
-            self.state.dirty = true;
+            let change = self.state.doc.edit(kv)?;
+            self.state.changes.mark(change);
         }
         let drops: Vec<PathBuf> = self
             .args
@@ -589,7 +631,7 @@ impl App {
         doc.compare = self.state.doc.compare.clone();
         let old = std::mem::replace(&mut self.state.doc, doc);
         self.previous = Some((old, previous_orbit, previous_selection));
-        self.state.dirty = true;
+        self.state.changes.mark(Change::Scene);
     }
 
     /// Fits the scene's image size and camera to the 3D area the panel
@@ -609,17 +651,21 @@ impl App {
         ];
         if rect != self.view_rect {
             self.view_rect = rect;
-            // The roughness floor depends on the image height.
-            self.state.dirty = true;
+            // The roughness floor depends on the image height, the
+            // shadow maps' fit on the image: compared in full.
+            self.state.changes.mark(Change::Scene);
         }
         if self.args.spin != 0.0 {
             self.state.orbit.rotate_degrees(self.args.spin, 0.0);
         }
         if self.args.spin_lights != 0.0 {
             let target = self.state.orbit.camera().target;
-            match super::light_spin::spin_lights(&mut self.state.doc, target, self.args.spin_lights)
-            {
-                Ok(()) => self.state.dirty = true,
+            match super::lights::spin::spin_lights(
+                &mut self.state.doc,
+                target,
+                self.args.spin_lights,
+            ) {
+                Ok(()) => self.state.changes.mark(Change::Lights),
                 Err(e) => self.state.message = Some(e),
             }
         }
@@ -627,7 +673,7 @@ impl App {
         let camera = self.state.orbit.camera();
         if scene.camera != camera {
             scene.camera = camera;
-            self.state.view_dirty = true;
+            self.state.changes.mark(Change::View);
         }
         scene.width = self.view_rect[2];
         scene.height = self.view_rect[3];
@@ -636,7 +682,7 @@ impl App {
     /// Brings the [`PreparedScene`] up to date: prepared anew after a new
     /// document, updated after an edit, only its view after a camera move.
     fn update_gpu_scene(&mut self) -> Result<()> {
-        let (dirty, view_dirty) = (self.state.dirty, self.state.view_dirty);
+        let changes = self.state.changes.take();
         let display_scale = self.state.exposure.exp2() as f32;
         let gfx = self.gfx.as_mut().expect("initialized");
         let format = gfx.surface.config.format;
@@ -648,23 +694,29 @@ impl App {
             scene,
             format,
             display_scale,
-            (dirty, view_dirty),
+            &changes,
             verbose,
         )?;
         // The split view's right half: the same scene with the selected
-        // material replaced (src/ui/compare.rs).
+        // material replaced (src/ui/compare/materials.rs).
         let right = self.state.doc.compare.right_half().cloned();
         let selected = self.state.selected_material;
+        // Its changes: the scene's, and the compared material in place
+        // of the selected one.
+        let mut right_changes = changes.clone();
+        if right_changes.compared {
+            right_changes.mark(Change::Material(selected));
+        }
         let right_message = match right {
             Some(other) if selected < scene.materials.len() => {
-                super::compare::with_material(scene, selected, &other, |scene| {
+                super::compare::materials::with_material(scene, selected, &other, |scene| {
                     bring_up_to_date(
                         &mut gfx.renderer,
                         &mut gfx.prepared_right,
                         scene,
                         format,
                         display_scale,
-                        (dirty, view_dirty),
+                        &right_changes,
                         false,
                     )
                 })?
@@ -677,8 +729,6 @@ impl App {
         if let Some(m) = message.or(right_message) {
             self.state.message = Some(m);
         }
-        self.state.dirty = false;
-        self.state.view_dirty = false;
         Ok(())
     }
 
@@ -936,10 +986,22 @@ impl App {
     /// The 3D view's mouse and keys; returns whether the event may have
     /// changed what is drawn.
     fn on_view_input(&mut self, event: &WindowEvent) -> bool {
-        // The light handles take the mouse first (super::light_drag).
+        // The light handles take the mouse first (super::lights::drag).
         let ppp = self.window.as_ref().map_or(1.0, |w| w.scale_factor());
-        let lights =
-            super::light_input::on_input(&mut self.state, self.view_rect, self.cursor, ppp, event);
+        let state = &mut self.state;
+        let pointer = super::lights::input::Pointer {
+            view_rect: self.view_rect,
+            cursor: self.cursor,
+            pixels_per_point: ppp,
+            overlay_shown: state.show_overlay,
+        };
+        let mut shared = super::shared::Shared {
+            doc: &mut state.doc,
+            changes: &mut state.changes,
+            message: &mut state.message,
+        };
+        let camera = state.orbit.camera();
+        let lights = state.lights.on_input(&mut shared, &camera, pointer, event);
         if let Some(acted) = lights {
             if let WindowEvent::CursorMoved { position, .. } = event {
                 self.cursor = (position.x, position.y);
@@ -993,7 +1055,7 @@ impl App {
                         "+" | "=" => self.state.orbit.zoom(1.0),
                         "-" => self.state.orbit.zoom(-1.0),
                         "p" | "P" => self.state.show_panel = !self.state.show_panel,
-                        "l" | "L" => self.state.lights_view.visible ^= true,
+                        "l" | "L" => self.state.lights.visible ^= true,
                         _ => {}
                     },
                     _ => {}
@@ -1006,16 +1068,17 @@ impl App {
 }
 
 /// Brings `prepared` up to date with `scene`: prepared anew when there is
-/// none, updated after an edit (`dirty.0`), only its view after a camera
-/// move (`dirty.1`) or a new exposure. Returns a message for an edit the
-/// GPU refused (the scene stays as it was drawn).
+/// none, else given `changes` (each kind writes only what it reaches:
+/// [`GpuRenderer::apply`]), only its view after a camera move or a new
+/// exposure. Returns a message for an edit the GPU refused (the scene
+/// stays as it was drawn).
 fn bring_up_to_date(
     renderer: &mut GpuRenderer,
     prepared: &mut Option<PreparedScene>,
     scene: &crate::scene::Scene,
     format: wgpu::TextureFormat,
     display_scale: f32,
-    (dirty, view_dirty): (bool, bool),
+    changes: &crate::scene::change::Changes,
     verbose: bool,
 ) -> Result<Option<String>> {
     // image.msaa, as `gonio render` draws it, or one sample with a word
@@ -1036,20 +1099,22 @@ fn bring_up_to_date(
     match prepared {
         None => {
             let mut p = renderer.prepare_with_samples(scene, format, samples)?;
+            // Prepared with the scene's own values: only the exposure is
+            // the viewer's.
             p.display_scale = display_scale;
-            renderer.update(&mut p, scene)?;
+            renderer.update_view(&mut p, scene);
             if verbose {
                 eprintln!("shader: {}", p.key.describe());
             }
             *prepared = Some(p);
         }
-        Some(p) if dirty => {
+        Some(p) if !changes.is_empty() && !changes.view_only() => {
             p.display_scale = display_scale;
-            if let Err(e) = renderer.update(p, scene) {
+            if let Err(e) = renderer.apply(p, scene, changes) {
                 return Ok(Some(e.to_string()));
             }
         }
-        Some(p) if view_dirty || p.display_scale != display_scale => {
+        Some(p) if changes.view || p.display_scale != display_scale => {
             p.display_scale = display_scale;
             renderer.update_view(p, scene);
         }
@@ -1077,7 +1142,7 @@ impl ApplicationHandler<Wake> for App {
             WindowEvent::Resized(size) => {
                 let ctx = gfx.renderer.context();
                 gfx.surface.resize(ctx, size.width, size.height);
-                self.state.dirty = true;
+                self.state.changes.mark(Change::View);
             }
             WindowEvent::DroppedFile(path) => self.state.drop_file(path.clone()),
             WindowEvent::RedrawRequested => {

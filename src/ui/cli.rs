@@ -60,7 +60,8 @@ pub struct ViewArgs {
     #[arg(long, value_name = "PNG")]
     pub screenshot: Option<PathBuf>,
     /// Print frame-time statistics (median, quartiles) at exit, over the
-    /// frames after the first `--warmup`.
+    /// frames after the first `--warmup`, and what was sent to the GPU
+    /// by kind (calls and bytes) in the first frame and in the later ones.
     #[arg(long)]
     pub frame_times: bool,
     /// Frames excluded from `--frame-times` (pipeline compilation, shadow
@@ -107,7 +108,7 @@ pub struct ViewArgs {
     /// Orbit every `[[lights]]` entry about the vertical axis through the
     /// camera's target by this many degrees per frame, so the shadow maps
     /// are drawn anew every frame (scripted runs that measure a moving
-    /// light; src/ui/light_spin.rs).
+    /// light; src/ui/lights/spin.rs).
     #[arg(
         long,
         default_value_t = 0.0,

@@ -3,7 +3,9 @@
 //!
 //! Every edit is a typed value applied to the loaded [`Scene`]:
 //! - material, camera, shading and ambient edits change it in place (a
-//!   slider drag redraws at frame rate; the GPU side writes one buffer);
+//!   slider drag redraws at frame rate; each edit names what it changed,
+//!   `crate::scene::change`, and the GPU rewrites that: one material
+//!   record for a material's value);
 //! - a light edit changes one typed `[[lights]]` entry and runs the
 //!   loader's light step again ([`LightSetup::assemble`]: area lights
 //!   expanded into samples, shadow settings merged with `[shadows]`),
@@ -11,15 +13,11 @@
 //!
 //! Saving writes the file's table with every edit applied, so
 //! `gonio render saved.toml` draws what the viewer shows. Lights can also
-//! be added, removed and retyped (`document/lights.rs`); the environment
-//! map's keys are edited by [`environment`]. Applying an edit by its key
-//! and keeping the edits across a reload (`document/edit.rs`) sit above
-//! those, so this file holds the document and what was loaded, and uses
-//! none of them.
-
-mod edit;
-pub mod environment;
-mod lights;
+//! be added, removed and retyped ([`super::lights::document`]); the
+//! environment map's keys are edited by [`super::environment::document`].
+//! Applying an edit by its key and keeping the edits across a reload
+//! ([`super::edit`]) sit above those, so this file holds the document and
+//! what was loaded, and uses none of them.
 
 use crate::material::Material;
 use crate::scene::Scene;
@@ -39,7 +37,7 @@ pub struct Document {
     /// The scene as loaded, with edits applied.
     pub scene: Scene,
     /// Materials as loaded (to tell which ones were edited).
-    loaded_materials: Vec<Material>,
+    pub(in crate::ui) loaded_materials: Vec<Material>,
     /// The camera as loaded (the viewer's orbit starts and resets there).
     pub loaded_camera: crate::scene::Camera,
     /// Names of the scene file's own `[materials]` (those a saved file can
@@ -54,18 +52,18 @@ pub struct Document {
     pub lights: LightSetup,
     /// The `[[lights]]` entries as loaded, written out (to tell which ones
     /// were edited).
-    loaded_lights: Vec<toml::Table>,
+    pub(in crate::ui) loaded_lights: Vec<toml::Table>,
     /// Modification time of the scene file when loaded (reload on change).
     modified: Option<SystemTime>,
     /// The `[environment]` map keys while the map is switched off in the
-    /// viewer (`super::environment`); `None` while it is on.
+    /// viewer ([`super::environment`]); `None` while it is on.
     pub parked_environment: Option<toml::Table>,
     /// The `[environment]` map keys as loaded (to tell whether the
-    /// environment was edited: `super::environment::edited`).
-    pub(super) loaded_environment: toml::Table,
+    /// environment was edited: `super::environment::document::edited`).
+    pub(in crate::ui) loaded_environment: toml::Table,
     /// Materials compared with the selected one (not part of the scene
-    /// file; [`super::compare`]).
-    pub compare: super::compare::Compare,
+    /// file, kept across a reload; [`super::compare`]).
+    pub compare: super::compare::materials::Compare,
     /// The glTF files' material variants (`KHR_materials_variants`), each
     /// once: the panel's variant choice ([`Document::with_variant`]).
     pub variants: Vec<String>,

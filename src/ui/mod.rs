@@ -2,31 +2,29 @@
 //! panel, drawn by the same [`crate::gpu::GpuRenderer`] as `gonio render`
 //! (through a [`crate::gpu::PreparedScene`] that lives across frames).
 //!
-//! [`app`] runs the window loop, [`view`] lays out the panel whose
-//! sections are in [`panels`] and [`plots`], [`state`] is what the panel
-//! edits, [`document`] holds the scene and its edits ([`save`] writes them
-//! as a scene file; [`document::environment`] edits its map; an edit's
-//! value is read by [`edit_values`]; [`compare`] holds the materials
-//! compared with the selected one), [`orbit`] moves the camera,
-//! [`surface`] owns the swapchain and screenshots. Lights are listed and
-//! edited by [`lights_section`] (new ones and kinds from [`light_kinds`]),
-//! drawn over the 3D view by [`light_overlay`] and dragged by
-//! [`light_drag`] (the mouse reaches it through [`light_input`]), both
-//! through [`screen_projection`].
+//! Arranged by feature. [`app`] runs the window loop, [`view`] lays out
+//! the panel, [`state`] holds what the viewer keeps between frames (the
+//! document, the camera's [`orbit`], the sections), [`shared`] is what
+//! every section edits besides its own state. [`document`] holds the
+//! scene as loaded and its edits, [`edit`] applies one `KEY=VALUE` edit
+//! and keeps the edits across a reload ([`edit_values`] reads a value,
+//! [`save`] writes the scene file). Each feature is a folder whose panel
+//! section is a state struct with its own `ui`: [`lights`] (the section,
+//! kinds, overlay, handles, spin, the document's list edits),
+//! [`environment`] (the map's section and edits), [`compare`] (compared
+//! materials, the split view, fits); the material and view sections'
+//! widgets are in [`panels`], the plots in [`plots`]. [`surface`] owns
+//! the swapchain and screenshots.
 
 pub mod app;
 pub mod background;
 pub mod cli;
 pub mod compare;
 pub mod document;
+pub mod edit;
 pub mod edit_values;
-pub mod fitted;
-pub mod light_drag;
-pub mod light_input;
-pub mod light_kinds;
-pub mod light_overlay;
-pub mod light_spin;
-pub mod lights_section;
+pub mod environment;
+pub mod lights;
 pub mod memory;
 pub mod orbit;
 pub mod pacing;
@@ -34,7 +32,7 @@ pub mod panel_cache;
 pub mod panels;
 pub mod plots;
 pub mod save;
-pub mod screen_projection;
+pub mod shared;
 pub mod state;
 pub mod surface;
 pub mod view;
@@ -123,6 +121,7 @@ pub fn run(args: ViewArgs, chosen: Vec<String>) -> Result<()> {
         .map_err(|e| Error::NoDisplay(format!("the window loop failed: {e}")))?;
     if report {
         println!("{}", app.frame_time_report());
+        println!("{}", app.upload_report());
     }
     app.result
 }
@@ -138,7 +137,7 @@ fn add_compared(doc: &mut document::Document, args: &ViewArgs) -> Result<()> {
     }
     if let Some(text) = &args.compare_fit {
         let flag = format!("--compare-fit {text}");
-        let model = fitted::model(text).map_err(|p| Error::argument(&flag, p))?;
+        let model = compare::fitted::model(text).map_err(|p| Error::argument(&flag, p))?;
         let Some(first) = doc.scene.materials.first() else {
             return Err(Error::argument(flag, "the scene has no material"));
         };
@@ -155,8 +154,8 @@ fn add_compared(doc: &mut document::Document, args: &ViewArgs) -> Result<()> {
             }
         };
         let start = std::time::Instant::now();
-        let stored = fitted::stored(&brdf.name, &model).is_some();
-        let m = fitted::fit(brdf, &model).map_err(|p| Error::argument(&flag, p))?;
+        let stored = compare::fitted::stored(&brdf.name, &model).is_some();
+        let m = compare::fitted::fit(brdf, &model).map_err(|p| Error::argument(&flag, p))?;
         if !stored {
             eprintln!(
                 "gonio view: {} is not in docs/fit/fits.toml; fitted now in {:.1} s",

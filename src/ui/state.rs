@@ -1,12 +1,16 @@
-//! The viewer's state apart from the GPU: the document, the camera orbit,
-//! the panel's settings and requests, and the frame statistics it shows.
-//! The panel ([`super::view`]) edits it; the window loop
-//! ([`super::app`]) acts on it.
+//! The viewer's state apart from the GPU: what is shared (the document,
+//! the changes the GPU must see, the message line, the camera orbit, the
+//! selected material, the window's switches and requests, the frame
+//! statistics) and the sections that keep their own state (lights,
+//! environment, compare, plots), each laid out by its own `ui`. The panel
+//! ([`super::view`]) edits it; the window loop ([`super::app`]) acts on
+//! it.
 
 use super::cli::ViewArgs;
 use super::document::Document;
 use super::orbit::Orbit;
 use super::plots::Plots;
+use crate::scene::change::Changes;
 use crate::scene::scene_file::SceneSource;
 use std::path::PathBuf;
 
@@ -20,38 +24,33 @@ pub struct ViewerState {
     pub vsync: bool,
     pub show_panel: bool,
     pub show_overlay: bool,
-    /// The lights drawn over the 3D view, and the one being dragged.
-    pub lights_view: super::light_drag::LightsView,
+    /// The Lights section: the lights drawn over the 3D view, and the one
+    /// being dragged.
+    pub lights: super::lights::section::LightsSection,
     /// The last problem (rejected value, bad file), shown until dismissed.
     pub message: Option<String>,
     /// A new document to switch to (opened, dropped, reloaded).
     pub replace: Option<Document>,
-    /// Something changed that the GPU must see.
-    pub dirty: bool,
-    /// Only the view changed (camera, size, exposure): globals only.
-    pub view_dirty: bool,
+    /// What changed since the GPU last saw the scene: each edit names
+    /// its kind, and the GPU rewrites only that.
+    pub changes: Changes,
     pub screenshot_path: PathBuf,
     pub screenshot_requested: bool,
     pub save_path: String,
     pub open_path: String,
     pub open_dialog: bool,
-    /// The environment map path field of the panel.
-    pub environment_path: String,
+    /// The Environment section (its map path field).
+    pub environment: super::environment::section::EnvironmentSection,
     /// Frame-time statistics shown in the overlay.
     pub frame_ms: f64,
     pub gpu_ms: Option<f64>,
     pub adapter: String,
-    /// The fit model the compare section's combo shows.
     /// Sections of the panel a script opens (and scrolls to the top) or
     /// closes at the next frame: `--edit N:panel.show=Plots`,
     /// `panel.hide=Lights` ([`super::view::SECTIONS`]).
     pub section_requests: Vec<(&'static str, bool)>,
-    pub fit_choice: String,
-    /// A fit under way in the background: its label and result.
-    pub fitting: Option<(
-        String,
-        std::sync::mpsc::Receiver<Result<crate::material::Material, String>>,
-    )>,
+    /// The Compare section (the fit model's choice, a fit under way).
+    pub compare: super::compare::section::CompareSection,
 }
 
 impl ViewerState {
@@ -65,11 +64,10 @@ impl ViewerState {
             vsync: !args.no_vsync,
             show_panel: !args.no_panel,
             show_overlay: !args.no_overlay,
-            lights_view: Default::default(),
+            lights: Default::default(),
             message: None,
             replace: None,
-            dirty: true,
-            view_dirty: true,
+            changes: Changes::everything(),
             screenshot_path: args
                 .screenshot
                 .clone()
@@ -78,12 +76,11 @@ impl ViewerState {
             save_path: "gonio-view.toml".into(),
             open_path: String::new(),
             open_dialog: false,
-            environment_path: String::new(),
+            environment: Default::default(),
             frame_ms: 0.0,
             gpu_ms: None,
             adapter: String::new(),
-            fit_choice: "ct-ggx-conductor".into(),
-            fitting: None,
+            compare: Default::default(),
             section_requests: Vec::new(),
         }
     }
@@ -91,65 +88,15 @@ impl ViewerState {
     /// Whether work is under way in the background (plots' integrals, a
     /// fit) whose result the window will show.
     pub fn busy(&self) -> bool {
-        self.plots.busy() || self.fitting.is_some()
-    }
-
-    /// Starts fitting `model` to the selected material (measured) in the
-    /// background, or adds the stored fit at once.
-    pub fn add_fit(&mut self, ctx: &egui::Context, model: &str) {
-        let fitted = super::fitted::model(model);
-        let selected = self.doc.scene.materials.get(self.selected_material);
-        let (model, brdf) = match (fitted, selected.and_then(|m| m.measured_brdf())) {
-            (Ok(model), Some(brdf)) => (model, brdf),
-            (Err(p), _) => return self.message = Some(p),
-            (_, None) => {
-                return self.message = Some("the selected material is not measured".into());
-            }
-        };
-        if let Some(m) = super::fitted::stored(&brdf.name, &model) {
-            self.doc.compare.add(m);
-            self.dirty = true;
-            return;
-        }
-        let label = format!("{} to {}", model.label(), brdf.name);
-        let (tx, rx) = std::sync::mpsc::channel();
-        let ctx = ctx.clone();
-        super::background::spawn(move || {
-            let _ = tx.send(super::fitted::fit_now(brdf, &model));
-            ctx.request_repaint();
-        });
-        self.fitting = Some((label, rx));
-    }
-
-    /// A finished background fit joins the compared materials.
-    pub fn collect_fit(&mut self) {
-        let Some((_, rx)) = &self.fitting else {
-            return;
-        };
-        match rx.try_recv() {
-            Ok(Ok(m)) => {
-                self.doc.compare.add(m);
-                self.dirty = true;
-                self.fitting = None;
-            }
-            Ok(Err(p)) => {
-                self.message = Some(format!("no fit: {p}"));
-                self.fitting = None;
-            }
-            Err(std::sync::mpsc::TryRecvError::Empty) => {}
-            Err(std::sync::mpsc::TryRecvError::Disconnected) => {
-                self.message = Some("the fit stopped without a result".into());
-                self.fitting = None;
-            }
-        }
+        self.plots.busy() || self.compare.busy()
     }
 
     /// A file dropped on the window: a `.hdr` or `.exr` becomes the
     /// environment map, anything else is opened as a scene.
     pub fn drop_file(&mut self, path: PathBuf) {
-        if super::document::environment::is_map_file(&path) {
-            self.environment_path = path.display().to_string();
-            self.edit(&super::document::environment::map_assignment(&path));
+        if super::environment::document::is_map_file(&path) {
+            self.environment.path = path.display().to_string();
+            self.edit(&super::environment::document::map_assignment(&path));
         } else {
             self.open(path);
         }
@@ -158,9 +105,15 @@ impl ViewerState {
     /// Applies one panel edit to the document (`Document::edit`): redrawn
     /// if it applies, else the reason is shown and nothing changes.
     pub fn edit(&mut self, assignment: &str) {
-        match self.doc.edit(assignment) {
-            Ok(()) => self.dirty = true,
-            Err(e) => self.message = Some(format!("not applied: {e}")),
+        self.shared().edit(assignment);
+    }
+
+    /// What every section edits: the document, the changes, the message.
+    pub fn shared(&mut self) -> super::shared::Shared<'_> {
+        super::shared::Shared {
+            doc: &mut self.doc,
+            changes: &mut self.changes,
+            message: &mut self.message,
         }
     }
 

@@ -3,10 +3,24 @@
 //! Returns the 3D area (what the panel leaves), which the scene fills.
 
 use super::panels;
+use super::shared::Shared;
 use super::state::ViewerState;
 use crate::material::ROUGHNESS_FLOOR;
+use crate::scene::change::Change;
 use crate::scene::scene_file::SceneSource;
 use std::path::{Path, PathBuf};
+
+/// The [`Shared`] part of `state` (its fields borrowed one by one, so a
+/// section of `state` can be borrowed beside it).
+macro_rules! shared {
+    ($state:expr) => {
+        Shared {
+            doc: &mut $state.doc,
+            changes: &mut $state.changes,
+            message: &mut $state.message,
+        }
+    };
+}
 
 /// Lays out one frame of the UI; returns the 3D area in points.
 pub fn ui(ui: &mut egui::Ui, state: &mut ViewerState, panel_width: f32) -> egui::Rect {
@@ -60,11 +74,19 @@ fn side_panel(ui: &mut egui::Ui, state: &mut ViewerState) {
         let shown = header.show(ui, |ui| match name {
             "File" => file_section(ui, state),
             "View" => view_section(ui, state),
-            "Environment" => environment_section(ui, state),
+            "Environment" => state.environment.ui(ui, &mut shared!(state)),
             "Material" => material_section(ui, state),
-            "Compare" => compare_section(ui, state),
+            "Compare" => {
+                let mut cx = super::compare::section::CompareContext {
+                    compare: &mut state.doc.compare,
+                    selected: state.doc.scene.materials.get(state.selected_material),
+                    changes: &mut state.changes,
+                    message: &mut state.message,
+                };
+                state.compare.ui(ui, &mut cx)
+            }
             "Plots" => plots_section(ui, state),
-            _ => super::lights_section::lights_section(ui, state),
+            _ => state.lights.ui(ui, &mut shared!(state)),
         });
         if request == Some(true) {
             shown.header_response.scroll_to_me(Some(egui::Align::Min));
@@ -109,21 +131,6 @@ pub fn section_request(key: &str, value: &str) -> Result<(&'static str, bool), S
                 SECTIONS.join(", ")
             )
         })
-}
-
-fn environment_section(ui: &mut egui::Ui, state: &mut ViewerState) {
-    let doc = &state.doc;
-    let off = super::document::environment::is_off(doc);
-    let settings = doc.scene.environment.map.as_ref().map(|m| m.settings);
-    if let Some(m) = &doc.scene.environment.map
-        && state.environment_path.is_empty()
-    {
-        state.environment_path = m.data.name.clone();
-    }
-    let edits = panels::environment_editor(ui, settings, off, &mut state.environment_path);
-    for edit in edits {
-        state.edit(&edit);
-    }
 }
 
 fn file_section(ui: &mut egui::Ui, state: &mut ViewerState) {
@@ -174,7 +181,7 @@ fn view_section(ui: &mut egui::Ui, state: &mut ViewerState) {
     egui::Grid::new("view").num_columns(2).show(ui, |ui| {
         ui.label("shading");
         if panels::shading_mode(ui, &mut state.doc.scene.shading) {
-            state.dirty = true;
+            state.changes.mark(Change::Scene);
         }
         ui.end_row();
         ui.label("exposure (stops)");
@@ -191,12 +198,13 @@ fn view_section(ui: &mut egui::Ui, state: &mut ViewerState) {
                 }
             });
         if *tone_map != before {
-            state.view_dirty = true;
+            // Compiled into the background's module: compared in full.
+            state.changes.mark(Change::Scene);
         }
         ui.end_row();
         ui.label("ambient L_a");
         if panels::radiance(ui, &mut state.doc.scene.ambient) {
-            state.dirty = true;
+            state.changes.mark(Change::View);
         }
         ui.end_row();
         ui.label("vsync");
@@ -231,8 +239,10 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
             }
         });
     if state.selected_material != before && state.doc.compare.right_half().is_some() {
-        // The split view's right half replaces the selected material.
-        state.dirty = true;
+        // The split view's right half replaces the selected material:
+        // the one selected before is its own again.
+        state.changes.mark(Change::Material(before));
+        state.changes.mark(Change::Compared);
     }
     let mut edited = materials[state.selected_material].clone();
     let changed = panels::material_editor(ui, &mut edited);
@@ -249,7 +259,9 @@ fn material_section(ui: &mut egui::Ui, state: &mut ViewerState) {
         match edited.validate() {
             Ok(()) => {
                 materials[state.selected_material] = edited;
-                state.dirty = true;
+                state
+                    .changes
+                    .mark(Change::Material(state.selected_material));
             }
             Err(problem) => state.message = Some(format!("not applied: {problem}")),
         }
@@ -286,50 +298,6 @@ fn variant_choice(ui: &mut egui::Ui, state: &mut ViewerState) {
     }
 }
 
-fn compare_section(ui: &mut egui::Ui, state: &mut ViewerState) {
-    state.collect_fit();
-    let selected = state
-        .doc
-        .scene
-        .materials
-        .get(state.selected_material)
-        .cloned();
-    let measured = selected
-        .as_ref()
-        .is_some_and(|m| m.model == crate::material::ReflectanceModel::Measured);
-    let fitting = state.fitting.as_ref().map(|(label, _)| label.clone());
-    let (changed, request, problem) = panels::compare_editor(
-        ui,
-        &mut state.doc.compare,
-        measured,
-        &mut state.fit_choice,
-        fitting.as_deref(),
-    );
-    if changed {
-        state.dirty = true;
-    }
-    if problem.is_some() {
-        state.message = problem;
-    }
-    match request {
-        Some(panels::CompareRequest::AddCopy) => {
-            if let Some(mut m) = selected {
-                m.name = format!("{} (copy)", m.name);
-                state.doc.compare.add(m);
-                state.dirty = true;
-            }
-        }
-        Some(panels::CompareRequest::AddFit(model)) => {
-            let ctx = ui.ctx().clone();
-            state.add_fit(&ctx, &model);
-        }
-        None => {}
-    }
-    if state.doc.compare.materials.is_empty() {
-        ui.small("Compare the selected material with others: every plot overlays them, and the 3D view splits (left: as it is, right: the compared material in its place).");
-    }
-}
-
 /// The plots of the selected material and the compared ones, as the
 /// renderers evaluate them, as `gonio brdf` does (explore::spec):
 /// roughness no smaller than the floor. Unfloored, a roughness of 1e-6
@@ -360,12 +328,12 @@ fn panels_series(m: &crate::material::Material) -> (super::plots::Series, bool) 
 }
 
 fn overlay(ui: &mut egui::Ui, state: &ViewerState, area: egui::Rect) {
-    if state.lights_view.visible {
+    if state.lights.visible {
         // The orbit's camera: the scene's is set from it after the panel.
         let camera = state.orbit.camera();
-        let active = state.lights_view.drag.map(|d| d.index);
+        let active = state.lights.drag.map(|d| d.index);
         let pointer = ui.ctx().pointer_hover_pos();
-        super::light_overlay::draw(ui.painter(), &state.doc, &camera, area, active, pointer);
+        super::lights::overlay::draw(ui.painter(), &state.doc, &camera, area, active, pointer);
     }
     let gpu = state
         .gpu_ms

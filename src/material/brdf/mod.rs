@@ -31,6 +31,29 @@ use crate::base::Rgb;
 pub use crate::base::frame::{SurfaceFrame, any_tangent};
 use glam::DVec3;
 
+impl Brdf {
+    /// The BRDF `f_r(ω_i, ω_o)` [1/sr] in the shading frame `frame`, one
+    /// sided (zero where `N·I ≤ 0` or `N·V ≤ 0`): what
+    /// [`Material::f_r`] returns, from a value built once. Building it
+    /// is not free (a normalized Gaussian sums a 1000-term series), so a
+    /// loop over directions builds it once with [`Material::brdf`] and
+    /// calls this.
+    pub fn f_r(&self, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
+        if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
+            return Rgb::ZERO;
+        }
+        eval(self, wi, wo, frame)
+    }
+
+    /// One term of [`Self::f_r`] ([`eval_term`]), one-sided as it.
+    pub fn f_r_term(&self, term: LayerTerm, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
+        if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
+            return Rgb::ZERO;
+        }
+        eval_term(self, term, wi, wo, frame)
+    }
+}
+
 /// `f_r` of `brdf` for `N·I > 0`, `N·V > 0` (checked by the caller,
 /// [`Material::f_r`]). The mirror's Dirac lobe is not a function value:
 /// only its diffuse part is returned here (see [`mirror_reflectance`]).

@@ -66,6 +66,7 @@ pub fn estimate(map: &EnvironmentMap, material: &Material, frame: &SurfaceFrame,
     // tangent the mesh has.
     let t = any_tangent(frame.n);
     let b = frame.n.cross(t);
+    let brdf = material.brdf();
     let mut sum = Rgb::ZERO;
     for k in 0..n {
         let from_lobe = k >= n_c;
@@ -84,7 +85,7 @@ pub fn estimate(map: &EnvironmentMap, material: &Material, frame: &SurfaceFrame,
         };
         let mixture = n_c as f64 * cos.max(0.0) * FRAC_1_PI + n_b as f64 * p_b;
         if cos > 0.0 && mixture > 0.0 {
-            sum += material.f_r(wi, wo, frame) * map.radiance(wi) * (cos / mixture);
+            sum += brdf.f_r(wi, wo, frame) * map.radiance(wi) * (cos / mixture);
         }
     }
     sum
@@ -98,13 +99,14 @@ pub fn integrated(
     frame: &SurfaceFrame,
     wo: DVec3,
 ) -> Rgb {
+    let brdf = material.brdf();
     let mut sum = Rgb::ZERO;
     for node in nodes {
         // The node's direction in world space (the map turned).
         let wi = map.from_map(node.direction);
         let cos = frame.n.dot(wi);
         if cos > 0.0 {
-            sum += material.f_r(wi, wo, frame) * node.radiance * (cos * node.weight);
+            sum += brdf.f_r(wi, wo, frame) * node.radiance * (cos * node.weight);
         }
     }
     sum * map.settings.scale

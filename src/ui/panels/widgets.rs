@@ -14,7 +14,7 @@ pub fn radiance(ui: &mut egui::Ui, value: &mut Rgb) -> bool {
     triple(ui, value, 0.005, 0.0..=1e6)
 }
 
-pub(super) fn combo<T: Copy + PartialEq>(
+pub fn combo<T: Copy + PartialEq>(
     ui: &mut egui::Ui,
     id: &str,
     value: &mut T,
@@ -36,7 +36,7 @@ pub(super) fn combo<T: Copy + PartialEq>(
 }
 
 /// A logarithmic slider for a positive parameter.
-pub(super) fn log_slider(
+pub fn log_slider(
     ui: &mut egui::Ui,
     value: &mut f64,
     range: std::ops::RangeInclusive<f64>,
@@ -83,7 +83,7 @@ pub(super) fn triple(
     changed
 }
 
-pub(super) fn triple_array(ui: &mut egui::Ui, value: &mut [f64; 3], speed: f64) -> bool {
+pub fn triple_array(ui: &mut egui::Ui, value: &mut [f64; 3], speed: f64) -> bool {
     let mut changed = false;
     ui.horizontal(|ui| {
         for c in value.iter_mut() {

@@ -253,7 +253,7 @@ fn probe(key: &str, text: &str) -> Result<Option<(f64, f64)>, String> {
 
 /// The explorer's view of a cached term.
 fn part(m: &Material, term: LayerTerm) -> MaterialPart<'_> {
-    MaterialPart { material: m, term }
+    MaterialPart::new(m, term)
 }
 
 fn term(one: &Series) -> Term {

@@ -30,10 +30,7 @@ impl Series {
 
     /// What the explorer evaluates.
     pub fn part(&self) -> MaterialPart<'_> {
-        MaterialPart {
-            material: &self.material,
-            term: self.term,
-        }
+        MaterialPart::new(&self.material, self.term)
     }
 
     /// The series `layer` makes of the materials `series`: each

@@ -1,12 +1,12 @@
 //! The lights section's list: each `[[lights]]` entry under a header with
 //! its kind (a selector that retypes it) and a remove button, its keys
-//! below ([`super::light_editor`]), and *Add* with a kind. Hands back what
+//! below ([`super::editor::light_editor`]), and *Add* with a kind. Hands back what
 //! the user asked for; the caller applies it through the document, which
 //! validates it as the scene file does.
 
+use super::kinds::KINDS;
 use crate::scene::ShadowSettings;
 use crate::scene::scene_file::LightEntry;
-use crate::ui::light_kinds::KINDS;
 
 /// What the user asked the list for.
 #[derive(Clone, Debug)]
@@ -56,7 +56,7 @@ pub fn light_list(
                 }
             })
             .body(|ui| {
-                if super::light_editor(ui, i, &mut edited, effective(i)) {
+                if super::editor::light_editor(ui, i, &mut edited, effective(i)) {
                     actions.push(LightAction::Edit(i, Box::new(edited)));
                 }
             });

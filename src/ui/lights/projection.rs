@@ -1,7 +1,7 @@
 //! World points to the 3D area's screen points and back, for the camera
 //! the scene is drawn with: what the lights overlay draws
-//! (`super::light_overlay`) lands on what the renderer draws, and a
-//! dragged handle moves under the mouse (`super::light_drag`).
+//! (`super::overlay`) lands on what the renderer draws, and a
+//! dragged handle moves under the mouse (`super::drag`).
 //!
 //! The contract's camera ([`Camera::ray`]): `right = normalize(cross(
 //! target − position, up))`, `fov_y_deg` the full vertical angle, the

@@ -57,7 +57,7 @@ impl Compare {
     pub fn edit(&mut self, parts: &[&str], value: &str) -> Result<(), String> {
         match parts {
             ["split"] => {
-                let on: bool = super::edit_values::toml_value(value)?;
+                let on: bool = crate::ui::edit_values::toml_value(value)?;
                 if on && self.materials.is_empty() {
                     return Err("there is no compared material to split the view with (gonio view --compare SPEC adds one)".into());
                 }
@@ -65,7 +65,7 @@ impl Compare {
                 Ok(())
             }
             ["shown"] => {
-                let i: usize = super::edit_values::toml_value(value)?;
+                let i: usize = crate::ui::edit_values::toml_value(value)?;
                 if i >= self.materials.len() {
                     return Err(self.no_such(i));
                 }
@@ -77,7 +77,7 @@ impl Compare {
                     .parse()
                     .map_err(|_| format!("`{index}` is not the index of a compared material"))?;
                 let m = self.materials.get(i).ok_or_else(|| self.no_such(i))?;
-                let edited = super::edit_values::edit_material(m, field, value)?;
+                let edited = crate::ui::edit_values::edit_material(m, field, value)?;
                 edited.validate()?;
                 self.materials[i] = edited;
                 Ok(())
@@ -149,7 +149,7 @@ mod tests {
 
     #[test]
     fn the_swap_is_undone() {
-        let mut doc = super::super::document::Document::load(
+        let mut doc = crate::ui::document::Document::load(
             crate::scene::scene_file::SceneSource::BuiltIn,
             vec![],
             crate::scene::limits::Limits::default(),

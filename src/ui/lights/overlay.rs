@@ -6,16 +6,16 @@
 //! behind an object stays visible and grabbable).
 //!
 //! Each `[[lights]]` entry has one handle, the filled marker, which the
-//! mouse drags (`super::light_drag`); lights from a glTF file and the
+//! mouse drags (`super::drag`); lights from a glTF file and the
 //! default light are drawn grey and have none (the scene file cannot
 //! address them). `L` or the Lights section's check box shows and hides
 //! the overlay; it is part of the overlay, so `--no-overlay` hides it too.
 
-use super::document::Document;
-use super::light_kinds::directional_reach;
-use super::screen_projection::ScreenProjection;
+use super::kinds::directional_reach;
+use super::projection::ScreenProjection;
 use crate::scene::scene_file::LightEntry;
 use crate::scene::{Camera, Light};
+use crate::ui::document::Document;
 use egui::{Color32, Pos2, Stroke};
 use glam::{DVec2, DVec3};
 use std::f64::consts::TAU;

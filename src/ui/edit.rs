@@ -2,9 +2,11 @@
 //! dispatcher over every feature's edits: materials, lights, the
 //! environment, compared materials, shading, tone map, ambient) and
 //! keeping the edits across a reload ([`Document::reload`]). Above the
-//! features it dispatches to (`environment.rs`, `lights.rs`, `ui::compare`).
+//! features it dispatches to ([`super::environment::document`],
+//! [`super::lights::document`], [`super::compare::materials`]).
 
-use super::Document;
+use super::document::{Document, VARIANT_KEY};
+use crate::scene::change::Change;
 use crate::scene::scene_file::{self, LightEntry};
 use crate::ui::edit_values::{edit_material, toml_value};
 use crate::{Error, Result};
@@ -49,13 +51,13 @@ impl Document {
             .iter()
             .filter(|kv| {
                 let key = kv.split_once('=').map_or(kv.as_str(), |(k, _)| k);
-                key.trim() != super::VARIANT_KEY
+                key.trim() != VARIANT_KEY
             })
             .cloned()
             .collect();
         overrides.push(format!(
             "{}={}",
-            super::VARIANT_KEY,
+            VARIANT_KEY,
             toml::Value::String(name.to_string())
         ));
         let mut fresh = Document::load(self.source.clone(), overrides, self.limits)?;
@@ -66,9 +68,10 @@ impl Document {
     /// Applies one `KEY=VALUE` edit as the panel would: materials, the
     /// shading mode, the ambient radiance, `[[lights]]` entries
     /// (`lights.N.KEY`) and the environment map's keys
-    /// (`environment.KEY`, [`super::environment`]), each validated like
-    /// the scene file.
-    pub fn edit(&mut self, assignment: &str) -> Result<()> {
+    /// (`environment.KEY`, [`super::environment::document`]), each validated like
+    /// the scene file. Returns what the edit changed, for the GPU to
+    /// rewrite only that.
+    pub fn edit(&mut self, assignment: &str) -> Result<Change> {
         let bad = |problem: String| Error::argument(format!("edit {assignment}"), problem);
         let (key, value) = assignment
             .split_once('=')
@@ -76,30 +79,32 @@ impl Document {
         let parts = scene_file::overrides::key_parts(key.trim());
         let parts: Vec<&str> = parts.iter().map(String::as_str).collect();
         if let Some(done) = self.edit_light_list(&parts, value) {
-            return done.map_err(bad);
+            return done.map(|()| Change::Lights).map_err(bad);
         }
         match parts.as_slice() {
             ["materials", name, field] => {
-                let m = self
+                let index = self
                     .scene
                     .materials
-                    .iter_mut()
-                    .find(|m| m.name == *name)
+                    .iter()
+                    .position(|m| m.name == *name)
                     .ok_or_else(|| bad(format!("no material is called `{name}`")))?;
+                let m = &mut self.scene.materials[index];
                 *m = edit_material(m, field, value).map_err(bad)?;
-                // Another model may need another environment mode.
+                // Another model may need another environment mode (which
+                // the shader key holds: the GPU compares the key).
                 crate::scene::environment_mode::choose(&mut self.scene);
-                Ok(())
+                Ok(Change::Material(index))
             }
             ["shading", "mode"] => {
                 let mode: String = toml_value(value).map_err(bad)?;
                 self.scene.shading = mode.parse().map_err(bad)?;
-                Ok(())
+                Ok(Change::Scene)
             }
             ["image", "tone_map"] => {
                 let name: String = toml_value(value).map_err(bad)?;
                 self.scene.tone_map = name.parse().map_err(bad)?;
-                Ok(())
+                Ok(Change::Scene)
             }
             ["ambient", "radiance"] => {
                 let v: [f64; 3] = toml_value(value).map_err(bad)?;
@@ -107,16 +112,24 @@ impl Document {
                     return Err(bad("radiance must be finite and ≥ 0".into()));
                 }
                 self.scene.ambient = crate::scene::Rgb::from_array(v);
-                Ok(())
+                Ok(Change::View)
             }
-            ["environment", key] => super::environment::edit(self, key, assignment),
-            ["compare", rest @ ..] => self.compare.edit(rest, value).map_err(bad),
+            ["environment", key] => {
+                super::environment::document::edit(self, key, assignment).map(|()| Change::Environment)
+            }
+            ["compare", rest @ ..] => self
+                .compare
+                .edit(rest, value)
+                .map(|()| Change::Compared)
+                .map_err(bad),
             ["lights", index, _field] => {
                 let index: usize = index
                     .parse()
                     .map_err(|_| bad(format!("`{index}` is not a light index")))?;
                 let entry = self.light_entry_with(index, assignment)?;
-                self.set_light(index, entry).map_err(bad)
+                self.set_light(index, entry)
+                    .map(|()| Change::Lights)
+                    .map_err(bad)
             }
             _ => Err(bad(
                 "the viewer edits materials.NAME.KEY, lights.N.KEY, lights.add=KIND, lights.remove=N, environment.KEY, compare.N.KEY, compare.split, compare.shown, shading.mode, image.tone_map and ambient.radiance"
@@ -179,6 +192,6 @@ impl Document {
             assembled.install(&mut self.scene);
             self.lights = lights;
         }
-        super::environment::keep_edits(self, old);
+        super::environment::document::keep_edits(self, old);
     }
 }

@@ -1,10 +1,10 @@
 //! The compare section: the compared materials, each editable like the
 //! selected one, which one the right half of the split 3D view shows, and
 //! buttons to add a copy of the selected material or (for a measured
-//! one) a model's fit ([`crate::ui::fitted`]).
+//! one) a model's fit ([`super::fitted`]).
 
-use super::material_editor;
-use crate::ui::compare::Compare;
+use super::materials::Compare;
+use crate::ui::panels::material_editor;
 
 /// What the section asks the caller to do.
 pub enum Request {
@@ -81,7 +81,7 @@ pub fn compare_editor(
             egui::ComboBox::from_id_salt("fit model")
                 .selected_text(fit_choice.as_str())
                 .show_ui(ui, |ui| {
-                    for label in crate::ui::fitted::labels() {
+                    for label in super::fitted::labels() {
                         ui.selectable_value(fit_choice, label.clone(), label);
                     }
                 });

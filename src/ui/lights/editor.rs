@@ -6,12 +6,12 @@
 //! file's message instead of applying it (issue 17: "a bad value is
 //! refused with a message, never silently clamped").
 
-use super::widgets::triple_array;
+use super::kinds;
 use crate::base::ColorValue;
 use crate::scene::scene_file::LightEntry;
 use crate::scene::scene_file::schema::AreaEntry;
 use crate::scene::{ShadowFilter, ShadowSettings, area_light};
-use crate::ui::light_kinds;
+use crate::ui::panels::widgets::triple_array;
 use egui::SliderClamping;
 use glam::DVec3;
 
@@ -147,7 +147,7 @@ fn area_keys(ui: &mut egui::Ui, id: &dyn Fn(&str) -> String, e: &mut AreaEntry) 
         .response
         .on_hover_text("changing the shape keeps the area, so the emitted power");
     if shape != e.shape {
-        light_kinds::reshape(e, &shape);
+        kinds::reshape(e, &shape);
         changed = true;
     }
     ui.end_row();

@@ -18,11 +18,11 @@
 //! switched off if it was) replace the changed file's; an environment the
 //! user did not touch takes the file's new keys ([`keep_edits`]).
 
-use super::{Document, MAP_KEYS, map_keys};
 use crate::environment::EnvironmentMap;
 use crate::scene::scene_file::diagnostics::clean_toml_error;
 use crate::scene::scene_file::schema::EnvironmentSection;
 use crate::scene::scene_file::{apply_override, environment_keys};
+use crate::ui::document::{Document, MAP_KEYS, map_keys};
 use crate::{Error, Result};
 use serde::Deserialize;
 use std::path::Path;

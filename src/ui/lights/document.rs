@@ -3,10 +3,10 @@
 //! as the loader does ([`LightSetup::assemble`]) and is refused, leaving
 //! the document as it was, when the loader would refuse it.
 
-use super::Document;
+use super::kinds;
 use crate::scene::scene_file::{LightEntry, LightSetup};
+use crate::ui::document::Document;
 use crate::ui::edit_values::toml_value;
-use crate::ui::light_kinds;
 
 impl Document {
     /// Appends `entry`; returns its index.
@@ -18,11 +18,11 @@ impl Document {
     }
 
     /// Appends a new light of `kind` aimed at what the camera looks at
-    /// ([`light_kinds::new_light`]); returns its index.
+    /// ([`kinds::new_light`]); returns its index.
     pub fn add_light_of_kind(&mut self, kind: &str) -> Result<usize, String> {
         let c = self.scene.camera;
         let slot = self.lights.entries.len();
-        self.add_light(light_kinds::new_light(kind, c.position, c.target, slot)?)
+        self.add_light(kinds::new_light(kind, c.position, c.target, slot)?)
     }
 
     /// Removes `[[lights]]` entry `index`.
@@ -37,7 +37,7 @@ impl Document {
 
     /// Makes entry `index` a light of `kind`, keeping its place, axis,
     /// shadows and brightness where the camera looks
-    /// ([`light_kinds::retype`]).
+    /// ([`kinds::retype`]).
     pub fn retype_light(&mut self, index: usize, kind: &str) -> Result<(), String> {
         let entry = self
             .lights
@@ -45,7 +45,7 @@ impl Document {
             .get(index)
             .ok_or_else(|| no_light(index, self.lights.entries.len()))?;
         let c = self.scene.camera;
-        let new = light_kinds::retype(entry, kind, c.position, c.target)?;
+        let new = kinds::retype(entry, kind, c.position, c.target)?;
         self.set_light(index, new)
     }
 
@@ -57,7 +57,7 @@ impl Document {
 
     /// The list edits of `--edit`: `lights.add=KIND`, `lights.remove=N`,
     /// `lights.N.kind=KIND`; `None` for any other key.
-    pub(super) fn edit_light_list(
+    pub(in crate::ui) fn edit_light_list(
         &mut self,
         parts: &[&str],
         value: &str,

@@ -13,7 +13,7 @@ use serde::Deserialize;
 use std::sync::OnceLock;
 
 /// `docs/fit/fits.toml`, the fits of `gonio fit --all`.
-const FITS_TOML: &str = include_str!("../../docs/fit/fits.toml");
+const FITS_TOML: &str = include_str!("../../../docs/fit/fits.toml");
 
 /// The fit models' short labels (`ct-ggx-conductor`, `ward`, ...), in
 /// the ranking's order.

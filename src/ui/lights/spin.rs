@@ -5,8 +5,8 @@
 //! maps every frame (issue 18; `scripts/viewer-frame-time.sh`). Each move
 //! goes through [`Document::set_light`], as a dragged light does.
 
-use super::document::Document;
 use crate::scene::scene_file::LightEntry;
+use crate::ui::document::Document;
 use glam::{DMat3, DVec3};
 
 /// Turns every light entry of `doc` by `deg` about the vertical axis

@@ -27,7 +27,7 @@ pub fn environment_editor(
         if ui.button("Set map").clicked() && !path.trim().is_empty() {
             edits.push(match path.trim() {
                 "sky" => "environment.map=\"sky\"".into(),
-                p => super::super::document::environment::map_assignment(std::path::Path::new(p)),
+                p => super::document::map_assignment(std::path::Path::new(p)),
             });
         }
         if ui.button("Sky").clicked() {
@@ -59,7 +59,7 @@ pub fn environment_editor(
             ui.end_row();
             ui.label("scale");
             let mut scale = s.scale;
-            if super::widgets::log_slider(ui, &mut scale, 1e-3..=1e3) {
+            if crate::ui::panels::widgets::log_slider(ui, &mut scale, 1e-3..=1e3) {
                 edits.push(format!("environment.scale={scale}"));
             }
             ui.end_row();
@@ -80,7 +80,13 @@ pub fn environment_editor(
                 Specular::Prefiltered,
                 Specular::Sh,
             ];
-            if super::widgets::combo(ui, "environment.specular", &mut mode, all, Specular::name) {
+            if crate::ui::panels::widgets::combo(
+                ui,
+                "environment.specular",
+                &mut mode,
+                all,
+                Specular::name,
+            ) {
                 edits.push(format!("environment.specular=\"{}\"", mode.name()));
             }
             ui.end_row();

@@ -1,5 +1,5 @@
 //! Dragging a light's handle in the 3D view (issue 17 item 5): a press on
-//! a handle ([`super::light_overlay`]) grabs it instead of orbiting; the
+//! a handle ([`super::overlay`]) grabs it instead of orbiting; the
 //! handle then follows the mouse in the screen plane at the depth it was
 //! grabbed at (the plane through it facing the camera), so it stays under
 //! the cursor. A point, spot or area light moves there (its direction is
@@ -13,29 +13,13 @@
 //! file is; a position the file would refuse leaves the light where it was
 //! and says why.
 
-use super::document::Document;
-use super::light_kinds::directional_reach;
-use super::light_overlay::{Glyph, handles};
-use super::screen_projection::ScreenProjection;
+use super::kinds::directional_reach;
+use super::overlay::{Glyph, handles};
+use super::projection::ScreenProjection;
 use crate::scene::Camera;
 use crate::scene::scene_file::LightEntry;
+use crate::ui::document::Document;
 use glam::{DVec2, DVec3};
-
-/// The overlay's state: shown or not, and the handle being dragged.
-#[derive(Debug)]
-pub struct LightsView {
-    pub visible: bool,
-    pub drag: Option<LightDrag>,
-}
-
-impl Default for LightsView {
-    fn default() -> Self {
-        LightsView {
-            visible: true,
-            drag: None,
-        }
-    }
-}
 
 /// A handle being dragged.
 #[derive(Clone, Copy, Debug, PartialEq)]
