@@ -100,6 +100,7 @@ pub mod shadows;
 pub mod texture_pool;
 pub mod textures;
 pub mod timing;
+pub mod transmission;
 pub mod upload;
 
 pub use context::{AdapterChoice, GpuContext};
