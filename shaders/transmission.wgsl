@@ -47,12 +47,17 @@ fn transmission_lod(width: f32, roughness: f32, ior: f32) -> f32 {
     return log2(width) * roughness * clamp(ior * 2.0 - 2.0, 0.0, 1.0);
 }
 
+// 1 − max₃ F(μ_o): the share of the light an interface lets through.
+fn interface_transmittance(layers: GltfLayers, cos_o: f32) -> f32 {
+    let f = transmission_fresnel(layers, cos_o);
+    return 1.0 - max(f.x, max(f.y, f.z));
+}
+
 // The weight of the straight-through light, (1 − m)(1 − max₃ F(μ_o)) T,
 // times 1 − k F_c(μ_o) under a coat; the base colour multiplies it.
 // f64 twin: lobe_weight in thin_samples (src/reference/transmission/thin.rs).
 fn thin_wall_weight(m: Material, cos_o: f32) -> f32 {
-    let f = transmission_fresnel(m.layers, cos_o);
-    var s = (1.0 - m.metallic) * (1.0 - max(f.x, max(f.y, f.z)));
+    var s = (1.0 - m.metallic) * interface_transmittance(m.layers, cos_o);
     #if layer_clearcoat
     s *= 1.0 - m.layers.clearcoat * clearcoat_fresnel(cos_o);
     #endif
@@ -74,6 +79,15 @@ fn transmitted_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, wo: vec3
     let lod = transmission_lod(width, m.roughness, m.layers.ior);
     let behind = textureSampleLevel(transmission_image, transmission_sampler, uv, lod).rgb;
     let through = behind * volume_attenuation(m.layers.attenuation_color, length(ray), m.layers.attenuation_rate);
-    let weight = select(thin_wall_weight(m, cos_o), 0.0, cos_o <= 0.0 || clip.w <= 0.0);
+    var weight = thin_wall_weight(m, cos_o);
+    #if transmission_exit
+    // A volume's light leaves through a second interface, whose
+    // transmittance is the entry's for a slab or a sphere (reciprocity:
+    // the angle inside is the entry's refracted one), so 1 − max₃ F(μ_o)
+    // again (shading.transmission_exit; the reference follows the exit
+    // exactly, and its internal reflections, which this leaves out).
+    weight *= select(1.0, interface_transmittance(m.layers, cos_o), m.layers.thickness > 0.0);
+    #endif
+    weight = select(weight, 0.0, cos_o <= 0.0 || clip.w <= 0.0);
     return through * m.base_color * weight;
 }

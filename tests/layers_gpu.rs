@@ -140,7 +140,12 @@ fn layer_rel(m: &Material) -> f64 {
         let f_max = (0..=200).fold(0.0f64, |f_max, i| {
             let cos = (i as f64 / 200.0).max(1e-3);
             let film = iridescence_fresnel(cos, l.iridescence_ior, l.iridescence_thickness, f0);
-            let metal = iridescence_fresnel(cos, l.iridescence_ior, l.iridescence_thickness, m.base_color);
+            let metal = iridescence_fresnel(
+                cos,
+                l.iridescence_ior,
+                l.iridescence_thickness,
+                m.base_color,
+            );
             f_max.max(film.max_element()).max(metal.max_element())
         });
         rel += l.iridescence * film_phase_bound(m, f_max) * film_gain(m);
@@ -171,7 +176,11 @@ fn film_gain(m: &Material) -> f64 {
     lobe.layers.anisotropy_strength = m.layers.anisotropy_strength;
     lobe.layers.anisotropy_rotation = m.layers.anisotropy_rotation;
     let dir = |theta: f64, phi: f64| {
-        glam::DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
+        glam::DVec3::new(
+            theta.sin() * phi.cos(),
+            theta.sin() * phi.sin(),
+            theta.cos(),
+        )
     };
     let mut gain = 0.0f64;
     for i in 0..=22 {

@@ -209,12 +209,14 @@ fn a_thin_pane_passes_what_lies_straight_behind() {
 /// A green slab (a closed box, attenuation distance 0.5) of two
 /// thicknesses in front of an emitter, seen at normal incidence (the
 /// image's centre). The GPU attenuates by Beer–Lambert over the
-/// thickness, `a = c^(d/D)`, and weights one interface, `(1 − F) a L`;
-/// the reference crosses both interfaces and follows every internal
-/// reflection, `(1 − F)² a L / (1 − F² a²)`, F = 0.04 (tests/transmission.rs
-/// checks it). So the GPU's pixel is the reference's times
-/// `(1 − F² a²)/(1 − F)`, the factor its one-interface model leaves out,
-/// and the ratio of the two thicknesses' pixels is exactly `c^(Δd/D)`.
+/// thickness, `a = c^(d/D)`, and weights both interfaces,
+/// `(1 − F)² a L` (one with `shading.transmission_exit = false`, the
+/// sample renderer's `(1 − F) a L`); the reference also follows every
+/// internal reflection, `(1 − F)² a L / (1 − F² a²)`, F = 0.04
+/// (tests/transmission.rs checks it). So the GPU's pixel is the
+/// reference's times `1 − F² a²` (times `1/(1 − F)` more with one
+/// interface), the factor its model leaves out, and the ratio of the two
+/// thicknesses' pixels is exactly `c^(Δd/D)`.
 #[test]
 fn an_attenuating_slab_follows_beer_lambert() {
     let colour = Rgb::new(0.3, 0.9, 0.4);
@@ -222,7 +224,7 @@ fn an_attenuating_slab_follows_beer_lambert() {
     let behind = Rgb::new(0.8, 0.8, 0.8);
     let f = 0.04;
     let mut gpu_pixels = Vec::new();
-    for d in [0.2, 0.6] {
+    for (d, exit) in [(0.2, true), (0.6, true), (0.2, false)] {
         let mut slab = glass("slab", d);
         slab.layers.attenuation_color = colour;
         slab.layers.attenuation_distance = distance;
@@ -234,19 +236,21 @@ fn an_attenuating_slab_follows_beer_lambert() {
             ),
             rect(-1.0, (-2.0, 2.0), (-2.0, 2.0), 1),
         ];
-        let scene = scene(meshes, vec![slab, emitter("behind", behind)]);
+        let mut scene = scene(meshes, vec![slab, emitter("behind", behind)]);
+        scene.transmission.exit = exit;
         let reference = gonio::reference::render(&scene);
         let frame = gpu(&scene);
         // The centre pixel's ray is the axis (even size: the four
         // around it are within 0.3 % of normal incidence in F).
         let (i, j) = (SIZE / 2, SIZE / 2);
         let a = colour.map(|c| c.powf(d / distance));
-        let model = a.map(|a| (1.0 - f * f * a * a) / (1.0 - f));
+        let one_interface = if exit { 1.0 } else { 1.0 / (1.0 - f) };
+        let model = a.map(|a| (1.0 - f * f * a * a) * one_interface);
         let want = pixel(&reference, i, j) * model;
         // F at the pixel's centre, 0.09° off the axis, is F(0) within
         // 10⁻⁸; the reference's closed form within 10⁻⁷.
         assert_close(
-            &format!("slab d = {d}"),
+            &format!("slab d = {d}, exit {exit}"),
             pixel(&frame, i, j),
             want,
             HALF_ROUNDING + F32_SLACK,
@@ -256,7 +260,12 @@ fn an_attenuating_slab_follows_beer_lambert() {
     let ratio = gpu_pixels[1] / gpu_pixels[0];
     let beer = colour.map(|c| c.powf(0.4 / distance));
     // Each pixel rounded once: twice the rounding on the ratio.
-    assert_close("Beer–Lambert ratio", ratio, beer, 2.0 * HALF_ROUNDING + F32_SLACK);
+    assert_close(
+        "Beer–Lambert ratio",
+        ratio,
+        beer,
+        2.0 * HALF_ROUNDING + F32_SLACK,
+    );
 }
 
 /// Glass behind glass: two thin panes, one behind the other, over the

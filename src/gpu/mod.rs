@@ -24,7 +24,9 @@
 //!   bounded size); [`shadow_maps`] holds a shadow plan's maps and records
 //!   their passes, [`shadow_masks`] the pass of alpha MASK casters;
 //!   [`prepared`] is a scene uploaded once and drawn many
-//!   times (update by what changed, encode a frame);
+//!   times (update by what changed, encode a frame); [`transmission`]
+//!   holds the images transmissive surfaces read what lies behind them
+//!   from, and records their mip chains;
 //! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
 //!   and reads the timestamp queries; [`timing`] names the durations;
 //! * [`offscreen`] is the one-shot render (`scene -> Frame`);
@@ -48,13 +50,15 @@
 //!                context texture_pool formats
 //! prepared    -> shadow_maps shadow_culling shadow_masks pipelines
 //!                environment draw scene_parts upload geometry layout
-//!                textures shader_gen shadows context
+//!                textures shader_gen shadows transmission context
+//!                formats
 //! shadow_maps -> shadow_culling shadow_masks pipelines draw scene_parts
 //!                bind_groups bindings layout shadows context texture_pool
 //! shadow_masks -> pipelines textures geometry shader_gen
 //! shadow_culling -> geometry shadows
 //! pipelines   -> environment bind_groups bindings geometry shader_gen
-//!                shadows formats
+//!                shadows transmission formats
+//! transmission -> shader_gen formats
 //! environment -> bind_groups shader_gen formats
 //! draw        -> bind_groups bindings layout geometry measured_tables
 //!                scene_parts upload shader_gen
@@ -62,7 +66,7 @@
 //! upload      -> geometry
 //! geometry    -> textures
 //! bind_groups -> bindings layout shadows textures
-//! shader_gen  -> bindings shadows textures
+//! shader_gen  -> bindings shadows textures formats
 //! shadows     -> shadow_fit layout (GpuLight, GpuShadowView)
 //! readback    -> context
 //! textures    -> context

@@ -277,7 +277,14 @@ impl PreparedScene {
                     (scene.width, scene.height),
                     scene.transmission.layers,
                 ),
-                pipelines: self::batch_pipelines(cache, &key, TRANSMISSION_FORMAT, 1, &materials, &draw),
+                pipelines: self::batch_pipelines(
+                    cache,
+                    &key,
+                    TRANSMISSION_FORMAT,
+                    1,
+                    &materials,
+                    &draw,
+                ),
                 background,
                 settings: scene.transmission,
                 group_layout,
@@ -845,9 +852,8 @@ fn draw_order(
     let mut order: Vec<usize> = (0..batches).filter(|i| !listed(i)).collect();
     let back_to_front = |centers: &[(usize, glam::DVec3)]| {
         let mut sorted = centers.to_vec();
-        sorted.sort_by(|(_, a), (_, b)| {
-            b.distance_squared(eye).total_cmp(&a.distance_squared(eye))
-        });
+        sorted
+            .sort_by(|(_, a), (_, b)| b.distance_squared(eye).total_cmp(&a.distance_squared(eye)));
         sorted.into_iter().map(|(i, _)| i).collect::<Vec<_>>()
     };
     let mut layers = vec![None; batches];

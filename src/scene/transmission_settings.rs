@@ -39,6 +39,13 @@ pub struct TransmissionSettings {
     /// glass is not seen; `layers ≥` the number of transmissive objects:
     /// each sees all those behind it (in the order of their centres).
     pub layers: u32,
+    /// Whether the light leaving a volume (`thickness > 0`) crosses its
+    /// second interface, weighted once more by `1 − max₃ F(μ_o)`: the
+    /// exit's transmittance equals the entry's for a slab (parallel
+    /// faces) and a sphere (the exit angle inside is the entry's
+    /// refracted one), by the reciprocity of Fresnel transmission.
+    /// `false`: one interface, as the Khronos glTF Sample Renderer.
+    pub exit: bool,
 }
 
 impl Default for TransmissionSettings {
@@ -46,6 +53,7 @@ impl Default for TransmissionSettings {
         TransmissionSettings {
             mode: TransmissionMode::Screen,
             layers: 1,
+            exit: true,
         }
     }
 }

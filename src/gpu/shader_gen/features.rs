@@ -196,6 +196,10 @@ features! {
         /// image (group 4) and the light read from it
         /// (shaders/transmission.wgsl).
         LayerTransmission = "layer_transmission",
+        /// The light leaving a transmissive volume is weighted by its
+        /// second interface (`shading.transmission_exit`, with
+        /// `layer_transmission`).
+        TransmissionExit = "transmission_exit",
     }
 }
 

@@ -262,6 +262,9 @@ key_group! {
         /// = "screen"`): its batches per object, after the transmission
         /// image (src/gpu/transmission.rs), with bind group 4.
         layer_transmission => LayerTransmission,
+        /// ... and a volume's light crosses its second interface
+        /// (`shading.transmission_exit`).
+        transmission_exit => TransmissionExit,
     }
 }
 
@@ -293,6 +296,7 @@ impl MaterialsKey {
             layer_iridescence: any(|m| m.gltf_layers_used().iridescence),
             layer_anisotropy: any(|m| m.gltf_layers_used().anisotropy),
             layer_transmission: transmission,
+            transmission_exit: transmission && scene.transmission.exit,
         }
     }
 

@@ -346,10 +346,7 @@ mod tests {
             (&["materials.ball.thickness=1"], false),
             (&["materials.ball.transmission=1"], true),
             (
-                &[
-                    "materials.ball.transmission=1",
-                    "shading.transmission=off",
-                ],
+                &["materials.ball.transmission=1", "shading.transmission=off"],
                 false,
             ),
             (

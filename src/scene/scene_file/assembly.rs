@@ -157,8 +157,8 @@ pub fn assemble(
 }
 
 /// `shading.transmission` (a mode name) and `shading.transmission_layers`
-/// (1 to [`MAX_TRANSMISSION_LAYERS`]), each error naming the key and what
-/// it takes.
+/// (1 to [`MAX_TRANSMISSION_LAYERS`]), `shading.transmission_exit`, each
+/// error naming the key and what it takes.
 fn transmission_settings(
     shading: &super::schema::ShadingSection,
 ) -> std::result::Result<TransmissionSettings, String> {
@@ -177,6 +177,9 @@ fn transmission_settings(
             ));
         }
         settings.layers = n;
+    }
+    if let Some(exit) = shading.transmission_exit {
+        settings.exit = exit;
     }
     Ok(settings)
 }

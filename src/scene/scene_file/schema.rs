@@ -144,6 +144,10 @@ pub struct ShadingSection {
     /// 1): with more, glass behind glass is seen.
     #[serde(default)]
     pub transmission_layers: Option<u32>,
+    /// Whether the light leaving a volume is weighted by its second
+    /// interface's transmittance (default true; docs/transmission.md).
+    #[serde(default)]
+    pub transmission_exit: Option<bool>,
 }
 
 /// One `[[objects]]` entry: a glTF file or a generated shape.
