@@ -9,11 +9,12 @@
 // tinted by the base colour and weighted as the reference's smooth thin
 // wall, (1 − m)(1 − max₃ F(μ_o)) T b (src/reference/transmission/thin.rs).
 // A thin wall (thickness 0) reads the image straight behind the pixel:
-// what the reference's straight ray sees. Not drawn: what the image does
-// not hold (what lies off screen, behind another transmissive surface of
-// the same pass, or behind the surface itself), the volume's second
-// refraction where the light leaves, total internal reflection and
-// dispersion (docs/transmission.md, "The GPU renderer").
+// what the reference's straight ray sees. A volume's exit interface
+// weighs the light once more (feature transmission_exit). Not drawn: what
+// the image does not hold (what lies off screen, behind another
+// transmissive surface of the same image, or behind the surface itself),
+// the ray past the exit point, total internal reflection, internal
+// reflections and dispersion (docs/transmission.md, "The GPU renderer").
 // Compiled only where a drawn material transmits and the scene's
 // `shading.transmission` is "screen" (feature layer_transmission).
 
@@ -32,8 +33,8 @@ fn volume_transmission_ray(n: vec3<f32>, wo: vec3<f32>, thickness: f32, ior: f32
 
 // Beer–Lambert: attenuation_color^(distance / attenuation_distance),
 // `rate` = 1 / attenuation_distance (0: none; then 1 exactly, also for a
-// black colour). f64 twin: the segment weight of
-// src/reference/transmission/path.rs.
+// black colour). f64 twin: beer_lambert in
+// src/reference/transmission/interface.rs.
 fn volume_attenuation(color: vec3<f32>, distance: f32, rate: f32) -> vec3<f32> {
     let exponent = distance * rate;
     let attenuated = exp2(exponent * log2(max(color, vec3<f32>(1e-30))));

@@ -358,9 +358,10 @@ pub fn render(args: &RenderArgs) -> Result<()> {
 /// material (nothing the user typed is ignored without a word): with
 /// `shading.transmission = "off"` every key of light through surfaces
 /// (`transmission`, `thickness`, `attenuation_*`, `dispersion`,
-/// `diffuse_transmission*`); in the screen-space mode the keys it leaves
-/// out, `dispersion` and `diffuse_transmission` (its limits beyond those
-/// are the method's, named once in docs/transmission.md).
+/// `diffuse_transmission*`); in the screen-space mode what it leaves
+/// out, `dispersion`, `diffuse_transmission` and the textures of
+/// `transmission` and `thickness` (its limits beyond those are the
+/// method's, named once in docs/transmission.md).
 pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
     let off = scene.transmission.mode == crate::scene::TransmissionMode::Off;
     let mut names: Vec<String> = Vec::new();
@@ -370,7 +371,10 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
         let ignored = if off {
             layers.sets_transmission_keys()
         } else {
-            layers.dispersion > 0.0 || layers.diffuse_transmission > 0.0
+            layers.dispersion > 0.0
+                || layers.diffuse_transmission > 0.0
+                || (layers.transmission > 0.0
+                    && (m.is_textured("transmission") || m.is_textured("thickness")))
         };
         if m.model == crate::material::ReflectanceModel::GltfPbr
             && ignored
@@ -395,7 +399,7 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
         )
     } else {
         format!(
-            "warning: material{s} {names} use{verb_s} dispersion or diffuse transmission, which the GPU renderer does not draw (its transmission is screen space, without them): {they} drawn without; render with --reference to see {them}"
+            "warning: material{s} {names} use{verb_s} dispersion, diffuse transmission or a transmission or thickness texture, which the GPU renderer does not draw (its transmission is screen space, with the constant transmission and thickness): {they} drawn without; render with --reference to see {them}"
         )
     })
 }

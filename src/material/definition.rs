@@ -248,7 +248,7 @@ impl Material {
     }
 
     /// Whether a texture multiplies the parameter with scene-file key `key`.
-    fn is_textured(&self, key: &str) -> bool {
+    pub fn is_textured(&self, key: &str) -> bool {
         self.textures
             .iter()
             .any(|t| matches!(t.target, texture::TextureTarget::Param(k) if k == key))

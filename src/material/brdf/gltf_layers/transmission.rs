@@ -20,7 +20,10 @@
 //! the reflected base is. `F` is the base's Fresnel term at the half
 //! vector of the mirrored light direction ([`mirrored_half_vector`]).
 //!
-//! WGSL twin: none yet (the GPU renderer does not draw transmission).
+//! WGSL twins: `reflected_diffuse_weight` and `transmission_fresnel` in
+//! shaders/brdf/gltf_layers/base_ior_specular.wgsl (the GPU draws the
+//! light through a surface in screen space, shaders/transmission.wgsl;
+//! it has no BTDF to evaluate per light).
 
 use super::GltfLayers;
 use super::base_ior_specular::dielectric_f0;
