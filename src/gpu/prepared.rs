@@ -103,6 +103,10 @@ impl Source<'_> {
     }
 }
 
+/// A per-object batch (index into the batches) and the centre of its
+/// mesh's bounding box, which orders it.
+type ObjectCenter = (usize, glam::DVec3);
+
 /// A batch's pipeline: the variant it is specialized to (`None`: the
 /// key's one or all), whether it blends, the pipeline.
 type BatchPipeline = (Option<u32>, bool, wgpu::RenderPipeline);
@@ -844,13 +848,13 @@ fn object_centers(
 /// order reads layer `scene.transmission.layer_of(k)`.
 fn draw_order(
     batches: usize,
-    (transmissive, blend): (&[(usize, glam::DVec3)], &[(usize, glam::DVec3)]),
+    (transmissive, blend): (&[ObjectCenter], &[ObjectCenter]),
     scene: &Scene,
 ) -> (Vec<usize>, Vec<Option<usize>>) {
     let eye = scene.camera.position;
     let listed = |i: &usize| transmissive.iter().chain(blend).any(|(b, _)| b == i);
     let mut order: Vec<usize> = (0..batches).filter(|i| !listed(i)).collect();
-    let back_to_front = |centers: &[(usize, glam::DVec3)]| {
+    let back_to_front = |centers: &[ObjectCenter]| {
         let mut sorted = centers.to_vec();
         sorted
             .sort_by(|(_, a), (_, b)| b.distance_squared(eye).total_cmp(&a.distance_squared(eye)));

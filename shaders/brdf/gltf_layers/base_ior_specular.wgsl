@@ -24,7 +24,7 @@ fn dielectric_f0(ior: f32, specular_color: vec3<f32>) -> vec3<f32> {
 // The share of the base's diffuse part still reflected, 1 − T
 // (KHR_materials_transmission: the transmission replaces that share of the
 // diffuse lobe). f64 twin: reflected_diffuse_weight in
-// src/material/brdf/gltf_layers/transmission.rs, which also takes
+// src/material/brdf/gltf_layers/base_ior_specular.rs, which also takes
 // diffuse transmission's share (the GPU does not draw diffuse
 // transmission: its share stays reflected).
 fn reflected_diffuse_weight(layers: GltfLayers) -> f32 {

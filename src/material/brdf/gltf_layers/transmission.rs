@@ -35,11 +35,9 @@ use crate::material::brdf::microfacet::{d_ggx, schlick_weight, sin2_between};
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
 
-/// The share of the base's diffuse part still reflected, `(1 − T)(1 − D)`
-/// (exactly 1 at the defaults, so the core BRDF is unchanged bit for bit).
-pub fn reflected_diffuse_weight(layers: &GltfLayers) -> f64 {
-    (1.0 - layers.transmission) * (1.0 - layers.diffuse_transmission)
-}
+/// Defined beside the base it weighs (which may not import this file:
+/// this file builds on the base's Fresnel term).
+pub use super::base_ior_specular::reflected_diffuse_weight;
 
 /// `L` mirrored to the viewer's side of the surface, `L − 2 (N·L) N`
 /// (`KHR_materials_transmission`, "BTDF": "the half vector is computed
