@@ -194,4 +194,3 @@ pub fn gltf_base(
 pub fn reflected_diffuse_weight(layers: &GltfLayers) -> f64 {
     (1.0 - layers.transmission) * (1.0 - layers.diffuse_transmission)
 }
-
