@@ -118,6 +118,11 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     #elif environment
     radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n) * occlusion;
     #endif
+    #if layer_transmission
+    // Light through the surface from the image of what lies behind
+    // (shaders/transmission.wgsl; 0 for a material that does not transmit).
+    radiance += transmitted_radiance(m, x, frame, wo);
+    #endif
     #if mirror
     let reflected = mirror_direction(wo, n);
     radiance += mirror_reflectance(m, dot(n, wo)) * environment_radiance(reflected) * occlusion;
@@ -136,7 +141,11 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
 // f64 twin: environment_diffuse_albedo in src/reference/environment/diffuse.rs.
 fn environment_diffuse_albedo(m: Material) -> vec3<f32> {
     let model = brdf_model(m);
+    #if layer_transmission
+    let pbr = (1.0 - m.metallic) * reflected_diffuse_weight(m.layers) * m.base_color;
+    #else
     let pbr = (1.0 - m.metallic) * m.base_color;
+    #endif
     let albedo = select(m.k_d, pbr, model == MODEL_GLTF_PBR);
     return select(albedo, vec3<f32>(0.0), model == MODEL_MEASURED);
 }

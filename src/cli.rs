@@ -354,16 +354,30 @@ pub fn render(args: &RenderArgs) -> Result<()> {
 }
 
 /// The warning of a GPU render of a scene whose materials use light
-/// through surfaces (`transmission`, `thickness`, `attenuation_*`,
-/// `dispersion`, `diffuse_transmission*`), which only the reference draws
-/// yet: one line naming every such material (nothing the user typed is
-/// ignored without a word).
+/// through surfaces the GPU does not draw, one line naming every such
+/// material (nothing the user typed is ignored without a word): with
+/// `shading.transmission = "off"` every key of light through surfaces
+/// (`transmission`, `thickness`, `attenuation_*`, `dispersion`,
+/// `diffuse_transmission*`); in the screen-space mode what it leaves
+/// out, `dispersion`, `diffuse_transmission` and the textures of
+/// `transmission` and `thickness` (its limits beyond those are the
+/// method's, named once in docs/transmission.md).
 pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
+    let off = scene.transmission.mode == crate::scene::TransmissionMode::Off;
     let mut names: Vec<String> = Vec::new();
     for m in &scene.materials {
         let name = format!("`{}`", m.name);
+        let layers = &m.layers;
+        let ignored = if off {
+            layers.sets_transmission_keys()
+        } else {
+            layers.dispersion > 0.0
+                || layers.diffuse_transmission > 0.0
+                || (layers.transmission > 0.0
+                    && (m.is_textured("transmission") || m.is_textured("thickness")))
+        };
         if m.model == crate::material::ReflectanceModel::GltfPbr
-            && m.layers.sets_transmission_keys()
+            && ignored
             && !names.contains(&name)
         {
             names.push(name);
@@ -372,18 +386,22 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
     if names.is_empty() {
         return None;
     }
-    Some(format!(
-        "warning: material{} {} use{} light through surfaces (transmission, volume, dispersion, diffuse transmission), which the GPU renderer does not draw yet: {} drawn as if opaque; render with --reference to see the light through {}",
-        if names.len() == 1 { "" } else { "s" },
-        names.join(", "),
-        if names.len() == 1 { "s" } else { "" },
-        if names.len() == 1 {
-            "it is"
-        } else {
-            "they are"
-        },
-        if names.len() == 1 { "it" } else { "them" },
-    ))
+    let one = names.len() == 1;
+    let (s, verb_s, they, them) = if one {
+        ("", "s", "it is", "it")
+    } else {
+        ("s", "", "they are", "them")
+    };
+    let names = names.join(", ");
+    Some(if off {
+        format!(
+            "warning: material{s} {names} use{verb_s} light through surfaces (transmission, volume, dispersion, diffuse transmission), which the GPU renderer does not draw with shading.transmission = \"off\": {they} drawn as if opaque; use \"screen\", or render with --reference to see the light through {them}"
+        )
+    } else {
+        format!(
+            "warning: material{s} {names} use{verb_s} dispersion, diffuse transmission or a transmission or thickness texture, which the GPU renderer does not draw (its transmission is screen space, with the constant transmission and thickness): {they} drawn without; render with --reference to see {them}"
+        )
+    })
 }
 
 /// The warning of a reference render whose transmission paths were cut

@@ -39,6 +39,7 @@ fn scene(size: u32, meshes: Vec<Mesh>, materials: Vec<Material>) -> Scene {
         measured_network: false,
         smith_beckmann: Default::default(),
         shadow_coords: Default::default(),
+        transmission: Default::default(),
         images: Vec::new(),
     }
 }

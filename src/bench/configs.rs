@@ -191,6 +191,45 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         .collect();
     knob("shading", shading, "");
 
+    // Light through surfaces (docs/transmission.md, "The GPU renderer"):
+    // off (drawn as if opaque), screen space with one interface (the
+    // Khronos sample renderer's), with a volume's exit interface and 1,
+    // 2 and 4 layers of what lies behind; a knob only where a drawn
+    // material transmits.
+    let transmits = base
+        .meshes
+        .iter()
+        .any(|m| base.materials[m.material].transmits_specularly());
+    let transmission = if transmits {
+        use crate::scene::TransmissionMode;
+        let current = base.transmission;
+        let mut v = vec![(
+            "off".to_string(),
+            vec!["shading.transmission=\"off\"".to_string()],
+            current.mode == TransmissionMode::Off,
+        )];
+        for (layers, exit) in [(1u32, false), (1, true), (2, true), (4, true)] {
+            v.push((
+                format!(
+                    "screen {layers}{}",
+                    if exit { "" } else { " one interface" }
+                ),
+                vec![
+                    "shading.transmission=\"screen\"".to_string(),
+                    format!("shading.transmission_layers={layers}"),
+                    format!("shading.transmission_exit={exit}"),
+                ],
+                current.mode == TransmissionMode::Screen
+                    && current.layers == layers
+                    && current.exit == exit,
+            ));
+        }
+        v
+    } else {
+        Vec::new()
+    };
+    knob("transmission", transmission, "no drawn material transmits");
+
     // Material knobs act on the glossy materials (all if none is glossy),
     // by name, as a user's `--set materials.NAME.KEY` would.
     let glossy: Vec<&crate::material::Material> = base
@@ -686,6 +725,7 @@ pub fn draws_the_same(a: &Scene, b: &Scene) -> bool {
         && a.measured_table == b.measured_table
         && a.smith_beckmann == b.smith_beckmann
         && a.shadow_coords == b.shadow_coords
+        && a.transmission == b.transmission
 }
 
 /// Whether `shading.shadow_coords = "vertex"` would move some shadow
@@ -763,6 +803,7 @@ mod tests {
         assert_eq!(
             names,
             [
+                "transmission",
                 "shadow_coords",
                 "environment_specular",
                 "environment_sh_order",
@@ -877,9 +918,9 @@ mod tests {
         let base = load(&SceneSource::BuiltIn, &overrides).unwrap();
         let (configs, skipped) = configs(&base, false);
         assert!(
-            skipped
-                .iter()
-                .all(|s| s.knob.starts_with("measured_") || s.knob == "shadow_coords"),
+            skipped.iter().all(|s| s.knob.starts_with("measured_")
+                || s.knob == "shadow_coords"
+                || s.knob == "transmission"),
             "{skipped:?}"
         );
         let settings: Vec<_> = configs

@@ -458,8 +458,19 @@ impl GpuEnvironment {
 
     /// Binds group 3 and draws the background (group 0 must be bound).
     pub fn encode_background(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.encode_background_with(pass, &self.background);
+    }
+
+    /// [`Self::encode_background`] with `pipeline`, a
+    /// [`background_pipeline`] for another target (the transmission
+    /// image's, src/gpu/transmission.rs).
+    pub fn encode_background_with(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        pipeline: &wgpu::RenderPipeline,
+    ) {
         self.bind(pass);
-        pass.set_pipeline(&self.background);
+        pass.set_pipeline(pipeline);
         pass.draw(0..3, 0..1);
     }
 }

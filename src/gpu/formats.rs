@@ -10,3 +10,9 @@ pub const COLOR_BITS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Ui
 
 /// The depth format of scene passes.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// The images a transmissive surface reads what lies behind it from
+/// (src/gpu/transmission.rs): linear radiance at half precision (a
+/// relative rounding of at most 2⁻¹¹), filterable, so their mip chains
+/// are sampled trilinearly.
+pub const TRANSMISSION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;

@@ -134,34 +134,37 @@ pub struct ObjectRange {
 pub struct Batch {
     pub material: u32,
     pub range: std::ops::Range<u32>,
-    /// Alpha BLEND: the one mesh (index in `Scene::meshes`) this batch
-    /// draws, so that the renderer can draw such batches back to front
-    /// per object; `None` for the others.
+    /// Alpha BLEND or transmissive: the one mesh (index in
+    /// `Scene::meshes`) this batch draws, so that the renderer can draw
+    /// such batches back to front per object; `None` for the others.
     pub object: Option<u32>,
 }
 
-/// Whether `mesh` is drawn with alpha BLEND.
-fn blends(scene: &Scene, mesh: &Mesh) -> bool {
-    scene.materials[mesh.material].alpha_mode == crate::material::AlphaMode::Blend
+/// Whether `mesh` is drawn as an object of its own: alpha BLEND, or
+/// transmissive (`Material::transmits_specularly`), both sorted back to
+/// front by the renderer.
+fn per_object(scene: &Scene, mesh: &Mesh) -> bool {
+    let material = &scene.materials[mesh.material];
+    material.alpha_mode == crate::material::AlphaMode::Blend || material.transmits_specularly()
 }
 
-/// The scene's meshes (index, whether it blends) in material order
-/// (stable), so each material's triangles are contiguous, alpha BLEND
-/// meshes last (drawn over everything else).
+/// The scene's meshes (index, whether it is drawn per object) in material
+/// order (stable), so each material's triangles are contiguous, alpha
+/// BLEND and transmissive meshes last (drawn over everything else).
 fn meshes_by_material(scene: &Scene) -> Vec<(usize, bool)> {
     let mut meshes: Vec<_> = scene
         .meshes
         .iter()
         .enumerate()
-        .map(|(i, m)| (i, blends(scene, m), m.material))
+        .map(|(i, m)| (i, per_object(scene, m), m.material))
         .collect();
     meshes.sort_by_key(|&(_, blend, material)| (blend, material));
     meshes.into_iter().map(|(i, blend, _)| (i, blend)).collect()
 }
 
-/// Appends `count` elements of mesh `index` (of `material`, blending or
-/// not) to `batches`, merging with the last run of the same material
-/// unless it blends (a batch per BLEND mesh).
+/// Appends `count` elements of mesh `index` (of `material`, drawn per
+/// object or not) to `batches`, merging with the last run of the same
+/// material unless it is drawn per object (a batch per such mesh).
 fn extend_batches(
     batches: &mut Vec<Batch>,
     (index, blend): (usize, bool),

@@ -35,7 +35,7 @@ pub struct GpuGlobals {
     pub albedo: [[f32; 4]; 256],
 }
 
-/// `Material` (uniform buffer record, 224 bytes: 144 without the layers,
+/// `Material` (uniform buffer record, 256 bytes: 144 without the layers,
 /// which the WGSL declares only with feature `gltf_layers`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -79,7 +79,7 @@ pub struct GpuMaterial {
     pub layers: GpuGltfLayers,
 }
 
-/// `GltfLayers` of shaders/brdf/gltf_layers/mod.wgsl (80 bytes, same
+/// `GltfLayers` of shaders/brdf/gltf_layers/mod.wgsl (112 bytes, same
 /// order): the layer parameters of `material::layers::GltfLayers` in
 /// `f32`, the anisotropy rotation as its direction `(cos ρ, sin ρ)`
 /// computed in `f64`.
@@ -99,6 +99,18 @@ pub struct GpuGltfLayers {
     pub iridescence_ior: f32,
     pub iridescence_thickness: f32,
     pub anisotropy_strength: f32,
+    /// `KHR_materials_volume`: the colour kept after
+    /// `attenuation_distance`.
+    pub attenuation_color: [f32; 3],
+    /// `KHR_materials_transmission`'s `T`.
+    pub transmission: f32,
+    /// The volume's thickness (0: thin-walled).
+    pub thickness: f32,
+    /// `1 / attenuation_distance` (0 for the default `inf`: no
+    /// attenuation), so the shader never divides by infinity.
+    pub attenuation_rate: f32,
+    pub _pad0: f32,
+    pub _pad1: f32,
 }
 
 impl From<&crate::material::layers::GltfLayers> for GpuGltfLayers {
@@ -117,6 +129,12 @@ impl From<&crate::material::layers::GltfLayers> for GpuGltfLayers {
             iridescence_ior: l.iridescence_ior as f32,
             iridescence_thickness: l.iridescence_thickness as f32,
             anisotropy_strength: l.anisotropy_strength as f32,
+            attenuation_color: f32x3(l.attenuation_color),
+            transmission: l.transmission as f32,
+            thickness: l.thickness as f32,
+            attenuation_rate: (1.0 / l.attenuation_distance) as f32,
+            _pad0: 0.0,
+            _pad1: 0.0,
         }
     }
 }
@@ -453,7 +471,13 @@ mod tests {
                 iridescence,
                 iridescence_ior,
                 iridescence_thickness,
-                anisotropy_strength
+                anisotropy_strength,
+                attenuation_color,
+                transmission,
+                thickness,
+                attenuation_rate,
+                _pad0,
+                _pad1
             }),
         );
         assert_mirrors(

@@ -25,7 +25,9 @@
 //!   their passes, [`shadow_masks`] the pass of alpha MASK casters;
 //!   [`prepared`] is a scene uploaded once and drawn many
 //!   times (update by what changed, encode a frame), counting what it
-//!   sends by kind in an [`upload_tally`];
+//!   sends by kind in an [`upload_tally`]; [`transmission`] holds the
+//!   images transmissive surfaces read what lies behind them from, and
+//!   records their mip chains;
 //! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
 //!   and reads the timestamp queries; [`timing`] names the durations;
 //! * [`offscreen`] is the one-shot render (`scene -> Frame`);
@@ -50,13 +52,14 @@
 //! prepared    -> shadow_maps shadow_culling shadow_masks pipelines
 //!                environment draw scene_parts upload upload_tally
 //!                geometry bind_groups bindings layout textures
-//!                shader_gen shadows context
+//!                shader_gen shadows transmission context formats
 //! shadow_maps -> shadow_culling shadow_masks pipelines draw scene_parts
 //!                bind_groups bindings layout shadows context texture_pool
 //! shadow_masks -> pipelines textures geometry shader_gen
 //! shadow_culling -> geometry shadows
 //! pipelines   -> environment bind_groups bindings geometry shader_gen
-//!                shadows formats
+//!                shadows transmission formats
+//! transmission -> shader_gen formats
 //! environment -> bind_groups shader_gen formats
 //! draw        -> bind_groups bindings layout geometry measured_tables
 //!                scene_parts upload shader_gen
@@ -64,7 +67,7 @@
 //! upload      -> geometry
 //! geometry    -> textures
 //! bind_groups -> bindings layout shadows textures
-//! shader_gen  -> bindings shadows textures
+//! shader_gen  -> bindings shadows textures formats
 //! shadows     -> shadow_fit layout (GpuLight, GpuShadowView)
 //! readback    -> context
 //! textures    -> context
@@ -102,6 +105,7 @@ pub mod shadows;
 pub mod texture_pool;
 pub mod textures;
 pub mod timing;
+pub mod transmission;
 pub mod upload;
 pub mod upload_tally;
 

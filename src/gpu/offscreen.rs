@@ -197,6 +197,8 @@ fn draw_once(
         submit_and_wait: &mut submit_and_wait,
     };
     let drawn = prepared.encode_shadows(&mut encoder, frame_target.timestamps, Some(shadow_parts));
+    // The images transmissive surfaces read, before the scene pass.
+    prepared.encode_transmission(&mut encoder);
     let parts = prepared.scene_parts(pass_triangles);
     if parts.len() > 1 && drawn.shadow_layers > 0 {
         submit_and_wait(&mut encoder);

@@ -69,6 +69,8 @@ pub struct PipelineCache {
         ),
         wgpu::RenderPipeline,
     >,
+    /// Group 4 of pipelines that draw transmission (src/gpu/transmission.rs).
+    transmission_group_layout: wgpu::BindGroupLayout,
     /// Whether a scene of several BRDF variants is drawn by one pipeline
     /// that switches per material at run time instead of one specialized
     /// pipeline per variant ([`Self::specializations`]).
@@ -123,6 +125,7 @@ impl PipelineCache {
             shadow_sampler,
             environment_layouts: HashMap::new(),
             backgrounds: HashMap::new(),
+            transmission_group_layout: super::transmission::group_layout(device),
             one_pipeline: false,
         }
     }
@@ -215,6 +218,11 @@ impl PipelineCache {
         &self.shadow_sampler
     }
 
+    /// The layout of group 4, the transmission image.
+    pub fn transmission_group_layout(&self) -> &wgpu::BindGroupLayout {
+        &self.transmission_group_layout
+    }
+
     /// The layout of the shadow passes' bind group (the layer views).
     pub fn shadow_pass_group_layout(&self) -> &wgpu::BindGroupLayout {
         &self.pass_group_layout
@@ -270,17 +278,38 @@ impl PipelineCache {
         }
         let layouts = &self.scene_layouts[&key.arrays];
         let (shadows, textures) = (key.shadows.any(), key.materials.texture_slots > 0);
-        let pipeline_layout = if key.environment.map {
+        let mut pipeline_layout = if key.environment.map {
             self.environment_layouts[&key.arrays].pipeline_layout(shadows, textures)
         } else {
             layouts.pipeline_layout(shadows, textures)
-        };
+        }
+        .clone();
+        if key.materials.layer_transmission {
+            // Groups 0 to 3 as above, and the transmission image.
+            let environment = key
+                .environment
+                .map
+                .then(|| &self.environment_layouts[&key.arrays].group);
+            pipeline_layout = self
+                .device
+                .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                    label: Some("gonio scene with transmission"),
+                    bind_group_layouts: &[
+                        Some(&layouts.scene_group),
+                        shadows.then_some(&layouts.shadow_group),
+                        textures.then_some(&layouts.texture_group),
+                        environment,
+                        Some(&self.transmission_group_layout),
+                    ],
+                    immediate_size: 0,
+                });
+        }
         let pipeline = scene_pipeline(
             &self.device,
             &ScenePipeline {
                 label: "gonio scene",
                 module: &module,
-                pipeline_layout,
+                pipeline_layout: &pipeline_layout,
                 stride: layout.stride(),
                 attributes: &layout.attributes(),
                 constants: &constants,

@@ -15,6 +15,7 @@
 use super::context::GpuContext;
 use super::draw::{self, FrameTarget, SceneDraw};
 use super::environment::GpuEnvironment;
+use super::formats::TRANSMISSION_FORMAT;
 use super::geometry::{Batch, GeometryData, Meshes, StreamPlan};
 use super::layout::{GpuGlobals, GpuLight};
 use super::pipelines::PipelineCache;
@@ -24,6 +25,7 @@ use super::shadow_culling::{self, LayerCasters};
 use super::shadow_maps::{self, ShadowMaps};
 use super::shadow_masks::ShadowMasks;
 use super::shadows::ShadowPlan;
+use super::transmission::{self, TransmissionImages};
 use super::upload::GpuGeometry;
 use super::upload_tally::UploadTally;
 use crate::scene::Scene;
@@ -49,15 +51,26 @@ pub struct PreparedScene {
     pub geometry_bytes: u64,
     /// The stream, its batches and the scene bind group.
     draw: SceneDraw,
-    /// For each batch, the variant it is drawn with and that pipeline
-    /// (resolved when the scene changes, so a frame looks nothing up).
-    batch_pipelines: Vec<(Option<u32>, wgpu::RenderPipeline)>,
+    /// For each batch, the variant it is drawn with, whether it blends,
+    /// and that pipeline (resolved when the scene changes, so a frame
+    /// looks nothing up).
+    batch_pipelines: Vec<BatchPipeline>,
     /// Alpha BLEND batches (index into the batches) with the centre of
     /// their mesh's bounding box, which orders them.
     blend_centers: Vec<(usize, glam::DVec3)>,
+    /// Transmissive batches drawn by the transmission pass, with their
+    /// centres (empty unless the key draws transmission).
+    transmissive_centers: Vec<(usize, glam::DVec3)>,
     /// The order batches are drawn in: the others in stream order, then
-    /// the BLEND ones back to front from the camera ([`draw_order`]).
+    /// the transmissive ones, then the BLEND ones, each back to front from
+    /// the camera ([`draw_order`]).
     order: Vec<usize>,
+    /// For each batch, the transmission layer it reads (transmissive
+    /// batches only; [`crate::scene::TransmissionSettings::layer_of`]).
+    batch_layers: Vec<Option<usize>>,
+    /// The transmission images and the pipelines that draw them (`None`
+    /// unless the key draws transmission).
+    transmission: Option<TransmissionDraw>,
     plan: ShadowPlan,
     shadows: Option<ShadowMaps>,
     /// The masked shadow pass of alpha MASK casters (none without them).
@@ -96,6 +109,25 @@ impl Source<'_> {
             Source::Release(s) => s,
         }
     }
+}
+
+/// A per-object batch (index into the batches) and the centre of its
+/// mesh's bounding box, which orders it.
+type ObjectCenter = (usize, glam::DVec3);
+
+/// A batch's pipeline: the variant it is specialized to (`None`: the
+/// key's one or all), whether it blends, the pipeline.
+type BatchPipeline = (Option<u32>, bool, wgpu::RenderPipeline);
+
+/// What draws the transmission images (src/gpu/transmission.rs): the
+/// images, each batch's pipeline into their format, the background's.
+struct TransmissionDraw {
+    images: TransmissionImages,
+    pipelines: Vec<BatchPipeline>,
+    background: Option<wgpu::RenderPipeline>,
+    settings: crate::scene::TransmissionSettings,
+    /// Group 4's layout, for new images at a new size.
+    group_layout: wgpu::BindGroupLayout,
 }
 
 /// The colour target a [`PreparedScene`] draws into.
@@ -185,13 +217,26 @@ impl PreparedScene {
         }
         let stream = StreamPlan::new(scene, key.needs_tangents(), key.shadow_coords_per_vertex());
         cache.compile_scene(&key, stream.layout, format, samples)?;
+        if key.materials.layer_transmission {
+            transmission::check_limits(&ctx.device)?;
+            cache.compile_scene(&key, stream.layout, TRANSMISSION_FORMAT, 1)?;
+        }
         let arrays = key.arrays;
         let materials = draw::gpu_materials(scene, &key);
         let measured = draw::measured_tables(scene);
         check_measured_size(&ctx.device, &measured.data)?;
         let lights = gpu_lights(scene, &plan);
         let globals = GpuGlobals::new(scene);
-        let blend_centers = blend_centers(&stream.batches, scene);
+        let blend_centers = object_centers(&stream.batches, scene, |m| {
+            m.alpha_mode == crate::material::AlphaMode::Blend
+        });
+        let transmissive_centers = if key.materials.layer_transmission {
+            object_centers(&stream.batches, scene, |m| {
+                m.transmits_specularly() && m.alpha_mode != crate::material::AlphaMode::Blend
+            })
+        } else {
+            Vec::new()
+        };
         let triangles = scene.triangle_count() as u64;
         let geometry = match &mut source {
             Source::Keep(scene) => {
@@ -225,8 +270,41 @@ impl PreparedScene {
             Vec::new()
         };
         let shadow_markers = shadow_culling::markers(&plan, scene, draw.objects());
-        let order = draw_order(draw.batches().len(), &blend_centers, scene);
+        let (order, batch_layers) = draw_order(
+            draw.batches().len(),
+            (&transmissive_centers, &blend_centers),
+            scene,
+        );
         let environment = prepare_environment(ctx, cache, &key, scene, format, samples)?;
+        let transmission = if key.materials.layer_transmission {
+            let background = match &environment {
+                Some(_) => Some(cache.background(arrays, TRANSMISSION_FORMAT, 1, key.tone_map)?),
+                None => None,
+            };
+            let group_layout = cache.transmission_group_layout().clone();
+            Some(TransmissionDraw {
+                images: TransmissionImages::new(
+                    &ctx.device,
+                    &ctx.queue,
+                    &group_layout,
+                    (scene.width, scene.height),
+                    scene.transmission.layers,
+                ),
+                pipelines: self::batch_pipelines(
+                    cache,
+                    &key,
+                    TRANSMISSION_FORMAT,
+                    1,
+                    &materials,
+                    &draw,
+                ),
+                background,
+                settings: scene.transmission,
+                group_layout,
+            })
+        } else {
+            None
+        };
         let textures = if key.materials.texture_slots > 0 {
             let layout = &cache.scene_layouts(arrays).texture_group;
             Some(super::textures::SceneTextures::new(ctx, layout, scene)?)
@@ -271,7 +349,10 @@ impl PreparedScene {
             draw,
             batch_pipelines,
             blend_centers,
+            transmissive_centers,
             order,
+            batch_layers,
+            transmission,
             shadows_stale: shadows.is_some(),
             plan,
             shadows,
@@ -309,6 +390,8 @@ impl PreparedScene {
             || self.key.materials.texture_slots > 0
             || key.materials.alpha_blend
             || self.key.materials.alpha_blend
+            || key.materials.layer_transmission
+            || self.key.materials.layer_transmission
         {
             let (display_scale, cull) = (self.display_scale, self.cull_shadow_casters);
             let uploads = self.uploads;
@@ -455,7 +538,22 @@ impl PreparedScene {
     /// ambient, environment, exposure): what a camera move changes. The
     /// shadow maps do not depend on the camera, so they stay.
     pub fn update_view(&mut self, ctx: &GpuContext, scene: &Scene) {
-        self.order = draw_order(self.draw.batches().len(), &self.blend_centers, scene);
+        (self.order, self.batch_layers) = draw_order(
+            self.draw.batches().len(),
+            (&self.transmissive_centers, &self.blend_centers),
+            scene,
+        );
+        if let Some(t) = &mut self.transmission
+            && t.images.size != (scene.width.max(1), scene.height.max(1))
+        {
+            t.images = TransmissionImages::new(
+                &ctx.device,
+                &ctx.queue,
+                &t.group_layout,
+                (scene.width, scene.height),
+                t.settings.layers,
+            );
+        }
         let mut globals = GpuGlobals::new(scene);
         globals.display_scale = self.display_scale;
         self.draw.write_globals(&ctx.queue, &globals);
@@ -479,6 +577,7 @@ impl PreparedScene {
     /// transparent black (coverage 0) and draws into the viewport.
     pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, target: &FrameTarget) -> Drawn {
         let drawn = self.encode_shadows(encoder, target.timestamps, None);
+        self.encode_transmission(encoder);
         let batches = self.draw.batches();
         let whole = self.order.iter().map(|&b| (b, batches[b].range.clone()));
         self.encode_scene_part(encoder, target, PassPosition::WHOLE, whole);
@@ -552,16 +651,21 @@ impl PreparedScene {
                 environment.bind(&mut pass);
             }
         }
+        if let Some(t) = &self.transmission {
+            pass.set_bind_group(transmission::GROUP, t.images.group(0), &[]);
+        }
         self.draw.bind_geometry(&mut pass);
         // Each material's batch with its material bound (src/gpu/bindings.rs)
         // and the pipeline of its BRDF variant (consecutive batches of one
         // variant share the bind).
         // Alpha BLEND batches last, back to front (`order`), each with its
         // blending pipeline.
+        // A transmissive batch binds the transmission image of its layer.
         let mut bound = None;
         for (b, range) in draws {
-            let (batch, (variant, pipeline)) = (&self.draw.batches()[b], &self.batch_pipelines[b]);
-            let which = (*variant, batch.object.is_some());
+            let (batch, (variant, blend, pipeline)) =
+                (&self.draw.batches()[b], &self.batch_pipelines[b]);
+            let which = (*variant, *blend);
             if bound != Some(which) {
                 pass.set_pipeline(pipeline);
                 bound = Some(which);
@@ -569,7 +673,61 @@ impl PreparedScene {
             if let Some(textures) = &self.textures {
                 pass.set_bind_group(2, textures.group(batch.material), &[]);
             }
+            if let (Some(t), Some(layer)) = (&self.transmission, self.batch_layers[b]) {
+                pass.set_bind_group(transmission::GROUP, t.images.group(layer), &[]);
+            }
             self.draw.draw_batch_part(&mut pass, batch, range);
+        }
+    }
+
+    /// Records the transmission images (src/gpu/transmission.rs) if the
+    /// scene draws transmission: layer 0 the background and every batch
+    /// that neither transmits nor blends, layer `k` the transmissive
+    /// batches that read layer `k − 1` over a copy of it; each followed by
+    /// its mip chain. Call after the shadow passes, before the scene
+    /// pass.
+    pub fn encode_transmission(&self, encoder: &mut wgpu::CommandEncoder) {
+        let Some(t) = &self.transmission else {
+            return;
+        };
+        let batches = self.draw.batches();
+        for layer in 0..t.images.layer_count() {
+            {
+                let mut pass = t.images.begin_layer(encoder, layer);
+                if let Some(shadows) = &self.shadows {
+                    pass.set_bind_group(1, shadows.scene_group(), &[]);
+                }
+                let reads = match layer {
+                    0 => t.images.black_group(),
+                    _ => t.images.group(layer - 1),
+                };
+                pass.set_bind_group(transmission::GROUP, reads, &[]);
+                if let Some(environment) = &self.environment {
+                    match (&t.background, layer) {
+                        (Some(background), 0) => {
+                            self.draw.bind_scene_group(&mut pass, 0);
+                            environment.encode_background_with(&mut pass, background);
+                        }
+                        _ => environment.bind(&mut pass),
+                    }
+                }
+                self.draw.bind_geometry(&mut pass);
+                for &b in &self.order {
+                    let drawn = match layer {
+                        0 => self.batch_layers[b].is_none() && !self.batch_pipelines[b].1,
+                        _ => self.batch_layers[b] == Some(layer - 1),
+                    };
+                    if !drawn {
+                        continue;
+                    }
+                    pass.set_pipeline(&t.pipelines[b].2);
+                    if let Some(textures) = &self.textures {
+                        pass.set_bind_group(2, textures.group(batches[b].material), &[]);
+                    }
+                    self.draw.draw_batch(&mut pass, &batches[b]);
+                }
+            }
+            t.images.encode_mips(encoder, layer);
         }
     }
 
@@ -711,15 +869,16 @@ fn batch_pipelines(
     samples: u32,
     materials: &[super::layout::GpuMaterial],
     draw: &SceneDraw,
-) -> Vec<(Option<u32>, wgpu::RenderPipeline)> {
+) -> Vec<BatchPipeline> {
     let specialized = cache.specializations(key).len() > 1;
     draw.batches()
         .iter()
         .map(|b| {
-            let variant = specialized.then(|| materials[b.material as usize].variant);
-            let blend = b.object.is_some();
+            let material = &materials[b.material as usize];
+            let variant = specialized.then_some(material.variant);
+            let blend = material.alpha_mode == crate::material::AlphaMode::Blend.code();
             let pipeline = cache.scene_pipeline(&(key.clone(), format, samples, variant, blend));
-            (variant, pipeline.clone())
+            (variant, blend, pipeline.clone())
         })
         .collect()
 }
@@ -738,14 +897,22 @@ pub fn gpu_lights(scene: &Scene, plan: &ShadowPlan) -> Vec<GpuLight> {
         .collect()
 }
 
-/// The alpha BLEND batches of `batches` (index, the centre of the
-/// bounding box of the mesh each draws, in world space).
-fn blend_centers(batches: &[Batch], scene: &Scene) -> Vec<(usize, glam::DVec3)> {
+/// The per-object batches of `batches` whose material passes `test`
+/// (index, the centre of the bounding box of the mesh each draws, in
+/// world space).
+fn object_centers(
+    batches: &[Batch],
+    scene: &Scene,
+    test: impl Fn(&crate::material::Material) -> bool,
+) -> Vec<(usize, glam::DVec3)> {
     batches
         .iter()
         .enumerate()
         .filter_map(|(i, b)| {
             let mesh = &scene.meshes[b.object? as usize];
+            if !test(&scene.materials[mesh.material]) {
+                return None;
+            }
             let (lo, hi) = mesh.positions.iter().fold(
                 (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY),
                 |(lo, hi), &p| (lo.min(p), hi.max(p)),
@@ -755,20 +922,35 @@ fn blend_centers(batches: &[Batch], scene: &Scene) -> Vec<(usize, glam::DVec3)> 
         .collect()
 }
 
-/// The drawing order of `batches` batches: every batch that does not
-/// blend, in stream order, then the BLEND ones (`blend`) back to front,
-/// farthest centre from `scene`'s camera first ("sorted per object": the
-/// triangles within one are drawn in index order; the reference
-/// composites in exact depth order, see `reference::renderer`).
-fn draw_order(batches: usize, blend: &[(usize, glam::DVec3)], scene: &Scene) -> Vec<usize> {
+/// The drawing order of `batches` batches and the transmission layer of
+/// each: every batch that neither transmits nor blends, in stream order,
+/// then the transmissive ones (`transmissive`), then the BLEND ones
+/// (`blend`), each back to front, farthest centre from `scene`'s camera
+/// first ("sorted per object": the triangles within one are drawn in
+/// index order; the reference composites in exact depth order, see
+/// `reference::renderer`). The transmissive batch of rank `k` in that
+/// order reads layer `scene.transmission.layer_of(k)`.
+fn draw_order(
+    batches: usize,
+    (transmissive, blend): (&[ObjectCenter], &[ObjectCenter]),
+    scene: &Scene,
+) -> (Vec<usize>, Vec<Option<usize>>) {
     let eye = scene.camera.position;
-    let mut order: Vec<usize> = (0..batches)
-        .filter(|i| !blend.iter().any(|(b, _)| b == i))
-        .collect();
-    let mut sorted = blend.to_vec();
-    sorted.sort_by(|(_, a), (_, b)| b.distance_squared(eye).total_cmp(&a.distance_squared(eye)));
-    order.extend(sorted.into_iter().map(|(i, _)| i));
-    order
+    let listed = |i: &usize| transmissive.iter().chain(blend).any(|(b, _)| b == i);
+    let mut order: Vec<usize> = (0..batches).filter(|i| !listed(i)).collect();
+    let back_to_front = |centers: &[ObjectCenter]| {
+        let mut sorted = centers.to_vec();
+        sorted
+            .sort_by(|(_, a), (_, b)| b.distance_squared(eye).total_cmp(&a.distance_squared(eye)));
+        sorted.into_iter().map(|(i, _)| i).collect::<Vec<_>>()
+    };
+    let mut layers = vec![None; batches];
+    for (rank, i) in back_to_front(transmissive).into_iter().enumerate() {
+        layers[i] = Some(scene.transmission.layer_of(rank));
+        order.push(i);
+    }
+    order.extend(back_to_front(blend));
+    (order, layers)
 }
 
 /// Counts the parameter buffers written whole: every material record (at

@@ -212,6 +212,13 @@ impl Material {
         self.layers.used(|key| self.is_textured(key))
     }
 
+    /// Whether it is a `gltf-pbr` material with `transmission > 0` (the
+    /// specular BTDF of `KHR_materials_transmission`): what the GPU's
+    /// transmission pass draws (src/gpu/transmission.rs).
+    pub fn transmits_specularly(&self) -> bool {
+        self.model == crate::material::ReflectanceModel::GltfPbr && self.layers.transmission > 0.0
+    }
+
     /// This material as the renderers evaluate it for a given roughness
     /// floor (the pixel footprint, [`crate::scene::Scene::roughness_floor`]):
     /// `roughness`, `sigma_x`, `sigma_y` become `sqrt(r² + floor²)`, never
@@ -241,7 +248,7 @@ impl Material {
     }
 
     /// Whether a texture multiplies the parameter with scene-file key `key`.
-    fn is_textured(&self, key: &str) -> bool {
+    pub fn is_textured(&self, key: &str) -> bool {
         self.textures
             .iter()
             .any(|t| matches!(t.target, texture::TextureTarget::Param(k) if k == key))

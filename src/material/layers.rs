@@ -164,13 +164,6 @@ impl GltfLayers {
 }
 
 impl GltfLayers {
-    /// The share of the base's diffuse part still reflected, `(1 − T)(1 − D)`
-    /// (`T` transmission, `D` diffuse transmission; exactly 1 at the
-    /// defaults, so the core BRDF is unchanged bit for bit).
-    pub fn reflected_diffuse_weight(&self) -> f64 {
-        (1.0 - self.transmission) * (1.0 - self.diffuse_transmission)
-    }
-
     /// Whether light passes through the surface: `transmission > 0` or
     /// `diffuse_transmission > 0` (a texture multiplies the constant, so
     /// a zero constant stays off). `thickness`, `attenuation_*` and

@@ -984,6 +984,7 @@ mod tests {
             measured_network: false,
             smith_beckmann: Default::default(),
             shadow_coords: Default::default(),
+            transmission: Default::default(),
             images: Vec::new(),
         }
     }

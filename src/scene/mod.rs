@@ -22,6 +22,7 @@ pub mod scene_file;
 pub mod shadow_coords;
 pub mod tangents;
 pub mod texture;
+pub mod transmission_settings;
 
 pub use area_light::AreaLight;
 pub use camera::Camera;
@@ -29,6 +30,7 @@ pub use environment::Environment;
 pub use light::{Light, LightKind, LightMarkers, MapResolution, ShadowFilter, ShadowSettings};
 pub use mesh::Mesh;
 pub use shadow_coords::ShadowCoords;
+pub use transmission_settings::{TransmissionMode, TransmissionSettings};
 
 use crate::base::named_enum;
 use crate::material::Material;
@@ -108,6 +110,9 @@ pub struct Scene {
     /// coordinates on the GPU (per vertex only where exact, the default,
     /// or also where approximate); the reference traces shadow rays.
     pub shadow_coords: ShadowCoords,
+    /// `shading.transmission`, `shading.transmission_layers`: how the GPU
+    /// draws light through surfaces; the reference traces it.
+    pub transmission: TransmissionSettings,
     /// The images materials' textures read (`MaterialTexture::image`
     /// indexes this); shared, so cloning a scene does not copy texels.
     pub images: Vec<std::sync::Arc<texture::Image>>,

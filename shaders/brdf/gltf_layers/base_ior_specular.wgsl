@@ -20,6 +20,26 @@ fn dielectric_f0(ior: f32, specular_color: vec3<f32>) -> vec3<f32> {
     return min(vec3<f32>(f0_from_ior(ior)) * specular_color, vec3<f32>(1.0));
 }
 
+#if layer_transmission
+// The share of the base's diffuse part still reflected, 1 − T
+// (KHR_materials_transmission: the transmission replaces that share of the
+// diffuse lobe). f64 twin: reflected_diffuse_weight in
+// src/material/brdf/gltf_layers/base_ior_specular.rs, which also takes
+// diffuse transmission's share (the GPU does not draw diffuse
+// transmission: its share stays reflected).
+fn reflected_diffuse_weight(layers: GltfLayers) -> f32 {
+    return 1.0 - layers.transmission;
+}
+
+// The base's Fresnel term F_d = s_w (f0 + (1 − f0) w) at the half vector
+// whose cosine with V is cos_oh (the thin wall's straight ray: N).
+// f64 twin: transmission_fresnel in src/material/brdf/gltf_layers/transmission.rs.
+fn transmission_fresnel(layers: GltfLayers, cos_oh: f32) -> vec3<f32> {
+    let f0 = dielectric_f0(layers.ior, layers.specular_color);
+    return (f0 + (vec3<f32>(1.0) - f0) * schlick_weight(cos_oh)) * layers.specular;
+}
+#endif
+
 #if layer_anisotropy
 // The anisotropy's (T, B) (a struct, not an array: a pipeline with
 // overrides rejected the array's constant indexing).
@@ -108,7 +128,14 @@ fn gltf_base(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, laye
     f_dielectric = select(f_dielectric, film_dielectric, film);
     f_metal = select(f_metal, film_metal, film);
     #endif
-    let dielectric = base_color * ((1.0 - max(f_dielectric.x, max(f_dielectric.y, f_dielectric.z))) * FRAC_1_PI)
+    #if layer_transmission
+    // Transmission takes its share of the diffuse part (the light it lets
+    // through is added by the transmission pass, shaders/transmission.wgsl).
+    let diffuse_weight = reflected_diffuse_weight(layers);
+    #else
+    let diffuse_weight = 1.0;
+    #endif
+    let dielectric = base_color * ((1.0 - max(f_dielectric.x, max(f_dielectric.y, f_dielectric.z))) * diffuse_weight * FRAC_1_PI)
         + f_dielectric * specular * ms_factor(f0 * layers.specular, ms);
     let metal = f_metal * specular * ms_factor(base_color, ms);
     return dielectric * (1.0 - metallic) + metal * metallic;

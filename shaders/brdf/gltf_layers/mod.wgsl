@@ -1,5 +1,6 @@
 // The layer parameters of a gltf-pbr material (contract: "Layered glTF
-// materials", keys), in an order that packs into 20 f32 (80 bytes); the
+// materials", keys; "Light through surfaces"), in an order that packs
+// into 28 f32 (112 bytes); the
 // CPU mirror is gpu::layout::GpuGltfLayers (same order), filled from
 // src/material/layers.rs (GltfLayers): the anisotropy rotation ρ as its
 // direction (cos ρ, sin ρ), computed in f64, and the coat's normal.
@@ -19,4 +20,10 @@ struct GltfLayers {
     iridescence_ior: f32,         // η_f
     iridescence_thickness: f32,   // d [nm]
     anisotropy_strength: f32,     // s_a
+    attenuation_color: vec3<f32>, // KHR_materials_volume: the colour kept after attenuation_distance
+    transmission: f32,            // T: KHR_materials_transmission (read with feature layer_transmission)
+    thickness: f32,               // the volume's thickness (0: thin-walled)
+    attenuation_rate: f32,        // 1 / attenuation_distance (0: no attenuation)
+    _pad0: f32,
+    _pad1: f32,
 }

@@ -15,8 +15,10 @@
 //! What a targeted write cannot express falls back to `update`: a change
 //! of the shader key (a model switch that needs other code, a new light
 //! count, energy compensation switched on), a measured material (its
-//! tables), a material whose alpha MASK changes the shadow casters, a
-//! texture edit that changes which images a material binds. The viewer's
+//! tables), a material whose alpha MASK changes the shadow casters or
+//! whose BLEND changes its pipelines and the drawing order, any material
+//! of a scene with transmission (its own pipelines and drawing order per
+//! layer), a texture edit that changes which images a material binds. The viewer's
 //! `--frame-times` prints what each path sent (`upload_tally`).
 
 use super::{PreparedScene, gpu_lights, plan, prepare_environment};
@@ -102,7 +104,11 @@ impl PreparedScene {
         let floor = scene.roughness_floor();
         for &index in edited {
             let m = scene.materials[index].with_roughness_floor(floor);
-            if m.measured_brdf().is_some() || self.masks_differ(index, &m) {
+            if m.measured_brdf().is_some()
+                || self.masks_differ(index, &m)
+                || self.blend_differs(index, &m)
+                || self.transmission.is_some()
+            {
                 return Ok(Err(Fallback));
             }
             let record = GpuMaterial::new(&m, key.variant_code(&m.variant()));
@@ -134,16 +140,35 @@ impl PreparedScene {
         now != held
     }
 
+    /// Whether material `index`, now `m`, blends where its batches did not
+    /// or the other way round (their pipelines and the drawing order,
+    /// BLEND batches last and sorted, are then made anew).
+    fn blend_differs(&self, index: usize, m: &crate::material::Material) -> bool {
+        let blends = m.alpha_mode == crate::material::AlphaMode::Blend;
+        self.draw
+            .batches()
+            .iter()
+            .zip(&self.batch_pipelines)
+            .any(|(batch, (_, held, _))| batch.material as usize == index && *held != blends)
+    }
+
     /// Points material `index`'s batches at the pipeline of its variant
     /// `variant` where pipelines are specialized per variant (a model
     /// switch between variants the key already has: no compilation).
     fn repipeline(&mut self, cache: &PipelineCache, key: &ShaderKey, index: usize, variant: u32) {
-        for (batch, (held, pipeline)) in self.draw.batches().iter().zip(&mut self.batch_pipelines) {
+        for (batch, (held, blend, pipeline)) in
+            self.draw.batches().iter().zip(&mut self.batch_pipelines)
+        {
             if batch.material as usize != index || held.is_none_or(|v| v == variant) {
                 continue;
             }
-            let blend = batch.object.is_some();
-            let cached = (key.clone(), self.format, self.samples, Some(variant), blend);
+            let cached = (
+                key.clone(),
+                self.format,
+                self.samples,
+                Some(variant),
+                *blend,
+            );
             *held = Some(variant);
             *pipeline = cache.scene_pipeline(&cached).clone();
         }

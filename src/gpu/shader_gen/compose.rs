@@ -92,6 +92,7 @@ fn layer_files(models: &BTreeSet<ReflectanceModel>, features: &[Feature]) -> Vec
         Feature::LayerIorSpecular,
         Feature::LayerIridescence,
         Feature::LayerAnisotropy,
+        Feature::LayerTransmission,
     ];
     let layers = [
         (
@@ -171,7 +172,9 @@ impl Output {
     /// The output a colour target of `format` takes.
     pub fn for_format(format: wgpu::TextureFormat) -> Output {
         match format {
-            wgpu::TextureFormat::Rgba32Float => Output::Radiance,
+            wgpu::TextureFormat::Rgba32Float | super::super::formats::TRANSMISSION_FORMAT => {
+                Output::Radiance
+            }
             wgpu::TextureFormat::Rgba32Uint => Output::RadianceBits,
             _ => Output::Display,
         }
@@ -282,6 +285,12 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
     // Shadow-map lookups, only when a light casts shadows.
     if key.shadows.any() {
         out.push_str(&file("shadows.wgsl", &features));
+        out.push('\n');
+    }
+    // Light through surfaces (screen space), only where a drawn material
+    // transmits and the scene's transmission mode draws it.
+    if key.materials.layer_transmission {
+        out.push_str(&file("transmission.wgsl", &features));
         out.push('\n');
     }
     out.push_str(&file("shading.wgsl", &features));

@@ -190,6 +190,16 @@ features! {
         /// Some gltf-pbr material is anisotropic (`anisotropy_strength >
         /// 0`): the anisotropic lobe, and tangents in the vertex stream.
         LayerAnisotropy = "layer_anisotropy",
+        /// Some gltf-pbr material transmits (`transmission > 0`) and the
+        /// scene draws light through surfaces (`shading.transmission =
+        /// "screen"`): the diffuse part's `1 − T`, the transmission
+        /// image (group 4) and the light read from it
+        /// (shaders/transmission.wgsl).
+        LayerTransmission = "layer_transmission",
+        /// The light leaving a transmissive volume is weighted by its
+        /// second interface (`shading.transmission_exit`, with
+        /// `layer_transmission`).
+        TransmissionExit = "transmission_exit",
     }
 }
 

@@ -8,7 +8,7 @@ use super::features::Feature;
 use crate::environment::map::Specular;
 use crate::gpu::shadows::{Projection, ShadowFeatures};
 use crate::material::{AlphaMode, Material, Sides, SmithBeckmann};
-use crate::scene::{Light, LightKind, Scene};
+use crate::scene::{Light, LightKind, Scene, TransmissionMode};
 use std::collections::BTreeSet;
 
 /// Declares a group of the key: its plain fields, then its flags, each a
@@ -258,6 +258,13 @@ key_group! {
         layer_iridescence => LayerIridescence,
         /// ... anisotropic.
         layer_anisotropy => LayerAnisotropy,
+        /// ... transmissive, drawn in screen space (`shading.transmission
+        /// = "screen"`): its batches per object, after the transmission
+        /// image (src/gpu/transmission.rs), with bind group 4.
+        layer_transmission => LayerTransmission,
+        /// ... and a volume's light crosses its second interface
+        /// (`shading.transmission_exit`).
+        transmission_exit => TransmissionExit,
     }
 }
 
@@ -267,6 +274,8 @@ impl MaterialsKey {
     pub fn for_scene(scene: &Scene) -> Self {
         let drawn = || scene.meshes.iter().map(|m| &scene.materials[m.material]);
         let any = |test: fn(&Material) -> bool| drawn().any(test);
+        let transmission = scene.transmission.mode == TransmissionMode::Screen
+            && any(Material::transmits_specularly);
         MaterialsKey {
             texture_slots: crate::gpu::textures::slot_count(scene),
             normal_maps: crate::gpu::textures::has_normal_maps(scene),
@@ -280,12 +289,14 @@ impl MaterialsKey {
             smith_beckmann_rational: scene.smith_beckmann == SmithBeckmann::Rational,
             emission: any(Material::emits),
             occlusion: any(Material::has_occlusion),
-            gltf_layers: any(|m| !m.gltf_layers_used().is_empty()),
+            gltf_layers: any(|m| !m.gltf_layers_used().is_empty()) || transmission,
             layer_ior_specular: any(|m| m.gltf_layers_used().ior_specular),
             layer_clearcoat: any(|m| m.gltf_layers_used().clearcoat),
             layer_sheen: any(|m| m.gltf_layers_used().sheen),
             layer_iridescence: any(|m| m.gltf_layers_used().iridescence),
             layer_anisotropy: any(|m| m.gltf_layers_used().anisotropy),
+            layer_transmission: transmission,
+            transmission_exit: transmission && scene.transmission.exit,
         }
     }
 

@@ -323,6 +323,48 @@ mod tests {
         }
     }
 
+    /// The transmission pass's code (its file, group 4, the diffuse
+    /// part's share) only where a drawn gltf-pbr material transmits and
+    /// `shading.transmission` is "screen".
+    #[test]
+    fn transmission_only_where_a_material_transmits_and_the_mode_draws_it() {
+        use crate::scene::scene_file::{self, SceneSource};
+        let key_for = |sets: &[&str]| {
+            let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
+            all.extend(sets.iter().map(|s| s.to_string()));
+            let scene = scene_file::load(&SceneSource::BuiltIn, &all).unwrap();
+            ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
+        };
+        let code = [
+            "fn transmitted_radiance",
+            "@group(4)",
+            "fn reflected_diffuse_weight",
+            "transmitted_radiance(m, x, frame, wo)",
+        ];
+        let cases: [(&[&str], bool); 5] = [
+            (&[], false),
+            (&["materials.ball.thickness=1"], false),
+            (&["materials.ball.transmission=1"], true),
+            (
+                &["materials.ball.transmission=1", "shading.transmission=off"],
+                false,
+            ),
+            (
+                &["materials.ball.transmission=0.5", "shading.mode=gouraud"],
+                true,
+            ),
+        ];
+        for (sets, present) in cases {
+            let key = key_for(sets);
+            assert_eq!(key.materials.layer_transmission, present, "{sets:?}");
+            let wgsl = compose(&key);
+            for c in code {
+                assert_eq!(wgsl.contains(c), present, "{sets:?}: `{c}`");
+            }
+            validate(&wgsl).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
+        }
+    }
+
     /// The unlit model's code (its file, its arm, its radiance in the
     /// reflection equation) only where a drawn material is unlit.
     #[test]

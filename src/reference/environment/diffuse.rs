@@ -17,10 +17,11 @@ use crate::material::{Material, ReflectanceModel};
 pub fn environment_diffuse_albedo(material: &Material) -> Rgb {
     match material.model {
         // Transmission takes its share of the diffuse part (1 without).
-        ReflectanceModel::GltfPbr => {
-            material.base_color
-                * ((1.0 - material.metallic) * material.layers.reflected_diffuse_weight())
-        }
+        ReflectanceModel::GltfPbr => material.base_color
+            * ((1.0 - material.metallic)
+                * crate::material::brdf::gltf_layers::base_ior_specular::reflected_diffuse_weight(
+                    &material.layers,
+                )),
         ReflectanceModel::Measured => Rgb::ZERO,
         _ => material.brdf().k_d,
     }

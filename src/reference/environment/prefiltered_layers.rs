@@ -114,7 +114,10 @@ pub fn estimate(
         dielectric = dielectric * (1.0 - iota) + film(f0) * (iota * lobe_albedo);
         metal = metal * (1.0 - iota) + film(b) * (iota * lobe_albedo);
     }
-    let diffuse_weight = (1.0 - dielectric.max_element()).max(0.0);
+    // Transmission takes its share of the diffuse part (1 without), as
+    // in the BRDF (`reflected_diffuse_weight`).
+    let diffuse_weight = (1.0 - dielectric.max_element()).max(0.0)
+        * crate::material::brdf::gltf_layers::transmission::reflected_diffuse_weight(layers);
     let r = dominant_direction(
         mirror_direction(wo, bent_normal(material, frame, wo)),
         n,

@@ -9,8 +9,10 @@ use super::schema::{CameraSection, ObjectEntry, SceneFile};
 use super::values::{finite_vec, gpu_coordinate, non_negative, unit_vec};
 use crate::base::ColorValue;
 use crate::material::{Material, ReflectanceModel, material_from_entry_in};
+use crate::scene::transmission_settings::MAX_TRANSMISSION_LAYERS;
 use crate::scene::{
-    Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, gltf_import, primitives,
+    Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, TransmissionSettings, gltf_import,
+    primitives,
 };
 use crate::{Error, Result};
 use glam::DVec3;
@@ -126,6 +128,7 @@ pub fn assemble(
             ))
         })?,
     };
+    let transmission = transmission_settings(&file.shading).map_err(bad)?;
     let mut scene = Scene {
         width,
         height,
@@ -144,12 +147,41 @@ pub fn assemble(
         measured_network,
         smith_beckmann,
         shadow_coords,
+        transmission,
         images: gltf_files.images.images.clone(),
     };
     // A scene-file normal map on a mesh without tangents (a glTF mesh
     // given a scene-file material): MikkTSpace, in world space.
     crate::scene::tangents::generate_where_needed(&mut scene);
     Ok((scene, light_setup, objects.variants))
+}
+
+/// `shading.transmission` (a mode name) and `shading.transmission_layers`
+/// (1 to [`MAX_TRANSMISSION_LAYERS`]), `shading.transmission_exit`, each
+/// error naming the key and what it takes.
+fn transmission_settings(
+    shading: &super::schema::ShadingSection,
+) -> std::result::Result<TransmissionSettings, String> {
+    let mut settings = TransmissionSettings::default();
+    if let Some(s) = &shading.transmission {
+        settings.mode = s.parse().map_err(|e| {
+            format!(
+                "shading.transmission: {e} (\"screen\": the GPU reads the opaque scene's image behind a transmissive surface; \"off\": drawn as if opaque)"
+            )
+        })?;
+    }
+    if let Some(n) = shading.transmission_layers {
+        if !(1..=MAX_TRANSMISSION_LAYERS).contains(&n) {
+            return Err(format!(
+                "shading.transmission_layers = {n}: takes 1 to {MAX_TRANSMISSION_LAYERS} (images of what lies behind transmissive objects; more let glass be seen behind glass)"
+            ));
+        }
+        settings.layers = n;
+    }
+    if let Some(exit) = shading.transmission_exit {
+        settings.exit = exit;
+    }
+    Ok(settings)
 }
 
 /// `shading.measured_mode`: "table" (the default) or "network" (the GPU

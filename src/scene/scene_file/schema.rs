@@ -136,6 +136,18 @@ pub struct ShadingSection {
     /// spot light's map, approximately; docs/shadows.md).
     #[serde(default)]
     pub shadow_coords: Option<String>,
+    /// How the GPU draws light through surfaces: "screen" (default) or
+    /// "off" (docs/transmission.md).
+    #[serde(default)]
+    pub transmission: Option<String>,
+    /// Images of what lies behind transmissive objects, 1 to 8 (default
+    /// 1): with more, glass behind glass is seen.
+    #[serde(default)]
+    pub transmission_layers: Option<u32>,
+    /// Whether the light leaving a volume is weighted by its second
+    /// interface's transmittance (default true; docs/transmission.md).
+    #[serde(default)]
+    pub transmission_exit: Option<bool>,
 }
 
 /// One `[[objects]]` entry: a glTF file or a generated shape.

@@ -179,9 +179,18 @@ pub fn gltf_base(
         f_metal = f_metal * (1.0 - iota) + iridescence_fresnel(cos_o, eta_f, d, base_color) * iota;
     }
     // Transmission takes its share of the diffuse part (exactly 1 without).
-    let diffuse_weight = layers.reflected_diffuse_weight();
+    let diffuse_weight = reflected_diffuse_weight(layers);
     let dielectric = base_color * ((1.0 - f_dielectric.max_element()) * FRAC_1_PI * diffuse_weight)
         + f_dielectric * specular * ms_factor(f0 * layers.specular, ms);
     let metal = f_metal * specular * ms_factor(base_color, ms);
     dielectric * (1.0 - metallic) + metal * metallic
+}
+/// The share of the base's diffuse part still reflected, `(1 − T)(1 − D)`
+/// (`KHR_materials_transmission` and `KHR_materials_diffuse_transmission`
+/// replace those shares of it; exactly 1 at the defaults, so the core
+/// BRDF is unchanged bit for bit). WGSL twin: `reflected_diffuse_weight`
+/// in shaders/brdf/gltf_layers/base_ior_specular.wgsl (`1 − T`: the GPU
+/// does not draw diffuse transmission).
+pub fn reflected_diffuse_weight(layers: &GltfLayers) -> f64 {
+    (1.0 - layers.transmission) * (1.0 - layers.diffuse_transmission)
 }

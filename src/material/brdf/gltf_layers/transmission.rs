@@ -13,14 +13,17 @@
 //!
 //! (`⁻`: on the far side; `b` the base colour, `c_dt` the diffuse
 //! transmission colour). The reflected diffuse thus keeps
-//! `(1 − T)(1 − D)` of itself ([`GltfLayers::reflected_diffuse_weight`], applied in
+//! `(1 − T)(1 − D)` of itself ([`reflected_diffuse_weight`], applied in
 //! [`super::base_ior_specular::gltf_base`]), and for `L` on the far side
 //! `f_t = (1 − m)(1 − max₃ F)(T · b · btdf + (1 − T) D · c_dt/π)`
 //! ([`gltf_transmitted`]), scaled by the sheen and the coat above it as
 //! the reflected base is. `F` is the base's Fresnel term at the half
 //! vector of the mirrored light direction ([`mirrored_half_vector`]).
 //!
-//! WGSL twin: none yet (the GPU renderer does not draw transmission).
+//! WGSL twins: `reflected_diffuse_weight` and `transmission_fresnel` in
+//! shaders/brdf/gltf_layers/base_ior_specular.wgsl (the GPU draws the
+//! light through a surface in screen space, shaders/transmission.wgsl;
+//! it has no BTDF to evaluate per light).
 
 use super::GltfLayers;
 use super::base_ior_specular::dielectric_f0;
@@ -31,6 +34,10 @@ use crate::material::brdf::microfacet::vis_smith_ggx_correlated;
 use crate::material::brdf::microfacet::{d_ggx, schlick_weight, sin2_between};
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
+
+/// Defined beside the base it weighs (which may not import this file:
+/// this file builds on the base's Fresnel term).
+pub use super::base_ior_specular::reflected_diffuse_weight;
 
 /// `L` mirrored to the viewer's side of the surface, `L − 2 (N·L) N`
 /// (`KHR_materials_transmission`, "BTDF": "the half vector is computed

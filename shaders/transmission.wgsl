@@ -1,0 +1,94 @@
+// Light through a transmissive gltf-pbr surface in screen space: the
+// method of the Khronos glTF Sample Renderer (source/Renderer/shaders/
+// ibl.glsl, getIBLVolumeRefraction; functions.glsl, getVolumeTransmissionRay
+// and applyVolumeAttenuation). The opaque scene is drawn first into a
+// linear colour image with a mip chain (src/gpu/transmission.rs); a
+// transmissive surface reads that image where the ray refracted into it
+// (Snell, index `ior`) leaves after `thickness`, at a level of detail that
+// grows with the roughness, attenuated by Beer–Lambert over that length,
+// tinted by the base colour and weighted as the reference's smooth thin
+// wall, (1 − m)(1 − max₃ F(μ_o)) T b (src/reference/transmission/thin.rs).
+// A thin wall (thickness 0) reads the image straight behind the pixel:
+// what the reference's straight ray sees. A volume's exit interface
+// weighs the light once more (feature transmission_exit). Not drawn: what
+// the image does not hold (what lies off screen, behind another
+// transmissive surface of the same image, or behind the surface itself),
+// the ray past the exit point, total internal reflection, internal
+// reflections and dispersion (docs/transmission.md, "The GPU renderer").
+// Compiled only where a drawn material transmits and the scene's
+// `shading.transmission` is "screen" (feature layer_transmission).
+
+// The image of what lies behind (linear radiance, mip chain) and its
+// trilinear sampler.
+@group(4) @binding(0) var transmission_image: texture_2d<f32>;
+@group(4) @binding(1) var transmission_sampler: sampler;
+
+// The path inside a volume: the view ray refracted into the surface,
+// normalize(refract(−V, N, 1/ior)) · thickness (getVolumeTransmissionRay;
+// the thickness is in world units: the meshes are). Zero for a thin wall.
+fn volume_transmission_ray(n: vec3<f32>, wo: vec3<f32>, thickness: f32, ior: f32) -> vec3<f32> {
+    let refracted = refract(-wo, n, 1.0 / max(ior, 1.0));
+    return normalize_or_zero(refracted) * thickness;
+}
+
+// Beer–Lambert: attenuation_color^(distance / attenuation_distance),
+// `rate` = 1 / attenuation_distance (0: none; then 1 exactly, also for a
+// black colour). f64 twin: beer_lambert in
+// src/reference/transmission/interface.rs.
+fn volume_attenuation(color: vec3<f32>, distance: f32, rate: f32) -> vec3<f32> {
+    let exponent = distance * rate;
+    let attenuated = exp2(exponent * log2(max(color, vec3<f32>(1e-30))));
+    return select(attenuated, vec3<f32>(1.0), exponent <= 0.0);
+}
+
+// The level of detail the roughness blurs the image to:
+// log2(width) · r · clamp(2 ior − 2, 0, 1) (getTransmissionSample with
+// applyIorToRoughness: at ior = 1 a rough surface does not blur).
+fn transmission_lod(width: f32, roughness: f32, ior: f32) -> f32 {
+    return log2(width) * roughness * clamp(ior * 2.0 - 2.0, 0.0, 1.0);
+}
+
+// 1 − max₃ F(μ_o): the share of the light an interface lets through.
+fn interface_transmittance(layers: GltfLayers, cos_o: f32) -> f32 {
+    let f = transmission_fresnel(layers, cos_o);
+    return 1.0 - max(f.x, max(f.y, f.z));
+}
+
+// The weight of the straight-through light, (1 − m)(1 − max₃ F(μ_o)) T,
+// times 1 − k F_c(μ_o) under a coat; the base colour multiplies it.
+// f64 twin: lobe_weight in thin_samples (src/reference/transmission/thin.rs).
+fn thin_wall_weight(m: Material, cos_o: f32) -> f32 {
+    var s = (1.0 - m.metallic) * interface_transmittance(m.layers, cos_o);
+    #if layer_clearcoat
+    s *= 1.0 - m.layers.clearcoat * clearcoat_fresnel(cos_o);
+    #endif
+    return s * m.layers.transmission;
+}
+
+// The light through the surface at x seen from wo: the image read where
+// the refracted ray leaves (projected by the camera), blurred by the
+// roughness, attenuated and weighted. 0 where the surface faces away or
+// does not transmit.
+fn transmitted_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, wo: vec3<f32>) -> vec3<f32> {
+    let n = frame.n;
+    let cos_o = dot(n, wo);
+    let ray = volume_transmission_ray(n, wo, m.layers.thickness, m.layers.ior);
+    let clip = globals.clip_from_world * vec4<f32>(x + ray, 1.0);
+    let ndc = clip.xy / clip.w;
+    let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
+    let width = f32(textureDimensions(transmission_image).x);
+    let lod = transmission_lod(width, m.roughness, m.layers.ior);
+    let behind = textureSampleLevel(transmission_image, transmission_sampler, uv, lod).rgb;
+    let through = behind * volume_attenuation(m.layers.attenuation_color, length(ray), m.layers.attenuation_rate);
+    var weight = thin_wall_weight(m, cos_o);
+    #if transmission_exit
+    // A volume's light leaves through a second interface, whose
+    // transmittance is the entry's for a slab or a sphere (reciprocity:
+    // the angle inside is the entry's refracted one), so 1 − max₃ F(μ_o)
+    // again (shading.transmission_exit; the reference follows the exit
+    // exactly, and its internal reflections, which this leaves out).
+    weight *= select(1.0, interface_transmittance(m.layers, cos_o), m.layers.thickness > 0.0);
+    #endif
+    weight = select(weight, 0.0, cos_o <= 0.0 || clip.w <= 0.0);
+    return through * m.base_color * weight;
+}

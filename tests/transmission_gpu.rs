@@ -1,0 +1,316 @@
+//! The GPU's screen-space transmission (src/gpu/transmission.rs,
+//! shaders/transmission.wgsl) against the f64 reference, where the
+//! method is exact up to the image's rounding, and where it is not, by
+//! the factor its model leaves out (docs/transmission.md, "The GPU
+//! renderer").
+//!
+//! The scenes look along −Z at emitters of known radiance behind glass,
+//! with no light (one of no irradiance), no ambient light and no
+//! environment, so a pixel on the
+//! glass is the transmitted light alone (its reflection is a δ lobe at
+//! roughness 0.01, which no light feeds).
+//!
+//! **Tolerance.** The GPU reads what lies behind from an `Rgba16Float`
+//! image. Vulkan lets the conversion of a render target's output to
+//! 16-bit float round to nearest or toward zero (lavapipe rounds toward
+//! zero: 0.3 is stored as 0.2998, one unit below): a relative error below
+//! one unit in the last of the 10 stored bits, `2⁻¹⁰`, for the normal
+//! halves used here; the light is stored once per image it passes
+//! through. At roughness 0.01 (0.0104 after the pixel
+//! footprint's floor) the level of detail is `log2(64) · 0.0104 ≈ 0.06`:
+//! the trilinear read mixes 6 % of level 1, whose texels are means of
+//! level 0's, so inside a region of one radiance it reads that radiance.
+//! The test pixels lie at least 8 pixels from any edge of a region (the
+//! 2 × 2 footprint of levels 0 and 1 is 3 pixels). The weight
+//! `1 − F(μ_o)` is evaluated by both renderers at the pixel's centre
+//! (one sample per pixel, no MSAA), the GPU in f32 from an interpolated
+//! position (a relative error of order 10⁻⁶). Hence the relative
+//! tolerance `k · 2⁻¹⁰ + 10⁻⁵` for light read through `k` images.
+
+mod common;
+
+use glam::DVec3;
+use gonio::frame::Frame;
+use gonio::material::{Material, ReflectanceModel};
+use gonio::scene::{
+    Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, TransmissionSettings,
+};
+
+/// Half precision's relative rounding, to nearest or toward zero: `2⁻¹⁰`.
+const HALF_ROUNDING: f64 = 1.0 / 1024.0;
+/// The f32 arithmetic and the interpolated position, relative.
+const F32_SLACK: f64 = 1e-5;
+const SIZE: u32 = 64;
+
+fn scene(meshes: Vec<Mesh>, materials: Vec<Material>) -> Scene {
+    Scene {
+        width: SIZE,
+        height: SIZE,
+        msaa: 1,
+        tone_map: Default::default(),
+        camera: Camera {
+            position: DVec3::new(0.0, 0.0, 5.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            fov_y_deg: 20.0,
+            near: 0.1,
+            far: 100.0,
+        },
+        shading: ShadingMode::Phong,
+        meshes,
+        materials,
+        // The GPU draws a scene only with a light: one of no irradiance.
+        light_shadows: vec![Default::default()],
+        lights: vec![Light::Directional {
+            direction: DVec3::NEG_Z,
+            irradiance: Rgb::ZERO,
+            shadows: false,
+        }],
+        area_lights: Vec::new(),
+        ambient: Rgb::ZERO,
+        environment: Environment::uniform(Rgb::ZERO),
+        measured_table: gonio::material::measured::DEFAULT_TABLE_RESOLUTION,
+        measured_network: false,
+        smith_beckmann: Default::default(),
+        shadow_coords: Default::default(),
+        transmission: Default::default(),
+        images: Vec::new(),
+    }
+}
+
+/// An emitter of radiance `radiance` and nothing else.
+fn emitter(name: &str, radiance: Rgb) -> Material {
+    let mut m = Material::new(name, ReflectanceModel::Lambert);
+    m.k_d = Rgb::ZERO;
+    m.k_a = Rgb::ZERO;
+    m.emission = radiance;
+    m
+}
+
+/// A white, smooth glass of index 1.5 (transmission 1), thin-walled at
+/// `thickness = 0`.
+fn glass(name: &str, thickness: f64) -> Material {
+    let mut m = Material::new(name, ReflectanceModel::GltfPbr);
+    m.base_color = Rgb::ONE;
+    m.k_a = Rgb::ZERO;
+    m.roughness = 0.01;
+    m.layers.ior = 1.5;
+    m.layers.transmission = 1.0;
+    m.layers.thickness = thickness;
+    m
+}
+
+/// The rectangle `[x0, x1] × [y0, y1]` at `z`, facing +Z.
+fn rect(z: f64, (x0, x1): (f64, f64), (y0, y1): (f64, f64), material: usize) -> Mesh {
+    let p = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)].map(|(x, y)| DVec3::new(x, y, z));
+    Mesh::with_generated_normals("rect", p.to_vec(), vec![[0, 1, 2], [0, 2, 3]], material)
+}
+
+/// The box `[lo, hi]` with outward faces, each face its own vertices.
+fn cuboid(lo: DVec3, hi: DVec3, material: usize) -> Mesh {
+    let c = |x: bool, y: bool, z: bool| {
+        DVec3::new(
+            if x { hi.x } else { lo.x },
+            if y { hi.y } else { lo.y },
+            if z { hi.z } else { lo.z },
+        )
+    };
+    let (f, t) = (false, true);
+    let faces = [
+        [c(f, f, t), c(t, f, t), c(t, t, t), c(f, t, t)],
+        [c(f, f, f), c(f, t, f), c(t, t, f), c(t, f, f)],
+        [c(t, f, f), c(t, t, f), c(t, t, t), c(t, f, t)],
+        [c(f, f, f), c(f, f, t), c(f, t, t), c(f, t, f)],
+        [c(f, t, f), c(f, t, t), c(t, t, t), c(t, t, f)],
+        [c(f, f, f), c(t, f, f), c(t, f, t), c(f, f, t)],
+    ];
+    let mut positions = Vec::new();
+    let mut indices = Vec::new();
+    for face in faces {
+        let base = positions.len() as u32;
+        positions.extend(face);
+        indices.push([base, base + 1, base + 2]);
+        indices.push([base, base + 2, base + 3]);
+    }
+    Mesh::with_generated_normals("box", positions, indices, material)
+}
+
+fn pixel(frame: &Frame, i: u32, j: u32) -> Rgb {
+    frame.radiance[frame.index(i, j)].map(f64::from).into()
+}
+
+/// Asserts `got` is `want` per channel within `relative`.
+fn assert_close(what: &str, got: Rgb, want: Rgb, relative: f64) {
+    for (g, w) in got.to_array().into_iter().zip(want.to_array()) {
+        assert!(
+            (g - w).abs() <= relative * w.abs() + 1e-9,
+            "{what}: GPU {got:?}, expected {want:?} (relative tolerance {relative:.2e})"
+        );
+    }
+}
+
+fn gpu(scene: &Scene) -> Frame {
+    common::gpu_renderer().render(scene).expect("GPU render").0
+}
+
+/// Pixels (row, column) at least 8 pixels inside each half of the image
+/// (left: the first emitter, right: the second) and inside the glass.
+const LEFT: [(u32, u32); 3] = [(20, 12), (32, 16), (44, 20)];
+const RIGHT: [(u32, u32); 3] = [(20, 44), (32, 48), (44, 52)];
+
+/// Two emitters side by side at z = −1 (left and right of x = 0) behind
+/// `glass_meshes`.
+fn behind_glass(glass_meshes: Vec<Mesh>, glass: Vec<Material>) -> (Scene, Rgb, Rgb) {
+    let (left, right) = (Rgb::new(0.7, 0.3, 0.1), Rgb::new(0.1, 0.45, 0.9));
+    let n = glass.len();
+    let mut meshes = glass_meshes;
+    meshes.push(rect(-1.0, (-2.0, 0.0), (-2.0, 2.0), n));
+    meshes.push(rect(-1.0, (0.0, 2.0), (-2.0, 2.0), n + 1));
+    let mut materials = glass;
+    materials.push(emitter("left", left));
+    materials.push(emitter("right", right));
+    (scene(meshes, materials), left, right)
+}
+
+/// A thin-walled pane over two emitters: straight through, weight
+/// `1 − F(μ_o)` (the reference's smooth thin wall), the image read at the
+/// pixel itself, so each half shows its own emitter. Drawn as opaque
+/// (`shading.transmission = "off"`, the GPU before the pass) the pane is
+/// black: the test fails without the pass.
+#[test]
+fn a_thin_pane_passes_what_lies_straight_behind() {
+    let (scene, left, right) = behind_glass(
+        vec![rect(0.0, (-1.0, 1.0), (-1.0, 1.0), 0)],
+        vec![glass("pane", 0.0)],
+    );
+    let reference = gonio::reference::render(&scene);
+    let frame = gpu(&scene);
+    let tolerance = HALF_ROUNDING + F32_SLACK;
+    for (points, behind) in [(LEFT, left), (RIGHT, right)] {
+        for (i, j) in points {
+            let want = pixel(&reference, i, j);
+            // The reference's pixel is (1 − F) times the emitter, F ≥ 4 %.
+            let share = want.to_array()[0] / behind.to_array()[0];
+            assert!((0.9..0.961).contains(&share), "reference share {share}");
+            assert_close(
+                &format!("pane at ({i}, {j})"),
+                pixel(&frame, i, j),
+                want,
+                tolerance,
+            );
+        }
+    }
+    let mut off = scene.clone();
+    off.transmission.mode = gonio::scene::TransmissionMode::Off;
+    let opaque = gpu(&off);
+    assert_eq!(pixel(&opaque, 16, 32), Rgb::ZERO, "drawn as opaque");
+}
+
+/// A green slab (a closed box, attenuation distance 0.5) of two
+/// thicknesses in front of an emitter, seen at normal incidence (the
+/// image's centre). The GPU attenuates by Beer–Lambert over the
+/// thickness, `a = c^(d/D)`, and weights both interfaces,
+/// `(1 − F)² a L` (one with `shading.transmission_exit = false`, the
+/// sample renderer's `(1 − F) a L`); the reference also follows every
+/// internal reflection, `(1 − F)² a L / (1 − F² a²)`, F = 0.04
+/// (tests/transmission.rs checks it). So the GPU's pixel is the
+/// reference's times `1 − F² a²` (times `1/(1 − F)` more with one
+/// interface), the factor its model leaves out, and the ratio of the two
+/// thicknesses' pixels is exactly `c^(Δd/D)`.
+#[test]
+fn an_attenuating_slab_follows_beer_lambert() {
+    let colour = Rgb::new(0.3, 0.9, 0.4);
+    let distance = 0.5;
+    let behind = Rgb::new(0.8, 0.8, 0.8);
+    let f = 0.04;
+    let mut gpu_pixels = Vec::new();
+    for (d, exit) in [(0.2, true), (0.6, true), (0.2, false)] {
+        let mut slab = glass("slab", d);
+        slab.layers.attenuation_color = colour;
+        slab.layers.attenuation_distance = distance;
+        let meshes = vec![
+            cuboid(
+                DVec3::new(-1.0, -1.0, -d / 2.0),
+                DVec3::new(1.0, 1.0, d / 2.0),
+                0,
+            ),
+            rect(-1.0, (-2.0, 2.0), (-2.0, 2.0), 1),
+        ];
+        let mut scene = scene(meshes, vec![slab, emitter("behind", behind)]);
+        scene.transmission.exit = exit;
+        let reference = gonio::reference::render(&scene);
+        let frame = gpu(&scene);
+        // The centre pixel's ray is the axis (even size: the four
+        // around it are within 0.3 % of normal incidence in F).
+        let (i, j) = (SIZE / 2, SIZE / 2);
+        let a = colour.map(|c| c.powf(d / distance));
+        let one_interface = if exit { 1.0 } else { 1.0 / (1.0 - f) };
+        let model = a.map(|a| (1.0 - f * f * a * a) * one_interface);
+        let want = pixel(&reference, i, j) * model;
+        // F at the pixel's centre, 0.09° off the axis, is F(0) within
+        // 10⁻⁸; the reference's closed form within 10⁻⁷.
+        assert_close(
+            &format!("slab d = {d}, exit {exit}"),
+            pixel(&frame, i, j),
+            want,
+            HALF_ROUNDING + F32_SLACK,
+        );
+        gpu_pixels.push(pixel(&frame, i, j));
+    }
+    let ratio = gpu_pixels[1] / gpu_pixels[0];
+    let beer = colour.map(|c| c.powf(0.4 / distance));
+    // Each pixel rounded once: twice the rounding on the ratio.
+    assert_close(
+        "Beer–Lambert ratio",
+        ratio,
+        beer,
+        2.0 * HALF_ROUNDING + F32_SLACK,
+    );
+}
+
+/// Glass behind glass: two thin panes, one behind the other, over the
+/// emitters. The reference passes `(1 − F)²` of the light. With one
+/// transmission layer the front pane reads the opaque scene's image, in
+/// which the back pane is missing: `(1 − F)` (the screen-space method's
+/// known failure, measured here); with two layers it reads the image
+/// with the back pane drawn: `(1 − F)²`, through two images.
+#[test]
+fn glass_behind_glass_needs_a_second_layer() {
+    let (base, _, _) = behind_glass(
+        vec![
+            rect(0.0, (-1.0, 1.0), (-1.0, 1.0), 0),
+            rect(-0.5, (-1.5, 1.5), (-1.5, 1.5), 1),
+        ],
+        vec![glass("front", 0.0), glass("back", 0.0)],
+    );
+    let reference = gonio::reference::render(&base);
+    let mut renderer = common::gpu_renderer();
+    for layers in [1, 2] {
+        let mut scene = base.clone();
+        scene.transmission = TransmissionSettings {
+            layers,
+            ..Default::default()
+        };
+        let frame = renderer.render(&scene).expect("GPU render").0;
+        for (i, j) in LEFT.into_iter().chain(RIGHT) {
+            let want = pixel(&reference, i, j);
+            let got = pixel(&frame, i, j);
+            if layers == 2 {
+                assert_close(
+                    &format!("two layers at ({i}, {j})"),
+                    got,
+                    want,
+                    2.0 * HALF_ROUNDING + F32_SLACK,
+                );
+            } else {
+                // Missing the back pane's 1 − F(μ_o): these pixels are
+                // within 7° of the axis, where F = 0.04 to 10⁻⁹.
+                let ratio = got.to_array()[2] / want.to_array()[2];
+                assert!(
+                    (1.0 / 0.961..1.0 / 0.959).contains(&ratio),
+                    "one layer at ({i}, {j}): GPU {got:?} / reference {want:?} = {ratio}"
+                );
+            }
+        }
+    }
+}
