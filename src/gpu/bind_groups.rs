@@ -250,9 +250,10 @@ mod tests {
     fn each_material_has_its_own_aligned_slot() {
         let mut m = [GpuMaterial::zeroed(); 3];
         m[2].k_e = 7.0;
-        let stride = 256;
+        // The record rounded up to the common 256-byte offset alignment.
+        let stride = (size_of::<GpuMaterial>() as u64).div_ceil(256) * 256;
         let bytes = material_bytes(&m, stride);
-        assert_eq!(bytes.len(), 3 * 256);
+        assert_eq!(bytes.len(), 3 * stride as usize);
         let at = material_offset(2, stride) as usize;
         let slot: &GpuMaterial = bytemuck::from_bytes(&bytes[at..at + size_of::<GpuMaterial>()]);
         assert_eq!(slot.k_e, 7.0);
