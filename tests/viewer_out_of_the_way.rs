@@ -152,7 +152,10 @@ fn frames_are_drawn_while_the_panels_background_jobs_are_held() {
             .and_then(|rest| rest.split(' ').next())
             .and_then(|n| n.parse().ok())
             .unwrap_or_else(|| panic!("{case}: no frame times: {stdout}"));
-        assert!(intervals >= 3 && stdout.contains("first frame"), "{case}: {stdout}");
+        assert!(
+            intervals >= 3 && stdout.contains("first frame"),
+            "{case}: {stdout}"
+        );
     }
 }
 
