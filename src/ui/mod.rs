@@ -11,8 +11,9 @@
 //! [`save`] writes the scene file). Each panel section is a state struct
 //! with its own `ui`: [`view_section`] and [`material_section`] (whose
 //! widgets are in [`panels`]), and each feature's folder with its
-//! section: [`file`] (the section, the open dialog), [`lights`] (the
-//! section, kinds, overlay, handles, spin, the document's list edits),
+//! section: [`file`](mod@file) (the section, the open dialog),
+//! [`lights`] (the section, kinds, overlay, handles, spin, the
+//! document's list edits),
 //! [`environment`] (the map's section and edits), [`compare`] (compared
 //! materials, the split view, fits), [`plots`] (the section, the plots).
 //! [`surface`] owns the swapchain and screenshots.
