@@ -301,7 +301,7 @@ impl App {
             h,
             self.view_rect[2],
             self.view_rect[3],
-            if self.state.vsync { "on" } else { "off" },
+            if self.state.view.vsync { "on" } else { "off" },
             q(0.5),
             q(0.1),
             q(0.9),
@@ -337,7 +337,7 @@ impl App {
             caps,
             surface,
             (size.width, size.height),
-            self.state.vsync,
+            self.state.view.vsync,
         )?;
         self.state.adapter = ctx.adapter_info.name.clone();
         if self.args.verbose {
@@ -532,6 +532,7 @@ impl App {
             {
                 self.state
                     .plots
+                    .plots
                     .edit(key.trim(), value)
                     .map_err(|p| Error::argument(format!("--edit {kv}"), p))?;
                 continue;
@@ -683,7 +684,7 @@ impl App {
     /// document, updated after an edit, only its view after a camera move.
     fn update_gpu_scene(&mut self) -> Result<()> {
         let changes = self.state.changes.take();
-        let display_scale = self.state.exposure.exp2() as f32;
+        let display_scale = self.state.view.exposure.exp2() as f32;
         let gfx = self.gfx.as_mut().expect("initialized");
         let format = gfx.surface.config.format;
         let verbose = self.args.verbose;
@@ -847,7 +848,7 @@ impl App {
         gfx.upload_textures(textures);
         let ctx = gfx.renderer.context();
         let (paint_jobs, mut extra) = match &mut gfx.panel_cache {
-            Some(cache) if self.state.show_panel && !self.state.open_dialog => {
+            Some(cache) if self.state.show_panel && !self.state.file.open_dialog => {
                 let (panel_jobs, rest) =
                     super::panel_cache::split_jobs(paint_jobs, panel.central.max.x);
                 let x = self.view_rect[0] + self.view_rect[2];
@@ -993,7 +994,7 @@ impl App {
             view_rect: self.view_rect,
             cursor: self.cursor,
             pixels_per_point: ppp,
-            overlay_shown: state.show_overlay,
+            overlay_shown: state.view.show_overlay,
         };
         let mut shared = super::shared::Shared {
             doc: &mut state.doc,
@@ -1154,8 +1155,8 @@ impl ApplicationHandler<Wake> for App {
                         gfx.surface.config.present_mode,
                         wgpu::PresentMode::AutoVsync
                     );
-                    if vsync != self.state.vsync {
-                        gfx.surface.set_vsync(ctx, self.state.vsync);
+                    if vsync != self.state.view.vsync {
+                        gfx.surface.set_vsync(ctx, self.state.view.vsync);
                     }
                 }
                 if let Err(e) = self.frame(event_loop) {

@@ -8,13 +8,15 @@
 //! every section edits besides its own state. [`document`] holds the
 //! scene as loaded and its edits, [`edit`] applies one `KEY=VALUE` edit
 //! and keeps the edits across a reload ([`edit_values`] reads a value,
-//! [`save`] writes the scene file). Each feature is a folder whose panel
-//! section is a state struct with its own `ui`: [`lights`] (the section,
-//! kinds, overlay, handles, spin, the document's list edits),
+//! [`save`] writes the scene file). Each panel section is a state struct
+//! with its own `ui`: [`view_section`] and [`material_section`] (whose
+//! widgets are in [`panels`]), and each feature's folder with its
+//! section: [`file`](mod@file) (the section, the open dialog),
+//! [`lights`] (the section, kinds, overlay, handles, spin, the
+//! document's list edits),
 //! [`environment`] (the map's section and edits), [`compare`] (compared
-//! materials, the split view, fits); the material and view sections'
-//! widgets are in [`panels`], the plots in [`plots`]. [`surface`] owns
-//! the swapchain and screenshots.
+//! materials, the split view, fits), [`plots`] (the section, the plots).
+//! [`surface`] owns the swapchain and screenshots.
 
 pub mod app;
 pub mod background;
@@ -24,7 +26,9 @@ pub mod document;
 pub mod edit;
 pub mod edit_values;
 pub mod environment;
+pub mod file;
 pub mod lights;
+pub mod material_section;
 pub mod memory;
 pub mod orbit;
 pub mod pacing;
@@ -36,6 +40,7 @@ pub mod shared;
 pub mod state;
 pub mod surface;
 pub mod view;
+pub mod view_section;
 
 use crate::scene::limits::Limits;
 use crate::scene::scene_file::SceneSource;

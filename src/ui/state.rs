@@ -1,15 +1,19 @@
 //! The viewer's state apart from the GPU: what is shared (the document,
 //! the changes the GPU must see, the message line, the camera orbit, the
 //! selected material, the window's switches and requests, the frame
-//! statistics) and the sections that keep their own state (lights,
-//! environment, compare, plots), each laid out by its own `ui`. The panel
+//! statistics) and the panel's sections, each a struct with the state
+//! only it keeps (file, view, environment, material, compare, plots,
+//! lights), laid out by its own `ui`. The panel
 //! ([`super::view`]) edits it; the window loop ([`super::app`]) acts on
 //! it.
 
 use super::cli::ViewArgs;
 use super::document::Document;
+use super::file::section::{FileContext, FileSection};
+use super::material_section::MaterialSection;
 use super::orbit::Orbit;
-use super::plots::Plots;
+use super::plots::section::PlotsSection;
+use super::view_section::ViewSection;
 use crate::scene::change::Changes;
 use crate::scene::scene_file::SceneSource;
 use std::path::PathBuf;
@@ -18,15 +22,11 @@ use std::path::PathBuf;
 pub struct ViewerState {
     pub doc: Document,
     pub orbit: Orbit,
+    /// The material the Material section edits, which the Compare and
+    /// Plots sections, the split view and a reload use too.
     pub selected_material: usize,
-    pub plots: Plots,
-    pub exposure: f64,
-    pub vsync: bool,
+    /// The panel is shown (`P`).
     pub show_panel: bool,
-    pub show_overlay: bool,
-    /// The Lights section: the lights drawn over the 3D view, and the one
-    /// being dragged.
-    pub lights: super::lights::section::LightsSection,
     /// The last problem (rejected value, bad file), shown until dismissed.
     pub message: Option<String>,
     /// A new document to switch to (opened, dropped, reloaded).
@@ -36,11 +36,6 @@ pub struct ViewerState {
     pub changes: Changes,
     pub screenshot_path: PathBuf,
     pub screenshot_requested: bool,
-    pub save_path: String,
-    pub open_path: String,
-    pub open_dialog: bool,
-    /// The Environment section (its map path field).
-    pub environment: super::environment::section::EnvironmentSection,
     /// Frame-time statistics shown in the overlay.
     pub frame_ms: f64,
     pub gpu_ms: Option<f64>,
@@ -49,8 +44,21 @@ pub struct ViewerState {
     /// closes at the next frame: `--edit N:panel.show=Plots`,
     /// `panel.hide=Lights` ([`super::view::SECTIONS`]).
     pub section_requests: Vec<(&'static str, bool)>,
+    /// The File section (the save and open paths, the open dialog).
+    pub file: FileSection,
+    /// The View section (exposure, vsync, the overlay switch).
+    pub view: ViewSection,
+    /// The Environment section (its map path field).
+    pub environment: super::environment::section::EnvironmentSection,
+    /// The Material section (no state of its own).
+    pub material: MaterialSection,
     /// The Compare section (the fit model's choice, a fit under way).
     pub compare: super::compare::section::CompareSection,
+    /// The Plots section (the plots' settings and cached results).
+    pub plots: PlotsSection,
+    /// The Lights section: the lights drawn over the 3D view, and the one
+    /// being dragged.
+    pub lights: super::lights::section::LightsSection,
 }
 
 impl ViewerState {
@@ -59,12 +67,7 @@ impl ViewerState {
             orbit: Orbit::from_camera(&doc.loaded_camera),
             doc,
             selected_material: 0,
-            plots: Plots::default(),
-            exposure: args.exposure,
-            vsync: !args.no_vsync,
             show_panel: !args.no_panel,
-            show_overlay: !args.no_overlay,
-            lights: Default::default(),
             message: None,
             replace: None,
             changes: Changes::everything(),
@@ -73,15 +76,21 @@ impl ViewerState {
                 .clone()
                 .unwrap_or_else(|| PathBuf::from("gonio-screenshot.png")),
             screenshot_requested: false,
-            save_path: "gonio-view.toml".into(),
-            open_path: String::new(),
-            open_dialog: false,
-            environment: Default::default(),
             frame_ms: 0.0,
             gpu_ms: None,
             adapter: String::new(),
-            compare: Default::default(),
             section_requests: Vec::new(),
+            file: FileSection::default(),
+            view: ViewSection {
+                exposure: args.exposure,
+                vsync: !args.no_vsync,
+                show_overlay: !args.no_overlay,
+            },
+            environment: Default::default(),
+            material: MaterialSection,
+            compare: Default::default(),
+            plots: PlotsSection::default(),
+            lights: Default::default(),
         }
     }
 
@@ -129,9 +138,16 @@ impl ViewerState {
     /// Opens `path` as the new document; a bad file leaves the current
     /// scene on screen and shows why.
     pub fn open(&mut self, path: PathBuf) {
-        match Document::load(SceneSource::File(path), Vec::new(), self.doc.limits) {
-            Ok(doc) => self.replace = Some(doc),
-            Err(e) => self.message = Some(e.to_string()),
+        self.file_context().open(SceneSource::File(path));
+    }
+
+    /// What the File section edits besides its own state.
+    pub fn file_context(&mut self) -> FileContext<'_> {
+        FileContext {
+            doc: &self.doc,
+            replace: &mut self.replace,
+            message: &mut self.message,
+            screenshot_requested: &mut self.screenshot_requested,
         }
     }
 }

@@ -24,6 +24,7 @@ pub mod lobe;
 pub mod polar;
 pub mod radius;
 pub mod readout;
+pub mod section;
 pub mod series;
 pub mod worker;
 
