@@ -540,7 +540,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     src
 }
 
-fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 36] {
+fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 44] {
     let l = &s.layers;
     let v = |x: f64| x as f32;
     // (cos ρ, sin ρ) in f64, rounded once (gpu::layout::GpuGltfLayers).
@@ -582,6 +582,20 @@ fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 36] {
         v(l.iridescence_ior),
         v(l.iridescence_thickness),
         v(l.anisotropy_strength),
+        // Light through surfaces (read only with layer_transmission,
+        // which this shader leaves out), as gpu::layout::GpuGltfLayers.
+        v(l.attenuation_color.x),
+        v(l.attenuation_color.y),
+        v(l.attenuation_color.z),
+        v(l.transmission),
+        v(l.thickness),
+        if l.attenuation_distance.is_finite() {
+            v(1.0 / l.attenuation_distance)
+        } else {
+            0.0
+        },
+        0.0,
+        0.0,
     ]
 }
 
@@ -593,7 +607,7 @@ fn gpu_eval(
 ) -> Vec<([f32; 3], f32)> {
     let src = compute_source();
     gonio::gpu::shader_gen::validate(&src).unwrap_or_else(|e| panic!("{e}"));
-    let data: Vec<[f32; 36]> = samples
+    let data: Vec<[f32; 44]> = samples
         .iter()
         .zip(table_at)
         .map(|(s, t)| pack(s, *t))
