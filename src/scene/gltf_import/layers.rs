@@ -126,7 +126,7 @@ struct Anisotropy {
 fn one() -> f64 {
     1.0
 }
-fn ones() -> [f64; 3] {
+pub(super) fn ones() -> [f64; 3] {
     [1.0; 3]
 }
 fn ior_default() -> f64 {
@@ -180,6 +180,30 @@ pub(super) fn colour(what: &str, c: [f64; 3], max: f64) -> Result<Rgb, String> {
 
 /// Reads the layer extensions of glTF material `material` into
 /// `out.layers` and their textures into `out.textures`.
+/// Channels an extension's texture reads its parameter from.
+pub(super) const R: usize = 0;
+pub(super) const G: usize = 1;
+pub(super) const A: usize = 3;
+
+/// Adds the texture `info` (the extension's `what`) to `out` as the map of
+/// scene-file key `key`, read from `channel` in `encoding`.
+pub(super) fn param_texture(
+    images: &mut ImageSource,
+    document: &gltf::Document,
+    info: &RawTextureInfo,
+    (what, key): (&str, &'static str),
+    encoding: Encoding,
+    channel: usize,
+    out: &mut Material,
+) -> Result<(), String> {
+    let mut t = images
+        .raw_texture(document, info, TextureTarget::Param(key), encoding, None)
+        .map_err(|e| format!("{what}: {e}"))?;
+    t.channel = channel;
+    out.textures.push(t);
+    Ok(())
+}
+
 pub(super) fn read(
     material: &gltf::Material,
     document: &gltf::Document,
@@ -192,18 +216,9 @@ pub(super) fn read(
                    key: &'static str,
                    encoding: Encoding,
                    channel: usize,
-                   out: &mut Material|
-     -> Result<(), String> {
-        let mut t = images
-            .raw_texture(document, info, TextureTarget::Param(key), encoding, None)
-            .map_err(|e| format!("{what}: {e}"))?;
-        t.channel = channel;
-        out.textures.push(t);
-        Ok(())
+                   out: &mut Material| {
+        param_texture(images, document, info, (what, key), encoding, channel, out)
     };
-    const R: usize = 0;
-    const G: usize = 1;
-    const A: usize = 3;
 
     if let Some(e) = extension::<Ior>(material, "KHR_materials_ior")? {
         // Schema: "minimum": 1.0, and 0 for the specular-glossiness mode.

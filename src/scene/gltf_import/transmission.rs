@@ -16,9 +16,8 @@
 //! extension's default is "+Infinity").
 
 use super::images::{ImageSource, RawTextureInfo};
-use super::layers::{colour, extension, unit, within};
+use super::layers::{A, G, R, colour, extension, ones, param_texture, unit, within};
 use crate::material::Material;
-use crate::material::texture::TextureTarget;
 use crate::scene::texture::Encoding;
 use serde::Deserialize;
 
@@ -62,10 +61,6 @@ struct DiffuseTransmission {
     diffuse_transmission_color_texture: Option<RawTextureInfo>,
 }
 
-fn ones() -> [f64; 3] {
-    [1.0; 3]
-}
-
 /// Reads the transmission extensions of glTF material `material` into
 /// `out.layers` and their textures into `out.textures`.
 pub(super) fn read(
@@ -79,18 +74,9 @@ pub(super) fn read(
                        key: &'static str,
                        encoding: Encoding,
                        channel: usize,
-                       out: &mut Material|
-     -> Result<(), String> {
-        let mut t = images
-            .raw_texture(document, info, TextureTarget::Param(key), encoding, None)
-            .map_err(|e| format!("{what}: {e}"))?;
-        t.channel = channel;
-        out.textures.push(t);
-        Ok(())
+                       out: &mut Material| {
+        param_texture(images, document, info, (what, key), encoding, channel, out)
     };
-    const R: usize = 0;
-    const G: usize = 1;
-    const A: usize = 3;
 
     if let Some(e) = extension::<Transmission>(material, "KHR_materials_transmission")? {
         const NAME: &str = "KHR_materials_transmission";
