@@ -1,8 +1,8 @@
 // Material textures (bind group 2), in the module only when the scene has
 // textures (feature `textures`): the lecture's spatially varying BRDF.
-// Each material binds up to 6 textures (an image as a full mip-chain
-// view, or level 0 alone for a sampler without mipmaps, with its
-// sampler) and has up to MAX_TEXTURE_SLOTS slots; a slot reads one
+// Each material binds up to TEXTURE_BINDINGS textures (an image as a full
+// mip-chain view, or level 0 alone for a sampler without mipmaps, with
+// its sampler) and has up to MAX_TEXTURE_SLOTS slots; a slot reads one
 // binding with its UV set, KHR_texture_transform and channel, and says
 // which Material fields it scales (a metallic-roughness texture is one
 // binding read by two slots). f64 twin: src/reference/texture.rs (the
@@ -27,18 +27,20 @@ struct TextureSlots {
 }
 
 @group(2) @binding(0) var<uniform> texture_slots: TextureSlots;
-@group(2) @binding(1) var slot_texture_0: texture_2d<f32>;
-@group(2) @binding(2) var slot_texture_1: texture_2d<f32>;
-@group(2) @binding(3) var slot_texture_2: texture_2d<f32>;
-@group(2) @binding(4) var slot_texture_3: texture_2d<f32>;
-@group(2) @binding(5) var slot_texture_4: texture_2d<f32>;
-@group(2) @binding(6) var slot_texture_5: texture_2d<f32>;
-@group(2) @binding(7) var slot_sampler_0: sampler;
-@group(2) @binding(8) var slot_sampler_1: sampler;
-@group(2) @binding(9) var slot_sampler_2: sampler;
-@group(2) @binding(10) var slot_sampler_3: sampler;
-@group(2) @binding(11) var slot_sampler_4: sampler;
-@group(2) @binding(12) var slot_sampler_5: sampler;
+// Then TEXTURE_BINDINGS textures slot_texture_<i> (binding 1 + 2i) and
+// samplers slot_sampler_<i> (binding 2 + 2i), as many as
+// the scene's most textured material reads: generated with the two
+// functions below (src/gpu/textures.rs, `wgsl_bindings`), since WGSL cannot
+// index separate bindings and the count is the scene's.
+//
+// slot_texel(i, uv, ddx, ddy) -> vec4<f32>: binding i's texel at uv with the
+//   footprint (ddx, ddy). Explicit gradients: the level of detail is the one
+//   the reference computes from the same derivatives
+//   (reference::texture::sample), and sampling is allowed outside uniform
+//   control flow.
+// slot_texel_level0(i, uv) -> vec4<f32>: binding i's texel at level 0
+//   (per-vertex shading).
+// Both return white for an index past TEXTURE_BINDINGS.
 
 // The UV sets at a shading point and their screen derivatives (zero at a
 // vertex: level 0, magnification filter, as the reference's zero footprint).
@@ -49,35 +51,6 @@ struct SurfaceUv {
     ddy0: vec2<f32>,
     ddx1: vec2<f32>,
     ddy1: vec2<f32>,
-}
-
-// Binding i's texel at uv with the footprint (ddx, ddy). Explicit gradients:
-// the level of detail is the one the reference computes from the same
-// derivatives (reference::texture::sample), and sampling is allowed
-// outside uniform control flow.
-fn slot_texel(i: u32, uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>) -> vec4<f32> {
-    switch i {
-        case 0u: { return textureSampleGrad(slot_texture_0, slot_sampler_0, uv, ddx, ddy); }
-        case 1u: { return textureSampleGrad(slot_texture_1, slot_sampler_1, uv, ddx, ddy); }
-        case 2u: { return textureSampleGrad(slot_texture_2, slot_sampler_2, uv, ddx, ddy); }
-        case 3u: { return textureSampleGrad(slot_texture_3, slot_sampler_3, uv, ddx, ddy); }
-        case 4u: { return textureSampleGrad(slot_texture_4, slot_sampler_4, uv, ddx, ddy); }
-        case 5u: { return textureSampleGrad(slot_texture_5, slot_sampler_5, uv, ddx, ddy); }
-        default: { return vec4<f32>(1.0); }
-    }
-}
-
-// Binding i's texel at level 0 (per-vertex shading).
-fn slot_texel_level0(i: u32, uv: vec2<f32>) -> vec4<f32> {
-    switch i {
-        case 0u: { return textureSampleLevel(slot_texture_0, slot_sampler_0, uv, 0.0); }
-        case 1u: { return textureSampleLevel(slot_texture_1, slot_sampler_1, uv, 0.0); }
-        case 2u: { return textureSampleLevel(slot_texture_2, slot_sampler_2, uv, 0.0); }
-        case 3u: { return textureSampleLevel(slot_texture_3, slot_sampler_3, uv, 0.0); }
-        case 4u: { return textureSampleLevel(slot_texture_4, slot_sampler_4, uv, 0.0); }
-        case 5u: { return textureSampleLevel(slot_texture_5, slot_sampler_5, uv, 0.0); }
-        default: { return vec4<f32>(1.0); }
-    }
 }
 
 // The Material fields of mask `fields` multiplied by f (colour fields

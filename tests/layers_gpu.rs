@@ -368,6 +368,74 @@ fn layer_maps_and_textures_render_like_the_reference() {
     }
 }
 
+/// A material with a distinct image on each of 13 keys (the core's and the
+/// layers', two normal maps among them): more textures than WebGPU's
+/// guaranteed per-stage limits leave a material (11, `TextureBudget`), all
+/// bound and read as the reference reads them. Each image a different
+/// pattern and colour, so a texel read from the wrong binding shows.
+#[test]
+fn a_material_with_thirteen_distinct_textures_renders_like_the_reference() {
+    let dir = std::env::temp_dir().join(format!("gonio-thirteen-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let keys = [
+        "base_color",
+        "metallic",
+        "roughness",
+        "normal",
+        "clearcoat",
+        "clearcoat_roughness",
+        "clearcoat_normal",
+        "sheen_color",
+        "sheen_roughness",
+        "specular",
+        "specular_color",
+        "iridescence",
+        "iridescence_thickness",
+    ];
+    let mut list: Vec<String> = [
+        "metallic=0.5",
+        "clearcoat=0.8",
+        "clearcoat_roughness=0.3",
+        "sheen_color=[0.8, 0.7, 0.3]",
+        "sheen_roughness=0.5",
+        "specular=0.9",
+        "specular_color=[1.0, 0.8, 0.6]",
+        "iridescence=0.7",
+        "iridescence_thickness=600",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    for (i, key) in keys.iter().enumerate() {
+        // Stripes of period 4 + i texels, at an angle and in a colour of
+        // their own; the normal maps gently tilted, so they stay maps.
+        let path = dir.join(format!("{key}.png"));
+        let normal = key.ends_with("normal");
+        let image = image::RgbImage::from_fn(32, 32, |x, y| {
+            let on = ((x + (i as u32 % 3) * y) / (4 + i as u32)).is_multiple_of(2);
+            if normal {
+                image::Rgb(if on { [150, 128, 240] } else { [110, 140, 240] })
+            } else {
+                let c = 60 + 14 * i as u8;
+                image::Rgb(if on {
+                    [255, c, 255 - c]
+                } else {
+                    [c, 255 - c, 90]
+                })
+            }
+        });
+        image.save(&path).unwrap();
+        list.push(format!("{key}_texture=\"{}\"", path.display()));
+    }
+    let list: Vec<&str> = list.iter().map(String::as_str).collect();
+    let scene = load(&sets(&list));
+    let ball = scene.materials.iter().find(|m| m.name == "ball").unwrap();
+    assert_eq!(ball.textures.len(), 13, "every key has its texture");
+    assert_eq!(gonio::gpu::textures::binding_count(&scene), 13);
+    layered_vs_reference("thirteen distinct textures", &scene);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// The coat's normal map changes the picture (the test above would pass
 /// on a renderer that ignores it only if it did not): with and without it
 /// the reference differs, and the GPU follows (checked above).

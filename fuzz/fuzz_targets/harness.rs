@@ -85,11 +85,17 @@ pub const OVERRIDES_SEPARATOR: &str = "\n--- set\n";
 
 /// A folder of files that inputs may reference: `tri.bin` (the 44-byte
 /// triangle buffer), `tri.gltf` (a glTF using it) and a subfolder `sub/`
-/// with a copy of both. One per process.
+/// with a copy of both. One per process: under cargo's scratch folder
+/// for the replay test (`CARGO_TARGET_TMPDIR`, so test runs leave nothing
+/// in the system's temporary folder), in the temporary folder under
+/// libFuzzer.
 pub fn workspace() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| {
-        let dir = std::env::temp_dir().join(format!("gonio-fuzz-{}", std::process::id()));
+        let parent = option_env!("CARGO_TARGET_TMPDIR")
+            .map(PathBuf::from)
+            .unwrap_or_else(std::env::temp_dir);
+        let dir = parent.join(format!("gonio-fuzz-{}", std::process::id()));
         let sub = dir.join("sub");
         std::fs::create_dir_all(&sub).expect("fuzz workspace");
         for folder in [&dir, &sub] {

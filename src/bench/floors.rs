@@ -245,6 +245,7 @@ pub fn specialized_key(scene: &Scene) -> ShaderKey {
     key.shadows.maps = Default::default();
     key.environment = Default::default();
     key.materials.texture_slots = 0;
+    key.materials.texture_bindings = 0;
     key
 }
 

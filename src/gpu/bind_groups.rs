@@ -119,46 +119,47 @@ pub fn scene_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu:
 /// Group 1 of a scene pipeline with shadows: maps, comparison sampler,
 /// layer views, casters.
 pub fn shadow_group_layout(device: &wgpu::Device, arrays: UniformArrays) -> wgpu::BindGroupLayout {
-    let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio shadow maps"),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: stage,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Depth,
-                    view_dimension: wgpu::TextureViewDimension::D2Array,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: stage,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                count: None,
-            },
-            buffer_entry(2, arrays.shadow_views),
-            buffer_entry(3, true),
-        ],
+        entries: &shadow_group_entries(arrays),
     })
 }
 
-/// The layouts of scene pipelines for one [`UniformArrays`] choice.
+/// The entries of [`shadow_group_layout`].
+pub fn shadow_group_entries(arrays: UniformArrays) -> [wgpu::BindGroupLayoutEntry; 4] {
+    let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
+    [
+        wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: stage,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: stage,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            count: None,
+        },
+        buffer_entry(2, arrays.shadow_views),
+        buffer_entry(3, true),
+    ]
+}
+
+/// The bind group layouts of scene pipelines for one [`UniformArrays`]
+/// choice (groups 0 and 1), and the pipeline layout of group 0 alone.
+/// Scene pipelines join them with the material textures' group 2, sized
+/// per scene, and the environment's and transmission's groups
+/// (`PipelineCache::compile_scene`).
 pub struct SceneLayouts {
     pub scene_group: wgpu::BindGroupLayout,
     pub shadow_group: wgpu::BindGroupLayout,
-    /// Group 2: material textures (src/gpu/textures.rs).
-    pub texture_group: wgpu::BindGroupLayout,
     /// Group 0 only.
     pub plain: wgpu::PipelineLayout,
-    /// Groups 0 and 1.
-    pub shadowed: wgpu::PipelineLayout,
-    /// Groups 0 and 2 (group 1 unused).
-    pub textured: wgpu::PipelineLayout,
-    /// Groups 0, 1 and 2.
-    pub shadowed_textured: wgpu::PipelineLayout,
 }
 
 impl SceneLayouts {
@@ -170,45 +171,10 @@ impl SceneLayouts {
             bind_group_layouts: &[Some(&scene_group)],
             immediate_size: 0,
         });
-        let shadowed = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gonio scene with shadows"),
-            bind_group_layouts: &[Some(&scene_group), Some(&shadow_group)],
-            immediate_size: 0,
-        });
-        let texture_group = super::textures::group_layout(device);
-        let textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gonio scene with textures"),
-            bind_group_layouts: &[Some(&scene_group), None, Some(&texture_group)],
-            immediate_size: 0,
-        });
-        let shadowed_textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gonio scene with shadows and textures"),
-            bind_group_layouts: &[
-                Some(&scene_group),
-                Some(&shadow_group),
-                Some(&texture_group),
-            ],
-            immediate_size: 0,
-        });
         SceneLayouts {
             scene_group,
             shadow_group,
-            texture_group,
             plain,
-            shadowed,
-            textured,
-            shadowed_textured,
-        }
-    }
-
-    /// The pipeline layout of a scene with or without shadows and
-    /// textures.
-    pub fn pipeline_layout(&self, shadows: bool, textures: bool) -> &wgpu::PipelineLayout {
-        match (shadows, textures) {
-            (false, false) => &self.plain,
-            (true, false) => &self.shadowed,
-            (false, true) => &self.textured,
-            (true, true) => &self.shadowed_textured,
         }
     }
 }

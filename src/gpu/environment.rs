@@ -77,6 +77,36 @@ impl GpuEnvironmentUniform {
     }
 }
 
+/// The entries of group 3: the uniform, the map's texels, the
+/// prefiltered stack and the DFG table.
+pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 4] {
+    let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
+    [
+        wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: stage,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(size_of::<GpuEnvironmentUniform>() as u64),
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: stage,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        },
+        texture_entry(2, stage),
+        texture_entry(3, stage),
+    ]
+}
+
 /// A non-filterable float 2D texture at `binding` (the prefiltered stack,
 /// 2, and the environment BRDF table, 3: both bound in every mode, 1 × 1
 /// where the mode does not read them).
@@ -169,106 +199,28 @@ fn split_sum_textures(
     (Some(p), stack, dfg)
 }
 
-/// Group 3's layout and the scene pipeline layouts that include it.
+/// Group 3's layout, and the background pass's pipeline layout (groups 0
+/// and 3). Scene pipelines join it with their other groups
+/// (`PipelineCache::compile_scene`).
 pub struct EnvironmentLayouts {
     pub group: wgpu::BindGroupLayout,
     /// Groups 0 and 3.
     pub plain: wgpu::PipelineLayout,
-    /// Groups 0, 1 and 3.
-    pub shadowed: wgpu::PipelineLayout,
-    /// Groups 0, 2 and 3.
-    pub textured: wgpu::PipelineLayout,
-    /// Groups 0, 1, 2 and 3.
-    pub shadowed_textured: wgpu::PipelineLayout,
 }
 
 impl EnvironmentLayouts {
-    /// The layouts over `scene`'s groups 0, 1 and 2 (material textures),
-    /// each with group 3.
+    /// Group 3 and its layout over `scene`'s group 0.
     pub fn new(device: &wgpu::Device, scene: &SceneLayouts) -> Self {
-        let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("gonio environment"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: stage,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(
-                            size_of::<GpuEnvironmentUniform>() as u64
-                        ),
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: stage,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                texture_entry(2, stage),
-                texture_entry(3, stage),
-            ],
+            entries: &group_entries(),
         });
         let plain = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("gonio scene with environment"),
             bind_group_layouts: &[Some(&scene.scene_group), None, None, Some(&group)],
             immediate_size: 0,
         });
-        let shadowed = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gonio scene with shadows and environment"),
-            bind_group_layouts: &[
-                Some(&scene.scene_group),
-                Some(&scene.shadow_group),
-                None,
-                Some(&group),
-            ],
-            immediate_size: 0,
-        });
-        let textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gonio scene with textures and environment"),
-            bind_group_layouts: &[
-                Some(&scene.scene_group),
-                None,
-                Some(&scene.texture_group),
-                Some(&group),
-            ],
-            immediate_size: 0,
-        });
-        let shadowed_textured = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gonio scene with shadows, textures and environment"),
-            bind_group_layouts: &[
-                Some(&scene.scene_group),
-                Some(&scene.shadow_group),
-                Some(&scene.texture_group),
-                Some(&group),
-            ],
-            immediate_size: 0,
-        });
-        EnvironmentLayouts {
-            group,
-            plain,
-            shadowed,
-            textured,
-            shadowed_textured,
-        }
-    }
-
-    /// The pipeline layout of a scene with the environment, with or
-    /// without shadows and textures (as [`SceneLayouts::pipeline_layout`]).
-    pub fn pipeline_layout(&self, shadows: bool, textures: bool) -> &wgpu::PipelineLayout {
-        match (shadows, textures) {
-            (false, false) => &self.plain,
-            (true, false) => &self.shadowed,
-            (false, true) => &self.textured,
-            (true, true) => &self.shadowed_textured,
-        }
+        EnvironmentLayouts { group, plain }
     }
 }
 

@@ -57,6 +57,8 @@ pub struct PipelineCache {
     pass_pipelines: HashMap<u64, wgpu::RenderPipeline>,
     /// The comparison sampler every shadow-map bind group uses.
     shadow_sampler: wgpu::Sampler,
+    /// Group 2's layouts by their number of material textures.
+    texture_groups: HashMap<u32, wgpu::BindGroupLayout>,
     /// Layouts with the environment's group 3, per [`UniformArrays`].
     environment_layouts: HashMap<UniformArrays, EnvironmentLayouts>,
     /// Background pipelines by arrays, colour format and samples.
@@ -123,6 +125,7 @@ impl PipelineCache {
             pass_pipeline_layout,
             pass_pipelines: HashMap::new(),
             shadow_sampler,
+            texture_groups: HashMap::new(),
             environment_layouts: HashMap::new(),
             backgrounds: HashMap::new(),
             transmission_group_layout: super::transmission::group_layout(device),
@@ -180,6 +183,18 @@ impl PipelineCache {
         self.scene_layouts
             .entry(arrays)
             .or_insert_with(|| SceneLayouts::new(device, arrays))
+    }
+
+    /// Group 2's layout with `bindings` material textures
+    /// ([`super::textures::group_layout`]), made on first use: sized per
+    /// scene, as its shader declares them (every binding of a layout
+    /// referenced by the shader: lavapipe 22.3 aborted, "stack smashing
+    /// detected", drawing with a layout of 24 pairs and a shader reading 1).
+    pub fn texture_group(&mut self, bindings: u32) -> &wgpu::BindGroupLayout {
+        let device = &self.device;
+        self.texture_groups
+            .entry(bindings)
+            .or_insert_with(|| super::textures::group_layout(device, bindings))
     }
 
     /// The layouts with the environment's group 3 for `arrays`, made on
@@ -276,34 +291,34 @@ impl PipelineCache {
         if key.environment.map {
             self.environment_layouts(key.arrays);
         }
+        let textures = key.materials.texture_slots > 0;
+        if textures {
+            self.texture_group(key.materials.texture_bindings);
+        }
+        // Groups 0 to 4 as the key uses them, unused ones in between
+        // empty, none after the last used.
         let layouts = &self.scene_layouts[&key.arrays];
-        let (shadows, textures) = (key.shadows.any(), key.materials.texture_slots > 0);
-        let mut pipeline_layout = if key.environment.map {
-            self.environment_layouts[&key.arrays].pipeline_layout(shadows, textures)
-        } else {
-            layouts.pipeline_layout(shadows, textures)
-        }
-        .clone();
-        if key.materials.layer_transmission {
-            // Groups 0 to 3 as above, and the transmission image.
-            let environment = key
-                .environment
+        let mut groups = vec![
+            Some(&layouts.scene_group),
+            key.shadows.any().then_some(&layouts.shadow_group),
+            textures.then(|| &self.texture_groups[&key.materials.texture_bindings]),
+            key.environment
                 .map
-                .then(|| &self.environment_layouts[&key.arrays].group);
-            pipeline_layout = self
-                .device
-                .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                    label: Some("gonio scene with transmission"),
-                    bind_group_layouts: &[
-                        Some(&layouts.scene_group),
-                        shadows.then_some(&layouts.shadow_group),
-                        textures.then_some(&layouts.texture_group),
-                        environment,
-                        Some(&self.transmission_group_layout),
-                    ],
-                    immediate_size: 0,
-                });
+                .then(|| &self.environment_layouts[&key.arrays].group),
+            key.materials
+                .layer_transmission
+                .then_some(&self.transmission_group_layout),
+        ];
+        while groups.last() == Some(&None) {
+            groups.pop();
         }
+        let pipeline_layout = self
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("gonio scene"),
+                bind_group_layouts: &groups,
+                immediate_size: 0,
+            });
         let pipeline = scene_pipeline(
             &self.device,
             &ScenePipeline {

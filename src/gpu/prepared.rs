@@ -306,7 +306,7 @@ impl PreparedScene {
             None
         };
         let textures = if key.materials.texture_slots > 0 {
-            let layout = &cache.scene_layouts(arrays).texture_group;
+            let layout = cache.texture_group(key.materials.texture_bindings);
             Some(super::textures::SceneTextures::new(ctx, layout, scene)?)
         } else {
             None

@@ -23,17 +23,81 @@ use bytemuck::{Pod, Zeroable};
 use std::collections::HashMap;
 use wgpu::util::DeviceExt;
 
-/// Textures a material can read, counted as glTF counts them: an image
-/// with its sampler (bindings 1–6 textures, 7–12 samplers). Several
-/// slots may read one binding (a metallic-roughness texture feeds two
-/// parameters from two channels; an ORM texture three).
-pub const MAX_TEXTURE_BINDINGS: usize = 6;
-
 /// Texture reads (slots) a material can have: one per parameter a
 /// texture scales, each with its UV set, transform and channel, and each
-/// naming the binding it samples. A uniform array of 64-byte entries, so
-/// room for the layered-material extensions' textures costs 1 KiB.
-pub const MAX_TEXTURE_SLOTS: usize = 16;
+/// naming the binding it samples. The core material names 6 (base colour,
+/// metallic, roughness, normal, occlusion, emission) and the layer
+/// extensions 14 more (coat 3, sheen 2, specular 2, transmission,
+/// thickness, iridescence 2, anisotropy, diffuse transmission 2): 24 holds
+/// all 20 with room. A uniform array of 64-byte entries (1.5 KiB).
+pub const MAX_TEXTURE_SLOTS: usize = 24;
+
+/// Sampled textures and samplers that the other groups of a scene
+/// pipeline bind in each stage, which a material's textures share the
+/// device's per-stage limits with: shadows (group 1: the map array and its
+/// comparison sampler), the environment (group 3: the map, the prefiltered
+/// stack and the DFG table) and transmission (group 4: the image and its
+/// sampler). The test below holds these against the groups' layouts.
+pub const OTHER_GROUPS: StageBindings = StageBindings {
+    textures: 5,
+    samplers: 2,
+};
+
+/// Sampled textures and samplers bound in one shader stage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StageBindings {
+    pub textures: u32,
+    pub samplers: u32,
+}
+
+/// Textures a material can bind on one device, counted as glTF counts
+/// them: an image with its sampler (group 2: [`texture_binding`],
+/// [`sampler_binding`]). Several slots may read one binding (a
+/// metallic-roughness texture feeds two parameters from two channels; an
+/// ORM texture three). Bounded by the device's real per-stage limits
+/// (gonio requests the adapter's own, `GpuContext`) less what the other
+/// groups take ([`OTHER_GROUPS`]), and by the slots: WebGPU's guaranteed
+/// 16 and 16 leave 11, lavapipe and desktop Vulkan drivers all 24.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureBudget {
+    /// Image and sampler pairs one material binds.
+    pub bindings: usize,
+    /// The device's limits this was derived from.
+    pub limits: StageBindings,
+}
+
+impl TextureBudget {
+    /// The budget under a device's `limits`.
+    pub fn for_limits(limits: &wgpu::Limits) -> Self {
+        let limits = StageBindings {
+            textures: limits.max_sampled_textures_per_shader_stage,
+            samplers: limits.max_samplers_per_shader_stage,
+        };
+        let free = limits
+            .textures
+            .saturating_sub(OTHER_GROUPS.textures)
+            .min(limits.samplers.saturating_sub(OTHER_GROUPS.samplers));
+        TextureBudget {
+            bindings: (free as usize).min(MAX_TEXTURE_SLOTS),
+            limits,
+        }
+    }
+
+    /// Why the budget is what it is, for a refusal.
+    pub fn explained(&self) -> String {
+        if self.bindings == MAX_TEXTURE_SLOTS {
+            return format!("gonio binds at most {MAX_TEXTURE_SLOTS} per material");
+        }
+        format!(
+            "this GPU binds at most {} per material ({} sampled textures and {} samplers per shader stage, of which shadows, the environment and transmission take {} and {})",
+            self.bindings,
+            self.limits.textures,
+            self.limits.samplers,
+            OTHER_GROUPS.textures,
+            OTHER_GROUPS.samplers
+        )
+    }
+}
 
 /// The format of every texture.
 pub const TEXTURE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -56,7 +120,7 @@ pub struct GpuTextureSlot {
     pub alpha: u32,
     /// The material's binding this slot samples
     /// ([`material_bindings`]: texture `1 + texture`, sampler
-    /// `1 + MAX_TEXTURE_BINDINGS + texture`).
+    /// [`sampler_binding`] of it).
     pub texture: u32,
     /// `(cos r, sin r)` of the transform's rotation (a normal map's
     /// normal turns with it: `material::texture::rotated_normal`).
@@ -91,8 +155,90 @@ pub fn slot_count(scene: &Scene) -> u32 {
         .min(MAX_TEXTURE_SLOTS) as u32
 }
 
-/// Group 2's layout: the slots' uniform, the textures, the samplers.
-pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+/// The most image and sampler pairs one material the scene draws binds
+/// (the shader's `TEXTURE_BINDINGS`: it declares and reads that many of
+/// group 2's bindings, [`wgsl_bindings`]).
+pub fn binding_count(scene: &Scene) -> u32 {
+    scene
+        .meshes
+        .iter()
+        .map(|m| material_bindings(&scene.materials[m.material]).len())
+        .max()
+        .filter(|&n| n > 0)
+        .map(|n| n.clamp(MIN_TEXTURE_BINDINGS, MAX_TEXTURE_SLOTS) as u32)
+        .unwrap_or(0)
+}
+
+/// The fewest pairs a textured scene's group 2 has: with one, lavapipe
+/// (Mesa 22.3.6) aborts ("stack smashing detected", in its queue thread)
+/// drawing the coat-normal-map scene of tests/layers_gpu.rs
+/// (`layer_maps_and_textures_render_like_the_reference`); with two or more
+/// it draws it as the reference does. A second pair costs one bind of the
+/// white texel.
+pub const MIN_TEXTURE_BINDINGS: usize = 2;
+
+/// Group 2's binding of material texture `i`: the pairs follow the slots'
+/// uniform (binding 0), texture then sampler, so a layout of `n` pairs
+/// has bindings 0 to `2n`.
+pub fn texture_binding(i: u32) -> u32 {
+    1 + 2 * i
+}
+
+/// Group 2's binding of material texture `i`'s sampler.
+pub fn sampler_binding(i: u32) -> u32 {
+    2 + 2 * i
+}
+
+/// The WGSL of group 2's first `n` textures and samplers and the two
+/// functions that sample binding `i` (`slot_texel`, with the pixel's UV
+/// derivatives, and `slot_texel_level0`, for the vertex stage). WGSL
+/// cannot index separate bindings, hence one `switch` case per binding;
+/// generated because the count is the scene's ([`binding_count`]).
+/// Used by `shaders/textures.wgsl`, which documents the functions.
+pub fn wgsl_bindings(n: u32) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    for i in 0..n {
+        let _ = writeln!(
+            out,
+            "@group(2) @binding({}) var slot_texture_{i}: texture_2d<f32>;",
+            texture_binding(i)
+        );
+        let _ = writeln!(
+            out,
+            "@group(2) @binding({}) var slot_sampler_{i}: sampler;",
+            sampler_binding(i)
+        );
+    }
+    for (name, parameters, call) in [
+        (
+            "slot_texel",
+            "uv: vec2<f32>, ddx: vec2<f32>, ddy: vec2<f32>",
+            "textureSampleGrad(slot_texture_{i}, slot_sampler_{i}, uv, ddx, ddy)",
+        ),
+        (
+            "slot_texel_level0",
+            "uv: vec2<f32>",
+            "textureSampleLevel(slot_texture_{i}, slot_sampler_{i}, uv, 0.0)",
+        ),
+    ] {
+        let _ = writeln!(out, "fn {name}(i: u32, {parameters}) -> vec4<f32> {{");
+        let _ = writeln!(out, "    switch i {{");
+        for i in 0..n {
+            let call = call.replace("{i}", &i.to_string());
+            let _ = writeln!(out, "        case {i}u: {{ return {call}; }}");
+        }
+        let _ = writeln!(
+            out,
+            "        default: {{ return vec4<f32>(1.0); }}\n    }}\n}}"
+        );
+    }
+    out
+}
+
+/// Group 2's layout: the slots' uniform, then `bindings` textures and
+/// samplers (the scene's [`binding_count`], which its shader declares).
+pub fn group_layout(device: &wgpu::Device, bindings: u32) -> wgpu::BindGroupLayout {
     let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
     let mut entries = vec![wgpu::BindGroupLayoutEntry {
         binding: 0,
@@ -104,9 +250,9 @@ pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         },
         count: None,
     }];
-    for s in 0..MAX_TEXTURE_BINDINGS as u32 {
+    for s in 0..bindings {
         entries.push(wgpu::BindGroupLayoutEntry {
-            binding: 1 + s,
+            binding: texture_binding(s),
             visibility: stage,
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: true },
@@ -116,7 +262,7 @@ pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             count: None,
         });
         entries.push(wgpu::BindGroupLayoutEntry {
-            binding: 1 + MAX_TEXTURE_BINDINGS as u32 + s,
+            binding: sampler_binding(s),
             visibility: stage,
             ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
             count: None,
@@ -131,14 +277,18 @@ pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 /// The slots of one material: what the GPU multiplies, from the material
 /// as rendered (roughness floor applied). An error when a texture names
 /// a parameter the GPU cannot vary ([`texture_fields::gpu_field_mask`]) or a
-/// material has more textures than slots.
-pub fn material_slots(m: &crate::material::Material) -> Result<Vec<GpuTextureSlot>> {
+/// material has more textures than the device binds or than slots.
+pub fn material_slots(
+    m: &crate::material::Material,
+    budget: &TextureBudget,
+) -> Result<Vec<GpuTextureSlot>> {
     let bindings = material_bindings(m);
-    if bindings.len() > MAX_TEXTURE_BINDINGS {
+    if bindings.len() > budget.bindings {
         return Err(Error::Scene(format!(
-            "material `{}` reads {} distinct textures (image and sampler pairs); the GPU renderer binds at most {MAX_TEXTURE_BINDINGS} per material",
+            "material `{}` reads {} distinct textures (image and sampler pairs); {} (`--reference` renders it)",
             m.name,
-            bindings.len()
+            bindings.len(),
+            budget.explained()
         )));
     }
     if m.textures.len() > MAX_TEXTURE_SLOTS {
@@ -296,13 +446,16 @@ pub struct SceneTextures {
     /// carries alpha (the base colour's), for the masked shadow pass
     /// (src/gpu/shadow_masks.rs).
     alpha_textures: Vec<Option<(wgpu::TextureView, wgpu::Sampler)>>,
+    /// The device's budget the groups were made under.
+    budget: TextureBudget,
     /// Bytes of texels on the GPU (all levels).
     pub bytes: u64,
 }
 
 impl SceneTextures {
     /// Uploads `scene`'s images and makes every material's bind group
-    /// with `layout` ([`group_layout`]).
+    /// with `layout` ([`group_layout`] of the scene's [`binding_count`]
+    /// pairs).
     pub fn new(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, scene: &Scene) -> Result<Self> {
         let device = &ctx.device;
         // Decoding caps a side at MAX_TEXTURE_SIDE (8192); an adapter may
@@ -351,12 +504,23 @@ impl SceneTextures {
         .create_view(&Default::default());
         let mut samplers: HashMap<Sampler, wgpu::Sampler> = HashMap::new();
         let default_sampler = device.create_sampler(&sampler_descriptor(&Sampler::default()));
+        let budget = TextureBudget::for_limits(&device.limits());
+        // The layout's pairs: as many as the most textured material drawn
+        // reads (a material not drawn may read more; its group is made
+        // but never bound).
+        let bound = binding_count(scene) as usize;
+        if bound > budget.bindings {
+            return Err(Error::Scene(format!(
+                "the scene's textured materials need {bound} texture bindings; {}",
+                budget.explained()
+            )));
+        }
         let materials = scene.effective_materials();
         let mut groups = Vec::with_capacity(materials.len());
         let mut slot_buffers = Vec::with_capacity(materials.len());
         let mut alpha_textures = Vec::with_capacity(materials.len());
         for m in &materials {
-            let slots = material_slots(m)?;
+            let slots = material_slots(m, &budget)?;
             for t in &m.textures {
                 samplers
                     .entry(t.sampler)
@@ -378,7 +542,7 @@ impl SceneTextures {
                 resource: buffer.as_entire_binding(),
             }];
             let bindings = material_bindings(m);
-            for s in 0..MAX_TEXTURE_BINDINGS {
+            for s in 0..bound {
                 let (view, sampler) = match bindings.get(s) {
                     Some((image, sampler)) => (
                         if sampler.mipmap.is_some() {
@@ -391,11 +555,11 @@ impl SceneTextures {
                     None => (&white, &default_sampler),
                 };
                 entries.push(wgpu::BindGroupEntry {
-                    binding: 1 + s as u32,
+                    binding: texture_binding(s as u32),
                     resource: wgpu::BindingResource::TextureView(view),
                 });
                 entries.push(wgpu::BindGroupEntry {
-                    binding: 1 + (MAX_TEXTURE_BINDINGS + s) as u32,
+                    binding: sampler_binding(s as u32),
                     resource: wgpu::BindingResource::Sampler(sampler),
                 });
             }
@@ -414,6 +578,7 @@ impl SceneTextures {
             groups,
             slots: slot_buffers,
             alpha_textures,
+            budget,
             bytes: scene.images.iter().map(|i| i.gpu_bytes()).sum(),
         })
     }
@@ -440,7 +605,7 @@ impl SceneTextures {
         if material_bindings(material) != *bindings {
             return Ok(None);
         }
-        let slots = material_slots(material)?;
+        let slots = material_slots(material, &self.budget)?;
         if bytemuck::cast_slice::<_, u8>(&slots) == bytemuck::cast_slice::<_, u8>(held) {
             return Ok(Some(0));
         }
@@ -480,6 +645,7 @@ mod tests {
             .into(),
             materials: crate::gpu::shader_gen::MaterialsKey {
                 texture_slots: 1,
+                texture_bindings: 1,
                 ..Default::default()
             },
             ..Default::default()
@@ -493,5 +659,110 @@ mod tests {
             .unwrap()
             .1;
         assert_eq!(ty.inner.size(module.to_ctx()), 64);
+    }
+
+    /// Sampled textures and samplers among a group's entries.
+    fn stage_bindings(entries: &[wgpu::BindGroupLayoutEntry]) -> StageBindings {
+        let count = |test: fn(&wgpu::BindingType) -> bool| {
+            entries.iter().filter(|e| test(&e.ty)).count() as u32
+        };
+        StageBindings {
+            textures: count(|t| matches!(t, wgpu::BindingType::Texture { .. })),
+            samplers: count(|t| matches!(t, wgpu::BindingType::Sampler(_))),
+        }
+    }
+
+    #[test]
+    fn the_other_groups_take_what_their_layouts_bind() {
+        let arrays = crate::gpu::bindings::UniformArrays {
+            lights: true,
+            shadow_views: true,
+            measured: false,
+            sheen: false,
+        };
+        let groups = [
+            stage_bindings(&crate::gpu::bind_groups::shadow_group_entries(arrays)),
+            stage_bindings(&crate::gpu::environment::group_entries()),
+            stage_bindings(&crate::gpu::transmission::group_entries()),
+        ];
+        let sum = StageBindings {
+            textures: groups.iter().map(|g| g.textures).sum(),
+            samplers: groups.iter().map(|g| g.samplers).sum(),
+        };
+        assert_eq!(sum, OTHER_GROUPS);
+    }
+
+    #[test]
+    fn the_budget_is_the_devices_limits_less_the_other_groups() {
+        // WebGPU's guaranteed limits: 16 and 16, less 5 and 2.
+        let webgpu = TextureBudget::for_limits(&wgpu::Limits::default());
+        assert_eq!(webgpu.bindings, 11);
+        assert!(
+            webgpu.explained().contains("at most 11"),
+            "{}",
+            webgpu.explained()
+        );
+        // Samplers scarcer than textures bound it.
+        let few_samplers = wgpu::Limits {
+            max_samplers_per_shader_stage: 8,
+            ..wgpu::Limits::default()
+        };
+        assert_eq!(TextureBudget::for_limits(&few_samplers).bindings, 6);
+        // A generous driver is bounded by the slots.
+        let generous = wgpu::Limits {
+            max_sampled_textures_per_shader_stage: 1 << 20,
+            max_samplers_per_shader_stage: 1 << 20,
+            ..wgpu::Limits::default()
+        };
+        assert_eq!(
+            TextureBudget::for_limits(&generous).bindings,
+            MAX_TEXTURE_SLOTS
+        );
+        // A device below the other groups' needs binds none, without
+        // wrapping around.
+        let starved = wgpu::Limits {
+            max_sampled_textures_per_shader_stage: 4,
+            ..wgpu::Limits::default()
+        };
+        assert_eq!(TextureBudget::for_limits(&starved).bindings, 0);
+    }
+
+    #[test]
+    fn a_material_past_the_budget_is_refused_with_what_fits() {
+        let mut m =
+            crate::material::Material::new("many", crate::material::ReflectanceModel::GltfPbr);
+        for image in 0..3 {
+            m.textures.push(crate::material::texture::MaterialTexture {
+                target: TextureTarget::Param("base_color"),
+                image,
+                channel: 0,
+                tex_coord: 0,
+                transform: Default::default(),
+                sampler: Sampler::default(),
+            });
+        }
+        let two = TextureBudget {
+            bindings: 2,
+            limits: StageBindings {
+                textures: 7,
+                samplers: 16,
+            },
+        };
+        let e = material_slots(&m, &two).unwrap_err().to_string();
+        assert!(e.contains("`many` reads 3 distinct textures"), "{e}");
+        assert!(e.contains("binds at most 2 per material"), "{e}");
+        assert!(e.contains("7 sampled textures"), "{e}");
+        assert!(material_slots(&m, &TextureBudget { bindings: 3, ..two }).is_ok());
+    }
+
+    #[test]
+    fn generated_bindings_declare_and_read_each_pair() {
+        let wgsl = wgsl_bindings(3);
+        for i in 0..3 {
+            assert!(wgsl.contains(&format!("@binding({}) var slot_texture_{i}:", 1 + 2 * i)));
+            assert!(wgsl.contains(&format!("@binding({}) var slot_sampler_{i}:", 2 + 2 * i)));
+        }
+        assert!(!wgsl.contains("slot_texture_3"));
+        assert_eq!(wgsl.matches("case 2u").count(), 2);
     }
 }

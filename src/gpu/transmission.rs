@@ -28,28 +28,33 @@ pub const GROUP: u32 = 4;
 /// Group 4's layout: the image (filterable, read in the fragment or,
 /// for vertex shading, the vertex stage) and its sampler.
 pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio transmission image"),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: stage,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: stage,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                count: None,
-            },
-        ],
+        entries: &group_entries(),
     })
+}
+
+/// The entries of [`group_layout`].
+pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 2] {
+    let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
+    [
+        wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: stage,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: stage,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            count: None,
+        },
+    ]
 }
 
 /// Refuses a device that cannot bind group 4 (WebGPU guarantees 4

@@ -267,6 +267,9 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
     out.push_str(&compose_brdf_library(&key.variants, &features));
     if key.materials.texture_slots > 0 {
         out.push_str(&file("textures.wgsl", &features));
+        out.push_str(&crate::gpu::textures::wgsl_bindings(
+            key.materials.texture_bindings,
+        ));
         out.push('\n');
     }
     out.push_str(&lights(&key.lights.kinds, &features));

@@ -203,6 +203,10 @@ key_group! {
         /// the scene draws (0: no texture code, else [`Feature::Textures`];
         /// `crate::gpu::textures`).
         pub texture_slots: u32,
+        /// Image and sampler pairs of group 2 the shader declares and
+        /// reads: the most one material the scene draws binds
+        /// (`crate::gpu::textures::binding_count`).
+        pub texture_bindings: u32,
         /// Some material has a normal map ([`Feature::NormalMap`], with
         /// textures; tangents and bitangent signs in the vertex stream).
         pub normal_maps: bool,
@@ -278,6 +282,7 @@ impl MaterialsKey {
             && any(Material::transmits_specularly);
         MaterialsKey {
             texture_slots: crate::gpu::textures::slot_count(scene),
+            texture_bindings: crate::gpu::textures::binding_count(scene),
             normal_maps: crate::gpu::textures::has_normal_maps(scene),
             alpha_blend: any(|m| m.alpha_mode == AlphaMode::Blend),
             two_sided: any(|m| m.sides == Sides::Both),

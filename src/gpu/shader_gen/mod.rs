@@ -208,6 +208,11 @@ pub fn representative_keys() -> Vec<ShaderKey> {
                     } else {
                         0
                     },
+                    texture_bindings: if uniform {
+                        crate::gpu::textures::MAX_TEXTURE_SLOTS as u32
+                    } else {
+                        0
+                    },
                     normal_maps: uniform,
                     alpha_blend: uniform,
                     ..Default::default()
