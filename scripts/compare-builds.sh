@@ -16,7 +16,8 @@
 #
 # `bench --quick` computes every knob's error against traced truths and
 # takes long on a small machine (one run on 2 cores had not finished after
-# 43 minutes, 2026-12-05): BENCH=0 skips it and compares the viewer alone.
+# 43 minutes, 2026-12-05): BENCH=ratios measures the three rows alone
+# (`bench --quick --ratios`, both binaries need it), BENCH=0 skips them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 old="$1"; new="$2"; rounds="${3:-2}"; frames="${4:-200}"
@@ -28,7 +29,11 @@ for r in $(seq 1 "$rounds"); do
     for side in old new; do
         bin="$old"; [ "$side" = new ] && bin="$new"
         dir="$out/$side-$r"
-        if [ "${BENCH:-1}" != 0 ]; then
+        if [ "${BENCH:-1}" = ratios ]; then
+            "$bin" bench --quick --ratios 2>/dev/null \
+                | grep -E "^\| (specialized scene / hand-minimal|uber / specialized|cold .gonio render)" \
+                | sed "s/^/round $r $side bench /"
+        elif [ "${BENCH:-1}" != 0 ]; then
             "$bin" bench --quick --no-scale -o "$dir" >/dev/null 2>&1
             grep -E "^\| (specialized scene / hand-minimal|uber / specialized|cold .gonio render)" "$dir/report.md" \
                 | sed "s/^/round $r $side bench /"

@@ -36,7 +36,7 @@ pub struct BenchArgs {
     /// `--merge`; no target ratios, no scale sweeps. `auto` (or `auto/N`)
     /// reads Slurm's, Kubernetes' or HyperQueue's task variables. A shard
     /// whose file exists for the same run is skipped.
-    #[arg(long, value_name = "I/N|auto", conflicts_with_all = ["merge", "shadow_ratio", "probe_memory", "floor_triangle_png"])]
+    #[arg(long, value_name = "I/N|auto", conflicts_with_all = ["merge", "shadow_ratio", "ratios", "probe_memory", "floor_triangle_png"])]
     pub shard: Option<String>,
     /// Join the shards in DIR/shards into DIR/results.csv and DIR/report.md.
     #[arg(long, conflicts_with_all = ["scene", "quick", "smoke", "repeats", "no_scale", "set"])]
@@ -53,6 +53,13 @@ pub struct BenchArgs {
     /// notes, and exit (A/B timing of the shadow passes).
     #[arg(long, hide = true)]
     pub shadow_ratio: bool,
+    /// Internal: measure only the report's target ratios (specialized
+    /// against hand-minimal, uber against specialized, shadowed against
+    /// unlit, cold render against triangle-to-PNG) with the budget of
+    /// --quick, --smoke or the full run, print their rows and exit (an
+    /// interleaved before/after of two builds).
+    #[arg(long, hide = true)]
+    pub ratios: bool,
     /// Internal: run the minimal triangle-to-PNG floor program and exit.
     #[arg(long, value_name = "OUT", hide = true)]
     pub floor_triangle_png: Option<PathBuf>,

@@ -168,6 +168,81 @@ fn shadow_ratio_only(args: &BenchArgs, effort: ratios::Effort) -> Result<()> {
     Ok(())
 }
 
+/// A shader's compile time (label, milliseconds), for the report.
+type CompileTime = (String, f64);
+
+/// The target ratios of the report (specialized scene against the
+/// hand-minimal shader, uber against specialized on the Lambert and the
+/// base scene, Cook-Torrance with 4 shadowed lights against unlit, a cold
+/// `gonio render` against the minimal triangle-to-PNG program), and the
+/// shader compile times measured on the way; one step of `bar` each.
+fn target_ratios(
+    renderer: &mut GpuRenderer,
+    base: &Scene,
+    effort: ratios::Effort,
+    adapter: Option<&str>,
+    bar: &mut Progress,
+) -> Result<(Vec<ratios::Ratio>, Vec<CompileTime>)> {
+    let mut ratio_list = Vec::new();
+    let mut compile = Vec::new();
+    bar.set_message("specialized vs hand-minimal");
+    ratio_list.extend(ratios::specialization(renderer, effort)?);
+    bar.inc(1);
+    bar.set_message("uber vs specialized");
+    let lambert = scene_file::load(
+        &SceneSource::BuiltIn,
+        &[effort.small, None]
+            .into_iter()
+            .flatten()
+            .flat_map(|(w, h)| [format!("image.width={w}"), format!("image.height={h}")])
+            .chain(["materials.ball.model=lambert".to_string()])
+            .collect::<Vec<_>>(),
+    )?;
+    for (scene, label) in [(&lambert, "Lambert scene"), (base, "bench base scene")] {
+        let (ratio, special_ms, uber_ms) =
+            ratios::uber_vs_specialized(renderer, scene, label, effort)?;
+        compile.push((format!("specialized shader, {label}"), special_ms));
+        compile.push((format!("uber shader, {label}"), uber_ms));
+        ratio_list.push(ratio);
+        bar.inc(1);
+    }
+    bar.set_message("Cook-Torrance + 4 shadowed lights vs unlit");
+    ratio_list.extend(ratios::heavy_vs_unlit(renderer, effort)?);
+    bar.inc(1);
+    bar.set_message("cold render vs triangle-to-PNG");
+    let scratch = tempfile::tempdir().map_err(|e| {
+        Error::output(
+            std::env::temp_dir(),
+            format!("cannot create a scratch folder: {e}"),
+        )
+    })?;
+    ratio_list.push(ratios::cold(scratch.path(), effort, adapter)?);
+    bar.inc(1);
+    Ok((ratio_list, compile))
+}
+
+/// `--ratios`: the target ratios alone, printed as the report writes
+/// them (an interleaved before/after of two builds,
+/// scripts/compare-builds.sh).
+fn ratios_only(args: &BenchArgs, base: &Scene, effort: ratios::Effort) -> Result<()> {
+    let context = GpuContext::new(&AdapterChoice::from_flag_or_env(args.adapter.as_deref()))?;
+    context.require_float_radiance("gonio bench")?;
+    let mut renderer = GpuRenderer::new(context);
+    let mut bar = Progress::new("bench ratios", 5);
+    let (list, _) = target_ratios(
+        &mut renderer,
+        base,
+        effort,
+        args.adapter.as_deref(),
+        &mut bar,
+    )?;
+    bar.finish();
+    for r in &list {
+        println!("{}", report::ratio_row(r));
+    }
+    Ok(())
+}
+
 pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(out) = &args.floor_triangle_png {
         return floors::triangle_to_png(out, args.adapter.as_deref());
@@ -185,6 +260,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     // A shard writes its own file only (super::shards).
     let (outputs, shard_file) = match &args.shard {
+        // `--ratios` prints its rows and writes nothing.
+        None if args.ratios => (None, None),
         None => (Some(Outputs::claim(&args.out)?), None),
         Some(text) => (
             None,
@@ -214,6 +291,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             scene_label(args.scene.as_deref()),
             "the scene has no geometry or no light (nor an environment map): there is nothing to measure",
         ));
+    }
+    if args.ratios {
+        return ratios_only(args, &base, budget.ratio);
     }
     let (all, mut not_measured) = configs::configs(&base, args.smoke);
     let all = configs::whole_environment(
@@ -413,46 +493,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         return Ok(());
     }
     let outputs = outputs.expect("claimed when not sharded");
-    let effort = budget.ratio;
-    let mut ratio_list = Vec::new();
-    let mut compile = Vec::new();
-    bar.set_message("specialized vs hand-minimal");
-    ratio_list.extend(ratios::specialization(&mut renderer, effort)?);
-    bar.inc(1);
-    bar.set_message("uber vs specialized");
-    let lambert = scene_file::load(
-        &SceneSource::BuiltIn,
-        &[effort.small, None]
-            .into_iter()
-            .flatten()
-            .flat_map(|(w, h)| [format!("image.width={w}"), format!("image.height={h}")])
-            .chain(["materials.ball.model=lambert".to_string()])
-            .collect::<Vec<_>>(),
-    )?;
-    for (scene, label) in [(&lambert, "Lambert scene"), (&base, "bench base scene")] {
-        let (ratio, special_ms, uber_ms) =
-            ratios::uber_vs_specialized(&mut renderer, scene, label, effort)?;
-        compile.push((format!("specialized shader, {label}"), special_ms));
-        compile.push((format!("uber shader, {label}"), uber_ms));
-        ratio_list.push(ratio);
-        bar.inc(1);
-    }
-    bar.set_message("Cook-Torrance + 4 shadowed lights vs unlit");
-    ratio_list.extend(ratios::heavy_vs_unlit(&mut renderer, effort)?);
-    bar.inc(1);
-    bar.set_message("cold render vs triangle-to-PNG");
-    let scratch = tempfile::tempdir().map_err(|e| {
-        Error::output(
-            std::env::temp_dir(),
-            format!("cannot create a scratch folder: {e}"),
-        )
-    })?;
-    ratio_list.push(ratios::cold(
-        scratch.path(),
-        effort,
+    let (ratio_list, compile) = target_ratios(
+        &mut renderer,
+        &base,
+        budget.ratio,
         args.adapter.as_deref(),
-    )?);
-    bar.inc(1);
+        &mut bar,
+    )?;
 
     let scale = match &budget.scale {
         Some(plan) => {
