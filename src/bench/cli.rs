@@ -16,7 +16,8 @@ pub struct BenchArgs {
     /// pareto.png (created if missing; files are replaced atomically).
     #[arg(short, long = "out", value_name = "DIR", default_value = DEFAULT_OUT)]
     pub out: PathBuf,
-    /// Fewer repeats and a shorter scale sweep (about a minute).
+    /// Fewer repeats and a shorter scale sweep (every knob is still measured
+    /// against its traced truth, which takes most of the run).
     #[arg(long)]
     pub quick: bool,
     /// One iteration at tiny sizes: checks that everything runs (CI).
