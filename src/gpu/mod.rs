@@ -89,6 +89,7 @@ pub mod environment;
 pub mod formats;
 pub mod geometry;
 pub mod layout;
+pub mod layout_entries;
 pub mod measured_tables;
 pub mod offscreen;
 pub mod pipelines;

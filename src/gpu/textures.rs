@@ -251,22 +251,14 @@ pub fn group_layout(device: &wgpu::Device, bindings: u32) -> wgpu::BindGroupLayo
         count: None,
     }];
     for s in 0..bindings {
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: texture_binding(s),
-            visibility: stage,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        });
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: sampler_binding(s),
-            visibility: stage,
-            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-            count: None,
-        });
+        entries.push(super::layout_entries::filterable_texture_2d(
+            texture_binding(s),
+            stage,
+        ));
+        entries.push(super::layout_entries::filtering_sampler(
+            sampler_binding(s),
+            stage,
+        ));
     }
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio material textures"),

@@ -38,22 +38,8 @@ pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 2] {
     let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
     [
-        wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: stage,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        },
-        wgpu::BindGroupLayoutEntry {
-            binding: 1,
-            visibility: stage,
-            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-            count: None,
-        },
+        super::layout_entries::filterable_texture_2d(0, stage),
+        super::layout_entries::filtering_sampler(1, stage),
     ]
 }
 
