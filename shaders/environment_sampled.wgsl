@@ -1,13 +1,14 @@
 // The environment integrated through the whole BRDF with N directions
-// (environment.specular = "sampled"): ⌈N/2⌉ cosine-weighted and the rest
-// from the material's BRDF lobe, combined by multiple importance sampling
-// (the balance heuristic, multi-sample form: each sample weighted as one
-// of the mixture n_c p_c + n_b p_b). Only in shaders of scenes in that
-// mode (feature `environment_sampled`), after environment.wgsl; uses
-// brdf/phong.wgsl (composed whenever this file is).
-// f64 twins: src/reference/environment/lobe.rs (the lobe_* functions) and
-// src/reference/environment/sampled.rs (the estimate), same functions, same order;
-// the derivations are there.
+// (environment.specular = "sampled"): cosine-weighted ones, ones from the
+// material's BRDF lobe and ones from the map's light, combined by multiple
+// importance sampling (the balance heuristic, multi-sample form: each
+// sample weighted as one of the mixture n_c p_c + n_b p_b + n_m p_m). Only
+// in shaders of scenes in that mode (feature `environment_sampled`), after
+// environment.wgsl; uses brdf/phong.wgsl (composed whenever this file is).
+// f64 twins: src/reference/environment/lobe.rs (the lobe_* functions),
+// src/environment/importance.rs (the importance_* functions) and
+// src/reference/environment/sampled.rs (the estimate), same functions,
+// same order; the derivations are there.
 
 // Lobe kinds (lobe::Lobe's variants).
 const LOBE_NONE: u32 = 0u;
@@ -148,10 +149,93 @@ fn lobe_pdf(l: SampledLobe, wi: vec3<f32>, wo: vec3<f32>, n: vec3<f32>) -> f32 {
     return select(half, mirror, l.kind == LOBE_MIRROR_POWER);
 }
 
+// The map's distribution of directions (group 3, binding 4;
+// ImportanceTable::gpu_entries): a width × height grid, per texel
+// (the columns' cumulative probability within its row, its density
+// [1/sr], the rows' cumulative probability at its row, 0).
+struct EnvironmentImportance {
+    // width, height, whether the map is drawn by (ImportanceTable::concentrated), 0
+    header: vec4<u32>,
+    entries: array<vec4<f32>>,
+}
+
+@group(3) @binding(4) var<storage, read> environment_importance: EnvironmentImportance;
+
+// Entry i of a cumulative distribution in the table: the rows' (.z of
+// each row's first texel) or one row's columns (.x from `start`).
+fn importance_cdf(start: u32, rows: bool, i: u32) -> f32 {
+    let w = environment_importance.header.x;
+    let e = environment_importance.entries[select(start + i, i * w, rows)];
+    return select(e.x, e.z, rows);
+}
+
+// A bin of a cumulative distribution and the variate's fraction in it.
+struct ImportanceBin {
+    index: u32,
+    fraction: f32,
+}
+
+// The first of n entries above u, by bisection, and u's fraction within
+// that bin's probability. Twin: importance::invert.
+fn importance_invert(start: u32, rows: bool, n: u32, u: f32) -> ImportanceBin {
+    var lo = 0u;
+    var hi = n;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if importance_cdf(start, rows, mid) <= u {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    let i = min(lo, n - 1u);
+    let below = select(0.0, importance_cdf(start, rows, max(i, 1u) - 1u), i > 0u);
+    let width = importance_cdf(start, rows, i) - below;
+    let f = select(0.5, clamp((u - below) / width, 0.0, 1.0), width > 0.0);
+    return ImportanceBin(i, f);
+}
+
+// The direction (the map's frame) of the variates (u1, u2): the row by
+// u1, cos θ uniform across it; the column by u2, φ uniform across it.
+// Twin: ImportanceTable::direction.
+fn importance_direction(u1: f32, u2: f32) -> vec3<f32> {
+    let w = environment_importance.header.x;
+    let h = environment_importance.header.y;
+    let row = importance_invert(0u, true, h, u1);
+    let col = importance_invert(row.index * w, false, w, u2);
+    // latlong::row_cos_bounds
+    let top = cos(PI * f32(row.index) / f32(h));
+    let bottom = cos(PI * f32(row.index + 1u) / f32(h));
+    let cos_t = top + (bottom - top) * row.fraction;
+    let phi = 2.0 * PI * (f32(col.index) + col.fraction) / f32(w);
+    // latlong::direction_phi_cos
+    let sin_t = sqrt(max(1.0 - cos_t * cos_t, 0.0));
+    return vec3<f32>(sin_t * sin(phi), cos_t, -sin_t * cos(phi));
+}
+
+// The density [1/sr] of unit direction d (the map's frame): its texel's.
+// Twin: ImportanceTable::pdf.
+fn importance_pdf(d: vec3<f32>) -> f32 {
+    let w = environment_importance.header.x;
+    let h = environment_importance.header.y;
+    let uv = latlong_uv(d);
+    let col = min(u32(uv.x * f32(w)), w - 1u);
+    let row = min(u32(uv.y * f32(h)), h - 1u);
+    return environment_importance.entries[row * w + col].y;
+}
+
+// The world direction of direction d in the file's frame: R_y(θ) d, the
+// inverse of environment_to_map. Twin: EnvironmentMap::from_map.
+fn environment_from_map(d: vec3<f32>) -> vec3<f32> {
+    let c = environment.rotation.x;
+    let s = environment.rotation.y;
+    return vec3<f32>(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+}
+
 // L_o = ∫ f_r L_env cos θ dω by N directions: Σ_k f_r L_env cos θ_k /
-// (n_c p_c + n_b p_b), samples 0..n_c cosine-weighted, the rest from the
-// lobe, each strategy on the Hammersley set of its size. Twin:
-// sampled::estimate.
+// (n_c p_c + n_b p_b + n_m p_m), the samples cosine-weighted, then from
+// the lobe, then from the map, each strategy on the Hammersley set of its
+// size. Twin: sampled::estimate.
 fn environment_sampled(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     // The loop bound is a uniform, but group 3's, which every draw of a
     // frame shares (unlike the material's: UNIFORM_BRANCHES in
@@ -159,27 +243,48 @@ fn environment_sampled(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<
     let n = max(environment.samples, 1u);
     let l = sampled_lobe(m);
     // sampled::split
-    let n_c = select((n + 1u) / 2u, n, l.kind == LOBE_NONE);
-    let n_b = n - n_c;
+    let has_lobe = l.kind != LOBE_NONE;
+    let by_map = environment_importance.header.z != 0u;
+    let strategies = 1u + select(0u, 1u, has_lobe) + select(0u, 1u, by_map);
+    let n_m = select(0u, n / strategies, by_map);
+    let rest = n - n_m;
+    let n_c = select(rest, (rest + 1u) / 2u, has_lobe);
+    let n_b = rest - n_c;
     // The directions' frame from the normal alone (as sampled::estimate).
     let t = any_tangent(frame.n);
     let b = cross(frame.n, t);
     var sum = vec3<f32>(0.0);
     for (var k = 0u; k < n; k++) {
-        let from_lobe = k >= n_c;
-        let j = select(k, k - n_c, from_lobe);
-        let count = select(n_c, n_b, from_lobe);
+        let from_lobe = k >= n_c && k < n_c + n_b;
+        let from_map = k >= n_c + n_b;
+        var j = k;
+        var count = n_c;
+        if from_lobe {
+            j = k - n_c;
+            count = n_b;
+        }
+        if from_map {
+            j = k - n_c - n_b;
+            count = n_m;
+        }
         // sampled::hammersley
         let u1 = (f32(j) + 0.5) / f32(count);
         let u2 = f32(reverseBits(j)) * 2.3283064365386963e-10;
-        // sampled::local_direction (Malley's method)
-        let r = sqrt(u1);
-        let phi = 2.0 * PI * u2;
-        let cosine = t * (r * cos(phi)) + b * (r * sin(phi)) + frame.n * sqrt(1.0 - u1);
-        let wi = select(cosine, lobe_direction(l, u1, u2, wo, frame.n, t, b), from_lobe);
+        var wi: vec3<f32>;
+        if from_map {
+            wi = environment_from_map(importance_direction(u1, u2));
+        } else if from_lobe {
+            wi = lobe_direction(l, u1, u2, wo, frame.n, t, b);
+        } else {
+            // sampled::local_direction (Malley's method)
+            let r = sqrt(u1);
+            let phi = 2.0 * PI * u2;
+            wi = t * (r * cos(phi)) + b * (r * sin(phi)) + frame.n * sqrt(1.0 - u1);
+        }
         let c = dot(frame.n, wi);
         let p_b = select(0.0, lobe_pdf(l, wi, wo, frame.n), n_b > 0u);
-        let mixture = f32(n_c) * max(c, 0.0) * FRAC_1_PI + f32(n_b) * p_b;
+        let p_m = select(0.0, importance_pdf(environment_to_map(wi)), n_m > 0u);
+        let mixture = f32(n_c) * max(c, 0.0) * FRAC_1_PI + f32(n_b) * p_b + f32(n_m) * p_m;
         let term = f_r(m, wi, wo, frame) * environment_map_radiance(wi) * (c / mixture);
         sum += select(vec3<f32>(0.0), term, c > 0.0 && mixture > 0.0);
     }

@@ -7,6 +7,7 @@
 //! (`environment_lookup` in `shaders/environment.wgsl`), so a mirror or
 //! the background differ between the renderers only by f32 rounding.
 
+use super::importance::ImportanceTable;
 use super::prefiltered::Prefiltered;
 use super::quadrature::Truth;
 use super::{latlong, sh};
@@ -155,6 +156,9 @@ pub struct MapData {
     pub nodes: Vec<super::quadrature::Node>,
     /// Prefiltered stacks made so far, by size (made on first use).
     pub prefiltered: PrefilteredCache,
+    /// The distribution the sampled mode draws directions by (made on
+    /// first use, [`MapData::importance`]).
+    pub importance: ImportanceCache,
 }
 
 /// The prefiltered stacks of a map, made when a scene first asks for a
@@ -164,6 +168,25 @@ pub struct MapData {
 pub struct PrefilteredCache(std::sync::Mutex<Vec<Arc<Prefiltered>>>);
 
 impl PartialEq for PrefilteredCache {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+/// A map's importance table, made when a scene in the sampled mode first
+/// asks for it. Equal whatever it holds, as [`PrefilteredCache`].
+#[derive(Debug, Default)]
+pub struct ImportanceCache(std::sync::OnceLock<Arc<ImportanceTable>>);
+
+impl ImportanceCache {
+    /// A cache already holding `table` (a test's map whose light is drawn
+    /// by another map's distribution).
+    pub fn holding(table: Arc<ImportanceTable>) -> Self {
+        ImportanceCache(std::sync::OnceLock::from(table))
+    }
+}
+
+impl PartialEq for ImportanceCache {
     fn eq(&self, _: &Self) -> bool {
         true
     }
@@ -211,7 +234,17 @@ impl MapData {
             truth,
             nodes,
             prefiltered: PrefilteredCache::default(),
+            importance: ImportanceCache::default(),
         })
+    }
+
+    /// The distribution of directions by the texels' light (made on the
+    /// first call, then shared).
+    pub fn importance(&self) -> Arc<ImportanceTable> {
+        self.importance
+            .0
+            .get_or_init(|| Arc::new(ImportanceTable::new(self.width, self.height, &self.texels)))
+            .clone()
     }
 
     /// The bytes its texels hold (f32 RGB), charged to `--limit bytes`.

@@ -26,12 +26,15 @@
 //! * [`sh_phong`]: the lecture's Phong lobes by SH convolution, a zonal
 //!   product (`environment.specular = "sh"`, Ramamoorthi & Hanrahan 2002).
 //! * [`sh_error`]: SH irradiance error vs order against the truth.
+//! * [`importance`]: the map's texels as a distribution of directions,
+//!   the sampled mode's third strategy (a sun found by few samples).
 //! * [`visibility`]: the part of the map's quadrature the geometry
 //!   blocks, for the reference's `environment.visibility`.
 //! * [`quadrature`]: the integrated truth `E(n) = ∫ L(ω) max(0, n·ω) dω`
 //!   the reference uses and SH is measured against.
 
 mod exr_header;
+pub mod importance;
 pub mod latlong;
 pub mod load;
 pub mod map;

@@ -51,27 +51,7 @@ pub struct Node {
 /// The nodes of a `width × height` map's texels (row-major, row 0 at
 /// +Y), box-filtered to at most [`MAX_TEXELS`].
 pub fn nodes(width: u32, height: u32, texels: &[[f32; 3]]) -> Vec<Node> {
-    let (mut w, mut h) = (width, height);
-    let too_many = |w: u32, h: u32| {
-        (w as usize) * (h as usize) > MAX_TEXELS && w.is_multiple_of(2) && h.is_multiple_of(2)
-    };
-    let texel = |i: usize| Rgb::from(texels[i].map(f64::from));
-    // The first halving reads the f32 texels directly: a full-size f64
-    // copy of a large map (24 bytes a texel, twice the texels' own) was
-    // the load's peak (issue 39).
-    let mut grid: Vec<Rgb> = if too_many(w, h) {
-        let half = halve(w, h, texel);
-        w /= 2;
-        h /= 2;
-        half
-    } else {
-        (0..texels.len()).map(texel).collect()
-    };
-    while too_many(w, h) {
-        grid = halve(w, h, |i| grid[i]);
-        w /= 2;
-        h /= 2;
-    }
+    let (w, h, grid) = reduced_grid(width, height, texels, MAX_TEXELS);
     let mut out = Vec::with_capacity(3 * grid.len());
     for row in 0..h {
         let (top, bottom) = latlong::row_cos_bounds(row, h);
@@ -89,6 +69,40 @@ pub fn nodes(width: u32, height: u32, texels: &[[f32; 3]]) -> Vec<Node> {
         }
     }
     out
+}
+
+/// A `width × height` map's texels in f64, box-filtered by 2 × 2 (each
+/// texel the solid-angle weighted mean of the 2 × 2 it covers, which
+/// keeps the power `∫ L dω`) while they are more than `max_texels` and
+/// both sides even: `(width, height, texels)`.
+pub fn reduced_grid(
+    width: u32,
+    height: u32,
+    texels: &[[f32; 3]],
+    max_texels: usize,
+) -> (u32, u32, Vec<Rgb>) {
+    let (mut w, mut h) = (width, height);
+    let too_many = |w: u32, h: u32| {
+        (w as usize) * (h as usize) > max_texels && w.is_multiple_of(2) && h.is_multiple_of(2)
+    };
+    let texel = |i: usize| Rgb::from(texels[i].map(f64::from));
+    // The first halving reads the f32 texels directly: a full-size f64
+    // copy of a large map (24 bytes a texel, twice the texels' own) would
+    // be the load's peak.
+    let mut grid: Vec<Rgb> = if too_many(w, h) {
+        let half = halve(w, h, texel);
+        w /= 2;
+        h /= 2;
+        half
+    } else {
+        (0..texels.len()).map(texel).collect()
+    };
+    while too_many(w, h) {
+        grid = halve(w, h, |i| grid[i]);
+        w /= 2;
+        h /= 2;
+    }
+    (w, h, grid)
 }
 
 /// A map of half the width and height: each texel the solid-angle

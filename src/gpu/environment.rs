@@ -1,13 +1,15 @@
 //! The environment map on the GPU (bind group 3, only for scenes with
 //! `[environment] map`; other scenes' pipelines and images are unchanged):
 //! the texels as an `Rgba32Float` texture, a uniform with the map's scale,
-//! size and SH irradiance coefficients and the camera's ray basis, and the
+//! size and SH irradiance coefficients and the camera's ray basis, the
+//! tables of the prefiltered and sampled modes, and the
 //! background pass (shaders/environment_background.wgsl) that shows the
 //! map where no geometry is.
 
 use super::bind_groups::SceneLayouts;
 use super::formats::DEPTH_FORMAT;
 use super::shader_gen::{self, Output};
+use crate::environment::importance::ImportanceTable;
 use crate::environment::map::{MapData, Specular};
 use crate::environment::prefiltered::{self, Prefiltered};
 use crate::environment::{EnvironmentMap, sh};
@@ -78,8 +80,8 @@ impl GpuEnvironmentUniform {
 }
 
 /// The entries of group 3: the uniform, the map's texels, the
-/// prefiltered stack and the DFG table.
-pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 4] {
+/// prefiltered stack, the DFG table and the importance table.
+pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 5] {
     let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
     [
         wgpu::BindGroupLayoutEntry {
@@ -104,7 +106,48 @@ pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 4] {
         },
         texture_entry(2, stage),
         texture_entry(3, stage),
+        wgpu::BindGroupLayoutEntry {
+            binding: 4,
+            visibility: stage,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(IMPORTANCE_HEADER + 16),
+            },
+            count: None,
+        },
     ]
+}
+
+/// Bytes before the entries of `EnvironmentImportance`
+/// (shaders/environment_sampled.wgsl): width, height, whether the sampled
+/// mode draws by the map, a zero.
+const IMPORTANCE_HEADER: u64 = 16;
+
+/// The importance table of `map` in the sampled mode (bound at 4, with
+/// the `Arc` uploaded), else a header of zeros and one zero entry.
+fn importance_buffer(
+    device: &wgpu::Device,
+    map: &EnvironmentMap,
+) -> (Option<Arc<ImportanceTable>>, wgpu::Buffer) {
+    use wgpu::util::DeviceExt;
+    let (table, header, entries) = if map.settings.specular == Specular::Sampled {
+        let t = map.data.importance();
+        let header = [t.width, t.height, t.concentrated() as u32, 0];
+        let entries = t.gpu_entries();
+        (Some(t), header, entries)
+    } else {
+        (None, [0; 4], vec![[0.0; 4]])
+    };
+    let mut bytes = Vec::with_capacity(IMPORTANCE_HEADER as usize + 16 * entries.len());
+    bytes.extend_from_slice(bytemuck::cast_slice(&header));
+    bytes.extend_from_slice(bytemuck::cast_slice(&entries));
+    let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("gonio environment importance"),
+        contents: &bytes,
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    (table, buffer)
 }
 
 /// A non-filterable float 2D texture at `binding` (the prefiltered stack,
@@ -285,6 +328,8 @@ pub struct GpuEnvironment {
     data: Arc<MapData>,
     /// The prefiltered stack uploaded, if the mode reads one.
     prefiltered: Option<Arc<Prefiltered>>,
+    /// The importance table uploaded, if the mode reads one.
+    importance: Option<Arc<ImportanceTable>>,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     background: wgpu::RenderPipeline,
@@ -349,6 +394,7 @@ impl GpuEnvironment {
         });
         let view = texture.create_view(&Default::default());
         let (prefiltered, stack, table) = split_sum_textures(device, queue, map);
+        let (importance, importance_table) = importance_buffer(device, map);
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("gonio environment"),
             layout: &layouts.group,
@@ -369,11 +415,16 @@ impl GpuEnvironment {
                     binding: 3,
                     resource: wgpu::BindingResource::TextureView(&table),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: importance_table.as_entire_binding(),
+                },
             ],
         });
         Ok(Some(GpuEnvironment {
             data: data.clone(),
             prefiltered,
+            importance,
             uniform,
             bind_group,
             background,
@@ -381,7 +432,8 @@ impl GpuEnvironment {
     }
 
     /// Whether `scene` has this map's texels and, in the prefiltered
-    /// mode, this stack (so [`Self::write`] suffices).
+    /// mode, this stack, in the sampled mode its importance table (so
+    /// [`Self::write`] suffices).
     pub fn holds(&self, scene: &Scene) -> bool {
         scene.environment.map.as_ref().is_some_and(|m| {
             Arc::ptr_eq(&m.data, &self.data)
@@ -390,6 +442,7 @@ impl GpuEnvironment {
                     (None, Specular::Prefiltered) => false,
                     (_, _) => true,
                 }
+                && (m.settings.specular != Specular::Sampled || self.importance.is_some())
         })
     }
 

@@ -1,22 +1,32 @@
 //! The environment integrated per shading point through the whole BRDF
 //! (`environment.specular = "sampled"`, `environment.samples = N`):
 //! `L_o = ∫ f_r(ω_i, ω_o) L_env(ω_i) cos θ_i dω_i`, estimated with N
-//! directions of two strategies combined by multiple importance sampling
-//! (Veach & Guibas 1995, the balance heuristic in its multi-sample form):
-//! `n_c = ⌈N/2⌉` cosine-weighted directions (`p_c = cos θ/π`) and `n_b =
-//! N − n_c` directions of the material's BRDF lobe (`p_b`,
-//! [`super::lobe`]), each weighted as a sample of the mixture,
-//! `L_o ≈ Σ_k f_r(ω_k) L_env(ω_k) cos θ_k / (n_c p_c(ω_k) + n_b p_b(ω_k))`.
+//! directions of three strategies combined by multiple importance
+//! sampling (Veach & Guibas 1995, the balance heuristic in its
+//! multi-sample form): cosine-weighted directions (`p_c = cos θ/π`),
+//! directions of the material's BRDF lobe (`p_b`, [`super::lobe`]) and
+//! directions of the map's light (`p_m`,
+//! [`crate::environment::importance`]), each weighted as a sample of the
+//! mixture,
+//! `L_o ≈ Σ_k f_r(ω_k) L_env(ω_k) cos θ_k / (n_c p_c + n_b p_b + n_m p_m)`.
+//! The split ([`split`]): the map takes `⌊N/s⌋` of the N, `s` the number
+//! of strategies (3 with a lobe, 2 without), and the rest is shared by
+//! the cosine (`⌈rest/2⌉`) and the lobe. A material with no lobe
+//! (Lambert, a zero `k_s`, …) has no lobe directions; a map whose light
+//! is not concentrated (a uniform one) no map directions.
+//!
 //! Each strategy takes the Hammersley set of its own size,
 //! `u = ((k + ½)/n, radical_inverse₂(k))`: deterministic, the same
-//! directions for every pixel of the same normal and view. A material with
-//! no lobe (Lambert, a zero `k_s`, …) takes all N cosine-weighted, which
-//! is `(π/N) Σ f_r L_env` (`cos θ / p_c = π`): exact for a Lambertian
-//! surface under a constant sky for every N. The estimate converges to
-//! the integral as N grows; the cosine directions keep it unbiased
-//! wherever the lobe's density does not reach (the diffuse term, the
-//! lobe's cut-off tails). WGSL twin: `environment_sampled` in
-//! shaders/environment_sampled.wgsl (same directions, same order).
+//! directions for every pixel of the same normal and view. The cosine
+//! directions keep the estimate unbiased wherever the other densities do
+//! not reach (the diffuse term, the lobe's cut-off tails, a texel whose
+//! bilinear radiance its grid cell does not carry); the map's find a
+//! small bright source, which the others hit by chance (a sun of 2.5°
+//! is 1/500 of the hemisphere). A white map takes cosine and lobe
+//! directions alone, so a Lambertian surface under it shows exactly
+//! `k_d` for every N (`cos θ / p_c = π`). WGSL twin:
+//! `environment_sampled` in shaders/environment_sampled.wgsl (same
+//! directions, same order).
 //!
 //! The truth it is measured against ([`integrated`]) is the quadrature of
 //! the map's texels ([`crate::environment::quadrature::nodes`]) through the BRDF.
@@ -46,13 +56,29 @@ pub fn local_direction(k: u32, n: u32) -> DVec3 {
     DVec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u1).sqrt())
 }
 
-/// How the N samples are split: `(n_c, n_b)`, cosine and lobe.
-pub fn split(n: u32, lobe: Lobe) -> (u32, u32) {
-    if lobe == Lobe::None {
-        (n, 0)
-    } else {
-        let cosine = n.div_ceil(2);
-        (cosine, n - cosine)
+/// How the N samples are shared by the strategies, drawn in this order:
+/// cosine-weighted, the BRDF lobe, the map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Split {
+    pub cosine: u32,
+    pub lobe: u32,
+    pub map: u32,
+}
+
+/// The split of `n` samples for a material of `lobe` under a map that is
+/// or is not drawn by (`by_map`,
+/// [`crate::environment::importance::ImportanceTable::concentrated`]).
+/// Twin: the split in `environment_sampled`.
+pub fn split(n: u32, lobe: Lobe, by_map: bool) -> Split {
+    let has_lobe = lobe != Lobe::None;
+    let strategies = 1 + has_lobe as u32 + by_map as u32;
+    let map = if by_map { n / strategies } else { 0 };
+    let rest = n - map;
+    let cosine = if has_lobe { rest.div_ceil(2) } else { rest };
+    Split {
+        cosine,
+        lobe: rest - cosine,
+        map,
     }
 }
 
@@ -60,7 +86,12 @@ pub fn split(n: u32, lobe: Lobe) -> (u32, u32) {
 pub fn estimate(map: &EnvironmentMap, material: &Material, frame: &SurfaceFrame, wo: DVec3) -> Rgb {
     let n = map.settings.samples.max(1);
     let lobe = lobe::lobe(material);
-    let (n_c, n_b) = split(n, lobe);
+    let table = map.data.importance();
+    let Split {
+        cosine: n_c,
+        lobe: n_b,
+        map: n_m,
+    } = split(n, lobe, table.concentrated());
     // The directions' frame depends on the normal alone (the twin's
     // `any_tangent`), so both renderers draw the same directions whatever
     // tangent the mesh has.
@@ -69,13 +100,15 @@ pub fn estimate(map: &EnvironmentMap, material: &Material, frame: &SurfaceFrame,
     let brdf = material.brdf();
     let mut sum = Rgb::ZERO;
     for k in 0..n {
-        let from_lobe = k >= n_c;
-        let wi = if from_lobe {
+        let wi = if k < n_c {
+            let l = local_direction(k, n_c);
+            t * l.x + b * l.y + frame.n * l.z
+        } else if k < n_c + n_b {
             let (u1, u2) = hammersley(k - n_c, n_b);
             lobe::direction(lobe, u1, u2, wo, frame.n, t, b)
         } else {
-            let l = local_direction(k, n_c);
-            t * l.x + b * l.y + frame.n * l.z
+            let (u1, u2) = hammersley(k - n_c - n_b, n_m);
+            map.from_map(table.direction(u1, u2))
         };
         let cos = frame.n.dot(wi);
         let p_b = if n_b > 0 {
@@ -83,7 +116,12 @@ pub fn estimate(map: &EnvironmentMap, material: &Material, frame: &SurfaceFrame,
         } else {
             0.0
         };
-        let mixture = n_c as f64 * cos.max(0.0) * FRAC_1_PI + n_b as f64 * p_b;
+        let p_m = if n_m > 0 {
+            table.pdf(map.to_map(wi))
+        } else {
+            0.0
+        };
+        let mixture = n_c as f64 * cos.max(0.0) * FRAC_1_PI + n_b as f64 * p_b + n_m as f64 * p_m;
         if cos > 0.0 && mixture > 0.0 {
             sum += brdf.f_r(wi, wo, frame) * map.radiance(wi) * (cos / mixture);
         }
