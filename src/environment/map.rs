@@ -15,6 +15,7 @@ use crate::base::Rgb;
 use crate::base::range;
 use glam::DVec3;
 use std::sync::Arc;
+use std::sync::atomic::AtomicU64;
 
 /// Largest map side gonio accepts (a 16k × 8k map is 1.5 GiB of f32 RGB).
 pub const MAX_SIDE: u32 = 16384;
@@ -238,6 +239,36 @@ impl MapData {
         })
     }
 
+    /// The prefiltered stack `size` wide, made on the first call for that
+    /// size (adding its texels to `done` as they are computed) and then
+    /// shared. The cache is not locked while a stack is made: a viewer
+    /// frame asking for another size is never held behind it (two threads
+    /// asking for the same new size both compute it; the first kept wins).
+    pub fn prefiltered_stack(&self, size: u32, done: &AtomicU64) -> Arc<Prefiltered> {
+        if let Some(p) = self.cached_prefiltered(size) {
+            return p;
+        }
+        let made = Arc::new(Prefiltered::with_progress(
+            self.width,
+            self.height,
+            &self.texels,
+            size,
+            done,
+        ));
+        let mut cache = self.prefiltered.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(p) = cache.iter().find(|p| p.width == size) {
+            return p.clone();
+        }
+        cache.push(made.clone());
+        made
+    }
+
+    /// The prefiltered stack `size` wide if it has been made.
+    pub fn cached_prefiltered(&self, size: u32) -> Option<Arc<Prefiltered>> {
+        let cache = self.prefiltered.0.lock().unwrap_or_else(|e| e.into_inner());
+        cache.iter().find(|p| p.width == size).cloned()
+    }
+
     /// The distribution of directions by the texels' light (made on the
     /// first call, then shared).
     pub fn importance(&self) -> Arc<ImportanceTable> {
@@ -367,20 +398,8 @@ impl EnvironmentMap {
     /// The prefiltered stack of `settings.prefilter_size` (made on the
     /// first call for that size, then shared).
     pub fn prefiltered(&self) -> Arc<Prefiltered> {
-        let size = self.settings.prefilter_size;
-        let mut cache = self
-            .data
-            .prefiltered
-            .0
-            .lock()
-            .unwrap_or_else(|e| e.into_inner());
-        if let Some(p) = cache.iter().find(|p| p.width == size) {
-            return p.clone();
-        }
-        let d = &self.data;
-        let p = Arc::new(Prefiltered::new(d.width, d.height, &d.texels, size));
-        cache.push(p.clone());
-        p
+        self.data
+            .prefiltered_stack(self.settings.prefilter_size, &AtomicU64::new(0))
     }
 
     /// The irradiance the CPU reference uses (`settings.reference`).

@@ -108,7 +108,7 @@ pub fn environment_editor(
                     egui::ComboBox::from_id_salt("environment.prefilter_size")
                         .selected_text(size.to_string())
                         .show_ui(ui, |ui| {
-                            for v in [32u32, 64, 128, 256, 512] {
+                            for v in [32u32, 64, 128, 256, 512, 1024, 2048] {
                                 ui.selectable_value(&mut size, v, v.to_string());
                             }
                         });

@@ -1,8 +1,19 @@
 //! The side panel's Environment section: the map's path field and the
 //! editor of its keys ([`super::editor`]), whose edits go through
 //! `Document::edit` as `--edit environment.KEY=VALUE` does.
+//!
+//! An edit that needs a prefiltered stack not made yet (the prefiltered
+//! mode, or a new `prefilter_size`) is held while the stack is made on a
+//! background thread ([`crate::ui::background`]), with a progress bar;
+//! the scene keeps its current look until the stack is ready, then the
+//! edit is applied and the upload finds the stack made.
 
+use crate::environment::map::{MapData, Specular};
+use crate::environment::prefiltered;
 use crate::ui::shared::Shared;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::Instant;
 
 /// The Environment section's state: the map path being typed.
 #[derive(Debug, Default)]
@@ -10,11 +21,43 @@ pub struct EnvironmentSection {
     /// The path field (the map's name until one is typed; a dropped file
     /// fills it too).
     pub path: String,
+    /// Edits held until their prefiltered stack is made.
+    pending: Option<PendingStack>,
+}
+
+/// A prefiltered stack being made in the background, and the edits that
+/// wait for it.
+#[derive(Debug)]
+struct PendingStack {
+    edits: Vec<String>,
+    size: u32,
+    /// Texels computed so far, of `prefiltered::texels_to_compute(size)`.
+    done: Arc<AtomicU64>,
+    finished: Arc<AtomicBool>,
+    started: Instant,
 }
 
 impl EnvironmentSection {
     /// Lays out the section and applies what it asks for.
     pub fn ui(&mut self, ui: &mut egui::Ui, shared: &mut Shared) {
+        if let Some(p) = &self.pending {
+            if p.finished.load(Ordering::Acquire) {
+                let p = self.pending.take().expect("checked");
+                for edit in &p.edits {
+                    shared.edit(edit);
+                }
+            } else {
+                let total = prefiltered::texels_to_compute(p.size) as f32;
+                let fraction = p.done.load(Ordering::Relaxed) as f32 / total;
+                ui.add(egui::ProgressBar::new(fraction.min(1.0)).text(format!(
+                    "prefiltering the map at {} ({:.0} s)",
+                    p.size,
+                    p.started.elapsed().as_secs_f64()
+                )));
+                ui.ctx().request_repaint();
+                return;
+            }
+        }
         let doc = &*shared.doc;
         let off = super::document::is_off(doc);
         let settings = doc.scene.environment.map.as_ref().map(|m| m.settings);
@@ -23,8 +66,93 @@ impl EnvironmentSection {
         {
             self.path = m.data.name.clone();
         }
-        for edit in super::editor::environment_editor(ui, settings, off, &mut self.path) {
+        let edits = super::editor::environment_editor(ui, settings, off, &mut self.path);
+        if let Some(map) = &doc.scene.environment.map
+            && let Some(size) =
+                stack_needed(&edits, map.settings.specular, map.settings.prefilter_size)
+            && map.data.cached_prefiltered(size).is_none()
+        {
+            self.pending = Some(PendingStack::start(map.data.clone(), size, edits));
+            ui.ctx().request_repaint();
+            return;
+        }
+        for edit in edits {
             shared.edit(&edit);
         }
+    }
+}
+
+impl PendingStack {
+    /// Starts making `data`'s stack `size` wide in the background.
+    fn start(data: Arc<MapData>, size: u32, edits: Vec<String>) -> PendingStack {
+        let done = Arc::new(AtomicU64::new(0));
+        let finished = Arc::new(AtomicBool::new(false));
+        let (d, f) = (done.clone(), finished.clone());
+        crate::ui::background::spawn(move || {
+            data.prefiltered_stack(size, &d);
+            f.store(true, Ordering::Release);
+        });
+        PendingStack {
+            edits,
+            size,
+            done,
+            finished,
+            started: Instant::now(),
+        }
+    }
+}
+
+/// The prefilter size whose stack `edits` need, if they leave the map in
+/// the prefiltered mode with a size or mode they change (from the
+/// current `specular` and `size`).
+fn stack_needed(edits: &[String], specular: Specular, size: u32) -> Option<u32> {
+    let (mut mode, mut new_size, mut changed) = (specular, size, false);
+    for edit in edits {
+        if let Some(v) = edit.strip_prefix("environment.specular=") {
+            mode = Specular::parse(v.trim_matches('"')).unwrap_or(mode);
+            changed = true;
+        } else if let Some(v) = edit.strip_prefix("environment.prefilter_size=") {
+            new_size = v.parse().unwrap_or(new_size);
+            changed = true;
+        }
+    }
+    (changed && mode == Specular::Prefiltered).then_some(new_size)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_new_size_or_the_prefiltered_mode_needs_a_stack() {
+        let e = |s: &[&str]| s.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        assert_eq!(
+            stack_needed(
+                &e(&["environment.prefilter_size=2048"]),
+                Specular::Prefiltered,
+                64
+            ),
+            Some(2048)
+        );
+        assert_eq!(
+            stack_needed(
+                &e(&["environment.specular=\"prefiltered\""]),
+                Specular::Sampled,
+                256
+            ),
+            Some(256)
+        );
+        assert_eq!(
+            stack_needed(&e(&["environment.scale=2"]), Specular::Prefiltered, 64),
+            None
+        );
+        assert_eq!(
+            stack_needed(
+                &e(&["environment.specular=\"sampled\""]),
+                Specular::Prefiltered,
+                64
+            ),
+            None
+        );
     }
 }
