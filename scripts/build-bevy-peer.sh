@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds bench/bevy-peer, the Bevy 0.19 program gonio's viewer is measured
-# against (issue 18), and prints its binary's path for
+# against, and prints its binary's path for
 # scripts/viewer-frame-time.sh. Not part of gonio's build or tests: Bevy
 # takes 20–40 min to build on 2 cores. Its target directory is kept apart
 # (BEVY_TARGET_DIR, default target/bevy-peer) so it never touches gonio's.

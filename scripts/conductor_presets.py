@@ -3,7 +3,7 @@
 (linear Rec.709 R, G, B) eta, kappa of gonio's coloured conductor presets
 (src/material/presets.rs, `COLOURED_CONDUCTORS`). Standard library only.
 
-Reduction (issue 17 item 2), per metal:
+Reduction, per metal:
  1. F0(l) = ((n-1)^2 + k^2) / ((n+1)^2 + k^2): the exact Fresnel reflectance at
     normal incidence of n + ik, at every 5 nm from 380 to 780 nm (n, k
     linearly interpolated in wavelength between the published samples).

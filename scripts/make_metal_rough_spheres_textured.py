@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Builds assets/gltf/MetalRoughSpheresTextured: Khronos's MetalRoughSpheres
-textures on Khronos's MetalRoughSpheresNoTextures geometry (issue 14).
+textures on Khronos's MetalRoughSpheresNoTextures geometry.
 
 Why: the factor-vs-texture pair MetalRoughSpheres / MetalRoughSpheresNoTextures
 is a glTF conformance check, but MetalRoughSpheres' buffer (its geometry) was

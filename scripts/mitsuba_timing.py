@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Times `gonio render --reference` against Mitsuba 3 on the same scene
-(issue 18 item 6), interleaved, and prints the ratio. Not a test: shared
+"""Times `gonio render --reference` against Mitsuba 3 on the same scene,
+interleaved, and prints the ratio. Not a test: shared
 machines are noisy; compare the two within one run.
 
 The scene is gonio's built-in one with both materials Lambert (Mitsuba has

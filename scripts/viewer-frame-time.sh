@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Measures the viewer's frame time in a real window under Xvfb (lavapipe),
-# vsync off, as issues 6 and 18 ask: the median over a few hundred frames
+# vsync off: the median over a few hundred frames
 # after a warm-up, present/copy overhead included. Not a test: machines are
 # shared and noisy; run it on a quiet machine and compare ratios within one
 # run (every scene's variants run interleaved, round by round).
@@ -97,7 +97,7 @@ for round in $(seq "$rounds"); do
     done
 done
 echo
-# Issue 18's targets beside each figure: the shadowed frame at most 4x the
+# The targets beside each figure: the shadowed frame at most 4x the
 # unlit floor, and at most 0.2 of Bevy's frame (static and moving lights).
 echo "| variant | gonio (median of rounds) | / unlit floor (target <= 4) | bevy | gonio / bevy (target <= 0.2) |"
 echo "| --- | --- | --- | --- | --- |"

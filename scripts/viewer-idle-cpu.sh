@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Measures the CPU the idle viewer uses (issue 17 item 4): `gonio view` in a
+# Measures the CPU the idle viewer uses: `gonio view` in a
 # real window under Xvfb (lavapipe), no input; after a settling time, the
 # process's utime + stime from /proc/PID/stat over a measuring window.
 # Not a test (tests/viewer.rs asserts the idle loop by its frame counter).

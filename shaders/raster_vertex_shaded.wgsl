@@ -36,7 +36,7 @@ struct VertexOut {
     #else
     // At the centroid of the covered samples, not the pixel centre: with
     // MSAA the centre of a silhouette pixel may lie outside the triangle,
-    // where the colour is extrapolated (negative radiance, issue 19); the
+    // where the colour is extrapolated (negative radiance); the
     // centroid is inside, so the value is a convex combination of the
     // vertices' (≥ 0). One sample per pixel: the centroid is the centre.
     @location(0) @interpolate(perspective, centroid) radiance: vec3<f32>,

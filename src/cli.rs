@@ -203,7 +203,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         ));
     }
     // EXR holds linear radiance; an exposure there would be ignored
-    // without a word (issue 17).
+    // without a word.
     if args.exposure != 0.0 && OutputFormat::from_path(&args.output)? == OutputFormat::Exr {
         return Err(Error::argument(
             format!("--exposure {}", args.exposure),
@@ -312,7 +312,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             );
         }
         let mut renderer = GpuRenderer::new(context);
-        // One frame: one pipeline to compile (issue 18).
+        // One frame: one pipeline to compile.
         renderer.set_one_pipeline(true);
         // GPU only: the f64 meshes are freed as they are uploaded
         // (nothing below reads them).
@@ -455,7 +455,7 @@ fn check_memory(scene: &Scene, reference: bool, limits: &Limits) -> Result<()> {
 }
 
 /// Tells the user about requested features this build does not draw yet
-/// (none at the moment: every light kind casts shadows since issue #5).
+/// (none at the moment: every light kind casts shadows).
 fn warn_unsupported(_scene: &Scene) {}
 
 fn describe_scene(scene: &Scene) -> String {

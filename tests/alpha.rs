@@ -1,4 +1,4 @@
-//! glTF `alphaMode` (issue 14 item 3) on quads written here, in both
+//! glTF `alphaMode` on quads written here, in both
 //! renderers: MASK removes exactly the points whose alpha
 //! (`baseColorFactor.a × baseColorTexture.a × COLOR_0.a`) is below the
 //! cutoff, so the picture there is the scene without the quad and

@@ -214,7 +214,7 @@ fn bad_inputs_exit_2_with_a_clear_message_and_no_output() {
     }
 }
 
-/// Sizes over the GPU's limits (issue 19): each side fits, but the
+/// Sizes over the GPU's limits: each side fits, but the
 /// readback buffer (16384 × 8192 × 16 bytes = 2 GiB) or the vertex buffer
 /// (the flat-shaded 3200-segment plane: 2.2 GB) does not. Both panicked in
 /// wgpu; now exit 2 naming the setting and what would fit.
@@ -326,7 +326,7 @@ fn buffers_over_the_gpus_limits_are_refused_before_creation() {
 /// "no adapter" with advice to install lavapipe), and the GL backend,
 /// whose llvmpipe cannot render into the Rgba32Float radiance target,
 /// renders (into Rgba32Uint) where it panicked, and `bench --smoke` there
-/// fails with a message instead of a panic (issue 19).
+/// fails with a message instead of a panic.
 #[test]
 fn the_backend_variable_is_checked_and_gl_renders() {
     let dir = tempfile::tempdir().unwrap();
@@ -384,7 +384,7 @@ fn names_in(dir: &Path) -> Vec<String> {
     v
 }
 
-/// Issue 38 item 6: `-o missing/dir/FILE` is refused alike by `fit`,
+/// `-o missing/dir/FILE` is refused alike by `fit`,
 /// `render` and `brdf` (fit created the folders), and the message names
 /// the folder, not the temporary file (`.gonio-…partial`).
 #[test]
@@ -425,7 +425,7 @@ fn a_missing_output_folder_is_refused_alike_and_named_cleanly() {
     }
 }
 
-/// Issue 39 item 2: a destination that exists and is not a regular file
+/// A destination that exists and is not a regular file
 /// is written in place (a character device) or refused (a FIFO nobody
 /// reads), never replaced by a regular file, which a rename as root did
 /// to device nodes. Device nodes are made with `mknod` in a temporary

@@ -33,7 +33,7 @@ fn smoke_bench_writes_a_well_formed_report() {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "gonio bench --smoke failed: {stderr}");
     // Without a terminal (a pipe here, as in CI) progress is plain lines
-    // (issue 17: a CI run printed nothing): what, n of m, elapsed, ETA.
+    // (a CI run once printed nothing): what, n of m, elapsed, ETA.
     let progress: Vec<&str> = stderr
         .lines()
         .filter(|l| l.starts_with("bench: step "))
@@ -152,7 +152,7 @@ fn smoke_bench_writes_a_well_formed_report() {
             "`{target}` = {v}"
         );
     }
-    // The memory rows again with the light casting shadows (issue 18).
+    // The memory rows again with the light casting shadows.
     assert!(
         report.lines().any(|l| l.starts_with('|')
             && l.contains("peak memory growth / mesh data as loaded")

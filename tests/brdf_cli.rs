@@ -206,7 +206,7 @@ fn print_albedo_table() {
     }
 }
 
-/// A measured material and a fit of it on one slice plot (issue 15: the
+/// A measured material and a fit of it on one slice plot (the
 /// measured and fitted slices together), and a bare `measured` plots the
 /// viewer's default material, saying so (the same values as naming it).
 #[test]
@@ -238,7 +238,7 @@ fn measured_and_fitted_slices_together_and_the_default_measured() {
     );
 }
 
-/// `--plot-halfdiff` (issue 17 item 1): the θ_h × θ_d image of each
+/// `--plot-halfdiff`: the θ_h × θ_d image of each
 /// material, written where asked; the glossy panel's first column (θ_h
 /// near 0, the specular peak) is brighter on the colour scale than a cell
 /// at θ_h = 60° of the same row, and the PNG holds the colours the plot's
@@ -296,7 +296,7 @@ fn halfdiff_image_shows_the_specular_peak_at_theta_h_zero() {
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 }
 
-/// Issue 19 item 6: below the roughness floor (1e-4) `gonio brdf`
+/// Below the roughness floor (1e-4) `gonio brdf`
 /// evaluates what the renderers render, says so, and prints the same
 /// values as at the floor. Before, a roughness of 1e-6 at 89.999° made the
 /// albedo quadrature (sized for the floor) take 150 s, and Ward with
@@ -346,7 +346,7 @@ fn roughness_below_the_floor_is_evaluated_at_the_floor_and_said() {
     }
 }
 
-/// `--phi-d` (issue 17: BRDF Explorer's image slice has a φ_d control):
+/// `--phi-d` (as BRDF Explorer's image slice has a φ_d control):
 /// the PNG holds the colours of the image at that φ_d, which differs from
 /// the default 90° one for a Cook-Torrance lobe (its Fresnel and shadowing
 /// depend on φ_d through the directions), and `--phi-d` without the image

@@ -559,7 +559,7 @@ fn every_brdf_variant_matches_its_f64_reference() {
 }
 
 /// Smith's G1 for Beckmann, both GPU forms against their f64 twins on a
-/// grid of slopes m and cosines (issue 18, item 5): the erf form
+/// grid of slopes m and cosines: the erf form
 /// (`g1_beckmann`, `lambda_beckmann`; the default) against the exact f64
 /// truth, Walter's rational form (`g1_beckmann_rational`,
 /// `lambda_beckmann_rational`; the knob `shading.smith_beckmann =

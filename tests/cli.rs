@@ -76,8 +76,8 @@ fn verbose_names_the_adapter() {
 }
 
 /// A key the material's model does not read is rendered without, with a
-/// warning that names it and the model's parameters (issue 17: `sigma_x`
-/// on blinn-phong, `k_e` on lambert were ignored without a word); keys
+/// warning that names it and the model's parameters (`sigma_x`
+/// on blinn-phong, `k_e` on lambert were once ignored without a word); keys
 /// the model reads give no warning.
 #[test]
 fn keys_a_model_does_not_read_are_named() {
@@ -112,7 +112,7 @@ fn keys_a_model_does_not_read_are_named() {
 }
 
 /// A glTF file's own material is addressable by its name in `--set`
-/// (issue 17: `--set materials.Suzanne.k_d` failed): the edit changes the
+/// (`--set materials.Suzanne.k_d` once failed): the edit changes the
 /// render, a key its model does not read is named, a misspelt name gets
 /// the nearest one.
 #[test]
@@ -159,7 +159,7 @@ fn gltf_materials_are_edited_by_name() {
     assert!(out.is_none());
 }
 
-/// A bare material shows its model (issue 17: a `cook-torrance` with
+/// A bare material shows its model (a `cook-torrance` with
 /// `preset = "gold"` defaulted to `k_s = 0` and rendered as its diffuse
 /// part only). The built-in scene's ball alone is lit (floor black), so
 /// the image's brightest value is the ball's highlight.

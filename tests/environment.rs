@@ -1,4 +1,4 @@
-//! Environment maps (issue 16): the map as the background and in the
+//! Environment maps: the map as the background and in the
 //! mirror, the diffuse term by spherical harmonics on the GPU against its
 //! f64 twin and against the integrated truth, the white furnace, the
 //! direction convention, and bad maps.
@@ -735,7 +735,7 @@ fn prefiltered_scene(map: &str, extra: &[&str]) -> Scene {
 /// tables, `reference = "sh"`), under the blobs and the sky. Tolerance:
 /// the shared arithmetic one, plus the SH sum's, plus a lookup in the
 /// stack times the split's weight (≤ 1 here: `k_s·F0·A + B ≤ 1`), plus
-/// the mirror's lookup. With energy compensation (issue 16 item 5) the
+/// the mirror's lookup. With energy compensation the
 /// split's lobe is multiplied by `1 + F0(1 − E)/E ≤ 1/0.3069` (the
 /// table's smallest `E`), and so is the stack's part of the tolerance.
 #[test]
@@ -1235,7 +1235,7 @@ fn the_sh_mode_error_vs_order_is_measured() {
     }
 }
 
-/// Normalized Blinn-Phong in the `"sh"` mode (issue 16: approximated as
+/// Normalized Blinn-Phong in the `"sh"` mode (approximated as
 /// normalized Phong of exponent `n/4`, `gonio::environment::sh_phong`):
 /// its error against the integrated truth, glossy term alone (`k_d` 0,
 /// `k_s` 0.8), all three spheres, per exponent `n` = 4, 16, 64, 256 and
@@ -1358,7 +1358,7 @@ fn occlusion_scene(sets: &[&str]) -> Scene {
     scene_file::load(&SceneSource::File(path), &overrides).expect("scene loads")
 }
 
-/// The reference's environment visibility (issue 16 item 4) against a
+/// The reference's environment visibility against a
 /// closed form: under a uniform white map (radiance 1), a Lambert floor
 /// point at distance `D` from the centre of a sphere of radius `r` that
 /// rests on the floor sees the sphere as a form factor `cos θ (r/D)² =
@@ -1480,7 +1480,7 @@ fn ignoring_occlusion_is_measured() {
     assert!(worst > 0.1 && sum > 0.0, "{worst}");
 }
 
-/// The white furnace on the GPU (issue 16 item 5): rough white metal
+/// The white furnace on the GPU: rough white metal
 /// spheres (gltf-pbr, b = 1, m = 1, r = 1) under a uniform white map in
 /// the sampled mode (N = 256), energy compensation on. The GPU agrees with
 /// its f64 twin (the same N directions, `reference = "sh"`) within the

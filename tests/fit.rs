@@ -266,7 +266,7 @@ fn write_shards(dir: &std::path::Path, shards: &[(usize, usize, &str, Option<&st
     }
 }
 
-/// Issue 39 items 6 and 7: `fit --merge` takes only a whole, sound set of
+/// `fit --merge` takes only a whole, sound set of
 /// shards, names the missing shard or the bad file and line, and a
 /// refused merge leaves the previous ranking as it was.
 #[test]
@@ -340,7 +340,7 @@ fn merge_refuses_incomplete_mixed_and_bad_shards() {
     assert!(d.join("fits.toml").exists() && d.join("ranking.md").exists());
 }
 
-/// Issue 39 item 9: `--shard` without `--all` was ignored without a word.
+/// `--shard` without `--all` was once ignored without a word.
 #[test]
 fn shard_without_all_is_refused() {
     fails_with_2(&["chrome", "--model", "ward", "--shard", "1/2"], "--all");

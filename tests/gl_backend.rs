@@ -13,7 +13,7 @@
 //! llvmpipe's GLES lacks `EXT_color_buffer_float`, so the radiance target
 //! there is `Rgba32Uint` holding the f32 bits
 //! (`GpuContext::radiance_format`); before that, `WGPU_BACKEND=gl gonio
-//! render` panicked in pipeline creation (issue 19).
+//! render` panicked in pipeline creation.
 //!
 //! The backend is chosen by the `WGPU_BACKEND` variable, which is
 //! process-wide: the one test here runs this test binary again with the

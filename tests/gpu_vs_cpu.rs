@@ -170,7 +170,7 @@ fn every_reflectance_model_renders_like_the_reference() {
                 "materials.ball.roughness=0.2",
             ],
         ),
-        // Per-channel η, κ (issue 17 item 2): copper's red differs from its blue.
+        // Per-channel η, κ: copper's red differs from its blue.
         (
             "cook-torrance",
             &[
@@ -316,7 +316,7 @@ fn emission_is_what_an_unlit_surface_shows() {
     }
 }
 
-/// Energy compensation on (issue 16 item 5) under the built-in scene's
+/// Energy compensation on under the built-in scene's
 /// point light: the GPU reads the same f32 albedo nodes as the f64
 /// reference (`Globals::albedo`, `DfgTable::albedo`), so they agree
 /// within the shared tolerance plus the lookup's own f32 error
@@ -365,8 +365,8 @@ fn energy_compensation_renders_like_the_reference() {
 }
 
 /// A one-frame render (`gonio render`) draws a scene of several BRDF
-/// variants with the one pipeline that switches per material (issue 18:
-/// one compilation), the viewer with one pipeline specialized per variant.
+/// variants with the one pipeline that switches per material (one
+/// compilation), the viewer with one pipeline specialized per variant.
 /// Both run the same WGSL expressions for a material's own arm (the
 /// specialization constants only remove the others, and WGSL compilers do
 /// not reassociate floating point), so the frames must agree to the last

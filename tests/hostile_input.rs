@@ -1063,8 +1063,8 @@ fn non_finite(c: &mut Corpus) {
         far,
         &["node 1", "beyond ±1e18"],
     );
-    // Within f32 but too far to frame: squared distances overflow (issue
-    // 19: ±3e38 coordinates exited 0 with a blank image).
+    // Within f32 but too far to frame: squared distances overflow
+    // (±3e38 coordinates once exited 0 with a blank image).
     let framing = with_nodes(
         "{\"scale\": [1e10, 1e10, 1e10], \"children\": [1]}, {\"mesh\": 0, \"scale\": [1e10, 1, 1]}",
         "0",
@@ -1459,7 +1459,7 @@ fn environment_maps(c: &mut Corpus) {
 }
 
 /// Environment maps and MERL tables under the rules glTF files already
-/// had (issue 39): special files refused as "not a regular file" (a FIFO
+/// had: special files refused as "not a regular file" (a FIFO
 /// hung `render`, `/dev/zero` read 4 GB), every radiance and reflectance
 /// held to the one range rule (a finite value past f32's range gave Inf
 /// and NaN pixels with exit 0), maps counted against `--limit bytes` from
@@ -1910,7 +1910,7 @@ fn the_binary_refuses_hostile_files_with_exit_2() {
         "did you mean `fov_y_deg`?",
     );
     assert_refused(d, &[&path_of("deep-arrays.toml")], "deep-arrays.toml");
-    // Issue 19 item 4: ±3e38 coordinates exited 0 with a blank image.
+    // ±3e38 coordinates once exited 0 with a blank image.
     assert_refused(d, &[&path_of("scale-beyond-framing.gltf")], "scale it down");
     #[cfg(unix)]
     {
@@ -1936,7 +1936,7 @@ fn the_binary_refuses_hostile_files_with_exit_2() {
     );
 }
 
-/// Issue 39 through the binary: a glTF image without a source is refused
+/// Through the binary: a glTF image without a source is refused
 /// with no panic text on stderr (the crate's panic message reached the
 /// user), a FIFO environment map and MERL table are refused at once.
 #[test]
@@ -2057,7 +2057,7 @@ fn the_binary_renders_degenerate_and_deep_inputs() {
     }
 }
 
-/// Issue 39 item 9: what was accepted without a word. A texture on a
+/// What was once accepted without a word. A texture on a
 /// parameter a measured material does not read is refused as the
 /// parameter is; one on a parameter a model ignores (`k_e_texture` on
 /// Lambert) warns as the parameter does; a glTF texture reading a UV set

@@ -1,4 +1,4 @@
-//! Interrupted renders leave nothing behind (issue 19, item 2): a real
+//! Interrupted renders leave nothing behind: a real
 //! render killed with SIGINT, SIGTERM or SIGHUP removes its temporary
 //! file and dies of the signal; one killed with SIGKILL leaves it, and the
 //! next write into that folder removes it and says so.
@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
-/// The issue's render of the built-in scene, long enough to be
+/// A render of the built-in scene, long enough to be
 /// interrupted on either renderer (the temporary file appears before the
 /// render starts): the reference at 1600 × 1200 (about 3 s on two
 /// cores), the GPU at 4096 × 4096 (a 256 MiB readback and EXR).

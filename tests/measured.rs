@@ -1,4 +1,4 @@
-//! Measured materials (issue 15): the built-in networks against values
+//! Measured materials: the built-in networks against values
 //! computed independently, MERL files made here from an analytic model read
 //! back, bad files refused with exit 2, and the GPU's filtered tables
 //! against the reference.

@@ -92,8 +92,8 @@ fn an_unsupported_sample_count_is_refused() {
     assert!(err.contains("image.msaa = 8"), "{err}");
 }
 
-/// Gouraud shading with `image.msaa = 4` (issue 19): the colour varying
-/// was interpolated at the pixel centre, extrapolated outside the
+/// Gouraud shading with `image.msaa = 4`: the colour varying
+/// was once interpolated at the pixel centre, extrapolated outside the
 /// triangle at silhouettes (11 pixels of the built-in scene down to
 /// −1.305). Interpolated at the centroid of the covered samples
 /// (shaders/raster_vertex_shaded.wgsl) it is a convex combination of the

@@ -1,4 +1,4 @@
-//! Ambient occlusion under an environment map (issue 14: glTF's
+//! Ambient occlusion under an environment map (glTF's
 //! `occlusionTexture` "on the ambient and environment terms only"), on a
 //! quad written here: its occlusion map is `R = 0 | R = 255` (NEAREST,
 //! CLAMP), read with `strength = s`, so the left half has

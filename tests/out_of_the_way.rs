@@ -1,4 +1,4 @@
-//! What got in a new user's way (issue 38), through the binary: `--set`
+//! What got in a new user's way, through the binary: `--set`
 //! composes with a scene as the same keys in the file do (partial camera
 //! keys on a glTF, quoted dotted material names, switching the built-in
 //! ball's model), files gonio writes read back without a warning, every

@@ -932,7 +932,7 @@ fn e_vertex_shadow_coordinates_match_per_pixel_ones() {
 }
 
 // ---------------------------------------------------------------------
-// (f) Alpha MASK cuts shadows (issue 14).
+// (f) Alpha MASK cuts shadows.
 
 /// A glTF (written to `dir`) of a 6 m floor (y = 0, gltf-pbr grey) and a
 /// 2 m square 2.5 m above it, facing up, whose base colour texture is

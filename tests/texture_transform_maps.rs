@@ -1,5 +1,5 @@
-//! `KHR_texture_transform` on the normal and occlusion textures (issue 14
-//! item 3), on a quad written here: a 2×1 map (NEAREST, CLAMP) whose left
+//! `KHR_texture_transform` on the normal and occlusion textures,
+//! on a quad written here: a 2×1 map (NEAREST, CLAMP) whose left
 //! texel differs from its right one, read through `offset = [0.5, 0]`,
 //! reads the right texel everywhere (u' = u + ½ ≥ ½, clamped), so it must
 //! render exactly as the same quad with a map whose two texels are both

@@ -1,4 +1,4 @@
-//! Issue 17 item 6, `image.tone_map` through the binary: a PNG holds the
+//! `image.tone_map` through the binary: a PNG holds the
 //! EXR's linear radiance mapped by the chosen operator (the f64 formulas
 //! of `gonio::output::tone_map`, unit-tested there against their
 //! sources), the default is the clamp, EXR output stays linear with a

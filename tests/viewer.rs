@@ -215,7 +215,7 @@ fn the_viewer_screenshot_matches_render() {
                 "--no-overlay",
             ],
         ),
-        // Issue 17 item 6: each tone map in the window as in a PNG, with
+        // Each tone map in the window as in a PNG, with
         // a light bright enough that the clamp would clip the ball and
         // the floor (the operators' f32 twin in common.wgsl against the
         // f64 one in src/output/tone_map.rs: a few ULP, as the encoding).
@@ -336,7 +336,7 @@ fn scripted_panel_edits_reach_the_shader() {
 }
 
 /// A broken file dropped on the window: the viewer says why and keeps the
-/// scene it shows (issue 8: untrusted input in the viewer).
+/// scene it shows (untrusted input in the viewer).
 #[test]
 fn a_bad_file_dropped_on_the_window_keeps_the_scene() {
     let dir = tempfile::tempdir().unwrap();
@@ -475,7 +475,7 @@ fn the_viewer_says_what_it_does_not_apply() {
     );
 }
 
-/// Issue 17 item 4: the viewer draws only when something changes. With no
+/// The viewer draws only when something changes. With no
 /// input, `--exit-when-idle 1` ends the run once a full second passed
 /// without a frame and the panel's background plots are done and shown
 /// (so the worker's result must have woken the window); a viewer that
@@ -534,7 +534,7 @@ fn the_idle_viewer_draws_no_frames() {
     }
 }
 
-/// Issue 16 items 1 and 6: the environment map's keys go the panel's way
+/// The environment map's keys go the panel's way
 /// too. `--edit 3:environment.sh_order=4` on a scene loaded at order 0
 /// redraws with the new SH irradiance (the same image as `render` at order
 /// 4, and visibly not the order-0 one: the sky's sun lights the Lambert
@@ -618,7 +618,7 @@ fn environment_edits_and_drops_reach_the_shader() {
     assert_matches(&shot, area, &off, "environment map switched off");
 }
 
-/// Issue 17 item 5: lights added and retyped through the panel's path
+/// Lights added and retyped through the panel's path
 /// (`--edit lights.add=KIND`, `lights.N.kind=KIND`) reach the GPU, shadow
 /// maps included. A narrow shadowed spot added at frame 3 and aimed at the
 /// floor left of the ball: the image equals `render` with that light
@@ -774,7 +774,7 @@ fn region_difference(
     (max, differing as f64 / (w * h) as f64)
 }
 
-/// Compare mode (issue 17): `--compare SPEC` splits the 3D view. Its left
+/// Compare mode: `--compare SPEC` splits the 3D view. Its left
 /// half is the scene as `gonio render` draws it, its right half the scene
 /// with the selected material (the ball) replaced by the compared one,
 /// both within the viewer's derived tolerance (1 level, under 1 % of the
@@ -877,7 +877,7 @@ fn compare_fit_of_an_unmeasured_material_is_refused() {
     assert!(stderr.contains("ct-ggx-conductor"), "{stderr}");
 }
 
-/// `image.msaa = 4` in the viewer (issue 18: it was ignored): the scene
+/// `image.msaa = 4` in the viewer (once ignored): the scene
 /// pass draws four samples and resolves them into the window. Against the
 /// one-sample screenshot, every pixel whose 3×3 neighbourhood there is
 /// flat (within 1 level: no edge crosses it, so all four samples see the
@@ -949,7 +949,7 @@ fn the_viewer_draws_msaa() {
     );
 }
 
-/// Issue 17's θ_h × θ_d image in the panel: with a pinned readout point
+/// The θ_h × θ_d image in the panel: with a pinned readout point
 /// (`plots.probe`, at a φ_d other than the default), the viewer prints
 /// per material, once its image is current, f_r at that point and the
 /// image's value in the cell holding it. Both must be the f64 functions

@@ -1,4 +1,4 @@
-//! The viewer's panel under Xvfb (issue 38): a scripted run opens a
+//! The viewer's panel under Xvfb: a scripted run opens a
 //! section and scrolls it into view (`--edit N:panel.show=Plots`), a
 //! misspelt section gets the nearest name, a measured material with
 //! every plot shown runs to its last frame, and draws its frames while

@@ -1,4 +1,4 @@
-//! The viewer's memory stays flat (issue 19): a scripted run under Xvfb
+//! The viewer's memory stays flat: a scripted run under Xvfb
 //! repeats one cycle four times (every reflectance model, the Fresnel
 //! and shading variants, a shadowed light, a resize, a good and a bad
 //! dropped file) and the resident memory of `gonio view`, sampled from

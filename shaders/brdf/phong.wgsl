@@ -21,8 +21,8 @@ const EXP_CUTOFF: f32 = 80.0;
 // alone, in any shader file: Mesa 22.3's lavapipe "inlines" such uniforms,
 // compiling a new variant of the shader at every draw and never freeing
 // the old one (lvp_execute.c, update_inline_shader_state; cached from
-// Mesa 23.1). The viewer grew by 0.8 MiB a frame with Blinn-Phong (issue
-// 19). Such a test is a select(); both sides are computed anyway on a
+// Mesa 23.1). The viewer grew by 0.8 MiB a frame with Blinn-Phong.
+// Such a test is a select(); both sides are computed anyway on a
 // software rasterizer. tests/viewer_soak.rs keeps the memory flat.
 
 // e^x − e^−80 for x > −80, else 0: continuous at the cut (no jump between

@@ -14,8 +14,8 @@ pub enum ColorValue {
 }
 
 /// By hand rather than `#[serde(untagged)]`, whose error for `[0.8, 0.1]`
-/// was "data did not match any variant of untagged enum ColorValue"
-/// (issue 17): this one says what a colour is and what was given.
+/// was "data did not match any variant of untagged enum ColorValue":
+/// this one says what a colour is and what was given.
 impl<'de> Deserialize<'de> for ColorValue {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         deserializer.deserialize_any(ColorVisitor)

@@ -2,8 +2,8 @@
 //!
 //! The GPU computes in f32 (largest 3.4e38). A value that is finite in f64
 //! but beyond what f32 products can hold gives Inf or NaN pixels where the
-//! f64 reference stays finite (issue 19: `lights.0.intensity = 3.5e38`;
-//! issue 39: `environment.scale = 1e39`, an RGBE exponent of 255, an EXR of
+//! f64 reference stays finite (`lights.0.intensity = 3.5e38`,
+//! `environment.scale = 1e39`, an RGBE exponent of 255, an EXR of
 //! 3e38 texels, a MERL table of 1e300). So every source is refused, with
 //! its key or file, when it is not finite, is negative, or exceeds:
 //! - [`MAX_RADIANCE`] for radiance, intensity and irradiance: light

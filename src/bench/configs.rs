@@ -317,7 +317,7 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         "no Cook-Torrance material in the base scene",
     );
 
-    // How the GPU evaluates Smith's G1 for Beckmann (issue 18 item 5):
+    // How the GPU evaluates Smith's G1 for Beckmann:
     // the exact form with an f32 erf, or Walter's rational approximation
     // (no exp). The truth always takes the exact form, so the rational
     // setting's error is its cost in the image.
@@ -346,7 +346,7 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         "no Cook-Torrance material with Smith's G over a Beckmann-like distribution in the base scene",
     );
 
-    // Energy compensation (issue 16 item 5) on the targets that offer it:
+    // Energy compensation on the targets that offer it:
     // its cost is the albedo-table lookup per light and pixel; its
     // "error" against the truth (the base's, uncompensated unless the
     // base has it) is the energy it adds back.
@@ -454,8 +454,8 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
         None => Vec::new(),
     };
     knob("shadow_resolution", resolution, "no light casts shadows");
-    // Shadow-map coordinates per vertex where that is an approximation
-    // (issue 18 item 5): a knob only where "vertex" compiles another
+    // Shadow-map coordinates per vertex where that is an approximation:
+    // a knob only where "vertex" compiles another
     // shader than "exact" (Phong shading, one perspective map: a spot
     // light), its error the lookup points' displacement
     // (docs/shadows.md, "Coordinates per vertex").
@@ -545,7 +545,7 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
     );
 
     // The SH bands of the diffuse term (and of the "sh" mode's lobes):
-    // issue 16's error-vs-order trade on the Pareto front.
+    // the error-vs-order trade on the Pareto front.
     let orders = match &base.environment.map {
         Some(map) => (0..=crate::environment::sh::MAX_ORDER)
             .map(|k| {

@@ -8,7 +8,7 @@
 //! image of the CPU reference; [`floors`] and [`harness`] draw the floors
 //! (an unlit pass, a hand-minimal shader, a triangle-to-PNG program) and
 //! the uber shader that costs are compared with; [`ratios`] measures the
-//! issue's target ratios; [`scale`] sweeps triangles and pixels;
+//! target ratios; [`scale`] sweeps triangles and pixels;
 //! [`pareto`] finds the front and the `--max-error` pick ([`auto`]);
 //! [`report`] and [`plot`] write the Markdown report, the CSV and the
 //! plots. [`run`] ties it together; [`cli`] is the command line.

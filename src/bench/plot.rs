@@ -174,7 +174,7 @@ impl Plot for ParetoPlot<'_> {
         }
         // Front points: ringed and labelled, each label beside its ring
         // where it overlaps no other label and no front point
-        // (`place_labels`; issue 17: labels overlapped).
+        // (`place_labels`; labels once overlapped).
         let front_rows: Vec<&Row> = self.rows.iter().filter(|r| r.on_front).collect();
         let anchors: Vec<(i32, i32)> = front_rows
             .iter()

@@ -30,7 +30,7 @@ pub struct Ratio {
     /// The ratio of each interleaved round ([`per_round`]); `n = 0` where
     /// the sides are not paired round by round.
     pub rounds: Stats,
-    /// The issue's target: the ratio must be at most this.
+    /// The target: the ratio must be at most this.
     pub target: Option<f64>,
     /// What the reader needs to interpret it (why it misses, what else
     /// was checked).
@@ -58,9 +58,10 @@ impl Ratio {
     }
 }
 
-/// A value over its target in words a reader takes in at once (issue 17:
-/// "miss by 749%" read badly): "miss: 12 % over the target" up to twice
-/// the target (one decimal below 10 %), "miss: 8.5× the target" beyond.
+/// A value over its target in words a reader takes in at once
+/// (the former "miss by 749%" read badly): "miss: 12 % over the
+/// target" up to twice the target (one decimal below 10 %), "miss: 8.5×
+/// the target" beyond.
 pub fn miss(value: f64, target: f64) -> String {
     let times = value / target;
     let pct = (times - 1.0) * 100.0;
@@ -369,7 +370,7 @@ enum ShadowSide {
     FreshTextures,
 }
 
-/// The 4-shadowed-light ratio issue 18 asks to halve: 29.4, measured
+/// The 4-shadowed-light ratio whose half is the target: 29.4, measured
 /// before caster culling, empty-face skipping and fitted sides.
 const HEAVY_BEFORE: f64 = 29.4;
 
@@ -603,7 +604,7 @@ pub fn cold(dir: &Path, effort: Effort, adapter: Option<&str>) -> Result<Ratio> 
         num: Stats::of(&a),
         den: Stats::of(&b),
         rounds: per_round(&a, &b),
-        // Issue 18 item 4: 1.5 with margin (it was 1.49 before the one
+        // 1.5 with margin (it was 1.49 before the one
         // switching pipeline of a one-frame render).
         target: Some(1.3),
         note: "both pay process start, Vulkan instance and lavapipe device creation; the render adds scene building, shader generation and compilation, and 640x480 shading".into(),

@@ -1,5 +1,5 @@
-//! The truth's visibility switch (`environment.visibility`, issue 16 item
-//! 4): the CPU reference's environment term with the scene's own geometry
+//! The truth's visibility switch (`environment.visibility`): the
+//! CPU reference's environment term with the scene's own geometry
 //! blocking the map, ray traced.
 //!
 //! The GPU's raster path is unshadowed (the map lights every surface as if

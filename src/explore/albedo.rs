@@ -96,7 +96,7 @@ pub fn directional_albedo<'a>(
 /// The directional albedo at several polar angles `thetas` in the plane
 /// `φ_i = phi_i` (radians), in parallel. (`gonio brdf --plot-albedo` once
 /// ignored `--phi-i`, giving 0.626 where `--albedo` gave 0.6371 for an
-/// anisotropic Ward material: issue 17.)
+/// anisotropic Ward material.)
 pub fn albedo_curve<'a>(
     material: impl Into<MaterialPart<'a>>,
     thetas: &[f64],
@@ -277,8 +277,8 @@ fn kink_heights(material: &Material, cos_theta_i: f64) -> Vec<f64> {
 mod tests {
     use super::*;
 
-    /// The curve `--plot-albedo` draws takes φ_i as `--albedo` does
-    /// (issue 17): an anisotropic Ward material's albedo depends on it.
+    /// The curve `--plot-albedo` draws takes φ_i as `--albedo` does:
+    /// an anisotropic Ward material's albedo depends on it.
     #[test]
     fn the_albedo_curve_is_taken_at_phi_i() {
         let mut m = Material::new("w", crate::material::ReflectanceModel::WardAnisotropic);

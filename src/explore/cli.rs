@@ -219,7 +219,7 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
         let thetas_deg: Vec<f64> = (0..=89).map(f64::from).collect();
         let thetas: Vec<f64> = thetas_deg.iter().map(|d| d.to_radians()).collect();
         // A bar on a terminal, lines in a log: a measured material's
-        // curve takes a minute (issue 38: it ran silent for 40–82 s).
+        // curve takes a minute (it once ran silent for 40–82 s).
         // The others take a second at most and stay quiet.
         let long = materials
             .iter()

@@ -231,7 +231,7 @@ impl Plot for HalfDiffPlot {
                 .map_err(err)?;
                 // The corner's 0° is the θ_h axis' label: a second one
                 // beside it, and the previous panel's 90° beside that,
-                // read as "900" (issue 38).
+                // read as "900".
                 if deg == 0 {
                     continue;
                 }

@@ -81,7 +81,7 @@ pub fn polar(radius: f64, theta: f64) -> [f64; 2] {
 }
 
 /// Where the plot marks ω_i at `radius`: `θ = +θ_i`, the light's side.
-/// (The viewer once drew it along the reflection lobe: issue 17.)
+/// (The viewer once drew it along the reflection lobe.)
 pub fn light_marker(theta_i: f64, radius: f64) -> [f64; 2] {
     polar(radius, theta_i)
 }
@@ -175,7 +175,7 @@ mod tests {
         assert_eq!((t[0], *t.last().unwrap()), (-FRAC_PI_2, FRAC_PI_2));
     }
 
-    /// The markers land where the directions say (issue 17: the viewer
+    /// The markers land where the directions say (the viewer once
     /// drew the light along the lobe and the mirror on the light's side).
     /// ω_i at φ_i = 0 has x = sin θ_i > 0; a glossy lobe peaks at the
     /// mirror direction, so its farthest point and the mirror marker point

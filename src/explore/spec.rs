@@ -75,7 +75,7 @@ pub fn material(
     let entry = MaterialEntry::deserialize(toml::Value::Table(table))
         .map_err(|e| bad(one_line(&e.to_string())))?;
     // As `render` warns of a scene file's key the model does not read
-    // (issue 38: `brdf --model lambert --set k_e=50` said nothing).
+    // (`brdf --model lambert --set k_e=50` once said nothing).
     let unread = crate::material::entry::keys_not_applying(&entry);
     if !unread.is_empty() {
         let params: Vec<&str> = entry

@@ -71,7 +71,7 @@ pub struct FitArgs {
 /// Runs `gonio fit`.
 pub fn run(args: &FitArgs) -> Result<()> {
     // clap's `requires = "all"` is met by the flag's default `false`: a
-    // shard of a single fit was ignored without a word (issue 39).
+    // shard of a single fit was ignored without a word.
     if !args.all {
         let given = [
             ("--shard", args.shard.is_some()),

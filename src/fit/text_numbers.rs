@@ -1,7 +1,7 @@
 //! Fitted numbers as a scene file shows them: six significant digits (the
 //! fits' relative errors are 10⁻³ and more, so the seventh digit carries
 //! nothing), and a colour channel below 10⁻⁶ written as 0 (a weight that
-//! small changes no 8-bit pixel: 1/255 ≈ 4·10⁻³). Issue 38: a fit wrote
+//! small changes no 8-bit pixel: 1/255 ≈ 4·10⁻³). A fit once wrote
 //! `k_d = [0.00000000022859258930196802, …]`.
 
 /// Significant digits kept.

@@ -15,7 +15,7 @@ software rasterizer lavapipe with `sudo apt-get install mesa-vulkan-drivers libv
 /// The backends to look for adapters on: Vulkan, or what `WGPU_BACKEND`
 /// names (e.g. `gl`, `vulkan,gl`). A value that names no backend is an
 /// error naming it (it used to end in "no adapter found" with advice to
-/// install lavapipe: issue 19).
+/// install lavapipe).
 fn backends() -> Result<wgpu::Backends> {
     match std::env::var("WGPU_BACKEND") {
         Ok(text) if !text.trim().is_empty() => {
@@ -31,7 +31,7 @@ fn backends() -> Result<wgpu::Backends> {
                 ))
             } else if !backends.intersects(built) {
                 // wgpu would fail with its internal list of backends
-                // (issue 38: `WGPU_BACKEND=metal` on Linux).
+                // (e.g. `WGPU_BACKEND=metal` on Linux).
                 Err(Error::argument(
                     format!("WGPU_BACKEND={text}"),
                     format!(
@@ -49,8 +49,8 @@ fn backends() -> Result<wgpu::Backends> {
 /// The message for `--adapter NAME` that matches none of the adapters
 /// `names`: the nearest adapter's first word when one is near, how to
 /// pick one of those there are, and the advice to install lavapipe only
-/// when there is none (issue 38: it listed llvmpipe as available and said
-/// to install lavapipe).
+/// when there is none (it once listed llvmpipe as available and said to
+/// install lavapipe).
 fn no_adapter_named(name: &str, names: &[String]) -> String {
     if names.is_empty() {
         return format!(
@@ -142,7 +142,7 @@ impl GpuContext {
     /// ([`super::formats::COLOR_FORMAT`]) where it can render into it,
     /// else `Rgba32Uint` holding the same f32 bits (wgpu's GL backend on
     /// Mesa's llvmpipe, `WGPU_BACKEND=gl`, lacks `EXT_color_buffer_float`
-    /// and panicked in pipeline creation: issue 19). Both read back the
+    /// and panicked in pipeline creation). Both read back the
     /// same bytes; the integer target cannot be multisampled and resolved,
     /// which `image.msaa` then says. `None` if neither is renderable.
     pub fn radiance_format(&self) -> Option<wgpu::TextureFormat> {
@@ -253,7 +253,7 @@ impl GpuContext {
                 .map_err(|e| {
                     // A backend chosen by WGPU_BACKEND is named: the
                     // lavapipe advice alone misled when it was `gl` and
-                    // no GL library was installed (issue 19).
+                    // no GL library was installed.
                     let chosen = std::env::var("WGPU_BACKEND")
                         .map(|b| format!(" for WGPU_BACKEND={b} (unset it to use Vulkan)"))
                         .unwrap_or_default();

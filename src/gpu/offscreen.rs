@@ -271,7 +271,7 @@ pub fn check_msaa(ctx: &GpuContext, format: wgpu::TextureFormat, samples: u32) -
 /// Refuses a target the device cannot hold: a side over
 /// `max_texture_dimension_2d`, or a readback buffer (16 bytes a pixel,
 /// rows padded to 256 bytes) over `max_buffer_size` (16384 × 8192 is
-/// 2 GiB: issue 19). The message says what size would fit.
+/// 2 GiB). The message says what size would fit.
 pub fn check_target_size(ctx: &GpuContext, width: u32, height: u32) -> Result<()> {
     let limits = ctx.device.limits();
     let max_side = limits.max_texture_dimension_2d;

@@ -141,7 +141,7 @@ impl PipelineCache {
     /// software rasterizer the switch runs every arm for every pixel, so
     /// frames are faster specialized (the viewer), but each pipeline costs
     /// a compilation, which a one-frame render pays once per variant
-    /// (issue 18: the cold `gonio render`).
+    /// (the cold `gonio render`).
     pub fn specializations(&self, key: &ShaderKey) -> Vec<Option<u32>> {
         if self.one_pipeline {
             vec![None]

@@ -790,7 +790,7 @@ pub fn host_memory_estimate(scene: &Scene) -> u64 {
 
 /// Refuses a vertex stream or index buffer larger than the device's
 /// `max_buffer_size` before building it (a flat-shaded 3200-segment plane
-/// is a 2.2 GB stream: issue 19), naming the settings that make it
+/// is a 2.2 GB stream), naming the settings that make it
 /// and how many triangles would fit.
 fn check_geometry_size(device: &wgpu::Device, scene: &Scene, key: &ShaderKey) -> Result<()> {
     let (vertex_bytes, index_bytes) =

@@ -68,7 +68,7 @@ const SHADOW_MAPS_ROLE: &str = "shadow maps";
 /// one layer makes a `TEXTURE_2D`, six square layers a `TEXTURE_CUBE_MAP`
 /// (a multiple of six a cube array). Sampling a 2D-array view of those
 /// compared every texel as in shadow: a sun's or spot's single map, or one
-/// point light's cube, were the GL backend's wrong shadows of issue 19.
+/// point light's cube, were the GL backend's wrong shadows.
 /// The extra layer is never drawn or read.
 pub fn texture_layers(plan: &ShadowPlan, backend: wgpu::Backend) -> u32 {
     let maps = plan.layers.len() as u32;

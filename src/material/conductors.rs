@@ -1,5 +1,5 @@
 //! Coloured conductors: per-channel (linear Rec.709 R, G, B) η, κ reduced
-//! from published spectral measurements (issue 17 item 2). The lecture's
+//! from published spectral measurements. The lecture's
 //! presets ([`super::presets`]) give one η, κ for one wavelength, so a
 //! lecture `gold` is grey (F0 0.849 in every channel); these make gold
 //! yellow and copper red.

@@ -237,7 +237,7 @@ pub fn material_from_entry_in(
 /// The parameter keys of `e` that its model does not read (`sigma_x` on
 /// `ward`, `roughness` on `blinn-phong`, `k_e` on `lambert`): accepted, so
 /// a material can switch models in the viewer and back, but worth a
-/// warning (issue 17: they were ignored without a word). `measured`
+/// warning (they were once ignored without a word). `measured`
 /// refuses them instead (`measured_keys_apply`).
 pub fn keys_not_applying(e: &MaterialEntry) -> Vec<&str> {
     let Ok(model) = e.model.parse::<ReflectanceModel>() else {
@@ -251,7 +251,7 @@ pub fn keys_not_applying(e: &MaterialEntry) -> Vec<&str> {
             .any(|p| p.key == k)
     };
     // A texture on a parameter the model does not read is as ignored as
-    // the parameter (`k_e_texture` on `lambert`, issue 39); so is a map
+    // the parameter (`k_e_texture` on `lambert`); so is a map
     // of a layer the model does not have (`anisotropy_texture` on `ward`).
     let textured =
         e.textures
@@ -403,7 +403,7 @@ pub fn material_table(m: &Material) -> toml::Table {
     // The model's own parameters, each through its own accessor
     // (gltf-pbr's `roughness` is the perceptual r, not a stored field of
     // its own: Save scene dropped it), and its own terms: only what the
-    // model reads, so the file reads back without a warning (issue 38:
+    // model reads, so the file reads back without a warning (before,
     // `gonio fit -o f.toml` wrote 8 keys `render f.toml` warned about).
     let row = m.model.row();
     for p in table::COMMON.iter().chain(row.params.iter()) {

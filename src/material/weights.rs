@@ -2,7 +2,7 @@
 //! its scene-file table (or `gonio brdf` spec) does not give `k_d` or
 //! `k_s`. The rule is that a bare material shows its model: a model with
 //! a specular lobe gets a visible lobe, a metal renders as that metal with
-//! no other keys (issue 17: a bare `cook-torrance` with `preset = "gold"`
+//! no other keys (a bare `cook-torrance` with `preset = "gold"`
 //! used to default to `k_s = 0` and render as its diffuse part only).
 //!
 //! The contract fixes what `k_d` and `k_s` mean (`f_r = k_d/π + k_s ·

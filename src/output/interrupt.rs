@@ -1,4 +1,4 @@
-//! Interrupted writes leave nothing behind (issue 19).
+//! Interrupted writes leave nothing behind.
 //!
 //! Every file gonio writes goes through a temporary `.gonio-PID-XXXX.partial`
 //! in the destination's folder ([`super::AtomicFile`]). Dropping it removes

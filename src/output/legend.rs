@@ -1,5 +1,5 @@
 //! Where a plot's legend goes: the corner of the plotting area that its
-//! curves cross least (issue 38: the albedo plot's legend, fixed upper
+//! curves cross least (the albedo plot's legend, once fixed upper
 //! left, covered a curve). Points are given as fractions of the area
 //! (x from the left, y from the bottom), the legend's box as fractions of
 //! its width and height.

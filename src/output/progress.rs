@@ -2,8 +2,8 @@
 //! ETA on a terminal, plain lines without one (CI logs, `2>log`), so a
 //! long run is never silent.
 //!
-//! indicatif draws nothing when stderr is not a terminal (issue 17: a
-//! 111 s run printed nothing in CI). Without a terminal each line says
+//! indicatif draws nothing when stderr is not a terminal (a
+//! 111 s run once printed nothing in CI). Without a terminal each line says
 //! what is measured, step n of m, the time so far and the estimated time
 //! left, when the step's subject changes or at most every
 //! [`PLAIN_EVERY`], so a log gets a few dozen lines, not one per frame.

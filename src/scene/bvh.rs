@@ -124,7 +124,7 @@ impl Bvh {
         // bounds are gone. That keeps the peak at about
         // [`BUILD_BYTES_PER_TRIANGLE`] instead of holding both plus a
         // reordered copy (236 bytes a triangle, 10.5 GB for the 33.5 M
-        // triangles of a 4096-segment plane: issue 19).
+        // triangles of a 4096-segment plane).
         let capacity = meshes.iter().map(|m| m.indices.len()).sum();
         let mut ids = Vec::with_capacity(capacity);
         let mut prims = Vec::with_capacity(capacity);

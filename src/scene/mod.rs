@@ -60,7 +60,7 @@ pub use crate::base::Rgb;
 /// the GPU squares distances in f32, which overflows past about 1.8e19. A
 /// camera at [1e300, …] was refused as "position and target coincide"
 /// (the f64 direction overflowed), a light there gave Inf pixels and a
-/// glTF with ±3e38 coordinates a blank image: issue 19.
+/// glTF with ±3e38 coordinates a blank image.
 pub const MAX_COORDINATE: f64 = 1e18;
 
 /// A scene ready to render.

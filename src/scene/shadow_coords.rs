@@ -1,6 +1,6 @@
 //! `shading.shadow_coords`: where Phong shading computes the shadow-map
-//! coordinates of its lookup point, a knob of the GPU path (issue 18
-//! item 5). The reference traces shadow rays and ignores it.
+//! coordinates of its lookup point, a knob of the GPU path.
+//! The reference traces shadow rays and ignores it.
 
 use crate::base::named_enum;
 

@@ -3,7 +3,7 @@
 //! their own at a lower scheduling priority (nice +10), and their
 //! parallel loops on a pool that leaves one core to the window, so the UI
 //! thread (and lavapipe's rasterizer threads, which draw its frames)
-//! never waits behind them. Issue 38: with a measured material the
+//! never waits behind them. Before, with a measured material the
 //! albedo curve's rayon loop took every core while lavapipe compiled the
 //! first frame's shaders, and the window stayed black for 9–35 s.
 
@@ -107,7 +107,7 @@ mod tests {
     /// does not hold up a parallel loop of the UI thread (the GPU's
     /// measured table): they are on different pools. Before, both were on
     /// rayon's global pool and the first frame waited for the albedo
-    /// curve (issue 38). The receive's limit only detects that wait; it
+    /// curve. The receive's limit only detects that wait; it
     /// measures nothing.
     #[test]
     fn a_busy_background_does_not_hold_up_the_ui_threads_loops() {

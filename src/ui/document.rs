@@ -288,8 +288,8 @@ mod tests {
 
     #[test]
     fn edits_read_values_as_set_does() {
-        // Issue 19: `--edit 35:shading.mode=flat` said "invalid boolean"
-        // where `--set shading.mode=flat` works: unquoted words are strings.
+        // `--edit 35:shading.mode=flat` once said "invalid boolean"
+        // where `--set shading.mode=flat` worked: unquoted words are strings.
         let mut doc = Document::load(SceneSource::BuiltIn, vec![], Limits::default()).unwrap();
         doc.edit("shading.mode=flat").unwrap();
         assert_eq!(doc.scene.shading, crate::scene::ShadingMode::Flat);

@@ -1,4 +1,4 @@
-//! The viewer's memory stays flat across edits (issue 19).
+//! The viewer's memory stays flat across edits.
 //!
 //! A viewer session allocates and frees many blocks of a few to a hundred
 //! MiB: GPU buffers and textures (lavapipe's device memory is host memory

@@ -151,7 +151,7 @@ mod tests {
     }
 
     /// A glTF file's own material, edited by name, is saved as its edit
-    /// and reads back the same, textures kept (issue 17: Save dropped it).
+    /// and reads back the same, textures kept (Save once dropped it).
     #[test]
     fn edits_of_gltf_materials_are_saved_by_name() {
         let suzanne = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -178,7 +178,7 @@ mod tests {
     }
 
     /// Lights added, retyped, edited and removed in the viewer are saved
-    /// and read back the same (issue 17 item 5), in a scene file and on a
+    /// and read back the same, in a scene file and on a
     /// glTF file that had no `[[lights]]`.
     #[test]
     fn added_removed_and_retyped_lights_are_saved() {

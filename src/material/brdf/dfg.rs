@@ -180,9 +180,9 @@ mod tests {
         assert!((b - 0.5f64.powi(5)).abs() < 1e-9, "{b}");
     }
 
-    /// The white furnace before energy compensation (issue 16 item 5's
-    /// "before"): a white conductor (`F = 1`) of GGX with height-correlated
-    /// Smith at α = 1 keeps `E(μ, 1)` of the light arriving from a uniform
+    /// The white furnace before energy compensation: a white conductor
+    /// (`F = 1`) of GGX with height-correlated Smith at α = 1 keeps
+    /// `E(μ, 1)` of the light arriving from a uniform
     /// white sky, and `E_avg = 2∫ E μ dμ` averaged over the hemisphere
     /// (three.js users measured about 0.45 at the highest roughness).
     /// At μ = 1, α = 1 it has a closed form: `D = 1/π`, `Vis = ½/(1 + μ_i)`,

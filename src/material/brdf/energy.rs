@@ -116,7 +116,7 @@ mod tests {
         m
     }
 
-    /// The white furnace before and after (issue 16 item 5): a white
+    /// The white furnace before and after: a white
     /// conductor (gltf-pbr, b = 1, m = 1; and the same lobe as
     /// Cook-Torrance ggx / smith-correlated / Fresnel none / 4 (N·V)(N·I))
     /// under a uniform white sky keeps `E(μ, α)` without compensation and

@@ -319,7 +319,7 @@ impl<'a> Importer<'a> {
             }
             mesh.tex_coords = raw.tex_coords;
             // A texture reading a UV set the primitive lacks is invalid
-            // glTF (3.7.2.1): said, not passed over (issue 39).
+            // glTF (3.7.2.1): said, not passed over.
             if let Some(t) = self.scene.materials.get(material).and_then(|m| {
                 m.textures.iter().find(|t| {
                     mesh.tex_coords

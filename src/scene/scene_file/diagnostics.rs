@@ -46,7 +46,7 @@ pub fn clean_toml_error(e: &impl std::fmt::Display) -> String {
 
 /// [`clean_toml_error`] for an error in the scene file `text`: an unknown
 /// key is located at its own line, where toml reports the table that holds
-/// it (issue 38: a misspelt key was reported at its table's header).
+/// it (a misspelt key was once reported at its table's header).
 pub fn clean_toml_error_in(e: &toml::de::Error, text: &str) -> String {
     let cleaned = clean_toml_error(e);
     let Some(span) = e.span() else {
@@ -92,7 +92,7 @@ pub fn clean_toml_error_in(e: &toml::de::Error, text: &str) -> String {
 }
 
 /// serde's Rust type names in a message said in the scene file's words
-/// (issue 38: `k_e=abc` said "expected f64").
+/// (`k_e=abc` once said "expected f64").
 fn plain_types(message: &str) -> String {
     let mut out = message.to_string();
     for (rust, plain) in [

@@ -1,5 +1,5 @@
 //! `[gltf_materials.NAME]`: edits of a glTF file's own materials, by the
-//! material's name in the file (issue 17: `--set materials.Suzanne.k_d`
+//! material's name in the file (before, `--set materials.Suzanne.k_d`
 //! failed, and the viewer's Save scene dropped such edits).
 //!
 //! A glTF material is not a `[materials]` entry: it has textures and

@@ -543,7 +543,7 @@ mod tests {
         assert_eq!(err.exit_code(), 2);
     }
 
-    /// `--set` reaches both new keys of issue 16: a material's
+    /// `--set` reaches a material's
     /// `energy_compensation` (refused, exit 2, on a model without it) and
     /// `environment.visibility` (refused with the SH reference).
     #[test]

@@ -1,6 +1,6 @@
 //! A `--set materials.NAME.model=M` that switches a material of the source
 //! to another model: the source's keys the new model does not read are
-//! dropped, as the viewer's model switch leaves them behind (issue 38:
+//! dropped, as the viewer's model switch leaves them behind (before,
 //! `--set materials.ball.model=measured` on the built-in scene failed with
 //! "k_d does not apply … remove it", a key the user never wrote and could
 //! not remove, and `model=cook-torrance` warned about the built-in `k_e`).

@@ -52,7 +52,7 @@ pub fn apply_override(table: &mut toml::Table, kv: &str) -> Result<()> {
 }
 
 /// Refuses a path into something the scene must already have, with the
-/// reason in the user's words (issue 17): a misspelt material
+/// reason in the user's words: a misspelt material
 /// (`materials.bal.k_e` said "missing field `model`") and an array entry
 /// of an array the scene lacks (`lights.0.shadows` on a bare glTF said
 /// "invalid type: map, expected a sequence").

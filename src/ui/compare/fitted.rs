@@ -1,4 +1,4 @@
-//! A measured material's fit, to put beside it (issue 15 item 5): the
+//! A measured material's fit, to put beside it: the
 //! parameters `gonio fit --all` stored in `docs/fit/fits.toml` (compiled
 //! in; `[materials.NAME--LABEL]`, e.g. `gold-metallic-paint--ct-ggx-conductor`),
 //! or, for a material or model not there, a fit run now with the same

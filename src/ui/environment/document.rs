@@ -1,4 +1,4 @@
-//! The viewer's environment-map edits (issue 16 items 1 and 6): the keys
+//! The viewer's environment-map edits: the keys
 //! of `[environment]` that choose and use a map (`map`, `scale`,
 //! `sh_order`, `rotation_deg`, `specular`, `samples`, `prefilter_size`,
 //! `reference`), from the panel, a `.hdr`/`.exr` dropped on the window or

@@ -1,5 +1,5 @@
 //! The document's list of `[[lights]]` entries: add, remove, change a
-//! light's kind (issue 17 item 5). Each change assembles the lights again
+//! light's kind. Each change assembles the lights again
 //! as the loader does ([`LightSetup::assemble`]) and is refused, leaving
 //! the document as it was, when the loader would refuse it.
 

@@ -1,4 +1,4 @@
-//! Dragging a light's handle in the 3D view (issue 17 item 5): a press on
+//! Dragging a light's handle in the 3D view: a press on
 //! a handle ([`super::overlay`]) grabs it instead of orbiting; the
 //! handle then follows the mouse in the screen plane at the depth it was
 //! grabbed at (the plane through it facing the camera), so it stays under

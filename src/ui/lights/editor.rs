@@ -3,8 +3,8 @@
 //!
 //! No widget clamps: a value typed or dragged out of range reaches the
 //! caller, which validates the entry as the scene file does and shows the
-//! file's message instead of applying it (issue 17: "a bad value is
-//! refused with a message, never silently clamped").
+//! file's message instead of applying it: a bad value is refused with a
+//! message, never silently clamped.
 
 use super::kinds;
 use crate::base::ColorValue;

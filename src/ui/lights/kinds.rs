@@ -1,6 +1,6 @@
 //! New `[[lights]]` entries and changes of a light's kind, for the panel's
 //! *Add* and *kind* controls and `--edit lights.add=KIND`,
-//! `lights.N.kind=KIND` (issue 17 item 5).
+//! `lights.N.kind=KIND`.
 //!
 //! A light is reduced to what every kind shares: where it sits, which way
 //! it shines, and the irradiance `E` it puts on a surface facing it at the

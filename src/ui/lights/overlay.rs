@@ -1,4 +1,4 @@
-//! The lights drawn over the 3D view (issue 17 item 5): a point light as a
+//! The lights drawn over the 3D view: a point light as a
 //! marker, a spot as its cones, a directional light as an arrow along the
 //! way its light travels, an area light as its outline and normal. Drawn
 //! with egui's painter, projected with the camera the scene is drawn with

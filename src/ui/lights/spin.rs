@@ -2,7 +2,7 @@
 //! vertical axis through the camera's target by DEG per frame, so its
 //! shadow maps are drawn anew every frame. This is what a moving light
 //! costs, and it is the fair comparison with a renderer that redraws its
-//! maps every frame (issue 18; `scripts/viewer-frame-time.sh`). Each move
+//! maps every frame (`scripts/viewer-frame-time.sh`). Each move
 //! goes through [`Document::set_light`], as a dragged light does.
 
 use crate::scene::scene_file::LightEntry;

@@ -29,7 +29,7 @@ pub fn material_editor(ui: &mut egui::Ui, m: &mut Material) -> bool {
             ui.end_row();
         }
         if row.energy_compensation {
-            // Multiple scattering (issue 16 item 5), the scene key
+            // Multiple scattering, the scene key
             // `energy_compensation`; off by default.
             ui.label("energy compensation");
             changed |= ui.checkbox(&mut m.energy_compensation, "").changed();
@@ -135,8 +135,8 @@ fn param(ui: &mut egui::Ui, p: &Param, m: &mut Material) -> bool {
 
 /// One line per texture of `m`: what it multiplies, the image (by its
 /// name in `images`), the channel it reads, its UV set and its
-/// `KHR_texture_transform` (issue 38: the panel showed only the factors
-/// of textured parameters, with no sign that a texture multiplies them).
+/// `KHR_texture_transform` (the panel once showed only the factors of
+/// textured parameters, with no sign that a texture multiplies them).
 pub fn texture_lines(m: &Material, images: &[&str]) -> Vec<String> {
     use crate::material::texture::TextureTarget;
     m.textures
