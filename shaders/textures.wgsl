@@ -79,8 +79,9 @@ fn scale_fields(base: Material, fields: u32, f: vec3<f32>) -> Material {
     m.emission *= select(one, f, (fields & 65536u) != 0u);
     m.occlusion *= select(1.0, f.x, (fields & 131072u) != 0u);
     #if gltf_layers
-    // gltf-pbr's layers: bits 18-28 (29, the anisotropy direction, is
-    // never set: a texture on the rotation is refused on the CPU).
+    // gltf-pbr's layers: bits 18-28 and 30-31 (29, the anisotropy
+    // direction, is never set: a texture on the rotation is refused on
+    // the CPU).
     m.layers.ior *= select(1.0, f.x, (fields & (1u << 18u)) != 0u);
     m.layers.specular *= select(1.0, f.x, (fields & (1u << 19u)) != 0u);
     m.layers.specular_color *= select(one, f, (fields & (1u << 20u)) != 0u);
@@ -92,6 +93,9 @@ fn scale_fields(base: Material, fields: u32, f: vec3<f32>) -> Material {
     m.layers.iridescence_ior *= select(1.0, f.x, (fields & (1u << 26u)) != 0u);
     m.layers.iridescence_thickness *= select(1.0, f.x, (fields & (1u << 27u)) != 0u);
     m.layers.anisotropy_strength *= select(1.0, f.x, (fields & (1u << 28u)) != 0u);
+    // Light through surfaces: bits 30 and 31.
+    m.layers.transmission *= select(1.0, f.x, (fields & (1u << 30u)) != 0u);
+    m.layers.thickness *= select(1.0, f.x, (fields & (1u << 31u)) != 0u);
     #endif
     return m;
 }

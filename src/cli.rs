@@ -371,10 +371,7 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
         let ignored = if off {
             layers.sets_transmission_keys()
         } else {
-            layers.dispersion > 0.0
-                || layers.diffuse_transmission > 0.0
-                || (layers.transmission > 0.0
-                    && (m.is_textured("transmission") || m.is_textured("thickness")))
+            layers.dispersion > 0.0 || layers.diffuse_transmission > 0.0
         };
         if m.model == crate::material::ReflectanceModel::GltfPbr
             && ignored
@@ -399,7 +396,7 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
         )
     } else {
         format!(
-            "warning: material{s} {names} use{verb_s} dispersion, diffuse transmission or a transmission or thickness texture, which the GPU renderer does not draw (its transmission is screen space, with the constant transmission and thickness): {they} drawn without; render with --reference to see {them}"
+            "warning: material{s} {names} use{verb_s} dispersion or diffuse transmission, which the GPU renderer does not draw (its transmission is screen space, without dispersion or diffuse transmission): {they} drawn without; render with --reference to see {them}"
         )
     })
 }

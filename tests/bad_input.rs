@@ -104,27 +104,27 @@ fn bad_inputs_exit_2_with_a_clear_message_and_no_output() {
     let box_gltf = common::gltf_asset("Box/Box.gltf").display().to_string();
     let cases = vec![
         Case {
-            name: "a colour of two numbers (issue 17)",
+            name: "a colour of two numbers",
             args: s(&["-o", &out, "--set", "materials.ball.k_d=[0.8,0.1]"]),
             names: "a colour is [r, g, b] (three numbers) or one number; this array has 2 numbers",
         },
         Case {
-            name: "a misspelt material (issue 17)",
+            name: "a misspelt material",
             args: s(&["-o", &out, "--set", "materials.bal.k_e=3"]),
             names: "no material `bal` (it has ball, floor); did you mean `ball`?",
         },
         Case {
-            name: "lights.0 on a glTF without [[lights]] (issue 17)",
+            name: "lights.0 on a glTF without [[lights]]",
             args: s(&[&box_gltf, "-o", &out, "--set", "lights.0.shadows=true"]),
             names: "the scene has no `lights`, so no entry 0",
         },
         Case {
-            name: "--exposure with an EXR (issue 17)",
+            name: "--exposure with an EXR",
             args: s(&["-o", "{dir}/out.exr", "--exposure", "2"]),
             names: "is an EXR, which holds linear radiance",
         },
         Case {
-            name: "a directory as SCENE (issue 17)",
+            name: "a directory as SCENE",
             args: s(&["{dir}", "-o", &out]),
             names: "it is a directory",
         },

@@ -206,6 +206,71 @@ fn a_thin_pane_passes_what_lies_straight_behind() {
     assert_eq!(pixel(&opaque, 16, 32), Rgb::ZERO, "drawn as opaque");
 }
 
+/// A thin pane whose transmission is textured (`transmission_texture`,
+/// glTF's `transmissionTexture` R): a 2 × 1 image read NEAREST, 1 over
+/// the left half of the pane and 0.25 over the right. Both renderers
+/// multiply the factor by the texel, so each half passes its share of
+/// its emitter, `T (1 − F)`; where it does not pass (`1 − T`) the white
+/// base reflects no light. Tolerance as for the untextured pane; the
+/// shares are checked on the reference, so a renderer that ignored the
+/// texture would fail.
+#[test]
+fn a_transmission_texture_scales_what_the_pane_passes() {
+    use gonio::material::texture::{Filter, MaterialTexture, Sampler, TextureTarget};
+    use gonio::scene::texture::{Encoding, Image, decode::Decoded};
+    let mut pane = rect(0.0, (-1.0, 1.0), (-1.0, 1.0), 0);
+    let uvs = pane
+        .positions
+        .iter()
+        .map(|p| glam::DVec2::new(0.5 * (p.x + 1.0), 0.5 * (1.0 - p.y)))
+        .collect();
+    pane.tex_coords = vec![uvs];
+    let mut material = glass("textured pane", 0.0);
+    material.textures.push(MaterialTexture {
+        target: TextureTarget::Param("transmission"),
+        image: 0,
+        channel: 0,
+        tex_coord: 0,
+        transform: Default::default(),
+        sampler: Sampler {
+            mag: Filter::Nearest,
+            min: Filter::Nearest,
+            mipmap: None,
+            ..Default::default()
+        },
+    });
+    let (mut scene, left, right) = behind_glass(vec![pane], vec![material]);
+    scene.images.push(std::sync::Arc::new(Image::new(
+        "transmission",
+        Encoding::Linear,
+        Decoded {
+            width: 2,
+            height: 1,
+            rgba: vec![[1.0, 1.0, 1.0, 1.0], [0.25, 1.0, 1.0, 1.0]],
+        },
+    )));
+    let reference = gonio::reference::render(&scene);
+    let frame = gpu(&scene);
+    let tolerance = HALF_ROUNDING + F32_SLACK;
+    for (points, behind, texel) in [(LEFT, left, 1.0), (RIGHT, right, 0.25)] {
+        for (i, j) in points {
+            let want = pixel(&reference, i, j);
+            // T (1 − F), F ≥ 4 % at these angles.
+            let share = want.to_array()[0] / behind.to_array()[0] / texel;
+            assert!(
+                (0.9..0.961).contains(&share),
+                "reference share {share} of T = {texel}"
+            );
+            assert_close(
+                &format!("textured pane at ({i}, {j})"),
+                pixel(&frame, i, j),
+                want,
+                tolerance,
+            );
+        }
+    }
+}
+
 /// A green slab (a closed box, attenuation distance 0.5) of two
 /// thicknesses in front of an emitter, seen at normal incidence (the
 /// image's centre). The GPU attenuates by Beer–Lambert over the

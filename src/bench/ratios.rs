@@ -537,7 +537,7 @@ pub fn heavy_vs_unlit(renderer: &mut GpuRenderer, effort: Effort) -> Result<Vec<
         format!("same, shadow_resolution = \"fit\", texels_per_pixel = 0.5, {w}x{h}"),
         Some(HEAVY_BEFORE / 2.0),
         format!(
-            "issue 18's target: half the {HEAVY_BEFORE} this ratio was before caster culling, empty faces skipped and fitted sides, at the error it reports. Sides fitted at half a texel per pixel: {half_sides}; error against the ray-traced shadows {:.4} (fixed 2048²: {:.4}); the fixed 2048² maps' frame is the first row",
+            "the shadow target: half the {HEAVY_BEFORE} this ratio was before caster culling, empty faces skipped and fitted sides, at the error it reports. Sides fitted at half a texel per pixel: {half_sides}; error against the ray-traced shadows {:.4} (fixed 2048²: {:.4}); the fixed 2048² maps' frame is the first row",
             errors[3], errors[0]
         ),
     );

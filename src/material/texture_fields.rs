@@ -55,6 +55,8 @@ pub fn gpu_field_values(m: &Material) -> Vec<(&'static str, Vec<f64>)> {
             "anisotropy_direction",
             p.layers.anisotropy_direction().to_array().to_vec(),
         ),
+        ("transmission", vec![p.layers.transmission]),
+        ("thickness", vec![p.layers.thickness]),
     ]
 }
 
@@ -111,7 +113,7 @@ pub fn gpu_field_mask(m: &Material, key: &str) -> Result<u32, String> {
 
 /// The bits of a field mask: one per field of [`gpu_field_values`],
 /// which must fit a `u32` (`TextureSlot.fields` in shaders/textures.wgsl).
-pub const FIELD_COUNT: usize = 30;
+pub const FIELD_COUNT: usize = 32;
 const _: () = assert!(FIELD_COUNT <= 32);
 
 #[cfg(test)]

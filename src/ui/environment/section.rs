@@ -40,13 +40,8 @@ struct PendingStack {
 impl EnvironmentSection {
     /// Lays out the section and applies what it asks for.
     pub fn ui(&mut self, ui: &mut egui::Ui, shared: &mut Shared) {
-        if let Some(p) = &self.pending {
-            if p.finished.load(Ordering::Acquire) {
-                let p = self.pending.take().expect("checked");
-                for edit in &p.edits {
-                    shared.edit(edit);
-                }
-            } else {
+        if !self.poll(shared) {
+            if let Some(p) = &self.pending {
                 let total = prefiltered::texels_to_compute(p.size) as f32;
                 let fraction = p.done.load(Ordering::Relaxed) as f32 / total;
                 ui.add(egui::ProgressBar::new(fraction.min(1.0)).text(format!(
@@ -54,9 +49,9 @@ impl EnvironmentSection {
                     p.size,
                     p.started.elapsed().as_secs_f64()
                 )));
-                ui.ctx().request_repaint();
-                return;
             }
+            ui.ctx().request_repaint();
+            return;
         }
         let doc = &*shared.doc;
         let off = super::document::is_off(doc);
@@ -67,17 +62,41 @@ impl EnvironmentSection {
             self.path = m.data.name.clone();
         }
         let edits = super::editor::environment_editor(ui, settings, off, &mut self.path);
-        if let Some(map) = &doc.scene.environment.map
+        if self.submit(edits, shared) {
+            ui.ctx().request_repaint();
+        }
+    }
+
+    /// Applies `edits`, or holds them while the prefiltered stack they
+    /// need is made in the background: whether they are held.
+    fn submit(&mut self, edits: Vec<String>, shared: &mut Shared) -> bool {
+        if let Some(map) = &shared.doc.scene.environment.map
             && let Some(size) =
                 stack_needed(&edits, map.settings.specular, map.settings.prefilter_size)
             && map.data.cached_prefiltered(size).is_none()
         {
             self.pending = Some(PendingStack::start(map.data.clone(), size, edits));
-            ui.ctx().request_repaint();
-            return;
+            return true;
         }
         for edit in edits {
             shared.edit(&edit);
+        }
+        false
+    }
+
+    /// Applies the held edits once their stack is made: whether nothing
+    /// is held any more.
+    fn poll(&mut self, shared: &mut Shared) -> bool {
+        match &self.pending {
+            None => true,
+            Some(p) if p.finished.load(Ordering::Acquire) => {
+                let p = self.pending.take().expect("checked");
+                for edit in &p.edits {
+                    shared.edit(edit);
+                }
+                true
+            }
+            Some(_) => false,
         }
     }
 }
@@ -122,6 +141,65 @@ fn stack_needed(edits: &[String], specular: Specular, size: u32) -> Option<u32> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::change::Changes;
+    use crate::scene::scene_file::SceneSource;
+    use crate::ui::document::Document;
+
+    /// A new prefilter size is held, its stack made in the background
+    /// while the document keeps the old size, then applied; the stack is
+    /// then cached, so the upload does not make it again.
+    #[test]
+    fn a_new_stack_is_made_in_the_background_before_the_edit_applies() {
+        let mut doc = Document::load(
+            SceneSource::BuiltIn,
+            vec![
+                "environment.map=\"sky\"".into(),
+                "environment.specular=\"prefiltered\"".into(),
+            ],
+            Default::default(),
+        )
+        .unwrap();
+        let (mut changes, mut message) = (Changes::default(), None);
+        let mut shared = Shared {
+            doc: &mut doc,
+            changes: &mut changes,
+            message: &mut message,
+        };
+        let mut section = EnvironmentSection::default();
+        assert!(section.submit(vec!["environment.prefilter_size=128".into()], &mut shared));
+        let size = |s: &Shared| {
+            s.doc
+                .scene
+                .environment
+                .map
+                .as_ref()
+                .unwrap()
+                .settings
+                .prefilter_size
+        };
+        assert_eq!(size(&shared), 64, "applied before its stack was made");
+        let start = Instant::now();
+        while !section.poll(&mut shared) {
+            assert!(start.elapsed().as_secs() < 120, "the stack was not made");
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        assert_eq!(size(&shared), 128);
+        let map = shared.doc.scene.environment.map.as_ref().unwrap();
+        assert!(map.data.cached_prefiltered(128).is_some());
+        assert!(message.is_none(), "{message:?}");
+        // A size whose stack is made applies at once (64's was never
+        // made here: no upload ran; 128's now is).
+        let mut shared = Shared {
+            doc: &mut doc,
+            changes: &mut changes,
+            message: &mut message,
+        };
+        shared.edit("environment.prefilter_size=32");
+        assert!(section.submit(vec!["environment.prefilter_size=64".into()], &mut shared));
+        section.pending = None;
+        assert!(!section.submit(vec!["environment.prefilter_size=128".into()], &mut shared));
+        assert_eq!(size(&shared), 128);
+    }
 
     #[test]
     fn a_new_size_or_the_prefiltered_mode_needs_a_stack() {
