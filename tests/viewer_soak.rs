@@ -16,7 +16,9 @@
 //! for a branch on a material value, shaders/brdf/phong.wgsl
 //! UNIFORM_BRANCHES) added 0.8 MiB a frame: hundreds of MiB over a third
 //! of this run, against an allowance of 5 % + 8 MiB (allocator noise:
-//! freed pages are not always returned to the system at once). The
+//! freed pages are not always returned to the system at once) plus one
+//! shadow cube map (96 MiB), whose freed pages may stay resident once, at
+//! a time that varies from run to run. The
 //! allocator's own retention of freed large blocks (glibc's dynamic mmap
 //! threshold: steps from 216 to 284 MiB that then stayed) is turned off
 //! by the viewer itself, src/ui/memory.rs.
@@ -226,7 +228,17 @@ fn soak(panel: bool, measured: bool) {
         mib(last),
         mib(*samples.iter().max().unwrap())
     );
-    let allowed = first + first / 20 + 8 * 1024;
+    // One cube map's pages may stay resident once it has been freed
+    // (kept by the driver or the allocator for the next one): a step of
+    // its size, once, at a time that varies from run to run. Seen
+    // 2026-12-05 in 1 of 3 runs of the binary of 072564d too: 181 MiB in
+    // the first third, then 281 MiB and flat; other runs are at 279–281
+    // MiB from the start. Allowed once on top of the noise; the per-frame
+    // leak this test guards against (0.8 MiB a frame, about 250 MiB per
+    // third of the measured run) still exceeds it.
+    let side = u64::from(gonio::scene::ShadowSettings::DEFAULT_MAP_SIZE);
+    let cube_map_kib = 6 * side * side * 4 / 1024;
+    let allowed = first + first / 20 + 8 * 1024 + cube_map_kib;
     assert!(
         last <= allowed,
         "the viewer's resident memory grew from a median of {:.1} MiB in the first third of the measured run to {:.1} MiB in the last (allowed {:.1} MiB): something is allocated per frame",
