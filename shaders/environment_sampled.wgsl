@@ -283,7 +283,12 @@ fn environment_sampled(m: Material, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<
         }
         let c = dot(frame.n, wi);
         let p_b = select(0.0, lobe_pdf(l, wi, wo, frame.n), n_b > 0u);
-        let p_m = select(0.0, importance_pdf(environment_to_map(wi)), n_m > 0u);
+        // A branch, not a select: without map directions the texel lookup
+        // (an atan2 and an acos) is not paid.
+        var p_m = 0.0;
+        if n_m > 0u {
+            p_m = importance_pdf(environment_to_map(wi));
+        }
         let mixture = f32(n_c) * max(c, 0.0) * FRAC_1_PI + f32(n_b) * p_b + f32(n_m) * p_m;
         let term = f_r(m, wi, wo, frame) * environment_map_radiance(wi) * (c / mixture);
         sum += select(vec3<f32>(0.0), term, c > 0.0 && mixture > 0.0);

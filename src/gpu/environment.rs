@@ -8,6 +8,7 @@
 
 use super::bind_groups::SceneLayouts;
 use super::formats::DEPTH_FORMAT;
+use super::layout_entries::{read_only_storage, unfilterable_texture_2d};
 use super::shader_gen::{self, Output};
 use crate::environment::importance::ImportanceTable;
 use crate::environment::map::{MapData, Specular};
@@ -94,28 +95,12 @@ pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 5] {
             },
             count: None,
         },
-        wgpu::BindGroupLayoutEntry {
-            binding: 1,
-            visibility: stage,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        },
-        texture_entry(2, stage),
-        texture_entry(3, stage),
-        wgpu::BindGroupLayoutEntry {
-            binding: 4,
-            visibility: stage,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: true },
-                has_dynamic_offset: false,
-                min_binding_size: wgpu::BufferSize::new(IMPORTANCE_HEADER + 16),
-            },
-            count: None,
-        },
+        unfilterable_texture_2d(1, stage),
+        // The prefiltered stack and the environment BRDF table: bound in
+        // every mode, 1 × 1 where the mode does not read them.
+        unfilterable_texture_2d(2, stage),
+        unfilterable_texture_2d(3, stage),
+        read_only_storage(4, stage, wgpu::BufferSize::new(IMPORTANCE_HEADER + 16)),
     ]
 }
 
@@ -148,22 +133,6 @@ fn importance_buffer(
         usage: wgpu::BufferUsages::STORAGE,
     });
     (table, buffer)
-}
-
-/// A non-filterable float 2D texture at `binding` (the prefiltered stack,
-/// 2, and the environment BRDF table, 3: both bound in every mode, 1 × 1
-/// where the mode does not read them).
-fn texture_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
 }
 
 /// An `Rgba32Float` texture of `width × height` texels `rgba`, uploaded.
