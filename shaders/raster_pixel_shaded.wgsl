@@ -25,6 +25,11 @@ struct VertexIn {
     #if vertex_colors
     @location(9) color: vec4<f32>,
     #endif
+    #if layer_transmission
+    // The object's length scale, in the draw's first instance
+    // (set_draw_volume_scale).
+    @builtin(instance_index) instance: u32,
+    #endif
 }
 
 struct VertexOut {
@@ -51,6 +56,9 @@ struct VertexOut {
     #if vertex_colors
     @location(8) color: vec4<f32>,
     #endif
+    #if layer_transmission
+    @location(9) @interpolate(flat) instance: u32,
+    #endif
 }
 
 @vertex
@@ -72,6 +80,9 @@ fn vs_main(in: VertexIn) -> VertexOut {
     #if vertex_colors
     out.color = in.color;
     #endif
+    #if layer_transmission
+    out.instance = in.instance;
+    #endif
     // The one orthographic map's coordinates of this corner's lookup point
     // (ShaderKey::shadow_coords_per_vertex says why this is exact).
     #if shadow_vertex
@@ -88,6 +99,9 @@ fn vs_main(in: VertexIn) -> VertexOut {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) TargetTexel {
+    #if layer_transmission
+    set_draw_volume_scale(in.instance);
+    #endif
     // Sides (Material.sides, glTF doubleSided): a back face of a
     // single-sided material is culled, one of a double-sided material is
     // lit with its frame flipped (normal, tangent and bitangent). The

@@ -27,6 +27,11 @@ struct VertexIn {
     #if vertex_colors
     @location(9) color: vec4<f32>,
     #endif
+    #if layer_transmission
+    // The object's length scale, in the draw's first instance
+    // (set_draw_volume_scale).
+    @builtin(instance_index) instance: u32,
+    #endif
 }
 
 struct VertexOut {
@@ -132,6 +137,9 @@ fn vertex_radiance(in: VertexIn, flip: f32) -> vec3<f32> {
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
     var out: VertexOut;
+    #if layer_transmission
+    set_draw_volume_scale(in.instance);
+    #endif
     out.clip = globals.clip_from_world * vec4<f32>(in.position, 1.0);
     out.radiance = vertex_radiance(in, 1.0);
     // Double-sided materials in the scene: both sides shaded here, the

@@ -23,12 +23,23 @@
 @group(4) @binding(0) var transmission_image: texture_2d<f32>;
 @group(4) @binding(1) var transmission_sampler: sampler;
 
+// How much the drawn object's glTF node scales lengths (Mesh::volume_scale),
+// set by the raster stage from the draw's instance index: an object's
+// batch is drawn with its first instance holding the scale's f32 bits
+// (src/gpu/geometry.rs, Batch::instance), 0 meaning 1.
+var<private> draw_volume_scale: f32 = 1.0;
+
+fn set_draw_volume_scale(instance: u32) {
+    draw_volume_scale = select(1.0, bitcast<f32>(instance), instance != 0u);
+}
+
 // The path inside a volume: the view ray refracted into the surface,
-// normalize(refract(−V, N, 1/ior)) · thickness (getVolumeTransmissionRay;
-// the thickness is in world units: the meshes are). Zero for a thin wall.
+// normalize(refract(−V, N, 1/ior)) · thickness · s (getVolumeTransmissionRay;
+// the thickness is in mesh space, `s` the node's length scale, as the
+// sample renderer's modelScale). Zero for a thin wall.
 fn volume_transmission_ray(n: vec3<f32>, wo: vec3<f32>, thickness: f32, ior: f32) -> vec3<f32> {
     let refracted = refract(-wo, n, 1.0 / max(ior, 1.0));
-    return normalize_or_zero(refracted) * thickness;
+    return normalize_or_zero(refracted) * (thickness * draw_volume_scale);
 }
 
 // Beer–Lambert: attenuation_color^(distance / attenuation_distance),

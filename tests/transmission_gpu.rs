@@ -333,6 +333,46 @@ fn an_attenuating_slab_follows_beer_lambert() {
     );
 }
 
+/// `KHR_materials_volume`'s thickness is in mesh space: a slab made
+/// 0.3 thick and scaled by 2 (`Mesh::transform`, as a glTF node's scale
+/// is applied on import) is 0.6 thick in the world, where the reference
+/// traces it. The GPU scales the material's 0.3 by the mesh's
+/// `volume_scale` (the draw's first instance), so its pixel is the
+/// reference's times `1 − F² a²`, `a = c^(0.6/D)`, as in
+/// [`an_attenuating_slab_follows_beer_lambert`]; the thickness unscaled
+/// would pass `c^(−0.3/D)` more light (2.1× in red).
+#[test]
+fn a_node_scale_scales_the_volumes_thickness() {
+    let colour = Rgb::new(0.3, 0.9, 0.4);
+    let distance = 0.5;
+    let behind = Rgb::new(0.8, 0.8, 0.8);
+    let f = 0.04;
+    let (d, scale) = (0.3, 2.0);
+    let mut slab = glass("slab", d);
+    slab.layers.attenuation_color = colour;
+    slab.layers.attenuation_distance = distance;
+    let mut box_mesh = cuboid(
+        DVec3::new(-0.5, -0.5, -d / 2.0),
+        DVec3::new(0.5, 0.5, d / 2.0),
+        0,
+    );
+    box_mesh.transform(glam::DMat4::from_scale(DVec3::splat(scale)));
+    assert_eq!(box_mesh.volume_scale, scale);
+    let meshes = vec![box_mesh, rect(-1.0, (-2.0, 2.0), (-2.0, 2.0), 1)];
+    let scene = scene(meshes, vec![slab, emitter("behind", behind)]);
+    let reference = gonio::reference::render(&scene);
+    let frame = gpu(&scene);
+    let (i, j) = (SIZE / 2, SIZE / 2);
+    let a = colour.map(|c| c.powf(scale * d / distance));
+    let want = pixel(&reference, i, j) * a.map(|a| 1.0 - f * f * a * a);
+    assert_close(
+        "slab 0.3 scaled by 2",
+        pixel(&frame, i, j),
+        want,
+        HALF_ROUNDING + F32_SLACK,
+    );
+}
+
 /// Glass behind glass: two thin panes, one behind the other, over the
 /// emitters. The reference passes `(1 − F)²` of the light. With one
 /// transmission layer the front pane reads the opaque scene's image, in

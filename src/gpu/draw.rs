@@ -398,7 +398,7 @@ impl SceneDraw {
     ) {
         let offset = bind_groups::material_offset(batch.material, self.material_stride);
         pass.set_bind_group(0, &self.bind_group, &[offset]);
-        self.draw_range(pass, range, 0..1);
+        self.draw_range(pass, range, batch.instance..batch.instance + 1);
     }
 
     /// Binds group 0 at material `material`'s slot (for a pass that reads

@@ -138,6 +138,11 @@ pub struct Batch {
     /// `Scene::meshes`) this batch draws, so that the renderer can draw
     /// such batches back to front per object; `None` for the others.
     pub object: Option<u32>,
+    /// The draw's first instance: per-draw data with no buffer. An
+    /// object's batch carries the bits of its mesh's `volume_scale` as
+    /// f32 (`Mesh::volume_scale`; shaders/transmission.wgsl reads it as
+    /// `bitcast<f32>(instance_index)`), 0 ("none", read as 1) otherwise.
+    pub instance: u32,
 }
 
 /// Whether `mesh` is drawn as an object of its own: alpha BLEND, or
@@ -168,11 +173,16 @@ fn meshes_by_material(scene: &Scene) -> Vec<(usize, bool)> {
 fn extend_batches(
     batches: &mut Vec<Batch>,
     (index, blend): (usize, bool),
-    material: usize,
+    mesh: &Mesh,
     count: usize,
 ) {
-    let material = material as u32;
+    let material = mesh.material as u32;
     let object = blend.then_some(index as u32);
+    let instance = if blend {
+        (mesh.volume_scale as f32).to_bits()
+    } else {
+        0
+    };
     let start = batches.last().map_or(0, |b| b.range.end);
     let end = start + count as u32;
     match batches.last_mut() {
@@ -183,6 +193,7 @@ fn extend_batches(
             material,
             range: start..end,
             object,
+            instance,
         }),
     }
 }
@@ -321,12 +332,7 @@ impl StreamPlan {
         let mut objects = Vec::new();
         for &(i, blend) in &order {
             let mesh = &scene.meshes[i];
-            extend_batches(
-                &mut batches,
-                (i, blend),
-                mesh.material,
-                3 * mesh.indices.len(),
-            );
+            extend_batches(&mut batches, (i, blend), mesh, 3 * mesh.indices.len());
             let end = batches.last().map_or(0, |b| b.range.end);
             // Only the vertices the triangles use (a glTF mesh may carry
             // others).

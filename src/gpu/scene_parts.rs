@@ -196,6 +196,7 @@ mod tests {
             material: 0,
             range,
             object: None,
+            instance: 0,
         }
     }
 

@@ -33,6 +33,15 @@ pub struct Mesh {
     /// empty: white. Their RGB multiplies the material's colours
     /// (`Material::vertex_coloured`).
     pub colors: Vec<DVec4>,
+    /// How much the glTF node's transform scales lengths, `∛|det M|` of
+    /// its 3 × 3 part (exactly `s` for a uniform scale `s`; 1 outside
+    /// glTF): `KHR_materials_volume` gives `thicknessFactor` in mesh space
+    /// ("any transformations applied to the mesh's node will also be
+    /// applied to the thickness"), and the positions here are already in
+    /// world space. The GPU's screen-space transmission multiplies the
+    /// thickness by it; the reference needs none (it follows the true path
+    /// through the scaled mesh).
+    pub volume_scale: f64,
 }
 
 impl Mesh {
@@ -55,6 +64,7 @@ impl Mesh {
             material,
             tex_coords: Vec::new(),
             colors: Vec::new(),
+            volume_scale: 1.0,
         }
     }
 
@@ -122,7 +132,8 @@ impl Mesh {
 
     /// Applies `world_from_object` to positions and its inverse transpose to
     /// normals (which stay unit length; a mirroring transform also flips the
-    /// winding so front faces stay counter-clockwise).
+    /// winding so front faces stay counter-clockwise), and multiplies
+    /// [`Mesh::volume_scale`] by the transform's length scale.
     pub fn transform(&mut self, world_from_object: DMat4) {
         let normal_matrix = world_from_object.inverse().transpose();
         for p in &mut self.positions {
@@ -134,6 +145,13 @@ impl Mesh {
         // Tangents lie in the surface: they transform like positions' differences.
         for t in &mut self.tangents {
             *t = world_from_object.transform_vector3(*t).normalize_or_zero();
+        }
+        // Lengths scale by ∛|det| (exactly for a uniform scale; a
+        // non-uniform one scales each direction differently, and this is
+        // their geometric mean).
+        let det = glam::DMat3::from_mat4(world_from_object).determinant();
+        if det.is_finite() {
+            self.volume_scale *= det.abs().cbrt();
         }
         if world_from_object.determinant() < 0.0 {
             for t in &mut self.indices {
@@ -230,6 +248,29 @@ mod tests {
         // Areas 50 and 0.5: the normal is (0.5, 50, 0)/|...|.
         let expected = DVec3::new(0.5, 50.0, 0.0).normalize();
         assert!((n - expected).length() < 1e-12, "{n} vs {expected}");
+    }
+
+    /// The length scale composes over nested transforms: a uniform 2
+    /// then a mirror with scales (−1, 4, 0.5) (det −2, ∛2 in length)
+    /// give 2 · ∛2; rotations and translations leave it alone.
+    #[test]
+    fn volume_scale_is_the_transforms_length_scale() {
+        let mut m = Mesh::with_generated_normals(
+            "t",
+            vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            vec![[0, 1, 2]],
+            0,
+        );
+        assert_eq!(m.volume_scale, 1.0);
+        m.transform(DMat4::from_rotation_translation(
+            glam::DQuat::from_rotation_y(0.7),
+            DVec3::new(3.0, -1.0, 2.0),
+        ));
+        assert!((m.volume_scale - 1.0).abs() < 1e-15);
+        m.transform(DMat4::from_scale(DVec3::splat(2.0)));
+        m.transform(DMat4::from_scale(DVec3::new(-1.0, 4.0, 0.5)));
+        let want = 2.0 * 2f64.cbrt();
+        assert!((m.volume_scale - want).abs() < 1e-14, "{}", m.volume_scale);
     }
 
     #[test]

@@ -75,6 +75,7 @@ pub fn uv_sphere(center: DVec3, radius: f64, segments: u32, material: usize) -> 
         material,
         tex_coords: vec![uvs],
         colors: Vec::new(),
+        volume_scale: 1.0,
     }
 }
 
@@ -116,6 +117,7 @@ pub fn plane(center: DVec3, size: f64, divisions: u32, material: usize) -> Mesh 
         material,
         tex_coords: vec![uvs],
         colors: Vec::new(),
+        volume_scale: 1.0,
     }
 }
 

@@ -308,6 +308,7 @@ impl<'a> Importer<'a> {
                     material,
                     tex_coords: Vec::new(),
                     colors: Vec::new(),
+                    volume_scale: 1.0,
                 },
                 None => Mesh::with_generated_normals(name, raw.positions, raw.indices, material),
             };
