@@ -286,7 +286,7 @@ fn environment_prefiltered_gltf(m: Material, wo: vec3<f32>, frame: SurfaceFrame)
     dielectric = select(dielectric, dielectric * (1.0 - iota) + film_d * (iota * lobe_albedo), film);
     metal = select(metal, metal * (1.0 - iota) + film_m * (iota * lobe_albedo), film);
     #endif
-    #if layer_transmission
+    #if layer_transmission || layer_diffuse_transmission
     // Transmission takes its share of the diffuse part, as in the BRDF.
     let diffuse_weight = max(1.0 - max(dielectric.x, max(dielectric.y, dielectric.z)), 0.0) * reflected_diffuse_weight(m.layers);
     #else

@@ -96,6 +96,19 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
         let light = lights[l];
         let incidence = light_incidence(light, x);
         let cos_theta_i = dot(n, incidence.wi);
+        #if layer_diffuse_transmission
+        // A light behind a diffusely transmitting wall shines through it
+        // (shaders/brdf/gltf_layers/transmission.wgsl; 0 for the others).
+        if cos_theta_i < 0.0 {
+            #if shadows
+            let map_behind = min(light.shadow_map, SHADOW_MAP_COUNT - 1u);
+            let v_behind = select(1.0, visibility[map_behind], light.shadow_map < SHADOW_MAP_COUNT);
+            #else
+            let v_behind = 1.0;
+            #endif
+            radiance += diffuse_transmitted(m, n, incidence.wi, wo) * incidence.irradiance * (-cos_theta_i * v_behind);
+        }
+        #endif
         if cos_theta_i <= 0.0 {
             continue;
         }
@@ -117,6 +130,12 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
     radiance += environment_sh(m, wo, frame) * occlusion;
     #elif environment
     radiance += environment_diffuse_albedo(m) * FRAC_1_PI * sh_irradiance(n) * occlusion;
+    #endif
+    #if layer_diffuse_transmission
+    #if environment
+    // The environment's light through a diffusely transmitting wall.
+    radiance += diffuse_transmitted_environment(m, n, wo) * occlusion;
+    #endif
     #endif
     #if layer_transmission
     // Light through the surface from the image of what lies behind
@@ -141,7 +160,7 @@ fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f3
 // f64 twin: environment_diffuse_albedo in src/reference/environment/diffuse.rs.
 fn environment_diffuse_albedo(m: Material) -> vec3<f32> {
     let model = brdf_model(m);
-    #if layer_transmission
+    #if layer_transmission || layer_diffuse_transmission
     let pbr = (1.0 - m.metallic) * reflected_diffuse_weight(m.layers) * m.base_color;
     #else
     let pbr = (1.0 - m.metallic) * m.base_color;

@@ -13,8 +13,9 @@
 // weighs the light once more (feature transmission_exit). Not drawn: what
 // the image does not hold (what lies off screen, behind another
 // transmissive surface of the same image, or behind the surface itself),
-// the ray past the exit point, total internal reflection, internal
-// reflections and dispersion (docs/transmission.md, "The GPU renderer").
+// the ray past the exit point, total internal reflection and internal
+// reflections (docs/transmission.md, "The GPU renderer"). Dispersion reads
+// the image once per channel (feature transmission_dispersion).
 // Compiled only where a drawn material transmits and the scene's
 // `shading.transmission` is "screen" (feature layer_transmission).
 
@@ -76,21 +77,51 @@ fn thin_wall_weight(m: Material, cos_o: f32) -> f32 {
     return s * m.layers.transmission;
 }
 
-// The light through the surface at x seen from wo: the image read where
-// the refracted ray leaves (projected by the camera), blurred by the
-// roughness, attenuated and weighted. 0 where the surface faces away or
-// does not transmit.
-fn transmitted_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, wo: vec3<f32>) -> vec3<f32> {
-    let n = frame.n;
-    let cos_o = dot(n, wo);
-    let ray = volume_transmission_ray(n, wo, m.layers.thickness, m.layers.ior);
+// What the image holds where the view ray, refracted into the surface at
+// x with index `ior`, leaves after the thickness (projected by the
+// camera), blurred by the roughness and attenuated over the path inside;
+// 0 behind the camera.
+fn seen_through(m: Material, x: vec3<f32>, n: vec3<f32>, wo: vec3<f32>, ior: f32) -> vec3<f32> {
+    let ray = volume_transmission_ray(n, wo, m.layers.thickness, ior);
     let clip = globals.clip_from_world * vec4<f32>(x + ray, 1.0);
     let ndc = clip.xy / clip.w;
     let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
     let width = f32(textureDimensions(transmission_image).x);
-    let lod = transmission_lod(width, m.roughness, m.layers.ior);
+    let lod = transmission_lod(width, m.roughness, ior);
     let behind = textureSampleLevel(transmission_image, transmission_sampler, uv, lod).rgb;
     let through = behind * volume_attenuation(m.layers.attenuation_color, length(ray), m.layers.attenuation_rate);
+    return select(through, vec3<f32>(0.0), clip.w <= 0.0);
+}
+
+#if transmission_dispersion
+// KHR_materials_dispersion as the sample renderer draws it (ibl.glsl,
+// getIBLVolumeRefraction): one read per channel, red refracted with
+// ior − s, green with ior, blue with ior + s, s = (ior − 1) · 0.025 ·
+// dispersion, half the spread n_F − n_C of the specification's Cauchy
+// form (dispersion = 20 / V_d; the reference evaluates that form per
+// wavelength, dispersion_ior in src/material/brdf/gltf_layers/transmission.rs).
+// A thin wall does not refract: the three reads coincide.
+fn seen_through_dispersed(m: Material, x: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
+    let ior = m.layers.ior;
+    let s = (ior - 1.0) * 0.025 * m.layers.dispersion;
+    let red = seen_through(m, x, n, wo, ior - s).r;
+    let green = seen_through(m, x, n, wo, ior).g;
+    let blue = seen_through(m, x, n, wo, ior + s).b;
+    return vec3<f32>(red, green, blue);
+}
+#endif
+
+// The light through the surface at x seen from wo: what the image holds
+// behind it (seen_through), weighted. 0 where the surface faces away or
+// does not transmit.
+fn transmitted_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, wo: vec3<f32>) -> vec3<f32> {
+    let n = frame.n;
+    let cos_o = dot(n, wo);
+    #if transmission_dispersion
+    let through = select(seen_through(m, x, n, wo, m.layers.ior), seen_through_dispersed(m, x, n, wo), m.layers.dispersion > 0.0);
+    #else
+    let through = seen_through(m, x, n, wo, m.layers.ior);
+    #endif
     var weight = thin_wall_weight(m, cos_o);
     #if transmission_exit
     // A volume's light leaves through a second interface, whose
@@ -100,6 +131,6 @@ fn transmitted_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, wo: vec3
     // exactly, and its internal reflections, which this leaves out).
     weight *= select(1.0, interface_transmittance(m.layers, cos_o), m.layers.thickness > 0.0);
     #endif
-    weight = select(weight, 0.0, cos_o <= 0.0 || clip.w <= 0.0);
+    weight = select(weight, 0.0, cos_o <= 0.0);
     return through * m.base_color * weight;
 }

@@ -359,8 +359,8 @@ pub fn render(args: &RenderArgs) -> Result<()> {
 /// `shading.transmission = "off"` every key of light through surfaces
 /// (`transmission`, `thickness`, `attenuation_*`, `dispersion`,
 /// `diffuse_transmission*`); in the screen-space mode what it leaves
-/// out, `dispersion`, `diffuse_transmission` and the textures of
-/// `transmission` and `thickness` (its limits beyond those are the
+/// out, the textures of `diffuse_transmission` and
+/// `diffuse_transmission_color` (its limits beyond those are the
 /// method's, named once in docs/transmission.md).
 pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
     let off = scene.transmission.mode == crate::scene::TransmissionMode::Off;
@@ -371,7 +371,15 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
         let ignored = if off {
             layers.sets_transmission_keys()
         } else {
-            layers.dispersion > 0.0 || layers.diffuse_transmission > 0.0
+            layers.diffuse_transmission > 0.0
+                && m.textures.iter().any(|t| {
+                    matches!(
+                        t.target,
+                        crate::material::texture::TextureTarget::Param(
+                            "diffuse_transmission" | "diffuse_transmission_color"
+                        )
+                    )
+                })
         };
         if m.model == crate::material::ReflectanceModel::GltfPbr
             && ignored
@@ -396,7 +404,7 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
         )
     } else {
         format!(
-            "warning: material{s} {names} use{verb_s} dispersion or diffuse transmission, which the GPU renderer does not draw (its transmission is screen space, without dispersion or diffuse transmission): {they} drawn without; render with --reference to see {them}"
+            "warning: material{s} {names} use{verb_s} textures on diffuse transmission (diffuse_transmission, diffuse_transmission_color), which the GPU renderer does not read: {they} drawn with the factors alone; render with --reference to see {them} as textured"
         )
     })
 }

@@ -419,3 +419,55 @@ fn glass_behind_glass_needs_a_second_layer() {
         }
     }
 }
+
+/// Dispersion (`KHR_materials_dispersion`) as the sample renderer draws
+/// it: one read of the image per channel, red refracted with `ior − s`
+/// and blue with `ior + s`. A slab 2 thick turned 40° about +Y (its
+/// normal towards +X; 6 wide, so its front face fills the view) in front
+/// of a white emitter left of x = −0.6 and a black one right of it: the view ray refracted into the slab runs
+/// 1.90 back and 0.61 towards −X at `ior` = 1.7, so the pixels near the
+/// centre read the emitters' edge; a larger index bends it further
+/// towards −N. Along the centre row, the column where each channel first
+/// falls below half the white's is the same for all three without
+/// dispersion; with `dispersion = 5` (V_d = 4, indices 1.6125, 1.7,
+/// 1.7875) the reads part by 0.040 towards −X per step of index (red's
+/// edge measured 3 columns left of blue's): red falls first, blue last.
+/// Ignoring the dispersion (one read) fails the second case.
+#[test]
+fn dispersion_refracts_each_channel_by_its_own_index() {
+    let edges = |dispersion: f64| -> [u32; 3] {
+        let mut slab = glass("slab", 2.0);
+        slab.layers.ior = 1.7;
+        slab.layers.dispersion = dispersion;
+        let mut mesh = cuboid(DVec3::new(-3.0, -3.0, -1.0), DVec3::new(3.0, 3.0, 1.0), 0);
+        mesh.transform(glam::DMat4::from_rotation_y(40f64.to_radians()));
+        let meshes = vec![
+            mesh,
+            rect(-4.0, (-5.0, -0.6), (-5.0, 5.0), 1),
+            rect(-4.0, (-0.6, 5.0), (-5.0, 5.0), 2),
+        ];
+        let materials = vec![
+            slab,
+            emitter("white", Rgb::ONE),
+            emitter("black", Rgb::ZERO),
+        ];
+        let frame = gpu(&scene(meshes, materials));
+        let row = SIZE / 2;
+        let peak = pixel(&frame, row, 20).to_array();
+        [0, 1, 2].map(|c| {
+            (20..SIZE - 8)
+                .find(|&j| pixel(&frame, row, j).to_array()[c] < 0.5 * peak[c])
+                .expect("the edge is in view")
+        })
+    };
+    let plain = edges(0.0);
+    assert!(
+        plain[0] == plain[1] && plain[1] == plain[2],
+        "no dispersion: one edge, {plain:?}"
+    );
+    let dispersed = edges(5.0);
+    assert!(
+        dispersed[0] < dispersed[2] && dispersed[0] <= dispersed[1] && dispersed[1] <= dispersed[2],
+        "dispersion: red's edge left of blue's, {dispersed:?} (without: {plain:?})"
+    );
+}

@@ -79,7 +79,7 @@ pub struct GpuMaterial {
     pub layers: GpuGltfLayers,
 }
 
-/// `GltfLayers` of shaders/brdf/gltf_layers/mod.wgsl (112 bytes, same
+/// `GltfLayers` of shaders/brdf/gltf_layers/mod.wgsl (128 bytes, same
 /// order): the layer parameters of `material::layers::GltfLayers` in
 /// `f32`, the anisotropy rotation as its direction `(cos ρ, sin ρ)`
 /// computed in `f64`.
@@ -109,8 +109,12 @@ pub struct GpuGltfLayers {
     /// `1 / attenuation_distance` (0 for the default `inf`: no
     /// attenuation), so the shader never divides by infinity.
     pub attenuation_rate: f32,
+    /// `KHR_materials_dispersion`: `20 / V_d` (0: none).
+    pub dispersion: f32,
+    /// `KHR_materials_diffuse_transmission`'s share `D` and colour.
+    pub diffuse_transmission: f32,
+    pub diffuse_transmission_color: [f32; 3],
     pub _pad0: f32,
-    pub _pad1: f32,
 }
 
 impl From<&crate::material::layers::GltfLayers> for GpuGltfLayers {
@@ -133,8 +137,10 @@ impl From<&crate::material::layers::GltfLayers> for GpuGltfLayers {
             transmission: l.transmission as f32,
             thickness: l.thickness as f32,
             attenuation_rate: (1.0 / l.attenuation_distance) as f32,
+            dispersion: l.dispersion as f32,
+            diffuse_transmission: l.diffuse_transmission as f32,
+            diffuse_transmission_color: f32x3(l.diffuse_transmission_color),
             _pad0: 0.0,
-            _pad1: 0.0,
         }
     }
 }
@@ -476,8 +482,10 @@ mod tests {
                 transmission,
                 thickness,
                 attenuation_rate,
-                _pad0,
-                _pad1
+                dispersion,
+                diffuse_transmission,
+                diffuse_transmission_color,
+                _pad0
             }),
         );
         assert_mirrors(

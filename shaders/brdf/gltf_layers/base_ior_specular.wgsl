@@ -20,15 +20,17 @@ fn dielectric_f0(ior: f32, specular_color: vec3<f32>) -> vec3<f32> {
     return min(vec3<f32>(f0_from_ior(ior)) * specular_color, vec3<f32>(1.0));
 }
 
-#if layer_transmission
-// The share of the base's diffuse part still reflected, 1 − T
-// (KHR_materials_transmission: the transmission replaces that share of the
-// diffuse lobe). f64 twin: reflected_diffuse_weight in
-// src/material/brdf/gltf_layers/base_ior_specular.rs, which also takes
-// diffuse transmission's share (the GPU does not draw diffuse
-// transmission: its share stays reflected).
+#if layer_transmission || layer_diffuse_transmission
+// The share of the base's diffuse part still reflected, (1 − T)(1 − D)
+// (KHR_materials_transmission and _diffuse_transmission: each replaces
+// its share of the diffuse lobe). f64 twin: reflected_diffuse_weight in
+// src/material/brdf/gltf_layers/base_ior_specular.rs.
 fn reflected_diffuse_weight(layers: GltfLayers) -> f32 {
+    #if layer_diffuse_transmission
+    return (1.0 - layers.transmission) * (1.0 - layers.diffuse_transmission);
+    #else
     return 1.0 - layers.transmission;
+    #endif
 }
 
 // The base's Fresnel term F_d = s_w (f0 + (1 − f0) w) at the half vector
@@ -128,7 +130,7 @@ fn gltf_base(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, laye
     f_dielectric = select(f_dielectric, film_dielectric, film);
     f_metal = select(f_metal, film_metal, film);
     #endif
-    #if layer_transmission
+    #if layer_transmission || layer_diffuse_transmission
     // Transmission takes its share of the diffuse part (the light it lets
     // through is added by the transmission pass, shaders/transmission.wgsl).
     let diffuse_weight = reflected_diffuse_weight(layers);

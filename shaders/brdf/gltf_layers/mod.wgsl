@@ -24,6 +24,8 @@ struct GltfLayers {
     transmission: f32,            // T: KHR_materials_transmission (read with feature layer_transmission)
     thickness: f32,               // the volume's thickness (0: thin-walled)
     attenuation_rate: f32,        // 1 / attenuation_distance (0: no attenuation)
+    dispersion: f32,              // 20 / V_d: KHR_materials_dispersion (read with feature transmission_dispersion)
+    diffuse_transmission: f32,    // D: KHR_materials_diffuse_transmission (read with feature layer_diffuse_transmission)
+    diffuse_transmission_color: vec3<f32>, // c_dt
     _pad0: f32,
-    _pad1: f32,
 }

@@ -24,7 +24,7 @@ fn has_sheen(layers: GltfLayers) -> bool {
 // f_r for N·L > 0, N·V > 0 with the sheen albedos given.
 fn gltf_layered_with_albedos(base_color: vec3<f32>, metallic: f32, roughness: f32, ms: f32, layers: GltfLayers, albedo_o: f32, albedo_i: f32, frame: SurfaceFrame, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let n = frame.n;
-    #if layer_ior_specular || layer_iridescence || layer_anisotropy || layer_transmission
+    #if layer_ior_specular || layer_iridescence || layer_anisotropy || layer_transmission || layer_diffuse_transmission
     var f = gltf_base(base_color, metallic, roughness, ms, layers, n, frame.t, frame.b, wi, wo);
     #else
     var f = gltf_pbr(base_color, metallic, roughness, ms, n, wi, wo);

@@ -93,6 +93,7 @@ fn layer_files(models: &BTreeSet<ReflectanceModel>, features: &[Feature]) -> Vec
         Feature::LayerIridescence,
         Feature::LayerAnisotropy,
         Feature::LayerTransmission,
+        Feature::LayerDiffuseTransmission,
     ];
     let layers = [
         (
@@ -111,6 +112,10 @@ fn layer_files(models: &BTreeSet<ReflectanceModel>, features: &[Feature]) -> Vec
         (
             on(Feature::LayerClearcoat),
             "brdf/gltf_layers/clearcoat.wgsl",
+        ),
+        (
+            on(Feature::LayerDiffuseTransmission),
+            "brdf/gltf_layers/transmission.wgsl",
         ),
         (true, "brdf/gltf_layers/stack.wgsl"),
     ];

@@ -200,6 +200,17 @@ features! {
         /// second interface (`shading.transmission_exit`, with
         /// `layer_transmission`).
         TransmissionExit = "transmission_exit",
+        /// Some transmissive volume disperses (`dispersion > 0`, with
+        /// `layer_transmission`): the image is read three times, one
+        /// index of refraction per channel.
+        TransmissionDispersion = "transmission_dispersion",
+        /// Some gltf-pbr material transmits diffusely
+        /// (`diffuse_transmission > 0`) and the scene draws light through
+        /// surfaces (`shading.transmission = "screen"`): the diffuse
+        /// part's `1 − D`, Lambert on the far side for the lights behind
+        /// and the environment's irradiance there
+        /// (shaders/brdf/gltf_layers/transmission.wgsl).
+        LayerDiffuseTransmission = "layer_diffuse_transmission",
     }
 }
 

@@ -7,7 +7,7 @@
 use super::features::Feature;
 use crate::environment::map::Specular;
 use crate::gpu::shadows::{Projection, ShadowFeatures};
-use crate::material::{AlphaMode, Material, Sides, SmithBeckmann};
+use crate::material::{AlphaMode, Material, ReflectanceModel, Sides, SmithBeckmann};
 use crate::scene::{Light, LightKind, Scene, TransmissionMode};
 use std::collections::BTreeSet;
 
@@ -269,6 +269,10 @@ key_group! {
         /// ... and a volume's light crosses its second interface
         /// (`shading.transmission_exit`).
         transmission_exit => TransmissionExit,
+        /// ... and a volume among them disperses.
+        transmission_dispersion => TransmissionDispersion,
+        /// ... transmitting diffusely, with light through surfaces drawn.
+        layer_diffuse_transmission => LayerDiffuseTransmission,
     }
 }
 
@@ -278,8 +282,10 @@ impl MaterialsKey {
     pub fn for_scene(scene: &Scene) -> Self {
         let drawn = || scene.meshes.iter().map(|m| &scene.materials[m.material]);
         let any = |test: fn(&Material) -> bool| drawn().any(test);
-        let transmission = scene.transmission.mode == TransmissionMode::Screen
-            && any(Material::transmits_specularly);
+        let screen = scene.transmission.mode == TransmissionMode::Screen;
+        let transmission = screen && any(Material::transmits_specularly);
+        let diffuse_transmission = screen
+            && any(|m| m.model == ReflectanceModel::GltfPbr && m.layers.diffuse_transmission > 0.0);
         MaterialsKey {
             texture_slots: crate::gpu::textures::slot_count(scene),
             texture_bindings: crate::gpu::textures::binding_count(scene),
@@ -294,7 +300,9 @@ impl MaterialsKey {
             smith_beckmann_rational: scene.smith_beckmann == SmithBeckmann::Rational,
             emission: any(Material::emits),
             occlusion: any(Material::has_occlusion),
-            gltf_layers: any(|m| !m.gltf_layers_used().is_empty()) || transmission,
+            gltf_layers: any(|m| !m.gltf_layers_used().is_empty())
+                || transmission
+                || diffuse_transmission,
             layer_ior_specular: any(|m| m.gltf_layers_used().ior_specular),
             layer_clearcoat: any(|m| m.gltf_layers_used().clearcoat),
             layer_sheen: any(|m| m.gltf_layers_used().sheen),
@@ -302,6 +310,9 @@ impl MaterialsKey {
             layer_anisotropy: any(|m| m.gltf_layers_used().anisotropy),
             layer_transmission: transmission,
             transmission_exit: transmission && scene.transmission.exit,
+            transmission_dispersion: transmission
+                && any(|m| m.transmits_specularly() && m.layers.dispersion > 0.0),
+            layer_diffuse_transmission: diffuse_transmission,
         }
     }
 

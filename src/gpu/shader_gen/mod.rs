@@ -370,6 +370,77 @@ mod tests {
         }
     }
 
+    /// Diffuse transmission's code (its file, the far-side light and
+    /// environment terms) and dispersion's
+    /// three reads only where a drawn gltf-pbr material uses them and
+    /// `shading.transmission` draws light through surfaces; every case
+    /// validates, the Gouraud one (shaded in the vertex stage) too.
+    #[test]
+    fn diffuse_transmission_and_dispersion_only_where_used() {
+        use crate::scene::scene_file::{self, SceneSource};
+        let key_for = |sets: &[&str]| {
+            let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
+            all.extend(sets.iter().map(|s| s.to_string()));
+            let scene = scene_file::load(&SceneSource::BuiltIn, &all).unwrap();
+            ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
+        };
+        // (`reflected_diffuse_weight` serves the specular transmission
+        // too: the test above.)
+        let diffuse_code = [
+            "fn diffuse_transmitted",
+            "diffuse_transmitted(m, n, incidence.wi, wo)",
+        ];
+        let dispersion_code = "fn seen_through_dispersed";
+        let cases: [(&[&str], bool, bool); 6] = [
+            (&[], false, false),
+            (&["materials.ball.diffuse_transmission=0.5"], true, false),
+            (
+                &[
+                    "materials.ball.diffuse_transmission=0.5",
+                    "shading.transmission=off",
+                ],
+                false,
+                false,
+            ),
+            (
+                &[
+                    "materials.ball.diffuse_transmission=0.5",
+                    "shading.mode=gouraud",
+                    "environment.map=sky",
+                ],
+                true,
+                false,
+            ),
+            (&["materials.ball.dispersion=1"], false, false),
+            (
+                &[
+                    "materials.ball.dispersion=1",
+                    "materials.ball.transmission=1",
+                    "materials.ball.thickness=1",
+                ],
+                false,
+                true,
+            ),
+        ];
+        for (sets, diffuse, dispersion) in cases {
+            let key = key_for(sets);
+            assert_eq!(
+                key.materials.layer_diffuse_transmission, diffuse,
+                "{sets:?}"
+            );
+            assert_eq!(
+                key.materials.transmission_dispersion, dispersion,
+                "{sets:?}"
+            );
+            let wgsl = compose(&key);
+            for c in diffuse_code {
+                assert_eq!(wgsl.contains(c), diffuse, "{sets:?}: `{c}`");
+            }
+            assert_eq!(wgsl.contains(dispersion_code), dispersion, "{sets:?}");
+            validate(&wgsl).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
+        }
+    }
+
     /// The unlit model's code (its file, its arm, its radiance in the
     /// reflection equation) only where a drawn material is unlit.
     #[test]
