@@ -418,7 +418,10 @@ fn print_values(parts: &[(String, MaterialPart)], a: &Angles) {
 
 /// The albedo of each material at θ_i, of the terms `--layer` chooses;
 /// with `each`, of the whole and of each term, then the terms' sum (equal
-/// to the whole's within the error bounds: the terms are additive).
+/// to the whole's within the error bounds: the terms are additive). For
+/// a material that lets light through, also the transmitted albedo
+/// `τ = ∫ f_t |cos θ_o| dω_o` over the far side and `ρ + τ`, at most 1
+/// (`Side::Transmitted`).
 fn print_albedo(materials: &[Labelled], choice: LayerChoice, a: &Angles) {
     let wi = direction(a.theta_i.to_radians(), a.phi_i.to_radians());
     for m in materials {
@@ -433,6 +436,19 @@ fn print_albedo(materials: &[Labelled], choice: LayerChoice, a: &Angles) {
                 a.theta_i,
                 with_bound(e.value, e.error_bound)
             );
+            if part.transmits() {
+                let t = super::albedo::albedo_towards(part.transmitted(), wi, &frame());
+                let label = term_label(&m.label, term);
+                println!(
+                    "{label}: transmitted τ(θ_i = {}°) = {}",
+                    a.theta_i,
+                    with_bound(t.value, t.error_bound)
+                );
+                println!(
+                    "{label}: reflected + transmitted ρ + τ = {}",
+                    with_bound(e.value + t.value, e.error_bound + t.error_bound)
+                );
+            }
             if term != LayerTerm::All {
                 let (v, b) = sum.unwrap_or_default();
                 sum = Some((v + e.value, b + e.error_bound));

@@ -31,7 +31,7 @@ pub mod table;
 
 pub use albedo::{AlbedoEstimate, directional_albedo};
 pub use geometry::{direction, frame};
-pub use part::{LayerChoice, MaterialPart};
+pub use part::{LayerChoice, MaterialPart, Side};
 
 use crate::material::Material;
 use crate::scene::Rgb;

@@ -35,8 +35,10 @@ impl Plot for SlicePlot {
         root: &DrawingArea<DB, Shift>,
     ) -> std::result::Result<(), String> {
         root.fill(&WHITE).map_err(err)?;
+        let below = self.series.iter().any(|(_, s)| !s.transmitted.is_empty());
         let title = format!(
-            "BRDF slice in the plane of incidence, θ_i = {}°, φ_i = {}°",
+            "{} slice in the plane of incidence, θ_i = {}°, φ_i = {}°",
+            if below { "BSDF" } else { "BRDF" },
             number(self.theta_i.to_degrees()),
             number(self.phi_i.to_degrees())
         );
@@ -47,6 +49,9 @@ impl Plot for SlicePlot {
             TextStyle::from(("sans-serif", 15).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
         let (fw, _) = footer.dim_in_pixel();
         let mut line1 = format!("{}; {}", self.quantity.describe(), self.channel.describe());
+        if below {
+            line1 += "; below the surface: transmitted (f_t)";
+        }
         if let Some(max) = self.max {
             line1 += &format!("; clipped at {}", number(max));
         }
@@ -66,14 +71,17 @@ impl Plot for SlicePlot {
         let largest = self
             .series
             .iter()
-            .flat_map(|(_, s)| s.points.iter().map(|p| p.1))
+            .flat_map(|(_, s)| s.points.iter().chain(&s.transmitted).map(|p| p.1))
             .filter(|v| v.is_finite())
             .fold(0.0, f64::max);
         let r = self.max.unwrap_or(largest);
         let r = if r > 0.0 && r.is_finite() { r } else { 1.0 };
+        // A material that lets light through: the whole circle, the
+        // transmitted lobe below the surface.
+        let (half_turn, quarter): (i32, i32) = if below { (180, 360) } else { (90, 180) };
         // Equal scales on both axes: the data box has the area's aspect.
         let (w, h) = area.dim_in_pixel();
-        let (y0, mut y1) = (-0.09 * r, 1.14 * r);
+        let (y0, mut y1) = (if below { -1.14 * r } else { -0.09 * r }, 1.14 * r);
         let mut xh = 0.5 * (y1 - y0) * w as f64 / h as f64;
         if xh < 1.2 * r {
             xh = 1.2 * r;
@@ -95,7 +103,8 @@ impl Plot for SlicePlot {
         let mut k = 1.0;
         while k * step <= r * 1.0001 {
             let radius = k * step;
-            let arc = (0..=180).map(|d| polar(radius, (d as f64 - 90.0).to_radians()));
+            let arc =
+                (0..=quarter).map(|d| polar(radius, (d as f64 - half_turn as f64).to_radians()));
             chart.draw_series(LineSeries::new(arc, grey)).map_err(err)?;
             let text = label.pos(Pos::new(HPos::Center, VPos::Top));
             chart
@@ -107,7 +116,7 @@ impl Plot for SlicePlot {
                 .map_err(err)?;
             k += 1.0;
         }
-        for d in (-90i32..=90).step_by(15) {
+        for d in (-half_turn..=half_turn).step_by(15) {
             let t = (d as f64).to_radians();
             chart
                 .draw_series(LineSeries::new([(0.0, 0.0), polar(r, t)], grey.mix(0.6)))
@@ -115,7 +124,7 @@ impl Plot for SlicePlot {
             let marked = [0.0, self.theta_i, -self.theta_i]
                 .iter()
                 .any(|m| (t - m).abs() < 0.09);
-            if d % 30 == 0 && d.abs() != 90 && !marked {
+            if d % 30 == 0 && d.abs() != 90 && d != -180 && !marked {
                 let text = label.pos(Pos::new(HPos::Center, VPos::Center));
                 chart
                     .draw_series(std::iter::once(Text::new(
@@ -133,11 +142,19 @@ impl Plot for SlicePlot {
                 BLACK.stroke_width(2),
             ))
             .map_err(err)?;
-        let marks = [
+        let mut marks = vec![
             (0.0, "n", BLACK),
             (self.theta_i, "ω_i (light)", RGBColor(90, 90, 90)),
             (-self.theta_i, "mirror", RGBColor(90, 90, 90)),
         ];
+        if below {
+            // The light's straight line through the surface, −ω_i.
+            marks.push((
+                self.theta_i - std::f64::consts::PI,
+                "−ω_i (straight through)",
+                RGBColor(90, 90, 90),
+            ));
+        }
         for (t, name, c) in marks {
             let end = polar(1.1 * r, t);
             if name == "ω_i (light)" {
@@ -161,7 +178,12 @@ impl Plot for SlicePlot {
             } else {
                 HPos::Center
             };
-            let text = label.color(&c).pos(Pos::new(anchor, VPos::Bottom));
+            let vertical = if polar(1.0, t).1 < 0.0 {
+                VPos::Top
+            } else {
+                VPos::Bottom
+            };
+            let text = label.color(&c).pos(Pos::new(anchor, vertical));
             chart
                 .draw_series(std::iter::once(Text::new(name, polar(1.12 * r, t), text)))
                 .map_err(err)?;
@@ -181,6 +203,18 @@ impl Plot for SlicePlot {
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
                 });
+            if !slice.transmitted.is_empty() {
+                let curve = thin(
+                    slice
+                        .transmitted
+                        .iter()
+                        .map(|&(t, v)| polar(v.clamp(0.0, r), t)),
+                    pixel,
+                );
+                chart
+                    .draw_series(LineSeries::new(curve, c.stroke_width(2)))
+                    .map_err(err)?;
+            }
             if let Some(rho) = slice.dirac {
                 let end = polar(r, -self.theta_i);
                 chart

@@ -66,11 +66,17 @@ impl FromStr for Quantity {
 
 /// One model's slice: `(θ_o signed, radians; value)` in ascending θ_o, and
 /// the reflectance of a Dirac lobe in the mirror direction, if the model
-/// has one (the ideal mirror; its `f_r` there is infinite).
+/// has one (the ideal mirror; its `f_r` there is infinite). For a
+/// material that lets light through, `transmitted` is the BTDF's slice
+/// below the surface, `|θ_o| > 90°` (`±180°` straight down, the sign the
+/// side as above: the light's straight line `−ω_i` at `θ_i − 180°`), in
+/// order along the curve from the mirror side's horizon (−90°) through
+/// straight down to the light side's (+90°); empty otherwise.
 #[derive(Clone, Debug)]
 pub struct Slice {
     pub points: Vec<(f64, f64)>,
     pub dirac: Option<f64>,
+    pub transmitted: Vec<(f64, f64)>,
 }
 
 /// A point of the polar plot: signed `θ` (radians) at `radius`, with the
@@ -94,12 +100,32 @@ pub fn mirror_marker(theta_i: f64, radius: f64) -> [f64; 2] {
 impl Slice {
     /// The lobe as polar-plot points (non-finite values left out).
     pub fn polar_points(&self) -> Vec<[f64; 2]> {
+        finite_polar(&self.points)
+    }
+
+    /// The transmitted lobe as polar-plot points (below the surface).
+    pub fn transmitted_polar_points(&self) -> Vec<[f64; 2]> {
+        finite_polar(&self.transmitted)
+    }
+
+    /// The largest value of either lobe (and the Dirac's reflectance).
+    pub fn peak(&self) -> f64 {
         self.points
             .iter()
-            .filter(|(_, v)| v.is_finite())
-            .map(|&(t, v)| polar(v, t))
-            .collect()
+            .chain(&self.transmitted)
+            .map(|p| p.1)
+            .chain(self.dirac)
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
     }
+}
+
+fn finite_polar(points: &[(f64, f64)]) -> Vec<[f64; 2]> {
+    points
+        .iter()
+        .filter(|(_, v)| v.is_finite())
+        .map(|&(t, v)| polar(v, t))
+        .collect()
 }
 
 /// The slice of `material` for light at `theta_i` (radians) in the plane
@@ -112,23 +138,41 @@ pub fn slice<'a>(
     channel: Channel,
 ) -> Slice {
     let material = material.into();
-    let wi = direction(theta_i, phi_i);
-    let f = frame();
-    let points = sample_angles(theta_i)
-        .into_iter()
-        .map(|t| {
-            let wo = direction(t.abs(), if t < 0.0 { phi_i + PI } else { phi_i });
-            let mut v = channel.of(material.f_r(wi, wo, &f));
-            if quantity == Quantity::ProjectedFr {
-                v *= wo.z.max(0.0);
-            }
-            (t, v)
-        })
-        .collect();
+    let upper = |part: MaterialPart| -> Vec<(f64, f64)> {
+        let wi = direction(theta_i, phi_i);
+        let f = frame();
+        sample_angles(theta_i)
+            .into_iter()
+            .map(|t| {
+                let wo = direction(t.abs(), if t < 0.0 { phi_i + PI } else { phi_i });
+                let mut v = channel.of(part.f_r(wi, wo, &f));
+                if quantity == Quantity::ProjectedFr {
+                    v *= wo.z.max(0.0);
+                }
+                (t, v)
+            })
+            .collect()
+    };
+    let points = upper(material);
+    // The far side is evaluated at the directions mirrored through the
+    // surface (`Side::Transmitted`): the upper sample at signed t is the
+    // direction below at (π − |t|) on the same side.
+    let transmitted = if material.transmits() {
+        upper(material.transmitted())
+            .into_iter()
+            .map(|(t, v)| (if t < 0.0 { -PI - t } else { PI - t }, v))
+            .collect()
+    } else {
+        Vec::new()
+    };
     let dirac = material
         .is_dirac()
         .then(|| channel.of(material.dirac(theta_i.cos())));
-    Slice { points, dirac }
+    Slice {
+        points,
+        dirac,
+        transmitted,
+    }
 }
 
 /// Signed θ_o samples: every 0.25°, plus points that close in geometrically
