@@ -711,8 +711,9 @@ pub static ANISOTROPY_ROTATION: Param = Param {
 // ---------------------------------------------------------------------
 // Light through surfaces (contract: "Layered glTF materials", "Light
 // through surfaces"): KHR_materials_transmission, _volume, _dispersion and
-// _diffuse_transmission. The reference renderer draws them
-// (`reference::transmission`); the GPU renderer does not yet and says so.
+// _diffuse_transmission. The reference traces them
+// (`reference::transmission`), the GPU draws them in screen space
+// (shaders/transmission.wgsl, docs/transmission.md).
 
 /// `KHR_materials_transmission.transmissionFactor`.
 pub static TRANSMISSION: Param = Param {

@@ -2,9 +2,21 @@
 //! the plane φ_i, one curve per material (a stale curve, still being
 //! recomputed, dashed), the line `ρ = 1` of energy conservation and the
 //! current θ_i. Labelled axes with a tick every 15° and every 0.1–0.2 of ρ.
+//! A material that lets light through also draws `ρ + τ`, reflected plus
+//! transmitted (dotted), which energy conservation keeps below 1.
 
 use super::{Integrals, Settings, colour};
 use egui_plot::{HLine, Line, LineStyle, Plot, PlotPoints, VLine, uniform_grid_spacer};
+
+/// `[θ_i, ρ + τ]` in `channel` of a material that lets light through;
+/// empty otherwise.
+fn through(c: &Integrals, channel: crate::explore::Channel) -> Vec<[f64; 2]> {
+    c.albedo
+        .iter()
+        .zip(&c.transmitted)
+        .map(|((deg, a), (_, t))| [*deg, channel.of(a.value + t.value)])
+        .collect()
+}
 
 pub fn show(ui: &mut egui::Ui, s: &Settings, curves: &[Option<(&Integrals, bool)>]) {
     let stale = curves.iter().any(|c| !matches!(c, Some((_, true))));
@@ -17,11 +29,16 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, curves: &[Option<(&Integrals, bool)
     let top = curves
         .iter()
         .flatten()
-        .flat_map(|(c, _)| c.albedo.iter().map(|(_, a)| s.channel.of(a.value)))
+        .flat_map(|(c, _)| {
+            c.albedo
+                .iter()
+                .map(|(_, a)| s.channel.of(a.value))
+                .chain(through(c, s.channel).into_iter().map(|p| p[1]))
+        })
         .filter(|v| v.is_finite())
         .fold(1.0_f64, f64::max);
     let width = ui.available_width() - 8.0;
-    Plot::new("albedo")
+    let shown = Plot::new("albedo")
         .width(width)
         .height(width * 0.55)
         .include_x(0.0)
@@ -48,6 +65,7 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, curves: &[Option<(&Integrals, bool)
             }
         }))
         .show(ui, |p| {
+            let mut any_through = false;
             p.hline(
                 HLine::new("ρ = 1", 1.0)
                     .color(egui::Color32::from_gray(120))
@@ -68,6 +86,20 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, curves: &[Option<(&Integrals, bool)
                     line = line.style(LineStyle::dashed_dense());
                 }
                 p.line(line);
+                let sum = through(c, s.channel);
+                if !sum.is_empty() {
+                    any_through = true;
+                    p.line(
+                        Line::new("", PlotPoints::from(sum))
+                            .color(colour(i))
+                            .width(1.4)
+                            .style(LineStyle::dotted_dense()),
+                    );
+                }
             }
+            any_through
         });
+    if shown.inner {
+        ui.small("dotted: ρ + τ, reflected plus transmitted (at most 1)");
+    }
 }

@@ -13,7 +13,9 @@
 //! outlined, drawn back to front by the depth of its centre (the
 //! painter's algorithm, all materials' patches in one order). Lines behind
 //! the surface show through at 15 %: dimmed, so the lobe reads as a
-//! solid, while a lobe inside another stays visible.
+//! solid, while a lobe inside another stays visible. A material that lets
+//! light through also has its transmitted lobe, below the surface
+//! (`MaterialPart`'s far side, mirrored back down).
 
 use super::radius::Radius;
 use super::{Settings, colour};
@@ -29,6 +31,10 @@ const MERIDIANS: usize = 72;
 /// θ_o = 90°·k/(RINGS − 1), meridian m at φ_o = 360°·m/MERIDIANS.
 pub struct Mesh {
     pub values: Vec<Vec<f64>>,
+    /// The transmitted lobe's values at the same rings mirrored below
+    /// the surface (θ_o → 180° − θ_o), for a material that lets light
+    /// through.
+    pub transmitted: Option<Vec<Vec<f64>>>,
 }
 
 /// The values of `m`'s lobe for `s`'s ω_i, quantity and channel.
@@ -36,22 +42,27 @@ pub fn mesh<'a>(m: impl Into<MaterialPart<'a>>, s: &Settings) -> Mesh {
     let m = m.into();
     let wi = direction(s.theta_i_deg.to_radians(), s.phi_i_deg.to_radians());
     let f = frame();
-    let values = (0..RINGS)
-        .map(|k| {
-            let theta = ring_theta(k);
-            (0..MERIDIANS)
-                .map(|j| {
-                    let wo = direction(theta, meridian_phi(j));
-                    let mut v = s.channel.of(m.f_r(wi, wo, &f));
-                    if s.quantity == Quantity::ProjectedFr {
-                        v *= wo.z.max(0.0);
-                    }
-                    v
-                })
-                .collect()
-        })
-        .collect();
-    Mesh { values }
+    let grid = |part: MaterialPart| -> Vec<Vec<f64>> {
+        (0..RINGS)
+            .map(|k| {
+                let theta = ring_theta(k);
+                (0..MERIDIANS)
+                    .map(|j| {
+                        let wo = direction(theta, meridian_phi(j));
+                        let mut v = s.channel.of(part.f_r(wi, wo, &f));
+                        if s.quantity == Quantity::ProjectedFr {
+                            v *= wo.z.max(0.0);
+                        }
+                        v
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    Mesh {
+        values: grid(m),
+        transmitted: m.transmits().then(|| grid(m.transmitted())),
+    }
 }
 
 fn ring_theta(k: usize) -> f64 {
@@ -65,10 +76,11 @@ fn meridian_phi(j: usize) -> f64 {
 }
 
 impl Mesh {
-    /// The largest finite value.
+    /// The largest finite value (of either lobe).
     pub fn peak(&self) -> f64 {
         self.values
             .iter()
+            .chain(self.transmitted.iter().flatten())
             .flatten()
             .filter(|v| v.is_finite())
             .fold(0.0_f64, |a, &b| a.max(b))
@@ -128,11 +140,11 @@ struct Patch {
     j0: usize,
 }
 
-/// Every patch of every mesh, farthest first.
-fn patches(points: &[Option<Vec<Vec<DVec3>>>], turn: &Turn) -> Vec<Patch> {
+/// Every patch of every mesh (`(series, points)`), farthest first;
+/// `Patch::series` indexes `meshes`.
+fn patches(meshes: &[(usize, Vec<Vec<DVec3>>)], turn: &Turn) -> Vec<Patch> {
     let mut all = Vec::new();
-    for (series, p) in points.iter().enumerate() {
-        let Some(p) = p else { continue };
+    for (series, (_, p)) in meshes.iter().enumerate() {
         for k0 in (0..RINGS - 1).step_by(STEP) {
             for j0 in (0..MERIDIANS).step_by(STEP) {
                 let (k1, j1) = (k0 + STEP, (j0 + STEP) % MERIDIANS);
@@ -177,8 +189,14 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, turn: &mut Turn, meshes: &[Option<(
         .fold(0.0_f64, f64::max);
     let radius = Radius::new(peak, s.log, s.decades);
     let outer = radius.outer();
-    let scale = 0.45 * rect.width().min(rect.height() / 0.8) as f64 / outer;
-    let centre = rect.center() + egui::vec2(0.0, 0.25 * rect.height());
+    // A lobe below the surface: the origin at the middle, room both ways.
+    let below = meshes
+        .iter()
+        .flatten()
+        .any(|(m, _)| m.transmitted.is_some());
+    let (fill, lift) = if below { (0.36, 0.0) } else { (0.45, 0.25) };
+    let scale = fill * rect.width().min(rect.height() / 0.8) as f64 / outer;
+    let centre = rect.center() + egui::vec2(0.0, lift * rect.height());
     let to_screen = |p: DVec3| {
         let (x, y) = turn.project(p);
         egui::pos2(centre.x + (x * scale) as f32, centre.y - (y * scale) as f32)
@@ -195,30 +213,34 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, turn: &mut Turn, meshes: &[Option<(
         [to_screen(DVec3::ZERO), to_screen(outer * wi)],
         egui::Stroke::new(1.5, egui::Color32::from_rgb(255, 230, 120)),
     );
-    let points: Vec<Option<Vec<Vec<DVec3>>>> = meshes
-        .iter()
-        .map(|m| {
-            m.map(|(mesh, _)| {
-                (0..RINGS)
-                    .map(|k| {
-                        (0..MERIDIANS)
-                            .map(|j| {
-                                let v = mesh.values[k][j];
-                                let r = if v.is_finite() { radius.map(v) } else { 0.0 };
-                                r * direction(ring_theta(k), meridian_phi(j))
-                            })
-                            .collect()
+    // Each lobe's points with its material's index: the reflected lobe,
+    // and the transmitted one mirrored below the surface.
+    let placed = |values: &Vec<Vec<f64>>, side: f64| -> Vec<Vec<DVec3>> {
+        (0..RINGS)
+            .map(|k| {
+                (0..MERIDIANS)
+                    .map(|j| {
+                        let v = values[k][j];
+                        let r = if v.is_finite() { radius.map(v) } else { 0.0 };
+                        let d = direction(ring_theta(k), meridian_phi(j));
+                        r * DVec3::new(d.x, d.y, side * d.z)
                     })
                     .collect()
             })
-        })
-        .collect();
+            .collect()
+    };
+    let mut points: Vec<(usize, Vec<Vec<DVec3>>)> = Vec::new();
+    for (i, m) in meshes.iter().enumerate() {
+        let Some((mesh, _)) = m else { continue };
+        points.push((i, placed(&mesh.values, 1.0)));
+        if let Some(below) = &mesh.transmitted {
+            points.push((i, placed(below, -1.0)));
+        }
+    }
     for patch in patches(&points, turn) {
-        let p = points[patch.series]
-            .as_ref()
-            .expect("patches of meshes only");
+        let (material, p) = &points[patch.series];
         let at = |k: usize, j: usize| to_screen(p[k][j % MERIDIANS]);
-        let tint = colour(patch.series);
+        let tint = colour(*material);
         let mix = |b: u8, c: u8| (0.85 * b as f32 + 0.15 * c as f32) as u8;
         let fill = egui::Color32::from_rgba_unmultiplied(
             mix(BACKGROUND.r(), tint.r()),
@@ -268,6 +290,31 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, turn: &mut Turn, meshes: &[Option<(
 mod tests {
     use super::*;
     use crate::material::{Material, ReflectanceModel};
+
+    /// A material that lets light through has its transmitted lobe:
+    /// Lambert on the far side is `D c_dt (1 − F(H)) / π · |cos θ_o|`,
+    /// between `(1 − F(0°))` and 0 times `D c_dt/π` on every ring, and
+    /// the largest at the straight-down ring; an opaque one has none.
+    #[test]
+    fn a_transmissive_lobe_has_its_far_side() {
+        let mut m = Material::new("t", ReflectanceModel::GltfPbr);
+        m.layers.diffuse_transmission = 1.0;
+        let mesh = mesh(&m, &Settings::default());
+        let below = mesh.transmitted.expect("a far side");
+        let lambert = 1.0 / std::f64::consts::PI;
+        for (k, ring) in below.iter().enumerate() {
+            for &v in ring {
+                assert!(v <= lambert * ring_theta(k).cos() + 1e-15, "{k}: {v}");
+            }
+        }
+        assert!(below[0][0] > 0.9 * lambert, "{}", below[0][0]);
+        let opaque = Material::new("l", ReflectanceModel::Lambert);
+        assert!(
+            super::mesh(&opaque, &Settings::default())
+                .transmitted
+                .is_none()
+        );
+    }
 
     /// Lambert's f_r·cos θ_o is (k_d/π) cos θ_o on every meridian; the
     /// mesh's first ring is the normal.
@@ -322,7 +369,7 @@ mod tests {
                     .collect()
             })
             .collect();
-        let order = patches(&[Some(pts)], &t);
+        let order = patches(&[(0, pts)], &t);
         assert_eq!(order.len(), (RINGS - 1) / STEP * MERIDIANS / STEP);
         assert!(order.windows(2).all(|w| w[0].depth <= w[1].depth));
     }

@@ -308,8 +308,17 @@ impl SeriesCache {
                     .map(|k| (k as f64 * 89.0 / (ALBEDO_ANGLES - 1) as f64).to_radians())
                     .collect();
                 let albedo = albedo_curve(m, &thetas, phi);
+                let degrees = || thetas.iter().map(|t| t.to_degrees());
+                let transmitted = if m.transmits() {
+                    degrees()
+                        .zip(albedo_curve(m.transmitted(), &thetas, phi))
+                        .collect()
+                } else {
+                    Vec::new()
+                };
                 Integrals {
-                    albedo: thetas.iter().map(|t| t.to_degrees()).zip(albedo).collect(),
+                    albedo: degrees().zip(albedo).collect(),
+                    transmitted,
                     gloss: GEOMETRIES.iter().map(|g| gloss_at(m, *g, phi)).collect(),
                 }
             });

@@ -5,7 +5,9 @@
 //! axes: rings at round values of the radius (linear or log,
 //! [`super::radius`]) labelled along the horizon, spokes every 30°
 //! labelled with θ_o, the light direction (solid) and the mirror
-//! direction (dashed) as lines from the origin.
+//! direction (dashed) as lines from the origin. A material that lets
+//! light through draws its transmitted lobe below the surface, beside
+//! the straight line through it (dotted), as `gonio brdf` does.
 
 use super::radius::Radius;
 use super::{Settings, colour};
@@ -21,7 +23,13 @@ const LABEL: egui::Color32 = egui::Color32::from_gray(170);
 pub fn scale(s: &Settings, slices: &[&Slice]) -> Radius {
     let peak = slices
         .iter()
-        .flat_map(|sl| sl.points.iter().map(|p| p.1).chain(sl.dirac))
+        .flat_map(|sl| {
+            sl.points
+                .iter()
+                .chain(&sl.transmitted)
+                .map(|p| p.1)
+                .chain(sl.dirac)
+        })
         .filter(|v| v.is_finite())
         .fold(0.0_f64, f64::max);
     Radius::new(peak, s.log, s.decades)
@@ -45,10 +53,14 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
         },
         s.channel.describe(),
     ));
+    // The whole circle where some lobe lies below the surface.
+    let below = slices.iter().any(|sl| !sl.transmitted.is_empty());
+    let (half_turn, bottom) = if below { (180, -1.1) } else { (90, -0.1) };
     let width = ui.available_width() - 8.0;
+    let aspect = if below { 1.0 } else { 0.56 };
     Plot::new("slice")
         .width(width)
-        .height(width * 0.56)
+        .height(width * aspect)
         .data_aspect(1.0)
         .show_axes(false)
         .show_grid(false)
@@ -58,12 +70,12 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
         .allow_boxed_zoom(false)
         .include_x(-1.12 * outer)
         .include_x(1.12 * outer)
-        .include_y(-0.1 * outer)
+        .include_y(bottom * outer)
         .include_y(1.1 * outer)
         .show(ui, |p| {
             for (r, label) in radius.rings() {
-                let ring: Vec<[f64; 2]> = (0..=90)
-                    .map(|k| polar(r, (k as f64 * 2.0 - 90.0).to_radians()))
+                let ring: Vec<[f64; 2]> = (0..=half_turn)
+                    .map(|k| polar(r, (k as f64 * 2.0 - half_turn as f64).to_radians()))
                     .collect();
                 p.line(
                     Line::new("", PlotPoints::from(ring))
@@ -76,7 +88,12 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
                         .anchor(egui::Align2::CENTER_TOP),
                 );
             }
-            for deg in [-90, -60, -30, 0, 30, 60, 90] {
+            let spokes: &[i32] = if below {
+                &[-150, -120, -90, -60, -30, 0, 30, 60, 90, 120, 150, 180]
+            } else {
+                &[-90, -60, -30, 0, 30, 60, 90]
+            };
+            for &deg in spokes {
                 let t = (deg as f64).to_radians();
                 let spoke = vec![[0.0, 0.0], polar(outer, t)];
                 p.line(
@@ -102,6 +119,14 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
                     .color(egui::Color32::from_rgb(255, 230, 120))
                     .width(1.5),
             );
+            if below {
+                let through = vec![[0.0, 0.0], polar(outer, theta_i - std::f64::consts::PI)];
+                p.line(
+                    Line::new("straight through", PlotPoints::from(through))
+                        .color(LABEL)
+                        .style(LineStyle::dotted_loose()),
+                );
+            }
             let mirror = vec![[0.0, 0.0], mirror_marker(theta_i, outer)];
             p.line(
                 Line::new("mirror direction", PlotPoints::from(mirror))
@@ -120,6 +145,19 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
                         .color(colour(i))
                         .width(1.8),
                 );
+                if !sl.transmitted.is_empty() {
+                    let lobe: Vec<[f64; 2]> = sl
+                        .transmitted
+                        .iter()
+                        .filter(|(_, v)| v.is_finite())
+                        .map(|&(t, v)| polar(radius.map(v), t))
+                        .collect();
+                    p.line(
+                        Line::new("", PlotPoints::from(lobe))
+                            .color(colour(i))
+                            .width(1.8),
+                    );
+                }
                 if let Some(d) = sl.dirac {
                     p.points(
                         Points::new("", vec![mirror_marker(theta_i, radius.map(d))])
@@ -129,5 +167,9 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
                 }
             }
         });
-    ui.small("yellow: light ω_i · dashed: mirror direction · dot: a Dirac lobe's reflectance");
+    if below {
+        ui.small("yellow: light ω_i · dashed: mirror direction · dotted: straight through · below the surface: transmitted · dot: a Dirac lobe's reflectance");
+    } else {
+        ui.small("yellow: light ω_i · dashed: mirror direction · dot: a Dirac lobe's reflectance");
+    }
 }

@@ -89,6 +89,10 @@ impl Default for Settings {
 /// The albedo curve and gloss readings of one material at one φ_i.
 pub struct Integrals {
     pub albedo: Vec<(f64, AlbedoEstimate)>,
+    /// The transmitted albedo `τ(θ_i)` at the same angles, for a material
+    /// that lets light through (`MaterialPart::transmits`); empty
+    /// otherwise.
+    pub transmitted: Vec<(f64, AlbedoEstimate)>,
     pub gloss: Vec<GlossReading>,
 }
 
