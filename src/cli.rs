@@ -481,3 +481,46 @@ fn describe_scene(scene: &Scene) -> String {
         scene.shading
     )
 }
+
+#[cfg(test)]
+mod transmission_warning_tests {
+    use super::gpu_transmission_warning;
+    use crate::scene::scene_file::{self, SceneSource};
+
+    fn warning(sets: &[&str]) -> Option<String> {
+        let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
+        all.extend(sets.iter().map(|s| s.to_string()));
+        gpu_transmission_warning(&scene_file::load(&SceneSource::BuiltIn, &all).unwrap())
+    }
+
+    /// The GPU draws transmission, dispersion and diffuse transmission in
+    /// screen space: only diffuse transmission's textures, which it does
+    /// not read, are named; with `shading.transmission = "off"` every key
+    /// of light through surfaces is.
+    #[test]
+    fn the_warning_names_only_what_the_gpu_leaves_out() {
+        assert_eq!(warning(&["materials.ball.diffuse_transmission=0.5"]), None);
+        assert_eq!(
+            warning(&[
+                "materials.ball.transmission=1",
+                "materials.ball.thickness=1",
+                "materials.ball.dispersion=1",
+            ]),
+            None
+        );
+        let checker = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/assets/scenes/transmission/checker.png"
+        );
+        let textured = format!("materials.ball.diffuse_transmission_texture=\"{checker}\"");
+        let w = warning(&["materials.ball.diffuse_transmission=0.5", &textured])
+            .expect("a texture the GPU does not read is named");
+        assert!(
+            w.contains("`ball`") && w.contains("textures on diffuse transmission"),
+            "{w}"
+        );
+        let off = warning(&["materials.ball.transmission=1", "shading.transmission=off"])
+            .expect("off names the material");
+        assert!(off.contains("drawn as if opaque"), "{off}");
+    }
+}
