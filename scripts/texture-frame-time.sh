@@ -35,16 +35,20 @@
 #   file with, MSAA off, no tone mapping, exposure 1; the environment
 #   filtered by Bevy once (the peer's default; gonio filters once too).
 #
-# First frame: gonio loads the scene before it opens its window and
-# prints its first frame's time after the window opened; the script
-# times the launch to the `adapter:` line of `-v` (window opened, GPU
-# device and surface created), so launch to first frame is at most the
-# sum of the two (the device and surface creation counted in both). The
-# peer prints when the scene was framed and when the render world first
-# finished a frame after it with no pipeline left compiling, both from
-# its start. Texture memory: gonio's first-frame upload total (textures
-# are rgba16float with full mip chains; the rest is geometry and the
-# environment) and the images Bevy holds as the peer reports them.
+# First frame, after the rounds (FIRST_FRAME_RUNS runs of each, default
+# 3, alternating): gonio loads the scene before it opens its window and
+# prints when its first frame began after the window opened; with
+# `--frames 2 --warmup 0` its one frame time is the first frame's own
+# (upload, draw, present). The script times the launch to the `adapter:`
+# line of `-v` (window opened, GPU device and surface created) and to the
+# process's exit after that frame. Launch to the first frame presented
+# is then about adapter + first-frame start + first frame (the device
+# and surface creation counted twice, tens of ms). The peer prints when
+# the scene was framed and when the render world first finished a frame
+# after it with no pipeline left compiling, both from its start. Texture
+# memory: gonio's first-frame upload total (textures are rgba16float
+# with full mip chains; the rest is geometry and the environment) and
+# the images Bevy holds as the peer reports them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 frames="${1:-331}"
@@ -106,7 +110,7 @@ median() { grep -o 'median [0-9.]* ms' | head -1 | grep -o '[0-9.]*'; }
 gonio_run() {
     local file="$1" out="$2"; shift 2
     python3 - "$out" "$gonio" view "$file" --size 1920x1080 --no-vsync --no-panel --no-overlay -v \
-        --frames "$frames" --warmup "$warmup" --frame-times --spin 0.5 "$@" <<'PY'
+        --frames "${run_frames:-$frames}" --warmup "${run_warmup:-$warmup}" --frame-times --spin 0.5 "$@" <<'PY'
 import subprocess, sys, time
 out = sys.argv[1]
 t0 = time.monotonic()
@@ -116,8 +120,10 @@ for line in p.stderr:
     if adapter is None and line.startswith("adapter:"):
         adapter = (time.monotonic() - t0) * 1e3
 p.wait()
+done = (time.monotonic() - t0) * 1e3
 with open(out, "a") as f:
     f.write(f"adapter {adapter:.0f}\n" if adapter is not None else "adapter ?\n")
+    f.write(f"exit {done:.0f}\n")
 PY
 }
 
@@ -131,7 +137,7 @@ declare -A sum
 echo "# texture path frame times ($(date -u '+%F %H:%M') UTC, $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg))"
 echo "# gonio: $gonio ($("$gonio" --version)); bevy: ${bevy:-none}"
 echo "# $((frames - warmup - 1)) frame times after $warmup warm-up, $rounds interleaved rounds, 1920x1080"
-for round in $(seq "$rounds"); do
+for round in $(seq 1 "$rounds"); do
     for a in "${assets[@]}"; do
         name="${a%%=*}" file="${a#*=}"
         gonio_run "$file" "$tmp/g"
@@ -157,6 +163,7 @@ for round in $(seq "$rounds"); do
         fi
     done
 done
+if (( rounds > 0 )); then
 echo
 med() { tr ' ' '\n' | grep . | sort -g | awk '{a[NR]=$1} END {m = int((NR+1)/2); printf "%.2f\n", (NR % 2 ? a[m] : (a[m] + a[m+1]) / 2)}'; }
 echo "| asset | gonio (median of rounds) | floor | gonio / floor (target <= 4) | bevy | gonio / bevy (target <= 0.2) |"
@@ -170,7 +177,30 @@ for a in "${assets[@]}"; do
     rb=$( [[ -n "$b" ]] && awk -v g="$g" -v b="$b" 'BEGIN {r = g / b; printf "%.3f %s", r, (r <= 0.2 ? "met" : "missed")}' || echo "–")
     echo "| $name | $g ms | $f ms | $rf | ${b:-–}${b:+ ms} | $rb |"
 done
-echo "# load at the end $(cut -d' ' -f1-3 /proc/loadavg)"
+fi
+echo "# load at the end of the rounds $(cut -d' ' -f1-3 /proc/loadavg)"
+
+first_runs="${FIRST_FRAME_RUNS:-3}"
+if (( first_runs > 0 )); then
+    echo
+    echo "# first frame, $first_runs runs each (launch = the program's start; ms)"
+    for a in "${assets[@]}"; do
+        name="${a%%=*}" file="${a#*=}"
+        for run in $(seq "$first_runs"); do
+            run_frames=2 run_warmup=0 gonio_run "$file" "$tmp/g"
+            start=$(grep '^frame times' "$tmp/g" | grep -o 'first frame [0-9.]* ms after' | grep -o '[0-9.]*')
+            own=$(median <"$tmp/g")
+            ad=$(grep '^adapter' "$tmp/g" | cut -d' ' -f2)
+            ex=$(grep '^exit' "$tmp/g" | cut -d' ' -f2)
+            echo "$name run $run gonio: launch to adapter $ad, first frame began $start after the window opened and took $own, sum $(awk -v a="$ad" -v s="$start" -v o="$own" 'BEGIN {printf "%.0f", a + s + o}'); exit after it $ex (load $(cut -d' ' -f1 /proc/loadavg))"
+            if [[ -n "$bevy" ]]; then
+                "$bevy" "$file" --environment "$tmp/studio.exr" --size 1920x1080 \
+                    --frames 40 --warmup 10 >"$tmp/b" 2>/dev/null
+                echo "$name run $run bevy: $(grep -o 'scene ready [0-9.]* ms' "$tmp/b"), $(grep -o 'first frame with.*' "$tmp/b")"
+            fi
+        done
+    done
+fi
 
 if [[ -n "${SHOTS:-}" ]]; then
     mkdir -p "$SHOTS"
