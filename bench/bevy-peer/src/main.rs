@@ -1,4 +1,4 @@
-//! The peer gonio's viewer is measured against (issue 18): Bevy 0.19
+//! The peer gonio's viewer is measured against: Bevy 0.19
 //! drawing what a gonio scene file describes, in a real window, vsync off,
 //! and printing its frame times as `gonio view --frame-times` does.
 //!
