@@ -540,7 +540,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     src
 }
 
-fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 44] {
+fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 48] {
     let l = &s.layers;
     let v = |x: f64| x as f32;
     // (cos ρ, sin ρ) in f64, rounded once (gpu::layout::GpuGltfLayers).
@@ -594,7 +594,11 @@ fn pack(s: &Sample, table_at: (f64, f64)) -> [f32; 44] {
         } else {
             0.0
         },
-        0.0,
+        v(l.dispersion),
+        v(l.diffuse_transmission),
+        v(l.diffuse_transmission_color.x),
+        v(l.diffuse_transmission_color.y),
+        v(l.diffuse_transmission_color.z),
         0.0,
     ]
 }
@@ -607,7 +611,7 @@ fn gpu_eval(
 ) -> Vec<([f32; 3], f32)> {
     let src = compute_source();
     gonio::gpu::shader_gen::validate(&src).unwrap_or_else(|e| panic!("{e}"));
-    let data: Vec<[f32; 44]> = samples
+    let data: Vec<[f32; 48]> = samples
         .iter()
         .zip(table_at)
         .map(|(s, t)| pack(s, *t))
