@@ -133,30 +133,21 @@ pub fn show(ui: &mut egui::Ui, s: &Settings, slices: &[&Slice]) {
                     .color(LABEL)
                     .style(LineStyle::dashed_loose()),
             );
-            for (i, sl) in slices.iter().enumerate() {
-                let lobe: Vec<[f64; 2]> = sl
-                    .points
+            // A lobe (reflected above, transmitted below) on the radius scale.
+            let lobe = |points: &[(f64, f64)], i: usize| {
+                let mapped: Vec<[f64; 2]> = points
                     .iter()
                     .filter(|(_, v)| v.is_finite())
                     .map(|&(t, v)| polar(radius.map(v), t))
                     .collect();
-                p.line(
-                    Line::new("", PlotPoints::from(lobe))
-                        .color(colour(i))
-                        .width(1.8),
-                );
+                Line::new("", PlotPoints::from(mapped))
+                    .color(colour(i))
+                    .width(1.8)
+            };
+            for (i, sl) in slices.iter().enumerate() {
+                p.line(lobe(&sl.points, i));
                 if !sl.transmitted.is_empty() {
-                    let lobe: Vec<[f64; 2]> = sl
-                        .transmitted
-                        .iter()
-                        .filter(|(_, v)| v.is_finite())
-                        .map(|&(t, v)| polar(radius.map(v), t))
-                        .collect();
-                    p.line(
-                        Line::new("", PlotPoints::from(lobe))
-                            .color(colour(i))
-                            .width(1.8),
-                    );
+                    p.line(lobe(&sl.transmitted, i));
                 }
                 if let Some(d) = sl.dirac {
                     p.points(
