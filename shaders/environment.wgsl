@@ -48,25 +48,40 @@ fn environment_texel(col: i32, row: i32) -> vec3<f32> {
     return textureLoad(environment_texels, vec2<i32>(col, row), 0).rgb;
 }
 
-// Bilinear lookup, texel centres at ((col + ½)/W, (row + ½)/H), u wraps,
-// v clamps. Twin: MapData::lookup.
-fn environment_lookup(d: vec3<f32>) -> vec3<f32> {
-    let uv = latlong_uv(d);
-    let w = i32(environment.width);
-    let h = i32(environment.height);
+// The four texels around (u, v) on a W × H lat-long grid and their
+// bilinear weights: texel centres at ((col + ½)/W, (row + ½)/H), u
+// wraps, v clamps. Twin: the index arithmetic of MapData::lookup and of
+// bilinear in src/environment/prefiltered.rs.
+struct LatLongTexels {
+    c0: i32,
+    c1: i32,
+    r0: i32,
+    r1: i32,
+    fx: f32,
+    fy: f32,
+}
+
+fn latlong_texels(uv: vec2<f32>, w: i32, h: i32) -> LatLongTexels {
     let x = uv.x * f32(w) - 0.5;
     let y = uv.y * f32(h) - 0.5;
     let x0 = floor(x);
     let y0 = floor(y);
-    let fx = x - x0;
-    let fy = y - y0;
-    let c0 = ((i32(x0) % w) + w) % w;
-    let c1 = ((i32(x0) + 1) % w + w) % w;
-    let r0 = clamp(i32(y0), 0, h - 1);
-    let r1 = clamp(i32(y0) + 1, 0, h - 1);
-    let top = environment_texel(c0, r0) * (1.0 - fx) + environment_texel(c1, r0) * fx;
-    let bottom = environment_texel(c0, r1) * (1.0 - fx) + environment_texel(c1, r1) * fx;
-    return top * (1.0 - fy) + bottom * fy;
+    return LatLongTexels(
+        ((i32(x0) % w) + w) % w,
+        ((i32(x0) + 1) % w + w) % w,
+        clamp(i32(y0), 0, h - 1),
+        clamp(i32(y0) + 1, 0, h - 1),
+        x - x0,
+        y - y0,
+    );
+}
+
+// Bilinear lookup of d. Twin: MapData::lookup.
+fn environment_lookup(d: vec3<f32>) -> vec3<f32> {
+    let q = latlong_texels(latlong_uv(d), i32(environment.width), i32(environment.height));
+    let top = environment_texel(q.c0, q.r0) * (1.0 - q.fx) + environment_texel(q.c1, q.r0) * q.fx;
+    let bottom = environment_texel(q.c0, q.r1) * (1.0 - q.fx) + environment_texel(q.c1, q.r1) * q.fx;
+    return top * (1.0 - q.fy) + bottom * q.fy;
 }
 
 // The direction in the file's frame of world direction d: R_y(−θ) d.
@@ -125,12 +140,40 @@ fn sh_basis(d: vec3<f32>) -> array<f32, 25> {
 // (the expansion rings negative opposite a sun; the truth never is).
 // Twin: EnvironmentMap::irradiance_sh.
 fn sh_irradiance(world_n: vec3<f32>) -> vec3<f32> {
-    let b = sh_basis(environment_to_map(world_n));
-    var e = vec3<f32>(0.0);
-    for (var i = 0u; i < 25u; i++) {
-        e += environment.sh[i].rgb * b[i];
-    }
-    return max(e, vec3<f32>(0.0));
+    return max(sh_sum(environment.sh, sh_basis(environment_to_map(world_n))), vec3<f32>(0.0));
+}
+
+// Σ_i c_i · b_i over the 25 coefficients, in index order. Written out, not
+// a loop: lavapipe keeps a function-local array indexed by a loop counter
+// in memory, lane by lane, and such a loop here took about 40 % of a
+// textured frame (DamagedHelmet at 1080p, 2026-12-05: 438 → 244 ms);
+// indexed by constants the array stays in registers. Twin: sh::evaluate.
+fn sh_sum(c: array<vec4<f32>, 25>, b: array<f32, 25>) -> vec3<f32> {
+    return c[0].rgb * b[0] +
+        c[1].rgb * b[1] +
+        c[2].rgb * b[2] +
+        c[3].rgb * b[3] +
+        c[4].rgb * b[4] +
+        c[5].rgb * b[5] +
+        c[6].rgb * b[6] +
+        c[7].rgb * b[7] +
+        c[8].rgb * b[8] +
+        c[9].rgb * b[9] +
+        c[10].rgb * b[10] +
+        c[11].rgb * b[11] +
+        c[12].rgb * b[12] +
+        c[13].rgb * b[13] +
+        c[14].rgb * b[14] +
+        c[15].rgb * b[15] +
+        c[16].rgb * b[16] +
+        c[17].rgb * b[17] +
+        c[18].rgb * b[18] +
+        c[19].rgb * b[19] +
+        c[20].rgb * b[20] +
+        c[21].rgb * b[21] +
+        c[22].rgb * b[22] +
+        c[23].rgb * b[23] +
+        c[24].rgb * b[24];
 }
 
 #if environment_prefiltered
@@ -150,35 +193,25 @@ const DFG_SIZE: i32 = 32;
 // [A, B] at nodes (√μ, √α) = (i, j)/(DFG_SIZE − 1), in .xy.
 @group(3) @binding(3) var environment_dfg_table: texture_2d<f32>;
 
-// Bilinear lookup of d (the file's frame) in level k. Twin:
-// Prefiltered::level_lookup.
-fn prefiltered_level_lookup(d: vec3<f32>, k: i32) -> vec3<f32> {
-    let uv = latlong_uv(d);
-    let w = i32(environment.prefilter_width);
-    let h = w / 2;
-    let x = uv.x * f32(w) - 0.5;
-    let y = uv.y * f32(h) - 0.5;
-    let x0 = floor(x);
-    let y0 = floor(y);
-    let fx = x - x0;
-    let fy = y - y0;
-    let c0 = ((i32(x0) % w) + w) % w;
-    let c1 = ((i32(x0) + 1) % w + w) % w;
-    let r0 = clamp(i32(y0), 0, h - 1) + k * h;
-    let r1 = clamp(i32(y0) + 1, 0, h - 1) + k * h;
+// Bilinear lookup in level k at the texels q (the levels share one grid:
+// the rows of level k start at k·h). Twin: Prefiltered::level_lookup.
+fn prefiltered_level_lookup(q: LatLongTexels, k: i32) -> vec3<f32> {
+    let base = k * (i32(environment.prefilter_width) / 2);
     let t = environment_prefiltered_texels;
-    let top = textureLoad(t, vec2<i32>(c0, r0), 0).rgb * (1.0 - fx) + textureLoad(t, vec2<i32>(c1, r0), 0).rgb * fx;
-    let bottom = textureLoad(t, vec2<i32>(c0, r1), 0).rgb * (1.0 - fx) + textureLoad(t, vec2<i32>(c1, r1), 0).rgb * fx;
-    return top * (1.0 - fy) + bottom * fy;
+    let top = textureLoad(t, vec2<i32>(q.c0, base + q.r0), 0).rgb * (1.0 - q.fx) + textureLoad(t, vec2<i32>(q.c1, base + q.r0), 0).rgb * q.fx;
+    let bottom = textureLoad(t, vec2<i32>(q.c0, base + q.r1), 0).rgb * (1.0 - q.fx) + textureLoad(t, vec2<i32>(q.c1, base + q.r1), 0).rgb * q.fx;
+    return top * (1.0 - q.fy) + bottom * q.fy;
 }
 
-// L̃(d, α), linear between the levels around √α. Twin:
-// Prefiltered::lookup.
+// L̃(d, α) (d in the file's frame), linear between the levels around √α;
+// d's texels found once for both levels. Twin: Prefiltered::lookup.
 fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
     let f = sqrt(clamp(alpha, 0.0, 1.0)) * f32(PREFILTER_LEVELS - 1);
     let k = min(floor(f), f32(PREFILTER_LEVELS - 2));
     let t = f - k;
-    return prefiltered_level_lookup(d, i32(k)) * (1.0 - t) + prefiltered_level_lookup(d, i32(k) + 1) * t;
+    let w = i32(environment.prefilter_width);
+    let q = latlong_texels(latlong_uv(d), w, w / 2);
+    return prefiltered_level_lookup(q, i32(k)) * (1.0 - t) + prefiltered_level_lookup(q, i32(k) + 1) * t;
 }
 
 // The direction L̃ is read in: normalize(mix(n, r, s (√s + α))),

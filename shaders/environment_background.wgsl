@@ -1,7 +1,9 @@
 // The background (contract: camera rays that miss all geometry see
-// scale · L_env(d)): one full-screen triangle drawn before the scene,
-// without depth test or write, so every pixel the geometry leaves shows the
-// map. Its fragment's ray is the reference's (Camera::ray) through the
+// scale · L_env(d)): one full-screen triangle at the far plane (z = w),
+// drawn after the opaque geometry with the depth test LessEqual and no
+// depth write, so every pixel the geometry leaves (its depth still the
+// clear value 1) shows the map, and no other is shaded; alpha-BLEND
+// geometry is drawn after it, over it. Its fragment's ray is the reference's (Camera::ray) through the
 // pixel centre. Radiance targets get coverage 0 (alpha), as the clear.
 
 struct BackgroundOut {
@@ -14,7 +16,7 @@ fn vs_background(@builtin(vertex_index) i: u32) -> BackgroundOut {
     // (−1, −1), (3, −1), (−1, 3): covers the viewport.
     let p = vec2<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, f32(i & 2u) * 2.0 - 1.0);
     var out: BackgroundOut;
-    out.clip = vec4<f32>(p, 0.5, 1.0);
+    out.clip = vec4<f32>(p, 1.0, 1.0);
     out.ndc = p;
     return out;
 }

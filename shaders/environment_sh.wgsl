@@ -20,16 +20,37 @@ fn sh_phong_weights(s: f32) -> array<f32, 5> {
 
 // Σ_i w_band(i) · sh_radiance[i] · Y_i(d), d in the file's frame (not
 // necessarily unit: sh_convolved_derivative). Twin: convolved.
-fn sh_convolved(weights: array<f32, 5>, d: vec3<f32>) -> vec3<f32> {
-    var w = weights;
-    var b = sh_basis(d);
-    var f = vec3<f32>(0.0);
-    for (var l = 0u; l < 5u; l++) {
-        for (var i = l * l; i < (l + 1u) * (l + 1u); i++) {
-            f += environment.sh_radiance[i].rgb * (w[l] * b[i]);
-        }
-    }
-    return f;
+fn sh_convolved(w: array<f32, 5>, d: vec3<f32>) -> vec3<f32> {
+    let b = sh_basis(d);
+    // Constant indices only (sh_sum in environment.wgsl says why).
+    let weighted = array<f32, 25>(
+        w[0] * b[0],
+        w[1] * b[1],
+        w[1] * b[2],
+        w[1] * b[3],
+        w[2] * b[4],
+        w[2] * b[5],
+        w[2] * b[6],
+        w[2] * b[7],
+        w[2] * b[8],
+        w[3] * b[9],
+        w[3] * b[10],
+        w[3] * b[11],
+        w[3] * b[12],
+        w[3] * b[13],
+        w[3] * b[14],
+        w[3] * b[15],
+        w[4] * b[16],
+        w[4] * b[17],
+        w[4] * b[18],
+        w[4] * b[19],
+        w[4] * b[20],
+        w[4] * b[21],
+        w[4] * b[22],
+        w[4] * b[23],
+        w[4] * b[24],
+    );
+    return sh_sum(environment.sh_radiance, weighted);
 }
 
 #if phong-normalized || blinn-phong-normalized

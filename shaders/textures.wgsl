@@ -1,46 +1,60 @@
 // Material textures (bind group 2), in the module only when the scene has
 // textures (feature `textures`): the lecture's spatially varying BRDF.
-// Each material binds up to TEXTURE_BINDINGS textures (an image as a full
-// mip-chain view, or level 0 alone for a sampler without mipmaps, with
-// its sampler) and has up to MAX_TEXTURE_SLOTS slots; a slot reads one
-// binding with its UV set, KHR_texture_transform and channel, and says
-// which Material fields it scales (a metallic-roughness texture is one
-// binding read by two slots). f64 twin: src/reference/texture.rs (the
-// sampler's filtering is the GPU's own; the twin reproduces Vulkan's
-// rules). CPU side: src/gpu/textures.rs.
+// Each material has up to TEXTURE_BINDINGS reads and MAX_TEXTURE_SLOTS
+// slots. A read is one texture as glTF counts it: an image (a full
+// mip-chain view, or level 0 alone for a sampler without mipmaps) with its
+// sampler, UV set and KHR_texture_transform, sampled once per pixel. A
+// slot takes one read's texel and says which Material fields it scales,
+// from which channel (a metallic-roughness texture is one read taken by
+// two slots). f64 twin: src/reference/texture.rs (the sampler's filtering
+// is the GPU's own; the twin reproduces Vulkan's rules). CPU side:
+// src/gpu/textures.rs.
 
 // One slot. CPU mirror: GpuTextureSlot.
 struct TextureSlot {
-    row_u: vec4<f32>,  // u' = dot(row_u.xyz, (u, v, 1)): KHR_texture_transform, first row
-    row_v: vec4<f32>,  // v' = dot(row_v.xyz, (u, v, 1))
     fields: u32,       // bit mask of the Material fields it scales (material::texture::gpu_field_values order); 0: unused
     channel: u32,      // 4: RGB (a colour parameter); 0-3: the channel a scalar parameter reads; 5: a normal map; 6: the coat's normal map; 7: the anisotropy map
-    tex_coord: u32,    // UV set (TEXCOORD_n)
     strength: f32,     // 1; occlusion: glTF's strength; normal map: glTF's scale
     alpha: u32,        // 1: the texel's A multiplies Material.alpha (the base colour's texture)
-    texture: u32,      // the binding it samples: slot_texture_<texture> with slot_sampler_<texture>
-    rotation: vec2<f32>, // (cos r, sin r) of KHR_texture_transform's rotation: turns a normal map's normal
+    texture: u32,      // the read whose texel it takes (TextureSlots.reads, binding slot_texture_<texture>)
+    _pad: u32,
+    rotation: vec2<f32>, // (cos r, sin r) of its read's KHR_texture_transform rotation: turns a normal map's normal
+}
+
+// One read. CPU mirror: GpuTextureRead.
+struct TextureRead {
+    row_u: vec4<f32>,  // u' = dot(row_u.xyz, (u, v, 1)): KHR_texture_transform, first row
+    row_v: vec4<f32>,  // v' = dot(row_v.xyz, (u, v, 1))
+    tex_coord: u32,    // UV set (TEXCOORD_n)
 }
 
 struct TextureSlots {
     slots: array<TextureSlot, MAX_TEXTURE_SLOTS>,
+    reads: array<TextureRead, MAX_TEXTURE_SLOTS>,
 }
 
 @group(2) @binding(0) var<uniform> texture_slots: TextureSlots;
 // Then TEXTURE_BINDINGS textures slot_texture_<i> (binding 1 + 2i) and
-// samplers slot_sampler_<i> (binding 2 + 2i), as many as
-// the scene's most textured material reads: generated with the two
-// functions below (src/gpu/textures.rs, `wgsl_bindings`), since WGSL cannot
-// index separate bindings and the count is the scene's.
+// samplers slot_sampler_<i> (binding 2 + 2i), read i's image and sampler,
+// as many as the scene's most textured material reads, and the functions
+// below, generated (src/gpu/textures.rs, `wgsl_bindings`) since WGSL
+// cannot index separate bindings and the count is the scene's:
 //
-// slot_texel(i, uv, ddx, ddy) -> vec4<f32>: binding i's texel at uv with the
-//   footprint (ddx, ddy). Explicit gradients: the level of detail is the one
-//   the reference computes from the same derivatives
-//   (reference::texture::sample), and sampling is allowed outside uniform
-//   control flow.
-// slot_texel_level0(i, uv) -> vec4<f32>: binding i's texel at level 0
+// struct ReadTexels { t0: vec4<f32>, t1: vec4<f32>, … }: every read's texel.
+// read_texels(s: SurfaceUv, zero: u32) -> ReadTexels: each binding sampled once, at
+//   its read's UV with the footprint (read_footprint). Explicit gradients:
+//   the level of detail is the one the reference computes from the same
+//   derivatives (reference::texture::sample), and sampling is allowed
+//   outside uniform control flow. `zero`: unseen_zero, added to the
+//   indices into texture_slots.
+// read_texels_level0(uv0, uv1, zero) -> ReadTexels: the same at level 0
 //   (per-vertex shading).
-// Both return white for an index past TEXTURE_BINDINGS.
+// read_texel(t: ReadTexels, i: u32) -> vec4<f32>: read i's texel, by
+//   selects. One sample per binding, not one per slot through a `switch`:
+//   lavapipe runs every case of a switch whose value it cannot see, so a
+//   switch per slot sampled every binding for every slot (35 samples for
+//   DamagedHelmet's 7 slots and 5 bindings; 2026-12-05 the frame at 1080p
+//   went from 236 to 110 ms without it).
 
 // The UV sets at a shading point and their screen derivatives (zero at a
 // vertex: level 0, magnification filter, as the reference's zero footprint).
@@ -124,14 +138,35 @@ fn rotated_normal(n: vec3<f32>, cs: vec2<f32>) -> vec3<f32> {
     return vec3<f32>(cs.x * n.x + cs.y * n.y, -cs.y * n.x + cs.x * n.y, n.z);
 }
 
-fn slot_uv(slot: TextureSlot, uv: vec2<f32>) -> vec2<f32> {
+fn read_uv(read: TextureRead, uv: vec2<f32>) -> vec2<f32> {
     let p = vec3<f32>(uv, 1.0);
-    return vec2<f32>(dot(slot.row_u.xyz, p), dot(slot.row_v.xyz, p));
+    return vec2<f32>(dot(read.row_u.xyz, p), dot(read.row_v.xyz, p));
 }
 
 // A derivative through the transform (no offset).
-fn slot_duv(slot: TextureSlot, d: vec2<f32>) -> vec2<f32> {
-    return vec2<f32>(dot(slot.row_u.xy, d), dot(slot.row_v.xy, d));
+fn read_duv(read: TextureRead, d: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(dot(read.row_u.xy, d), dot(read.row_v.xy, d));
+}
+
+// Where read `read` samples at a pixel: its UV set through its transform,
+// and that UV's screen derivatives.
+struct Footprint {
+    uv: vec2<f32>,
+    ddx: vec2<f32>,
+    ddy: vec2<f32>,
+}
+
+fn read_footprint(read: TextureRead, s: SurfaceUv) -> Footprint {
+    let second = read.tex_coord == 1u;
+    let uv = select(s.uv0, s.uv1, second);
+    let ddx = select(s.ddx0, s.ddx1, second);
+    let ddy = select(s.ddy0, s.ddy1, second);
+    return Footprint(read_uv(read, uv), read_duv(read, ddx), read_duv(read, ddy));
+}
+
+// Where read `read` samples at a vertex.
+fn read_uv_level0(read: TextureRead, uv0: vec2<f32>, uv1: vec2<f32>) -> vec2<f32> {
+    return read_uv(read, select(uv0, uv1, read.tex_coord == 1u));
 }
 
 // The material at a point, and its normal map's tangent-space normal
@@ -207,6 +242,19 @@ fn textured_widths_floored(base: Material, fields: u32) -> Material {
     return m;
 }
 
+// 0, from a value the compiler cannot see through (no UV is past 1e30),
+// added to every index into texture_slots: its loads are then not at
+// constant offsets. lavapipe 22.3 (Debian 12) recompiles a shader with
+// the values of uniforms loaded at constant offsets that decide a branch
+// ("inlining"), and its queue thread crashed doing so for this buffer (a
+// segfault in its inline-uniform update, reading a constant buffer at a
+// negative index): seen with the coat's normal map once each binding was
+// sampled once (tests/layers_gpu.rs, 2026-12-05), and the "stack
+// smashing" abort of MIN_TEXTURE_BINDINGS (src/gpu/textures) looks alike.
+fn unseen_zero(uv: vec2<f32>) -> u32 {
+    return u32(uv.x > 1e30);
+}
+
 // The material at a pixel: every slot's texel applied.
 // f64 twin: reference::texture::textured.
 fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
@@ -215,16 +263,13 @@ fn textured_surface(base: Material, s: SurfaceUv) -> TexturedSurface {
     #else
     var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0));
     #endif
+    let zero = unseen_zero(s.uv0);
+    let texels = read_texels(s, zero);
     var fields = 0u;
     for (var i = 0u; i < TEXTURE_SLOTS; i++) {
-        let slot = texture_slots.slots[i];
+        let slot = texture_slots.slots[i + zero];
         fields |= slot.fields;
-        let second = slot.tex_coord == 1u;
-        let uv = select(s.uv0, s.uv1, second);
-        let ddx = select(s.ddx0, s.ddx1, second);
-        let ddy = select(s.ddy0, s.ddy1, second);
-        let texel = slot_texel(slot.texture, slot_uv(slot, uv), slot_duv(slot, ddx), slot_duv(slot, ddy));
-        out = apply_slot(out, slot, texel);
+        out = apply_slot(out, slot, read_texel(texels, slot.texture));
     }
     out.material = textured_widths_floored(out.material, fields);
     return out;
@@ -237,12 +282,13 @@ fn textured_surface_level0(base: Material, uv0: vec2<f32>, uv1: vec2<f32>) -> Te
     #else
     var out = TexturedSurface(base, vec3<f32>(0.0, 0.0, 1.0));
     #endif
+    let zero = unseen_zero(uv0);
+    let texels = read_texels_level0(uv0, uv1, zero);
     var fields = 0u;
     for (var i = 0u; i < TEXTURE_SLOTS; i++) {
-        let slot = texture_slots.slots[i];
+        let slot = texture_slots.slots[i + zero];
         fields |= slot.fields;
-        let uv = select(uv0, uv1, slot.tex_coord == 1u);
-        out = apply_slot(out, slot, slot_texel_level0(slot.texture, slot_uv(slot, uv)));
+        out = apply_slot(out, slot, read_texel(texels, slot.texture));
     }
     out.material = textured_widths_floored(out.material, fields);
     return out;

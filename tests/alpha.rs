@@ -332,6 +332,68 @@ fn blend_is_the_over_operator() {
     }
 }
 
+/// BLEND over the environment's background: where the quad covers
+/// nothing, the GPU's pixel is `a·L_opaque + (1 − a)·L_background`, the
+/// background that of the render without the quad. The background is
+/// drawn after the opaque geometry where the depth is still clear; a
+/// BLEND surface writes no depth, so drawing it before the background
+/// would leave the background alone there.
+#[test]
+fn blend_is_over_the_environment_background() {
+    let dir = tempfile::tempdir().unwrap();
+    let front = Quad::new(0.0, 0.9, "BLEND", [0.2, 0.5, 0.9, 0.4]);
+    let opaque_front = Quad {
+        mode: "OPAQUE",
+        factor: [0.2, 0.5, 0.9, 1.0],
+        ..front.clone()
+    };
+    let small_back = Quad::new(-0.6, 0.3, "OPAQUE", [0.7, 0.1, 0.1, 1.0]);
+    let under_sky = |path: &Path| {
+        let mut sets = vec![
+            "image.width=48".to_string(),
+            "image.height=36".into(),
+            "camera={position = [0.0, 0.0, 3.0], target = [0.0, 0.0, 0.0], up = [0.0, 1.0, 0.0], fov_y_deg = 50.0}".into(),
+            "environment.map=\"sky\"".into(),
+        ];
+        sets.push("environment.specular=\"none\"".into());
+        let scene =
+            scene_file::load(&SceneSource::File(path.to_path_buf()), &sets).expect("quads load");
+        gpu(&scene)
+    };
+    let got = under_sky(&gltf(
+        dir.path(),
+        "blend",
+        &[front.clone(), small_back.clone()],
+    ));
+    let behind = under_sky(&gltf(
+        dir.path(),
+        "behind",
+        std::slice::from_ref(&small_back),
+    ));
+    let opaque = under_sky(&gltf(dir.path(), "opaque", &[opaque_front, small_back]));
+    let a = 0.4;
+    let mut over_background = 0;
+    for k in 0..got.radiance.len() {
+        if !opaque.coverage[k] {
+            continue;
+        }
+        for c in 0..3 {
+            let want = a * opaque.radiance[k][c] as f64 + (1.0 - a) * behind.radiance[k][c] as f64;
+            assert!(
+                close(got.radiance[k][c], want as f32),
+                "pixel {k} channel {c}: {} vs {want} (background {})",
+                got.radiance[k][c],
+                behind.radiance[k][c]
+            );
+        }
+        over_background += usize::from(!behind.coverage[k]);
+    }
+    assert!(
+        over_background > 300,
+        "{over_background} pixels over the background"
+    );
+}
+
 /// Two BLEND quads listed near first (drawn in file order they would
 /// hide each other wrongly) over an opaque one: the GPU's back-to-front
 /// order gives the reference's front-to-back composite, within the

@@ -237,8 +237,9 @@ impl EnvironmentLayouts {
 }
 
 /// The background pass's pipeline drawing into `format` with `samples`:
-/// a full-screen triangle, no depth test or write (the scene is drawn
-/// over it).
+/// a full-screen triangle at the far plane, drawn after the opaque
+/// geometry where the depth is still the clear value (test `LessEqual`,
+/// no write): early depth testing skips the pixels the geometry covers.
 pub fn background_pipeline(
     device: &wgpu::Device,
     layouts: &EnvironmentLayouts,
@@ -267,7 +268,7 @@ pub fn background_pipeline(
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
                 depth_write_enabled: Some(false),
-                depth_compare: Some(wgpu::CompareFunction::Always),
+                depth_compare: Some(wgpu::CompareFunction::LessEqual),
                 stencil: Default::default(),
                 bias: Default::default(),
             }),
