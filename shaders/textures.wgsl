@@ -249,8 +249,8 @@ fn textured_widths_floored(base: Material, fields: u32) -> Material {
 // ("inlining"), and its queue thread crashed doing so for this buffer (a
 // segfault in its inline-uniform update, reading a constant buffer at a
 // negative index): seen with the coat's normal map once each binding was
-// sampled once (tests/layers_gpu.rs, 2026-12-05), and the "stack
-// smashing" abort of MIN_TEXTURE_BINDINGS (src/gpu/textures) looks alike.
+// sampled once (tests/layers_gpu.rs, 2026-12-05); with a single binding
+// the same scene aborted it ("stack smashing detected").
 fn unseen_zero(uv: vec2<f32>) -> u32 {
     return u32(uv.x > 1e30);
 }

@@ -67,18 +67,9 @@ pub fn binding_count(scene: &Scene) -> u32 {
         .iter()
         .map(|m| material_reads(&scene.materials[m.material]).len())
         .max()
-        .filter(|&n| n > 0)
-        .map(|n| n.clamp(MIN_TEXTURE_BINDINGS, MAX_TEXTURE_SLOTS) as u32)
+        .map(|n| n.min(MAX_TEXTURE_SLOTS) as u32)
         .unwrap_or(0)
 }
-
-/// The fewest pairs a textured scene's group 2 has: with one, lavapipe
-/// (Mesa 22.3.6) aborts ("stack smashing detected", in its queue thread)
-/// drawing the coat-normal-map scene of tests/layers_gpu.rs
-/// (`layer_maps_and_textures_render_like_the_reference`); with two or more
-/// it draws it as the reference does. A second pair costs one bind of the
-/// white texel.
-pub const MIN_TEXTURE_BINDINGS: usize = 2;
 
 /// The sampler descriptor of a glTF sampler. Without mipmaps the view is
 /// one level (see [`SceneTextures`]), so the mipmap filter is moot.
