@@ -8,7 +8,7 @@
 // from which channel (a metallic-roughness texture is one read taken by
 // two slots). f64 twin: src/reference/texture.rs (the sampler's filtering
 // is the GPU's own; the twin reproduces Vulkan's rules). CPU side:
-// src/gpu/textures.rs.
+// src/gpu/textures/.
 
 // One slot. CPU mirror: GpuTextureSlot.
 struct TextureSlot {
@@ -37,7 +37,7 @@ struct TextureSlots {
 // Then TEXTURE_BINDINGS textures slot_texture_<i> (binding 1 + 2i) and
 // samplers slot_sampler_<i> (binding 2 + 2i), read i's image and sampler,
 // as many as the scene's most textured material reads, and the functions
-// below, generated (src/gpu/textures.rs, `wgsl_bindings`) since WGSL
+// below, generated (src/gpu/textures/wgsl.rs, `wgsl_bindings`) since WGSL
 // cannot index separate bindings and the count is the scene's:
 //
 // struct ReadTexels { t0: vec4<f32>, t1: vec4<f32>, … }: every read's texel.
@@ -201,7 +201,7 @@ fn anisotropy_texel(layers: GltfLayers, texel: vec4<f32>, cs: vec2<f32>) -> Gltf
 // One slot's texel applied: its fields scaled (none for a normal map,
 // whose fields are 0), or its normal taken (channel 5); the base colour's
 // A on the alpha (twin: reference::texture::alpha). Unused slots
-// (fields 0, a white texel) change nothing.
+// (fields 0, channel 0, alpha 0) change nothing, whatever texel they take.
 fn apply_slot(s: TexturedSurface, slot: TextureSlot, texel: vec4<f32>) -> TexturedSurface {
     var out = s;
     out.material = scale_fields(s.material, slot.fields, slot_factor(slot, texel));
