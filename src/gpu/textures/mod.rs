@@ -22,7 +22,7 @@ pub use budget::{MAX_TEXTURE_SLOTS, OTHER_GROUPS, StageBindings, TextureBudget};
 pub use slots::{
     ANISOTROPY_MAP_CHANNEL, CLEARCOAT_NORMAL_MAP_CHANNEL, GpuTextureRead, GpuTextureSlot,
     MaterialTextureUniform, NORMAL_MAP_CHANNEL, TextureRead, UNIFORM_BYTES, material_reads,
-    material_slots,
+    material_slots, read_bindings,
 };
 pub use wgsl::{group_layout, sampler_binding, texture_binding, wgsl_bindings};
 
@@ -243,8 +243,7 @@ impl SceneTextures {
                 binding: 0,
                 resource: buffer.as_entire_binding(),
             }];
-            let bindings: Vec<(usize, Sampler)> =
-                material_reads(m).iter().map(TextureRead::binding).collect();
+            let bindings = read_bindings(m);
             for s in 0..bound {
                 let (view, sampler) = match bindings.get(s) {
                     Some((image, sampler)) => (
@@ -305,11 +304,7 @@ impl SceneTextures {
         else {
             return Ok(None);
         };
-        let reads: Vec<(usize, Sampler)> = material_reads(material)
-            .iter()
-            .map(TextureRead::binding)
-            .collect();
-        if reads != *bindings {
+        if read_bindings(material) != *bindings {
             return Ok(None);
         }
         let slots = material_slots(material, &self.budget)?;

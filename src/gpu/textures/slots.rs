@@ -132,6 +132,12 @@ pub fn material_reads(m: &crate::material::Material) -> Vec<TextureRead> {
     reads
 }
 
+/// What the bind group of material `m` holds, read by read: each read's
+/// image and sampler (a read's UV set and transform are in the uniform).
+pub fn read_bindings(m: &crate::material::Material) -> Vec<(usize, Sampler)> {
+    material_reads(m).iter().map(TextureRead::binding).collect()
+}
+
 /// The slots and reads of one material: what the GPU multiplies, from the
 /// material as rendered (roughness floor applied). An error when a
 /// texture names a parameter the GPU cannot vary
