@@ -16,23 +16,6 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
-
-/// `xvfb-run` with a screen large enough for the windows below.
-fn xvfb() -> Command {
-    let found = Command::new("sh")
-        .args(["-c", "command -v xvfb-run"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    assert!(
-        found,
-        "xvfb-run is missing: the viewer tests open a real window under Xvfb. Install it with `sudo apt-get install xvfb xauth` (or run ./setup.sh)"
-    );
-    let mut c = Command::new("xvfb-run");
-    c.args(["-a", "-s", "-screen 0 1280x720x24"]);
-    c
-}
 
 /// Runs `gonio view ARGS --screenshot PATH`; returns the 3D area
 /// `(x, y, w, h)` it reports.
@@ -43,7 +26,7 @@ fn view(args: &[&str], screenshot: &Path) -> (u32, u32, u32, u32) {
 /// [`view`], with what it printed.
 fn view_with_output(args: &[&str], screenshot: &Path) -> ((u32, u32, u32, u32), String) {
     let gonio = common::gonio();
-    let out = xvfb()
+    let out = common::xvfb()
         .arg(gonio.get_program())
         .arg("view")
         .args(args)
@@ -345,7 +328,7 @@ fn a_bad_file_dropped_on_the_window_keeps_the_scene() {
     let drop = format!("2:{}", broken.display());
     let shot = dir.path().join("after-drop.png");
     let gonio = common::gonio();
-    let out = xvfb()
+    let out = common::xvfb()
         .arg(gonio.get_program())
         .arg("view")
         .args([
@@ -433,7 +416,7 @@ fn the_viewer_refuses_bad_input_with_exit_2() {
             "1".into(),
         ],
     ] {
-        let out = xvfb()
+        let out = common::xvfb()
             .arg(common::gonio().get_program())
             .arg("view")
             .args(&args)
@@ -456,7 +439,7 @@ fn the_viewer_refuses_bad_input_with_exit_2() {
 #[test]
 fn the_viewer_says_what_it_does_not_apply() {
     let gonio = common::gonio();
-    let out = xvfb()
+    let out = common::xvfb()
         .arg(gonio.get_program())
         .args(["view", "--frames", "2", "--size", "320x200"])
         .args(["--set", "image.msaa=4", "--set", "materials.floor.k_e=4"])
@@ -499,7 +482,7 @@ fn the_idle_viewer_draws_no_frames() {
             "materials.ball.sigma_y=0.4",
         ],
     ] {
-        let out = xvfb()
+        let out = common::xvfb()
             .arg(gonio.get_program())
             .args(["view", "--size", "800x500", "--exit-when-idle", "1"])
             .args(&extra)
@@ -965,7 +948,7 @@ fn the_halfdiff_image_reads_out_f_r_where_the_parameterization_says() {
         "ward,k_d=0.2,k_s=0.3,sigma_x=0.1,sigma_y=0.3",
     ];
     let (th, td, pd) = (20.25_f64, 40.5_f64, 60.0_f64);
-    let out = xvfb()
+    let out = common::xvfb()
         .arg(common::gonio().get_program())
         .args(["view", "--size", "900x700", "--exit-when-idle", "0.5"])
         .args(["--compare", specs[0], "--compare", specs[1]])
@@ -1052,7 +1035,7 @@ fn a_material_variant_chosen_in_the_viewer_is_drawn() {
         "the variant changed too little: {max} levels in {:.1} % of the pixels",
         100.0 * fraction
     );
-    let out = xvfb()
+    let out = common::xvfb()
         .arg(common::gonio().get_program())
         .arg("view")
         .args([scene, "--frames", "3", "--edit", "1:gltf.variant=green"])

@@ -12,26 +12,10 @@ mod common;
 
 use gonio::ui::plots::halfdiff::{AXIS_FONT, AxisLabel, axis_labels, grid, image_rects};
 use std::path::Path;
-use std::process::{Command, Output};
-
-/// `xvfb-run` with a screen large enough for the windows below.
-fn xvfb() -> Command {
-    let found = Command::new("sh")
-        .args(["-c", "command -v xvfb-run"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    assert!(
-        found,
-        "xvfb-run is missing: the viewer tests open a real window under Xvfb. Install it with `sudo apt-get install xvfb xauth` (or run ./setup.sh)"
-    );
-    let mut c = Command::new("xvfb-run");
-    c.args(["-a", "-s", "-screen 0 1280x720x24"]);
-    c
-}
+use std::process::Output;
 
 fn view(args: &[&str], screenshot: &Path) -> Output {
-    xvfb()
+    common::xvfb()
         .arg(common::gonio().get_program())
         .arg("view")
         .args(["--size", "900x600", "--no-overlay", "--frames", "4"])
@@ -121,7 +105,7 @@ fn frames_are_drawn_while_the_panels_background_jobs_are_held() {
             vec!["--edit", "2:materials.ball.model=measured"],
         ),
     ] {
-        let out = xvfb()
+        let out = common::xvfb()
             .args(["timeout", "900"])
             .arg(common::gonio().get_program())
             .arg("view")

@@ -295,3 +295,73 @@ pub fn compute_output(ctx: &GpuContext, size: u64) -> wgpu::Buffer {
         mapped_at_creation: false,
     })
 }
+
+/// A command run in a window under `xvfb-run`, reporting the program's own
+/// exit status. `xvfb-run` exits 5 when removing its X authority directory
+/// fails after the program has ended (seen on the CI runner when the
+/// program exits within milliseconds of starting), which would hide a
+/// refusal's exit 2 behind xvfb-run's own error; a shell between the two
+/// writes the program's status to a file that [`Xvfb::output`] reads back.
+pub struct Xvfb {
+    command: std::process::Command,
+    status: tempfile::NamedTempFile,
+}
+
+/// `xvfb-run` with a screen large enough for the viewer tests' windows.
+pub fn xvfb() -> Xvfb {
+    let found = std::process::Command::new("sh")
+        .args(["-c", "command -v xvfb-run"])
+        .output()
+        .map(|o| o.status.success())
+        .unwrap_or(false);
+    assert!(
+        found,
+        "xvfb-run is missing: the viewer tests open a real window under Xvfb. Install it with `sudo apt-get install xvfb xauth` (or run ./setup.sh)"
+    );
+    let status = tempfile::NamedTempFile::new().expect("a temporary file for the exit status");
+    let mut command = std::process::Command::new("xvfb-run");
+    command
+        .args(["-a", "-s", "-screen 0 1280x720x24", "sh", "-c"])
+        .arg(r#"status="$0"; "$@"; echo $? > "$status""#)
+        .arg(status.path());
+    Xvfb { command, status }
+}
+
+impl Xvfb {
+    pub fn arg(&mut self, arg: impl AsRef<std::ffi::OsStr>) -> &mut Self {
+        self.command.arg(arg);
+        self
+    }
+
+    pub fn args<I, S>(&mut self, args: I) -> &mut Self
+    where
+        I: IntoIterator<Item = S>,
+        S: AsRef<std::ffi::OsStr>,
+    {
+        self.command.args(args);
+        self
+    }
+
+    pub fn env(
+        &mut self,
+        key: impl AsRef<std::ffi::OsStr>,
+        value: impl AsRef<std::ffi::OsStr>,
+    ) -> &mut Self {
+        self.command.env(key, value);
+        self
+    }
+
+    /// Runs the program to its end; `status` is the program's own (a
+    /// signal's death reads as status 128 + the signal, as the shell
+    /// reports it). Without a status written, xvfb-run's own is kept: the
+    /// program never ran, and xvfb-run's message says why.
+    pub fn output(&mut self) -> std::io::Result<std::process::Output> {
+        use std::os::unix::process::ExitStatusExt;
+        let mut out = self.command.output()?;
+        let written = std::fs::read_to_string(self.status.path()).unwrap_or_default();
+        if let Ok(code) = written.trim().parse::<i32>() {
+            out.status = std::process::ExitStatus::from_raw(code << 8);
+        }
+        Ok(out)
+    }
+}
