@@ -373,9 +373,10 @@ fn a_prism_spreads_the_wavelengths_as_snells_law_says() {
 ///   `thin::STRAIGHT_ALPHA`: one ray straight on): `T = 1 − F(μ_o)` with
 ///   Schlick's F of the base, `0.04 + 0.96 (1 − μ_o)⁵`, to the f32
 ///   pixel's 10⁻⁷ (tolerance 10⁻⁶).
-/// * Rough (r = 0.5, `thin::LOBE_SAMPLES` = 64 Hammersley points on the
-///   visible normals): `T` is the lobe's albedo `∫ (1 − F) D Vis |cos|`,
-///   by `dfg::integrate` (2¹⁶ samples) `T = E − R`, `E = A + B`,
+/// * Rough (r = 0.5, `visible_normals::LOBE_SAMPLES` = 64 Hammersley
+///   points on the visible normals): `T` is the lobe's albedo
+///   `∫ (1 − F) D Vis |cos|`, by `dfg::integrate` (2¹⁶ samples)
+///   `T = E − R`, `E = A + B`,
 ///   `R = F0 A + B` at F0 = 0.04, at the effective α. The tolerance
 ///   4·10⁻³ is the 64-point rule's error on this lobe: measured on
 ///   2026-12-05 at these nine views, 1.1·10⁻⁵ to 9.5·10⁻⁴ for μ ≥ 0.64

@@ -9,9 +9,9 @@
 //!   the lobe's integral in the smooth limit. The lobe is then narrower
 //!   than 10⁻³ rad (0.06°), below what a pixel resolves.
 //! * Specular, rougher: [`LOBE_SAMPLES`] GGX normals visible from `V`
-//!   (Heitz 2018) at the points of a Hammersley set, the mirror
-//!   direction of `V` about each mirrored to the far side, of weight
-//!   `f_t |cos θ_i| / pdf`. The set is the same for every pixel:
+//!   (Heitz 2018) at the points of a Hammersley set
+//!   ([`super::visible_normals`]), the mirror direction of `V` about each
+//!   mirrored to the far side, of weight `f_t |cos θ_i| / pdf`. The set is the same for every pixel:
 //!   deterministic, no noise, and exact for a uniform background (a
 //!   furnace) up to the quadrature's error on the lobe itself (measured
 //!   in tests/transmission.rs against `dfg::integrate`, docs/transmission.md);
@@ -26,6 +26,7 @@
 //! the lobe's integral as its weight, so a pixel costs at most
 //! `2 · LOBE_SAMPLES` paths.
 
+use super::visible_normals::{LOBE_SAMPLES, hammersley, to_world, visible_normal};
 use crate::base::Rgb;
 use crate::material::Material;
 use crate::material::brdf::SurfaceFrame;
@@ -39,22 +40,11 @@ use std::f64::consts::{PI, TAU};
 /// Below this GGX α the specular lobe is followed as one straight ray.
 pub const STRAIGHT_ALPHA: f64 = 1e-3;
 
-/// Points of the Hammersley set per lobe.
-pub const LOBE_SAMPLES: u32 = 64;
-
 /// A direction on the far side (pointing away from the wall) and its weight.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
     pub direction: DVec3,
     pub weight: Rgb,
-}
-
-/// The Hammersley point `k` of `n`: `((k + ½)/n, radical inverse of k)`.
-fn hammersley(k: u32, n: u32) -> (f64, f64) {
-    (
-        (k as f64 + 0.5) / n as f64,
-        k.reverse_bits() as f64 / 4_294_967_296.0,
-    )
 }
 
 /// The directions through a thin wall of `material` (roughness and base
@@ -156,32 +146,4 @@ pub fn thin_samples(
         }
     }
     out
-}
-
-/// A GGX normal of `α` visible from `v` (the frame's coordinates, `v.z >
-/// 0`) at the point `(u1, u2)` of the unit square: Heitz 2018, "Sampling
-/// the GGX Distribution of Visible Normals" (JCGT 7(4), listing 1). Its
-/// density is `G1(v) max(0, v·h) D(h) / v.z`, so a lobe's weight
-/// `f cos / pdf` stays below 1 even at grazing views, where sampling `D`
-/// alone leaves a few samples of very large weight.
-fn visible_normal(v: DVec3, alpha: f64, u1: f64, u2: f64) -> DVec3 {
-    let vh = DVec3::new(alpha * v.x, alpha * v.y, v.z).normalize();
-    let len2 = vh.x * vh.x + vh.y * vh.y;
-    let t1 = if len2 > 0.0 {
-        DVec3::new(-vh.y, vh.x, 0.0) / len2.sqrt()
-    } else {
-        DVec3::X
-    };
-    let t2 = vh.cross(t1);
-    let (r, phi) = (u1.sqrt(), TAU * u2);
-    let p1 = r * phi.cos();
-    let s = 0.5 * (1.0 + vh.z);
-    let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * phi.sin();
-    let nh = t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
-    DVec3::new(alpha * nh.x, alpha * nh.y, nh.z.max(0.0)).normalize()
-}
-
-/// `v` given in `frame`'s coordinates `(t, b, n)`, in world space.
-fn to_world(frame: &SurfaceFrame, v: DVec3) -> DVec3 {
-    frame.t * v.x + frame.b * v.y + frame.n * v.z
 }
