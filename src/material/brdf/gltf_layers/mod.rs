@@ -14,10 +14,11 @@
 //! * [`clearcoat`]: `KHR_materials_clearcoat`'s coat, a GGX lobe of IOR 1.5
 //!   over everything below;
 //! * [`stack`]: base → sheen → clearcoat;
-//! * [`transmission`] and [`volume_btdf`]: light through the surface
-//!   (`KHR_materials_transmission`, `_diffuse_transmission`, `_volume`,
-//!   `_dispersion`): the thin-walled and diffuse BTDFs, the rough
-//!   dielectric BTDF of Walter et al. 2007, and `n(λ)`.
+//! * [`transmission`], [`volume_btdf`] and [`volume_albedo`]: light
+//!   through the surface (`KHR_materials_transmission`,
+//!   `_diffuse_transmission`, `_volume`, `_dispersion`): the thin-walled
+//!   and diffuse BTDFs, the rough dielectric BSDF of Walter et al. 2007
+//!   and its albedo by quadrature, and `n(λ)`.
 //!
 //! Every layer at its default leaves the core BRDF exactly as
 //! [`super::gltf_pbr::gltf_pbr`] computes it (each layer is switched off by
@@ -34,6 +35,7 @@ pub mod sheen_albedo;
 pub mod sheen_albedo_nodes;
 pub mod stack;
 pub mod transmission;
+pub mod volume_albedo;
 pub mod volume_btdf;
 
 use crate::base::Rgb;

@@ -1,7 +1,8 @@
 //! The rough dielectric BTDF of a volume's boundary (`KHR_materials_volume`
 //! with `KHR_materials_transmission`; contract "Light through surfaces"):
 //! Walter, Marschner, Li & Torrance 2007, "Microfacet Models for
-//! Refraction through Rough Surfaces", eq. 21 with the GGX distribution
+//! Refraction through Rough Surfaces", eq. 21 (and its reflection, eq. 20:
+//! [`rough_dielectric_brdf`]) with the GGX distribution
 //! (eq. 33) and the height-correlated Smith masking of Heitz 2014 (eq. 99):
 //!
 //! `f_t(i, o) = |i·h||o·h| / (|i·n||o·n|) · η_o² (1 − F(i·h)) G(i, o) D(h)
@@ -71,6 +72,38 @@ pub fn rough_dielectric_btdf(
     let f = fresnel_dielectric(cos_ih.abs(), eta_i, eta_o);
     (cos_ih * cos_oh).abs() / (cos_i * cos_o).abs() * eta_o * eta_o * (1.0 - f) * g * d
         / (denom * denom)
+}
+
+/// The reflection of the same rough boundary (Walter et al. 2007,
+/// eq. 20): `f_r(i, o) = F(i·h) G(i, o) D(h) / (4 |i·n| |o·n|)`,
+/// `h = sign(i·n) (i + o) / ‖i + o‖` (eq. 13), `F` the exact dielectric
+/// Fresnel reflectance from `eta_i` (the side of `i` and `o`) into
+/// `eta_t` (1 beyond the critical angle), `G` height-correlated Smith as
+/// in [`rough_dielectric_btdf`]; 0 unless `i` and `o` lie on the same
+/// side of `n`. With it, `∫ (f_r + f_t) |o·n| dω_o` is the boundary's
+/// single-scattering albedo, at most 1.
+pub fn rough_dielectric_brdf(
+    alpha: f64,
+    n: DVec3,
+    wi: DVec3,
+    wo: DVec3,
+    eta_i: f64,
+    eta_t: f64,
+) -> f64 {
+    let (cos_i, cos_o) = (n.dot(wi), n.dot(wo));
+    if cos_i * cos_o <= 0.0 {
+        return 0.0;
+    }
+    let h = (wi + wo).normalize_or_zero() * cos_i.signum();
+    let cos_ih = wi.dot(h);
+    // χ⁺((v·h)/(v·n)) for both directions (equal for a mirror pair).
+    if cos_ih * cos_i <= 0.0 {
+        return 0.0;
+    }
+    let d = d_ggx(alpha, n.dot(h), sin2_between(n, h));
+    let g = 1.0 / (1.0 + lambda_ggx(alpha, cos_i.abs()) + lambda_ggx(alpha, cos_o.abs()));
+    let f = fresnel_dielectric(cos_ih.abs(), eta_i, eta_t);
+    f * g * d / (4.0 * (cos_i * cos_o).abs())
 }
 
 /// Snell's law: the direction refracted from `wi` (pointing away from the
