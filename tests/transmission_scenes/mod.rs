@@ -1,7 +1,7 @@
 //! The scenes the tests of light through surfaces in the f64 reference
-//! look at (tests/transmission.rs), in a module of their own to be
-//! shared: a camera on +Z, emitters of known radiance behind glass, boxes
-//! and polyhedra with exact face normals.
+//! look at (tests/transmission.rs, tests/rough_volume.rs): a camera on
+//! +Z, emitters of known radiance behind glass, boxes and polyhedra with
+//! exact face normals.
 #![allow(dead_code)]
 
 use glam::DVec3;
@@ -51,9 +51,11 @@ pub fn emitter(radiance: Rgb) -> Material {
     m
 }
 
-/// A white, clear glass of index `ior` (gltf-pbr, transmission 1).
+/// A white, clear, smooth glass of index `ior` (gltf-pbr, transmission 1,
+/// roughness 0: the pixel's roughness floor alone).
 pub fn glass(ior: f64, thickness: f64) -> Material {
     let mut m = Material::new("glass", ReflectanceModel::GltfPbr);
+    m.roughness = 0.0;
     m.base_color = Rgb::ONE;
     m.k_a = Rgb::ZERO;
     m.layers.ior = ior;

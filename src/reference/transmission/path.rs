@@ -16,9 +16,21 @@
 //!   the refracted ray is followed (the reflection off the outside is the
 //!   surface's own `F·S` term, which the reflection equation already
 //!   gives); leaving, both the refracted ray and the internal reflection
-//!   (all of it at total internal reflection). The boundary is smooth
-//!   for the path's geometry: a rough volume's roughness shapes its
-//!   reflection but not (yet) the spread of the refracted rays.
+//!   (all of it at total internal reflection).
+//! * A rough boundary (GGX `α = r²`, the material's roughness as
+//!   rendered, pixel floor included, at least [`STRAIGHT_ALPHA`]) at a
+//!   path's first crossing (`depth 0`: the surface the camera sees)
+//!   spreads the path instead over the directions of
+//!   [`super::rough_boundary`]: the rough dielectric BSDF of Walter et
+//!   al. 2007 at [`super::visible_normals::LOBE_SAMPLES`] visible
+//!   normals, each split by its own `F` into the refracted and, leaving,
+//!   the reflected ray (the media and the tint as above). Later crossings
+//!   are smooth, as a thin wall seen through another goes straight on, so
+//!   a rough volume costs at most `LOBE_SAMPLES` (leaving: twice that)
+//!   smooth paths. An interface between equal indices stays smooth at any
+//!   roughness: there is no interface (`F = 0`, the ray straight on),
+//!   where the microfacet model's masking would lose `1 − G2/G1` of light
+//!   that no facet turns.
 //! * A dispersive volume (`dispersion > 0`) splits the path where it is
 //!   entered into the wavelengths of [`super::spectrum`], each traced with
 //!   its own `n(λ)` through every medium after it.
@@ -34,8 +46,9 @@
 //! shadow maps do.
 
 use super::interface::{Media, Medium, reflect};
+use super::rough_boundary::{self, rough_boundary_samples};
 use super::spectrum;
-use super::thin::thin_samples;
+use super::thin::{STRAIGHT_ALPHA, thin_samples};
 use crate::base::Rgb;
 use crate::material::Material;
 use crate::material::brdf::SurfaceFrame;
@@ -253,7 +266,8 @@ impl<S: Scenery> Tracer<'_, S> {
         sum
     }
 
-    /// A volume's boundary: refraction and internal reflection.
+    /// A volume's boundary: refraction and internal reflection, sampled
+    /// by the rough BSDF where the module doc says, smooth elsewhere.
     fn boundary(&self, c: &Crossing, media: &Media, path: Path) -> Rgb {
         let m = &c.material;
         let medium = Medium::of(m, c.mesh);
@@ -285,13 +299,20 @@ impl<S: Scenery> Tracer<'_, S> {
         if n.dot(face_in) <= 0.0 || n.dot(wi) <= 0.0 {
             n = face_in;
         }
+        let tint = m.base_color * (m.layers.transmission * (1.0 - m.metallic));
+        let alpha = m.roughness * m.roughness;
+        if path.depth == 0 && alpha >= STRAIGHT_ALPHA && eta_i != eta_t {
+            let frame = SurfaceFrame::new(n, c.frame.t);
+            let samples =
+                rough_boundary_samples(&frame, face_in, wi, alpha, (eta_i, eta_t), leaving);
+            return self.rough(c, &samples, tint, (media, &after), path);
+        }
         let cos_i = n.dot(wi);
         let refracted = refract(wi, n, eta_i, eta_t).filter(|d| d.dot(face_in) < 0.0);
         let f = match refracted {
             Some(_) => fresnel_dielectric(cos_i, eta_i, eta_t),
             None => 1.0,
         };
-        let tint = m.base_color * (m.layers.transmission * (1.0 - m.metallic));
         let mut sum = Rgb::ZERO;
         if let Some(d) = refracted {
             let w = tint * (1.0 - f);
@@ -315,6 +336,35 @@ impl<S: Scenery> Tracer<'_, S> {
                 direction: r,
             };
             sum += f * self.seen(ray, media, path.next(f));
+        }
+        sum
+    }
+
+    /// A rough boundary's sampled directions (`super::rough_boundary`):
+    /// the refracted ones into `after` tinted as at the smooth boundary,
+    /// the reflected ones back into `before`.
+    fn rough(
+        &self,
+        c: &Crossing,
+        samples: &[rough_boundary::Sample],
+        tint: Rgb,
+        (before, after): (&Media, &Media),
+        path: Path,
+    ) -> Rgb {
+        let mut sum = Rgb::ZERO;
+        for s in samples {
+            let (w, media) = if s.refracted {
+                (tint * s.weight, after)
+            } else {
+                (Rgb::splat(s.weight), before)
+            };
+            if w.max_element() > 0.0 {
+                let ray = Ray {
+                    origin: c.point,
+                    direction: s.direction,
+                };
+                sum += w * self.seen(ray, media, path.next(w.max_element()));
+            }
         }
         sum
     }

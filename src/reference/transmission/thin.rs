@@ -10,8 +10,9 @@
 //!   than 10⁻³ rad (0.06°), below what a pixel resolves.
 //! * Specular, rougher: [`LOBE_SAMPLES`] GGX normals visible from `V`
 //!   (Heitz 2018) at the points of a Hammersley set
-//!   ([`super::visible_normals`]), the mirror direction of `V` about each
-//!   mirrored to the far side, of weight `f_t |cos θ_i| / pdf`. The set is the same for every pixel:
+//!   ([`super::visible_normals`], shared with a volume's rough boundary),
+//!   the mirror direction of `V` about each mirrored to the far side, of
+//!   weight `f_t |cos θ_i| / pdf`. The set is the same for every pixel:
 //!   deterministic, no noise, and exact for a uniform background (a
 //!   furnace) up to the quadrature's error on the lobe itself (measured
 //!   in tests/transmission.rs against `dfg::integrate`, docs/transmission.md);

@@ -1,5 +1,6 @@
 //! The deterministic microfacet normals the reference looks through a
-//! rough surface along ([`super::thin`]): the points of a
+//! rough surface along, shared by the thin wall ([`super::thin`]) and the
+//! rough boundary of a volume ([`super::rough_boundary`]): the points of a
 //! Hammersley set mapped to GGX's distribution of normals visible from the
 //! viewer (Heitz 2018). The same points serve every pixel, so a lobe costs
 //! a fixed number of rays and adds no noise: what remains is the
@@ -46,4 +47,9 @@ pub fn visible_normal(v: DVec3, alpha: f64, u1: f64, u2: f64) -> DVec3 {
 /// `v` given in `frame`'s coordinates `(t, b, n)`, in world space.
 pub fn to_world(frame: &SurfaceFrame, v: DVec3) -> DVec3 {
     frame.t * v.x + frame.b * v.y + frame.n * v.z
+}
+
+/// `w` (world space) in `frame`'s coordinates `(t, b, n)`.
+pub fn to_local(frame: &SurfaceFrame, w: DVec3) -> DVec3 {
+    DVec3::new(frame.t.dot(w), frame.b.dot(w), frame.n.dot(w))
 }
