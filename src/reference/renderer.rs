@@ -780,6 +780,10 @@ impl super::transmission::Scenery for Shader<'_> {
         self.epsilon
     }
 
+    fn roughness_floor(&self) -> f64 {
+        self.scene.roughness_floor()
+    }
+
     fn lights(&self) -> &[Light] {
         &self.scene.lights
     }

@@ -17,12 +17,13 @@
 //!   surface's own `F·S` term, which the reflection equation already
 //!   gives); leaving, both the refracted ray and the internal reflection
 //!   (all of it at total internal reflection).
-//! * A rough boundary (GGX `α = r²`, the material's roughness as
-//!   rendered, pixel floor included, at least [`STRAIGHT_ALPHA`]) at a
+//! * A rough boundary (the material's own GGX `α = r²` at least
+//!   [`super::thin::STRAIGHT_ALPHA`], [`super::thin::spreads`]) at a
 //!   path's first crossing (`depth 0`: the surface the camera sees)
 //!   spreads the path instead over the directions of
 //!   [`super::rough_boundary`]: the rough dielectric BSDF of Walter et
-//!   al. 2007 at [`super::visible_normals::LOBE_SAMPLES`] visible
+//!   al. 2007, at the rendered `α` (the pixel's roughness floor
+//!   included), at [`super::visible_normals::LOBE_SAMPLES`] visible
 //!   normals, each split by its own `F` into the refracted and, leaving,
 //!   the reflected ray (the media and the tint as above). Later crossings
 //!   are smooth, as a thin wall seen through another goes straight on, so
@@ -48,7 +49,7 @@
 use super::interface::{Media, Medium, reflect};
 use super::rough_boundary::{self, rough_boundary_samples};
 use super::spectrum;
-use super::thin::{STRAIGHT_ALPHA, thin_samples};
+use super::thin::{spreads, thin_samples};
 use crate::base::Rgb;
 use crate::material::Material;
 use crate::material::brdf::SurfaceFrame;
@@ -100,6 +101,10 @@ pub trait Scenery {
     /// next ray starts at the crossing itself and ignores hits closer
     /// than it, so segment lengths (Beer–Lambert's path) are exact.
     fn epsilon(&self) -> f64;
+    /// The view's roughness floor (`Scene::roughness_floor`), which the
+    /// crossings' materials include: a lobe is sampled where the
+    /// material's own width, without it, [`spreads`].
+    fn roughness_floor(&self) -> f64;
     fn lights(&self) -> &[Light];
     /// `V_l` of light `l` at `x` (the shadow ray leaves on the light's
     /// side of `face`).
@@ -230,7 +235,8 @@ impl<S: Scenery> Tracer<'_, S> {
         let wo = -c.ray.direction;
         let frame = facing(&c.frame, wo);
         let mut sum = Rgb::ZERO;
-        for sample in thin_samples(m, &frame, wo, path.depth == 0) {
+        let floor = s.roughness_floor();
+        for sample in thin_samples(m, &frame, wo, path.depth == 0, floor) {
             let ray = Ray {
                 origin: c.point,
                 direction: sample.direction,
@@ -301,7 +307,8 @@ impl<S: Scenery> Tracer<'_, S> {
         }
         let tint = m.base_color * (m.layers.transmission * (1.0 - m.metallic));
         let alpha = m.roughness * m.roughness;
-        if path.depth == 0 && alpha >= STRAIGHT_ALPHA && eta_i != eta_t {
+        let floor = self.scenery.roughness_floor();
+        if path.depth == 0 && spreads(alpha, floor) && eta_i != eta_t {
             let frame = SurfaceFrame::new(n, c.frame.t);
             let samples =
                 rough_boundary_samples(&frame, face_in, wi, alpha, (eta_i, eta_t), leaving);

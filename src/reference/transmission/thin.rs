@@ -4,11 +4,13 @@
 //! `Σ_k w_k L(ω_k)` stands for `∫ f_t(ω, V) L(ω) |N·ω| dω` over the far
 //! hemisphere ([`crate::material::brdf::gltf_layers::transmission`]).
 //!
-//! * Specular, `α < STRAIGHT_ALPHA`: one ray straight on (`ω = −V`; the
-//!   wall does not refract), of weight `(1 − m)(1 − max₃ F(μ_o)) T b`,
-//!   the lobe's integral in the smooth limit. The lobe is then narrower
-//!   than 10⁻³ rad (0.06°), below what a pixel resolves.
+//! * Specular, smooth (the material's own `α` below `STRAIGHT_ALPHA`,
+//!   [`spreads`]): one ray straight on (`ω = −V`; the wall does not
+//!   refract), of weight `(1 − m)(1 − max₃ F(μ_o)) T b`, the lobe's
+//!   integral in the smooth limit. The lobe is then narrower than 10⁻³
+//!   rad (0.06°).
 //! * Specular, rougher: [`LOBE_SAMPLES`] GGX normals visible from `V`
+//!   at the rendered `α` (the pixel's roughness floor included)
 //!   (Heitz 2018) at the points of a Hammersley set
 //!   ([`super::visible_normals`], shared with a volume's rough boundary),
 //!   the mirror direction of `V` about each mirrored to the far side, of
@@ -41,6 +43,20 @@ use std::f64::consts::{PI, TAU};
 /// Below this GGX α the specular lobe is followed as one straight ray.
 pub const STRAIGHT_ALPHA: f64 = 1e-3;
 
+/// Whether a lobe of rendered GGX `alpha` is followed as a lobe: the
+/// material's own `α`, the rendered one without the pixel's roughness
+/// floor `floor` that [`Material::with_roughness_floor`] adds in
+/// quadrature (`α² = alpha² − floor²`), at least [`STRAIGHT_ALPHA`].
+/// The floor widens lobes so that a light's highlight covers a pixel; a
+/// smooth surface sends what lies behind it along one ray, which the
+/// pixel grid resolves as sharply as it can. Deciding on the rendered
+/// `alpha` would make every surface rough at ordinary image sizes (the
+/// floor of a 40° view 200 pixels high is 1.7·10⁻³) and cost
+/// [`LOBE_SAMPLES`] paths for a blur of under a pixel.
+pub fn spreads(alpha: f64, floor: f64) -> bool {
+    alpha * alpha - floor * floor >= STRAIGHT_ALPHA * STRAIGHT_ALPHA
+}
+
 /// A direction on the far side (pointing away from the wall) and its weight.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
@@ -51,12 +67,14 @@ pub struct Sample {
 /// The directions through a thin wall of `material` (roughness and base
 /// colour as rendered) seen from `wo` in `frame` (its normal on the
 /// viewer's side), sampling the lobes when `sample_lobes`, else straight
-/// on with the lobes' weights.
+/// on with the lobes' weights; the specular lobe is sampled only where
+/// it [`spreads`] beyond the pixel's roughness floor `floor`.
 pub fn thin_samples(
     material: &Material,
     frame: &SurfaceFrame,
     wo: DVec3,
     sample_lobes: bool,
+    floor: f64,
 ) -> Vec<Sample> {
     let n = frame.n;
     let l = &material.layers;
@@ -86,7 +104,7 @@ pub fn thin_samples(
         }
     };
     if l.transmission > 0.0 {
-        if alpha < STRAIGHT_ALPHA || !sample_lobes {
+        if !spreads(alpha, floor) || !sample_lobes {
             out.push(Sample {
                 direction: straight,
                 weight: lobe_weight(false),
