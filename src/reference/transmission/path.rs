@@ -25,10 +25,14 @@
 //!   al. 2007, at the rendered `α` (the pixel's roughness floor
 //!   included), at [`super::visible_normals::LOBE_SAMPLES`] visible
 //!   normals, each split by its own `F` into the refracted and, leaving,
-//!   the reflected ray (the media and the tint as above). Later crossings
-//!   are smooth, as a thin wall seen through another goes straight on, so
-//!   a rough volume costs at most `LOBE_SAMPLES` (leaving: twice that)
-//!   smooth paths. An interface between equal indices stays smooth at any
+//!   the reflected ray (the media and the tint as above). Each of those
+//!   paths crosses the next rough boundary it meets (a sphere's exit, a
+//!   slab's far face) along one normal of its own
+//!   ([`super::visible_normals::second_point`] of its stratum), split the
+//!   same way; crossings after that are smooth, as a thin wall seen
+//!   through another goes straight on. So a rough volume costs at most
+//!   `LOBE_SAMPLES` paths (leaving: twice that), each as long as a smooth
+//!   one. An interface between equal indices stays smooth at any
 //!   roughness: there is no interface (`F = 0`, the ray straight on),
 //!   where the microfacet model's masking would lose `1 − G2/G1` of light
 //!   that no facet turns.
@@ -47,7 +51,7 @@
 //! shadow maps do.
 
 use super::interface::{Media, Medium, reflect};
-use super::rough_boundary::{self, rough_boundary_samples};
+use super::rough_boundary::{self, Boundary, rough_boundary_samples, second_crossing_samples};
 use super::spectrum;
 use super::thin::{spreads, thin_samples};
 use crate::base::Rgb;
@@ -137,6 +141,7 @@ pub fn through_in<S: Scenery>(scenery: &S, c: &Crossing, media: &Media) -> Trace
         weight: 1.0,
         depth: 0,
         lambda: None,
+        stratum: None,
     };
     let radiance = tracer.through(c, media, path);
     Traced {
@@ -145,13 +150,16 @@ pub fn through_in<S: Scenery>(scenery: &S, c: &Crossing, media: &Media) -> Trace
     }
 }
 
-/// What the path so far carries, how deep it is, and its wavelength
-/// (`None` until a dispersive medium splits it).
+/// What the path so far carries, how deep it is, its wavelength (`None`
+/// until a dispersive medium splits it), and the stratum of the first
+/// rough crossing that spread it, until its second rough crossing takes
+/// that stratum's point (`None` before the first and after the second).
 #[derive(Clone, Copy, Debug)]
 struct Path {
     weight: f64,
     depth: u32,
     lambda: Option<f64>,
+    stratum: Option<u32>,
 }
 
 impl Path {
@@ -159,7 +167,7 @@ impl Path {
         Path {
             weight: self.weight * weight,
             depth: self.depth + 1,
-            lambda: self.lambda,
+            ..self
         }
     }
 }
@@ -308,11 +316,22 @@ impl<S: Scenery> Tracer<'_, S> {
         let tint = m.base_color * (m.layers.transmission * (1.0 - m.metallic));
         let alpha = m.roughness * m.roughness;
         let floor = self.scenery.roughness_floor();
-        if path.depth == 0 && spreads(alpha, floor) && eta_i != eta_t {
+        let rough = spreads(alpha, floor) && eta_i != eta_t;
+        if rough && (path.depth == 0 || path.stratum.is_some()) {
             let frame = SurfaceFrame::new(n, c.frame.t);
-            let samples =
-                rough_boundary_samples(&frame, face_in, wi, alpha, (eta_i, eta_t), leaving);
-            return self.rough(c, &samples, tint, (media, &after), path);
+            let b = Boundary {
+                frame: &frame,
+                face: face_in,
+                wi,
+                alpha,
+                etas: (eta_i, eta_t),
+                reflections: leaving,
+            };
+            let (samples, second) = match path.stratum {
+                Some(k) => (second_crossing_samples(&b, k), true),
+                None => (rough_boundary_samples(&b), false),
+            };
+            return self.rough(c, &samples, tint, (media, &after), path, second);
         }
         let cos_i = n.dot(wi);
         let refracted = refract(wi, n, eta_i, eta_t).filter(|d| d.dot(face_in) < 0.0);
@@ -349,7 +368,9 @@ impl<S: Scenery> Tracer<'_, S> {
 
     /// A rough boundary's sampled directions (`super::rough_boundary`):
     /// the refracted ones into `after` tinted as at the smooth boundary,
-    /// the reflected ones back into `before`.
+    /// the reflected ones back into `before`. After a first rough
+    /// crossing each path keeps its sample's stratum for its second;
+    /// after the `second`, none.
     fn rough(
         &self,
         c: &Crossing,
@@ -357,6 +378,7 @@ impl<S: Scenery> Tracer<'_, S> {
         tint: Rgb,
         (before, after): (&Media, &Media),
         path: Path,
+        second: bool,
     ) -> Rgb {
         let mut sum = Rgb::ZERO;
         for s in samples {
@@ -370,7 +392,11 @@ impl<S: Scenery> Tracer<'_, S> {
                     origin: c.point,
                     direction: s.direction,
                 };
-                sum += w * self.seen(ray, media, path.next(w.max_element()));
+                let next = Path {
+                    stratum: (!second).then_some(s.stratum),
+                    ..path.next(w.max_element())
+                };
+                sum += w * self.seen(ray, media, next);
             }
         }
         sum

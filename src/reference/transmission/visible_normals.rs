@@ -21,6 +21,28 @@ pub fn hammersley(k: u32, n: u32) -> (f64, f64) {
     )
 }
 
+/// The point of the unit square a path spread at stratum `k` of a first
+/// rough crossing takes at its second (`super::rough_boundary`): the
+/// radical inverses of `k` in bases 3 and 5, the third and fourth
+/// coordinates of a four-dimensional Hammersley set whose first two are
+/// [`hammersley`]`(k, n)`. Each of the `n` paths crosses the second
+/// boundary along one normal, and together they cover both boundaries'
+/// normals as evenly as a Halton set, without a path splitting twice.
+pub fn second_point(k: u32) -> (f64, f64) {
+    (radical_inverse(k, 3), radical_inverse(k, 5))
+}
+
+/// The digits of `k` in base `base` mirrored about the point.
+fn radical_inverse(mut k: u32, base: u32) -> f64 {
+    let (mut value, mut scale) = (0.0, 1.0 / base as f64);
+    while k > 0 {
+        value += (k % base) as f64 * scale;
+        k /= base;
+        scale /= base as f64;
+    }
+    value
+}
+
 /// A GGX normal of `α` visible from `v` (the frame's coordinates, `v.z >
 /// 0`) at the point `(u1, u2)` of the unit square: Heitz 2018, "Sampling
 /// the GGX Distribution of Visible Normals" (JCGT 7(4), listing 1). Its
