@@ -118,7 +118,7 @@ pub fn albedo_curve_with<'a>(
     thetas
         .par_iter()
         .map(|&t| {
-            let a = albedo_towards(material, super::direction(t, phi_i), &frame);
+            let a = albedo_towards(material.clone(), super::direction(t, phi_i), &frame);
             done();
             a
         })
@@ -142,12 +142,12 @@ pub fn albedo_towards<'a>(
         };
     }
     let geometry = MirrorFrame::new(local);
-    let (q, error) = integrate(material, wi, frame, &geometry);
+    let (q, error) = integrate(&material, wi, frame, &geometry);
     // Zero but for a Dirac lobe (the mirror).
     let dirac = material.dirac(local.z);
     AlbedoEstimate {
         value: q + dirac,
-        error_bound: error + 1e-12 * q.abs(),
+        error_bound: error + 1e-12 * q.abs() + material.sheen_curve_error(),
     }
 }
 
@@ -207,7 +207,7 @@ const OUTER: Tolerance = Tolerance {
 };
 
 /// `(∫ f_r cos θ_o dω_o, error bound)` over the upper hemisphere.
-fn integrate(part: MaterialPart, wi: DVec3, frame: &SurfaceFrame, g: &MirrorFrame) -> (Rgb, Rgb) {
+fn integrate(part: &MaterialPart, wi: DVec3, frame: &SurfaceFrame, g: &MirrorFrame) -> (Rgb, Rgb) {
     let material = part.material;
     // gltf-pbr's anisotropy layer turns its lobe out of the plane of
     // incidence: no mirror symmetry then.

@@ -120,7 +120,7 @@ pub fn gloss_at<'a>(
     let half_b = 0.5 * geometry.perpendicular_deg.to_radians();
     let (sin_p, cos_p) = phi_i.sin_cos();
     let frame = SurfaceFrame::new(DVec3::Z, DVec3::new(cos_p, -sin_p, 0.0));
-    let (q, error) = aperture_integral(material, wi, theta, half_a, half_b, &frame);
+    let (q, error) = aperture_integral(&material, wi, theta, half_a, half_b, &frame);
     // Zero but for a Dirac lobe (the mirror).
     let dirac = material.dirac(theta.cos());
     let aperture_reflectance = q + dirac;
@@ -128,7 +128,7 @@ pub fn gloss_at<'a>(
     GlossReading {
         geometry,
         aperture_reflectance,
-        error_bound: error + 1e-12 * q.abs(),
+        error_bound: error + 1e-12 * q.abs() + material.sheen_curve_error(),
         standard_reflectance,
         gloss_units: 100.0 * Channel::Luminance.of(aperture_reflectance) / standard_reflectance,
     }
@@ -144,7 +144,7 @@ const TOLERANCE: Tolerance = Tolerance {
 /// `(∫_A f_r cos θ_o dω_o, error bound)` over the aperture `|a| ≤ half_a`,
 /// `|b| ≤ half_b`.
 fn aperture_integral(
-    material: MaterialPart,
+    material: &MaterialPart,
     wi: DVec3,
     theta: f64,
     half_a: f64,
