@@ -28,13 +28,12 @@
 //! tolerance `k · 2⁻¹⁰ + 10⁻⁵` for light read through `k` images.
 
 mod common;
+mod transmission_scenes;
 
 use glam::DVec3;
 use gonio::frame::Frame;
 use gonio::material::{Material, ReflectanceModel};
-use gonio::scene::{
-    Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode, TransmissionSettings,
-};
+use gonio::scene::{Light, Mesh, Rgb, Scene, TransmissionSettings};
 
 /// Half precision's relative rounding, to nearest or toward zero: `2⁻¹⁰`.
 const HALF_ROUNDING: f64 = 1.0 / 1024.0;
@@ -43,39 +42,15 @@ const F32_SLACK: f64 = 1e-5;
 const SIZE: u32 = 64;
 
 fn scene(meshes: Vec<Mesh>, materials: Vec<Material>) -> Scene {
-    Scene {
-        width: SIZE,
-        height: SIZE,
-        msaa: 1,
-        tone_map: Default::default(),
-        camera: Camera {
-            position: DVec3::new(0.0, 0.0, 5.0),
-            target: DVec3::ZERO,
-            up: DVec3::Y,
-            fov_y_deg: 20.0,
-            near: 0.1,
-            far: 100.0,
-        },
-        shading: ShadingMode::Phong,
-        meshes,
-        materials,
-        // The GPU draws a scene only with a light: one of no irradiance.
-        light_shadows: vec![Default::default()],
-        lights: vec![Light::Directional {
-            direction: DVec3::NEG_Z,
-            irradiance: Rgb::ZERO,
-            shadows: false,
-        }],
-        area_lights: Vec::new(),
-        ambient: Rgb::ZERO,
-        environment: Environment::uniform(Rgb::ZERO),
-        measured_table: gonio::material::measured::DEFAULT_TABLE_RESOLUTION,
-        measured_network: false,
-        smith_beckmann: Default::default(),
-        shadow_coords: Default::default(),
-        transmission: Default::default(),
-        images: Vec::new(),
-    }
+    let mut s = transmission_scenes::scene(SIZE, meshes, materials);
+    // The GPU draws a scene only with a light: one of no irradiance.
+    s.light_shadows = vec![Default::default()];
+    s.lights = vec![Light::Directional {
+        direction: DVec3::NEG_Z,
+        irradiance: Rgb::ZERO,
+        shadows: false,
+    }];
+    s
 }
 
 /// An emitter of radiance `radiance` and nothing else.

@@ -149,15 +149,7 @@ fn the_viewers_memory_is_flat_over_edits_of_every_model_without_the_panel() {
 }
 
 fn soak(panel: bool, measured: bool) {
-    let found = Command::new("sh")
-        .args(["-c", "command -v xvfb-run"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    assert!(
-        found,
-        "xvfb-run is missing: the soak test opens a real window under Xvfb. Install it with `sudo apt-get install xvfb xauth` (or run ./setup.sh)"
-    );
+    common::require_xvfb_run();
     let dir = tempfile::tempdir().unwrap();
     let bad = dir.path().join("broken.toml");
     std::fs::write(&bad, "[[objects]\nshape = ").unwrap();

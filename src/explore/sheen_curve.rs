@@ -131,7 +131,7 @@ fn mu_at(piece: usize, t: f64) -> f64 {
 
 /// Curves kept, most recently used last: a viewer dragging the sheen's
 /// roughness asks for a new `α` every frame, and builds each once.
-const KEPT: usize = 8;
+pub const KEPT: usize = 8;
 
 static CURVES: Mutex<Vec<Arc<SheenCurve>>> = Mutex::new(Vec::new());
 

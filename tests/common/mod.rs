@@ -307,8 +307,9 @@ pub struct Xvfb {
     status: tempfile::NamedTempFile,
 }
 
-/// `xvfb-run` with a screen large enough for the viewer tests' windows.
-pub fn xvfb() -> Xvfb {
+/// Fails, saying how to install it, where `xvfb-run` is missing: the
+/// viewer tests open a real window under Xvfb (they never skip).
+pub fn require_xvfb_run() {
     let found = std::process::Command::new("sh")
         .args(["-c", "command -v xvfb-run"])
         .output()
@@ -318,6 +319,11 @@ pub fn xvfb() -> Xvfb {
         found,
         "xvfb-run is missing: the viewer tests open a real window under Xvfb. Install it with `sudo apt-get install xvfb xauth` (or run ./setup.sh)"
     );
+}
+
+/// `xvfb-run` with a screen large enough for the viewer tests' windows.
+pub fn xvfb() -> Xvfb {
+    require_xvfb_run();
     let status = tempfile::NamedTempFile::new().expect("a temporary file for the exit status");
     let mut command = std::process::Command::new("xvfb-run");
     command
