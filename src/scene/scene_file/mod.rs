@@ -149,6 +149,16 @@ pub fn load_for_editing(
     crate::scene::environment_mode::choose(&mut scene);
     notes.extend(gltf_files.notes().iter().cloned());
     notes.extend(lights.notes());
+    if let Some(kv) = overrides.iter().find(|kv| {
+        kv.split_once('=')
+            .is_some_and(|(k, _)| k.trim() == "lights")
+    }) && !lights.imported.is_empty()
+    {
+        notes.push(format!(
+            "{WARNING}--set {kv} sets the scene's `[[lights]]`; the {} KHR_lights_punctual light(s) of the glTF file(s) are not `lights` entries and are drawn as well",
+            lights.imported.len()
+        ));
+    }
     notes.extend(
         mode_warnings::warnings(&scene)
             .into_iter()
@@ -376,6 +386,19 @@ mod tests {
         ];
         let scene = load(&source, &own).unwrap();
         assert!(!scene.lights[0].casts_shadows());
+        // `lights = []` empties the scene's own lights, not the file's:
+        // said, as the light is still drawn.
+        let none = ["lights=[]".to_string()];
+        let (scene, notes) = load_with_limits(&source, &none, Limits::default()).unwrap();
+        assert_eq!(scene.lights.len(), 1);
+        assert!(
+            notes
+                .iter()
+                .any(|n| n.starts_with(WARNING) && n.contains("--set lights=[]")),
+            "{notes:?}"
+        );
+        let (_, notes) = load_with_limits(&source, &[], Limits::default()).unwrap();
+        assert!(!notes.iter().any(|n| n.contains("--set lights")));
         // A glTF without any light gets the studio, said in the notes;
         // with `gltf.default_light = "directional"` the default light.
         let bare = SceneSource::File(
