@@ -7,8 +7,8 @@
 //! quadrature of its own (`sheen_albedo`). An albedo, a gloss value or a
 //! plot of a material with sheen asks for `E` at every outgoing
 //! direction it evaluates, each a new `μ_o`, so a directional albedo
-//! took minutes. Here `E` is computed exactly at [`NODES`] values of
-//! `μ ≥` [`MU_LOW`] once per `α` and read by cubic interpolation in
+//! took minutes. Here `E` is computed exactly at `2 ×` [`NODES`] values
+//! of `μ ≥` [`MU_LOW`] once per `α` and read by cubic interpolation in
 //! between; below [`MU_LOW`] (θ > 89.994°) [`SheenCurve::at`] computes
 //! it exactly, as there the specified `V_sh` makes `E` rise to a cusp
 //! near `μ ≈ 10⁻⁶` (E ≈ 2.7 at `r_sh = 0.1`) that no table resolves,
@@ -59,7 +59,7 @@ pub struct SheenCurve {
 }
 
 impl SheenCurve {
-    /// The curve of sheen `α` (`α_sh = r_sh²`): [`NODES`] exact
+    /// The curve of sheen `α` (`α_sh = r_sh²`): `2 ×` [`NODES`] exact
     /// integrals and as many checks, in parallel.
     pub fn new(alpha: f64) -> SheenCurve {
         let last = (NODES - 1) as f64;
@@ -84,8 +84,8 @@ impl SheenCurve {
         curve
     }
 
-    /// `E(μ)` by cubic interpolation in `u = μ^¼` (`μ` clamped to
-    /// [0, 1]), exact below [`MU_LOW`].
+    /// `E(μ)` by cubic interpolation in the piece's coordinate (`μ`
+    /// clamped to [0, 1]), exact below [`MU_LOW`].
     pub fn at(&self, mu: f64) -> f64 {
         if mu < MU_LOW {
             return sheen_albedo(mu.max(0.0), self.alpha);
@@ -109,11 +109,6 @@ impl SheenCurve {
         let (a, b, c, d) = (t, t - 1.0, t - 2.0, t - 3.0);
         -v[0] * b * c * d / 6.0 + v[1] * a * c * d / 2.0 - v[2] * a * b * d / 2.0
             + v[3] * a * b * c / 6.0
-    }
-
-    /// The sheen `α` the curve is of.
-    pub fn alpha(&self) -> f64 {
-        self.alpha
     }
 }
 
@@ -193,11 +188,6 @@ impl SheenAlbedo {
             return sheen_albedo(mu.clamp(0.0, 1.0), self.alpha);
         }
         self.curve.get_or_init(|| sheen_curve(self.alpha)).at(mu)
-    }
-
-    /// The sheen `α`.
-    pub fn alpha(&self) -> f64 {
-        self.alpha
     }
 
     /// The error of what [`SheenAlbedo::at`] returned so far: the curve's

@@ -327,11 +327,11 @@ impl<S: Scenery> Tracer<'_, S> {
                 etas: (eta_i, eta_t),
                 reflections: leaving,
             };
-            let (samples, second) = match path.stratum {
-                Some(k) => (second_crossing_samples(&b, k), true),
-                None => (rough_boundary_samples(&b), false),
+            let samples = match path.stratum {
+                Some(k) => second_crossing_samples(&b, k),
+                None => rough_boundary_samples(&b),
             };
-            return self.rough(c, &samples, tint, (media, &after), path, second);
+            return self.rough(c, &samples, tint, (media, &after), path);
         }
         let cos_i = n.dot(wi);
         let refracted = refract(wi, n, eta_i, eta_t).filter(|d| d.dot(face_in) < 0.0);
@@ -368,9 +368,9 @@ impl<S: Scenery> Tracer<'_, S> {
 
     /// A rough boundary's sampled directions (`super::rough_boundary`):
     /// the refracted ones into `after` tinted as at the smooth boundary,
-    /// the reflected ones back into `before`. After a first rough
-    /// crossing each path keeps its sample's stratum for its second;
-    /// after the `second`, none.
+    /// the reflected ones back into `before`. After a path's first rough
+    /// crossing each of its paths keeps its sample's stratum for its
+    /// second; after the second (`path` carried a stratum), none.
     fn rough(
         &self,
         c: &Crossing,
@@ -378,7 +378,6 @@ impl<S: Scenery> Tracer<'_, S> {
         tint: Rgb,
         (before, after): (&Media, &Media),
         path: Path,
-        second: bool,
     ) -> Rgb {
         let mut sum = Rgb::ZERO;
         for s in samples {
@@ -393,7 +392,10 @@ impl<S: Scenery> Tracer<'_, S> {
                     direction: s.direction,
                 };
                 let next = Path {
-                    stratum: (!second).then_some(s.stratum),
+                    stratum: match path.stratum {
+                        Some(_) => None,
+                        None => Some(s.stratum),
+                    },
                     ..path.next(w.max_element())
                 };
                 sum += w * self.seen(ray, media, next);
