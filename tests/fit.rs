@@ -28,6 +28,7 @@ use gonio::base::Rgb;
 use gonio::base::frame::SurfaceFrame;
 use gonio::fit::problem::{SD_TOLERANCE, mean_of, searched};
 use gonio::fit::samples::{Sample, samples_of};
+use gonio::fit::terms::Terms;
 use gonio::fit::{FitModel, Metric, fit};
 
 /// The relative cost of `values` (what the search minimizes).
@@ -162,6 +163,78 @@ fn gltf_pbr_with_a_clearcoat_is_recovered() {
         "gltf-pbr,layers=clearcoat",
         &[0.6, 0.3, 0.2, 0.2, 0.6, 0.8, 0.2],
     );
+}
+
+/// A sheen over the base: base colour, metallic, roughness, then the
+/// sheen's colour and roughness (a fabric's rim over a rough base). The
+/// search reads the sheen's albedo from the GPU's table (`fit::terms`), so
+/// the synthetic measurements and the cost here take it from there too:
+/// what is checked is the search, on data it can fit exactly (the
+/// table's own error is measured by `sheen_albedo_table_error`).
+#[test]
+fn gltf_pbr_with_a_sheen_is_recovered() {
+    let spec = "gltf-pbr,layers=sheen";
+    let truth = [0.5, 0.3, 0.2, 0.1, 0.7, 0.8, 0.6, 0.6, 0.4];
+    let metric = Metric::Ngan;
+    let model = FitModel::parse(spec).unwrap();
+    assert_eq!(model.free.len(), truth.len());
+    let mut samples = samples_of(|_, _, _, _, _| Rgb::ZERO);
+    let terms = Terms::new(&samples);
+    let f_of = |values: &[f64], samples: &[Sample]| {
+        let mut f = Vec::new();
+        terms.f_r(&model.material(values), samples, &mut f);
+        f
+    };
+    let measured = f_of(&truth, &samples);
+    for (s, f) in samples.iter_mut().zip(measured) {
+        s.measured = f;
+    }
+    let norm = metric.mean(&samples, |_| Rgb::ZERO);
+    let table_cost = |values: &[f64]| {
+        let f = f_of(values, &samples);
+        metric.mean(&samples, |i| f[i]) / norm
+    };
+    let r = fit(&model, &samples, metric);
+    let c_max = 2.0 * ((searched(&model, metric) + 1) as f64).sqrt() * SD_TOLERANCE;
+    let c = table_cost(&r.values);
+    assert!(
+        c <= c_max,
+        "cost {c:e} > {c_max:e}: the search stalled ({:?})",
+        r.values
+    );
+    // As in `recovers`: each number within what a cost of C allows.
+    let n = truth.len();
+    let h: Vec<f64> = truth.iter().map(|v| 1e-4 * v.abs().max(1e-2)).collect();
+    let at = |di: (usize, f64), dj: (usize, f64)| {
+        let mut v = truth.to_vec();
+        v[di.0] += di.1;
+        v[dj.0] += dj.1;
+        table_cost(&v)
+    };
+    let hess: Vec<Vec<f64>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    (at((i, h[i]), (j, h[j]))
+                        - at((i, h[i]), (j, -h[j]))
+                        - at((i, -h[i]), (j, h[j]))
+                        + at((i, -h[i]), (j, -h[j])))
+                        / (4.0 * h[i] * h[j])
+                })
+                .collect()
+        })
+        .collect();
+    let inv = inverse(&hess);
+    for j in 0..n {
+        let tol = (2.0 * c_max * inv[j][j]).sqrt();
+        assert!(
+            (r.values[j] - truth[j]).abs() <= tol,
+            "{}[{j}] = {} vs truth {} (tolerance {tol:e})",
+            model.free[j].param.key,
+            r.values[j],
+            truth[j]
+        );
+    }
 }
 
 /// Runs `gonio fit ARGS` and checks the one-paragraph exit-2 error.

@@ -118,7 +118,7 @@ pub fn albedo_curve_with<'a>(
     thetas
         .par_iter()
         .map(|&t| {
-            let a = albedo_towards(material.clone(), super::direction(t, phi_i), &frame);
+            let a = albedo_towards(material, super::direction(t, phi_i), &frame);
             done();
             a
         })

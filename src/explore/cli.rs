@@ -199,7 +199,7 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
             series: parts
                 .iter()
                 .map(|(label, part)| {
-                    let s = slice(part.clone(), theta_i, phi_i, args.quantity, args.channel);
+                    let s = slice(*part, theta_i, phi_i, args.quantity, args.channel);
                     (label.clone(), s)
                 })
                 .collect(),
@@ -240,7 +240,7 @@ pub fn run(args: &BrdfArgs) -> Result<()> {
             .iter()
             .map(|(label, part)| {
                 with_progress(&|p| p.set_message(label.clone()));
-                let curve = albedo_curve_with(part.clone(), &thetas, phi_i, &step);
+                let curve = albedo_curve_with(*part, &thetas, phi_i, &step);
                 (label.clone(), curve)
             })
             .collect();
@@ -429,7 +429,7 @@ fn print_albedo(materials: &[Labelled], choice: LayerChoice, a: &Angles) {
         let mut sum = None;
         for &term in &terms {
             let part = MaterialPart::new(&m.material, term);
-            let e = super::albedo::albedo_towards(part.clone(), wi, &frame());
+            let e = super::albedo::albedo_towards(part, wi, &frame());
             println!(
                 "{}: albedo ρ(θ_i = {}°) = {}",
                 term_label(&m.label, term),
@@ -482,7 +482,7 @@ fn print_gloss(parts: &[(String, MaterialPart)], phi_i: f64) {
         let readings: Vec<String> = GEOMETRIES
             .iter()
             .map(|&g| {
-                let r = gloss_at(part.clone(), g, phi_i.to_radians());
+                let r = gloss_at(*part, g, phi_i.to_radians());
                 format!("{}°: {} GU", g.angle_deg, number(r.gloss_units))
             })
             .collect();

@@ -66,7 +66,7 @@ pub fn half_diff_rgb<'a>(m: impl Into<MaterialPart<'a>>, phi_d: f64) -> Vec<Vec<
     (0..CELLS)
         .map(|j| {
             (0..CELLS)
-                .map(|i| f_r_at(m.clone(), cell_centre(i), cell_centre(j), phi_d))
+                .map(|i| f_r_at(m, cell_centre(i), cell_centre(j), phi_d))
                 .collect()
         })
         .collect()

@@ -115,7 +115,7 @@ pub fn encode(
         series: materials
             .iter()
             .map(|(label, part)| {
-                let image = half_diff_image_at(part.clone(), channel, phi_d_deg.to_radians());
+                let image = half_diff_image_at(*part, channel, phi_d_deg.to_radians());
                 (label.clone(), image)
             })
             .collect(),

@@ -25,7 +25,6 @@ pub mod halfdiff_plot;
 pub mod part;
 pub mod plot;
 pub mod quadrature;
-pub mod sheen_curve;
 pub mod slice;
 pub mod spec;
 pub mod table;

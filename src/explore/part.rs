@@ -7,8 +7,8 @@
 //! slices, the 3D lobe, the θ_h × θ_d image, albedo, gloss) takes a
 //! [`MaterialPart`]; a `&Material` is its whole, reflected.
 
-use super::sheen_curve::SheenAlbedo;
 use crate::material::brdf::gltf_layers::sheen::sheen_alpha;
+use crate::material::brdf::gltf_layers::sheen_curve::sheen_albedo_of;
 use crate::material::brdf::gltf_layers::transmission::gltf_transmitted;
 use crate::material::brdf::{Brdf, SurfaceFrame, mirror_reflectance};
 use crate::material::layers::LayerTerm;
@@ -17,25 +17,17 @@ use crate::scene::Rgb;
 use glam::DVec3;
 use std::fmt;
 use std::str::FromStr;
-use std::sync::Arc;
 
 /// A material and the term of its `f_r` evaluated, with the material's
 /// [`Brdf`] built once: every quantity evaluates `f_r` thousands of times,
 /// and building the value is not free (a normalized Gaussian sums a
 /// 1000-term series).
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug)]
 pub struct MaterialPart<'a> {
     pub material: &'a Material,
     pub term: LayerTerm,
     pub side: Side,
     brdf: Brdf,
-    /// The sheen's albedo `E(μ_o)`, exact for a few directions and then
-    /// from a curve, for a `gltf-pbr` material with sheen whose term
-    /// reads it (the whole, the base): the exact integral at every
-    /// outgoing direction made an albedo take minutes
-    /// ([`super::sheen_curve`]). Shared by the part's clones, which an
-    /// integral hands to its threads.
-    sheen: Option<Arc<SheenAlbedo>>,
 }
 
 /// Which side of the surface the outgoing direction is on.
@@ -69,19 +61,11 @@ impl<'a> From<&'a Material> for MaterialPart<'a> {
 impl<'a> MaterialPart<'a> {
     /// Term `term` of `material`.
     pub fn new(material: &'a Material, term: LayerTerm) -> Self {
-        let reads_sheen = material.model == ReflectanceModel::GltfPbr
-            && material.layers.has_sheen()
-            && matches!(term, LayerTerm::All | LayerTerm::Base);
         MaterialPart {
             material,
             term,
             side: Side::Reflected,
             brdf: material.brdf(),
-            sheen: reads_sheen.then(|| {
-                Arc::new(SheenAlbedo::new(sheen_alpha(
-                    material.layers.sheen_roughness,
-                )))
-            }),
         }
     }
 
@@ -100,16 +84,8 @@ impl MaterialPart<'_> {
     pub fn f_r(&self, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
         match (self.side, self.term) {
             (Side::Transmitted, _) => self.f_t_mirrored(wi, wo, frame),
-            (Side::Reflected, term) => match &self.sheen {
-                Some(albedo) => {
-                    let e_o = albedo.at(frame.n.dot(wo));
-                    let e_i = albedo.at(frame.n.dot(wi));
-                    self.brdf
-                        .f_r_term_with_albedos(term, (e_o, e_i), wi, wo, frame)
-                }
-                None if term == LayerTerm::All => self.brdf.f_r(wi, wo, frame),
-                None => self.brdf.f_r_term(term, wi, wo, frame),
-            },
+            (Side::Reflected, LayerTerm::All) => self.brdf.f_r(wi, wo, frame),
+            (Side::Reflected, term) => self.brdf.f_r_term(term, wi, wo, frame),
         }
     }
 
@@ -160,16 +136,23 @@ impl MaterialPart<'_> {
         }
     }
 
-    /// What reading the sheen's `E(μ_o)` from its curve may add to an
-    /// integral of this part (albedo, gloss): `max₃(C)` times the curve's
-    /// error ([`SheenAlbedo::error`]), since the scaling `1 − max₃(C) E`
-    /// multiplies the base, whose albedo is at most 1 (the layers' white
-    /// furnace, tests/layer_properties.rs). Zero without the curve.
+    /// What reading the sheen's `E(μ)` from its curve
+    /// (`brdf::gltf_layers::sheen_curve`) may add to an integral of this
+    /// part (albedo, gloss): `max₃(C)` times the curve's error, since the
+    /// scaling `1 − max₃(C) E` multiplies the base, whose albedo is at
+    /// most 1 (the layers' white furnace, tests/layer_properties.rs).
+    /// Zero for a term that does not read `E` or while `E` is exact.
     pub fn sheen_curve_error(&self) -> Rgb {
-        match &self.sheen {
-            Some(e) => Rgb::splat(self.material.layers.sheen_color.max_element() * e.error()),
-            None => Rgb::ZERO,
+        let m = self.material;
+        let reads_sheen = m.model == ReflectanceModel::GltfPbr
+            && m.layers.has_sheen()
+            && self.side == Side::Reflected
+            && matches!(self.term, LayerTerm::All | LayerTerm::Base);
+        if !reads_sheen {
+            return Rgb::ZERO;
         }
+        let error = sheen_albedo_of(sheen_alpha(m.layers.sheen_roughness)).error();
+        Rgb::splat(m.layers.sheen_color.max_element() * error)
     }
 
     /// Whether the part has a Dirac lobe beside its function value.
@@ -400,7 +383,7 @@ mod tests {
                 let wi = direction(theta.to_radians(), 0.2);
                 let part = MaterialPart::from(&glass);
                 assert!(part.transmits());
-                let rho = albedo_towards(part.clone(), wi, &f);
+                let rho = albedo_towards(part, wi, &f);
                 let tau = albedo_towards(part.transmitted(), wi, &f);
                 let lobe = albedo_towards(&metal, wi, &f);
                 let bound = rho.error_bound + tau.error_bound + lobe.error_bound;
@@ -426,7 +409,7 @@ mod tests {
         for theta in [0.0, 45.0, 80.0_f64] {
             let wi = direction(theta.to_radians(), 0.0);
             let part = MaterialPart::from(&leaf);
-            let rho = albedo_towards(part.clone(), wi, &f);
+            let rho = albedo_towards(part, wi, &f);
             let tau = albedo_towards(part.transmitted(), wi, &f);
             let sum = rho.value + tau.value;
             let bound = rho.error_bound + tau.error_bound;

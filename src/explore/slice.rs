@@ -153,12 +153,12 @@ pub fn slice<'a>(
             })
             .collect()
     };
-    let points = upper(material.clone());
+    let points = upper(material);
     // The far side is evaluated at the directions mirrored through the
     // surface (`Side::Transmitted`): the upper sample at signed t is the
     // direction below at (π − |t|) on the same side.
     let transmitted = if material.transmits() {
-        upper(material.clone().transmitted())
+        upper(material.transmitted())
             .into_iter()
             .map(|(t, v)| (if t < 0.0 { -PI - t } else { PI - t }, v))
             .collect()

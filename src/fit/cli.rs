@@ -34,7 +34,9 @@ pub struct FitArgs {
     pub material: Option<String>,
     /// The model: lambert, phong, phong-normalized, blinn-phong,
     /// blinn-phong-normalized, ward, gltf-pbr, `gltf-pbr,layers=clearcoat`
-    /// (a KHR_materials_clearcoat coat over the base), abc (Löw et al. 2012),
+    /// (a KHR_materials_clearcoat coat over the base), `gltf-pbr,layers=sheen`
+    /// (a KHR_materials_sheen sheen over it), `gltf-pbr,layers=clearcoat+sheen`,
+    /// abc (Löw et al. 2012),
     /// `abc,start=published` (also started from the published parameters),
     /// abc-published (the published ABC parameters, scored, not fitted), or
     /// `cook-torrance[,distribution=D][,fresnel=F][,geometry=G]`

@@ -23,11 +23,25 @@
 //! [`brdf::eval`] below for every fitted model. Other models (and
 //! Cook-Torrance with energy compensation, which the fits leave off) are
 //! evaluated by [`brdf::eval`] itself.
+//!
+//! But for one term: a `gltf-pbr` material with a sheen
+//! (`layers=sheen`) scales its base by the sheen's albedo `E(μ)` at both
+//! directions, which [`brdf::eval`] takes exactly (the integral, or its
+//! curve once an `α` is asked for often:
+//! `brdf::gltf_layers::sheen_curve`, a few seconds per `α`). A search
+//! visits a new sheen roughness at nearly every point, so here `E` is
+//! the GPU's table ([`sheen_albedo_lookup`]; its error is 2.5·10⁻³ or
+//! less over the fit's sheen roughness, `SHEEN_ALBEDO_TABLE_ERROR`), and
+//! the error a fit reports is [`brdf::eval`]'s at the point found
+//! (`problem.rs`), the exact model's.
 
 use super::samples::Sample;
 use crate::base::Rgb;
 use crate::base::frame::SurfaceFrame;
 use crate::material::Material;
+use crate::material::brdf::gltf_layers::sheen_albedo::sheen_albedo_lookup;
+use crate::material::brdf::gltf_layers::sheen_albedo_nodes::SHEEN_ALBEDO_NODES;
+use crate::material::brdf::gltf_layers::stack::gltf_layered_with_albedos;
 use crate::material::brdf::microfacet::{half_vector, sin2_between};
 use crate::material::brdf::{self, Brdf, Specular, abc, fresnel, lambert, microfacet};
 use glam::DVec3;
@@ -179,6 +193,31 @@ impl Terms {
                     diffuse + b.k_s * (a * spec)
                 }));
             }
+            Specular::GltfPbr {
+                base_color,
+                metallic,
+                roughness,
+                layers,
+            } if layers.has_sheen() && !b.energy_compensation => {
+                let frame = SurfaceFrame::new(DVec3::Z, DVec3::X);
+                let table = |cos: f64| {
+                    sheen_albedo_lookup(cos, layers.sheen_roughness, &SHEEN_ALBEDO_NODES)
+                };
+                out.extend(samples.iter().zip(&self.cosines).map(|(s, c)| {
+                    gltf_layered_with_albedos(
+                        base_color,
+                        metallic,
+                        roughness,
+                        0.0,
+                        &layers,
+                        table(c.cos_o),
+                        table(c.cos_i),
+                        &frame,
+                        s.wi,
+                        s.wo,
+                    )
+                }));
+            }
             _ => out.extend(generic(&b, samples)),
         }
     }
@@ -220,7 +259,8 @@ mod tests {
     /// wide lobes, low and high indices), agrees with `brdf::eval` sample
     /// by sample to within the grouping's rounding (module doc: 1e-12
     /// relative in `|N × H|²`, amplified by a Beckmann-like exponent of
-    /// up to 80).
+    /// up to 80). A sheen's albedo is the table's on both sides (module
+    /// doc), so the rest of its evaluation is compared.
     #[test]
     fn terms_match_brdf_eval_at_every_sample() {
         let samples = samples_of(|_, _, _, _, _| Rgb::ONE);
@@ -241,7 +281,36 @@ mod tests {
                 assert_eq!(out.len(), samples.len());
                 let b = m.brdf();
                 for (s, fast) in samples.iter().zip(&out) {
-                    let want = brdf::eval(&b, s.wi, s.wo, &frame);
+                    let want = match b.specular {
+                        Specular::GltfPbr {
+                            base_color,
+                            metallic,
+                            roughness,
+                            layers,
+                        } if layers.has_sheen() => {
+                            let table = |cos: f64| {
+                                sheen_albedo_lookup(
+                                    cos,
+                                    layers.sheen_roughness,
+                                    &SHEEN_ALBEDO_NODES,
+                                )
+                            };
+                            let (n, wi, wo) = (frame.n, s.wi, s.wo);
+                            gltf_layered_with_albedos(
+                                base_color,
+                                metallic,
+                                roughness,
+                                0.0,
+                                &layers,
+                                table(n.dot(wo)),
+                                table(n.dot(wi)),
+                                &frame,
+                                wi,
+                                wo,
+                            )
+                        }
+                        _ => brdf::eval(&b, s.wi, s.wo, &frame),
+                    };
                     let diff = (*fast - want).abs().max_element();
                     assert!(
                         diff <= 1e-9 * want.abs().max_element(),

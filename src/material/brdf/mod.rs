@@ -50,24 +50,7 @@ impl Brdf {
         if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
             return Rgb::ZERO;
         }
-        eval_term_with(self, term, None, wi, wo, frame)
-    }
-
-    /// [`Self::f_r_term`] with the sheen's albedos `(E(μ_o), E(μ_i))`
-    /// given (the explorer reads `E(μ_o)` from a curve,
-    /// `crate::explore::sheen_curve`), not integrated here.
-    pub fn f_r_term_with_albedos(
-        &self,
-        term: LayerTerm,
-        albedos: (f64, f64),
-        wi: DVec3,
-        wo: DVec3,
-        frame: &SurfaceFrame,
-    ) -> Rgb {
-        if frame.n.dot(wi) <= 0.0 || frame.n.dot(wo) <= 0.0 {
-            return Rgb::ZERO;
-        }
-        eval_term_with(self, term, Some(albedos), wi, wo, frame)
+        eval_term(self, term, wi, wo, frame)
     }
 }
 
@@ -141,19 +124,6 @@ pub fn eval(brdf: &Brdf, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
 /// is the whole and its sheen and clearcoat terms are 0. The explorer's
 /// plots and albedo per layer (`crate::explore`).
 pub fn eval_term(brdf: &Brdf, term: LayerTerm, wi: DVec3, wo: DVec3, frame: &SurfaceFrame) -> Rgb {
-    eval_term_with(brdf, term, None, wi, wo, frame)
-}
-
-/// [`eval_term`], the sheen's albedos `(E(μ_o), E(μ_i))` given or, with
-/// `None`, integrated exactly.
-fn eval_term_with(
-    brdf: &Brdf,
-    term: LayerTerm,
-    albedos: Option<(f64, f64)>,
-    wi: DVec3,
-    wo: DVec3,
-    frame: &SurfaceFrame,
-) -> Rgb {
     match (brdf.specular, term) {
         (
             Specular::GltfPbr {
@@ -168,10 +138,11 @@ fn eval_term_with(
             let ms = compensation_ratio(brdf, roughness * roughness, n.dot(wo));
             // Only the whole and the base read the sheen's albedos (its
             // scaling of the base): each is an integral.
-            let (e_o, e_i) = match (term, albedos) {
-                (LayerTerm::Sheen | LayerTerm::Clearcoat, _) => (0.0, 0.0),
-                (_, Some(given)) => given,
-                (_, None) => gltf_layers::stack::sheen_albedos(&layers, n.dot(wi), n.dot(wo)),
+            let (e_o, e_i) = match term {
+                LayerTerm::All | LayerTerm::Base => {
+                    gltf_layers::stack::sheen_albedos(&layers, n.dot(wi), n.dot(wo))
+                }
+                LayerTerm::Sheen | LayerTerm::Clearcoat => (0.0, 0.0),
             };
             gltf_layers::stack::gltf_layer_term(
                 term, base_color, metallic, roughness, ms, &layers, e_o, e_i, frame, wi, wo,

@@ -60,8 +60,8 @@ pub fn mesh<'a>(m: impl Into<MaterialPart<'a>>, s: &Settings) -> Mesh {
             .collect()
     };
     Mesh {
-        values: grid(m.clone()),
-        transmitted: m.transmits().then(|| grid(m.clone().transmitted())),
+        values: grid(m),
+        transmitted: m.transmits().then(|| grid(m.transmitted())),
     }
 }
 

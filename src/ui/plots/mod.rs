@@ -307,11 +307,11 @@ impl SeriesCache {
                 let thetas: Vec<f64> = (0..ALBEDO_ANGLES)
                     .map(|k| (k as f64 * 89.0 / (ALBEDO_ANGLES - 1) as f64).to_radians())
                     .collect();
-                let albedo = albedo_curve(m.clone(), &thetas, phi);
+                let albedo = albedo_curve(m, &thetas, phi);
                 let degrees = || thetas.iter().map(|t| t.to_degrees());
                 let transmitted = if m.transmits() {
                     degrees()
-                        .zip(albedo_curve(m.clone().transmitted(), &thetas, phi))
+                        .zip(albedo_curve(m.transmitted(), &thetas, phi))
                         .collect()
                 } else {
                     Vec::new()
@@ -319,10 +319,7 @@ impl SeriesCache {
                 Integrals {
                     albedo: degrees().zip(albedo).collect(),
                     transmitted,
-                    gloss: GEOMETRIES
-                        .iter()
-                        .map(|g| gloss_at(m.clone(), *g, phi))
-                        .collect(),
+                    gloss: GEOMETRIES.iter().map(|g| gloss_at(m, *g, phi)).collect(),
                 }
             });
         self.point

@@ -10,7 +10,9 @@
 //!   form), mixed into the base's Fresnel terms;
 //! * [`sheen`] and [`sheen_albedo`]: the Charlie sheen of
 //!   `KHR_materials_sheen` (Conty & Kulla 2017) and the exact directional
-//!   albedo `E(μ, α_sh)` its albedo scaling uses (Kulla & Conty 2017);
+//!   albedo `E(μ, α_sh)` its albedo scaling uses (Kulla & Conty 2017),
+//!   read from a [`sheen_curve`] of measured error once a sheen `α` is
+//!   asked for often;
 //! * [`clearcoat`]: `KHR_materials_clearcoat`'s coat, a GGX lobe of IOR 1.5
 //!   over everything below;
 //! * [`stack`]: base → sheen → clearcoat;
@@ -33,6 +35,7 @@ pub mod iridescence;
 pub mod sheen;
 pub mod sheen_albedo;
 pub mod sheen_albedo_nodes;
+pub mod sheen_curve;
 pub mod stack;
 pub mod transmission;
 pub mod volume_albedo;

@@ -13,7 +13,7 @@ use super::GltfLayers;
 use super::base_ior_specular::gltf_base;
 use super::clearcoat::{clearcoat_over, clearcoat_term, clearcoat_weight, coat_normal};
 use super::sheen::{sheen_alpha, sheen_lobe, sheen_scaling};
-use super::sheen_albedo::sheen_albedo;
+use super::sheen_curve::sheen_albedo_of;
 use crate::base::Rgb;
 use crate::material::brdf::SurfaceFrame;
 use crate::material::brdf::microfacet::{half_vector, sin2_between};
@@ -75,13 +75,14 @@ pub fn gltf_layered_with_albedos(
 }
 
 /// The sheen's directional albedos `(E(μ_o), E(μ_i))`, exact (0, 0 without
-/// sheen: not read).
+/// sheen: not read): the integral, or its curve once this sheen `α` has
+/// been asked for often ([`super::sheen_curve`], error under f32's).
 pub fn sheen_albedos(layers: &GltfLayers, cos_i: f64, cos_o: f64) -> (f64, f64) {
     if !layers.has_sheen() {
         return (0.0, 0.0);
     }
-    let alpha = sheen_alpha(layers.sheen_roughness);
-    (sheen_albedo(cos_o, alpha), sheen_albedo(cos_i, alpha))
+    let albedo = sheen_albedo_of(sheen_alpha(layers.sheen_roughness));
+    (albedo.at(cos_o), albedo.at(cos_i))
 }
 
 /// The layered `f_r` of the contract for `N·L > 0`, `N·V > 0`, the sheen
