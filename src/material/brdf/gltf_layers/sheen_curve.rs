@@ -134,10 +134,12 @@ fn mu_at(piece: usize, t: f64) -> f64 {
 }
 
 /// Exact evaluations a [`SheenAlbedo`] answers before it builds its curve:
-/// a printed value or a probe stays exact, and an image, an albedo or a
-/// plot (millions of directions) pays the curve's `4 ×` [`NODES`]
-/// integrals once instead.
-pub const EXACT_CALLS: u32 = 256;
+/// the curve's own cost in exact integrals (`4 ×` [`NODES`], with its
+/// check). So an `α` asked for fewer times than that (a printed value, a
+/// probe, one pixel of a sheen roughness texture) never pays for a curve,
+/// and one asked for more (an image, an albedo, a plot) pays at most
+/// twice what the exact integrals alone would have cost.
+pub const EXACT_CALLS: u32 = 4 * NODES as u32;
 
 /// The largest measured [`SheenCurve::error`] that is read; a coarser curve
 /// is dropped and `E` stays exact. A sixth of the f32 rounding of `E ≈ 1`
