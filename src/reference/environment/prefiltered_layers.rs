@@ -199,6 +199,28 @@ mod tests {
         sum / count
     }
 
+    /// [`mean_error`] of the sampled mode's estimate with `n` directions
+    /// (`environment.specular = "sampled"`, the f64 twin of the GPU's).
+    fn sampled_error(map: &EnvironmentMap, material: &Material, n: u32) -> f64 {
+        let map = EnvironmentMap {
+            settings: MapSettings {
+                samples: n,
+                ..map.settings.clone()
+            },
+            ..map.clone()
+        };
+        let frame = SurfaceFrame::new(DVec3::Y, DVec3::X);
+        let (mut sum, mut count) = (0.0, 0.0);
+        for wo in views() {
+            let truth = sampled::integrated(&map, &map.data.nodes, material, &frame, wo);
+            let est = sampled::estimate(&map, material, &frame, wo);
+            let rel = (est - truth).abs() / truth.max(Rgb::splat(1e-6));
+            sum += rel.element_sum();
+            count += 3.0;
+        }
+        sum / count
+    }
+
     fn blobs() -> EnvironmentMap {
         EnvironmentMap {
             data: Arc::new(test_maps::blobs()),
@@ -264,7 +286,9 @@ mod tests {
         ];
         let mut worse = Vec::new();
         println!("mean relative error against the integrated truth (blobs map, 12 views)");
-        println!("layer                              | ignored | split-sum term");
+        println!(
+            "layer                              | ignored | split-sum term | sampled 16 | sampled 64 | sampled 256"
+        );
         for (name, layered) in cases {
             let core = Material {
                 layers: Default::default(),
@@ -272,10 +296,14 @@ mod tests {
             };
             let ignored = mean_error(&map, &layered, &core);
             let with = mean_error(&map, &layered, &layered);
+            let sampled: Vec<String> = [16, 64, 256]
+                .map(|n| format!("{:>6.2} %", 100.0 * sampled_error(&map, &layered, n)))
+                .to_vec();
             println!(
-                "{name:<34} | {:>6.2} % | {:>6.2} %",
+                "{name:<34} | {:>6.2} % | {:>6.2} % | {}",
                 100.0 * ignored,
-                100.0 * with
+                100.0 * with,
+                sampled.join(" | ")
             );
             if with >= ignored {
                 worse.push(name);
