@@ -205,7 +205,7 @@ mod tests {
         let map = EnvironmentMap {
             settings: MapSettings {
                 samples: n,
-                ..map.settings.clone()
+                ..map.settings
             },
             ..map.clone()
         };
