@@ -398,16 +398,23 @@ fn glass_behind_glass_needs_a_second_layer() {
 /// The slab of index 1.7 and `dispersion` turned 40° in front of the
 /// white/black edge ([`dispersion_refracts_each_channel_by_its_own_index`]).
 fn turned_slab(dispersion: f64) -> Scene {
+    turned_slab_before(dispersion, &[(-5.0, -0.6, 1), (-0.6, 5.0, 2)])
+}
+
+/// The turned slab before emitters at z = −4 spanning `[x0, x1]` each
+/// (material 1 white, 2 black).
+fn turned_slab_before(dispersion: f64, emitters: &[(f64, f64, usize)]) -> Scene {
     let mut slab = glass("slab", 2.0);
     slab.layers.ior = 1.7;
     slab.layers.dispersion = dispersion;
     let mut mesh = cuboid(DVec3::new(-3.0, -3.0, -1.0), DVec3::new(3.0, 3.0, 1.0), 0);
     mesh.transform(glam::DMat4::from_rotation_y(40f64.to_radians()));
-    let meshes = vec![
-        mesh,
-        rect(-4.0, (-5.0, -0.6), (-5.0, 5.0), 1),
-        rect(-4.0, (-0.6, 5.0), (-5.0, 5.0), 2),
-    ];
+    let mut meshes = vec![mesh];
+    meshes.extend(
+        emitters
+            .iter()
+            .map(|&(x0, x1, material)| rect(-4.0, (x0, x1), (-5.0, 5.0), material)),
+    );
     let materials = vec![
         slab,
         emitter("white", Rgb::ONE),
@@ -466,6 +473,86 @@ fn dispersion_on_the_gpu_against_the_spectral_reference() {
         spread(d),
         spread(t)
     );
+}
+
+/// What the screen-space method cannot read: light from outside the
+/// frame. The slab of [`turned_slab`] (index 1.7, no dispersion) bends
+/// the view rays towards −X, before a black emitter left of x = −1.8, a
+/// white one from there to x = −0.6 and a black one right of it; the
+/// frame's left border meets the emitters near x = −1.6, so the pixels
+/// next to it see, through the slab, the black beyond the border. The
+/// GPU reads its image of what lies behind where the refracted ray
+/// leaves the slab; a read left of the frame is clamped to its first
+/// column (white). The same camera with the image twice as wide (the
+/// vertical field of view, so the projection, unchanged: its middle half
+/// is the narrow frame where no read leaves it, checked) holds the black
+/// on screen. Printed (`--nocapture`): the centre row's white run in the
+/// reference and in both GPU frames, and the mean |difference| over the
+/// 16 border columns between the two frames and from each to the
+/// reference (docs/transmission.md, "Where the screen-space method
+/// fails"). Asserted: the narrow frame's border band reads white where
+/// the wide frame's reads the black beyond the border (the clamped read
+/// is what the method loses), by more than the two images' rounding.
+#[test]
+fn a_read_outside_the_frame_is_what_the_screen_space_method_misses() {
+    let scene_of = |width: u32| {
+        let mut s = turned_slab_before(0.0, &[(-8.0, -1.8, 2), (-1.8, -0.6, 1), (-0.6, 8.0, 2)]);
+        s.width = width;
+        s
+    };
+    let narrow = scene_of(SIZE);
+    let truth = gonio::reference::render(&narrow);
+    let (cut, wide) = (gpu(&narrow), gpu(&scene_of(2 * SIZE)));
+    let offset = SIZE / 2;
+    let at = |f: &Frame, i: u32, j: u32| pixel(f, i, j);
+    // The wide frame's middle half is the narrow frame where no read
+    // leaves it (the right half of the narrow frame): equal but at the
+    // white/black edge, which the two images' mip chains (64 and 128
+    // wide) blur a little differently, so equal on average.
+    let mut differs = 0.0;
+    for i in 8..SIZE - 8 {
+        for j in SIZE / 2..SIZE - 8 {
+            differs += (at(&cut, i, j) - at(&wide, i, j + offset))
+                .abs()
+                .max_element();
+        }
+    }
+    let differs = differs / ((SIZE - 16) * (SIZE / 2 - 8)) as f64;
+    assert!(
+        differs <= HALF_ROUNDING,
+        "the middle half differs by {differs} on average"
+    );
+    let white_run = |f: &Frame, o: u32| {
+        let white: Vec<u32> = (0..SIZE)
+            .filter(|&j| at(f, SIZE / 2, j + o).x > 0.5)
+            .collect();
+        (white[0], white[white.len() - 1])
+    };
+    println!(
+        "white along the centre row (columns): reference {:?}, GPU narrow {:?}, GPU wide {:?}",
+        white_run(&truth, 0),
+        white_run(&cut, 0),
+        white_run(&wide, offset)
+    );
+    let band = |a: &dyn Fn(u32, u32) -> Rgb, b: &dyn Fn(u32, u32) -> Rgb| {
+        let mut sum = 0.0;
+        for i in 8..SIZE - 8 {
+            for j in 0..16 {
+                sum += (a(i, j) - b(i, j)).abs().element_sum() / 3.0;
+            }
+        }
+        sum / ((SIZE - 16) * 16) as f64
+    };
+    let narrow_px = |i, j| at(&cut, i, j);
+    let wide_px = |i, j| at(&wide, i, j + offset);
+    let truth_px = |i, j| at(&truth, i, j);
+    let lost = band(&narrow_px, &wide_px);
+    println!(
+        "mean |difference| over the 16 border columns: narrow − wide {lost:.4}; against the reference: narrow {:.4}, wide {:.4}",
+        band(&narrow_px, &truth_px),
+        band(&wide_px, &truth_px)
+    );
+    assert!(lost > 4.0 * HALF_ROUNDING, "the border band: {lost}");
 }
 
 /// Dispersion (`KHR_materials_dispersion`) as the sample renderer draws
