@@ -1,5 +1,5 @@
 //! GPU = CPU for the layers of the glTF material (contract: "Layered glTF
-//! materials"), layer by layer and stacked: the WGSL twins in
+//! materials"), layer by layer, every pair and the whole stack: the WGSL twins in
 //! `shaders/brdf/gltf_layers/` run in a compute shader over ≥ 10⁵ samples
 //! per case (directions to 89.99° and below the horizon, every layer
 //! parameter over its range, the core's base colour, metallic, roughness
@@ -108,7 +108,6 @@ fn r32v(v: DVec3) -> DVec3 {
 /// Which layers a case sweeps (the others stay at their defaults).
 #[derive(Clone, Copy)]
 struct Case {
-    name: &'static str,
     base: bool,
     anisotropy: bool,
     iridescence: bool,
@@ -116,56 +115,67 @@ struct Case {
     clearcoat: bool,
 }
 
-const CASES: &[Case] = &[
-    Case {
-        name: "base: ior, specular, specular_color",
-        base: true,
-        anisotropy: false,
-        iridescence: false,
-        sheen: false,
-        clearcoat: false,
-    },
-    Case {
-        name: "anisotropy",
-        base: false,
-        anisotropy: true,
-        iridescence: false,
-        sheen: false,
-        clearcoat: false,
-    },
-    Case {
-        name: "iridescence",
-        base: false,
-        anisotropy: false,
-        iridescence: true,
-        sheen: false,
-        clearcoat: false,
-    },
-    Case {
-        name: "sheen",
-        base: false,
-        anisotropy: false,
-        iridescence: false,
-        sheen: true,
-        clearcoat: false,
-    },
-    Case {
-        name: "clearcoat",
-        base: false,
-        anisotropy: false,
-        iridescence: false,
-        sheen: false,
-        clearcoat: true,
-    },
-    Case {
-        name: "full stack",
-        base: true,
-        anisotropy: true,
-        iridescence: true,
-        sheen: true,
-        clearcoat: true,
-    },
+/// The layers' names, in the order of [`Case`]'s flags.
+const LAYERS: [&str; 5] = [
+    "base: ior, specular, specular_color",
+    "anisotropy",
+    "iridescence",
+    "sheen",
+    "clearcoat",
 ];
+
+impl Case {
+    /// The case with the layers whose bits are set in `mask` (bit k:
+    /// `LAYERS[k]`).
+    fn of(mask: u32) -> Case {
+        let on = |k: u32| mask & (1 << k) != 0;
+        Case {
+            base: on(0),
+            anisotropy: on(1),
+            iridescence: on(2),
+            sheen: on(3),
+            clearcoat: on(4),
+        }
+    }
+
+    fn name(self) -> String {
+        let flags = [
+            self.base,
+            self.anisotropy,
+            self.iridescence,
+            self.sheen,
+            self.clearcoat,
+        ];
+        let on: Vec<&str> = LAYERS
+            .iter()
+            .zip(flags)
+            .filter_map(|(name, on)| on.then_some(*name))
+            .collect();
+        match on.len() {
+            5 => "full stack".into(),
+            1 => on[0].into(),
+            _ => on
+                .iter()
+                .map(|n| n.split(':').next().unwrap_or(n))
+                .collect::<Vec<_>>()
+                .join(" + "),
+        }
+    }
+}
+
+/// Each layer alone, every pair of layers (where two layers meet in the
+/// composition: the film on the base's Fresnel, the sheen's scaling of
+/// an anisotropic or iridescent base, the coat over each), and the full
+/// stack.
+fn cases() -> Vec<Case> {
+    let singles = (0..5).map(|k| 1 << k);
+    let pairs = (0..5).flat_map(|a| (a + 1..5).map(move |b| (1 << a) | (1 << b)));
+    singles
+        .chain(pairs)
+        .chain([0b11111])
+        .map(Case::of)
+        .collect()
+}
 
 // Sample values of each parameter, over its range (0 and the ends included).
 const BASE_COLOR: &[f64] = &[0.0, 0.2, 0.5, 1.0];
@@ -662,8 +672,8 @@ fn every_layer_matches_its_f64_reference() {
     let frame = frame_perturbations();
     let mut rows = Vec::new();
     let mut failed = Vec::new();
-    for case in CASES {
-        let samples = samples(*case);
+    for case in cases() {
+        let samples = samples(case);
         let table_at: Vec<(f64, f64)> = samples
             .iter()
             .map(|s| (s.wo.z.max(0.0), s.layers.sheen_roughness))
@@ -713,7 +723,7 @@ fn every_layer_matches_its_f64_reference() {
             });
         let row = format!(
             "| {:<36} | {:>7} | {:>9.3e} | {:>9.3e} | {:>7.4} | {:>6} | {:>4} |",
-            case.name,
+            case.name(),
             samples.len(),
             stats.max_abs,
             stats.max_rel,
@@ -725,7 +735,10 @@ fn every_layer_matches_its_f64_reference() {
         if stats.failures > 0 || stats.non_finite > 0 {
             failed.push(format!(
                 "{}: {} failures, {} non-finite; worst: {}",
-                case.name, stats.failures, stats.non_finite, stats.worst
+                case.name(),
+                stats.failures,
+                stats.non_finite,
+                stats.worst
             ));
         } else {
             eprintln!("  worst: {}", stats.worst);
