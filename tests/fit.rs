@@ -82,17 +82,31 @@ fn recovers(spec: &str, truth: &[f64]) {
     let frame = SurfaceFrame::new(DVec3::Z, DVec3::X);
     let samples = samples_of(|_, _, _, wi, wo| m.f_r(wi, wo, &frame));
     let r = fit(&model, &samples, metric);
+    found_within_the_tolerance(spec, &model, truth, &r.values, |v| {
+        cost(&model, v, &samples, metric)
+    });
+}
+
+/// The module doc's checks of a fit's `values` against `truth` under
+/// the relative `cost` the search minimized: the cost below `C` (else
+/// the search stalled), then each number within `sqrt(2 C (H⁻¹)_jj)`.
+fn found_within_the_tolerance(
+    spec: &str,
+    model: &FitModel,
+    truth: &[f64],
+    values: &[f64],
+    cost: impl Fn(&[f64]) -> f64,
+) {
     let n = truth.len();
     // The simplex's size: the searched numbers (the linear ones are
     // solved exactly at every point, so they add nothing to the cost's
     // excess over the minimum).
-    let searched = searched(&model, metric);
+    let searched = searched(model, Metric::Ngan);
     let c_max = 2.0 * ((searched + 1) as f64).sqrt() * SD_TOLERANCE;
-    let c = cost(&model, &r.values, &samples, metric);
+    let c = cost(values);
     assert!(
         c <= c_max,
-        "{spec}: cost {c:e} > {c_max:e}: the search stalled ({:?})",
-        r.values
+        "{spec}: cost {c:e} > {c_max:e}: the search stalled ({values:?})"
     );
     // The Hessian at the truth, central differences with steps 1e-4 of
     // each value (cost is smooth there; the steps' error is O(h²)).
@@ -101,7 +115,7 @@ fn recovers(spec: &str, truth: &[f64]) {
         let mut v = truth.to_vec();
         v[di.0] += di.1;
         v[dj.0] += dj.1;
-        cost(&model, &v, &samples, metric)
+        cost(&v)
     };
     let hess: Vec<Vec<f64>> = (0..n)
         .map(|i| {
@@ -121,9 +135,9 @@ fn recovers(spec: &str, truth: &[f64]) {
         let tol = (2.0 * c_max * inv[j][j]).sqrt();
         let key = model.free[j].param.key;
         assert!(
-            (r.values[j] - truth[j]).abs() <= tol,
+            (values[j] - truth[j]).abs() <= tol,
             "{spec}: {key}[{j}] = {} vs truth {} (tolerance {tol:e})",
-            r.values[j],
+            values[j],
             truth[j]
         );
     }
@@ -190,51 +204,11 @@ fn gltf_pbr_with_a_sheen_is_recovered() {
         s.measured = f;
     }
     let norm = metric.mean(&samples, |_| Rgb::ZERO);
-    let table_cost = |values: &[f64]| {
-        let f = f_of(values, &samples);
-        metric.mean(&samples, |i| f[i]) / norm
-    };
     let r = fit(&model, &samples, metric);
-    let c_max = 2.0 * ((searched(&model, metric) + 1) as f64).sqrt() * SD_TOLERANCE;
-    let c = table_cost(&r.values);
-    assert!(
-        c <= c_max,
-        "cost {c:e} > {c_max:e}: the search stalled ({:?})",
-        r.values
-    );
-    // As in `recovers`: each number within what a cost of C allows.
-    let n = truth.len();
-    let h: Vec<f64> = truth.iter().map(|v| 1e-4 * v.abs().max(1e-2)).collect();
-    let at = |di: (usize, f64), dj: (usize, f64)| {
-        let mut v = truth.to_vec();
-        v[di.0] += di.1;
-        v[dj.0] += dj.1;
-        table_cost(&v)
-    };
-    let hess: Vec<Vec<f64>> = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| {
-                    (at((i, h[i]), (j, h[j]))
-                        - at((i, h[i]), (j, -h[j]))
-                        - at((i, -h[i]), (j, h[j]))
-                        + at((i, -h[i]), (j, -h[j])))
-                        / (4.0 * h[i] * h[j])
-                })
-                .collect()
-        })
-        .collect();
-    let inv = inverse(&hess);
-    for j in 0..n {
-        let tol = (2.0 * c_max * inv[j][j]).sqrt();
-        assert!(
-            (r.values[j] - truth[j]).abs() <= tol,
-            "{}[{j}] = {} vs truth {} (tolerance {tol:e})",
-            model.free[j].param.key,
-            r.values[j],
-            truth[j]
-        );
-    }
+    found_within_the_tolerance(spec, &model, &truth, &r.values, |v| {
+        let f = f_of(v, &samples);
+        metric.mean(&samples, |i| f[i]) / norm
+    });
 }
 
 /// Runs `gonio fit ARGS` and checks the one-paragraph exit-2 error.
