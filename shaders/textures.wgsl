@@ -110,6 +110,10 @@ fn scale_fields(base: Material, fields: u32, f: vec3<f32>) -> Material {
     // Light through surfaces: bits 30 and 31.
     m.layers.transmission *= select(1.0, f.x, (fields & (1u << 30u)) != 0u);
     m.layers.thickness *= select(1.0, f.x, (fields & (1u << 31u)) != 0u);
+    // The diffuse transmission's share and colour share Ward's bits 5 and
+    // 6 (texture_fields::SHARED_BITS: no model has parameters on both).
+    m.layers.diffuse_transmission *= select(1.0, f.x, (fields & 32u) != 0u);
+    m.layers.diffuse_transmission_color *= select(one, f, (fields & 64u) != 0u);
     #endif
     return m;
 }

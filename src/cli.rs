@@ -358,31 +358,18 @@ pub fn render(args: &RenderArgs) -> Result<()> {
 /// material (nothing the user typed is ignored without a word): with
 /// `shading.transmission = "off"` every key of light through surfaces
 /// (`transmission`, `thickness`, `attenuation_*`, `dispersion`,
-/// `diffuse_transmission*`); in the screen-space mode what it leaves
-/// out, the textures of `diffuse_transmission` and
-/// `diffuse_transmission_color` (its limits beyond those are the
-/// method's, named once in docs/transmission.md).
+/// `diffuse_transmission*`). The screen-space mode draws every key and
+/// texture; its limits are the method's, named once in
+/// docs/transmission.md.
 pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
-    let off = scene.transmission.mode == crate::scene::TransmissionMode::Off;
+    if scene.transmission.mode != crate::scene::TransmissionMode::Off {
+        return None;
+    }
     let mut names: Vec<String> = Vec::new();
     for m in &scene.materials {
         let name = format!("`{}`", m.name);
-        let layers = &m.layers;
-        let ignored = if off {
-            layers.sets_transmission_keys()
-        } else {
-            layers.diffuse_transmission > 0.0
-                && m.textures.iter().any(|t| {
-                    matches!(
-                        t.target,
-                        crate::material::texture::TextureTarget::Param(
-                            "diffuse_transmission" | "diffuse_transmission_color"
-                        )
-                    )
-                })
-        };
         if m.model == crate::material::ReflectanceModel::GltfPbr
-            && ignored
+            && m.layers.sets_transmission_keys()
             && !names.contains(&name)
         {
             names.push(name);
@@ -398,15 +385,9 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
         ("s", "", "they are", "them")
     };
     let names = names.join(", ");
-    Some(if off {
-        format!(
-            "warning: material{s} {names} use{verb_s} light through surfaces (transmission, volume, dispersion, diffuse transmission), which the GPU renderer does not draw with shading.transmission = \"off\": {they} drawn as if opaque; use \"screen\", or render with --reference to see the light through {them}"
-        )
-    } else {
-        format!(
-            "warning: material{s} {names} use{verb_s} textures on diffuse transmission (diffuse_transmission, diffuse_transmission_color), which the GPU renderer does not read: {they} drawn with the factors alone; render with --reference to see {them} as textured"
-        )
-    })
+    Some(format!(
+        "warning: material{s} {names} use{verb_s} light through surfaces (transmission, volume, dispersion, diffuse transmission), which the GPU renderer does not draw with shading.transmission = \"off\": {they} drawn as if opaque; use \"screen\", or render with --reference to see the light through {them}"
+    ))
 }
 
 /// The warning of a reference render whose transmission paths were cut
@@ -494,9 +475,9 @@ mod transmission_warning_tests {
     }
 
     /// The GPU draws transmission, dispersion and diffuse transmission in
-    /// screen space: only diffuse transmission's textures, which it does
-    /// not read, are named; with `shading.transmission = "off"` every key
-    /// of light through surfaces is.
+    /// screen space, their textures too: nothing is named; with
+    /// `shading.transmission = "off"` every key of light through surfaces
+    /// is.
     #[test]
     fn the_warning_names_only_what_the_gpu_leaves_out() {
         assert_eq!(warning(&["materials.ball.diffuse_transmission=0.5"]), None);
@@ -513,11 +494,9 @@ mod transmission_warning_tests {
             "/assets/scenes/transmission/checker.png"
         );
         let textured = format!("materials.ball.diffuse_transmission_texture=\"{checker}\"");
-        let w = warning(&["materials.ball.diffuse_transmission=0.5", &textured])
-            .expect("a texture the GPU does not read is named");
-        assert!(
-            w.contains("`ball`") && w.contains("textures on diffuse transmission"),
-            "{w}"
+        assert_eq!(
+            warning(&["materials.ball.diffuse_transmission=0.5", &textured]),
+            None
         );
         let off = warning(&["materials.ball.transmission=1", "shading.transmission=off"])
             .expect("off names the material");

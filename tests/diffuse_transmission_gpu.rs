@@ -50,6 +50,43 @@ fn a_light_behind_shines_through_as_the_reference_says() {
     );
 }
 
+/// The textures of diffuse transmission (`diffuse_transmission_texture`,
+/// `diffuse_transmission_color_texture`: glTF's
+/// `diffuseTransmissionTexture` and `diffuseTransmissionColorTexture`),
+/// here the checker on both, shine through as in the reference, within
+/// the same derived tolerance (which follows a texture's edges by the
+/// pixel-centre jitter, `common::compare_to_reference`). The GPU reads
+/// them through the texture slots' bits 5 and 6, which they share with
+/// Ward's widths (`texture_fields::SHARED_BITS`); without them the wall
+/// would be drawn with the factors alone, one colour, and fail.
+#[test]
+fn its_textures_shine_through_as_the_reference_says() {
+    let checker = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/transmission/checker.png"
+    );
+    let share = format!("materials.leaf.diffuse_transmission_texture=\"{checker}\"");
+    let colour = format!("materials.leaf.diffuse_transmission_color_texture=\"{checker}\"");
+    let scene = leaf(&[&share, &colour]);
+    let frame = gpu(&scene);
+    let (center, jittered) = common::reference_with_jitter(&scene);
+    let c = common::compare_to_reference(&scene, &frame, &center, &jittered);
+    common::assert_agrees(
+        "leaf",
+        "diffuse transmission, textured",
+        &c,
+        &frame,
+        &center,
+    );
+    let lit: Vec<f32> = (0..frame.width)
+        .map(|j| frame.radiance[frame.index(26, j)][0])
+        .collect();
+    let (lo, hi) = lit
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    assert!(hi > 1.5 * lo, "the checker shows through: {lo} to {hi}");
+}
+
 /// A white furnace on the far side: with `D = 1` (no reflected diffuse
 /// part) and a uniform map of radiance `L` whose "none" mode lights no
 /// lobe, the GPU's pixel is exactly the transmitted light

@@ -57,7 +57,33 @@ pub fn gpu_field_values(m: &Material) -> Vec<(&'static str, Vec<f64>)> {
         ),
         ("transmission", vec![p.layers.transmission]),
         ("thickness", vec![p.layers.thickness]),
+        // Past the 32 bits: each shares the bit of a field of Ward's
+        // ([`field_bit`]).
+        ("diffuse_transmission", vec![p.layers.diffuse_transmission]),
+        (
+            "diffuse_transmission_color",
+            rgb(p.layers.diffuse_transmission_color),
+        ),
     ]
+}
+
+/// The fields past the mask's 32 bits and the bits they share: the
+/// diffuse transmission's share and colour (gltf-pbr's layers) take
+/// Ward's `sigma_x` and `sigma_y` (bits 5 and 6). No model has a
+/// parameter on both fields of a pair (the test below), and a bit scales
+/// both fields (`scale_fields` in shaders/textures.wgsl), which is
+/// harmless: Ward's shader reads no layer (its layers are 0, and 0 times
+/// a texel is 0), gltf-pbr's no `sigma` (the footprint floor
+/// `textured_widths_floored` widens it unread).
+const SHARED_BITS: [(usize, u32); 2] = [(32, 5), (33, 6)];
+
+/// The mask bit of field `index` of [`gpu_field_values`]: its index, or
+/// for the fields past 32 the bit it shares ([`SHARED_BITS`]).
+pub fn field_bit(index: usize) -> u32 {
+    SHARED_BITS
+        .iter()
+        .find(|(i, _)| *i == index)
+        .map_or(index as u32, |&(_, bit)| bit)
 }
 
 /// The bit of the `occlusion` field in a texture slot's field mask (the
@@ -84,7 +110,7 @@ pub fn gpu_field_mask(m: &Material, key: &str) -> Result<u32, String> {
     p.write(&mut probe, scaled);
     let colour = matches!(scaled, Value::Color(_));
     let mut mask = 0;
-    for (bit, ((name, before), (_, after))) in gpu_field_values(m)
+    for (index, ((name, before), (_, after))) in gpu_field_values(m)
         .into_iter()
         .zip(gpu_field_values(&probe))
         .enumerate()
@@ -106,24 +132,71 @@ pub fn gpu_field_mask(m: &Material, key: &str) -> Result<u32, String> {
                 m.model.name()
             ));
         }
-        mask |= 1 << bit;
+        mask |= 1 << field_bit(index);
     }
     Ok(mask)
 }
 
-/// The bits of a field mask: one per field of [`gpu_field_values`],
-/// which must fit a `u32` (`TextureSlot.fields` in shaders/textures.wgsl).
-pub const FIELD_COUNT: usize = 32;
-const _: () = assert!(FIELD_COUNT <= 32);
+/// The fields of [`gpu_field_values`]: the 32 bits of a `u32` mask
+/// (`TextureSlot.fields` in shaders/textures.wgsl) and those sharing one
+/// ([`SHARED_BITS`]).
+pub const FIELD_COUNT: usize = 32 + SHARED_BITS.len();
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn every_field_has_a_bit_of_the_u32_mask() {
+    fn every_field_has_a_bit_of_the_mask() {
         let m = crate::material::Material::new("m", crate::material::ReflectanceModel::GltfPbr);
         assert_eq!(gpu_field_values(&m).len(), FIELD_COUNT);
+    }
+
+    /// No model has parameters on both fields of a shared bit, so a
+    /// texture on one never scales a field its model reads through the
+    /// other: for every model, every parameter's fields (probed on its
+    /// default material) meet at most one field of each pair.
+    #[test]
+    fn no_model_reaches_both_fields_of_a_shared_bit() {
+        use crate::material::table;
+        let mut anywhere = std::collections::HashSet::new();
+        for model in crate::material::ReflectanceModel::ALL {
+            let m = crate::material::Material::new("m", model);
+            let names: Vec<&str> = gpu_field_values(&m).iter().map(|(n, _)| *n).collect();
+            let mut reached = std::collections::HashSet::new();
+            for p in table::COMMON.iter().chain(model.row().params) {
+                let mut probe = m.clone();
+                let scaled = match p.read(&m) {
+                    Value::Color(c) => Value::Color(c * 0.5 + Rgb::splat(0.25)),
+                    Value::Scalar(v) => Value::Scalar(0.5 * v + 0.25),
+                };
+                p.write(&mut probe, scaled);
+                for (k, ((_, a), (_, b))) in gpu_field_values(&m)
+                    .into_iter()
+                    .zip(gpu_field_values(&probe))
+                    .enumerate()
+                {
+                    if a != b {
+                        reached.insert(k);
+                    }
+                }
+            }
+            anywhere.extend(reached.iter().copied());
+            for &(index, bit) in &SHARED_BITS {
+                assert!(
+                    !(reached.contains(&index) && reached.contains(&(bit as usize))),
+                    "{}: parameters on both `{}` and `{}`",
+                    model.name(),
+                    names[index],
+                    names[bit as usize]
+                );
+            }
+        }
+        // Both fields of every pair are reached by some model (the probe
+        // sees them).
+        for &(index, bit) in &SHARED_BITS {
+            assert!(anywhere.contains(&index) && anywhere.contains(&(bit as usize)));
+        }
     }
 
     #[test]
