@@ -75,7 +75,7 @@ pub fn gpu_field_values(m: &Material) -> Vec<(&'static str, Vec<f64>)> {
 /// harmless: Ward's shader reads no layer (its layers are 0, and 0 times
 /// a texel is 0), gltf-pbr's no `sigma` (the footprint floor
 /// `textured_widths_floored` widens it unread).
-const SHARED_BITS: [(usize, u32); 2] = [(32, 5), (33, 6)];
+pub const SHARED_BITS: [(usize, u32); 2] = [(32, 5), (33, 6)];
 
 /// The mask bit of field `index` of [`gpu_field_values`]: its index, or
 /// for the fields past 32 the bit it shares ([`SHARED_BITS`]).
