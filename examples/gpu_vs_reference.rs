@@ -24,6 +24,10 @@ const DIFFERENCE_GAIN: f32 = 4.0;
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let split = args.iter().position(|a| a == "--").unwrap_or(args.len());
+    if split < 2 {
+        eprintln!("usage: gpu_vs_reference OUT.png FILE... [-- KEY=VALUE ... gpu:KEY=VALUE ...]");
+        std::process::exit(2);
+    }
     let out = PathBuf::from(&args[0]);
     let files = &args[1..split];
     let all: Vec<String> = args.get(split + 1..).unwrap_or_default().to_vec();
