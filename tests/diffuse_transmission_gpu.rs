@@ -24,6 +24,17 @@ fn gpu(scene: &Scene) -> Frame {
     common::gpu_renderer().render(scene).expect("GPU render").0
 }
 
+/// The GPU's image of `scene` and the reference's (at the pixel centres),
+/// asserted to agree within the derived tolerance of every
+/// GPU-vs-reference comparison (`common::compare_to_reference`).
+fn agreeing_with_the_reference(scene: &Scene, what: &str) -> (Frame, Frame) {
+    let frame = gpu(scene);
+    let (center, jittered) = common::reference_with_jitter(scene);
+    let c = common::compare_to_reference(scene, &frame, &center, &jittered);
+    common::assert_agrees("leaf", what, &c, &frame, &center);
+    (frame, center)
+}
+
 /// A light behind the wall: `f_t E |cos θ_i|` with `f_t = (1 − m)(1 −
 /// max₃ F(H))(1 − T) D c_dt/π` in both renderers, pixel by pixel, within
 /// the derived tolerance of every GPU-vs-reference comparison
@@ -31,17 +42,8 @@ fn gpu(scene: &Scene) -> Frame {
 /// wall is black (it faces away from the light): the test fails.
 #[test]
 fn a_light_behind_shines_through_as_the_reference_says() {
-    let scene = leaf(&[]);
-    let frame = gpu(&scene);
-    let (center, jittered) = common::reference_with_jitter(&scene);
-    let c = common::compare_to_reference(&scene, &frame, &center, &jittered);
-    common::assert_agrees(
-        "leaf",
-        "diffuse transmission, light behind",
-        &c,
-        &frame,
-        &center,
-    );
+    let (frame, center) =
+        agreeing_with_the_reference(&leaf(&[]), "diffuse transmission, light behind");
     let k = frame.index(31, 31);
     assert!(
         center.radiance[k][0] > 0.05,
@@ -67,17 +69,8 @@ fn its_textures_shine_through_as_the_reference_says() {
     );
     let share = format!("materials.leaf.diffuse_transmission_texture=\"{checker}\"");
     let colour = format!("materials.leaf.diffuse_transmission_color_texture=\"{checker}\"");
-    let scene = leaf(&[&share, &colour]);
-    let frame = gpu(&scene);
-    let (center, jittered) = common::reference_with_jitter(&scene);
-    let c = common::compare_to_reference(&scene, &frame, &center, &jittered);
-    common::assert_agrees(
-        "leaf",
-        "diffuse transmission, textured",
-        &c,
-        &frame,
-        &center,
-    );
+    let (frame, _) =
+        agreeing_with_the_reference(&leaf(&[&share, &colour]), "diffuse transmission, textured");
     let lit: Vec<f32> = (0..frame.width)
         .map(|j| frame.radiance[frame.index(26, j)][0])
         .collect();
