@@ -214,6 +214,35 @@ fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
     return prefiltered_level_lookup(q, i32(k)) * (1.0 - t) + prefiltered_level_lookup(q, i32(k) + 1) * t;
 }
 
+#if layer_sheen
+// The sheen stack (scene::sheen_stack: the map averaged by the Charlie
+// lobe seen along the normal, environment::prefiltered_zonal), levels of
+// ZONAL_WIDTH × ZONAL_WIDTH/2 texels stacked by rows, Rgba32Float.
+@group(3) @binding(5) var environment_sheen_texels: texture_2d<f32>;
+// prefiltered_zonal::ZONAL_WIDTH
+const ZONAL_WIDTH: i32 = 64;
+
+// Bilinear lookup in level k of the sheen stack. Twin:
+// ZonalStack::level_lookup.
+fn prefiltered_zonal_level_lookup(q: LatLongTexels, k: i32) -> vec3<f32> {
+    let base = k * (ZONAL_WIDTH / 2);
+    let t = environment_sheen_texels;
+    let top = textureLoad(t, vec2<i32>(q.c0, base + q.r0), 0).rgb * (1.0 - q.fx) + textureLoad(t, vec2<i32>(q.c1, base + q.r0), 0).rgb * q.fx;
+    let bottom = textureLoad(t, vec2<i32>(q.c0, base + q.r1), 0).rgb * (1.0 - q.fx) + textureLoad(t, vec2<i32>(q.c1, base + q.r1), 0).rgb * q.fx;
+    return top * (1.0 - q.fy) + bottom * q.fy;
+}
+
+// L̃_sh(d, α) (d in the file's frame), linear between the levels around
+// √α. Twin: ZonalStack::lookup.
+fn prefiltered_zonal_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
+    let f = sqrt(clamp(alpha, 0.0, 1.0)) * f32(PREFILTER_LEVELS - 1);
+    let k = min(floor(f), f32(PREFILTER_LEVELS - 2));
+    let t = f - k;
+    let q = latlong_texels(latlong_uv(d), ZONAL_WIDTH, ZONAL_WIDTH / 2);
+    return prefiltered_zonal_level_lookup(q, i32(k)) * (1.0 - t) + prefiltered_zonal_level_lookup(q, i32(k) + 1) * t;
+}
+#endif
+
 // The direction L̃ is read in: normalize(mix(n, r, s (√s + α))),
 // s = 1 − α, the lobe's dominant direction (Lagarde & de Rousiers 2014,
 // §4.9.3). Twin: dominant::dominant_direction.
@@ -290,8 +319,8 @@ fn prefiltered_bent_normal(m: Material, frame: SurfaceFrame, wo: vec3<f32>) -> v
 // gltf-pbr and its layers by the split sum, for μ_o = n·wo > 0: the
 // dielectric's s_w (f0·A + B) and the metal's b·A + B, each mixed with the
 // thin film's F_ir (A + B); the diffuse term weighted by
-// 1 − max₃ of the dielectric's; the sheen's albedo E(μ_o) times the SH
-// irradiance / π over σ_o times the rest; the coat's k F_c L̃(R_c, α_c)
+// 1 − max₃ of the dielectric's; the sheen's albedo E(μ_o) times the sheen
+// stack read at n over σ_o times the rest; the coat's k F_c L̃(R_c, α_c)
 // (A + B) over (1 − k F_c) times the rest. Layers absent from the scene
 // are not compiled; present ones are selects (UNIFORM_BRANCHES).
 // Twin: prefiltered_layers::estimate.
@@ -342,7 +371,9 @@ fn environment_prefiltered_gltf(m: Material, wo: vec3<f32>, frame: SurfaceFrame)
     let c_sh = m.layers.sheen_color;
     let e_o = sheen_albedo_lookup(cos_o, m.layers.sheen_roughness);
     let scaling = max(1.0 - max(c_sh.x, max(c_sh.y, c_sh.z)) * e_o, 0.0);
-    l = select(l, c_sh * (e_o * FRAC_1_PI) * irradiance + l * scaling, any(c_sh != vec3<f32>(0.0)));
+    let sheen_alpha = m.layers.sheen_roughness * m.layers.sheen_roughness;
+    let sheen_radiance = environment.scale * prefiltered_zonal_lookup(environment_to_map(n), sheen_alpha);
+    l = select(l, c_sh * e_o * sheen_radiance + l * scaling, any(c_sh != vec3<f32>(0.0)));
     #endif
     #if layer_clearcoat
     let n_c = coat_normal(frame, m.layers.clearcoat_normal);

@@ -701,9 +701,17 @@ fn sh_diffuse_of_gltf_pbr_and_measured_materials() {
 /// a level, and its width).
 fn stack_tolerance(map: &EnvironmentMap) -> f64 {
     let p = map.prefiltered();
-    let (w, h) = (p.width as usize, p.height as usize);
+    levels_tolerance(map, p.width, p.height, &p.texels)
+}
+
+/// The part of [`stack_tolerance`] of any stack of
+/// [`LEVELS`](gonio::environment::prefiltered::LEVELS) levels of
+/// `w × h` texels: a lookup's coordinate error times its largest step
+/// between texels, plus the blend's rounding.
+fn levels_tolerance(map: &EnvironmentMap, w: u32, h: u32, texels: &[[f32; 3]]) -> f64 {
+    let (w, h) = (w as usize, h as usize);
     let levels = gonio::environment::prefiltered::LEVELS as usize;
-    let t = |c: usize, r: usize| Rgb::from(p.texels[r * w + c].map(f64::from));
+    let t = |c: usize, r: usize| Rgb::from(texels[r * w + c].map(f64::from));
     let (mut step, mut peak) = (0.0f64, 0.0f64);
     for r in 0..h * levels {
         for c in 0..w {
@@ -715,6 +723,12 @@ fn stack_tolerance(map: &EnvironmentMap) -> f64 {
         }
     }
     map.settings.scale * (w as f64 / 4096.0 * step + 16.0 * common::EPS * peak)
+}
+
+/// [`stack_tolerance`] of the sheen stack (`scene::sheen_stack`).
+fn sheen_stack_tolerance(map: &EnvironmentMap) -> f64 {
+    let p = gonio::scene::sheen_stack::sheen_stack(map);
+    levels_tolerance(map, p.width, p.height, &p.texels)
 }
 
 /// The prefiltered scene: the lecture's gold (Cook-Torrance, α = 0.25)
@@ -745,6 +759,11 @@ fn the_prefiltered_mode_matches_its_twin() {
         "materials.lambert.energy_compensation=true",
         "materials.gold.energy_compensation=true",
     ];
+    let sheen = [
+        "environment.reference=sh",
+        "materials.lambert.sheen_color=[0.9, 0.6, 0.3]",
+        "materials.lambert.sheen_roughness=0.4",
+    ];
     for (label, map, extra, factor) in [
         (
             "blobs",
@@ -754,6 +773,7 @@ fn the_prefiltered_mode_matches_its_twin() {
         ),
         ("sky", "sky", &["environment.reference=sh"][..], 1.0),
         ("sky, compensated", "sky", &compensated[..], 1.0 / 0.3069),
+        ("blobs, sheen", "../environment/blobs.hdr", &sheen[..], 1.0),
     ] {
         let s = prefiltered_scene(map, extra);
         let env = s.environment.map.clone().unwrap();
@@ -762,6 +782,22 @@ fn the_prefiltered_mode_matches_its_twin() {
         let mut tol = common::tolerance(&s, &center);
         tol.abs +=
             sh_tolerance(&env, 1.0) + factor * stack_tolerance(&env) + lookup_tolerance(&env, None);
+        if extra == &sheen[..] {
+            // The sheen's term reads its own stack, weighted by
+            // c_sh·E(μ_o) ≤ 0.9 · max E (the table both read, r_sh 0.4).
+            use gonio::material::brdf::gltf_layers::{sheen_albedo, sheen_albedo_nodes};
+            let e_max = (0..=4096)
+                .map(|i| {
+                    let mu = i as f64 / 4096.0;
+                    sheen_albedo::sheen_albedo_lookup(
+                        mu,
+                        0.4,
+                        &sheen_albedo_nodes::SHEEN_ALBEDO_NODES,
+                    )
+                })
+                .fold(0.0, f64::max);
+            tol.abs += 0.9 * e_max * sheen_stack_tolerance(&env);
+        }
         let c = gonio::output::compare::compare_with_jitter(&frame, &center, &jittered, tol);
         eprintln!("prefiltered under the {label}: {}", c.summary());
         common::assert_agrees(

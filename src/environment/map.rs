@@ -9,6 +9,7 @@
 
 use super::importance::ImportanceTable;
 use super::prefiltered::Prefiltered;
+use super::prefiltered_zonal::{ZonalKernel, ZonalStack};
 use super::quadrature::Truth;
 use super::{latlong, sh};
 use crate::base::Rgb;
@@ -160,6 +161,19 @@ pub struct MapData {
     /// The distribution the sampled mode draws directions by (made on
     /// first use, [`MapData::importance`]).
     pub importance: ImportanceCache,
+    /// Zonal stacks made so far, by kernel name ([`MapData::zonal_stack`]).
+    pub zonal: ZonalCache,
+}
+
+/// A map's zonal stacks, made when a scene first asks for a kernel's.
+/// Equal whatever it holds, as [`PrefilteredCache`].
+#[derive(Debug, Default)]
+pub struct ZonalCache(std::sync::Mutex<Vec<Arc<ZonalStack>>>);
+
+impl PartialEq for ZonalCache {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 /// The prefiltered stacks of a map, made when a scene first asks for a
@@ -236,6 +250,7 @@ impl MapData {
             nodes,
             prefiltered: PrefilteredCache::default(),
             importance: ImportanceCache::default(),
+            zonal: ZonalCache::default(),
         })
     }
 
@@ -258,6 +273,29 @@ impl MapData {
         let mut cache = self.prefiltered.0.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(p) = cache.iter().find(|p| p.width == size) {
             return p.clone();
+        }
+        cache.push(made.clone());
+        made
+    }
+
+    /// The stack of `kernel` ([`ZonalStack`]), made on the first call for
+    /// its name and then shared (made outside the lock, as
+    /// [`Self::prefiltered_stack`]).
+    pub fn zonal_stack(&self, kernel: &ZonalKernel) -> Arc<ZonalStack> {
+        let find =
+            |cache: &[Arc<ZonalStack>]| cache.iter().find(|s| s.name == kernel.name).cloned();
+        if let Some(s) = find(&self.zonal.0.lock().unwrap_or_else(|e| e.into_inner())) {
+            return s;
+        }
+        let made = Arc::new(ZonalStack::new(
+            kernel,
+            self.width,
+            self.height,
+            &self.texels,
+        ));
+        let mut cache = self.zonal.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(s) = find(&cache) {
+            return s;
         }
         cache.push(made.clone());
         made

@@ -23,6 +23,8 @@
 //!   convolution of Ramamoorthi & Hanrahan (2001), evaluation.
 //! * [`prefiltered`]: the radiance stack of the split-sum approximation
 //!   (`environment.specular = "prefiltered"`).
+//! * [`prefiltered_zonal`]: a stack averaged by a zonal kernel the caller
+//!   gives (the sheen's, in the same mode).
 //! * [`sh_phong`]: the lecture's Phong lobes by SH convolution, a zonal
 //!   product (`environment.specular = "sh"`, Ramamoorthi & Hanrahan 2002).
 //! * [`sh_error`]: SH irradiance error vs order against the truth.
@@ -39,6 +41,7 @@ pub mod latlong;
 pub mod load;
 pub mod map;
 pub mod prefiltered;
+pub mod prefiltered_zonal;
 pub mod quadrature;
 pub mod sh;
 pub mod sh_error;

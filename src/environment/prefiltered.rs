@@ -47,12 +47,12 @@ pub struct Prefiltered {
 
 /// Box-filtered mips of a lat-long map (each half the size, the 2 × 2
 /// texels weighted by their solid angle), down to 4 × 2.
-struct Pyramid {
+pub(super) struct Pyramid {
     levels: Vec<(u32, u32, Vec<[f64; 3]>)>,
 }
 
 impl Pyramid {
-    fn new(width: u32, height: u32, texels: &[[f32; 3]]) -> Pyramid {
+    pub(super) fn new(width: u32, height: u32, texels: &[[f32; 3]]) -> Pyramid {
         let first: Vec<[f64; 3]> = texels.iter().map(|t| t.map(f64::from)).collect();
         let mut levels = vec![(width, height, first)];
         loop {
@@ -88,11 +88,11 @@ impl Pyramid {
     /// Bilinear lookup of `d` in mip `k` (as `MapData::lookup`).
     fn bilinear(&self, k: usize, d: DVec3) -> [f64; 3] {
         let (w, h, t) = &self.levels[k];
-        bilinear(*w, *h, |c, r| t[(r * w + c) as usize], d)
+        bilinear_latlong(*w, *h, |c, r| t[(r * w + c) as usize], d)
     }
 
     /// Trilinear lookup at fractional mip `lod`.
-    fn trilinear(&self, lod: f64, d: DVec3) -> [f64; 3] {
+    pub(super) fn trilinear(&self, lod: f64, d: DVec3) -> [f64; 3] {
         let last = (self.levels.len() - 1) as f64;
         let lod = lod.clamp(0.0, last);
         let k = lod.floor().min((last - 1.0).max(0.0));
@@ -108,7 +108,12 @@ impl Pyramid {
 
 /// Bilinear lookup of unit `d` in a `w × h` lat-long image `t(col, row)`:
 /// texel centres at `((col + ½)/W, (row + ½)/H)`, `u` wraps, `v` clamps.
-fn bilinear(w: u32, h: u32, t: impl Fn(u32, u32) -> [f64; 3], d: DVec3) -> [f64; 3] {
+pub(super) fn bilinear_latlong(
+    w: u32,
+    h: u32,
+    t: impl Fn(u32, u32) -> [f64; 3],
+    d: DVec3,
+) -> [f64; 3] {
     let (u, v) = latlong::uv(d);
     let x = u * w as f64 - 0.5;
     let y = v * h as f64 - 0.5;
@@ -240,7 +245,7 @@ impl Prefiltered {
                 for r in 0..h {
                     for c in 0..w {
                         let d = latlong::texel_direction(c, r, w, h);
-                        texels.push(bilinear(wk, hk, at, d).map(|x| x as f32));
+                        texels.push(bilinear_latlong(wk, hk, at, d).map(|x| x as f32));
                     }
                 }
             }
@@ -255,7 +260,7 @@ impl Prefiltered {
     /// Bilinear lookup of unit `d` (the file's frame) in level `k`.
     pub fn level_lookup(&self, k: u32, d: DVec3) -> Rgb {
         let base = k * self.height;
-        let v = bilinear(
+        let v = bilinear_latlong(
             self.width,
             self.height,
             |c, r| self.texels[((base + r) * self.width + c) as usize].map(f64::from),

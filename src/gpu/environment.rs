@@ -2,7 +2,8 @@
 //! `[environment] map`; other scenes' pipelines and images are unchanged):
 //! the texels as an `Rgba32Float` texture, a uniform with the map's scale,
 //! size and SH irradiance coefficients and the camera's ray basis, the
-//! tables of the prefiltered and sampled modes, and the
+//! tables of the prefiltered and sampled modes (with the sheen stack
+//! where a drawn sheen reads it), and the
 //! background pass (shaders/environment_background.wgsl) that shows the
 //! map where no geometry is.
 
@@ -13,9 +14,11 @@ use super::shader_gen::{self, Output};
 use crate::environment::importance::ImportanceTable;
 use crate::environment::map::{MapData, Specular};
 use crate::environment::prefiltered::{self, Prefiltered};
+use crate::environment::prefiltered_zonal::ZonalStack;
 use crate::environment::{EnvironmentMap, sh};
 use crate::material::brdf::dfg;
 use crate::scene::Scene;
+use crate::scene::sheen_stack::sheen_stack;
 use crate::{Error, Result};
 use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
@@ -82,7 +85,7 @@ impl GpuEnvironmentUniform {
 
 /// The entries of group 3: the uniform, the map's texels, the
 /// prefiltered stack, the DFG table and the importance table.
-pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 5] {
+pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
     let stage = wgpu::ShaderStages::VERTEX_FRAGMENT;
     [
         wgpu::BindGroupLayoutEntry {
@@ -101,6 +104,9 @@ pub fn group_entries() -> [wgpu::BindGroupLayoutEntry; 5] {
         unfilterable_texture_2d(2, stage),
         unfilterable_texture_2d(3, stage),
         read_only_storage(4, stage, wgpu::BufferSize::new(IMPORTANCE_HEADER + 16)),
+        // The sheen stack: bound in every mode, 1 × 1 where no drawn
+        // sheen reads it.
+        unfilterable_texture_2d(5, stage),
     ]
 }
 
@@ -211,6 +217,42 @@ fn split_sum_textures(
     (Some(p), stack, dfg)
 }
 
+/// Whether `scene` reads the sheen stack: the prefiltered mode and a
+/// drawn material with a sheen (the shader's `layer_sheen`).
+fn reads_sheen_stack(scene: &Scene, map: &EnvironmentMap) -> bool {
+    map.settings.specular == Specular::Prefiltered
+        && scene
+            .meshes
+            .iter()
+            .any(|m| scene.materials[m.material].gltf_layers_used().sheen)
+}
+
+/// The sheen stack of `map` when `scene` reads it (uploaded), else a
+/// 1 × 1 stand-in.
+fn sheen_stack_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    map: &EnvironmentMap,
+) -> (Option<Arc<ZonalStack>>, wgpu::TextureView) {
+    if !reads_sheen_stack(scene, map) {
+        let zero = [[0.0f32; 4]];
+        let view = float_texture(device, queue, "gonio no sheen stack", 1, 1, &zero);
+        return (None, view);
+    }
+    let z = sheen_stack(map);
+    let rgba: Vec<[f32; 4]> = z.texels.iter().map(|t| [t[0], t[1], t[2], 0.0]).collect();
+    let view = float_texture(
+        device,
+        queue,
+        "gonio sheen stack",
+        z.width,
+        z.height * prefiltered::LEVELS,
+        &rgba,
+    );
+    (Some(z), view)
+}
+
 /// Group 3's layout, and the background pass's pipeline layout (groups 0
 /// and 3). Scene pipelines join it with their other groups
 /// (`PipelineCache::compile_scene`).
@@ -300,6 +342,8 @@ pub struct GpuEnvironment {
     prefiltered: Option<Arc<Prefiltered>>,
     /// The importance table uploaded, if the mode reads one.
     importance: Option<Arc<ImportanceTable>>,
+    /// The sheen stack uploaded, if the scene reads it.
+    sheen: Option<Arc<ZonalStack>>,
     uniform: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     background: wgpu::RenderPipeline,
@@ -365,6 +409,7 @@ impl GpuEnvironment {
         let view = texture.create_view(&Default::default());
         let (prefiltered, stack, table) = split_sum_textures(device, queue, map);
         let (importance, importance_table) = importance_buffer(device, map);
+        let (sheen, sheen_view) = sheen_stack_texture(device, queue, scene, map);
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("gonio environment"),
             layout: &layouts.group,
@@ -389,12 +434,17 @@ impl GpuEnvironment {
                     binding: 4,
                     resource: importance_table.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::TextureView(&sheen_view),
+                },
             ],
         });
         Ok(Some(GpuEnvironment {
             data: data.clone(),
             prefiltered,
             importance,
+            sheen,
             uniform,
             bind_group,
             background,
@@ -413,6 +463,7 @@ impl GpuEnvironment {
                     (_, _) => true,
                 }
                 && (m.settings.specular != Specular::Sampled || self.importance.is_some())
+                && (self.sheen.is_some() || !reads_sheen_stack(scene, m))
         })
     }
 

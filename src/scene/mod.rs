@@ -20,6 +20,7 @@ pub mod mesh;
 pub mod primitives;
 pub mod scene_file;
 pub mod shadow_coords;
+pub mod sheen_stack;
 pub mod tangents;
 pub mod texture;
 pub mod transmission_settings;

@@ -1604,6 +1604,7 @@ fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
     return prefiltered_level_lookup(q, i32(k)) * (1.0 - t) + prefiltered_level_lookup(q, i32(k) + 1) * t;
 }
 
+
 // The direction L̃ is read in: normalize(mix(n, r, s (√s + α))),
 // s = 1 − α, the lobe's dominant direction (Lagarde & de Rousiers 2014,
 // §4.9.3). Twin: dominant::dominant_direction.
@@ -1660,8 +1661,8 @@ fn prefiltered_terms(m: Material) -> PrefilteredTerms {
 // gltf-pbr and its layers by the split sum, for μ_o = n·wo > 0: the
 // dielectric's s_w (f0·A + B) and the metal's b·A + B, each mixed with the
 // thin film's F_ir (A + B); the diffuse term weighted by
-// 1 − max₃ of the dielectric's; the sheen's albedo E(μ_o) times the SH
-// irradiance / π over σ_o times the rest; the coat's k F_c L̃(R_c, α_c)
+// 1 − max₃ of the dielectric's; the sheen's albedo E(μ_o) times the sheen
+// stack read at n over σ_o times the rest; the coat's k F_c L̃(R_c, α_c)
 // (A + B) over (1 − k F_c) times the rest. Layers absent from the scene
 // are not compiled; present ones are selects (UNIFORM_BRANCHES).
 // Twin: prefiltered_layers::estimate.

@@ -89,6 +89,27 @@ pub fn sheen_lobe(alpha: f64, cos_h: f64, sin2_h: f64, cos_i: f64, cos_o: f64) -
     d_charlie(alpha, cos_h, sin2_h) * v_sheen(alpha, cos_i, cos_o)
 }
 
+/// `ln` of the sheen lobe's weight seen along the normal (`V = N`):
+/// `D_sh(θ_h) V_sh(cos θ, 1) cos θ` for light at θ from the normal, with
+/// `θ_h = θ/2` (`sin²θ_h = (1 − cos θ)/2`) and `D`'s constant factor
+/// dropped; −∞ below the horizon. A function of θ alone: the zonal kernel
+/// of the environment's sheen stack (`scene::sheen_stack`), whose level
+/// `α_level = r²` is floored as [`sheen_alpha`] floors `r_sh`. In the log
+/// domain because at `r → 0` the weight underflows everywhere but at the
+/// horizon, where the stack's quadrature still finds it.
+pub fn sheen_normal_view_ln_weight(alpha_level: f64, cos: f64) -> f64 {
+    if cos <= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let cos = cos.min(1.0);
+    let alpha = sheen_alpha(alpha_level.max(0.0).sqrt());
+    let (cos2_h, sin2_h) = ((1.0 + cos) / 2.0, (1.0 - cos) / 2.0);
+    if sin2_h <= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    ln_sin2(cos2_h, sin2_h) / (2.0 * alpha) + (v_sheen(alpha, cos, 1.0) * cos).ln()
+}
+
 /// The albedo scaling of the layer below (pinned choices 6 and 10):
 /// `σ = max(0, min(1 − max₃(c_sh) E(μ_o), 1 − max₃(c_sh) E(μ_i)))`.
 pub fn sheen_scaling(sheen_color: Rgb, albedo_o: f64, albedo_i: f64) -> f64 {

@@ -15,105 +15,245 @@
 //! that no table resolves, and few directions fall there.
 //!
 //! This stays the contract's exact `E` (pinned choice 6: "the exact
-//! directional albedo of the specified `D_sh V_sh`, not a table"): the
-//! curve's error is measured against the integral when it is built and a
-//! curve is read only when that error is below [`CURVE_ERROR_LIMIT`],
-//! under the f32 rounding of `E` — unlike the GPU's fitted table
+//! directional albedo of the specified `D_sh V_sh`, not a table"): each
+//! piece's error is measured against the integral when the curve is
+//! built, and a piece is read only when that error is below
+//! [`CURVE_ERROR_LIMIT`], under the f32 rounding of `E` (elsewhere `E`
+//! stays exact) — unlike the GPU's fitted table
 //! ([`super::sheen_albedo::SHEEN_ALBEDO_TABLE_ERROR`]), whose error is
 //! part of what the GPU gets wrong.
 //!
-//! The curve is two pieces that meet at `μ = ½`, where `E` has a kink
-//! (the fit of Charlie's `Λ` changes branch there, `sheen::sheen_lambda`),
-//! so that no cubic spans it. Below, the nodes are equally spaced in
+//! The curve is four pieces, so that no cubic spans a kink of `E`: at
+//! `μ = ½` the fit of Charlie's `Λ` changes branch
+//! (`sheen::sheen_lambda`), and at `μ =` [`COS_FLOOR`] (10⁻⁶) the
+//! visibility's floored cosine makes a cusp (E ≈ 2.7 there at
+//! `r_sh = 0.1`). Above `½` the nodes are equally spaced in `θ = acos μ`,
+//! in which `E` is smooth at normal incidence (in `μ` it goes as
+//! `√(1 − μ)` there); from [`MU_HORIZON`] (10⁻⁴, θ = 89.994°) to `½` in
 //! `u = μ^¼`, as the GPU's table
 //! ([`SHEEN_ALBEDO_TABLE_SIZE`](super::sheen_albedo::SHEEN_ALBEDO_TABLE_SIZE))
-//! spreads the steep rise of `E` near grazing (it varies with `log μ`);
-//! above, in `θ = acos μ`, in which `E` is smooth at normal incidence (in
-//! `μ` or `u` it goes as `√(1 − μ)` there).
+//! spreads the steep rise of `E` near grazing; from the cusp to
+//! [`MU_HORIZON`] in `ln μ` (Λ goes as a power of `μ`). Below the cusp
+//! `E` is exact (a piece in `ln μ` from 10⁻¹² to the cusp measured
+//! 2–5·10⁻⁶, above the limit). The horizon's piece matters to the
+//! explorer: an albedo's quadrature puts thousands of its nodes within
+//! 10⁻⁴ of the horizon, and an exact `E` there costs 6–10 ms.
+//!
 //! The interpolation is the cubic through the four nearest nodes
 //! (Lagrange, one-sided at the ends). Its error is measured when the
 //! curve is built, at the midpoint of every interval against the exact
-//! integral: [`SheenCurve::error`] is twice the largest difference (an
+//! integral: a piece's error is twice the largest difference (an
 //! a-posteriori estimate; for a smooth `E` a cubic's error peaks near an
-//! interval's middle). The explorer adds `max₃(C) · error` to an albedo's
-//! error bound: the base's albedo, which the scaling multiplies, is at
-//! most 1.
+//! interval's middle). The explorer adds `max₃(C) ·` [`SheenCurve::error`]
+//! to an albedo's error bound: the base's albedo, which the scaling
+//! multiplies, is at most 1.
 
 use super::sheen_albedo::sheen_albedo;
+use crate::material::brdf::COS_FLOOR;
 use rayon::prelude::*;
 use std::cell::RefCell;
-use std::f64::consts::FRAC_PI_3;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
-/// Nodes on each side of `μ = ½`.
+/// Nodes of each of the two pieces above [`MU_HORIZON`].
 pub const NODES: usize = 1025;
 
-/// Below this `μ` the curve is the exact integral (the module doc).
-pub const MU_LOW: f64 = 1e-4;
+/// Nodes of the piece in `ln μ` below [`MU_HORIZON`] (two decades).
+pub const HORIZON_NODES: usize = 257;
 
-/// The pieces' ends in their coordinates: `u = μ^¼` from [`MU_LOW`] to
-/// `½`, `θ = acos μ` from `π/3` (`μ = ½`) to 0.
-const PIECES: [(f64, f64); 2] = [(0.1, 0.840_896_415_253_714_6), (FRAC_PI_3, 0.0)];
+/// Where the pieces in `u = μ^¼` and in `ln μ` meet (θ = 89.994°).
+pub const MU_HORIZON: f64 = 1e-4;
+
+/// Below this `μ` the curve is the exact integral: the visibility's
+/// floored cosine (the module doc).
+pub const MU_LOWEST: f64 = COS_FLOOR;
+
+/// The coordinate a piece's nodes are equally spaced in.
+#[derive(Clone, Copy, Debug)]
+enum Coordinate {
+    /// `ln μ`.
+    Log,
+    /// `u = μ^¼`.
+    QuarterPower,
+    /// `θ = acos μ`.
+    Angle,
+}
+
+impl Coordinate {
+    fn of(self, mu: f64) -> f64 {
+        match self {
+            Coordinate::Log => mu.ln(),
+            Coordinate::QuarterPower => mu.sqrt().sqrt(),
+            Coordinate::Angle => mu.acos(),
+        }
+    }
+
+    fn mu(self, x: f64) -> f64 {
+        match self {
+            Coordinate::Log => x.exp(),
+            Coordinate::QuarterPower => {
+                let s = x * x;
+                s * s
+            }
+            Coordinate::Angle => x.cos(),
+        }
+    }
+}
+
+/// One piece: `nodes` values of `E`, equally spaced in `coordinate` from
+/// `μ_from` to `μ_to` (increasing `μ`).
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    coordinate: Coordinate,
+    mu_from: f64,
+    mu_to: f64,
+    nodes: usize,
+}
+
+impl Piece {
+    /// The ends in the piece's coordinate.
+    fn ends(&self) -> (f64, f64) {
+        (
+            self.coordinate.of(self.mu_from),
+            self.coordinate.of(self.mu_to),
+        )
+    }
+
+    /// `μ` at position `t` ∈ [0, 1] of the piece.
+    fn mu_at(&self, t: f64) -> f64 {
+        let (lo, hi) = self.ends();
+        // The ends exactly, whatever the coordinate's rounding.
+        match t {
+            0.0 => self.mu_from,
+            1.0 => self.mu_to,
+            _ => self.coordinate.mu(lo + (hi - lo) * t),
+        }
+    }
+}
+
+/// The pieces in increasing `μ` (the module doc).
+const PIECES: [Piece; 3] = [
+    Piece {
+        coordinate: Coordinate::Log,
+        mu_from: COS_FLOOR,
+        mu_to: MU_HORIZON,
+        nodes: HORIZON_NODES,
+    },
+    Piece {
+        coordinate: Coordinate::QuarterPower,
+        mu_from: MU_HORIZON,
+        mu_to: 0.5,
+        nodes: NODES,
+    },
+    Piece {
+        coordinate: Coordinate::Angle,
+        mu_from: 0.5,
+        mu_to: 1.0,
+        nodes: NODES,
+    },
+];
+
+/// The piece `μ` falls in (`MU_LOWEST ≤ μ ≤ 1`).
+fn piece_of(mu: f64) -> usize {
+    PIECES.iter().rposition(|p| mu >= p.mu_from).unwrap_or(0)
+}
 
 /// `E(μ)` at one sheen `α` ([`SheenCurve::at`]), and the bound on its
 /// interpolation error.
 #[derive(Debug)]
 pub struct SheenCurve {
     alpha: f64,
+    /// Each piece's node values, the pieces one after the other.
     values: Vec<f64>,
-    /// `|E_exact(μ) − at(μ)|` is below this (measured, see the module
-    /// doc).
+    /// Each piece's measured error (the module doc); a piece above
+    /// [`CURVE_ERROR_LIMIT`] is not read.
+    piece_errors: [f64; 3],
+    /// `|E_exact(μ) − at(μ)|` is below this: the largest error of a piece
+    /// that is read (0 when none is).
     pub error: f64,
 }
 
 impl SheenCurve {
-    /// The curve of sheen `α` (`α_sh = r_sh²`): `2 ×` [`NODES`] exact
-    /// integrals and as many checks, in parallel.
+    /// The curve of sheen `α` (`α_sh = r_sh²`): an exact integral at
+    /// every node and at every interval's midpoint, in parallel.
     pub fn new(alpha: f64) -> SheenCurve {
-        let last = (NODES - 1) as f64;
-        let values: Vec<f64> = (0..2 * NODES)
-            .into_par_iter()
-            .map(|i| sheen_albedo(mu_at(i / NODES, (i % NODES) as f64 / last), alpha))
+        let nodes: Vec<(usize, f64)> = PIECES
+            .iter()
+            .enumerate()
+            .flat_map(|(i, p)| {
+                let last = (p.nodes - 1) as f64;
+                (0..p.nodes).map(move |k| (i, k as f64 / last))
+            })
+            .collect();
+        let values: Vec<f64> = nodes
+            .par_iter()
+            .map(|&(i, t)| sheen_albedo(PIECES[i].mu_at(t), alpha))
             .collect();
         let mut curve = SheenCurve {
             alpha,
             values,
+            piece_errors: [0.0; 3],
             error: 0.0,
         };
-        let largest = (0..2 * (NODES - 1))
-            .into_par_iter()
-            .map(|i| {
-                let t = ((i % (NODES - 1)) as f64 + 0.5) / last;
-                let mu = mu_at(i / (NODES - 1), t);
-                (curve.at(mu) - sheen_albedo(mu, alpha)).abs()
+        let midpoints: Vec<(usize, f64)> = PIECES
+            .iter()
+            .enumerate()
+            .flat_map(|(i, p)| {
+                let last = (p.nodes - 1) as f64;
+                (0..p.nodes - 1).map(move |k| (i, (k as f64 + 0.5) / last))
             })
-            .reduce(|| 0.0, f64::max);
-        curve.error = 2.0 * largest;
+            .collect();
+        let differences: Vec<(usize, f64)> = midpoints
+            .par_iter()
+            .map(|&(i, t)| {
+                let mu = PIECES[i].mu_at(t);
+                (
+                    i,
+                    (curve.interpolate(i, mu) - sheen_albedo(mu, alpha)).abs(),
+                )
+            })
+            .collect();
+        for (i, d) in differences {
+            curve.piece_errors[i] = curve.piece_errors[i].max(2.0 * d);
+        }
+        curve.error = curve
+            .piece_errors
+            .iter()
+            .filter(|&&e| e <= CURVE_ERROR_LIMIT)
+            .fold(0.0, |m, &e| m.max(e));
         curve
     }
 
-    /// `E(μ)` by cubic interpolation in the piece's coordinate (`μ`
-    /// clamped to [0, 1]), exact below [`MU_LOW`].
+    /// Whether any piece is read.
+    pub fn usable(&self) -> bool {
+        self.piece_errors.iter().any(|&e| e <= CURVE_ERROR_LIMIT)
+    }
+
+    /// `E(μ)` (`μ` clamped to [0, 1]): by cubic interpolation in its
+    /// piece's coordinate where that piece is read, exact elsewhere.
     pub fn at(&self, mu: f64) -> f64 {
-        if mu < MU_LOW {
-            return sheen_albedo(mu.max(0.0), self.alpha);
+        let mu = mu.clamp(0.0, 1.0);
+        if mu < MU_LOWEST {
+            return sheen_albedo(mu, self.alpha);
         }
-        let mu = mu.min(1.0);
-        let piece = usize::from(mu >= 0.5);
-        let (lo, hi) = PIECES[piece];
-        let coordinate = if piece == 0 {
-            mu.sqrt().sqrt()
-        } else {
-            mu.acos()
-        };
-        let last = NODES - 1;
-        let x = ((coordinate - lo) / (hi - lo)).clamp(0.0, 1.0) * last as f64;
+        let piece = piece_of(mu);
+        if self.piece_errors[piece] > CURVE_ERROR_LIMIT {
+            return sheen_albedo(mu, self.alpha);
+        }
+        self.interpolate(piece, mu)
+    }
+
+    /// The cubic of piece `piece` at `μ` (inside the piece).
+    fn interpolate(&self, piece: usize, mu: f64) -> f64 {
+        let p = &PIECES[piece];
+        let (lo, hi) = p.ends();
+        let last = p.nodes - 1;
+        let x = ((p.coordinate.of(mu) - lo) / (hi - lo)).clamp(0.0, 1.0) * last as f64;
         // The four nodes around x, kept inside the piece.
         let first = (x.floor() as usize).saturating_sub(1).min(last - 3);
         let t = x - first as f64;
-        let start = piece * NODES + first;
-        let v = &self.values[start..start + 4];
+        let offset: usize = PIECES[..piece].iter().map(|p| p.nodes).sum();
+        let v = &self.values[offset + first..offset + first + 4];
         // Lagrange through nodes 0, 1, 2, 3 at t.
         let (a, b, c, d) = (t, t - 1.0, t - 2.0, t - 3.0);
         -v[0] * b * c * d / 6.0 + v[1] * a * c * d / 2.0 - v[2] * a * b * d / 2.0
@@ -121,25 +261,17 @@ impl SheenCurve {
     }
 }
 
-/// `μ` at position `t` ∈ [0, 1] of piece `piece`.
-fn mu_at(piece: usize, t: f64) -> f64 {
-    let (lo, hi) = PIECES[piece];
-    let x = lo + (hi - lo) * t;
-    if piece == 0 {
-        let s = x * x;
-        s * s
-    } else {
-        x.cos()
-    }
-}
+/// Exact integrals a curve costs: a value at every node and a check at
+/// every interval's midpoint.
+pub const CURVE_INTEGRALS: usize = 2 * (2 * NODES + HORIZON_NODES) - 3;
 
 /// Exact evaluations a [`SheenAlbedo`] answers before it builds its curve:
-/// the curve's own cost in exact integrals (`4 ×` [`NODES`], with its
-/// check). So an `α` asked for fewer times than that (a printed value, a
+/// the curve's own cost in exact integrals ([`CURVE_INTEGRALS`], with
+/// its checks). So an `α` asked for fewer times than that (a printed value, a
 /// probe, one pixel of a sheen roughness texture) never pays for a curve,
 /// and one asked for more (an image, an albedo, a plot) pays at most
 /// twice what the exact integrals alone would have cost.
-pub const EXACT_CALLS: u32 = 4 * NODES as u32;
+pub const EXACT_CALLS: u32 = CURVE_INTEGRALS as u32;
 
 /// The largest measured [`SheenCurve::error`] that is read; a coarser curve
 /// is dropped and `E` stays exact. A sixth of the f32 rounding of `E ≈ 1`
@@ -186,7 +318,7 @@ impl SheenAlbedo {
             self.calls.fetch_add(1, Ordering::Relaxed);
         } else if !self.building.swap(true, Ordering::AcqRel) {
             let curve = SheenCurve::new(self.alpha);
-            let usable = curve.error <= CURVE_ERROR_LIMIT;
+            let usable = curve.usable();
             let _ = self.curve.set(usable.then_some(curve));
             return self.at(mu);
         }
@@ -247,9 +379,11 @@ mod tests {
     use super::*;
 
     /// The curve is the exact `E` within its stated error at points
-    /// between the nodes other than the midpoints it was measured at, and
-    /// that error is small against the explorer's own tolerances (the
-    /// albedo's outer panels stop at 10⁻⁸ of the integral).
+    /// between the nodes other than the midpoints it was measured at, in
+    /// every piece that is read, and that error is small against the
+    /// explorer's own tolerances (the albedo's outer panels stop at 10⁻⁸
+    /// of the integral). The horizon's pieces are read at every roughness
+    /// measured but the smallest.
     #[test]
     fn the_curve_is_the_exact_albedo_within_its_error() {
         for r in [0.02, 0.05, 0.1, 0.25, 0.4, 0.7, 1.0] {
@@ -257,31 +391,36 @@ mod tests {
             let start = std::time::Instant::now();
             let curve = SheenCurve::new(alpha);
             eprintln!(
-                "r_sh {r}: error {:.2e}, built in {:.2} s",
+                "r_sh {r}: error {:.2e} (pieces {}), built in {:.2} s",
                 curve.error,
+                curve.piece_errors.map(|e| format!("{e:.1e}")).join(", "),
                 start.elapsed().as_secs_f64()
             );
             // Usable wherever E stays moderate near grazing; at r_sh = 0.02
-            // (E = 3.0 at 89°) its steep rise keeps E exact.
+            // (E = 3.0 at 89°) its steep rise keeps E exact above the
+            // horizon.
             if r >= 0.05 {
                 assert!(
-                    curve.error <= CURVE_ERROR_LIMIT,
-                    "r_sh {r}: {}",
-                    curve.error
+                    curve.piece_errors.iter().all(|&e| e <= CURVE_ERROR_LIMIT),
+                    "r_sh {r}: {:?}",
+                    curve.piece_errors
                 );
             }
-            for k in 0..200 {
-                let mu = mu_at(k % 2, (k as f64 + 0.37) / 200.0);
-                let d = (curve.at(mu) - sheen_albedo(mu, alpha)).abs();
-                assert!(
-                    d <= curve.error,
-                    "r_sh {r} μ {mu}: {d:e} > {:e}",
-                    curve.error
-                );
+            for (i, piece) in PIECES.iter().enumerate() {
+                for k in 0..200 {
+                    let mu = piece.mu_at((k as f64 + 0.37) / 200.0);
+                    let d = (curve.at(mu) - sheen_albedo(mu, alpha)).abs();
+                    let bound = if curve.piece_errors[i] <= CURVE_ERROR_LIMIT {
+                        curve.error
+                    } else {
+                        1e-12
+                    };
+                    assert!(d <= bound, "r_sh {r} μ {mu}: {d:e} > {bound:e}");
+                }
             }
-            for mu in [0.0, 1e-6, 0.5 * MU_LOW, MU_LOW, 0.5, 1.0] {
+            for mu in [0.0, 1e-9, 0.5 * MU_LOWEST, MU_LOWEST, MU_HORIZON, 0.5, 1.0] {
                 let d = (curve.at(mu) - sheen_albedo(mu, alpha)).abs();
-                assert!(d < 1e-12, "r_sh {r} μ {mu}: {d:e} at a node or below it");
+                assert!(d < 1e-12, "r_sh {r} μ {mu}: {d:e} at a node or below them");
             }
         }
     }
