@@ -530,3 +530,30 @@ mod transmission_warning_tests {
         assert!(off.contains("drawn as if opaque"), "{off}");
     }
 }
+
+#[cfg(test)]
+mod spectral_note_tests {
+    use super::gpu_spectral_note;
+    use crate::scene::scene_file::{self, SceneSource};
+
+    fn note(sets: &[&str]) -> Option<String> {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        gpu_spectral_note(&scene_file::load(&SceneSource::BuiltIn, &sets).unwrap())
+    }
+
+    /// One note naming each spectral metal and its preset; none without.
+    #[test]
+    fn the_note_names_the_spectral_metals() {
+        assert_eq!(note(&[]), None);
+        let one = note(&[
+            "materials.ball.model=cook-torrance",
+            "materials.ball.spectral_metal=copper",
+        ])
+        .expect("a spectral metal is named");
+        assert!(
+            one.contains("material `ball` (copper: preset `copper-rgb`) is drawn"),
+            "{one}"
+        );
+        assert!(one.contains("--reference"), "{one}");
+    }
+}
