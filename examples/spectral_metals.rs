@@ -35,7 +35,7 @@ const EXPOSURE: f64 = -1.0;
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let split = args.iter().position(|a| a == "--").unwrap_or(args.len());
-    if split < 1 || split > 2 {
+    if !(1..=2).contains(&split) {
         eprintln!("usage: spectral_metals OUT.png [SCENE] [-- KEY=VALUE ...]");
         std::process::exit(2);
     }
