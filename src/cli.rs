@@ -296,6 +296,9 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         if let Some(w) = gpu_transmission_warning(&scene) {
             eprintln!("gonio: {w}");
         }
+        if let Some(note) = gpu_spectral_note(&scene) {
+            eprintln!("gonio: note: {note}");
+        }
         let choice = AdapterChoice::from_flag_or_env(args.adapter.as_deref());
         let start = Instant::now();
         let context = GpuContext::new(&choice)?;
@@ -387,6 +390,30 @@ pub fn gpu_transmission_warning(scene: &Scene) -> Option<String> {
     let names = names.join(", ");
     Some(format!(
         "warning: material{s} {names} use{verb_s} light through surfaces (transmission, volume, dispersion, diffuse transmission), which the GPU renderer does not draw with shading.transmission = \"off\": {they} drawn as if opaque; use \"screen\", or render with --reference to see the light through {them}"
+    ))
+}
+
+/// The note of a GPU render of a scene with spectral metals (material key
+/// `spectral_metal`), one line naming each: the GPU has three channels and
+/// renders the metal's preset; the spectral Fresnel is the reference's.
+pub fn gpu_spectral_note(scene: &Scene) -> Option<String> {
+    let mut named: Vec<String> = Vec::new();
+    for m in &scene.materials {
+        if let Some(metal) = m.spectral_metal {
+            let one = format!("`{}` ({metal}: preset `{}`)", m.name, metal.preset_name());
+            if !named.contains(&one) {
+                named.push(one);
+            }
+        }
+    }
+    if named.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "spectral_metal: the GPU renderer evaluates the Fresnel term in three channels, so material{} {} {} drawn with the three-channel preset; render with --reference for the spectral Fresnel of the published table",
+        if named.len() == 1 { "" } else { "s" },
+        named.join(", "),
+        if named.len() == 1 { "is" } else { "are" }
     ))
 }
 
@@ -501,5 +528,32 @@ mod transmission_warning_tests {
         let off = warning(&["materials.ball.transmission=1", "shading.transmission=off"])
             .expect("off names the material");
         assert!(off.contains("drawn as if opaque"), "{off}");
+    }
+}
+
+#[cfg(test)]
+mod spectral_note_tests {
+    use super::gpu_spectral_note;
+    use crate::scene::scene_file::{self, SceneSource};
+
+    fn note(sets: &[&str]) -> Option<String> {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        gpu_spectral_note(&scene_file::load(&SceneSource::BuiltIn, &sets).unwrap())
+    }
+
+    /// One note naming each spectral metal and its preset; none without.
+    #[test]
+    fn the_note_names_the_spectral_metals() {
+        assert_eq!(note(&[]), None);
+        let one = note(&[
+            "materials.ball.model=cook-torrance",
+            "materials.ball.spectral_metal=copper",
+        ])
+        .expect("a spectral metal is named");
+        assert!(
+            one.contains("material `ball` (copper: preset `copper-rgb`) is drawn"),
+            "{one}"
+        );
+        assert!(one.contains("--reference"), "{one}");
     }
 }

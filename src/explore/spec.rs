@@ -94,6 +94,15 @@ pub fn material(
         );
     }
     let given: Material = material_from_entry(&label, &entry).map_err(bad)?;
+    // The spectral Fresnel is the reference renderer's (`reference`, a
+    // layer the explorer does not use); here the metal's preset, with a
+    // word.
+    if let Some(metal) = given.spectral_metal {
+        eprintln!(
+            "gonio: note: {label}: spectral_metal = \"{metal}\" is evaluated with its three-channel preset `{}` here; the spectral Fresnel of the published table is the reference renderer's (`gonio render --reference`)",
+            metal.preset_name()
+        );
+    }
     // The renderers evaluate roughness no smaller than the floor (f32's
     // range on the GPU); `gonio brdf` shows what they render, and says so.
     let material = given.with_roughness_floor(0.0);

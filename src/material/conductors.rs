@@ -30,6 +30,8 @@
 //! table's 4 decimals), and η, which shapes the fall-off towards grazing,
 //! is the measurement at the channel's wavelength.
 
+use crate::base::named_enum;
+
 /// One coloured conductor: preset name, η and κ per channel, and the
 /// normal-incidence reflectance (linear Rec.709) the reduction produced,
 /// which the η, κ reproduce.
@@ -78,6 +80,40 @@ pub const COLOURED_CONDUCTORS: &[ColouredConductor] = &[
         f0: [0.5297, 0.5132, 0.4942],
     },
 ];
+
+named_enum!(
+    /// A metal of the table above by its name without `-rgb`: the value of
+    /// the material key `spectral_metal` (`super::spectral_metal`), which
+    /// the reference evaluates from the metal's spectral table.
+    Metal, "spectral metal" {
+        /// Au, Johnson & Christy 1972.
+        Gold = "gold",
+        /// Ag, Johnson & Christy 1972.
+        Silver = "silver",
+        /// Cu, Johnson & Christy 1972.
+        Copper = "copper",
+        /// Al, Rakić 1995.
+        Aluminium = "aluminium",
+        /// Fe, Johnson & Christy 1974.
+        Iron = "iron",
+    }
+);
+
+impl Metal {
+    /// Its three-channel preset (the reduction of the same table).
+    pub fn coloured(self) -> &'static ColouredConductor {
+        let name = self.preset_name();
+        COLOURED_CONDUCTORS
+            .iter()
+            .find(|c| c.name == name)
+            .expect("every metal has its preset")
+    }
+
+    /// The name of its three-channel preset: `gold` → `gold-rgb`.
+    pub fn preset_name(self) -> String {
+        format!("{}-rgb", self.name())
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -132,5 +168,23 @@ mod tests {
         for c in COLOURED_CONDUCTORS {
             assert!(f0_of(c).max_element() < 1.0, "{}", c.name);
         }
+    }
+
+    /// Every metal names its preset, in the table's order.
+    #[test]
+    fn every_metal_has_its_preset() {
+        let names: Vec<_> = Metal::ALL.iter().map(|m| m.coloured().name).collect();
+        let presets: Vec<_> = COLOURED_CONDUCTORS.iter().map(|c| c.name).collect();
+        assert_eq!(names, presets);
+    }
+
+    /// A bad name is refused with the allowed ones listed.
+    #[test]
+    fn a_bad_metal_name_lists_the_metals() {
+        let e = "platinum".parse::<Metal>().unwrap_err();
+        assert!(
+            e.contains("platinum") && e.contains("gold, silver, copper, aluminium, iron"),
+            "{e}"
+        );
     }
 }

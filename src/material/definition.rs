@@ -7,6 +7,7 @@
 //! `follow_default_weights`) are in `material/mod.rs`, above the table
 //! and the BRDFs.
 
+use super::conductors::Metal;
 use super::model::ReflectanceModel;
 use super::terms::{Denominator, Distribution, Fresnel, Geometry};
 use super::{measured, texture};
@@ -54,6 +55,11 @@ pub struct Material {
     pub geometry: Geometry,
     pub fresnel: Fresnel,
     pub denominator: Denominator,
+    /// The metal whose published spectral table the reference evaluates
+    /// the Fresnel term from (scene-file key `spectral_metal`,
+    /// [`super::spectral_metal`]); η, κ above then hold its three-channel
+    /// preset, which the GPU renders. `None`: the three channels.
+    pub spectral_metal: Option<Metal>,
     /// The measured BRDF of a `measured` material (scene-file key
     /// `measured`); `None` for the other models.
     pub measured: Option<&'static measured::MeasuredBrdf>,

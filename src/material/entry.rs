@@ -4,8 +4,9 @@
 //! models ([`super::table`]): `model`, `preset`, the term names and every
 //! model's parameters.
 
+use super::conductors::Metal;
 use super::param::{Kind, Param, Value};
-use super::{Material, ReflectanceModel, measured, presets, table};
+use super::{Material, ReflectanceModel, measured, presets, spectral_metal, table};
 use crate::base::{ColorValue, rgb_to_toml};
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, Visitor};
@@ -32,6 +33,9 @@ pub struct MaterialEntry {
     pub terms: Vec<(&'static str, String)>,
     /// `measured = NAME|PATH` as given (model `measured`).
     pub measured: Option<String>,
+    /// `spectral_metal = NAME` as given (a conductor whose Fresnel the
+    /// reference evaluates spectrally, [`super::spectral_metal`]).
+    pub spectral_metal: Option<String>,
     /// Textures as given: (`PARAM_texture` key, image path as written).
     /// The scene file resolves the paths (`scene_file::textures`).
     pub textures: Vec<(String, String)>,
@@ -83,7 +87,7 @@ pub fn is_texture_key(key: &str) -> bool {
 /// Every key a `[materials.NAME]` table accepts, in the order errors list
 /// them.
 static KEYS: LazyLock<Vec<&'static str>> = LazyLock::new(|| {
-    let mut keys = vec!["model", "preset"];
+    let mut keys = vec!["model", "preset", spectral_metal::KEY];
     for p in table::all_params() {
         if !keys.contains(&p.key) {
             keys.push(p.key);
@@ -139,6 +143,10 @@ impl<'de> Visitor<'de> for EntryVisitor {
                 "measured" => {
                     duplicate(entry.measured.is_some())?;
                     entry.measured = Some(map.next_value::<String>()?);
+                }
+                spectral_metal::KEY => {
+                    duplicate(entry.spectral_metal.is_some())?;
+                    entry.spectral_metal = Some(map.next_value::<String>()?);
                 }
                 ENERGY_COMPENSATION_KEY => {
                     duplicate(entry.energy_compensation.is_some())?;
@@ -213,6 +221,11 @@ pub fn material_from_entry_in(
     for (k, text) in &e.terms {
         set_term(&mut m, k, text).map_err(|p| format!("{}: {p}", key(k)))?;
     }
+    if let Some(metal) =
+        spectral_metal_of(e, model).map_err(|p| format!("{}: {p}", key(spectral_metal::KEY)))?
+    {
+        spectral_metal::set(&mut m, metal);
+    }
     // The model's default k_d, k_s for the preset and terms now set (a
     // metal preset on Cook-Torrance: a bare metal; `weights.rs`); the
     // keys given win below.
@@ -232,6 +245,28 @@ pub fn material_from_entry_in(
     }
     m.validate()?;
     Ok(m)
+}
+
+/// The metal of `e`'s `spectral_metal` checked against its other keys
+/// ([`spectral_metal::check_keys`]); `None` without the key or on a model
+/// that does not read it (a warning: [`keys_not_applying`]).
+fn spectral_metal_of(e: &MaterialEntry, model: ReflectanceModel) -> Result<Option<Metal>, String> {
+    let Some(text) = &e.spectral_metal else {
+        return Ok(None);
+    };
+    let metal: Metal = text.parse()?;
+    if !spectral_metal::applies(model) {
+        return Ok(None);
+    }
+    let given =
+        |k: &str| e.params.iter().any(|(p, _)| p == k) || e.textures.iter().any(|(t, _)| t == k);
+    let fresnel = e
+        .terms
+        .iter()
+        .find(|(k, _)| *k == "fresnel")
+        .map(|(_, f)| f.as_str());
+    spectral_metal::check_keys(metal, e.preset.as_deref(), given, fresnel)?;
+    Ok(Some(metal))
 }
 
 /// The parameter keys of `e` that its model does not read (`sigma_x` on
@@ -264,11 +299,17 @@ pub fn keys_not_applying(e: &MaterialEntry) -> Vec<&str> {
                         && k.strip_suffix(TEXTURE_SUFFIX).is_some_and(|p| !applies(p))
                 }
             });
+    let metal = e
+        .spectral_metal
+        .as_ref()
+        .filter(|_| !spectral_metal::applies(model))
+        .map(|_| spectral_metal::KEY);
     e.params
         .iter()
         .map(|(k, _)| k.as_str())
         .filter(|k| !applies(k))
         .chain(textured)
+        .chain(metal)
         .collect()
 }
 
@@ -284,6 +325,9 @@ fn measured_keys_apply(e: &MaterialEntry) -> Result<(), (&str, String)> {
     };
     if e.preset.is_some() {
         return Err(not_read("preset"));
+    }
+    if e.spectral_metal.is_some() {
+        return Err(not_read(spectral_metal::KEY));
     }
     if let Some((k, _)) = e
         .params
@@ -342,6 +386,19 @@ pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String
             let text: String = value.try_into().map_err(typed)?;
             out.measured = Some(measured::resolve(&text, Path::new("")).map_err(bad)?);
         }
+        spectral_metal::KEY => {
+            let text: String = value.try_into().map_err(typed)?;
+            let metal: Metal = text.parse().map_err(bad)?;
+            if !spectral_metal::applies(out.model) {
+                return Err(bad(format!(
+                    "model `{}` has no Fresnel term; `{}` applies to the models with one ({})",
+                    out.model.name(),
+                    spectral_metal::KEY,
+                    fresnel_models()
+                )));
+            }
+            spectral_metal::set(&mut out, metal);
+        }
         k if TERM_KEYS.contains(&k) => {
             let text: String = value.try_into().map_err(typed)?;
             set_term(&mut out, k, &text).map_err(bad)?;
@@ -366,11 +423,26 @@ pub fn with_key(m: &Material, key: &str, value: Toml) -> Result<Material, String
             p.write(&mut out, v);
         }
     }
+    // An edit of η, κ, the preset or the Fresnel term away from the
+    // spectral metal's leaves the three channels it set.
+    if !spectral_metal::still_holds(&out) {
+        out.spectral_metal = None;
+    }
     // Weights left at their defaults follow the edit, as a scene file's
     // `--set` of the same key would have them.
     out.follow_default_weights(before);
     out.validate()?;
     Ok(out)
+}
+
+/// The models that read `spectral_metal`, as a list for messages.
+fn fresnel_models() -> String {
+    table::ROWS
+        .iter()
+        .filter(|r| spectral_metal::applies(r.model))
+        .map(|r| format!("`{}`", r.model.name()))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Sets the term `key` (`distribution`, ...) of `m` from its name.
@@ -406,7 +478,21 @@ pub fn material_table(m: &Material) -> toml::Table {
     // model reads, so the file reads back without a warning (before,
     // `gonio fit -o f.toml` wrote 8 keys `render f.toml` warned about).
     let row = m.model.row();
+    // A spectral metal is written by its name; its η, κ (the preset's)
+    // follow from it, and the key refuses them beside it.
+    let metal = m
+        .spectral_metal
+        .filter(|_| spectral_metal::applies(m.model));
+    if let Some(metal) = metal {
+        t.insert(
+            spectral_metal::KEY.into(),
+            Toml::String(metal.name().into()),
+        );
+    }
     for p in table::COMMON.iter().chain(row.params.iter()) {
+        if metal.is_some() && (p.key == "eta" || p.key == "kappa") {
+            continue;
+        }
         t.insert(p.key.into(), text_value(p, m));
     }
     for (key, has, name) in [
@@ -497,6 +583,105 @@ mod tests {
         assert!(!switched.energy_compensation);
         let on = with_key(&off, ENERGY_COMPENSATION_KEY, Toml::Boolean(true)).unwrap();
         assert!(on.energy_compensation);
+    }
+
+    /// `spectral_metal`: sets the metal's preset and the exact conductor
+    /// Fresnel, accepts its own preset beside it, refuses what it would
+    /// make the reference ignore and a bad name (listing the metals),
+    /// warns on a model without a Fresnel term, is refused by `measured`,
+    /// is saved by name and read back, and an edit of η drops it.
+    #[test]
+    fn spectral_metal_sets_its_preset_and_refuses_what_it_overrides() {
+        let entry =
+            |text: &str| MaterialEntry::deserialize(text.parse::<toml::Table>().unwrap()).unwrap();
+        let ct = |keys: &str| {
+            material_from_entry("m", &entry(&format!("model = \"cook-torrance\"\n{keys}")))
+        };
+        let gold = ct("spectral_metal = \"gold\"").unwrap();
+        let preset = ct("preset = \"gold-rgb\"").unwrap();
+        assert_eq!(gold.spectral_metal, Some(Metal::Gold));
+        assert_eq!(
+            (gold.eta, gold.kappa, gold.fresnel),
+            (preset.eta, preset.kappa, preset.fresnel)
+        );
+        assert_eq!((gold.k_d, gold.k_s), (preset.k_d, preset.k_s));
+        assert_eq!(
+            ct("spectral_metal = \"gold\"\npreset = \"gold-rgb\"\nfresnel = \"conductor\"")
+                .unwrap(),
+            gold
+        );
+        for (keys, names) in [
+            ("preset = \"silver-rgb\"", "`preset = \"silver-rgb\"`"),
+            (
+                "preset = \"gold\"",
+                "remove `preset` or set it to \"gold-rgb\"",
+            ),
+            ("eta = 0.2", "`eta` cannot be combined"),
+            ("kappa = [3.0, 2.0, 1.0]", "`kappa` cannot be combined"),
+            (
+                "eta_texture = \"e.png\"",
+                "`eta_texture` cannot be combined",
+            ),
+            (
+                "fresnel = \"schlick\"",
+                "`fresnel = \"schlick\"` cannot be combined",
+            ),
+        ] {
+            let e = ct(&format!("spectral_metal = \"gold\"\n{keys}")).unwrap_err();
+            assert!(
+                e.starts_with("materials.m.spectral_metal: ") && e.contains(names),
+                "{e}"
+            );
+        }
+        let e = ct("spectral_metal = \"platinum\"").unwrap_err();
+        assert!(
+            e.contains("unknown spectral metal `platinum`")
+                && e.contains("gold, silver, copper, aluminium, iron"),
+            "{e}"
+        );
+        let phong = entry("model = \"phong\"\nspectral_metal = \"gold\"");
+        assert_eq!(keys_not_applying(&phong), [spectral_metal::KEY]);
+        assert_eq!(
+            material_from_entry("m", &phong).unwrap().spectral_metal,
+            None
+        );
+        let e = material_from_entry(
+            "m",
+            &entry("model = \"measured\"\nmeasured = \"chrome\"\nspectral_metal = \"gold\""),
+        )
+        .unwrap_err();
+        assert!(
+            e.contains("spectral_metal: does not apply to model `measured`"),
+            "{e}"
+        );
+        let mirror = material_from_entry(
+            "m",
+            &entry("model = \"mirror\"\nspectral_metal = \"copper\""),
+        )
+        .unwrap();
+        assert_eq!(mirror.spectral_metal, Some(Metal::Copper));
+        for m in [&gold, &mirror] {
+            let written = material_table(m);
+            assert!(
+                !written.contains_key("eta") && !written.contains_key("kappa"),
+                "{written:?}"
+            );
+            let back = MaterialEntry::deserialize(Toml::Table(written)).unwrap();
+            assert!(keys_not_applying(&back).is_empty());
+            assert_eq!(&material_from_entry("m", &back).unwrap(), m);
+        }
+        let set = with_key(&preset, spectral_metal::KEY, Toml::String("gold".into())).unwrap();
+        assert_eq!(set, gold);
+        let edited = with_key(&gold, "eta", Toml::Float(0.3)).unwrap();
+        assert_eq!(edited.spectral_metal, None);
+        let kept = with_key(&gold, "roughness", Toml::Float(0.1)).unwrap();
+        assert_eq!(kept.spectral_metal, Some(Metal::Gold));
+        let phong = Material::new("m", ReflectanceModel::Phong);
+        assert!(
+            with_key(&phong, spectral_metal::KEY, Toml::String("gold".into()))
+                .unwrap_err()
+                .contains("`cook-torrance`, `mirror`")
+        );
     }
 
     #[test]

@@ -17,6 +17,7 @@ pub mod measured;
 mod model;
 pub mod param;
 pub mod presets;
+pub mod spectral_metal;
 pub mod table;
 pub mod terms;
 pub mod texture;
@@ -63,6 +64,7 @@ impl Material {
             geometry: Geometry::Smith,
             fresnel: Fresnel::Conductor,
             denominator: Denominator::Microfacet,
+            spectral_metal: None,
             measured: None,
             base_color: Rgb::splat(0.8),
             metallic: 0.0,
@@ -109,6 +111,12 @@ impl Material {
         table::stored_params()
             .into_iter()
             .try_for_each(|p| p.check(self))?;
+        if !spectral_metal::still_holds(self) {
+            return Err(format!(
+                "material `{}`: `spectral_metal` needs the metal's own η, κ (its preset) and fresnel = \"conductor\", without η or κ textures",
+                self.name
+            ));
+        }
         if self.energy_compensation && !self.model.row().energy_compensation {
             return Err(format!(
                 "material `{}`: energy_compensation = true, but model `{}` has no energy compensation (it applies to the microfacet models {}); remove the key or set it to false",

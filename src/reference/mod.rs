@@ -3,6 +3,8 @@
 //! normals, interpolation and clip planes), so the two frames can be
 //! compared pixel by pixel.
 //!
+//! [`brdf`] is the BRDF it evaluates for a material (a spectral metal's
+//! Fresnel from its spectral table, where the GPU has three channels);
 //! [`crate::scene::bvh`] finds what a ray hits (and whether a shadow ray
 //! is blocked); [`renderer`] turns hits into a [`crate::frame::Frame`],
 //! each hit shaded by the reflection equation of [`shading`] (the
@@ -14,6 +16,7 @@
 //! volumes (refraction, attenuation, dispersion).
 
 pub mod area;
+pub mod brdf;
 pub mod environment;
 pub mod renderer;
 pub mod shading;

@@ -680,7 +680,7 @@ impl<'a> Shader<'a> {
             // f_r of a Lambertian receiver is the same for every direction
             // above the surface; any such direction evaluates it.
             let wo = (eye - x).normalize_or_zero();
-            let f_r = material.f_r(frame.n, wo, frame);
+            let f_r = super::brdf::reference_brdf(material).f_r(frame.n, wo, frame);
             for area in &self.scene.area_lights {
                 radiance += f_r * area.exact_irradiance(x, frame.n);
             }

@@ -48,8 +48,9 @@ pub fn reflected_radiance(
         // Its own terms and its base colour; no light, no environment.
         return radiance + brdf::unlit::unlit_radiance(material.base_color);
     }
-    // Built once for every light and direction below.
-    let f = material.brdf();
+    // Built once for every light and direction below (a spectral metal's
+    // Fresnel from its table: `super::brdf`).
+    let f = super::brdf::reference_brdf(material);
     for (l, light) in scene.lights.iter().enumerate() {
         let incidence = light.incidence(x);
         let cos_theta_i = n.dot(incidence.wi);
@@ -109,7 +110,7 @@ pub fn reflected_radiance(
     }
     if material.model == ReflectanceModel::Mirror {
         let reflected = mirror_direction(wo, n);
-        radiance += brdf::mirror_reflectance(material, n.dot(wo))
+        radiance += super::brdf::mirror_reflectance(material, n.dot(wo))
             * scene.environment.radiance(reflected)
             * occlusion;
     }

@@ -9,6 +9,7 @@ pub mod abc;
 pub mod dfg;
 pub mod energy;
 pub mod fresnel;
+pub mod fresnel_table;
 pub mod gltf_layers;
 pub mod gltf_pbr;
 pub mod lambert;

@@ -9,6 +9,7 @@
 //! `gpu::layout::GpuMaterial::new`) consume it, so neither decides per
 //! model what a material's fields mean.
 
+use super::fresnel_table::FresnelTable;
 use super::oren_nayar::OrenNayarTerms;
 use super::{fresnel, microfacet};
 use crate::base::Rgb;
@@ -264,6 +265,15 @@ pub enum FresnelTerm {
     Dielectric { eta_i: f64, eta_t: f64 },
     /// Schlick with `f0 = f0_conductor(η, κ)` (the GPU derives it from η, κ).
     Schlick { eta: Rgb, kappa: Rgb, f0: Rgb },
+    /// A conductor's `F(cos θ)` from a table ([`super::fresnel_table`]):
+    /// the reference's spectral metal (`crate::reference::brdf`), never
+    /// built from a material's own fields. `η`, `κ` are the metal's
+    /// three-channel preset, what the GPU twin reads in its place.
+    Tabulated {
+        eta: Rgb,
+        kappa: Rgb,
+        table: &'static FresnelTable,
+    },
     /// `F = 1`.
     None,
 }
@@ -297,6 +307,7 @@ impl FresnelTerm {
                 Rgb::splat(fresnel::fresnel_dielectric(cos_theta, eta_i, eta_t))
             }
             FresnelTerm::Schlick { f0, .. } => fresnel::fresnel_schlick(cos_theta, f0),
+            FresnelTerm::Tabulated { table, .. } => table.eval(cos_theta),
             FresnelTerm::None => Rgb::ONE,
         }
     }
@@ -432,7 +443,8 @@ impl FresnelTerm {
         match self {
             FresnelTerm::Conductor { eta, kappa }
             | FresnelTerm::ConductorLecture { eta, kappa }
-            | FresnelTerm::Schlick { eta, kappa, .. } => (p.eta, p.kappa) = (eta, kappa),
+            | FresnelTerm::Schlick { eta, kappa, .. }
+            | FresnelTerm::Tabulated { eta, kappa, .. } => (p.eta, p.kappa) = (eta, kappa),
             FresnelTerm::Dielectric { eta_i, eta_t } => (p.eta_i, p.eta_t) = (eta_i, eta_t),
             FresnelTerm::None => {}
         }

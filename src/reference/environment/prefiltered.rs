@@ -29,6 +29,7 @@ use crate::material::brdf::Specular as BrdfSpecular;
 use crate::material::brdf::dfg::{self, ggx_alpha};
 use crate::material::brdf::phong::mirror_direction;
 use crate::material::{Material, ReflectanceModel};
+use crate::reference::brdf::reference_brdf;
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
 
@@ -38,7 +39,8 @@ use std::f64::consts::FRAC_1_PI;
 /// [`super::prefiltered_layers::estimate`]). Twin: `prefiltered_terms` in
 /// shaders/environment.wgsl.
 pub fn specular_terms(material: &Material) -> (f64, Rgb, Rgb) {
-    match material.brdf().specular {
+    // The F0 of a spectral metal is its spectral colour (`reference_brdf`).
+    match reference_brdf(material).specular {
         BrdfSpecular::CookTorrance(ct) => (
             ggx_alpha(ct.d),
             ct.f.eval(1.0),

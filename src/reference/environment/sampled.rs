@@ -36,6 +36,7 @@ use crate::base::{Rgb, SurfaceFrame, any_tangent};
 use crate::environment::EnvironmentMap;
 use crate::environment::quadrature::Node;
 use crate::material::Material;
+use crate::reference::brdf::reference_brdf;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, TAU};
 
@@ -97,7 +98,7 @@ pub fn estimate(map: &EnvironmentMap, material: &Material, frame: &SurfaceFrame,
     // tangent the mesh has.
     let t = any_tangent(frame.n);
     let b = frame.n.cross(t);
-    let brdf = material.brdf();
+    let brdf = reference_brdf(material);
     let mut sum = Rgb::ZERO;
     for k in 0..n {
         let wi = if k < n_c {
@@ -137,7 +138,7 @@ pub fn integrated(
     frame: &SurfaceFrame,
     wo: DVec3,
 ) -> Rgb {
-    let brdf = material.brdf();
+    let brdf = reference_brdf(material);
     let mut sum = Rgb::ZERO;
     for node in nodes {
         // The node's direction in world space (the map turned).

@@ -5,6 +5,8 @@
 //! the presets' three channels. Between samples `n` and `k` are
 //! interpolated linearly in wavelength, as the script does.
 
+use crate::material::conductors::Metal;
+
 /// One metal: the preset it was reduced to, its source, and rows of
 /// (wavelength \[µm\], n, k) in increasing wavelength.
 pub struct SpectralMetal {
@@ -153,9 +155,28 @@ pub const IRON: SpectralMetal = SpectralMetal {
 /// Every metal, in the presets' order.
 pub const METALS: [&SpectralMetal; 5] = [&GOLD, &SILVER, &COPPER, &ALUMINIUM, &IRON];
 
+/// The table of the metal a material names (`spectral_metal`).
+pub fn of(metal: Metal) -> &'static SpectralMetal {
+    match metal {
+        Metal::Gold => &GOLD,
+        Metal::Silver => &SILVER,
+        Metal::Copper => &COPPER,
+        Metal::Aluminium => &ALUMINIUM,
+        Metal::Iron => &IRON,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each material name finds the table reduced to its preset.
+    #[test]
+    fn every_name_finds_its_table() {
+        for metal in Metal::ALL {
+            assert_eq!(of(metal).preset, metal.preset_name());
+        }
+    }
 
     /// Every table covers 380–780 nm in increasing wavelength, and
     /// interpolation returns the inner rows at their wavelengths.

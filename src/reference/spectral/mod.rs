@@ -8,7 +8,9 @@
 //! published `n(λ) + i k(λ)`; [`thin_film`] is the Airy reflectance of a
 //! film and the error of the specification's RGB form; [`conductors`] the
 //! exact Fresnel of the metals and the error of their three-channel
-//! presets; [`error_table`] the statistics both report; [`film_plot`]
+//! presets, and [`fresnel_tables`] that Fresnel tabulated over the angle
+//! for rendering (the material key `spectral_metal`); [`error_table`] the
+//! statistics both report; [`film_plot`]
 //! draws the film's colour against thickness; [`complex`] the arithmetic
 //! of complex indices. Results: `docs/spectral.md`.
 
@@ -17,5 +19,6 @@ pub mod complex;
 pub mod conductors;
 pub mod error_table;
 pub mod film_plot;
+pub mod fresnel_tables;
 pub mod metals;
 pub mod thin_film;
