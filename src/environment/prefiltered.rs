@@ -272,12 +272,18 @@ impl Prefiltered {
     /// `L̃(d, α)` (unscaled, the file's frame): linear between the levels
     /// around `√α`. Twin: `prefiltered_lookup` in shaders/environment.wgsl.
     pub fn lookup(&self, d: DVec3, alpha: f64) -> Rgb {
-        let f = alpha.clamp(0.0, 1.0).sqrt() * (LEVELS - 1) as f64;
-        let k = f.floor().min((LEVELS - 2) as f64);
-        let t = f - k;
-        let k = k as u32;
+        let (k, t) = level_blend(alpha);
         self.level_lookup(k, d) * (1.0 - t) + self.level_lookup(k + 1, d) * t
     }
+}
+
+/// The two levels around `√α` (α clamped to [0, 1]), `k` and `k + 1`,
+/// and the weight `t` of the upper one. Twin: `stack_levels` in
+/// shaders/environment.wgsl.
+pub fn level_blend(alpha: f64) -> (u32, f64) {
+    let f = alpha.clamp(0.0, 1.0).sqrt() * (LEVELS - 1) as f64;
+    let k = f.floor().min((LEVELS - 2) as f64);
+    (k as u32, f - k)
 }
 
 /// One prefiltered texel: the GGX lobe of `alpha` about `r` (`N = V = R`).

@@ -27,7 +27,7 @@
 //! WGSL twin: `prefiltered_zonal_lookup` in shaders/environment.wgsl.
 
 use super::latlong;
-use super::prefiltered::{LEVELS, Pyramid, bilinear_latlong, level_alpha};
+use super::prefiltered::{LEVELS, Pyramid, bilinear_latlong, level_alpha, level_blend};
 use crate::base::{Rgb, any_tangent};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -168,10 +168,7 @@ impl ZonalStack {
     /// around `√α`, as [`super::prefiltered::Prefiltered::lookup`]. Twin:
     /// `prefiltered_zonal_lookup` in shaders/environment.wgsl.
     pub fn lookup(&self, d: DVec3, alpha: f64) -> Rgb {
-        let f = alpha.clamp(0.0, 1.0).sqrt() * (LEVELS - 1) as f64;
-        let k = f.floor().min((LEVELS - 2) as f64);
-        let t = f - k;
-        let k = k as u32;
+        let (k, t) = level_blend(alpha);
         self.level_lookup(k, d) * (1.0 - t) + self.level_lookup(k + 1, d) * t
     }
 }

@@ -178,6 +178,27 @@ fn float_texture(
     texture.create_view(&Default::default())
 }
 
+/// A stack of [`prefiltered::LEVELS`] levels of `width × height` RGB
+/// texels (level k at rows k·height), uploaded.
+fn stack_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    width: u32,
+    height: u32,
+    texels: &[[f32; 3]],
+) -> wgpu::TextureView {
+    let rgba: Vec<[f32; 4]> = texels.iter().map(|t| [t[0], t[1], t[2], 0.0]).collect();
+    float_texture(
+        device,
+        queue,
+        label,
+        width,
+        height * prefiltered::LEVELS,
+        &rgba,
+    )
+}
+
 /// The prefiltered stack and the environment BRDF table of `map` when its
 /// mode reads them, else 1 × 1 stand-ins.
 fn split_sum_textures(
@@ -198,14 +219,13 @@ fn split_sum_textures(
         );
     }
     let p = map.prefiltered();
-    let rgba: Vec<[f32; 4]> = p.texels.iter().map(|t| [t[0], t[1], t[2], 0.0]).collect();
-    let stack = float_texture(
+    let stack = stack_texture(
         device,
         queue,
         "gonio prefiltered map",
         p.width,
-        p.height * prefiltered::LEVELS,
-        &rgba,
+        p.height,
+        &p.texels,
     );
     let table: Vec<[f32; 4]> = dfg::table()
         .entries
@@ -241,14 +261,13 @@ fn sheen_stack_texture(
         return (None, view);
     }
     let z = sheen_stack(map);
-    let rgba: Vec<[f32; 4]> = z.texels.iter().map(|t| [t[0], t[1], t[2], 0.0]).collect();
-    let view = float_texture(
+    let view = stack_texture(
         device,
         queue,
         "gonio sheen stack",
         z.width,
-        z.height * prefiltered::LEVELS,
-        &rgba,
+        z.height,
+        &z.texels,
     );
     (Some(z), view)
 }

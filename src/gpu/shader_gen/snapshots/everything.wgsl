@@ -1585,6 +1585,8 @@ const DFG_SIZE: i32 = 32;
 
 // Bilinear lookup in level k at the texels q (the levels share one grid:
 // the rows of level k start at k·h). Twin: Prefiltered::level_lookup.
+// (`prefiltered_zonal_level_lookup` is the same on the sheen stack: a
+// texture passed as an argument is not portable to every backend.)
 fn prefiltered_level_lookup(q: LatLongTexels, k: i32) -> vec3<f32> {
     let base = k * (i32(environment.prefilter_width) / 2);
     let t = environment_prefiltered_texels;
@@ -1593,15 +1595,26 @@ fn prefiltered_level_lookup(q: LatLongTexels, k: i32) -> vec3<f32> {
     return top * (1.0 - q.fy) + bottom * q.fy;
 }
 
+// The two levels around √α, k and k + 1, and the weight t of the upper
+// one. Twin: prefiltered::level_blend.
+struct StackLevels {
+    k: i32,
+    t: f32,
+}
+
+fn stack_levels(alpha: f32) -> StackLevels {
+    let f = sqrt(clamp(alpha, 0.0, 1.0)) * f32(PREFILTER_LEVELS - 1);
+    let k = min(floor(f), f32(PREFILTER_LEVELS - 2));
+    return StackLevels(i32(k), f - k);
+}
+
 // L̃(d, α) (d in the file's frame), linear between the levels around √α;
 // d's texels found once for both levels. Twin: Prefiltered::lookup.
 fn prefiltered_lookup(d: vec3<f32>, alpha: f32) -> vec3<f32> {
-    let f = sqrt(clamp(alpha, 0.0, 1.0)) * f32(PREFILTER_LEVELS - 1);
-    let k = min(floor(f), f32(PREFILTER_LEVELS - 2));
-    let t = f - k;
+    let b = stack_levels(alpha);
     let w = i32(environment.prefilter_width);
     let q = latlong_texels(latlong_uv(d), w, w / 2);
-    return prefiltered_level_lookup(q, i32(k)) * (1.0 - t) + prefiltered_level_lookup(q, i32(k) + 1) * t;
+    return prefiltered_level_lookup(q, b.k) * (1.0 - b.t) + prefiltered_level_lookup(q, b.k + 1) * b.t;
 }
 
 

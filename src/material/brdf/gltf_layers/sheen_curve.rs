@@ -7,12 +7,12 @@
 //! An image of the reference asks for it at every light sample of every
 //! pixel (a 200 × 150 image with a 256-sample area light: 7.7 million
 //! integrals, hours), an albedo or a plot of the explorer at every
-//! direction it evaluates. Here `E` is computed exactly at `2 ×` [`NODES`]
-//! values of `μ ≥` [`MU_LOW`] once per `α` and read by cubic
-//! interpolation in between; below [`MU_LOW`] (θ > 89.994°)
-//! [`SheenCurve::at`] computes it exactly, as there the specified `V_sh`
-//! makes `E` rise to a cusp near `μ ≈ 10⁻⁶` (E ≈ 2.7 at `r_sh = 0.1`)
-//! that no table resolves, and few directions fall there.
+//! direction it evaluates. Here `E` is computed exactly at the nodes of a
+//! curve (three pieces, below: `2 ×` [`NODES`] `+` [`HORIZON_NODES`] values of
+//! `μ ≥` [`MU_LOWEST`]) once per `α` and read by cubic interpolation in
+//! between; below [`MU_LOWEST`] (10⁻⁶, θ > 89.99994°) [`SheenCurve::at`]
+//! computes it exactly, as there the specified `V_sh` has a cusp (its
+//! cosine floored) that no piece spans, and few directions fall there.
 //!
 //! This stays the contract's exact `E` (pinned choice 6: "the exact
 //! directional albedo of the specified `D_sh V_sh`, not a table"): each
