@@ -197,9 +197,17 @@ const CACHE_LIMIT: usize = 1 << 16;
 /// `E(μ, α)`: the exact directional albedo of the sheen lobe `D_sh V_sh`
 /// at `N·ω = μ`, sheen `α = α_sh` (see the module doc).
 pub fn sheen_albedo(cos: f64, alpha: f64) -> f64 {
+    sheen_albedo_computed(cos, alpha).0
+}
+
+/// [`sheen_albedo`], and whether the integral was computed (not found in
+/// this thread's cache of recent values): what a
+/// [`SheenAlbedo`](super::sheen_curve::SheenAlbedo) counts against the
+/// cost of its curve, since a value found again costs nothing.
+pub fn sheen_albedo_computed(cos: f64, alpha: f64) -> (f64, bool) {
     let key = (cos.to_bits(), alpha.to_bits());
     if let Some(e) = CACHE.with(|c| c.borrow().get(&key).copied()) {
-        return e;
+        return (e, false);
     }
     let e = albedo_with(cos, alpha, 1, TOLERANCE);
     CACHE.with(|c| {
@@ -209,7 +217,7 @@ pub fn sheen_albedo(cos: f64, alpha: f64) -> f64 {
         }
         c.insert(key, e);
     });
-    e
+    (e, true)
 }
 
 /// `E` at four times the `φ` resolution and a hundredth of the `μ'`

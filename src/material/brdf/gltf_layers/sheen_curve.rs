@@ -48,7 +48,7 @@
 //! to an albedo's error bound: the base's albedo, which the scaling
 //! multiplies, is at most 1.
 
-use super::sheen_albedo::sheen_albedo;
+use super::sheen_albedo::{sheen_albedo, sheen_albedo_computed};
 use crate::material::brdf::COS_FLOOR;
 use rayon::prelude::*;
 use std::cell::RefCell;
@@ -265,10 +265,10 @@ impl SheenCurve {
 /// every interval's midpoint.
 pub const CURVE_INTEGRALS: usize = 2 * (2 * NODES + HORIZON_NODES) - 3;
 
-/// Exact evaluations a [`SheenAlbedo`] answers before it builds its curve:
+/// Exact integrals a [`SheenAlbedo`] computes before it builds its curve:
 /// the curve's own cost in exact integrals ([`CURVE_INTEGRALS`], with
-/// its checks). So an `α` asked for fewer times than that (a printed value, a
-/// probe, one pixel of a sheen roughness texture) never pays for a curve,
+/// its checks). So an `α` whose distinct directions are fewer than that (a
+/// printed value, a probe, one pixel of a sheen roughness texture) never pays for a curve,
 /// and one asked for more (an image, an albedo, a plot) pays at most
 /// twice what the exact integrals alone would have cost.
 pub const EXACT_CALLS: u32 = CURVE_INTEGRALS as u32;
@@ -279,9 +279,11 @@ pub const EXACT_CALLS: u32 = CURVE_INTEGRALS as u32;
 /// `sheen_roughness` values measured are inside it (the test below).
 pub const CURVE_ERROR_LIMIT: f64 = 1e-8;
 
-/// `E(μ)` at one sheen `α`: exact for the first [`EXACT_CALLS`]
-/// directions asked, from the curve after, which the call past them
-/// builds. Never blocks: while one thread builds the curve, the others
+/// `E(μ)` at one sheen `α`: exact until [`EXACT_CALLS`] integrals have
+/// been computed (a value this thread's cache holds is not counted: it
+/// costs nothing, and a test or a scene asking for a few directions
+/// again and again never needs a curve), from the curve after, which the
+/// call past them builds. Never blocks: while one thread builds the curve, the others
 /// (and that thread itself, should a nested parallel loop hand it another
 /// pixel) go on with the exact integral, so a build inside a parallel
 /// render cannot wait on itself.
@@ -315,8 +317,13 @@ impl SheenAlbedo {
             None => {}
         }
         if self.calls.load(Ordering::Relaxed) < EXACT_CALLS {
-            self.calls.fetch_add(1, Ordering::Relaxed);
-        } else if !self.building.swap(true, Ordering::AcqRel) {
+            let (e, computed) = sheen_albedo_computed(mu, self.alpha);
+            if computed {
+                self.calls.fetch_add(1, Ordering::Relaxed);
+            }
+            return e;
+        }
+        if !self.building.swap(true, Ordering::AcqRel) {
             let curve = SheenCurve::new(self.alpha);
             let usable = curve.usable();
             let _ = self.curve.set(usable.then_some(curve));
