@@ -64,6 +64,14 @@ pub const HORIZON_NODES: usize = 257;
 /// Where the pieces in `u = μ^¼` and in `ln μ` meet (θ = 89.994°).
 pub const MU_HORIZON: f64 = 1e-4;
 
+/// The smallest sheen `α` whose curve has the horizon's piece
+/// (`r_sh = 10⁻⁴`). Below, `E` near the cusp is a pathological integral
+/// (measured 2026-12-06 at θ = 89.9999°: 0.01 s at `r_sh = 10⁻⁴`, 0.19 s
+/// at `10⁻⁵`, 63 s at the floor `10⁻⁶`, where the piece's 514 integrals
+/// would take hours), so there `E` stays exact below [`MU_HORIZON`], as
+/// it is asked.
+pub const HORIZON_ALPHA_MIN: f64 = 1e-8;
+
 /// Below this `μ` the curve is the exact integral: the visibility's
 /// floored cosine (the module doc).
 pub const MU_LOWEST: f64 = COS_FLOOR;
@@ -177,27 +185,38 @@ impl SheenCurve {
     /// The curve of sheen `α` (`α_sh = r_sh²`): an exact integral at
     /// every node and at every interval's midpoint, in parallel.
     pub fn new(alpha: f64) -> SheenCurve {
+        // The horizon's piece only where its integrals are cheap (below
+        // HORIZON_ALPHA_MIN it is left out: not read, E exact there).
+        let built = |i: usize| i != 0 || alpha >= HORIZON_ALPHA_MIN;
         let nodes: Vec<(usize, f64)> = PIECES
             .iter()
             .enumerate()
+            .filter(|&(i, _)| built(i))
             .flat_map(|(i, p)| {
                 let last = (p.nodes - 1) as f64;
                 (0..p.nodes).map(move |k| (i, k as f64 / last))
             })
             .collect();
-        let values: Vec<f64> = nodes
+        let mut values: Vec<f64> = nodes
             .par_iter()
             .map(|&(i, t)| sheen_albedo(PIECES[i].mu_at(t), alpha))
             .collect();
+        let mut piece_errors = [0.0; 3];
+        if !built(0) {
+            // Keeps every piece at its offset; never read.
+            values.splice(0..0, std::iter::repeat_n(f64::NAN, PIECES[0].nodes));
+            piece_errors[0] = f64::INFINITY;
+        }
         let mut curve = SheenCurve {
             alpha,
             values,
-            piece_errors: [0.0; 3],
+            piece_errors,
             error: 0.0,
         };
         let midpoints: Vec<(usize, f64)> = PIECES
             .iter()
             .enumerate()
+            .filter(|&(i, _)| built(i))
             .flat_map(|(i, p)| {
                 let last = (p.nodes - 1) as f64;
                 (0..p.nodes - 1).map(move |k| (i, (k as f64 + 0.5) / last))
@@ -430,5 +449,19 @@ mod tests {
                 assert!(d < 1e-12, "r_sh {r} μ {mu}: {d:e} at a node or below them");
             }
         }
+    }
+
+    /// At the sheen roughness floor the horizon's piece is left out (its
+    /// integrals would take hours) and `E` there is exact; the other
+    /// pieces are built as at any `α`.
+    #[test]
+    fn the_floor_has_no_horizon_piece() {
+        let alpha = sheen_alpha(0.0);
+        assert!(alpha < HORIZON_ALPHA_MIN);
+        let curve = SheenCurve::new(alpha);
+        assert!(curve.piece_errors[0].is_infinite());
+        assert!(curve.piece_errors[1..].iter().all(|e| e.is_finite()));
+        let mu = 5e-5;
+        assert_eq!(curve.at(mu), sheen_albedo(mu, alpha));
     }
 }
