@@ -188,16 +188,20 @@ impl SheenCurve {
         // The horizon's piece only where its integrals are cheap (below
         // HORIZON_ALPHA_MIN it is left out: not read, E exact there).
         let built = |i: usize| i != 0 || alpha >= HORIZON_ALPHA_MIN;
-        let nodes: Vec<(usize, f64)> = PIECES
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| built(i))
-            .flat_map(|(i, p)| {
-                let last = (p.nodes - 1) as f64;
-                (0..p.nodes).map(move |k| (i, k as f64 / last))
-            })
-            .collect();
-        let mut values: Vec<f64> = nodes
+        // (piece, position) of every built piece's nodes (`shift` 0,
+        // all of them) or interval midpoints (`shift` ½, one fewer).
+        let points = |shift: f64, fewer: usize| -> Vec<(usize, f64)> {
+            PIECES
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| built(i))
+                .flat_map(|(i, p)| {
+                    let last = (p.nodes - 1) as f64;
+                    (0..p.nodes - fewer).map(move |k| (i, (k as f64 + shift) / last))
+                })
+                .collect()
+        };
+        let mut values: Vec<f64> = points(0.0, 0)
             .par_iter()
             .map(|&(i, t)| sheen_albedo(PIECES[i].mu_at(t), alpha))
             .collect();
@@ -213,16 +217,7 @@ impl SheenCurve {
             piece_errors,
             error: 0.0,
         };
-        let midpoints: Vec<(usize, f64)> = PIECES
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| built(i))
-            .flat_map(|(i, p)| {
-                let last = (p.nodes - 1) as f64;
-                (0..p.nodes - 1).map(move |k| (i, (k as f64 + 0.5) / last))
-            })
-            .collect();
-        let differences: Vec<(usize, f64)> = midpoints
+        let differences: Vec<(usize, f64)> = points(0.5, 1)
             .par_iter()
             .map(|&(i, t)| {
                 let mu = PIECES[i].mu_at(t);
