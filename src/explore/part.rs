@@ -138,9 +138,11 @@ impl MaterialPart<'_> {
 
     /// What reading the sheen's `E(μ)` from its curve
     /// (`brdf::gltf_layers::sheen_curve`) may add to an integral of this
-    /// part (albedo, gloss): `max₃(C)` times the curve's error, since the
-    /// scaling `1 − max₃(C) E` multiplies the base, whose albedo is at
-    /// most 1 (the layers' white furnace, tests/layer_properties.rs).
+    /// part (albedo, gloss): `max(max₃(C), 2)` times the curve's error
+    /// `ε` (measured as `|ΔE| / max(1, E)`, which changes the scaling
+    /// `σ = max(0, min(1 − max₃(C) E_o, 1 − max₃(C) E_i))` by at most
+    /// that), since `σ` multiplies the base, whose albedo is at most 1
+    /// (the layers' white furnace, tests/layer_properties.rs).
     /// Zero for a term that does not read `E` or while `E` is exact.
     pub fn sheen_curve_error(&self) -> Rgb {
         let m = self.material;
@@ -152,7 +154,7 @@ impl MaterialPart<'_> {
             return Rgb::ZERO;
         }
         let error = sheen_albedo_of(sheen_alpha(m.layers.sheen_roughness)).error();
-        Rgb::splat(m.layers.sheen_color.max_element() * error)
+        Rgb::splat(m.layers.sheen_color.max_element().max(2.0) * error)
     }
 
     /// Whether the part has a Dirac lobe beside its function value.

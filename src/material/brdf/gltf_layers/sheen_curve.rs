@@ -33,7 +33,10 @@
 //! `u = μ^¼`, as the GPU's table
 //! ([`SHEEN_ALBEDO_TABLE_SIZE`](super::sheen_albedo::SHEEN_ALBEDO_TABLE_SIZE))
 //! spreads the steep rise of `E` near grazing; from the cusp to
-//! [`MU_HORIZON`] in `ln μ` (Λ goes as a power of `μ`). Below the cusp
+//! [`MU_HORIZON`] in `ln μ` (Λ goes as a power of `μ`), interpolating
+//! `ln E`, which stays smooth where a narrow sheen's `E` falls by decades
+//! from node to node, and ending where `E` becomes exactly 0
+//! ([`mu_zero`]: 2.5·10⁻⁵ at the roughness floor) if that comes first. Below the cusp
 //! `E` is exact (a piece in `ln μ` from 10⁻¹² to the cusp measured
 //! 2–5·10⁻⁶, above the limit). The horizon's piece matters to the
 //! explorer: an albedo's quadrature puts thousands of its nodes within
@@ -58,19 +61,14 @@ use std::sync::{Arc, Mutex, OnceLock};
 /// Nodes of each of the two pieces above [`MU_HORIZON`].
 pub const NODES: usize = 1025;
 
-/// Nodes of the piece in `ln μ` below [`MU_HORIZON`] (two decades).
-pub const HORIZON_NODES: usize = 257;
+/// Nodes of the piece in `ln μ` below [`MU_HORIZON`] (up to two decades).
+/// 513: at the roughness floor, where `E` rises from 0 at
+/// `μ = 2.5·10⁻⁵` to 4.7·10⁴ at the cusp, 257 nodes measured 6.1·10⁻⁸
+/// (above [`CURVE_ERROR_LIMIT`]) and 513 nodes 3.8·10⁻⁹ (2026-12-06).
+pub const HORIZON_NODES: usize = 513;
 
 /// Where the pieces in `u = μ^¼` and in `ln μ` meet (θ = 89.994°).
 pub const MU_HORIZON: f64 = 1e-4;
-
-/// The smallest sheen `α` whose curve has the horizon's piece
-/// (`r_sh = 10⁻⁴`). Below, `E` near the cusp is a pathological integral
-/// (measured 2026-12-06 at θ = 89.9999°: 0.01 s at `r_sh = 10⁻⁴`, 0.19 s
-/// at `10⁻⁵`, 63 s at the floor `10⁻⁶`, where the piece's 514 integrals
-/// would take hours), so there `E` stays exact below [`MU_HORIZON`], as
-/// it is asked.
-pub const HORIZON_ALPHA_MIN: f64 = 1e-8;
 
 /// Below this `μ` the curve is the exact integral: the visibility's
 /// floored cosine (the module doc).
@@ -109,13 +107,15 @@ impl Coordinate {
 }
 
 /// One piece: `nodes` values of `E`, equally spaced in `coordinate` from
-/// `μ_from` to `μ_to` (increasing `μ`).
+/// `μ_from` to `μ_to` (increasing `μ`), interpolated in `ln E` where
+/// `log_values` (and the four nodes are positive) or in `E`.
 #[derive(Clone, Copy, Debug)]
 struct Piece {
     coordinate: Coordinate,
     mu_from: f64,
     mu_to: f64,
     nodes: usize,
+    log_values: bool,
 }
 
 impl Piece {
@@ -139,31 +139,58 @@ impl Piece {
     }
 }
 
-/// The pieces in increasing `μ` (the module doc).
+/// The pieces in increasing `μ` (the module doc); the first ends at
+/// [`mu_zero`] where that is below [`MU_HORIZON`] ([`SheenCurve::new`]).
 const PIECES: [Piece; 3] = [
     Piece {
         coordinate: Coordinate::Log,
         mu_from: COS_FLOOR,
         mu_to: MU_HORIZON,
         nodes: HORIZON_NODES,
+        log_values: true,
     },
     Piece {
         coordinate: Coordinate::QuarterPower,
         mu_from: MU_HORIZON,
         mu_to: 0.5,
         nodes: NODES,
+        log_values: false,
     },
     Piece {
         coordinate: Coordinate::Angle,
         mu_from: 0.5,
         mu_to: 1.0,
         nodes: NODES,
+        log_values: false,
     },
 ];
+
+/// The `μ` above which `E(μ, α)` is exactly 0: Charlie's `D` is cut off
+/// where `ln sin²θ_h / (2α) ≤ −80`
+/// ([`exp_cutoff`](crate::material::brdf::phong::exp_cutoff)), i.e. where
+/// `cos²θ_h ≥ 1 − e^(−160 α)`, and every half vector of a direction at
+/// `μ` has `cos θ_h = (μ + μ') / |ω + ω'| ≥ μ / 2`. So `E = 0` for
+/// `μ ≥ 2 √(1 − e^(−160 α))`, here with a margin of 10⁻⁶ for the
+/// rounding of the exponent. At the roughness floor (`α = 10⁻¹²`)
+/// 2.53·10⁻⁵; above 1 (no cut) for `α ≥ 0.0018` (`r_sh ≥ 0.043`).
+pub fn mu_zero(alpha: f64) -> f64 {
+    2.0 * (-(-160.0 * alpha).exp_m1()).sqrt() * (1.0 + 1e-6)
+}
 
 /// The piece `μ` falls in (`MU_LOWEST ≤ μ ≤ 1`).
 fn piece_of(mu: f64) -> usize {
     PIECES.iter().rposition(|p| mu >= p.mu_from).unwrap_or(0)
+}
+
+/// `|approximate − exact| / max(1, E)`: the error a curve is measured in.
+/// Absolute where `E ≤ 1`; relative above, where `E` near grazing reaches
+/// 4.7·10⁴ (the roughness floor) and only `E`'s own f32 rounding is a
+/// sensible target. It bounds what the curve changes in the scaling
+/// `σ = max(0, min(1 − c E_o, 1 − c E_i))` by `max(c, 2) ε`: where
+/// `c E ≤ 2`, `c |ΔE| ≤ c ε max(1, E) ≤ ε max(c, 2)`; where `c E > 2`
+/// (and `ε < ½`) both values clamp `σ` to 0.
+fn curve_error(approximate: f64, exact: f64) -> f64 {
+    (approximate - exact).abs() / exact.max(1.0)
 }
 
 /// `E(μ)` at one sheen `α` ([`SheenCurve::at`]), and the bound on its
@@ -171,13 +198,17 @@ fn piece_of(mu: f64) -> usize {
 #[derive(Debug)]
 pub struct SheenCurve {
     alpha: f64,
+    /// Its pieces: [`PIECES`], the first ending at [`mu_zero`] where that
+    /// is below [`MU_HORIZON`].
+    pieces: [Piece; 3],
     /// Each piece's node values, the pieces one after the other.
     values: Vec<f64>,
     /// Each piece's measured error (the module doc); a piece above
     /// [`CURVE_ERROR_LIMIT`] is not read.
     piece_errors: [f64; 3],
-    /// `|E_exact(μ) − at(μ)|` is below this: the largest error of a piece
-    /// that is read (0 when none is).
+    /// `|E_exact(μ) − at(μ)| / max(1, E_exact(μ))` is below this
+    /// ([`curve_error`]): the largest error of a piece that is read (0
+    /// when none is).
     pub error: f64,
 }
 
@@ -185,45 +216,38 @@ impl SheenCurve {
     /// The curve of sheen `α` (`α_sh = r_sh²`): an exact integral at
     /// every node and at every interval's midpoint, in parallel.
     pub fn new(alpha: f64) -> SheenCurve {
-        // The horizon's piece only where its integrals are cheap (below
-        // HORIZON_ALPHA_MIN it is left out: not read, E exact there).
-        let built = |i: usize| i != 0 || alpha >= HORIZON_ALPHA_MIN;
-        // (piece, position) of every built piece's nodes (`shift` 0,
-        // all of them) or interval midpoints (`shift` ½, one fewer).
+        let mut pieces = PIECES;
+        pieces[0].mu_to = pieces[0].mu_to.min(mu_zero(alpha));
+        // (piece, position) of every piece's nodes (`shift` 0, all of
+        // them) or interval midpoints (`shift` ½, one fewer).
         let points = |shift: f64, fewer: usize| -> Vec<(usize, f64)> {
-            PIECES
+            pieces
                 .iter()
                 .enumerate()
-                .filter(|&(i, _)| built(i))
                 .flat_map(|(i, p)| {
                     let last = (p.nodes - 1) as f64;
                     (0..p.nodes - fewer).map(move |k| (i, (k as f64 + shift) / last))
                 })
                 .collect()
         };
-        let mut values: Vec<f64> = points(0.0, 0)
+        let values: Vec<f64> = points(0.0, 0)
             .par_iter()
-            .map(|&(i, t)| sheen_albedo(PIECES[i].mu_at(t), alpha))
+            .map(|&(i, t)| sheen_albedo(pieces[i].mu_at(t), alpha))
             .collect();
-        let mut piece_errors = [0.0; 3];
-        if !built(0) {
-            // Keeps every piece at its offset; never read.
-            values.splice(0..0, std::iter::repeat_n(f64::NAN, PIECES[0].nodes));
-            piece_errors[0] = f64::INFINITY;
-        }
         let mut curve = SheenCurve {
             alpha,
+            pieces,
             values,
-            piece_errors,
+            piece_errors: [0.0; 3],
             error: 0.0,
         };
         let differences: Vec<(usize, f64)> = points(0.5, 1)
             .par_iter()
             .map(|&(i, t)| {
-                let mu = PIECES[i].mu_at(t);
+                let mu = pieces[i].mu_at(t);
                 (
                     i,
-                    (curve.interpolate(i, mu) - sheen_albedo(mu, alpha)).abs(),
+                    curve_error(curve.interpolate(i, mu), sheen_albedo(mu, alpha)),
                 )
             })
             .collect();
@@ -244,11 +268,15 @@ impl SheenCurve {
     }
 
     /// `E(μ)` (`μ` clamped to [0, 1]): by cubic interpolation in its
-    /// piece's coordinate where that piece is read, exact elsewhere.
+    /// piece's coordinate where that piece is read, exact elsewhere (0
+    /// from [`mu_zero`] on, exactly).
     pub fn at(&self, mu: f64) -> f64 {
         let mu = mu.clamp(0.0, 1.0);
         if mu < MU_LOWEST {
             return sheen_albedo(mu, self.alpha);
+        }
+        if mu >= mu_zero(self.alpha) {
+            return 0.0;
         }
         let piece = piece_of(mu);
         if self.piece_errors[piece] > CURVE_ERROR_LIMIT {
@@ -259,19 +287,28 @@ impl SheenCurve {
 
     /// The cubic of piece `piece` at `μ` (inside the piece).
     fn interpolate(&self, piece: usize, mu: f64) -> f64 {
-        let p = &PIECES[piece];
+        let p = &self.pieces[piece];
         let (lo, hi) = p.ends();
         let last = p.nodes - 1;
         let x = ((p.coordinate.of(mu) - lo) / (hi - lo)).clamp(0.0, 1.0) * last as f64;
         // The four nodes around x, kept inside the piece.
         let first = (x.floor() as usize).saturating_sub(1).min(last - 3);
         let t = x - first as f64;
-        let offset: usize = PIECES[..piece].iter().map(|p| p.nodes).sum();
+        let offset: usize = self.pieces[..piece].iter().map(|p| p.nodes).sum();
         let v = &self.values[offset + first..offset + first + 4];
         // Lagrange through nodes 0, 1, 2, 3 at t.
         let (a, b, c, d) = (t, t - 1.0, t - 2.0, t - 3.0);
-        -v[0] * b * c * d / 6.0 + v[1] * a * c * d / 2.0 - v[2] * a * b * d / 2.0
-            + v[3] * a * b * c / 6.0
+        let cubic = |v: [f64; 4]| {
+            -v[0] * b * c * d / 6.0 + v[1] * a * c * d / 2.0 - v[2] * a * b * d / 2.0
+                + v[3] * a * b * c / 6.0
+        };
+        if p.log_values && v.iter().all(|&e| e > 0.0) {
+            // Near the horizon `E` falls by decades between nodes at a
+            // narrow sheen; `ln E` is smooth there.
+            cubic([v[0].ln(), v[1].ln(), v[2].ln(), v[3].ln()]).exp()
+        } else {
+            cubic([v[0], v[1], v[2], v[3]])
+        }
     }
 }
 
@@ -399,15 +436,16 @@ mod tests {
     use super::super::sheen::sheen_alpha;
     use super::*;
 
-    /// The curve is the exact `E` within its stated error at points
-    /// between the nodes other than the midpoints it was measured at, in
-    /// every piece that is read, and that error is small against the
-    /// explorer's own tolerances (the albedo's outer panels stop at 10⁻⁸
-    /// of the integral). The horizon's pieces are read at every roughness
-    /// measured but the smallest.
+    /// The curve is the exact `E` within its stated error ([`curve_error`])
+    /// at points between the nodes other than the midpoints it was
+    /// measured at, in every piece that is read, and that error is small
+    /// against the explorer's own tolerances (the albedo's outer panels
+    /// stop at 10⁻⁸ of the integral). Every piece is read at every
+    /// roughness measured, the floor included (the middle one below
+    /// 0.02 maybe not).
     #[test]
     fn the_curve_is_the_exact_albedo_within_its_error() {
-        for r in [0.02, 0.05, 0.1, 0.25, 0.4, 0.7, 1.0] {
+        for r in [0.0, 1e-4, 0.02, 0.05, 0.1, 0.25, 0.4, 0.7, 1.0] {
             let alpha = sheen_alpha(r);
             let start = std::time::Instant::now();
             let curve = SheenCurve::new(alpha);
@@ -417,20 +455,20 @@ mod tests {
                 curve.piece_errors.map(|e| format!("{e:.1e}")).join(", "),
                 start.elapsed().as_secs_f64()
             );
-            // Usable wherever E stays moderate near grazing; at r_sh = 0.02
-            // (E = 3.0 at 89°) its steep rise keeps E exact above the
-            // horizon.
-            if r >= 0.05 {
+            // At 0 < r_sh ≤ 0.02 (E = 3.0 at 89° at 0.02) the steep rise
+            // and fall above the horizon may keep E exact in the middle
+            // piece (at 10⁻⁴ it falls from 2.5·10³ to 0 there).
+            for (i, &e) in curve.piece_errors.iter().enumerate() {
+                let may_be_exact = r > 0.0 && r <= 0.02 && i == 1;
                 assert!(
-                    curve.piece_errors.iter().all(|&e| e <= CURVE_ERROR_LIMIT),
-                    "r_sh {r}: {:?}",
-                    curve.piece_errors
+                    e <= CURVE_ERROR_LIMIT || may_be_exact,
+                    "r_sh {r} piece {i}: {e:e}"
                 );
             }
-            for (i, piece) in PIECES.iter().enumerate() {
+            for (i, piece) in curve.pieces.iter().enumerate() {
                 for k in 0..200 {
                     let mu = piece.mu_at((k as f64 + 0.37) / 200.0);
-                    let d = (curve.at(mu) - sheen_albedo(mu, alpha)).abs();
+                    let d = curve_error(curve.at(mu), sheen_albedo(mu, alpha));
                     let bound = if curve.piece_errors[i] <= CURVE_ERROR_LIMIT {
                         curve.error
                     } else {
@@ -440,23 +478,24 @@ mod tests {
                 }
             }
             for mu in [0.0, 1e-9, 0.5 * MU_LOWEST, MU_LOWEST, MU_HORIZON, 0.5, 1.0] {
-                let d = (curve.at(mu) - sheen_albedo(mu, alpha)).abs();
+                let d = curve_error(curve.at(mu), sheen_albedo(mu, alpha));
                 assert!(d < 1e-12, "r_sh {r} μ {mu}: {d:e} at a node or below them");
             }
         }
     }
 
-    /// At the sheen roughness floor the horizon's piece is left out (its
-    /// integrals would take hours) and `E` there is exact; the other
-    /// pieces are built as at any `α`.
+    /// `E` is exactly 0 from [`mu_zero`] on (where the curve returns 0
+    /// without reading anything) and not yet at half of it, from the
+    /// roughness floor (`r_sh = 0`, glTF's default) to `r_sh = 0.03`.
     #[test]
-    fn the_floor_has_no_horizon_piece() {
-        let alpha = sheen_alpha(0.0);
-        assert!(alpha < HORIZON_ALPHA_MIN);
-        let curve = SheenCurve::new(alpha);
-        assert!(curve.piece_errors[0].is_infinite());
-        assert!(curve.piece_errors[1..].iter().all(|e| e.is_finite()));
-        let mu = 5e-5;
-        assert_eq!(curve.at(mu), sheen_albedo(mu, alpha));
+    fn the_albedo_vanishes_from_mu_zero_on() {
+        for r in [0.0, 1e-5, 1e-4, 1e-3, 0.01, 0.03] {
+            let alpha = sheen_alpha(r);
+            let mu = mu_zero(alpha);
+            assert!(mu < 1.0, "r_sh {r}: {mu}");
+            assert_eq!(sheen_albedo(mu, alpha), 0.0, "r_sh {r} at {mu:e}");
+            assert_eq!(sheen_albedo(1.5 * mu, alpha), 0.0, "r_sh {r}");
+            assert!(sheen_albedo(0.5 * mu, alpha) > 0.0, "r_sh {r}");
+        }
     }
 }

@@ -232,6 +232,26 @@ fn sheen_albedo_quadrature_converged() {
     assert!(worst < 1e-8, "{worst}");
 }
 
+/// At the roughness floor (glTF's default `sheen_roughness = 0`) `E`
+/// lives within 2·10⁻⁵ of the horizon and peaks at about 5·10⁴ near the
+/// visibility's cusp (μ = 10⁻⁶); there the quadrature agrees with the
+/// fine one to a relative 10⁻¹⁰ (its panels stop at 10⁻¹³ of their own
+/// value, which an absolute tolerance cannot reach at that size), and a
+/// value above the lobe's reach is exactly 0.
+#[test]
+fn sheen_albedo_converged_at_the_floor() {
+    let alpha = sheen_alpha(0.0);
+    let mut worst = 0.0f64;
+    for mu in [1e-9, 1e-7, 5e-7, 1e-6, 1.5e-6, 2e-6, 3e-6, 1e-5] {
+        let (e, fine) = (sheen_albedo(mu, alpha), sheen_albedo_fine(mu, alpha));
+        assert!(e > 0.0 && e.is_finite(), "μ {mu}: {e}");
+        worst = worst.max((e - fine).abs() / fine);
+    }
+    eprintln!("sheen albedo at the floor: max |E − E_fine| / E_fine = {worst:e}");
+    assert!(worst < 1e-10, "{worst}");
+    assert_eq!(sheen_albedo(1e-3, alpha), 0.0);
+}
+
 /// The albedo scaling is clamped at 0 where `E > 1` (pinned choice 10) and
 /// is 1 without colour.
 #[test]
