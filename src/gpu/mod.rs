@@ -107,6 +107,7 @@ pub mod texture_pool;
 pub mod textures;
 pub mod timing;
 pub mod transmission;
+pub mod transmission_back_faces;
 pub mod upload;
 pub mod upload_tally;
 
