@@ -28,7 +28,7 @@ fn main() {
     eprintln!("reference: {:.1} s", start.elapsed().as_secs_f64());
     let ctx = GpuContext::new(&AdapterChoice::from_flag_or_env(None)).unwrap();
     let mut renderer = GpuRenderer::new(ctx);
-    let settings: [(&str, &[&str]); 5] = [
+    let settings: [(&str, &[&str]); 6] = [
         ("off", &["shading.transmission=\"off\""]),
         (
             "screen, 1 layer, one interface",
@@ -37,6 +37,10 @@ fn main() {
         ("screen, 1 layer", &[]),
         ("screen, 2 layers", &["shading.transmission_layers=2"]),
         ("screen, 4 layers", &["shading.transmission_layers=4"]),
+        (
+            "screen, 1 layer, exit ray traced",
+            &["shading.transmission_exit_ray=\"traced\""],
+        ),
     ];
     println!("| setting | relative RMS | relative max | frame [ms] |");
     println!("| --- | --- | --- | --- |");

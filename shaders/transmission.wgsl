@@ -82,6 +82,14 @@ fn thin_wall_weight(m: Material, cos_o: f32) -> f32 {
 // camera), blurred by the roughness and attenuated over the path inside;
 // 0 behind the camera.
 fn seen_through(m: Material, x: vec3<f32>, n: vec3<f32>, wo: vec3<f32>, ior: f32) -> vec3<f32> {
+    #if transmission_exit_traced
+    // The ray traced out of the volume and on (transmission_traced.wgsl);
+    // where it cannot be, the read below.
+    let traced = seen_through_traced(m, x, n, wo, ior);
+    if traced.a > 0.0 {
+        return traced.rgb;
+    }
+    #endif
     let ray = volume_transmission_ray(n, wo, m.layers.thickness, ior);
     let clip = globals.clip_from_world * vec4<f32>(x + ray, 1.0);
     let ndc = clip.xy / clip.w;

@@ -194,34 +194,45 @@ pub fn configs(base: &Scene, smoke: bool) -> (Vec<Config>, Vec<Skipped>) {
     // Light through surfaces (docs/transmission.md, "The GPU renderer"):
     // off (drawn as if opaque), screen space with one interface (the
     // Khronos sample renderer's), with a volume's exit interface and 1,
-    // 2 and 4 layers of what lies behind; a knob only where a drawn
-    // material transmits.
+    // 2 and 4 layers of what lies behind, and one layer with the exit ray
+    // traced in screen space; a knob only where a drawn material
+    // transmits.
     let transmits = base
         .meshes
         .iter()
         .any(|m| base.materials[m.material].transmits_specularly());
     let transmission = if transmits {
-        use crate::scene::TransmissionMode;
+        use crate::scene::{TransmissionExitRay, TransmissionMode};
         let current = base.transmission;
         let mut v = vec![(
             "off".to_string(),
             vec!["shading.transmission=\"off\"".to_string()],
             current.mode == TransmissionMode::Off,
         )];
-        for (layers, exit) in [(1u32, false), (1, true), (2, true), (4, true)] {
+        let thickness = TransmissionExitRay::Thickness;
+        for (layers, exit, ray) in [
+            (1u32, false, thickness),
+            (1, true, thickness),
+            (2, true, thickness),
+            (4, true, thickness),
+            (1, true, TransmissionExitRay::Traced),
+        ] {
             v.push((
                 format!(
-                    "screen {layers}{}",
-                    if exit { "" } else { " one interface" }
+                    "screen {layers}{}{}",
+                    if exit { "" } else { " one interface" },
+                    if ray == thickness { "" } else { " traced" }
                 ),
                 vec![
                     "shading.transmission=\"screen\"".to_string(),
                     format!("shading.transmission_layers={layers}"),
                     format!("shading.transmission_exit={exit}"),
+                    format!("shading.transmission_exit_ray=\"{ray}\""),
                 ],
                 current.mode == TransmissionMode::Screen
                     && current.layers == layers
-                    && current.exit == exit,
+                    && current.exit == exit
+                    && current.exit_ray == ray,
             ));
         }
         v

@@ -285,6 +285,12 @@ impl SceneDraw {
         bytes.len() as u64
     }
 
+    /// The globals' buffer (the back-face pass of the traced
+    /// transmission exit binds its camera: src/gpu/transmission_back_faces.rs).
+    pub fn globals_buffer(&self) -> &wgpu::Buffer {
+        &self.globals_buffer
+    }
+
     /// Writes the per-view values.
     pub fn write_globals(&self, queue: &wgpu::Queue, globals: &GpuGlobals) {
         queue.write_buffer(&self.globals_buffer, 0, bytemuck::bytes_of(globals));

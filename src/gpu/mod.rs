@@ -27,7 +27,9 @@
 //!   times (update by what changed, encode a frame), counting what it
 //!   sends by kind in an [`upload_tally`]; [`transmission`] holds the
 //!   images transmissive surfaces read what lies behind them from, and
-//!   records their mip chains;
+//!   records their mip chains, [`transmission_back_faces`] the volumes'
+//!   back faces and the opaque scene's depth a traced exit marches
+//!   against;
 //! * [`readback`] copies a radiance target into a [`crate::frame::Frame`]
 //!   and reads the timestamp queries; [`timing`] names the durations;
 //! * [`offscreen`] is the one-shot render (`scene -> Frame`);
@@ -52,14 +54,16 @@
 //! prepared    -> shadow_maps shadow_culling shadow_masks pipelines
 //!                environment draw scene_parts upload upload_tally
 //!                geometry bind_groups bindings layout textures
-//!                shader_gen shadows transmission context formats
+//!                shader_gen shadows transmission transmission_back_faces
+//!                context formats
 //! shadow_maps -> shadow_culling shadow_masks pipelines draw scene_parts
 //!                bind_groups bindings layout shadows context texture_pool
 //! shadow_masks -> pipelines textures geometry shader_gen
 //! shadow_culling -> geometry shadows
 //! pipelines   -> environment bind_groups bindings geometry shader_gen
 //!                shadows transmission formats
-//! transmission -> shader_gen formats
+//! transmission -> transmission_back_faces shader_gen formats
+//! transmission_back_faces -> geometry shader_gen formats
 //! environment -> bind_groups shader_gen formats
 //! draw        -> bind_groups bindings layout geometry measured_tables
 //!                scene_parts upload shader_gen
@@ -107,6 +111,7 @@ pub mod texture_pool;
 pub mod textures;
 pub mod timing;
 pub mod transmission;
+pub mod transmission_back_faces;
 pub mod upload;
 pub mod upload_tally;
 

@@ -71,8 +71,10 @@ pub struct PipelineCache {
         ),
         wgpu::RenderPipeline,
     >,
-    /// Group 4 of pipelines that draw transmission (src/gpu/transmission.rs).
+    /// Group 4 of pipelines that draw transmission (src/gpu/transmission.rs):
+    /// the image alone, and with the traced exit's images.
     transmission_group_layout: wgpu::BindGroupLayout,
+    traced_transmission_group_layout: wgpu::BindGroupLayout,
     /// Whether a scene of several BRDF variants is drawn by one pipeline
     /// that switches per material at run time instead of one specialized
     /// pipeline per variant ([`Self::specializations`]).
@@ -128,7 +130,8 @@ impl PipelineCache {
             texture_groups: HashMap::new(),
             environment_layouts: HashMap::new(),
             backgrounds: HashMap::new(),
-            transmission_group_layout: super::transmission::group_layout(device),
+            transmission_group_layout: super::transmission::group_layout(device, false),
+            traced_transmission_group_layout: super::transmission::group_layout(device, true),
             one_pipeline: false,
         }
     }
@@ -233,9 +236,14 @@ impl PipelineCache {
         &self.shadow_sampler
     }
 
-    /// The layout of group 4, the transmission image.
-    pub fn transmission_group_layout(&self) -> &wgpu::BindGroupLayout {
-        &self.transmission_group_layout
+    /// The layout of group 4, the transmission image, with the traced
+    /// exit's images when `traced` (the key's `transmission_exit_traced`).
+    pub fn transmission_group_layout(&self, traced: bool) -> &wgpu::BindGroupLayout {
+        if traced {
+            &self.traced_transmission_group_layout
+        } else {
+            &self.transmission_group_layout
+        }
     }
 
     /// The layout of the shadow passes' bind group (the layer views).
@@ -307,7 +315,7 @@ impl PipelineCache {
                 .then(|| &self.environment_layouts[&key.arrays].group),
             key.materials
                 .layer_transmission
-                .then_some(&self.transmission_group_layout),
+                .then(|| self.transmission_group_layout(key.materials.transmission_exit_traced)),
         ];
         while groups.last() == Some(&None) {
             groups.pop();

@@ -26,6 +26,7 @@ use super::shadow_maps::{self, ShadowMaps};
 use super::shadow_masks::ShadowMasks;
 use super::shadows::ShadowPlan;
 use super::transmission::{self, TransmissionImages};
+use super::transmission_back_faces::BackFacePass;
 use super::upload::GpuGeometry;
 use super::upload_tally::UploadTally;
 use crate::scene::Scene;
@@ -128,6 +129,9 @@ struct TransmissionDraw {
     settings: crate::scene::TransmissionSettings,
     /// Group 4's layout, for new images at a new size.
     group_layout: wgpu::BindGroupLayout,
+    /// With the traced exit: the back-face pass and the batches it draws
+    /// (the transmissive volumes', `thickness > 0`).
+    back_faces: Option<(BackFacePass, Vec<usize>)>,
 }
 
 /// The colour target a [`PreparedScene`] draws into.
@@ -237,6 +241,18 @@ impl PreparedScene {
         } else {
             Vec::new()
         };
+        let volume_batches: Vec<usize> = if key.materials.transmission_exit_traced {
+            object_centers(&stream.batches, scene, |m| {
+                m.transmits_specularly()
+                    && m.layers.thickness > 0.0
+                    && m.alpha_mode != crate::material::AlphaMode::Blend
+            })
+            .into_iter()
+            .map(|(b, _)| b)
+            .collect()
+        } else {
+            Vec::new()
+        };
         let triangles = scene.triangle_count() as u64;
         let geometry = match &mut source {
             Source::Keep(scene) => {
@@ -281,14 +297,15 @@ impl PreparedScene {
                 Some(_) => Some(cache.background(arrays, TRANSMISSION_FORMAT, 1, key.tone_map)?),
                 None => None,
             };
-            let group_layout = cache.transmission_group_layout().clone();
+            let traced = key.materials.transmission_exit_traced;
+            let group_layout = cache.transmission_group_layout(traced).clone();
             Some(TransmissionDraw {
                 images: TransmissionImages::new(
                     &ctx.device,
                     &ctx.queue,
                     &group_layout,
                     (scene.width, scene.height),
-                    scene.transmission.layers,
+                    (scene.transmission.layers, traced),
                 ),
                 pipelines: self::batch_pipelines(
                     cache,
@@ -301,6 +318,10 @@ impl PreparedScene {
                 background,
                 settings: scene.transmission,
                 group_layout,
+                back_faces: traced.then(|| {
+                    let pass = BackFacePass::new(&ctx.device, draw.layout, draw.globals_buffer());
+                    (pass, volume_batches)
+                }),
             })
         } else {
             None
@@ -551,7 +572,7 @@ impl PreparedScene {
                 &ctx.queue,
                 &t.group_layout,
                 (scene.width, scene.height),
-                t.settings.layers,
+                (t.settings.layers, t.back_faces.is_some()),
             );
         }
         let mut globals = GpuGlobals::new(scene);
@@ -718,13 +739,24 @@ impl PreparedScene {
     /// scene draws transmission: layer 0 the background and every batch
     /// that neither transmits nor blends, layer `k` the transmissive
     /// batches that read layer `k − 1` over a copy of it; each followed by
-    /// its mip chain. Call after the shadow passes, before the scene
-    /// pass.
+    /// its mip chain. With the traced exit, the volumes' back faces
+    /// first and the opaque scene's depth kept after layer 0
+    /// (src/gpu/transmission_back_faces.rs). Call after the shadow
+    /// passes, before the scene pass.
     pub fn encode_transmission(&self, encoder: &mut wgpu::CommandEncoder) {
         let Some(t) = &self.transmission else {
             return;
         };
         let batches = self.draw.batches();
+        if let (Some((back_faces, volumes)), Some(exit)) = (&t.back_faces, t.images.exit()) {
+            let mut pass = exit.begin(encoder);
+            back_faces.bind(&mut pass);
+            self.draw.bind_geometry(&mut pass);
+            for &b in volumes {
+                self.draw
+                    .draw_range(&mut pass, batches[b].range.clone(), 0..1);
+            }
+        }
         for layer in 0..t.images.layer_count() {
             {
                 let mut pass = t.images.begin_layer(encoder, layer);
@@ -760,6 +792,9 @@ impl PreparedScene {
                     }
                     self.draw.draw_batch(&mut pass, &batches[b]);
                 }
+            }
+            if layer == 0 {
+                t.images.copy_scene_depth(encoder);
             }
             t.images.encode_mips(encoder, layer);
         }

@@ -17,20 +17,29 @@
 //! Group 4 of a scene pipeline that draws transmission is a layer's
 //! image and the trilinear sampler ([`group_layout`]); while layer 0 is
 //! drawn, the pipelines read a 1 × 1 black image instead (an image may
-//! not be read and drawn into by one pass).
+//! not be read and drawn into by one pass). With the traced exit
+//! (`shading.transmission_exit_ray = "traced"`), group 4 also holds the
+//! back faces and the opaque scene's depth
+//! (src/gpu/transmission_back_faces.rs).
 
 use super::formats::{DEPTH_FORMAT, TRANSMISSION_FORMAT};
+use super::transmission_back_faces::{self as back_faces, ExitImages};
 use crate::{Error, Result};
 
 /// The bind group index of the transmission image.
 pub const GROUP: u32 = 4;
 
 /// Group 4's layout: the image (filterable, read in the fragment or,
-/// for vertex shading, the vertex stage) and its sampler.
-pub fn group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+/// for vertex shading, the vertex stage) and its sampler; with `traced`,
+/// the traced exit's images after them ([`back_faces::group_entries`]).
+pub fn group_layout(device: &wgpu::Device, traced: bool) -> wgpu::BindGroupLayout {
+    let mut entries = group_entries().to_vec();
+    if traced {
+        entries.extend(back_faces::group_entries());
+    }
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("gonio transmission image"),
-        entries: &group_entries(),
+        entries: &entries,
     })
 }
 
@@ -81,7 +90,10 @@ pub struct TransmissionImages {
     /// `(width, height)` of level 0: the frame's.
     pub size: (u32, u32),
     layers: Vec<LayerImage>,
+    depth_texture: wgpu::Texture,
     depth: wgpu::TextureView,
+    /// The traced exit's images (`None` unless the scene traces it).
+    exit: Option<ExitImages>,
     /// Group 4 over a black 1 × 1 image, bound while layer 0 is drawn.
     black: wgpu::BindGroup,
     mip_pipeline: wgpu::RenderPipeline,
@@ -89,15 +101,17 @@ pub struct TransmissionImages {
 
 impl TransmissionImages {
     /// `layers` images of `size` with their chains (`group` is
-    /// [`group_layout`]).
+    /// [`group_layout`] of `traced`), and the traced exit's images with
+    /// `traced`.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         group: &wgpu::BindGroupLayout,
         size: (u32, u32),
-        layers: u32,
+        (layers, traced): (u32, bool),
     ) -> Self {
         let (width, height) = (size.0.max(1), size.1.max(1));
+        let exit = traced.then(|| ExitImages::new(device, (width, height)));
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("gonio transmission"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -122,19 +136,23 @@ impl TransmissionImages {
             }],
         });
         let group_of = |view: &wgpu::TextureView| {
+            let mut entries = vec![
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&sampler),
+                },
+            ];
+            if let Some(exit) = &exit {
+                entries.extend(exit.bind_entries());
+            }
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("gonio transmission image"),
                 layout: group,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(&sampler),
-                    },
-                ],
+                entries: &entries,
             })
         };
         let levels = mip_levels(width, height);
@@ -188,22 +206,23 @@ impl TransmissionImages {
             },
         );
         let black = group_of(&black_texture.create_view(&Default::default()));
-        let depth = device
-            .create_texture(&wgpu::TextureDescriptor {
-                label: Some("gonio transmission depth"),
-                size: extent(width, height),
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: DEPTH_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            })
-            .create_view(&Default::default());
+        // Copied from with the traced exit (the opaque scene's depth).
+        let depth_texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("gonio transmission depth"),
+            size: extent(width, height),
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
         TransmissionImages {
             size: (width, height),
             layers: images,
-            depth,
+            depth: depth_texture.create_view(&Default::default()),
+            depth_texture,
+            exit,
             black,
             mip_pipeline: mip_pipeline(device, &source_layout),
         }
@@ -222,6 +241,19 @@ impl TransmissionImages {
     /// Group 4 over a black image (while layer 0 is drawn).
     pub fn black_group(&self) -> &wgpu::BindGroup {
         &self.black
+    }
+
+    /// The traced exit's images, if the scene traces it.
+    pub fn exit(&self) -> Option<&ExitImages> {
+        self.exit.as_ref()
+    }
+
+    /// Records the copy of layer 0's depth (the opaque scene's) for the
+    /// traced exit; nothing without it. Call after layer 0 is drawn.
+    pub fn copy_scene_depth(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(exit) = &self.exit {
+            exit.copy_scene_depth(encoder, &self.depth_texture);
+        }
     }
 
     /// Begins the pass that draws into level 0 of layer `layer`: layer 0

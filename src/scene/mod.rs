@@ -31,7 +31,7 @@ pub use environment::Environment;
 pub use light::{Light, LightKind, LightMarkers, MapResolution, ShadowFilter, ShadowSettings};
 pub use mesh::Mesh;
 pub use shadow_coords::ShadowCoords;
-pub use transmission_settings::{TransmissionMode, TransmissionSettings};
+pub use transmission_settings::{TransmissionExitRay, TransmissionMode, TransmissionSettings};
 
 use crate::base::named_enum;
 use crate::material::Material;

@@ -1,4 +1,5 @@
-//! `shading.transmission` and `shading.transmission_layers`: how the GPU
+//! `shading.transmission`, `shading.transmission_layers`,
+//! `shading.transmission_exit` and `shading.transmission_exit_ray`: how the GPU
 //! draws light through surfaces (`KHR_materials_transmission`), its
 //! knobs. The reference traces the light through and ignores both
 //! (docs/transmission.md).
@@ -19,6 +20,25 @@ named_enum!(
         /// Not at all: the material is drawn as if opaque (its diffuse
         /// part whole), and `gonio render` warns.
         Off = "off",
+    }
+);
+
+named_enum!(
+    /// Where the GPU reads what a volume's refracted ray sees past the
+    /// volume (shaders/transmission.wgsl, shaders/transmission_traced.wgsl).
+    #[derive(Default)]
+    TransmissionExitRay, "transmission exit ray" {
+        /// At the projection of the point `thickness` along the ray
+        /// refracted in: the Khronos glTF Sample Renderer's
+        /// (getVolumeTransmissionRay). The default.
+        #[default]
+        Thickness = "thickness",
+        /// Traced in screen space: the refracted ray marched against the
+        /// volumes' back faces to its exit point, refracted out at the
+        /// back face's normal and marched against the opaque scene's
+        /// depth to what it meets (Wyman 2005's two interfaces;
+        /// src/gpu/transmission_back_faces.rs).
+        Traced = "traced",
     }
 );
 
@@ -46,6 +66,8 @@ pub struct TransmissionSettings {
     /// refracted one), by the reciprocity of Fresnel transmission.
     /// `false`: one interface, as the Khronos glTF Sample Renderer.
     pub exit: bool,
+    /// Where a volume's refracted ray is read past the volume.
+    pub exit_ray: TransmissionExitRay,
 }
 
 impl Default for TransmissionSettings {
@@ -54,6 +76,7 @@ impl Default for TransmissionSettings {
             mode: TransmissionMode::Screen,
             layers: 1,
             exit: true,
+            exit_ray: TransmissionExitRay::Thickness,
         }
     }
 }
@@ -81,5 +104,13 @@ mod tests {
         assert_eq!(TransmissionSettings::default().layer_of(4), 0);
         assert_eq!("off".parse::<TransmissionMode>(), Ok(TransmissionMode::Off));
         assert!("ssr".parse::<TransmissionMode>().is_err());
+        assert_eq!(
+            "traced".parse::<TransmissionExitRay>(),
+            Ok(TransmissionExitRay::Traced)
+        );
+        assert_eq!(
+            TransmissionSettings::default().exit_ray,
+            TransmissionExitRay::Thickness
+        );
     }
 }

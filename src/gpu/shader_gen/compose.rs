@@ -300,6 +300,11 @@ pub fn compose_for(key: &ShaderKey, output: Output) -> String {
     if key.materials.layer_transmission {
         out.push_str(&file("transmission.wgsl", &features));
         out.push('\n');
+        // The volumes' exit traced in screen space, only where asked.
+        if key.materials.transmission_exit_traced {
+            out.push_str(&file("transmission_traced.wgsl", &features));
+            out.push('\n');
+        }
     }
     out.push_str(&file("shading.wgsl", &features));
     out.push('\n');

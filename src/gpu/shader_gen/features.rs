@@ -204,6 +204,12 @@ features! {
         /// `layer_transmission`): the image is read three times, one
         /// index of refraction per channel.
         TransmissionDispersion = "transmission_dispersion",
+        /// A volume's refracted ray is traced in screen space to its exit
+        /// and past it (`shading.transmission_exit_ray = "traced"`, with
+        /// `layer_transmission` and a transmissive volume drawn): the
+        /// back faces' and the opaque scene's depth in group 4
+        /// (shaders/transmission_traced.wgsl).
+        TransmissionExitTraced = "transmission_exit_traced",
         /// Some gltf-pbr material transmits diffusely
         /// (`diffuse_transmission > 0`) and the scene draws light through
         /// surfaces (`shading.transmission = "screen"`): the diffuse

@@ -8,7 +8,7 @@ use super::features::Feature;
 use crate::environment::map::Specular;
 use crate::gpu::shadows::{Projection, ShadowFeatures};
 use crate::material::{AlphaMode, Material, ReflectanceModel, Sides, SmithBeckmann};
-use crate::scene::{Light, LightKind, Scene, TransmissionMode};
+use crate::scene::{Light, LightKind, Scene, TransmissionExitRay, TransmissionMode};
 use std::collections::BTreeSet;
 
 /// Declares a group of the key: its plain fields, then its flags, each a
@@ -271,6 +271,9 @@ key_group! {
         transmission_exit => TransmissionExit,
         /// ... and a volume among them disperses.
         transmission_dispersion => TransmissionDispersion,
+        /// ... and a volume's refracted ray is traced past its exit
+        /// (`shading.transmission_exit_ray = "traced"`).
+        transmission_exit_traced => TransmissionExitTraced,
         /// ... transmitting diffusely, with light through surfaces drawn.
         layer_diffuse_transmission => LayerDiffuseTransmission,
     }
@@ -312,6 +315,9 @@ impl MaterialsKey {
             transmission_exit: transmission && scene.transmission.exit,
             transmission_dispersion: transmission
                 && any(|m| m.transmits_specularly() && m.layers.dispersion > 0.0),
+            transmission_exit_traced: transmission
+                && scene.transmission.exit_ray == TransmissionExitRay::Traced
+                && any(|m| m.transmits_specularly() && m.layers.thickness > 0.0),
             layer_diffuse_transmission: diffuse_transmission,
         }
     }

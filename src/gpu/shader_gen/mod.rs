@@ -441,6 +441,58 @@ mod tests {
         }
     }
 
+    /// The traced exit's code (its file, group 4's bindings 2 and 3, the
+    /// call in `seen_through`) only with `shading.transmission_exit_ray =
+    /// "traced"` and a drawn transmissive volume; every case validates,
+    /// the Gouraud one (shaded in the vertex stage) and a dispersive one
+    /// (three traced reads) too.
+    #[test]
+    fn the_traced_exit_only_where_asked_for_a_volume() {
+        use crate::scene::scene_file::{self, SceneSource};
+        let key_for = |sets: &[&str]| {
+            let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
+            all.extend(sets.iter().map(|s| s.to_string()));
+            let scene = scene_file::load(&SceneSource::BuiltIn, &all).unwrap();
+            ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
+        };
+        let code = [
+            "fn seen_through_traced",
+            "@group(4) @binding(3)",
+            "seen_through_traced(m, x, n, wo, ior)",
+        ];
+        let traced = "shading.transmission_exit_ray=\"traced\"";
+        let volume = [
+            "materials.ball.transmission=1",
+            "materials.ball.thickness=1",
+        ];
+        let cases: [(Vec<&str>, bool); 6] = [
+            (volume.to_vec(), false),
+            (vec!["materials.ball.transmission=1", traced], false),
+            ([&volume[..], &[traced]].concat(), true),
+            (
+                [&volume[..], &[traced, "shading.transmission=off"]].concat(),
+                false,
+            ),
+            (
+                [&volume[..], &[traced, "shading.mode=gouraud"]].concat(),
+                true,
+            ),
+            (
+                [&volume[..], &[traced, "materials.ball.dispersion=1"]].concat(),
+                true,
+            ),
+        ];
+        for (sets, present) in cases {
+            let key = key_for(&sets);
+            assert_eq!(key.materials.transmission_exit_traced, present, "{sets:?}");
+            let wgsl = compose(&key);
+            for c in code {
+                assert_eq!(wgsl.contains(c), present, "{sets:?}: `{c}`");
+            }
+            validate(&wgsl).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
+        }
+    }
+
     /// The unlit model's code (its file, its arm, its radiance in the
     /// reflection equation) only where a drawn material is unlit.
     #[test]

@@ -157,8 +157,9 @@ pub fn assemble(
 }
 
 /// `shading.transmission` (a mode name) and `shading.transmission_layers`
-/// (1 to [`MAX_TRANSMISSION_LAYERS`]), `shading.transmission_exit`, each
-/// error naming the key and what it takes.
+/// (1 to [`MAX_TRANSMISSION_LAYERS`]), `shading.transmission_exit`,
+/// `shading.transmission_exit_ray` (a name), each error naming the key and
+/// what it takes.
 fn transmission_settings(
     shading: &super::schema::ShadingSection,
 ) -> std::result::Result<TransmissionSettings, String> {
@@ -180,6 +181,13 @@ fn transmission_settings(
     }
     if let Some(exit) = shading.transmission_exit {
         settings.exit = exit;
+    }
+    if let Some(s) = &shading.transmission_exit_ray {
+        settings.exit_ray = s.parse().map_err(|e| {
+            format!(
+                "shading.transmission_exit_ray: {e} (\"thickness\": read where the refracted ray has gone the material's thickness; \"traced\": marched in screen space to the volume's back face, refracted out, and on to what it meets)"
+            )
+        })?;
     }
     Ok(settings)
 }

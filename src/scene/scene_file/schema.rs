@@ -148,6 +148,10 @@ pub struct ShadingSection {
     /// interface's transmittance (default true; docs/transmission.md).
     #[serde(default)]
     pub transmission_exit: Option<bool>,
+    /// Where a volume's refracted ray is read past it: "thickness"
+    /// (default) or "traced" (docs/transmission.md).
+    #[serde(default)]
+    pub transmission_exit_ray: Option<String>,
 }
 
 /// One `[[objects]]` entry: a glTF file or a generated shape.
