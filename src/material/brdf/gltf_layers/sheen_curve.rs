@@ -207,7 +207,7 @@ pub struct SheenCurve {
     /// [`CURVE_ERROR_LIMIT`] is not read.
     piece_errors: [f64; 3],
     /// `|E_exact(μ) − at(μ)| / max(1, E_exact(μ))` is below this
-    /// ([`curve_error`]): the largest error of a piece that is read (0
+    /// (`curve_error`): the largest error of a piece that is read (0
     /// when none is).
     pub error: f64,
 }
