@@ -315,3 +315,33 @@ fn sharded_bench_merges_into_one_results_file() {
     }
     assert!(out.join("report.md").exists());
 }
+
+/// The target ratios' harness draws a scene whose materials transmit
+/// (its specialized shader without the transmission image's bind group,
+/// which the harness does not bind): `gonio bench` on such a scene once
+/// failed wgpu's pipeline validation there, after every knob was measured.
+#[test]
+fn the_ratio_harness_draws_a_transmissive_scene() {
+    use gonio::bench::ratios::{Effort, uber_vs_specialized};
+    use gonio::scene::scene_file::{self, SceneSource};
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/scenes/transmission/glass.toml");
+    let scene = scene_file::load(
+        &SceneSource::File(path),
+        &["image.width=64".to_string(), "image.height=40".to_string()],
+    )
+    .unwrap();
+    let effort = Effort {
+        warmup: 1,
+        repeats: 2,
+        fine_repeats: 2,
+        hd: (64, 40),
+        small: Some((64, 40)),
+        cold_runs: 1,
+    };
+    let mut renderer = common::gpu_renderer();
+    let (ratio, special_ms, uber_ms) =
+        uber_vs_specialized(&mut renderer, &scene, "glass", effort).unwrap();
+    assert!(special_ms.is_finite() && uber_ms.is_finite());
+    assert!(ratio.num.median > 0.0 && ratio.den.median > 0.0, "{ratio:?}");
+}

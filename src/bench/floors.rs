@@ -238,14 +238,20 @@ pub fn uber_key(scene: &Scene) -> ShaderKey {
     }
 }
 
-/// The scene's own specialized key without shadow, environment or texture
-/// code (for the harness, which binds group 0 alone, as [`uber_key`]).
+/// The scene's own specialized key without shadow, environment,
+/// texture or transmission-image code (for the harness, which binds group 0 alone, as [`uber_key`]).
 pub fn specialized_key(scene: &Scene) -> ShaderKey {
     let mut key = ShaderKey::new(scene, &ShadowPlan::new(scene));
     key.shadows.maps = Default::default();
     key.environment = Default::default();
     key.materials.texture_slots = 0;
     key.materials.texture_bindings = 0;
+    // Nor the transmission image's read (bind group 4, which the harness
+    // does not bind): a transmissive material's reflection alone.
+    key.materials.layer_transmission = false;
+    key.materials.transmission_exit = false;
+    key.materials.transmission_dispersion = false;
+    key.materials.transmission_exit_traced = false;
     key
 }
 
