@@ -343,5 +343,8 @@ fn the_ratio_harness_draws_a_transmissive_scene() {
     let (ratio, special_ms, uber_ms) =
         uber_vs_specialized(&mut renderer, &scene, "glass", effort).unwrap();
     assert!(special_ms.is_finite() && uber_ms.is_finite());
-    assert!(ratio.num.median > 0.0 && ratio.den.median > 0.0, "{ratio:?}");
+    assert!(
+        ratio.num.median > 0.0 && ratio.den.median > 0.0,
+        "{ratio:?}"
+    );
 }

@@ -328,18 +328,22 @@ mod tests {
         }
     }
 
+    /// The built-in scene's key with the ball a `gltf-pbr` material and
+    /// `sets` applied.
+    fn gltf_ball_key(sets: &[&str]) -> ShaderKey {
+        use crate::scene::scene_file::{self, SceneSource};
+        let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
+        all.extend(sets.iter().map(|s| s.to_string()));
+        let scene = scene_file::load(&SceneSource::BuiltIn, &all).unwrap();
+        ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
+    }
+
     /// The transmission pass's code (its file, group 4, the diffuse
     /// part's share) only where a drawn gltf-pbr material transmits and
     /// `shading.transmission` is "screen".
     #[test]
     fn transmission_only_where_a_material_transmits_and_the_mode_draws_it() {
-        use crate::scene::scene_file::{self, SceneSource};
-        let key_for = |sets: &[&str]| {
-            let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
-            all.extend(sets.iter().map(|s| s.to_string()));
-            let scene = scene_file::load(&SceneSource::BuiltIn, &all).unwrap();
-            ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
-        };
+        let key_for = gltf_ball_key;
         let code = [
             "fn transmitted_radiance",
             "@group(4)",
@@ -377,13 +381,7 @@ mod tests {
     /// validates, the Gouraud one (shaded in the vertex stage) too.
     #[test]
     fn diffuse_transmission_and_dispersion_only_where_used() {
-        use crate::scene::scene_file::{self, SceneSource};
-        let key_for = |sets: &[&str]| {
-            let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
-            all.extend(sets.iter().map(|s| s.to_string()));
-            let scene = scene_file::load(&SceneSource::BuiltIn, &all).unwrap();
-            ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
-        };
+        let key_for = gltf_ball_key;
         // (`reflected_diffuse_weight` serves the specular transmission
         // too: the test above.)
         let diffuse_code = [
@@ -448,13 +446,7 @@ mod tests {
     /// (three traced reads) too.
     #[test]
     fn the_traced_exit_only_where_asked_for_a_volume() {
-        use crate::scene::scene_file::{self, SceneSource};
-        let key_for = |sets: &[&str]| {
-            let mut all = vec!["materials.ball.model=gltf-pbr".to_string()];
-            all.extend(sets.iter().map(|s| s.to_string()));
-            let scene = scene_file::load(&SceneSource::BuiltIn, &all).unwrap();
-            ShaderKey::new(&scene, &crate::gpu::shadows::ShadowPlan::new(&scene))
-        };
+        let key_for = gltf_ball_key;
         let code = [
             "fn seen_through_traced",
             "@group(4) @binding(3)",
