@@ -316,10 +316,10 @@ fn sharded_bench_merges_into_one_results_file() {
     assert!(out.join("report.md").exists());
 }
 
-/// The target ratios' harness draws a scene whose materials transmit
-/// (its specialized shader without the transmission image's bind group,
-/// which the harness does not bind): `gonio bench` on such a scene once
-/// failed wgpu's pipeline validation there, after every knob was measured.
+/// The target ratios' harness draws a scene whose materials transmit:
+/// its specialized shader leaves out the transmission image's read (bind
+/// group 4, which the harness does not bind), or wgpu's pipeline
+/// validation fails there, at the end of a `gonio bench` run.
 #[test]
 fn the_ratio_harness_draws_a_transmissive_scene() {
     use gonio::bench::ratios::{Effort, uber_vs_specialized};
