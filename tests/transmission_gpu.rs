@@ -33,7 +33,7 @@ mod transmission_scenes;
 use glam::DVec3;
 use gonio::frame::Frame;
 use gonio::material::{Material, ReflectanceModel};
-use gonio::scene::{Light, Mesh, Rgb, Scene, TransmissionSettings};
+use gonio::scene::{Mesh, Rgb, Scene, TransmissionSettings};
 
 /// Half precision's relative rounding, to nearest or toward zero: `2⁻¹⁰`.
 const HALF_ROUNDING: f64 = 1.0 / 1024.0;
@@ -42,15 +42,7 @@ const F32_SLACK: f64 = 1e-5;
 const SIZE: u32 = 64;
 
 fn scene(meshes: Vec<Mesh>, materials: Vec<Material>) -> Scene {
-    let mut s = transmission_scenes::scene(SIZE, meshes, materials);
-    // The GPU draws a scene only with a light: one of no irradiance.
-    s.light_shadows = vec![Default::default()];
-    s.lights = vec![Light::Directional {
-        direction: DVec3::NEG_Z,
-        irradiance: Rgb::ZERO,
-        shadows: false,
-    }];
-    s
+    transmission_scenes::gpu_scene(SIZE, meshes, materials)
 }
 
 /// An emitter of radiance `radiance` and nothing else.

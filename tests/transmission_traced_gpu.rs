@@ -34,7 +34,7 @@ mod transmission_scenes;
 
 use glam::DVec3;
 use gonio::frame::Frame;
-use gonio::scene::{Light, Rgb, Scene, TransmissionExitRay};
+use gonio::scene::{Rgb, Scene, TransmissionExitRay};
 
 const SIZE: u32 = 64;
 /// Half precision's relative rounding: `2⁻¹⁰`.
@@ -65,14 +65,7 @@ fn ball_lens(exit_ray: TransmissionExitRay) -> Scene {
         transmission_scenes::emitter(LEFT),
         transmission_scenes::emitter(RIGHT),
     ];
-    let mut s = transmission_scenes::scene(SIZE, meshes, materials);
-    // The GPU draws a scene only with a light: one of no irradiance.
-    s.light_shadows = vec![Default::default()];
-    s.lights = vec![Light::Directional {
-        direction: DVec3::NEG_Z,
-        irradiance: Rgb::ZERO,
-        shadows: false,
-    }];
+    let mut s = transmission_scenes::gpu_scene(SIZE, meshes, materials);
     s.transmission.exit_ray = exit_ray;
     s
 }

@@ -6,7 +6,20 @@
 
 use glam::DVec3;
 use gonio::material::{Material, ReflectanceModel};
-use gonio::scene::{Camera, Environment, Mesh, Rgb, Scene, ShadingMode};
+use gonio::scene::{Camera, Environment, Light, Mesh, Rgb, Scene, ShadingMode};
+
+/// [`scene`] as the GPU draws it: the GPU draws a scene only with a
+/// light, so one directional light of no irradiance (adds nothing).
+pub fn gpu_scene(size: u32, meshes: Vec<Mesh>, materials: Vec<Material>) -> Scene {
+    let mut s = scene(size, meshes, materials);
+    s.light_shadows = vec![Default::default()];
+    s.lights = vec![Light::Directional {
+        direction: DVec3::NEG_Z,
+        irradiance: Rgb::ZERO,
+        shadows: false,
+    }];
+    s
+}
 
 /// A scene of `size × size` pixels seen from `(0, 0, 5)` towards the
 /// origin, no lights, no ambient light, no environment.
