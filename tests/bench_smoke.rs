@@ -331,17 +331,9 @@ fn the_ratio_harness_draws_a_transmissive_scene() {
         &["image.width=64".to_string(), "image.height=40".to_string()],
     )
     .unwrap();
-    let effort = Effort {
-        warmup: 1,
-        repeats: 2,
-        fine_repeats: 2,
-        hd: (64, 40),
-        small: Some((64, 40)),
-        cold_runs: 1,
-    };
     let mut renderer = common::gpu_renderer();
     let (ratio, special_ms, uber_ms) =
-        uber_vs_specialized(&mut renderer, &scene, "glass", effort).unwrap();
+        uber_vs_specialized(&mut renderer, &scene, "glass", Effort::SMOKE).unwrap();
     assert!(special_ms.is_finite() && uber_ms.is_finite());
     assert!(
         ratio.num.median > 0.0 && ratio.den.median > 0.0,

@@ -114,6 +114,19 @@ pub struct Effort {
     pub cold_runs: usize,
 }
 
+impl Effort {
+    /// One frame of each at tiny sizes (`gonio bench --smoke`): checks
+    /// that every ratio runs, measures nothing.
+    pub const SMOKE: Effort = Effort {
+        warmup: 0,
+        repeats: 1,
+        fine_repeats: 1,
+        hd: (96, 54),
+        small: Some((64, 48)),
+        cold_runs: 1,
+    };
+}
+
 fn builtin(overrides: &[String]) -> Result<Scene> {
     scene_file::load(&SceneSource::BuiltIn, overrides)
 }

@@ -47,14 +47,7 @@ impl Budget {
             Budget {
                 warmup: 0,
                 per_pass: 1,
-                ratio: Effort {
-                    warmup: 0,
-                    repeats: 1,
-                    fine_repeats: 1,
-                    hd: (96, 54),
-                    small: Some((64, 48)),
-                    cold_runs: 1,
-                },
+                ratio: Effort::SMOKE,
                 scale: Some(Plan::smoke()),
                 truth_samples: 64,
                 base_size: Some((64, 48)),
