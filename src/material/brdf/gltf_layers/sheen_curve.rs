@@ -198,6 +198,8 @@ fn curve_error(approximate: f64, exact: f64) -> f64 {
 #[derive(Debug)]
 pub struct SheenCurve {
     alpha: f64,
+    /// [`mu_zero`] of `alpha`: from there on `E` is 0.
+    mu_zero: f64,
     /// Its pieces: [`PIECES`], the first ending at [`mu_zero`] where that
     /// is below [`MU_HORIZON`].
     pieces: [Piece; 3],
@@ -216,8 +218,9 @@ impl SheenCurve {
     /// The curve of sheen `α` (`α_sh = r_sh²`): an exact integral at
     /// every node and at every interval's midpoint, in parallel.
     pub fn new(alpha: f64) -> SheenCurve {
+        let zero = mu_zero(alpha);
         let mut pieces = PIECES;
-        pieces[0].mu_to = pieces[0].mu_to.min(mu_zero(alpha));
+        pieces[0].mu_to = pieces[0].mu_to.min(zero);
         // (piece, position) of every piece's nodes (`shift` 0, all of
         // them) or interval midpoints (`shift` ½, one fewer).
         let points = |shift: f64, fewer: usize| -> Vec<(usize, f64)> {
@@ -236,6 +239,7 @@ impl SheenCurve {
             .collect();
         let mut curve = SheenCurve {
             alpha,
+            mu_zero: zero,
             pieces,
             values,
             piece_errors: [0.0; 3],
@@ -275,7 +279,7 @@ impl SheenCurve {
         if mu < MU_LOWEST {
             return sheen_albedo(mu, self.alpha);
         }
-        if mu >= mu_zero(self.alpha) {
+        if mu >= self.mu_zero {
             return 0.0;
         }
         let piece = piece_of(mu);
