@@ -51,6 +51,7 @@ struct Material {
     alpha_cutoff: f32,     // AlphaMode::cutoff: fragments of lower alpha are discarded (0: none)
     alpha_mode: u32,       // AlphaMode::code: 0 opaque, 1 mask, 2 blend (its alpha is the output's)
     occlusion: f32,        // ambient occlusion o: multiplies the ambient and environment terms, never direct light (an occlusion texture's slot scales it per pixel)
+    facing_normals: u32,   // 1: the shading normal turns toward the viewer where it faces away (facing_frame in surface.wgsl; glTF materials)
     #if gltf_layers
     layers: GltfLayers,    // gltf-pbr's layers (shaders/brdf/gltf_layers/mod.wgsl), declared only where a drawn material has one
     #endif

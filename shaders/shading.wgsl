@@ -37,20 +37,30 @@ fn environment_radiance(d: vec3<f32>) -> vec3<f32> {
 #endif
 
 #if shadow_pixel
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> {
+fn reflected_radiance(m: Material, x: vec3<f32>, given_frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> {
 #elif shadow_vertex
 #if shadow_ortho
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> {
+fn reflected_radiance(m: Material, x: vec3<f32>, given_frame: SurfaceFrame, shadow_ndc: vec3<f32>) -> vec3<f32> {
 #else
 // A spot light's map (shading.shadow_coords = "vertex"): the interpolated
 // clip coordinates `shadow_clip`, divided in shadow_read_clip.
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, shadow_clip: vec4<f32>) -> vec3<f32> {
+fn reflected_radiance(m: Material, x: vec3<f32>, given_frame: SurfaceFrame, shadow_clip: vec4<f32>) -> vec3<f32> {
 #endif
 #else
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
+fn reflected_radiance(m: Material, x: vec3<f32>, given_frame: SurfaceFrame) -> vec3<f32> {
 #endif
-    let n = frame.n;
     let wo = normalize_or_zero(globals.eye - x);
+    // A glTF material's normal turned toward the viewer where it faces
+    // away (surface.wgsl); every term below reads this one frame.
+    #if facing_normals
+    var frame = given_frame;
+    if m.facing_normals == 1u {
+        frame = facing_frame(given_frame, wo);
+    }
+    #else
+    let frame = given_frame;
+    #endif
+    let n = frame.n;
     // Emission and ambient occlusion only where some material has them
     // (MaterialsKey::emission, ::occlusion): adding 0 and multiplying by 1
     // change no pixel, and cost about 6 % of a Lambert frame on lavapipe.

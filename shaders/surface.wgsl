@@ -28,6 +28,24 @@ fn surface_frame(n: vec3<f32>, t: vec3<f32>) -> SurfaceFrame {
     return SurfaceFrame(n, tangent, cross(n, tangent));
 }
 
+#if facing_normals
+// FACING_COS_MIN of src/base/frame.rs.
+const FACING_COS_MIN: f32 = 1e-3;
+
+// The frame with its normal turned toward wo where it faces away
+// (n·wo < FACING_COS_MIN): n' = normalize(n + (FACING_COS_MIN − n·wo)·wo),
+// the tangent made orthogonal again; unchanged otherwise. A silhouette's
+// interpolated or normal-mapped normal then shades as the other glTF
+// renderers draw it instead of black. Twin: SurfaceFrame::facing.
+fn facing_frame(frame: SurfaceFrame, wo: vec3<f32>) -> SurfaceFrame {
+    let c = dot(frame.n, wo);
+    if c >= FACING_COS_MIN {
+        return frame;
+    }
+    return surface_frame(normalize(frame.n + (FACING_COS_MIN - c) * wo), frame.t);
+}
+#endif
+
 // One-sided f_r: zero where N·I ≤ 0 or N·V ≤ 0 (Material::f_r in Rust).
 fn f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
     if dot(frame.n, wi) <= 0.0 || dot(frame.n, wo) <= 0.0 {

@@ -87,6 +87,20 @@ fn gltf_materials_are_compensated_by_default() {
     assert!(off.materials.iter().all(|m| !m.energy_compensation));
 }
 
+/// glTF materials turn a shading normal that faces away from the viewer
+/// toward it unless `gltf.facing_normals = false`; scene-file materials
+/// never do (the built-in scene's).
+#[test]
+fn gltf_materials_have_facing_normals_by_default() {
+    let file = common::gltf_asset("MetalRoughSpheresNoTextures/MetalRoughSpheresNoTextures.glb");
+    let on = load(&file, &[]);
+    assert!(on.materials.iter().all(|m| m.facing_normals));
+    let off = load(&file, &["gltf.facing_normals=false"]);
+    assert!(off.materials.iter().all(|m| !m.facing_normals));
+    let built_in = scene_file::load(&SceneSource::BuiltIn, &[]).unwrap();
+    assert!(built_in.materials.iter().all(|m| !m.facing_normals));
+}
+
 /// The white furnace with the defaults (no `specular` key): a gold
 /// Cook-Torrance sphere and a normalized-Phong sphere under a uniform map
 /// of radiance 1 show their directional albedo. The reference integrates

@@ -404,3 +404,76 @@ fn one_switching_pipeline_draws_what_the_specialized_ones_draw() {
         "switching and specialized pipelines differ: {worst:.3} × the bound"
     );
 }
+
+/// Facing normals (`Material::facing_normals`, glTF materials): a floor
+/// whose every vertex normal points down, away from the camera above it,
+/// lit by a light from the camera's side and slightly below, is shaded with its normals turned toward the viewer
+/// (`SurfaceFrame::facing`) alike on the GPU and in the reference, per
+/// pixel and per vertex; without them the floor is its ambient term
+/// alone (the one-sided reflection equation is 0 there), which the turned
+/// normals must exceed.
+#[test]
+fn facing_normals_render_like_the_reference() {
+    for mode in [ShadingMode::Phong, ShadingMode::Gouraud] {
+        let mut scene = load(
+            SceneSource::BuiltIn,
+            mode,
+            &[
+                "materials.floor.model=gltf-pbr",
+                "materials.floor.base_color=[0.6, 0.5, 0.4]",
+                "materials.floor.metallic=0",
+                "materials.floor.roughness=0.5",
+            ],
+        );
+        let floor = scene
+            .materials
+            .iter()
+            .position(|m| m.name == "floor")
+            .expect("the built-in scene has a floor");
+        for mesh in scene.meshes.iter_mut().filter(|m| m.material == floor) {
+            mesh.normals.iter_mut().for_each(|n| *n = -glam::DVec3::Y);
+        }
+        let (eye, ambient) = (scene.camera.position, scene.ambient);
+        // A turned normal lies just past the silhouette, facing the
+        // camera's side, so a light from above cannot reach it; one from
+        // the camera's side, slightly below the floor, does.
+        let v = eye - scene.camera.target;
+        scene.lights.push(gonio::scene::Light::Directional {
+            direction: -glam::DVec3::new(v.x, -0.3 * v.length(), v.z).normalize(),
+            irradiance: glam::DVec3::splat(2.0),
+            shadows: false,
+        });
+        let facing_away = scene
+            .meshes
+            .iter()
+            .filter(|m| m.material == floor)
+            .flat_map(|m| m.positions.iter().zip(&m.normals))
+            .all(|(x, n)| n.dot(eye - *x) < 0.0);
+        assert!(facing_away, "every floor normal faces away from the eye");
+
+        let mut renderer = common::gpu_renderer();
+        let (without, _) = renderer.render(&scene).expect("GPU render");
+        scene.materials[floor].facing_normals = true;
+        let with = gpu_vs_cpu(&format!("facing normals, {mode}"), &scene);
+        let (turned, _) = common::gpu_renderer().render(&scene).expect("GPU render");
+        // The floor's pixels: the bottom row, centre (the ball is above).
+        let (w, h) = (scene.width as usize, scene.height as usize);
+        let at = |f: &Frame| f.radiance[(h - 2) * w + w / 2];
+        let k_a = scene.materials[floor].k_a;
+        let ambient_only = [k_a.x * ambient.x, k_a.y * ambient.y, k_a.z * ambient.z];
+        for c in 0..3 {
+            assert!(
+                (at(&without)[c] as f64 - ambient_only[c]).abs() <= 1e-6 * ambient_only[c].max(1.0),
+                "{mode}: without facing normals the floor is its ambient term: {:?} vs {ambient_only:?}",
+                at(&without)
+            );
+        }
+        assert!(
+            at(&turned).iter().sum::<f32>() > 2.0 * at(&without).iter().sum::<f32>() + 0.01,
+            "{mode}: the turned normals light the floor: {:?} vs {:?}",
+            at(&turned),
+            at(&without)
+        );
+        assert!(with.compared > 0);
+    }
+}

@@ -35,7 +35,7 @@ pub struct GpuGlobals {
     pub albedo: [[f32; 4]; 256],
 }
 
-/// `Material` (uniform buffer record, 256 bytes: 144 without the layers,
+/// `Material` (uniform buffer record, 304 bytes: 176 without the layers,
 /// which the WGSL declares only with feature `gltf_layers`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -73,6 +73,10 @@ pub struct GpuMaterial {
     /// The ambient occlusion (`Material::occlusion`; an occlusion
     /// texture's slot multiplies it per pixel).
     pub occlusion: f32,
+    /// 1: the shading normal turns toward the viewer where it faces away
+    /// (`Material::facing_normals`, `facing_frame` in surface.wgsl).
+    pub facing_normals: u32,
+    pub _pad0: [u32; 3],
     /// gltf-pbr's layers (`ShaderParams::layers`); the WGSL `Material`
     /// declares them only where a drawn material uses a layer (feature
     /// `gltf_layers`), the bytes are always there.
@@ -265,6 +269,8 @@ impl GpuMaterial {
             alpha_cutoff: m.alpha_mode.cutoff() as f32,
             alpha_mode: m.alpha_mode.code(),
             occlusion: m.occlusion as f32,
+            facing_normals: u32::from(m.facing_normals),
+            _pad0: [0; 3],
             layers: GpuGltfLayers::from(&p.layers),
         }
     }
@@ -457,6 +463,7 @@ mod tests {
                 alpha_cutoff,
                 alpha_mode,
                 occlusion,
+                facing_normals,
                 layers
             }),
         );

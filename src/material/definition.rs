@@ -104,6 +104,12 @@ pub struct Material {
     /// `energy_compensation`, off by default), for the models whose row
     /// offers it (`ModelRow::energy_compensation`).
     pub energy_compensation: bool,
+    /// The shading normal turned toward the viewer where it faces away
+    /// ([`crate::base::frame::SurfaceFrame::facing`]): on for glTF
+    /// materials (`[gltf] facing_normals`, default true), as the other
+    /// glTF renderers never draw such a silhouette black; off for a scene
+    /// file's materials, whose shading is the lecture's as written.
+    pub facing_normals: bool,
 }
 
 /// glTF 2.0 `alphaMode` (§3.9.4 "Alpha Coverage"): what the base colour's

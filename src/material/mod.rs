@@ -79,6 +79,7 @@ impl Material {
             alpha_mode: AlphaMode::Opaque,
             occlusion: 1.0,
             energy_compensation: false,
+            facing_normals: false,
         };
         (model.row().defaults)(&mut m);
         (m.k_d, m.k_s) = (model.row().weights)(&m);

@@ -40,8 +40,17 @@ pub fn reflected_radiance(
     visibility: impl Fn(usize, DVec3) -> f64,
     environment_visible: impl Fn(DVec3) -> bool,
 ) -> Rgb {
-    let n = frame.n;
     let wo = (eye - x).normalize_or_zero();
+    // A glTF material's normal turned toward the viewer where it faces
+    // away (`SurfaceFrame::facing`); every term below reads this frame.
+    let facing;
+    let frame = if material.facing_normals {
+        facing = frame.facing(wo);
+        &facing
+    } else {
+        frame
+    };
+    let n = frame.n;
     let occlusion = material.occlusion;
     let mut radiance = material.emission + material.k_a * scene.ambient * occlusion;
     if material.model == ReflectanceModel::Unlit {

@@ -170,6 +170,10 @@ features! {
         /// Some material's ambient occlusion is not 1: it multiplies the
         /// ambient and environment terms.
         Occlusion = "occlusion",
+        /// Some material turns its shading normal toward the viewer where
+        /// it faces away (`Material::facing_normals`, glTF materials):
+        /// `facing_frame` in shaders/surface.wgsl.
+        FacingNormals = "facing_normals",
         /// Some gltf-pbr material the scene draws has a layer (any of the
         /// five below): `Material.layers`, the layer files
         /// (shaders/brdf/gltf_layers/) and the layered stack in the

@@ -247,6 +247,10 @@ key_group! {
         /// pixel). The two cost about 6 % of the bench's specialized
         /// Lambert frame on lavapipe (docs/bench/report.md).
         occlusion => Occlusion,
+        /// Some material the scene draws turns its shading normal toward
+        /// the viewer where it faces away (glTF materials by default):
+        /// without, `reflected_radiance` shades the frame it is given.
+        facing_normals => FacingNormals,
         /// Some gltf-pbr material the scene draws has one of the layers
         /// below ([`crate::material::layers::GltfLayers`]); without, the
         /// gltf-pbr arm is the core BRDF and no layer code is compiled.
@@ -303,6 +307,7 @@ impl MaterialsKey {
             smith_beckmann_rational: scene.smith_beckmann == SmithBeckmann::Rational,
             emission: any(Material::emits),
             occlusion: any(Material::has_occlusion),
+            facing_normals: any(|m| m.facing_normals),
             gltf_layers: any(|m| !m.gltf_layers_used().is_empty())
                 || transmission
                 || diffuse_transmission,

@@ -52,6 +52,9 @@ pub(super) fn material_from_pbr(
     // section; `[gltf] energy_compensation = false` for the
     // specification's BRDF exactly).
     out.energy_compensation = true;
+    // Silhouettes as the other glTF renderers draw them (`[gltf]
+    // facing_normals = false` for the one-sided shading as written).
+    out.facing_normals = true;
     let strength = f64::from(material.emissive_strength().unwrap_or(1.0));
     out.emission = Rgb::from(material.emissive_factor().map(f64::from)) * strength;
     out.sides = if material.double_sided() {

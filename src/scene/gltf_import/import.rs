@@ -380,6 +380,7 @@ impl<'a> Importer<'a> {
             material.sides = crate::material::Sides::Front;
             // Compensated, as every glTF material (convert::material_from_pbr).
             material.energy_compensation = true;
+            material.facing_normals = true;
             self.scene.materials.push(material);
             self.scene.materials.len() - 1
         })

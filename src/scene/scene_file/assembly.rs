@@ -63,7 +63,7 @@ pub fn assemble(
         .charge(0, 0, file.lights.len() as u64)
         .map_err(|p| bad(format!("lights: {p}")))?;
     let gltf = super::gltf_keys::GltfKeys::read(&file.gltf).map_err(bad)?;
-    gltf.apply_energy_compensation(&mut materials[file.materials.len()..]);
+    gltf.apply(&mut materials[file.materials.len()..]);
     // A glTF file that brings no light, in a scene without lights or a
     // map, is shown in the neutral studio (`[gltf] default_light`).
     let studio = gltf.default_light == super::gltf_keys::DefaultLight::Studio

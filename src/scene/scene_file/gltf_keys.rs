@@ -2,7 +2,9 @@
 //! true: glTF materials are rendered as three.js, Filament and Babylon.js
 //! render them, with multiple scattering compensated; false gives the
 //! specification's BRDF exactly, the contract's measured-reflectance
-//! section), `default_light` (the light of a glTF scene that has
+//! section), `facing_normals` (default true: a shading normal that faces
+//! away from the viewer is turned toward it, `SurfaceFrame::facing`),
+//! `default_light` (the light of a glTF scene that has
 //! none) and `variant` (the `KHR_materials_variants` variant the files are
 //! drawn in). Errors name the key.
 
@@ -96,6 +98,8 @@ impl VariantChoice {
 pub struct GltfKeys {
     /// `None`: each glTF material as imported (compensated).
     pub energy_compensation: Option<bool>,
+    /// `None`: each glTF material as imported (facing normals on).
+    pub facing_normals: Option<bool>,
     pub default_light: DefaultLight,
 }
 
@@ -113,20 +117,26 @@ impl GltfKeys {
         };
         Ok(GltfKeys {
             energy_compensation: section.energy_compensation,
+            facing_normals: section.facing_normals,
             default_light,
         })
     }
 
     /// Sets `gltf.energy_compensation`, when given, on every glTF
     /// material of `imported` (models without compensation are left as
-    /// they are).
-    pub fn apply_energy_compensation(&self, imported: &mut [Material]) {
+    /// they are), and `gltf.facing_normals`, when given, on all of them.
+    pub fn apply(&self, imported: &mut [Material]) {
         if let Some(on) = self.energy_compensation {
             for m in imported
                 .iter_mut()
                 .filter(|m| m.model == ReflectanceModel::GltfPbr)
             {
                 m.energy_compensation = on;
+            }
+        }
+        if let Some(on) = self.facing_normals {
+            for m in imported.iter_mut() {
+                m.facing_normals = on;
             }
         }
     }

@@ -51,6 +51,11 @@ pub struct GltfSection {
     /// (default true, as three.js, Filament and Babylon.js render glTF;
     /// false: the specification's BRDF exactly).
     pub energy_compensation: Option<bool>,
+    /// Shading normals of every glTF material turned toward the viewer
+    /// where they face away (default true: silhouettes as the other glTF
+    /// renderers draw them; false: the one-sided shading as written, black
+    /// where the normal faces away).
+    pub facing_normals: Option<bool>,
     /// The light of a scene whose glTF files bring none and that has no
     /// `[[lights]]` and no map: `"studio"` (default, the built-in neutral
     /// studio environment) or `"directional"` (the scene files' default

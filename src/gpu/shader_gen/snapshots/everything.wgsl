@@ -59,6 +59,7 @@ struct Material {
     alpha_cutoff: f32,     // AlphaMode::cutoff: fragments of lower alpha are discarded (0: none)
     alpha_mode: u32,       // AlphaMode::code: 0 opaque, 1 mask, 2 blend (its alpha is the output's)
     occlusion: f32,        // ambient occlusion o: multiplies the ambient and environment terms, never direct light (an occlusion texture's slot scales it per pixel)
+    facing_normals: u32,   // 1: the shading normal turns toward the viewer where it faces away (facing_frame in surface.wgsl; glTF materials)
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -219,6 +220,7 @@ fn surface_frame(n: vec3<f32>, t: vec3<f32>) -> SurfaceFrame {
     }
     return SurfaceFrame(n, tangent, cross(n, tangent));
 }
+
 
 // One-sided f_r: zero where N·I ≤ 0 or N·V ≤ 0 (Material::f_r in Rust).
 fn f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
@@ -1457,9 +1459,15 @@ fn latlong_texels(uv: vec2<f32>, w: i32, h: i32) -> LatLongTexels {
     let y = uv.y * f32(h) - 0.5;
     let x0 = floor(x);
     let y0 = floor(y);
+    // u is in [0, 1), so x0 is in [−1, w − 1]: the wrap is a select, not
+    // the remainder rem_euclid takes on the CPU. An integer % is scalar on
+    // lavapipe (no vector division), and four of them per lookup cost
+    // about 9 ms of a 1080p frame under a map (2026-12-06). The clamp only
+    // keeps a NaN direction's texels in bounds.
+    let c = clamp(i32(x0), -1, w - 1);
     return LatLongTexels(
-        ((i32(x0) % w) + w) % w,
-        ((i32(x0) + 1) % w + w) % w,
+        select(c, w - 1, c < 0),
+        select(c + 1, 0, c + 1 >= w),
         clamp(i32(y0), 0, h - 1),
         clamp(i32(y0) + 1, 0, h - 1),
         x - x0,
@@ -2327,9 +2335,12 @@ fn environment_radiance(d: vec3<f32>) -> vec3<f32> {
     return environment_map_radiance(d);
 }
 
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> {
-    let n = frame.n;
+fn reflected_radiance(m: Material, x: vec3<f32>, given_frame: SurfaceFrame, n_g: vec3<f32>) -> vec3<f32> {
     let wo = normalize_or_zero(globals.eye - x);
+    // A glTF material's normal turned toward the viewer where it faces
+    // away (surface.wgsl); every term below reads this one frame.
+    let frame = given_frame;
+    let n = frame.n;
     // Emission and ambient occlusion only where some material has them
     // (MaterialsKey::emission, ::occlusion): adding 0 and multiplying by 1
     // change no pixel, and cost about 6 % of a Lambert frame on lavapipe.

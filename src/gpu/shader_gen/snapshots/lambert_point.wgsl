@@ -58,6 +58,7 @@ struct Material {
     alpha_cutoff: f32,     // AlphaMode::cutoff: fragments of lower alpha are discarded (0: none)
     alpha_mode: u32,       // AlphaMode::code: 0 opaque, 1 mask, 2 blend (its alpha is the output's)
     occlusion: f32,        // ambient occlusion o: multiplies the ambient and environment terms, never direct light (an occlusion texture's slot scales it per pixel)
+    facing_normals: u32,   // 1: the shading normal turns toward the viewer where it faces away (facing_frame in surface.wgsl; glTF materials)
 }
 
 // One punctual light; `kind` is LightKind::id (0 point, 1 directional,
@@ -210,6 +211,7 @@ fn surface_frame(n: vec3<f32>, t: vec3<f32>) -> SurfaceFrame {
     }
     return SurfaceFrame(n, tangent, cross(n, tangent));
 }
+
 
 // One-sided f_r: zero where N·I ≤ 0 or N·V ≤ 0 (Material::f_r in Rust).
 fn f_r(m: Material, wi: vec3<f32>, wo: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
@@ -370,9 +372,12 @@ fn light_incidence(light: Light, x: vec3<f32>) -> Incidence {
 // coordinates `shadow_ndc`.
 
 
-fn reflected_radiance(m: Material, x: vec3<f32>, frame: SurfaceFrame) -> vec3<f32> {
-    let n = frame.n;
+fn reflected_radiance(m: Material, x: vec3<f32>, given_frame: SurfaceFrame) -> vec3<f32> {
     let wo = normalize_or_zero(globals.eye - x);
+    // A glTF material's normal turned toward the viewer where it faces
+    // away (surface.wgsl); every term below reads this one frame.
+    let frame = given_frame;
+    let n = frame.n;
     // Emission and ambient occlusion only where some material has them
     // (MaterialsKey::emission, ::occlusion): adding 0 and multiplying by 1
     // change no pixel, and cost about 6 % of a Lambert frame on lavapipe.
