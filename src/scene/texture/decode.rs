@@ -11,6 +11,7 @@
 //! it declares.
 
 use image::ImageDecoder;
+use rayon::prelude::*;
 use std::io::Cursor;
 
 /// How an image's values are to be read.
@@ -151,19 +152,75 @@ pub fn decode(bytes: &[u8], encoding: Encoding, budget: u64) -> Result<Decoded, 
     let _ = decoder.icc_profile();
     let image =
         image::DynamicImage::from_decoder(decoder).map_err(|e| format!("it is corrupt: {e}"))?;
-    let rgba = image.into_rgba32f();
-    let rgba = rgba
-        .pixels()
-        .map(|p| {
-            let [r, g, b, a] = p.0;
-            [to_linear(r), to_linear(g), to_linear(b), a]
-        })
-        .collect();
+    let rgba = if eight_bit(&image) {
+        // 256 values per channel: each one's linear value computed once
+        // ([`EightBitTable`]), the same f32 the per-texel path gives.
+        let table = EightBitTable::new(encoding);
+        image
+            .into_rgba8()
+            .into_raw()
+            .par_chunks_exact(4)
+            .map(|p| table.texel([p[0], p[1], p[2], p[3]]))
+            .collect()
+    } else {
+        image
+            .into_rgba32f()
+            .into_raw()
+            .par_chunks_exact(4)
+            .map(|p| [to_linear(p[0]), to_linear(p[1]), to_linear(p[2]), p[3]])
+            .collect()
+    };
     Ok(Decoded {
         width,
         height,
         rgba,
     })
+}
+
+/// Whether `image` holds 8 bits per channel (JPEG, and most PNG and
+/// WebP files): its RGBA8 form then loses nothing.
+fn eight_bit(image: &image::DynamicImage) -> bool {
+    use image::DynamicImage::*;
+    matches!(
+        image,
+        ImageLuma8(_) | ImageLumaA8(_) | ImageRgb8(_) | ImageRgba8(_)
+    )
+}
+
+/// The linear value of every 8-bit code, colour channels as `encoding`
+/// reads them and alpha as stored: the sRGB EOTF in f64 per texel was the
+/// largest cost of loading a JPEG-textured file (DamagedHelmet's five
+/// 2048² images, 2026-12-06). Each entry is computed from the very f32
+/// that `image`'s own conversion gives the code (`into_rgba32f` of a
+/// 256-texel image), so a texel's value is the one the per-texel path
+/// computes, bit for bit (test `the_table_is_the_per_texel_path`).
+struct EightBitTable {
+    colour: [f32; 256],
+    alpha: [f32; 256],
+}
+
+impl EightBitTable {
+    fn new(encoding: Encoding) -> Self {
+        let codes = image::RgbaImage::from_fn(256, 1, |x, _| image::Rgba([x as u8; 4]));
+        let scaled = image::DynamicImage::ImageRgba8(codes).into_rgba32f();
+        let mut table = EightBitTable {
+            colour: [0.0; 256],
+            alpha: [0.0; 256],
+        };
+        for (c, p) in scaled.pixels().enumerate() {
+            table.colour[c] = match encoding {
+                Encoding::Srgb => srgb_to_linear(p.0[0]),
+                Encoding::Linear => p.0[0],
+            };
+            table.alpha[c] = p.0[3];
+        }
+        table
+    }
+
+    fn texel(&self, [r, g, b, a]: [u8; 4]) -> [f32; 4] {
+        let c = |v: u8| self.colour[usize::from(v)];
+        [c(r), c(g), c(b), self.alpha[usize::from(a)]]
+    }
 }
 
 /// Whether a JPEG stream reaches its end-of-image marker (`FF D9`) after
@@ -221,6 +278,32 @@ mod tests {
     }
 
     use image::ImageEncoder;
+
+    /// The 8-bit table gives every code the value the per-texel path
+    /// (`into_rgba32f`, then the EOTF for colour) gives it, bit for bit.
+    #[test]
+    fn the_table_is_the_per_texel_path() {
+        for encoding in [Encoding::Srgb, Encoding::Linear] {
+            let table = EightBitTable::new(encoding);
+            for c in 0..=255u8 {
+                let v = f32::from(c) / 255.0;
+                let expected = match encoding {
+                    Encoding::Srgb => srgb_to_linear(v),
+                    Encoding::Linear => v,
+                };
+                let got = table.texel([c, c, c, c]);
+                assert_eq!(got[0].to_bits(), expected.to_bits(), "{encoding:?} {c}");
+                assert_eq!(got[3].to_bits(), v.to_bits(), "alpha {c}");
+            }
+        }
+        // And a decoded 8-bit PNG takes its values from the table.
+        let bytes = png(3, 1, &[0, 0, 0, 128, 128, 128, 255, 255, 255]);
+        let srgb = decode(&bytes, Encoding::Srgb, 1 << 20).unwrap();
+        assert_eq!(
+            srgb.rgba[1][0].to_bits(),
+            srgb_to_linear(128.0 / 255.0).to_bits()
+        );
+    }
 
     #[test]
     fn srgb_values_decode_to_linear_and_data_values_stay() {

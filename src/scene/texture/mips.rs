@@ -12,6 +12,7 @@
 use super::decode::Decoded;
 use glam::DVec4;
 use half::f16;
+use rayon::prelude::*;
 
 /// One level of a mip chain: `width · height` RGBA texels as f16 bits,
 /// row 0 at the top.
@@ -52,31 +53,34 @@ pub fn chain(image: Decoded) -> Vec<Level> {
 /// The next level `w × h` of `src` (`width × height`).
 fn halve(width: u32, height: u32, src: &[[f32; 4]], w: u32, h: u32) -> Vec<[f32; 4]> {
     let at = |x: u32, y: u32| src[(y.min(height - 1) * width + x.min(width - 1)) as usize];
-    let mut out = Vec::with_capacity((w * h) as usize);
-    for y in 0..h {
-        for x in 0..w {
-            let (x0, y0) = (2 * x, 2 * y);
-            let block = [
-                at(x0, y0),
-                at(x0 + 1, y0),
-                at(x0, y0 + 1),
-                at(x0 + 1, y0 + 1),
-            ];
-            let mut mean = [0.0f32; 4];
-            for (c, m) in mean.iter_mut().enumerate() {
-                *m = 0.25 * block.iter().map(|t| t[c]).sum::<f32>();
-            }
-            out.push(mean);
-        }
-    }
-    out
+    // Rows in parallel (each texel is its own block's mean: the same
+    // values in any order).
+    (0..h)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            (0..w).map(move |x| {
+                let (x0, y0) = (2 * x, 2 * y);
+                let block = [
+                    at(x0, y0),
+                    at(x0 + 1, y0),
+                    at(x0, y0 + 1),
+                    at(x0 + 1, y0 + 1),
+                ];
+                let mut mean = [0.0f32; 4];
+                for (c, m) in mean.iter_mut().enumerate() {
+                    *m = 0.25 * block.iter().map(|t| t[c]).sum::<f32>();
+                }
+                mean
+            })
+        })
+        .collect()
 }
 
 fn round(width: u32, height: u32, rgba: &[[f32; 4]]) -> Level {
     Level {
         width,
         height,
-        texels: rgba.iter().map(|t| t.map(to_half_bits)).collect(),
+        texels: rgba.par_iter().map(|t| t.map(to_half_bits)).collect(),
     }
 }
 
