@@ -222,16 +222,17 @@ impl Prefiltered {
         let mut texels = Vec::with_capacity((w * h * LEVELS) as usize);
         for k in 0..LEVELS {
             let alpha = level_alpha(k);
+            let samples = LobeSample::all(alpha, omega_texel);
             let wk = widths(k).min(size);
             let hk = wk / 2;
             let level: Vec<[f64; 3]> = (0..hk)
                 .into_par_iter()
                 .flat_map_iter(|r| {
-                    let pyramid = &pyramid;
+                    let (pyramid, samples) = (&pyramid, &samples);
                     let row: Vec<[f64; 3]> = (0..wk)
                         .map(move |c| {
                             let d = latlong::texel_direction(c, r, wk, hk);
-                            prefilter(pyramid, d, alpha, omega_texel)
+                            prefilter(pyramid, d, alpha, samples)
                         })
                         .collect();
                     done.fetch_add(u64::from(wk), Ordering::Relaxed);
@@ -286,37 +287,70 @@ pub fn level_blend(alpha: f64) -> (u32, f64) {
     (k as u32, f - k)
 }
 
-/// One prefiltered texel: the GGX lobe of `alpha` about `r` (`N = V = R`).
-fn prefilter(pyramid: &Pyramid, r: DVec3, alpha: f64, omega_texel: f64) -> [f64; 3] {
+/// One half vector of the GGX lobe of a level, in the lobe's own frame
+/// (`t`, `b`, `R`), with the mip it reads: the same for every texel of
+/// the level (they depend on the sample's index, `α` and the map's texel
+/// solid angle alone), so computed once per level rather than once per
+/// texel (the sines, cosines and logarithm were most of a stack's cost).
+struct LobeSample {
+    /// `sin θ_h cos φ`, `sin θ_h sin φ`, `cos θ_h`.
+    along_t: f64,
+    along_b: f64,
+    cos_h: f64,
+    /// The box-filtered mip whose texel matches the sample's solid angle.
+    lod: f64,
+}
+
+impl LobeSample {
+    /// The [`PREFILTER_SAMPLES`] half vectors of the Hammersley set for
+    /// `alpha`, their mips chosen against `omega_texel` (a source texel's
+    /// mean solid angle at mip 0).
+    fn all(alpha: f64, omega_texel: f64) -> Vec<LobeSample> {
+        let n = PREFILTER_SAMPLES;
+        let alpha2 = alpha * alpha;
+        (0..n)
+            .map(|k| {
+                let u1 = (k as f64 + 0.5) / n as f64;
+                let u2 = k.reverse_bits() as f64 / 4_294_967_296.0;
+                let cos_h = ((1.0 - u1) / (1.0 + (alpha2 - 1.0) * u1)).sqrt();
+                let sin_h = (1.0 - cos_h * cos_h).max(0.0).sqrt();
+                let phi = TAU * u2;
+                // pdf(l) = D(h)·cos θ_h/(4 V·H) = D/4 with V = N; the
+                // sample's solid angle 1/(n·pdf) chooses the mip (+1: GPU
+                // Gems 3, 20.4).
+                let d = {
+                    let x = 1.0 + (alpha2 - 1.0) * cos_h * cos_h;
+                    alpha2 / (PI * x * x)
+                };
+                let omega_sample = 4.0 / (n as f64 * d);
+                LobeSample {
+                    along_t: sin_h * phi.cos(),
+                    along_b: sin_h * phi.sin(),
+                    cos_h,
+                    lod: 0.5 * (omega_sample / omega_texel).log2() + 1.0,
+                }
+            })
+            .collect()
+    }
+}
+
+/// One prefiltered texel: the GGX lobe of `alpha` about `r` (`N = V = R`), over its
+/// `samples` ([`LobeSample::all`]).
+fn prefilter(pyramid: &Pyramid, r: DVec3, alpha: f64, samples: &[LobeSample]) -> [f64; 3] {
     if alpha == 0.0 {
         return pyramid.bilinear(0, r);
     }
     let t = any_tangent(r);
     let b = r.cross(t);
-    let n = PREFILTER_SAMPLES;
-    let alpha2 = alpha * alpha;
     let (mut sum, mut weight) = ([0.0; 3], 0.0);
-    for k in 0..n {
-        let u1 = (k as f64 + 0.5) / n as f64;
-        let u2 = k.reverse_bits() as f64 / 4_294_967_296.0;
-        let cos_h = ((1.0 - u1) / (1.0 + (alpha2 - 1.0) * u1)).sqrt();
-        let sin_h = (1.0 - cos_h * cos_h).max(0.0).sqrt();
-        let phi = TAU * u2;
-        let h = t * (sin_h * phi.cos()) + b * (sin_h * phi.sin()) + r * cos_h;
+    for s in samples {
+        let h = t * s.along_t + b * s.along_b + r * s.cos_h;
         let l = h * (2.0 * r.dot(h)) - r;
         let cos_l = r.dot(l);
         if cos_l <= 0.0 {
             continue;
         }
-        // pdf(l) = D(h)·cos θ_h/(4 V·H) = D/4 with V = N; the sample's
-        // solid angle 1/(n·pdf) chooses the mip (+1: GPU Gems 3, 20.4).
-        let d = {
-            let x = 1.0 + (alpha2 - 1.0) * cos_h * cos_h;
-            alpha2 / (PI * x * x)
-        };
-        let omega_sample = 4.0 / (n as f64 * d);
-        let lod = 0.5 * (omega_sample / omega_texel).log2() + 1.0;
-        let v = pyramid.trilinear(lod, l);
+        let v = pyramid.trilinear(s.lod, l);
         for c in 0..3 {
             sum[c] += v[c] * cos_l;
         }
