@@ -124,12 +124,10 @@ pub fn decode(bytes: &[u8], encoding: Encoding, budget: u64) -> Result<Decoded, 
     };
     if super::ktx2::is_ktx2(bytes) {
         let (_, _, rgba8) = super::ktx2::transcode_rgba8(bytes)?;
+        let table = EightBitTable::new(encoding);
         let rgba = rgba8
-            .chunks_exact(4)
-            .map(|p| {
-                let [r, g, b, a] = [p[0], p[1], p[2], p[3]].map(|c| f32::from(c) / 255.0);
-                [to_linear(r), to_linear(g), to_linear(b), a]
-            })
+            .par_chunks_exact(4)
+            .map(|p| table.texel([p[0], p[1], p[2], p[3]]))
             .collect();
         return Ok(Decoded {
             width,
